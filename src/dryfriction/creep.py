@@ -1,0 +1,271 @@
+"""Compressive creep of a contact: the radius ratio ``a_r = a/a0`` against its age (spec §2).
+
+Times are reduced, ``T = theta / t0``. Two laws, one interface:
+
+* :class:`LogCreep`, the first-order law ``a_r^2 = 1 + eps ln(1 + T)`` (eqs. 17, 19);
+* :class:`EyringNabarroCreep`, the exact Eyring-Nabarro law (eqs. 15-16),
+  ``(2/a) da/dt = edot0 exp(sigma/S)``, ``sigma = Y (a0/a)^2``, written with ``eps = S/Y`` and
+  ``1/t0 = edot0 (Y/S) exp(Y/S)`` (eq. 18). For ``s = a_r^2`` it reads (ours)
+  ``ds/dT = eps s exp((1/s - 1)/eps)``.
+
+Both laws are described through a *clock* variable ``c`` in which ``a_r^2`` is smooth, so that
+quadratures over the age of traps (eq. 34) need no special care at short ages:
+
+* log law: ``c = ln(1 + T)``, ``T = e^c - 1``, ``a_r^2 = 1 + eps c``;
+* Eyring-Nabarro (ours): ``c = Q = (1 - 1/s)/eps``, ``a_r^2 = 1/(1 - eps Q)`` and
+  ``T(Q) = int_0^Q e^q / (1 - eps q) dq`` (separation of variables in the ODE above).
+  To first order in ``eps``, ``T = e^Q - 1`` and the two laws coincide.
+
+The exact law grows without bound at long times (``s`` grows exponentially once the stress
+has relaxed, at the rate ``eps e^{-1/eps}``); it departs from the log law when
+``T ~ e^{1/eps}``. :func:`creep_law_difference` measures the departure.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal, Protocol
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .validation import check_choice, check_range, check_scalar
+
+__all__ = [
+    "CreepLaw",
+    "LogCreep",
+    "EyringNabarroCreep",
+    "creep_law",
+    "CREEP_LAWS",
+    "CreepMaterial",
+    "creep_law_difference",
+]
+
+Array = NDArray[np.float64]
+CreepName = Literal["log", "eyring-nabarro"]
+CREEP_LAWS: tuple[str, ...] = ("log", "eyring-nabarro")
+
+
+class CreepLaw(Protocol):
+    """What the friction calculations need from an ageing law."""
+
+    eps: float
+    name: str
+
+    def radius(self, T: ArrayLike) -> Array:
+        """``a_r(T) = a/a0`` at reduced age ``T``."""
+        ...
+
+    def clock(self, T: ArrayLike) -> Array:
+        """Clock variable ``c(T)``."""
+        ...
+
+    def age(self, c: ArrayLike) -> Array:
+        """Reduced age ``T(c)``."""
+        ...
+
+    def dage(self, c: ArrayLike) -> Array:
+        """``dT/dc``."""
+        ...
+
+    def radius_sq(self, c: ArrayLike) -> Array:
+        """``a_r^2`` as a function of the clock."""
+        ...
+
+    def dradius_sq(self, c: ArrayLike) -> Array:
+        """``d(a_r^2)/dc``."""
+        ...
+
+
+@dataclass(frozen=True)
+class LogCreep:
+    """Logarithmic ageing ``a_r(T) = sqrt(1 + eps ln(1 + T))`` (eqs. 17 and 19).
+
+    Parameters
+    ----------
+    eps : float
+        Creep parameter ``S/Y`` (dimensionless, ``>= 0``; typically ~0.01).
+    """
+
+    eps: float
+    name: str = "log"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0))
+
+    def clock(self, T: ArrayLike) -> Array:
+        return np.log1p(np.asarray(T, float))
+
+    def age(self, c: ArrayLike) -> Array:
+        return np.expm1(np.asarray(c, float))
+
+    def dage(self, c: ArrayLike) -> Array:
+        return np.exp(np.asarray(c, float))
+
+    def radius_sq(self, c: ArrayLike) -> Array:
+        return 1.0 + self.eps * np.asarray(c, float)
+
+    def dradius_sq(self, c: ArrayLike) -> Array:
+        return np.full_like(np.asarray(c, float), self.eps)
+
+    def radius(self, T: ArrayLike) -> Array:
+        return np.sqrt(self.radius_sq(self.clock(T)))
+
+
+# Gauss-Legendre rule on [0, 1] for the Eyring-Nabarro age integral.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(64)
+_GL_X = 0.5 * (_GL_X + 1.0)
+_GL_W = 0.5 * _GL_W
+# Beyond this exponent the integrand of T(Q) is below e^-40 relative: cut there.
+_EN_CUT = 40.0
+
+
+@dataclass(frozen=True)
+class EyringNabarroCreep:
+    """Exact Eyring-Nabarro creep (eqs. 15-16) in reduced form ``ds/dT = eps s e^{(1/s-1)/eps}``.
+
+    ``s = a_r^2``; ``eps = S/Y`` and ``t0`` as in eq. 18. Clock ``Q = (1 - 1/s)/eps``.
+
+    Parameters
+    ----------
+    eps : float
+        Creep parameter ``S/Y`` (``>= 0``). ``eps = 0`` means no ageing.
+    """
+
+    eps: float
+    name: str = "eyring-nabarro"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0))
+
+    def radius_sq(self, c: ArrayLike) -> Array:
+        return 1.0 / (1.0 - self.eps * np.asarray(c, float))
+
+    def dradius_sq(self, c: ArrayLike) -> Array:
+        return self.eps / (1.0 - self.eps * np.asarray(c, float)) ** 2
+
+    def dage(self, c: ArrayLike) -> Array:
+        c = np.asarray(c, float)
+        return np.exp(c) / (1.0 - self.eps * c)
+
+    def age(self, c: ArrayLike) -> Array:
+        """``T(Q) = int_0^Q e^q/(1 - eps q) dq``.
+
+        With ``b = 1 - eps Q`` and ``v = Q - q = (b/eps)(e^t - 1)`` (ours) the integral becomes
+        ``T = (e^Q/eps) int_0^{ln(1/b)} exp(-(b/eps)(e^t - 1)) dt``, an entire integrand that a
+        fixed Gauss-Legendre rule resolves to rounding for any ``eps > 0`` and ``b > 0``.
+        """
+        Q = np.asarray(c, float)
+        eps = self.eps
+        if eps == 0.0:
+            return np.expm1(Q)
+        b = 1.0 - eps * Q
+        # upper limit: ln(1/b), cut where (b/eps)(e^t - 1) exceeds _EN_CUT
+        t_hi = np.minimum(-np.log1p(-eps * Q), np.log1p(_EN_CUT * eps / b))
+        t = t_hi[..., None] * _GL_X
+        integrand = np.exp(-(b[..., None] / eps) * np.expm1(t))
+        integral = t_hi * (integrand @ _GL_W)
+        return np.exp(Q) * integral / eps
+
+    def clock(self, T: ArrayLike) -> Array:
+        """Invert ``T(Q)`` by safeguarded Newton iteration on ``ln T(Q)``."""
+        T = np.asarray(T, float)
+        if self.eps == 0.0:
+            return np.log1p(T)
+        Tf = np.atleast_1d(T).astype(float)
+        out = np.zeros_like(Tf)
+        pos = Tf > 0
+        Tp = Tf[pos]
+        # T(Q) >= e^Q - 1, so Q <= ln(1 + T); and Q < 1/eps.
+        hi = np.minimum(np.log1p(Tp), (1.0 - 1e-15) / self.eps)
+        lo = np.zeros_like(hi)
+        q = hi.copy()
+        for _ in range(200):
+            Fq = self.age(q)
+            g = np.log(Fq) - np.log(Tp)
+            lo = np.where(g < 0, q, lo)
+            hi = np.where(g > 0, q, hi)
+            step = g * Fq / self.dage(q)
+            qn = q - step
+            outside = (qn <= lo) | (qn >= hi)
+            qn = np.where(outside, 0.5 * (lo + hi), qn)
+            done = np.abs(qn - q) <= 1e-15 * np.maximum(1.0, np.abs(q))
+            q = qn
+            if np.all(done):
+                break
+        out[pos] = q
+        return out.reshape(T.shape)
+
+    def radius(self, T: ArrayLike) -> Array:
+        return np.sqrt(self.radius_sq(self.clock(T)))
+
+
+def creep_law(name: str, eps: float) -> LogCreep | EyringNabarroCreep:
+    """Build a creep law by name: ``"log"`` (eq. 17) or ``"eyring-nabarro"`` (eqs. 15-16)."""
+    check_choice("creep", name, CREEP_LAWS)
+    return LogCreep(eps) if name == "log" else EyringNabarroCreep(eps)
+
+
+def as_creep_law(creep: str | CreepLaw, eps: float) -> CreepLaw:
+    """Accept a law object (its ``eps`` must match) or a law name."""
+    if isinstance(creep, str):
+        return creep_law(creep, eps)
+    if creep.eps != eps:
+        raise ValueError(f"creep law has eps = {creep.eps:g} but eps = {eps:g} was given")
+    return creep
+
+
+@dataclass(frozen=True)
+class CreepMaterial:
+    """Material constants of Eyring-Nabarro creep (eqs. 15-16) and their reduced form (eq. 18).
+
+    Parameters
+    ----------
+    Y : float
+        Yield (hardness) stress, Pa.
+    S : float
+        Stress scale of the Eyring activation, Pa (``S << Y``).
+    edot0 : float
+        Strain-rate prefactor, 1/s.
+    """
+
+    Y: float
+    S: float
+    edot0: float
+
+    def __post_init__(self) -> None:
+        check_scalar("Y", self.Y, 0.0, lo_open=True)
+        check_scalar("S", self.S, 0.0, lo_open=True)
+        check_scalar("edot0", self.edot0, 0.0, lo_open=True)
+
+    @property
+    def eps(self) -> float:
+        """``eps = S/Y`` (eq. 18)."""
+        return self.S / self.Y
+
+    @property
+    def t0(self) -> float:
+        """``t0 = 1 / (edot0 (Y/S) exp(Y/S))`` in seconds (eq. 18), computed in logs."""
+        x = self.Y / self.S
+        return math.exp(-x - math.log(self.edot0) - math.log(x))
+
+    @classmethod
+    def from_reduced(cls, eps: float, t0: float, Y: float) -> CreepMaterial:
+        """Material with given ``eps``, ``t0`` (s) and hardness ``Y`` (Pa): inverts eq. 18."""
+        eps = check_scalar("eps", eps, 0.0, lo_open=True)
+        t0 = check_scalar("t0", t0, 0.0, lo_open=True)
+        x = 1.0 / eps
+        return cls(Y=Y, S=eps * Y, edot0=math.exp(-x - math.log(t0) - math.log(x)))
+
+
+def creep_law_difference(eps: ArrayLike, T: ArrayLike) -> Array:
+    """``a_r`` of the Eyring-Nabarro law minus that of the log law, broadcast over (eps, T)."""
+    eps_a = check_range("eps", eps, 0.0)
+    T_a = check_range("T", T, 0.0)
+    eps_b, T_b = np.broadcast_arrays(eps_a, T_a)
+    out = np.empty(eps_b.shape)
+    for e in np.unique(eps_b):
+        m = eps_b == e
+        out[m] = EyringNabarroCreep(float(e)).radius(T_b[m]) - LogCreep(float(e)).radius(T_b[m])
+    return out

@@ -1,0 +1,128 @@
+"""Prescribed load-point motion: a sequence of constant-velocity segments.
+
+Shared by every driver (the trap ensemble and rate-and-state) and every unit system: the
+numbers are in whatever units the caller works in (reduced ``a0/t0``, ``t0``, ``a0`` for the
+trap model; m/s, s, m for rate-and-state). A segment is given by its velocity and either its
+duration or the slip it covers (``|velocity| * duration``). Velocity 0 is a hold; negative
+velocities move backwards.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .validation import check_scalar
+
+__all__ = ["Segment", "VelocityProgram"]
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One constant-velocity stretch of a program.
+
+    Parameters
+    ----------
+    velocity : float
+        Load-point velocity (0 = hold, negative = backwards).
+    duration : float, optional
+        Length of the segment in time, ``> 0``.
+    slip : float, optional
+        Distance covered, ``> 0``; needs ``velocity != 0``. Give exactly one of
+        ``duration`` and ``slip``.
+    """
+
+    velocity: float
+    duration: float | None = None
+    slip: float | None = None
+
+    def __post_init__(self) -> None:
+        v = check_scalar("velocity", self.velocity)
+        object.__setattr__(self, "velocity", v)
+        if (self.duration is None) == (self.slip is None):
+            raise ValueError("a segment needs exactly one of duration and slip")
+        if self.duration is not None:
+            d = check_scalar("duration", self.duration, 0.0, lo_open=True)
+            object.__setattr__(self, "duration", d)
+        else:
+            s = check_scalar("slip", self.slip, 0.0, lo_open=True)
+            if v == 0.0:
+                raise ValueError("slip is given for a segment with velocity = 0: give a duration")
+            object.__setattr__(self, "slip", s)
+
+    @property
+    def time(self) -> float:
+        """Duration of the segment."""
+        if self.duration is not None:
+            return self.duration
+        assert self.slip is not None
+        return self.slip / abs(self.velocity)
+
+    @property
+    def displacement(self) -> float:
+        """Signed displacement of the load point over the segment."""
+        return self.velocity * self.time
+
+    @classmethod
+    def from_mapping(cls, m: Mapping[str, float]) -> Segment:
+        """Build from ``{velocity=…, duration=…}`` or ``{velocity=…, slip=…}``."""
+        unknown = set(m) - {"velocity", "duration", "slip"}
+        if unknown:
+            raise ValueError(
+                f"unknown segment key(s) {', '.join(sorted(unknown))}: "
+                "allowed velocity, duration, slip"
+            )
+        if "velocity" not in m:
+            raise ValueError("a segment needs a velocity")
+        return cls(m["velocity"], m.get("duration"), m.get("slip"))
+
+
+@dataclass(frozen=True)
+class VelocityProgram:
+    """A piecewise-constant velocity program starting at time 0 and position ``x0``."""
+
+    segments: tuple[Segment, ...]
+    x0: float = 0.0
+
+    def __init__(self, segments: Iterable[Segment | Mapping[str, float]], x0: float = 0.0):
+        segs = tuple(s if isinstance(s, Segment) else Segment.from_mapping(s) for s in segments)
+        if not segs:
+            raise ValueError("a velocity program needs at least one segment")
+        object.__setattr__(self, "segments", segs)
+        object.__setattr__(self, "x0", check_scalar("x0", x0))
+
+    @property
+    def times(self) -> NDArray[np.float64]:
+        """Segment boundaries in time, length ``n + 1``, starting at 0."""
+        return np.concatenate([[0.0], np.cumsum([s.time for s in self.segments])])
+
+    @property
+    def positions(self) -> NDArray[np.float64]:
+        """Load-point positions at the segment boundaries."""
+        return self.x0 + np.concatenate([[0.0], np.cumsum([s.displacement for s in self.segments])])
+
+    @property
+    def velocities(self) -> NDArray[np.float64]:
+        return np.array([s.velocity for s in self.segments])
+
+    @property
+    def total_time(self) -> float:
+        return float(self.times[-1])
+
+    def _index(self, t: NDArray[np.float64]) -> NDArray[np.intp]:
+        i = np.searchsorted(self.times, t, side="right") - 1
+        return np.clip(i, 0, len(self.segments) - 1)
+
+    def velocity(self, t: ArrayLike) -> NDArray[np.float64]:
+        """Load-point velocity at times ``t`` (right-continuous at boundaries)."""
+        t = np.asarray(t, float)
+        return self.velocities[self._index(t)]
+
+    def position(self, t: ArrayLike) -> NDArray[np.float64]:
+        """Load-point position at times ``t`` (continuous, piecewise linear)."""
+        t = np.asarray(t, float)
+        i = self._index(t)
+        return self.positions[i] + self.velocities[i] * (t - self.times[i])

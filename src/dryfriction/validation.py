@@ -1,0 +1,92 @@
+"""Argument checks shared by every public entry point.
+
+Every check raises :class:`ValueError` naming the parameter, the offending value and the
+allowed range, before any work starts. The CLI turns these into one line and exit code 2.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["check_range", "check_scalar", "check_choice"]
+
+
+def _fmt_range(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
+    parts = []
+    if lo is not None:
+        parts.append(f"{'>' if lo_open else '>='} {lo:g}")
+    if hi is not None:
+        parts.append(f"{'<' if hi_open else '<='} {hi:g}")
+    return "finite and " + " and ".join(parts) if parts else "finite"
+
+
+def check_range(
+    name: str,
+    value: ArrayLike,
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+) -> NDArray[np.float64]:
+    """Return ``value`` as a float array after checking every element lies in the range.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : array_like
+        Scalar or array of real numbers.
+    lo, hi : float or None
+        Bounds; ``None`` means unbounded on that side.
+    lo_open, hi_open : bool
+        Whether the bound itself is excluded.
+
+    Raises
+    ------
+    ValueError
+        If any element is non-finite, non-real or outside the range.
+    """
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} is not a real number") from None
+    bad = ~np.isfinite(arr)
+    if lo is not None:
+        bad |= (arr <= lo) if lo_open else (arr < lo)
+    if hi is not None:
+        bad |= (arr >= hi) if hi_open else (arr > hi)
+    if np.any(bad):
+        first = arr[bad].flat[0] if arr.ndim else float(arr)
+        raise ValueError(
+            f"{name} = {first:g} is out of range: allowed {_fmt_range(lo, hi, lo_open, hi_open)}"
+        )
+    return arr
+
+
+def check_scalar(
+    name: str,
+    value: float,
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+) -> float:
+    """Like :func:`check_range` for a single real number; returns a Python float."""
+    arr = check_range(name, value, lo, hi, lo_open=lo_open, hi_open=hi_open)
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a single number, got an array of shape {arr.shape}")
+    out = float(arr)
+    assert math.isfinite(out)
+    return out
+
+
+def check_choice(name: str, value: str, choices: tuple[str, ...]) -> str:
+    """Check that ``value`` is one of ``choices``."""
+    if value not in choices:
+        raise ValueError(f"{name} = {value!r} is not allowed: choose one of {', '.join(choices)}")
+    return value
