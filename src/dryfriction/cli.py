@@ -28,6 +28,11 @@ out = Console()
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+@app.callback()
+def _root() -> None:
+    """The Caroli-Velicky elasto-plastic model of dry friction (reduced units: a0, t0, F_el)."""
+
+
 def cli_errors(fn: F) -> F:
     """Turn the library's ``ValueError``/``OSError`` into one line and exit code 2."""
 
