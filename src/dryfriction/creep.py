@@ -24,6 +24,7 @@ has relaxed, at the rate ``eps e^{-1/eps}``); it departs from the log law when
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal, Protocol
 
@@ -40,6 +41,8 @@ __all__ = [
     "CREEP_LAWS",
     "CreepMaterial",
     "creep_law_difference",
+    "radius",
+    "per_eps",
 ]
 
 Array = NDArray[np.float64]
@@ -77,6 +80,10 @@ class CreepLaw(Protocol):
         """``d(a_r^2)/dc``."""
         ...
 
+    def clock_at_radius(self, r: ArrayLike) -> Array:
+        """Inverse of ``radius_sq``: the clock at which ``a_r = r``."""
+        ...
+
 
 @dataclass(frozen=True)
 class LogCreep:
@@ -108,6 +115,9 @@ class LogCreep:
 
     def dradius_sq(self, c: ArrayLike) -> Array:
         return np.full_like(np.asarray(c, float), self.eps)
+
+    def clock_at_radius(self, r: ArrayLike) -> Array:
+        return (np.asarray(r, float) ** 2 - 1.0) / self.eps
 
     def radius(self, T: ArrayLike) -> Array:
         return np.sqrt(self.radius_sq(self.clock(T)))
@@ -144,6 +154,9 @@ class EyringNabarroCreep:
 
     def dradius_sq(self, c: ArrayLike) -> Array:
         return self.eps / (1.0 - self.eps * np.asarray(c, float)) ** 2
+
+    def clock_at_radius(self, r: ArrayLike) -> Array:
+        return (1.0 - 1.0 / np.asarray(r, float) ** 2) / self.eps
 
     def dage(self, c: ArrayLike) -> Array:
         c = np.asarray(c, float)
@@ -259,13 +272,33 @@ class CreepMaterial:
         return cls(Y=Y, S=eps * Y, edot0=math.exp(-x - math.log(t0) - math.log(x)))
 
 
-def creep_law_difference(eps: ArrayLike, T: ArrayLike) -> Array:
-    """``a_r`` of the Eyring-Nabarro law minus that of the log law, broadcast over (eps, T)."""
-    eps_a = check_range("eps", eps, 0.0)
-    T_a = check_range("T", T, 0.0)
-    eps_b, T_b = np.broadcast_arrays(eps_a, T_a)
+def per_eps(
+    fn: Callable[[CreepLaw, NDArray[np.float64]], NDArray[np.float64]],
+    creep: str,
+    eps: NDArray[np.float64],
+    x: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Broadcast ``fn(law, x)`` over arrays of ``eps``, building one law per distinct ``eps``.
+
+    The creep laws carry a scalar ``eps``; this groups the points of a grid by ``eps`` so that
+    every public function broadcasts over ``(eps, x)`` like a NumPy ufunc.
+    """
+    eps_b, x_b = np.broadcast_arrays(eps, x)
     out = np.empty(eps_b.shape)
     for e in np.unique(eps_b):
         m = eps_b == e
-        out[m] = EyringNabarroCreep(float(e)).radius(T_b[m]) - LogCreep(float(e)).radius(T_b[m])
-    return out
+        out[m] = fn(creep_law(creep, float(e)), x_b[m])
+    return out if out.ndim else out[()]
+
+
+def radius(T: ArrayLike, eps: ArrayLike, creep: str = "log") -> NDArray[np.float64]:
+    """``a_r(T)`` for arrays of age ``T`` (in ``t0``) and ``eps``, broadcast (eqs. 17, 15-16)."""
+    check_choice("creep", creep, CREEP_LAWS)
+    T_a = check_range("T", T, 0.0)
+    eps_a = check_range("eps", eps, 0.0)
+    return per_eps(lambda law, t: law.radius(t), creep, eps_a, T_a)
+
+
+def creep_law_difference(eps: ArrayLike, T: ArrayLike) -> Array:
+    """``a_r`` of the Eyring-Nabarro law minus that of the log law, broadcast over (eps, T)."""
+    return radius(T, eps, "eyring-nabarro") - radius(T, eps, "log")

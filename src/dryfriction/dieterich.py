@@ -1,0 +1,132 @@
+"""Static against dynamic friction: Dieterich's memory length (paper §6, spec §5).
+
+Dieterich's scaling ``mu_d(V) = mu_s(t_w = D0/V)`` with ``D0 = C a0`` (eq. 36) reads, in reduced
+units, ``mu_d(u) = mu_s(T = C/u)``. The model satisfies it only asymptotically:
+
+* **asymptotic constant** (ours, from the first-order expansions): for ``u -> inf`` and
+  ``T -> 0``, ``mu_d - 1 ~ (eps / 2 u H0) int (4 y + 3) f dy`` (first order of eq. 34) and
+  ``mu_s - 1 ~ (eps T / 2 H0) [3 H1 + (y_c - 1) f(y_c - 1)]`` (eq. 28), so
+  ``C_inf = int_{-1}^{death} (4 y + 3) f(y) dy / [3 H1 + (y_c - 1) f(y_c - 1)]``;
+* **least-squares constant** over a range of ``u`` (the paper's fitting procedure, Fig. 6);
+* **local constant** ``C(u)``: the ``C`` for which the two curves meet at ``u``. It is not
+  constant: no single ``D0`` fits everywhere.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import minimize_scalar
+
+from .creep import CREEP_LAWS, per_eps
+from .static import static_friction, static_friction_at_radius, static_slope_per_eps
+from .steady import steady_friction
+from .trap import Trap, z_plus
+from .validation import check_choice, check_range, check_scalar
+
+__all__ = [
+    "forward_moment",
+    "dieterich_constant_asymptotic",
+    "dieterich_constant_least_squares",
+    "dieterich_constant_local",
+]
+
+Array = NDArray[np.float64]
+
+_ZX, _ZW = np.polynomial.legendre.leggauss(16)
+
+
+def _check_alpha(alpha: float) -> float:
+    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+
+
+def forward_moment(k: int, alpha: float = 0.13) -> float:
+    """``int_{-1}^{death} y^k f(y) dy`` for the forward force profile, exactly (ours).
+
+    On the (+) branch ``y(z) = -(z^2 + (1 - alpha) z)/alpha`` and ``f = -6 z (1 + z)``, so the
+    integrand is a polynomial in ``z`` of degree ``2k + 3``; 16-point Gauss-Legendre in ``z`` is
+    exact for ``k <= 14``. The (-) part (strong pinning) follows from ``f_-(y) = -f_+(-y)``.
+    """
+    alpha = _check_alpha(alpha)
+    if not 0 <= k <= 14:
+        raise ValueError(f"k = {k} is out of range: allowed 0 <= k <= 14")
+    trap = Trap(alpha)
+
+    def on_plus(z0: float, z1: float, sign: float) -> float:
+        z = 0.5 * (z1 - z0) * _ZX + 0.5 * (z1 + z0)
+        y = -(z * z + (1.0 - alpha) * z) / alpha
+        dy = -(2.0 * z + 1.0 - alpha) / alpha
+        return float(0.5 * (z1 - z0) * np.sum(_ZW * (sign * y) ** k * (-6.0 * z * (1.0 + z)) * dy))
+
+    total = on_plus(-1.0, trap.z_c, 1.0)
+    if trap.y_c < 1.0:
+        # int_{y_c}^{1} y^k f_-(y) dy = -int_{-1}^{-y_c} (-s)^k f_+(s) ds
+        total -= on_plus(-1.0, float(z_plus(-trap.y_c, alpha)), -1.0)
+    return total
+
+
+def dieterich_constant_asymptotic(alpha: float = 0.13) -> float:
+    """``C_inf``: Dieterich constant matching ``mu_d`` and ``mu_s`` as ``u -> inf`` (ours)."""
+    alpha = _check_alpha(alpha)
+    trap = Trap(alpha)
+    dyn = 4.0 * forward_moment(1, alpha) + 3.0 * forward_moment(0, alpha)
+    stat = 2.0 * trap.H0 * static_slope_per_eps(alpha)
+    return dyn / stat
+
+
+def dieterich_constant_least_squares(
+    eps: float,
+    alpha: float = 0.13,
+    u_min: float = 0.01,
+    u_max: float = 100.0,
+    n: int = 81,
+    creep: str = "log",
+) -> float:
+    """``C`` minimising ``sum (mu_d(u_i) - mu_s(C/u_i))^2`` on ``n`` log-spaced ``u`` (Fig. 6)."""
+    eps = check_scalar("eps", eps, 0.0, lo_open=True)
+    alpha = _check_alpha(alpha)
+    u_min = check_scalar("u_min", u_min, 0.0, lo_open=True)
+    u_max = check_scalar("u_max", u_max, u_min, lo_open=True)
+    check_choice("creep", creep, CREEP_LAWS)
+    u = np.logspace(np.log10(u_min), np.log10(u_max), int(n))
+    mu_d = steady_friction(u, eps, alpha, creep)
+
+    def cost(log_c: float) -> float:
+        return float(np.sum((mu_d - static_friction(np.exp(log_c) / u, eps, alpha, creep)) ** 2))
+
+    res = minimize_scalar(cost, bounds=(np.log(1e-3), np.log(1e3)), method="bounded",
+                          options={"xatol": 1e-10})
+    return float(np.exp(res.x))
+
+
+def dieterich_constant_local(
+    u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log"
+) -> Array:
+    """``C(u) = u T`` with ``mu_s(T) = mu_d(u)``: where the two curves meet (eq. 36 inverted).
+
+    ``mu_s`` depends on ``T`` only through the aged radius ``r = a_r(T)`` and increases with
+    it; ``r`` is found by bisection and ``T`` from the creep law's inverse. NaN where
+    ``mu_d(u) < 1`` (no waiting time gives a static friction that low).
+    """
+    alpha = _check_alpha(alpha)
+    check_choice("creep", creep, CREEP_LAWS)
+    u = check_range("u", u, 0.0, lo_open=True)
+    eps = check_range("eps", eps, 0.0, lo_open=True)
+
+    def one(law, x):  # type: ignore[no-untyped-def]
+        tgt = np.atleast_1d(steady_friction(x, law.eps, alpha, creep))
+        lo = np.ones_like(tgt)
+        hi = np.full_like(tgt, 2.0)
+        while np.any(static_friction_at_radius(hi, alpha) < tgt):
+            hi = np.where(static_friction_at_radius(hi, alpha) < tgt, 2.0 * hi, hi)
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            below = static_friction_at_radius(mid, alpha) < tgt
+            lo = np.where(below, mid, lo)
+            hi = np.where(below, hi, mid)
+        r = 0.5 * (lo + hi)
+        T = law.age(law.clock_at_radius(r))
+        C = np.atleast_1d(x) * T
+        return np.where(tgt >= 1.0, C, np.nan).reshape(np.shape(x))
+
+    return per_eps(one, creep, eps, u)

@@ -1,0 +1,257 @@
+"""Steady sliding: the dynamic friction force (paper §5, spec §4).
+
+At reduced velocity ``u = V/V*``, ``V* = a0/t0``, a trap born at ``y = p/a0 = -1`` has age
+``(y + 1)/u`` (eq. 29), radius ratio ``r(y) = a_r((y + 1)/u)`` (eq. 30) and force
+``r^2 f(y/r)`` in units ``Phi00/a0`` (eq. 31); it dies where ``y/r(y) = y_c`` (eq. 32) in very
+strong pinning. In strong pinning (ours) it jumps there onto the (-) branch and dies where
+``y/r(y) = 1``. States are filled uniformly with density ``1/(2 a0)`` (eq. 33), so
+
+    mu_d(u) = (1/H0) int_{-1}^{y_d} r(y)^2 f(y / r(y)) dy            (eq. 34)
+
+**Quadrature (ours).** The integral is taken in the creep law's clock ``c`` (``c = ln(1 + T)``
+for the log law), in which ``r^2`` is smooth and the boundary layer of width ``u`` at ``y = -1``
+disappears: ``dy = u T'(c) dc``. The force has a square-root singularity where the trap reaches
+its spinodal; the substitution ``c = c_d (1 - tau^2)`` removes it. Fixed Gauss-Legendre rules
+then give close to rounding accuracy at a fixed cost, vectorised over ``u``.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.integrate import quad
+
+from .creep import CREEP_LAWS, CreepLaw, per_eps
+from .trap import Trap, force_forward, force_minus, force_plus
+from .validation import check_choice, check_range, check_scalar
+
+__all__ = [
+    "steady_friction",
+    "steady_death_point",
+    "steady_profile",
+    "steady_friction_first_order",
+    "steady_friction_low_velocity",
+    "low_velocity_constant",
+    "DYNAMIC_SLOPE_PER_EPS",
+]
+
+Array = NDArray[np.float64]
+
+DYNAMIC_SLOPE_PER_EPS: float = -1.5
+"""``(1/eps) d mu_d / d ln u`` for ``u << 1`` (eq. 35 reading): ``-3/2``, independent of alpha."""
+
+
+def _rule(n: int) -> tuple[Array, Array]:
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+_TAU, _TAU_W = _rule(48)  # piece up to the (+) spinodal, in tau
+_ETA, _ETA_W = _rule(32)  # (-) branch piece, strong pinning
+
+
+def _graded(L: Array, delta: Array) -> tuple[Array, Array]:
+    """Nodes ``x`` in ``[0, L]`` and weights for a function with a branch point at ``x = -delta``.
+
+    ``x = delta (exp(eta ln(1 + L/delta)) - 1)``: uniform in ``ln(x + delta)``, which makes
+    ``sqrt(x + delta)`` smooth however small ``delta/L`` is (ours).
+    """
+    lam = np.log1p(L / delta)
+    e = np.exp(lam * _ETA)
+    return delta * (e - 1.0), delta * lam * e * _ETA_W
+
+
+def _minus_branch_nodes(c_d: Array, c_e: Array, yc: float) -> tuple[Array, Array]:
+    # f_- has its branch point at w = -y_c, a distance 2 y_c before the piece [y_c, 1]; in the
+    # clock the piece has length c_e - c_d for a change of w of 1 - y_c.
+    L = c_e - c_d
+    x, wts = _graded(L, L * 2.0 * yc / (1.0 - yc))
+    return c_d + x, wts
+
+
+def _check_alpha(alpha: float) -> float:
+    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+
+
+def _death_clock(law: CreepLaw, u: Array, w_end: float) -> Array:
+    """Clock ``c`` at which ``y(c)/r(c) = w_end``, ``y(c) = -1 + u T(c)`` (eq. 32).
+
+    ``g(c) = -1 + u T(c) - w_end r(c)`` is increasing and convex in ``c``; Newton's method
+    from the lower bound ``c(T = (w_end + 1)/u)`` with a bisection safeguard.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c_max = float(law.clock_at_radius(np.inf)) if law.eps > 0 else np.inf
+    lo = law.clock((w_end + 1.0) / u)
+    hi = np.full_like(lo, c_max)
+    c = lo.copy()
+    for _ in range(200):
+        R = law.radius_sq(c)
+        g = -1.0 + u * law.age(c) - w_end * np.sqrt(R)
+        lo = np.where(g <= 0, c, lo)
+        hi = np.where(g >= 0, c, hi)
+        dg = u * law.dage(c) - w_end * law.dradius_sq(c) / (2.0 * np.sqrt(R))
+        cn = c - g / dg
+        bad = ~np.isfinite(cn) | (cn < lo) | (cn > hi)
+        mid = np.where(np.isfinite(hi), 0.5 * (lo + hi), 2.0 * lo + 1.0)
+        cn = np.where(bad, mid, cn)
+        done = np.abs(cn - c) <= 4e-16 * np.maximum(1.0, np.abs(c))
+        c = cn
+        if np.all(done):
+            return c
+    raise RuntimeError("steady sliding: the death point did not converge")  # pragma: no cover
+
+
+def _steady_one_law(law: CreepLaw, u: Array, alpha: float) -> Array:
+    trap = Trap(alpha)
+    yc = trap.y_c
+    c_d = _death_clock(law, u, yc)[:, None]
+    # piece 1: (+) branch, c = c_d (1 - tau^2), smooth in tau despite the spinodal singularity
+    c = c_d * (1.0 - _TAU**2)
+    R = law.radius_sq(c)
+    y = -1.0 + u[:, None] * law.age(c)
+    w = np.minimum(y / np.sqrt(R), yc)
+    integrand = u[:, None] * law.dage(c) * R * force_plus(w, alpha) * 2.0 * c_d * _TAU
+    total = integrand @ _TAU_W
+    if yc < 1.0:  # strong pinning: continue on the (-) branch up to w = 1
+        c_e = _death_clock(law, u, 1.0)[:, None]
+        c, wts = _minus_branch_nodes(c_d, c_e, yc)
+        R = law.radius_sq(c)
+        y = -1.0 + u[:, None] * law.age(c)
+        w = np.clip(y / np.sqrt(R), yc, 1.0)
+        integrand = u[:, None] * law.dage(c) * R * force_minus(w, alpha) * wts
+        total = total + integrand.sum(axis=-1)
+    return total / trap.H0
+
+
+def steady_friction(
+    u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log"
+) -> Array:
+    """Steady dynamic friction ``mu_d = F_d/F_el`` at reduced velocity ``u = V t0/a0`` (eq. 34).
+
+    Parameters
+    ----------
+    u : array_like
+        Reduced sliding velocity ``V/V*``, ``V* = a0/t0``; ``> 0``.
+    eps : array_like
+        Creep parameter ``S/Y``, ``>= 0`` (broadcast with ``u``).
+    alpha : float
+        Reduced trap stiffness, ``0 < alpha < 1`` (0.13 in the paper).
+    creep : {"log", "eyring-nabarro"}
+        Ageing law (eq. 17 or eqs. 15-16).
+
+    Returns
+    -------
+    ndarray
+        ``mu_d``; tends to 1 for ``u -> inf`` and grows like ``-(3/2) eps ln u`` for ``u -> 0``.
+    """
+    alpha = _check_alpha(alpha)
+    check_choice("creep", creep, CREEP_LAWS)
+    u = check_range("u", u, 0.0, lo_open=True)
+    eps = check_range("eps", eps, 0.0)
+    return per_eps(
+        lambda law, x: _steady_one_law(law, np.atleast_1d(x), alpha).reshape(x.shape),
+        creep,
+        eps,
+        u,
+    )
+
+
+def steady_death_point(
+    u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log"
+) -> Array:
+    """Where a steadily sliding trap leaves the (+) branch, ``p_d/a0`` with ``p_d/a(p_d) = y_c``
+    (eq. 32)."""
+    alpha = _check_alpha(alpha)
+    check_choice("creep", creep, CREEP_LAWS)
+    u = check_range("u", u, 0.0, lo_open=True)
+    eps = check_range("eps", eps, 0.0)
+    yc = Trap(alpha).y_c
+
+    def one(law: CreepLaw, x: Array) -> Array:
+        x1 = np.atleast_1d(x)
+        return (-1.0 + x1 * law.age(_death_clock(law, x1, yc))).reshape(x.shape)
+
+    return per_eps(one, creep, eps, u)
+
+
+def steady_profile(
+    y: ArrayLike, u: float, eps: float, alpha: float = 0.13, creep: str = "log"
+) -> Array:
+    """Force of the trap at ``y = p/a0`` in steady sliding, units ``Phi00/a0`` (eq. 31, Fig. 4).
+
+    ``r(y)^2 f(y/r(y))`` for traps in contact, 0 before contact (``y < -1``) and after death.
+    """
+    alpha = _check_alpha(alpha)
+    check_choice("creep", creep, CREEP_LAWS)
+    u = check_scalar("u", u, 0.0, lo_open=True)
+    eps = check_scalar("eps", eps, 0.0)
+    y = check_range("y", y)
+    from .creep import creep_law
+
+    law = creep_law(creep, eps)
+    r = law.radius(np.maximum(y + 1.0, 0.0) / u)
+    w = y / r
+    # the death point in y: once passed, the trap is gone even if w falls back below it
+    y_end = -1.0 + u * float(law.age(_death_clock(law, np.array([u]), Trap(alpha).death_point)))
+    f = r**2 * force_forward(w, alpha)
+    return np.where((y >= -1.0) & (y <= y_end), f, 0.0)
+
+
+def steady_friction_first_order(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
+    """First order in ``eps`` of eq. 34 for any ``u`` (ours).
+
+    Expanding ``r^2 f(y/r)`` and the moving death point to first order and integrating by parts
+    (the boundary terms cancel): ``mu_d ~ 1 + (eps / 2 H0) int_{-1}^{death}
+    [3 ln(1 + (y + 1)/u) + y/(u + y + 1)] f(y) dy``. Tends to eq. 35 as ``u -> 0`` and to
+    ``1 + (eps / 2 u H0) int (4 y + 3) f dy`` as ``u -> inf``.
+    """
+    alpha = _check_alpha(alpha)
+    u = check_range("u", u, 0.0, lo_open=True)
+    eps = check_range("eps", eps, 0.0)
+    trap = Trap(alpha)
+    ub = np.atleast_1d(u)[..., None].astype(float)
+
+    def piece(w_lo: float, w_hi: float, sing: bool) -> Array:
+        # clock c = ln(1 + (y+1)/u); y = -1 + u (e^c - 1); dy = u e^c dc
+        c0 = np.log1p((w_lo + 1.0) / ub)
+        c1 = np.log1p((w_hi + 1.0) / ub)
+        if sing:
+            c = c1 - (c1 - c0) * _TAU**2
+            wts = 2.0 * (c1 - c0) * _TAU * _TAU_W
+        else:
+            c, wts = _minus_branch_nodes(c0, c1, trap.y_c)
+        y = np.minimum(-1.0 + ub * np.expm1(c), trap.death_point)
+        g = 3.0 * c * ub * np.exp(c) + y
+        return (g * force_forward(y, alpha) * wts).sum(axis=-1)
+
+    total = piece(-1.0, trap.y_c, True)
+    if trap.y_c < 1.0:
+        total = total + piece(trap.y_c, 1.0, False)
+    out = 1.0 + eps * total.reshape(np.shape(u)) / (2.0 * trap.H0)
+    return out
+
+
+@lru_cache(maxsize=256)
+def low_velocity_constant(alpha: float = 0.13) -> float:
+    """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` (ours, eq. 35's
+    order-``eps`` constant)."""
+    alpha = _check_alpha(alpha)
+    trap = Trap(alpha)
+
+    def g(y: float) -> float:
+        return (3.0 * math.log1p(y) + y / (1.0 + y)) * float(force_forward(y, alpha))
+
+    pts = [trap.y_c] if trap.y_c < 1.0 else None
+    val, _ = quad(g, -1.0, trap.death_point, points=pts, limit=400, epsabs=1e-13, epsrel=1e-13)
+    return val / trap.H0
+
+
+def steady_friction_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
+    """Low-velocity expansion of eq. 34 (eq. 35 with its constant):
+    ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for ``u << 1`` and ``eps << 1``."""
+    u = check_range("u", u, 0.0, lo_open=True)
+    eps = check_range("eps", eps, 0.0)
+    return 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
