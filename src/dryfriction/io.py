@@ -82,11 +82,12 @@ def write_csv(
     arrays = [np.asarray(columns[n]) for n in names]
     n = {len(a) for a in arrays}
     if len(n) > 1:
-        raise ValueError(f"columns have different lengths: {dict(zip(names, map(len, arrays)))}")
+        lengths = {name: len(a) for name, a in zip(names, arrays, strict=True)}
+        raise ValueError(f"columns have different lengths: {lengths}")
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(names)
-    for row in zip(*arrays):
+    for row in zip(*arrays, strict=True):
         w.writerow([repr(float(v)) if isinstance(v, (float, np.floating)) else v for v in row])
     return atomic_write_text(path, buf.getvalue())
 
