@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import Enum
+from enum import StrEnum
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -57,7 +57,7 @@ ALPHA0: float = 3.0 - 2.0 * math.sqrt(2.0)
 Array = NDArray[np.float64]
 
 
-class Regime(str, Enum):
+class Regime(StrEnum):
     """Pinning regime of a trap (spec §1)."""
 
     VERY_STRONG = "very strong pinning"
