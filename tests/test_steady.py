@@ -127,3 +127,19 @@ def test_eyring_nabarro_variant_and_precision():
 def test_bad_input(kwargs, name):
     with pytest.raises(ValueError, match=name):
         steady_friction(**({"u": 1.0, "eps": 0.01} | kwargs))
+
+
+def test_continuity_across_alpha0():
+    # the regime changes at alpha0 (jump out of contact vs onto the far side): results do not
+    from dryfriction.static import static_friction
+
+    lo, hi = ALPHA0 * (1 - 1e-9), ALPHA0 * (1 + 1e-9)
+    u = np.logspace(-3, 3, 7)
+    np.testing.assert_allclose(steady_friction(u, 0.05, lo), steady_friction(u, 0.05, hi),
+                               rtol=1e-6)
+    T = np.logspace(-3, 3, 7)
+    np.testing.assert_allclose(static_friction(T, 0.05, lo), static_friction(T, 0.05, hi),
+                               rtol=1e-6)
+    for load in (0.3, 0.8):
+        np.testing.assert_allclose(static_friction(T, 0.05, lo, load=load),
+                                   static_friction(T, 0.05, hi, load=load), rtol=1e-6)
