@@ -201,6 +201,8 @@ def test_summary_paper_claims(run):
     for a, b in zip(lp, lp[1:], strict=False):
         assert b["mu_s_T_100"] > a["mu_s_T_100"]
         assert b["secant_slope_per_eps_T_1_to_100"] > a["secant_slope_per_eps_T_1_to_100"]
+    # the eq. 27 reading is the maximum of the pull over the whole Fig. 3 range
+    assert s["eq27_reading_is_the_maximum_over_figure_range"] is True
     # creep laws: differences grow with eps
     cd = s["creep_law_difference"]
     assert 0 < cd["max_abs_mu_s_eps_0.01"] < cd["max_abs_mu_s"]
