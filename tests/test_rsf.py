@@ -7,6 +7,7 @@ Parameters follow the classic laboratory case (rsfmodel's README example; Marone
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -393,3 +394,31 @@ def test_bad_driver_input(segs: list[tuple[float, float]], kwargs: dict[str, obj
 def test_step_budget_is_a_clear_error() -> None:
     with pytest.raises(SolverError, match="max_steps = 5"):
         simulate_rsf(lab(), [Segment(1e-6, 10.0), Segment(1e-5, 30.0)], stiffness=1e3, max_steps=5)
+
+
+# ----------------------------------------------------------------------------- CLI
+def test_cli_rsf_writes_whole_results(tmp_path: Path) -> None:
+    import json
+
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    out = tmp_path / "res"
+    runner = CliRunner()
+    res = runner.invoke(app, ["rsf", "--case", "stick-slip", "--v1", "1e-5", "--t1", "100",
+                              "--stiffness", "400", "--damping", "0.5", "--out", str(out),
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["v_max_m_per_s"] > 1e-3  # events happened
+    assert (out / "rsf.png").stat().st_size > 0
+    header = (out / "series.csv").read_text().splitlines()[0]
+    assert header.startswith("t_s,x_m,v_m_per_s,theta_s,mu,stress")
+    # runaway without damping: one line, exit 2, the old results left untouched
+    res = runner.invoke(app, ["rsf", "--case", "stick-slip", "--stiffness", "250", "--t1",
+                              "1000", "--out", str(out)])
+    assert res.exit_code == 2 and "runs away" in res.output
+    assert json.loads((out / "summary.json").read_text()) == summary
+    res = runner.invoke(app, ["rsf", "--dc", "0"])
+    assert res.exit_code == 2 and "dc = 0 is out of range" in res.output
