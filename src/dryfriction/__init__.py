@@ -11,6 +11,9 @@ from .dieterich import (
     dieterich_constant_local,
 )
 from .program import Segment, VelocityProgram
+from .rsf import RateState
+from .rsf_driving import RSFResult, SolverError, simulate_rsf
+from .rsf_driving import linear_stability as rsf_linear_stability
 from .static import loaded_edge, pull_force, static_friction, static_friction_first_order
 from .steady import (
     steady_friction,
@@ -32,6 +35,11 @@ __all__ = [
     "creep_law",
     "Segment",
     "VelocityProgram",
+    "RateState",
+    "RSFResult",
+    "SolverError",
+    "simulate_rsf",
+    "rsf_linear_stability",
     "static_friction",
     "static_friction_first_order",
     "loaded_edge",
