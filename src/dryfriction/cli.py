@@ -323,6 +323,40 @@ def _rsf_figure(res: Any, path: Any, title: str) -> None:
     plt.close(fig)
 
 
+@app.command(cls=_many("--u"))
+@cli_errors
+def stability(
+    eps: Annotated[float, typer.Option("--eps", help="Creep parameter S/Y, >= 0.")],
+    u: Annotated[list[float], typer.Option(
+        "--u", help="Reduced velocities V t0/a0, > 0: --u 0.1 1 10 (or --u 0.1 --u 1)."
+    )],
+    alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
+    mass: float = typer.Option(0.0, "--mass", help="Slider mass M, F_el t0^2/a0, >= 0."),
+    damping: float = typer.Option(0.0, "--damping", help="Viscous damping eta, F_el t0/a0."),
+    creep: str = typer.Option("log", "--creep", help=_CREEP_HELP),
+    json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+) -> None:
+    """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
+    from .stability import critical_stiffness
+    from .validation import check_range
+
+    check_range("u", u, 0.0, lo_open=True)
+    res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
+    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep}
+    cols = {
+        "u": list(u),
+        "K_c": [r.critical_stiffness for r in res],
+        "omega_c": [r.omega for r in res],
+        "forward_stiffness": [r.forward_stiffness for r in res],
+        "backward_stiffness": [r.backward_stiffness for r in res],
+        "dmu_d_du": [r.velocity_slope for r in res],
+    }
+    if json_out:
+        emit({**params, **cols}, True, "stability")
+    else:
+        _columns("linear stability of steady sliding", params, cols)
+
+
 def main() -> None:
     """Console-script entry point."""
     app()
