@@ -61,6 +61,7 @@ __all__ = [
     "StabilityResult",
     "critical_stiffness",
     "rightmost_root",
+    "linear_summary",
 ]
 
 Array = NDArray[np.float64]
@@ -105,8 +106,11 @@ class SteadyResponse:
     def Z(self, lam: ArrayLike) -> CArray:
         """``Z(lambda)``: friction change (units ``F_el``) per unit slip perturbation (``a0``)."""
         lam = np.asarray(lam, dtype=complex)
-        memory = np.exp(-lam[..., None] * self.T) @ self.b
-        edge = self.edge * (1.0 - self.edge_delay * np.exp(-lam * self.tau_d))
+        # far in the left half-plane e^{-lambda T} overflows: the value is then inf/nan,
+        # which the root search discards
+        with np.errstate(over="ignore", invalid="ignore"):
+            memory = np.exp(-lam[..., None] * self.T) @ self.b
+            edge = self.edge * (1.0 - self.edge_delay * np.exp(-lam * self.tau_d))
         return (self.A + memory + edge) / self.H0
 
 
@@ -280,7 +284,7 @@ def rightmost_root(
             h = 1e-7 * max(abs(z), scale)
             f = complex(characteristic(z, resp, stiffness, mass, damping))
             df = (complex(characteristic(z + h, resp, stiffness, mass, damping)) - f) / h
-            if df == 0 or not np.isfinite(df):
+            if df == 0 or not (np.isfinite(df) and np.isfinite(f)):
                 break
             step = f / df
             z = z - step
@@ -292,3 +296,33 @@ def rightmost_root(
                 z.real > best.real:
             best = z
     return best
+
+
+def linear_summary(protocol: dict) -> dict[str, float]:  # type: ignore[type-arg]
+    """Sweep runner: linear stability of the spring-slider described by a protocol dict.
+
+    Reads ``model.alpha``, ``model.eps``, ``model.creep`` and ``drive.stiffness``,
+    ``drive.mass``, ``drive.damping`` and the pulling velocity of the last segment of
+    ``drive.segments`` (reduced units). Returns ``K_c``, ``omega_c``, the growth rate
+    ``Re lambda`` of the rightmost mode at the given stiffness, and ``linearly_stable``
+    (1 or 0).
+    """
+    model = protocol.get("model", {})
+    drive = protocol.get("drive", {})
+    if "segments" not in drive or not drive["segments"]:
+        raise ValueError("drive.segments: the pulling velocity is needed")
+    u = float(drive["segments"][-1]["velocity"])
+    alpha = float(model.get("alpha", 0.13))
+    eps = float(model["eps"])
+    creep = str(model.get("creep", "log"))
+    K = float(drive["stiffness"])
+    M = float(drive.get("mass", 0.0))
+    eta = float(drive.get("damping", 0.0))
+    res = critical_stiffness(u, eps, alpha, creep, M, eta)
+    root = rightmost_root(steady_response(u, eps, alpha, creep), K, M, eta)
+    return {
+        "K_c": res.critical_stiffness,
+        "omega_c": res.omega,
+        "growth_rate": root.real,
+        "linearly_stable": float(K > res.critical_stiffness),
+    }
