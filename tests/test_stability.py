@@ -127,3 +127,24 @@ def test_cli_stability_json_matches_library():
     assert out["K_c"][1] == pytest.approx(lib.critical_stiffness, rel=1e-12)
     bad = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "0"])
     assert bad.exit_code == 2 and "u = 0" in bad.output
+
+
+@pytest.mark.parametrize("u", [0.01, 1.0])
+def test_effective_rsf_from_moments(u):
+    from dryfriction.stability import effective_rsf
+
+    eps = 0.04
+    p = effective_rsf(u, eps)
+    resp = steady_response(u, eps)
+    # the moment formulas against finite differences of Z itself (independent route)
+    h = 2e-3 / resp.tau_d
+    z = [resp.Z(k * h).real for k in (-2, -1, 0, 1, 2)]
+    d2 = (z[3] - 2 * z[2] + z[1]) / h**2
+    d3 = (z[4] - 2 * z[3] + 2 * z[1] - z[0]) / (2 * h**3)
+    assert resp.derivative_at_zero(2) == pytest.approx(d2, rel=1e-4)
+    assert resp.derivative_at_zero(3) == pytest.approx(d3, rel=1e-3)
+    # a - b is the steady-state slope u d mu_d/du (rate-and-state's mu0 + (a - b) ln V)
+    du = 1e-5 * u
+    slope = (steady_friction(u + du, eps) - steady_friction(u - du, eps)) / (2 * du)
+    assert p["a"] - p["b"] == pytest.approx(u * slope, rel=1e-5)
+    assert p["b"] > p["a"] > 0 and 0.3 < p["dc"] < 2.46  # velocity weakening, Dc < (1 + y_c) a0

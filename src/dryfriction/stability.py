@@ -62,6 +62,7 @@ __all__ = [
     "critical_stiffness",
     "rightmost_root",
     "linear_summary",
+    "effective_rsf",
 ]
 
 Array = NDArray[np.float64]
@@ -102,6 +103,11 @@ class SteadyResponse:
     tau_d: float
     edge: float
     edge_delay: float
+
+    def derivative_at_zero(self, n: int) -> float:
+        """``d^n Z / d lambda^n`` at ``lambda = 0``: moments of the age distribution (ours)."""
+        edge = -self.edge * self.edge_delay * (-self.tau_d) ** n
+        return float((np.sum(self.b * (-self.T) ** n) + edge) / self.H0)
 
     def Z(self, lam: ArrayLike) -> CArray:
         """``Z(lambda)``: friction change (units ``F_el``) per unit slip perturbation (``a0``)."""
@@ -326,3 +332,27 @@ def linear_summary(protocol: dict) -> dict[str, float]:  # type: ignore[type-arg
         "growth_rate": root.real,
         "linearly_stable": float(K > res.critical_stiffness),
     }
+
+
+def effective_rsf(
+    u: float, eps: float, alpha: float = 0.13, creep: str = "log"
+) -> dict[str, float]:
+    """Rate-and-state parameters that reproduce the model's slow linear response (ours).
+
+    Linearised rate-and-state friction (ageing or slip law, Ruina 1983; Rice & Ruina 1983)
+    responds to a slip perturbation ``xi ~ e^{lambda t}`` at velocity ``V`` with
+    ``delta mu = (lambda/V) [a - b V/(V + lambda Dc)] xi``. Matching its Taylor series at
+    ``lambda = 0`` to that of ``Z(lambda)`` up to third order, with ``Z_n`` the n-th
+    derivative at 0, gives ``Dc = -u Z_3 / (3 Z_2)``, ``b = u^2 Z_2 / (2 Dc)`` and
+    ``a = u Z_1 + b``. Units: ``a``, ``b`` in ``F_el`` (multiply by ``mu_el`` for a friction
+    coefficient), ``Dc`` in ``a0``. They describe slow perturbations only: at high frequency
+    the model's response tends to the finite, negative ``Z(inf)`` (:func:`shift_stiffness`),
+    not to rate-and-state's ``a lambda / V``.
+    """
+    resp = steady_response(u, eps, alpha, creep)
+    z1, z2, z3 = (resp.derivative_at_zero(n) for n in (1, 2, 3))
+    if z2 == 0.0:
+        raise ValueError("eps = 0: the response vanishes, no rate-and-state parameters")
+    dc = -u * z3 / (3.0 * z2)
+    b = u * u * z2 / (2.0 * dc)
+    return {"a": u * z1 + b, "b": b, "dc": dc, "u": u}
