@@ -16,8 +16,6 @@ from __future__ import annotations
 import math
 import os
 import sys
-import time
-from collections.abc import Callable
 from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
@@ -25,6 +23,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
+from benchmarks.timing import best_time
 from dryfriction.program import Segment, VelocityProgram  # noqa: E402
 from dryfriction.rsf import RateState  # noqa: E402
 from dryfriction.rsf_driving import simulate_rsf  # noqa: E402
@@ -33,17 +32,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from rsf_reference import reference_run  # noqa: E402
 
 A, B, DC, MU0, V0 = 0.005, 0.01, 1e-5, 0.6, 1e-6
-
-
-def best_time(fn: Callable[[], object], repeat: int = 7, number: int = 5) -> float:
-    fn()
-    best = math.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t) / number)
-    return best
 
 
 def _crossings(t: np.ndarray, u: np.ndarray) -> np.ndarray:

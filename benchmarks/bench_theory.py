@@ -18,23 +18,13 @@ import numpy as np  # noqa: E402
 from scipy.integrate import quad  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 
+from benchmarks.timing import best_time  # noqa: E402
 from dryfriction.static import static_friction  # noqa: E402
 from dryfriction.steady import steady_friction  # noqa: E402
 from dryfriction.trap import Trap, force_plus  # noqa: E402
 
 EPS, ALPHA = 0.04, 0.13
 GRID = np.logspace(-4, 4, 1000)
-
-
-def best_time(fn, repeat: int = 7, number: int = 5) -> float:
-    fn()
-    best = math.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t) / number)
-    return best
 
 
 def quad_static(T: float) -> float:

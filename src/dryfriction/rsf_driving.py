@@ -259,6 +259,27 @@ def _lu_solve(m, piv, x) -> None:
 
 
 @nb.njit(cache=True)
+def _record(T, Y, F, S, n, cap, t, y, f, s):  # type: ignore[no-untyped-def]
+    """Store step ``n`` (time, state, derivative, segment), doubling the buffers when full."""
+    if n == cap:
+        cap *= 2
+        T2 = np.empty(cap)
+        Y2 = np.empty((cap, Y.shape[1]))
+        F2 = np.empty((cap, F.shape[1]))
+        S2 = np.empty(cap, np.int64)
+        T2[:n] = T[:n]
+        Y2[:n] = Y[:n]
+        F2[:n] = F[:n]
+        S2[:n] = S[:n]
+        T, Y, F, S = T2, Y2, F2, S2
+    T[n] = t
+    Y[n] = y
+    F[n] = f
+    S[n] = s
+    return T, Y, F, S, cap
+
+
+@nb.njit(cache=True)
 def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
     """RODAS4 over every segment. Returns (T, Y, F, SEG, stats, status, t_fail, y_fail).
 
@@ -296,21 +317,7 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
         _rhs(y, p, f, jac, True)
         nfev += 1
         # record the segment start
-        if n == cap:
-            cap *= 2
-            T2 = np.empty(cap)
-            Y2 = np.empty((cap, ny))
-            F2 = np.empty((cap, ny))
-            S2 = np.empty(cap, np.int64)
-            T2[:n] = T[:n]
-            Y2[:n] = Y[:n]
-            F2[:n] = F[:n]
-            S2[:n] = S[:n]
-            T, Y, F, S = T2, Y2, F2, S2
-        T[n] = t
-        Y[n] = y
-        F[n] = f
-        S[n] = s
+        T, Y, F, S, cap = _record(T, Y, F, S, n, cap, t, y, f, s)
         n += 1
         # initial step: change of the log variables ~ 0.01 tol^(1/4)
         fmax = 0.0
@@ -381,21 +388,7 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
                 for i in range(ny):
                     y[i] = ynew[i]
                     f[i] = fnew[i]
-                if n == cap:
-                    cap *= 2
-                    T2 = np.empty(cap)
-                    Y2 = np.empty((cap, ny))
-                    F2 = np.empty((cap, ny))
-                    S2 = np.empty(cap, np.int64)
-                    T2[:n] = T[:n]
-                    Y2[:n] = Y[:n]
-                    F2[:n] = F[:n]
-                    S2[:n] = S[:n]
-                    T, Y, F, S = T2, Y2, F2, S2
-                T[n] = t
-                Y[n] = y
-                F[n] = f
-                S[n] = s
+                T, Y, F, S, cap = _record(T, Y, F, S, n, cap, t, y, f, s)
                 n += 1
                 fac = 6.0 if err == 0.0 else min(6.0, max(0.2, 0.9 * err**-0.25))
                 if rejected:
