@@ -230,6 +230,37 @@ class RateState:
         th2 = None if self.dc2 is None else self.dc2 / v
         return self.friction(v, self.dc / v, th2)
 
+    def hold_peak_friction(self, t_hold: ArrayLike, v: float) -> Array:
+        """Peak friction on reloading at ``v`` after a hold of ``t_hold`` (static friction).
+
+        Protocol: steady sliding at ``v`` (``theta_i = Dc_i/v``), a truly stationary hold of
+        ``t_hold`` s, then an infinitely stiff (kinematic) reload at ``v``: the peak is the
+        friction at the first instant of reloading, ``mu(v, theta_i + t_hold)`` with the ageing
+        law (``dtheta/dt = 1`` at rest; Dieterich 1979). For one state variable and the standard
+        law this is ``mu_ss(v) + b ln(1 + v t_hold/Dc)`` (Beeler, Tullis & Weeks 1994; Marone
+        1998, *Annu. Rev. Earth Planet. Sci.* 26, 643, the healing law with ``d mu_s/d ln t -> b``
+        at long holds). The slip law does not evolve at rest, so it gives ``mu_ss(v)`` for every
+        hold. With a finite machine stiffness the measured peak is lower (the slider creeps
+        during reloading); that case needs :func:`dryfriction.rsf_driving.simulate_rsf`.
+
+        Parameters
+        ----------
+        t_hold : array_like
+            Hold times, s, ``>= 0``.
+        v : float
+            Sliding velocity before the hold and on reloading, m/s, ``> 0``.
+
+        Returns
+        -------
+        ndarray
+            Peak friction coefficient.
+        """
+        t_hold = check_range("t_hold", t_hold, 0.0)
+        v = check_scalar("v", v, 0.0, lo_open=True)
+        heal = t_hold if self.state_law == "ageing" else 0.0 * t_hold
+        th2 = None if self.dc2 is None else self.dc2 / v + heal
+        return self.friction(v, self.dc / v + heal, th2)
+
     # ------------------------------------------------------------------ stability
     def _one_state_standard(self, what: str) -> None:
         if self.dc2 is not None or self.regularized:
