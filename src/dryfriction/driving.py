@@ -307,7 +307,7 @@ def _segment_grid(program: VelocityProgram, output: Output) -> Array:
             dt = float(output.every_slip) / abs(seg.velocity)
         else:
             dt = math.inf
-        n = max(1, math.ceil((tb - ta) / dt - 1e-9)) if math.isfinite(dt) else 1
+        n = max(1, math.ceil(seg.time / dt * (1.0 - 1e-9))) if math.isfinite(dt) else 1
         times.extend(ta + (tb - ta) * np.arange(1, n + 1) / n)
     grid = np.asarray(times)
     snaps = [s for s in output.snapshots if s <= grid[-1]]

@@ -57,7 +57,7 @@ ALPHA0: float = 3.0 - 2.0 * math.sqrt(2.0)
 Array = NDArray[np.float64]
 
 
-class Regime(str, Enum):
+class Regime(str, Enum):  # noqa: UP042 - StrEnum would change str(member)
     """Pinning regime of a trap (spec §1)."""
 
     VERY_STRONG = "very strong pinning"
