@@ -519,7 +519,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
                 snaps.pop(0)
                 rec.snap(ens)
             tick(float(t1))
-    thr = max(0.05, 10.0 * ens.track.spacing)
+    thr = 0.5  # a0: a slip that renews a good part of the contacts (ours)
     j = np.abs(np.asarray(jumps))
     info.update({
         "slip_event_threshold": thr,
@@ -529,21 +529,23 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
 
 
 def _count_slips(rec: _Recorder, thr: float) -> int:
-    """Slip events of an inertial run: maximal runs of samples with ``v`` above the mean pull
-    velocity by a factor 3 that slide more than ``thr`` in total."""
-    a = np.array([(r[1], r[2]) for r in rec.rows]) if rec.rows else np.zeros((0, 2))
-    if len(a) < 2:
+    """Slip events of an inertial run (ours): maximal runs of samples whose velocity exceeds
+    three times the mean slider velocity and that slide more than ``thr`` in total."""
+    if len(rec.rows) < 3:
         return 0
-    x, v = a[:, 0], a[:, 1]
-    fast = v > 3.0 * max(abs(np.mean(np.diff(x))), 1e-300) / 1.0
-    count, start = 0, None
-    for i, f in enumerate(fast):
-        if f and start is None:
-            start = i
-        if (not f or i == len(fast) - 1) and start is not None:
-            if x[i] - x[start] > thr:
+    a = np.array([(r[0], r[1], r[2]) for r in rec.rows])
+    t, x, v = a[:, 0], a[:, 1], a[:, 2]
+    v_mean = abs(x[-1] - x[0]) / (t[-1] - t[0]) if t[-1] > t[0] else 0.0
+    fast = v > 3.0 * v_mean
+    count, start = 0, -1
+    for i in range(len(fast) + 1):
+        f = bool(fast[i]) if i < len(fast) else False
+        if f and start < 0:
+            start = max(i - 1, 0)
+        elif not f and start >= 0:
+            if x[min(i, len(x) - 1)] - x[start] > thr:
                 count += 1
-            start = None
+            start = -1
     return count
 
 

@@ -27,8 +27,9 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     every_slip = 0.01            # exactly one of every (t0) and every_slip (a0)
     snapshots = [10.0, 20.0]     # optional, times in t0
 
-Every error names the file, the table and key, and what is allowed, and is raised before any
-work starts.
+Every error names the file, the table and key (``table.key``), and what is allowed, and is
+raised before any work starts. (Errors avoid square brackets around names, which the terminal's
+markup would swallow.)
 """
 
 from __future__ import annotations
@@ -95,19 +96,19 @@ class _Table:
     def __init__(self, source: str, name: str, data: Any) -> None:
         self.source, self.name = source, name
         if not isinstance(data, Mapping):
-            self.fail(f"[{name}] must be a table, got {type(data).__name__}")
+            self.fail(f"{name} must be a table, got {type(data).__name__}")
         self.data = dict(data)
 
     def fail(self, msg: str) -> None:
         raise ValueError(f"{self.source}: {msg}")
 
     def where(self, key: str) -> str:
-        return f"[{self.name}] {key}"
+        return f"{self.name}.{key}"
 
     def allow(self, keys: tuple[str, ...]) -> None:
         unknown = sorted(set(self.data) - set(keys))
         if unknown:
-            self.fail(f"[{self.name}] unknown key(s) {', '.join(unknown)}: allowed "
+            self.fail(f"unknown key(s) {', '.join(self.name + '.' + k for k in unknown)}: allowed "
                       f"{', '.join(keys)}")
 
     def number(self, key: str, default: float | None = None, required: bool = False
@@ -147,7 +148,7 @@ class _Table:
         try:
             return what(*args, **kwargs)
         except ValueError as exc:
-            raise ValueError(f"{self.source}: [{self.name}] {exc}") from None
+            raise ValueError(f"{self.source}: in {self.name}: {exc}") from None
 
 
 def _segments(tab: _Table) -> VelocityProgram:
@@ -159,7 +160,7 @@ def _segments(tab: _Table) -> VelocityProgram:
         tab.fail(f"{tab.where('segments')} = {raw!r} is not allowed: a non-empty list of tables")
     segs = []
     for i, item in enumerate(raw):
-        sub = _Table(tab.source, f"{tab.name}] segments[{i}", item)
+        sub = _Table(tab.source, f"{tab.name}.segments[{i}]", item)
         sub.allow(("velocity", "duration", "slip"))
         v = sub.number("velocity", required=True)
         d = sub.number("duration")
@@ -177,10 +178,10 @@ def parse_protocol(text: str, source: str = "<string>") -> Protocol:
     unknown = sorted(set(doc) - set(_TABLES))
     if unknown:
         raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
-                         f"{', '.join('[' + t + ']' for t in _TABLES)}")
+                         f"{', '.join(_TABLES)}")
     for t in _TABLES:
         if t not in doc:
-            raise ValueError(f"{source}: table [{t}] is missing")
+            raise ValueError(f"{source}: table '{t}' is missing")
 
     m = _Table(source, "model", doc["model"])
     m.allow(("alpha", "eps", "creep", "mu_el"))
@@ -210,14 +211,14 @@ def parse_protocol(text: str, source: str = "<string>") -> Protocol:
     d = _Table(source, "drive", doc["drive"])
     kind = d.string("kind", required=True)
     if kind not in _DRIVE_KEYS:
-        d.fail(f"[drive] kind = {kind!r} is not allowed: choose one of "
+        d.fail(f"drive.kind = {kind!r} is not allowed: choose one of "
                f"{', '.join(_DRIVE_KEYS)}")
     assert kind is not None
     extra = sorted(set(d.data) - {"kind", *_DRIVE_KEYS[kind]})
     if extra:
         others = {k for kk, keys in _DRIVE_KEYS.items() if kk != kind for k in keys}
         why = "applies to another kind" if set(extra) <= others else "is unknown"
-        d.fail(f"[drive] key(s) {', '.join(extra)} {why}: kind = {kind!r} allows "
+        d.fail(f"drive key(s) {', '.join(extra)} {why}: kind = {kind!r} allows "
                f"{', '.join(('kind', *_DRIVE_KEYS[kind]))}")
     for key in _REQUIRED_DRIVE[kind]:
         if key not in d.data:
