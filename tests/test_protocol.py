@@ -147,3 +147,11 @@ def test_unreadable_file(tmp_path: Path) -> None:
     bad.write_bytes(b"\xff\xfe\x00")
     with pytest.raises(ValueError, match="bin.toml: malformed TOML"):
         load_protocol(bad)
+
+
+def test_protocol_from_dict_matches_text() -> None:
+    import tomllib
+
+    from dryfriction.protocol import protocol_from_dict
+
+    assert protocol_from_dict(tomllib.loads(GOOD), "good.toml") == parse_protocol(GOOD, "good.toml")

@@ -9,9 +9,12 @@ from __future__ import annotations
 import functools
 import json
 from collections.abc import Callable
-from typing import Any, TypeVar
+from pathlib import Path
+from typing import Annotated, Any, TypeVar
 
+import numpy as np
 import typer
+import typer.core
 from rich.console import Console
 from rich.table import Table
 
@@ -68,6 +71,290 @@ def trap(
     from .trap import Trap
 
     emit(Trap(alpha).summary(), json_out, f"trap, alpha = {alpha:g}")
+
+
+# --------------------------------------------------------------------------------------------
+# static, steady, reproduce
+# --------------------------------------------------------------------------------------------
+
+
+class _ManyValues(typer.core.TyperCommand):
+    """A command whose list options take several values after one flag: ``--T 1 10 100``.
+
+    Before Click parses, ``--T 1 10 100`` is rewritten to ``--T 1 --T 10 --T 100``: every token
+    after a listed flag that reads as a number (``-1``, ``1e3``, ``nan`` included, so that the
+    library's range checks see it) is taken as another value. Repeating the flag also works.
+    Click's own usage errors (missing option, not a number) are printed as one line, exit 2.
+    """
+
+    many: tuple[str, ...] = ()
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        expanded: list[str] = []
+        i = 0
+        while i < len(args):
+            tok = args[i]
+            expanded.append(tok)
+            i += 1
+            if tok == "--":
+                expanded += args[i:]
+                break
+            if tok in self.many and i < len(args):
+                expanded.append(args[i])  # the first value, whatever it is: Click checks it
+                i += 1
+                while i < len(args) and _is_number(args[i]):
+                    expanded += [tok, args[i]]
+                    i += 1
+        try:
+            return super().parse_args(ctx, expanded)
+        except typer.TyperException as exc:  # Click's UsageError and its kin (exit code 2)
+            if getattr(exc, "exit_code", None) != 2:
+                raise
+            message = exc.format_message()  # type: ignore[attr-defined]
+            err.print(f"[bold red]error:[/] {message}", highlight=False, soft_wrap=True)
+            raise typer.Exit(2) from None
+
+
+def _is_number(tok: str) -> bool:
+    try:
+        float(tok)
+    except ValueError:
+        return False
+    return True
+
+
+def _many(*flags: str) -> type[_ManyValues]:
+    return type("ManyValues", (_ManyValues,), {"many": flags})
+
+
+def _columns(title: str, params: dict[str, Any], cols: dict[str, Any]) -> None:
+    out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()), highlight=False)
+    table = Table()
+    for name in cols:
+        table.add_column(name, justify="right")
+    for row in zip(*cols.values(), strict=True):
+        table.add_row(*(f"{float(v):.10g}" for v in row))
+    out.print(table)
+
+
+_CREEP_HELP = "Creep law: log (eq. 17) or eyring-nabarro (exact, eqs. 15-16)."
+
+
+@app.command(cls=_many("--T"))
+@cli_errors
+def static(
+    eps: Annotated[float, typer.Option("--eps", help="Creep parameter S/Y, >= 0.")],
+    T: Annotated[list[float], typer.Option(
+        "--T", help="Waiting times t_w/t0, >= 0: --T 1 10 100 (or --T 1 --T 10)."
+    )],
+    alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
+    load: float = typer.Option(
+        0.0, "--load", help="Tangential force during the wait, units F_el, 0 <= f_w < 1."
+    ),
+    creep: str = typer.Option("log", "--creep", help=_CREEP_HELP),
+    json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+) -> None:
+    """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading)."""
+    from .static import static_friction
+
+    mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
+    params = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
+    if json_out:
+        emit({**params, "T": list(T), "mu_s": mu}, True, "static")
+    else:
+        _columns("static friction", params, {"T": T, "mu_s": mu})
+
+
+@app.command(cls=_many("--u"))
+@cli_errors
+def steady(
+    eps: Annotated[float, typer.Option("--eps", help="Creep parameter S/Y, >= 0.")],
+    u: Annotated[list[float], typer.Option(
+        "--u", help="Reduced velocities V t0/a0, > 0: --u 0.1 1 10 (or --u 0.1 --u 1)."
+    )],
+    alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
+    creep: str = typer.Option("log", "--creep", help=_CREEP_HELP),
+    json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+) -> None:
+    """Steady dynamic friction mu_d = F_d/F_el at reduced velocity u = V/V* (eq. 34)."""
+    from .steady import steady_friction
+
+    mu = steady_friction(np.asarray(u, float), eps, alpha, creep)
+    params = {"eps": eps, "alpha": alpha, "creep": creep}
+    if json_out:
+        emit({**params, "u": list(u), "mu_d": mu}, True, "steady")
+    else:
+        _columns("steady friction", params, {"u": u, "mu_d": mu})
+
+
+@app.command(cls=_many())
+@cli_errors
+def reproduce(
+    out_dir: Annotated[Path, typer.Option("--out", help="Results folder (created or replaced).")],
+) -> None:
+    """The paper's six figures, the data behind them, summary.json and report.html."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from .figures import reproduce as run
+    from .io import check_output_dir
+
+    check_output_dir(out_dir)  # fail on a bad --out before importing matplotlib
+    with Progress(
+        TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+        TimeElapsedColumn(), console=err, disable=not err.is_terminal, transient=True,
+    ) as bar:
+        task = bar.add_task("reproduce", total=None)
+
+        def progress(done: int, total: int, what: str) -> None:
+            bar.update(task, completed=done, total=total, description=what)
+
+        summary = run(out_dir, progress)
+    out.print(
+        f"wrote {out_dir}/: fig1-6.png, static_friction.csv, steady_friction.csv, "
+        f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
+        f"C_LS = {summary['dieterich_C_least_squares']:.4f})",
+        highlight=False, soft_wrap=True,
+    )
+@app.command()
+@cli_errors
+def rsf(
+    case: str = typer.Option("step", help="step (v1 for t1, then v2 for t2), shs (slide-hold-"
+                             "slide: v1 for t1, hold for --hold, v1 for t2) or stick-slip "
+                             "(v1 for t1)."),
+    a: float = typer.Option(0.005, help="Direct effect a, > 0."),
+    b: float = typer.Option(0.01, help="Evolution effect b, >= 0."),
+    dc: float = typer.Option(1e-5, help="Characteristic slip Dc, m, > 0."),
+    mu0: float = typer.Option(0.6, help="Reference friction at V0."),
+    v0: float = typer.Option(1e-6, help="Reference velocity V0, m/s, > 0."),
+    state_law: str = typer.Option("ageing", help="ageing (Dieterich) or slip (Ruina)."),
+    regularized: bool = typer.Option(False, help="Regularised asinh law (needed for holds "
+                                     "with --stiffness inf)."),
+    stiffness: float = typer.Option(1e3, help="Spring stiffness k per unit normal force, 1/m, "
+                                    "> 0; inf for a kinematic machine."),
+    damping: float = typer.Option(0.0, help="Radiation damping eta/sigma, s/m, >= 0."),
+    mass: float = typer.Option(0.0, help="Mass per unit normal force, s^2/m, >= 0."),
+    v1: float = typer.Option(1e-6, help="Load velocity of the first segment, m/s."),
+    v2: float = typer.Option(1e-5, help="Load velocity after the step (case step), m/s."),
+    t1: float = typer.Option(10.0, help="Duration of the first segment, s."),
+    t2: float = typer.Option(30.0, help="Duration of the last segment, s."),
+    hold: float = typer.Option(100.0, help="Hold time (case shs), s."),
+    v_init: float = typer.Option(None, help="Initial slip velocity, m/s, with the state at "
+                                 "steady state for v_init (default v1; 1.01 v1 for "
+                                 "stick-slip, since exact steady state never leaves)."),
+    rtol: float = typer.Option(1e-7, help="Local error tolerance (relative in V and theta)."),
+    out_dir: str = typer.Option(None, "--out", help="Write series.csv, summary.json and "
+                                "rsf.png into this folder (whole or not at all)."),
+    json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+) -> None:
+    """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
+    stick-slip, on a spring with optional radiation damping and inertia."""
+    import math
+    import time
+
+    from .io import check_output_dir, output_directory, write_csv, write_json
+    from .program import Segment
+    from .rsf import RateState
+    from .rsf_driving import SolverError, simulate_rsf
+    from .validation import check_choice
+
+    check_choice("case", case, ("step", "shs", "stick-slip"))
+    params = RateState(a, b, dc, mu0, v0, state_law=state_law,  # type: ignore[arg-type]
+                       regularized=regularized)
+    if case == "step":
+        segs = [Segment(v1, t1), Segment(v2, t2)]
+    elif case == "shs":
+        segs = [Segment(v1, t1), Segment(0.0, hold), Segment(v1, t2)]
+    else:
+        segs = [Segment(v1, t1)]
+        if v_init is None:
+            v_init = 1.01 * v1
+    if out_dir is not None:
+        check_output_dir(out_dir)
+    start = time.perf_counter()
+    try:
+        theta_init = None if v_init is None else params.dc / v_init
+        res = simulate_rsf(params, segs, stiffness=stiffness, damping=damping, mass=mass,
+                           v_init=v_init, theta_init=theta_init, rtol=rtol)
+    except SolverError as exc:
+        raise ValueError(str(exc)) from None
+    wall = time.perf_counter() - start
+    summary: dict[str, Any] = {
+        "case": case,
+        "points": len(res.t),
+        "steps": res.n_steps,
+        "wall_s": wall,
+        "mu_initial": float(res.mu[0]),
+        "mu_max": float(res.mu.max()),
+        "mu_min": float(res.mu.min()),
+        "mu_final": float(res.mu[-1]),
+        "v_max_m_per_s": float(res.v.max()),
+    }
+    if params.n_state == 1 and not params.regularized and not math.isinf(stiffness):
+        summary["k_c_per_m"] = params.critical_stiffness(max(v1, 1e-300), damping, mass)
+    if out_dir is not None:
+        with output_directory(out_dir) as tmp:
+            write_csv(tmp / "series.csv", res.columns())
+            write_json(tmp / "summary.json", {**summary, "params": params.to_dict(),
+                                              "stiffness": stiffness, "damping": damping,
+                                              "mass": mass, "rtol": rtol})
+            _rsf_figure(res, tmp / "rsf.png", f"{case}, {state_law} law")
+    emit(summary, json_out, f"rate-and-state, {case}")
+
+
+def _rsf_figure(res: Any, path: Any, title: str) -> None:
+    """Friction and slip velocity against time (Agg backend, no display needed)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 5.5), layout="constrained")
+    ax1.plot(res.t, res.mu, lw=1.2, label="friction mu")
+    ax1.plot(res.t, res.stress, lw=0.8, ls="--", label="spring force / normal force")
+    ax1.set_ylabel("mu")
+    ax1.legend(fontsize=8)
+    ax1.set_title(title)
+    ax2.semilogy(res.t, res.v, lw=1.2, label="slip velocity")
+    ax2.semilogy(res.t, res.load_velocity, lw=0.8, ls="--", label="load velocity")
+    ax2.set_xlabel("t (s)")
+    ax2.set_ylabel("V (m/s)")
+    ax2.legend(fontsize=8)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+@app.command(cls=_many("--u"))
+@cli_errors
+def stability(
+    eps: Annotated[float, typer.Option("--eps", help="Creep parameter S/Y, >= 0.")],
+    u: Annotated[list[float], typer.Option(
+        "--u", help="Reduced velocities V t0/a0, > 0: --u 0.1 1 10 (or --u 0.1 --u 1)."
+    )],
+    alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
+    mass: float = typer.Option(0.0, "--mass", help="Slider mass M, F_el t0^2/a0, >= 0."),
+    damping: float = typer.Option(0.0, "--damping", help="Viscous damping eta, F_el t0/a0."),
+    creep: str = typer.Option("log", "--creep", help=_CREEP_HELP),
+    json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+) -> None:
+    """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
+    from .stability import critical_stiffness
+    from .validation import check_range
+
+    check_range("u", u, 0.0, lo_open=True)
+    res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
+    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep}
+    cols = {
+        "u": list(u),
+        "K_c": [r.critical_stiffness for r in res],
+        "omega_c": [r.omega for r in res],
+        "forward_stiffness": [r.forward_stiffness for r in res],
+        "backward_stiffness": [r.backward_stiffness for r in res],
+        "dmu_d_du": [r.velocity_slope for r in res],
+    }
+    if json_out:
+        emit({**params, **cols}, True, "stability")
+    else:
+        _columns("linear stability of steady sliding", params, cols)
 
 
 @app.command()

@@ -54,7 +54,7 @@ from .driving import (
 from .ensemble import Initial, Track, TrapModel
 from .program import Segment, VelocityProgram
 
-__all__ = ["Protocol", "load_protocol", "parse_protocol"]
+__all__ = ["Protocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
 
 _TABLES = ("model", "ensemble", "drive", "output")
 _DRIVE_KEYS = {
@@ -175,6 +175,13 @@ def parse_protocol(text: str, source: str = "<string>") -> Protocol:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{source}: malformed TOML: {exc}") from None
+    return protocol_from_dict(doc, source)
+
+
+def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>") -> Protocol:
+    """Validate a protocol already read into nested dicts (e.g. one point of a sweep)."""
+    if not isinstance(doc, Mapping):
+        raise ValueError(f"{source}: a protocol must be a table of tables")
     unknown = sorted(set(doc) - set(_TABLES))
     if unknown:
         raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "

@@ -26,13 +26,14 @@ force after a shift ``d`` is (ours; eq. 27 is its value at ``d*``)::
 **[reading] of eq. 27**: sliding starts when the aged (+) edge reaches the aged spinodal,
 ``d* = r y_c - d_w``; at ``d_w = 0`` this gives
 ``mu_s = {int_{-1}^{-1 + r y_c} f_+ + r^3 int_{y_c - 1/r}^{y_c} f_+} / H0``.
-The threshold returned by :func:`static_friction` is the maximum of ``mu(d)`` over the pull.
-``mu(d)`` increases up to ``d*`` and its only other candidate maximum is where the fresh edge
-reaches its own spinodal, ``d = 1 + y_c``; the larger of the two is returned, which equals the
-eq. 27 reading whenever the latter is the maximum (all of the paper's parameters).
+The threshold returned by :func:`static_friction` is the maximum of ``mu(d)`` over the pull
+(:func:`static_friction_at_radius` lists the candidates). It equals the eq. 27 reading for
+all of the paper's parameters.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -125,18 +126,53 @@ def threshold_shift(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Arra
     return np.asarray(r, float) * Trap(_check_alpha(alpha)).y_c - d_w
 
 
+def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
+    """Largest ``mu(d)`` on ``[0, d*]``: grid, then golden-section search around the best node.
+
+    Needed in strong pinning, where the aged (-) traps still carry force at ``d*`` and the
+    force can peak before the aged edge reaches its spinodal (``f_+`` turns over before
+    ``y_c``: its slope tends to ``-inf`` there).
+    """
+    dstar = threshold_shift(r, alpha, d_w)[..., None]
+    grid = dstar * np.linspace(0.0, 1.0, n)
+    vals = pull_force(grid, r[..., None], alpha, d_w)
+    k = np.argmax(vals, axis=-1)[..., None]
+    lo = np.take_along_axis(grid, np.maximum(k - 1, 0), axis=-1)[..., 0]
+    hi = np.take_along_axis(grid, np.minimum(k + 1, n - 1), axis=-1)[..., 0]
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = pull_force(x1, r, alpha, d_w), pull_force(x2, r, alpha, d_w)
+    for _ in range(60):
+        left = f1 >= f2
+        hi = np.where(left, x2, hi)
+        lo = np.where(left, lo, x1)
+        x2n = np.where(left, x1, lo + g * (hi - lo))
+        x1n = np.where(left, hi - g * (hi - lo), x2)
+        f2 = np.where(left, f1, np.nan)
+        f1 = np.where(left, np.nan, f2)
+        x1, x2 = x1n, x2n
+        f1 = np.where(np.isnan(f1), pull_force(x1, r, alpha, d_w), f1)
+        f2 = np.where(np.isnan(f2), pull_force(x2, r, alpha, d_w), f2)
+    return np.maximum(vals.max(axis=-1), np.maximum(f1, f2))
+
+
 def static_friction_at_radius(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
     """Static threshold ``mu_s`` (units ``F_el``) as a function of the aged radius ratio ``r``.
 
-    The larger of ``mu(d*)`` (the eq. 27 reading) and ``mu(1 + y_c)`` (fresh edge at its
-    spinodal); see the module docstring.
+    The maximum of ``mu(d)`` over the pull. In very strong pinning it is the largest of
+    ``mu(d*)`` (the eq. 27 reading), ``mu(1 + y_c)`` (fresh edge at its spinodal) and the
+    plateau ``mu = 1`` reached once every aged trap is gone. In strong pinning (ours) the held
+    force ``mu(0)`` and an interior maximum before ``d*`` are candidates too. The tests check
+    the result against a dense scan of ``mu(d)`` over both regimes.
     """
     alpha = _check_alpha(alpha)
     r = check_range("r", r, 1.0)
-    yc = Trap(alpha).y_c
-    at_aged_edge = pull_force(threshold_shift(r, alpha, d_w), r, alpha, d_w)
-    at_fresh_edge = pull_force(np.full_like(r, 1.0 + yc), r, alpha, d_w)
-    return np.maximum(at_aged_edge, at_fresh_edge)
+    trap = Trap(alpha)
+    best = np.maximum(pull_force(threshold_shift(r, alpha, d_w), r, alpha, d_w), 1.0)
+    best = np.maximum(best, pull_force(np.full_like(r, 1.0 + trap.y_c), r, alpha, d_w))
+    if trap.y_c < 1.0:
+        best = np.maximum(best, _interior_maximum(np.atleast_1d(r), alpha, d_w).reshape(r.shape))
+    return best
 
 
 def static_friction(

@@ -195,7 +195,7 @@ def steady_profile(
     r = law.radius(np.maximum(y + 1.0, 0.0) / u)
     w = y / r
     # the death point in y: once passed, the trap is gone even if w falls back below it
-    y_end = -1.0 + u * float(law.age(_death_clock(law, np.array([u]), Trap(alpha).death_point)))
+    y_end = -1.0 + u * float(law.age(_death_clock(law, np.array([u]), Trap(alpha).death_point))[0])
     f = r**2 * force_forward(w, alpha)
     return np.where((y >= -1.0) & (y <= y_end), f, 0.0)
 

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import Enum
+from enum import StrEnum
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -57,7 +57,7 @@ ALPHA0: float = 3.0 - 2.0 * math.sqrt(2.0)
 Array = NDArray[np.float64]
 
 
-class Regime(str, Enum):  # noqa: UP042 - StrEnum would change str(member)
+class Regime(StrEnum):
     """Pinning regime of a trap (spec §1)."""
 
     VERY_STRONG = "very strong pinning"
@@ -105,7 +105,8 @@ def z_plus(y: ArrayLike, alpha: float) -> Array:
     y = np.asarray(y, dtype=float)
     out = -0.5 * ((1.0 - alpha) + np.sqrt(_discriminant(y, alpha)))
     yc = (1.0 - alpha) ** 2 / (4.0 * alpha)
-    return np.where((y >= -1.0) & (y <= yc), out, np.nan)
+    tol = 8.0 * np.finfo(float).eps * max(1.0, yc)  # y_c itself carries rounding
+    return np.where((y >= -1.0 - tol) & (y <= yc + tol), out, np.nan)
 
 
 def z_minus(y: ArrayLike, alpha: float) -> Array:
@@ -123,7 +124,7 @@ def z_unstable(y: ArrayLike, alpha: float) -> Array:
     ay = np.abs(y)
     out = -np.sign(y) * 0.5 * ((1.0 - alpha) - np.sqrt(_discriminant(ay, alpha)))
     yc = (1.0 - alpha) ** 2 / (4.0 * alpha)
-    return np.where(ay <= yc, out, np.nan)
+    return np.where(ay <= yc + 8.0 * np.finfo(float).eps * max(1.0, yc), out, np.nan)
 
 
 def force_plus(y: ArrayLike, alpha: float) -> Array:
@@ -222,8 +223,17 @@ class Trap:
 
     @property
     def f_c(self) -> float:
-        """Largest pinning force, at the spinodal: ``f_+(y_c) = 6 alpha (y_c - z_c)``."""
+        """Force at the spinodal, ``f_+(y_c) = 6 alpha (y_c - z_c)``."""
         return 6.0 * self.alpha * (self.y_c - self.z_c) if self.pinned else math.nan
+
+    @property
+    def f_max(self) -> float:
+        """Largest pinning force on (+): ``max psi' = 3/2``, reached at ``z = -1/2`` (ours).
+
+        ``df_+/dy = 6 alpha (1 - alpha / sqrt((1 - alpha)^2 - 4 alpha y))`` tends to ``-inf`` at
+        the spinodal, so the force peaks before it, at ``y_m = (1 - 2 alpha)/(4 alpha) >= -1``.
+        """
+        return 1.5 if self.pinned else math.nan
 
     @property
     def death_point(self) -> float:
@@ -294,6 +304,7 @@ class Trap:
             "y_c": self.y_c,
             "z_c": self.z_c,
             "f_c": self.f_c,
+            "f_max": self.f_max,
             "death_point": self.death_point,
             "maxwell_point": self.maxwell_point,
             "maxwell_jump": self.maxwell_jump,

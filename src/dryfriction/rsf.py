@@ -1,0 +1,279 @@
+"""Rate-and-state friction (RSF): the laws, their steady state and linear stability.
+
+SI units throughout: slip and ``dc`` in m, velocities in m/s, times in s; friction and the
+constitutive parameters ``a``, ``b``, ``mu0`` are dimensionless. Stiffness ``k`` (1/m), damping
+``eta`` (s/m) and mass ``m`` (s^2/m) are per unit normal force (the rsfmodel convention); see
+:mod:`dryfriction.rsf_driving` for the spring-slider driver.
+
+Laws (``theta`` in s):
+
+* friction (Dieterich 1979; Ruina 1983), with an optional second state variable
+  (Ruina 1983; Gu, Rice, Ruina & Tse 1984)::
+
+      mu = mu0 + a ln(V/V0) + b ln(V0 theta/Dc) + b2 ln(V0 theta2/Dc2)
+
+* the regularised form, valid down to ``V = 0`` and odd in ``V`` (Rice & Ben-Zion 1996;
+  Lapusta, Rice, Ben-Zion & Zheng 2000; Rice, Lapusta & Ranjith 2001)::
+
+      mu = a asinh( V/(2 V0) exp(Psi/a) ),  Psi = mu0 + b ln(V0 theta/Dc) + b2 ln(V0 theta2/Dc2)
+
+  It equals the standard form up to a relative ``O((V0/V)^2 exp(-2 Psi/a))`` once
+  ``V >> 2 V0 exp(-Psi/a)``;
+
+* the Dieterich ("ageing") law ``dtheta/dt = 1 - |V| theta/Dc`` (Dieterich 1979; named by
+  Ruina 1983) and the Ruina ("slip") law ``dtheta/dt = -(|V| theta/Dc) ln(|V| theta/Dc)``
+  (Ruina 1983). Each state variable follows the same law with its own ``Dc``.
+
+Steady state: ``theta_ss = Dc/V`` and ``mu_ss = mu0 + (a - b - b2) ln(V/V0)`` (Ruina 1983).
+
+Linear stability of steady sliding of a spring slider (one state variable, either law, both
+laws have the same linearisation about steady state; Ruina 1983; Rice & Ruina 1983): the
+critical stiffness is ``k_c = (b - a)/Dc`` quasi-statically and
+``k_c = (b - a)/Dc (1 + m V^2/(a Dc))`` with inertia (Rice & Ruina 1983); at ``k = k_c`` the
+slider oscillates at ``omega = (V/Dc) sqrt((b - a)/a)`` (Rice & Ruina 1983; Gu et al. 1984;
+independent of the mass, ours by the same algebra). Quasi-dynamic radiation damping ``eta``
+enters the linearisation only through ``a -> a + eta V`` (ours, same algebra).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .validation import check_choice, check_range, check_scalar
+
+__all__ = ["RateState", "STATE_LAWS"]
+
+Array = NDArray[np.float64]
+StateLaw = Literal["ageing", "slip"]
+STATE_LAWS: tuple[str, ...] = ("ageing", "slip")
+
+# Above this ln z, asinh(z) = ln(2z) + 1/(4 z^2) to double precision (next term ~ z^-4).
+_ASINH_LARGE = 20.0
+
+
+def asinh_exp(lnz: ArrayLike) -> Array:
+    """``asinh(exp(lnz))`` without overflow for large ``lnz``."""
+    lnz = np.asarray(lnz, float)
+    big = lnz > _ASINH_LARGE
+    safe = np.where(big, 0.0, lnz)
+    return np.where(
+        big, lnz + math.log(2.0) + 0.25 * np.exp(-2.0 * np.where(big, lnz, 0.0)),
+        np.arcsinh(np.exp(safe)),
+    )
+
+
+@dataclass(frozen=True)
+class RateState:
+    """Rate-and-state friction parameters (validated at construction).
+
+    Parameters
+    ----------
+    a : float
+        Direct-effect coefficient, ``> 0`` (dimensionless).
+    b : float
+        Evolution-effect coefficient of the first state variable, ``>= 0``.
+    dc : float
+        Characteristic slip of the first state variable, m, ``> 0``.
+    mu0 : float
+        Reference friction at ``V = V0`` in steady state (finite).
+    v0 : float
+        Reference velocity, m/s, ``> 0``.
+    state_law : {"ageing", "slip"}
+        Dieterich ageing law or Ruina slip law (used for every state variable).
+    b2 : float
+        Evolution coefficient of the optional second state variable, ``>= 0``.
+    dc2 : float or None
+        Characteristic slip of the second state variable, m, ``> 0``; ``None`` means one
+        state variable (then ``b2`` must be 0).
+    regularized : bool
+        Use the regularised (``asinh``) friction law, defined for ``V <= 0`` too.
+    """
+
+    a: float
+    b: float
+    dc: float
+    mu0: float
+    v0: float
+    state_law: StateLaw = "ageing"
+    b2: float = 0.0
+    dc2: float | None = None
+    regularized: bool = False
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        set_(self, "a", check_scalar("a", self.a, 0.0, lo_open=True))
+        set_(self, "b", check_scalar("b", self.b, 0.0))
+        set_(self, "dc", check_scalar("dc", self.dc, 0.0, lo_open=True))
+        set_(self, "mu0", check_scalar("mu0", self.mu0))
+        set_(self, "v0", check_scalar("v0", self.v0, 0.0, lo_open=True))
+        check_choice("state_law", self.state_law, STATE_LAWS)
+        set_(self, "b2", check_scalar("b2", self.b2, 0.0))
+        if self.dc2 is None:
+            if self.b2 != 0.0:
+                raise ValueError(f"b2 = {self.b2:g} needs dc2 (a second state variable)")
+        else:
+            set_(self, "dc2", check_scalar("dc2", self.dc2, 0.0, lo_open=True))
+        if not isinstance(self.regularized, (bool, np.bool_)):
+            raise ValueError(f"regularized = {self.regularized!r} is not allowed: true or false")
+        set_(self, "regularized", bool(self.regularized))
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_mapping(cls, m: Mapping[str, Any]) -> RateState:
+        """Build from a mapping such as a protocol file's ``[model]`` table.
+
+        Keys are the field names (``a``, ``b``, ``dc``, ``mu0``, ``v0``, ``state_law``, ``b2``,
+        ``dc2``, ``regularized``); ``law = "rsf"`` is accepted and ignored. Unknown keys and
+        missing required keys are errors.
+        """
+        allowed = {"a", "b", "dc", "mu0", "v0", "state_law", "b2", "dc2", "regularized", "law"}
+        unknown = set(m) - allowed
+        if unknown:
+            raise ValueError(
+                f"unknown rate-and-state key(s) {', '.join(sorted(map(str, unknown)))}: "
+                f"allowed {', '.join(sorted(allowed))}"
+            )
+        if "law" in m and m["law"] != "rsf":
+            raise ValueError(f"law = {m['law']!r} is not allowed here: rate-and-state needs 'rsf'")
+        missing = [k for k in ("a", "b", "dc", "mu0", "v0") if k not in m]
+        if missing:
+            raise ValueError(f"missing rate-and-state key(s): {', '.join(missing)}")
+        kwargs = {k: v for k, v in m.items() if k != "law"}
+        return cls(**kwargs)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain mapping of the parameters (``from_mapping`` round-trips it)."""
+        return asdict(self)
+
+    # ------------------------------------------------------------------ the laws
+    @property
+    def n_state(self) -> int:
+        """Number of state variables (1 or 2)."""
+        return 1 if self.dc2 is None else 2
+
+    @property
+    def b_total(self) -> float:
+        """``b + b2``: the steady-state evolution effect."""
+        return self.b + self.b2
+
+    def _psi(self, theta: Array, theta2: Array | None) -> Array:
+        """``Psi = mu0 + b ln(V0 theta/Dc) (+ b2 ln(V0 theta2/Dc2))``."""
+        psi = self.mu0 + self.b * np.log(self.v0 * theta / self.dc)
+        if self.dc2 is not None:
+            if theta2 is None:
+                raise ValueError("theta2 is needed: these parameters have two state variables")
+            psi = psi + self.b2 * np.log(self.v0 * np.asarray(theta2, float) / self.dc2)
+        return psi
+
+    def friction(self, v: ArrayLike, theta: ArrayLike, theta2: ArrayLike | None = None) -> Array:
+        """Friction coefficient ``mu(V, theta[, theta2])``.
+
+        Parameters
+        ----------
+        v : array_like
+            Slip velocity, m/s; ``> 0`` for the standard law, any real for the regularised one.
+        theta, theta2 : array_like
+            State variables, s, ``> 0``.
+
+        Returns
+        -------
+        ndarray
+            Friction coefficient (dimensionless).
+        """
+        theta = check_range("theta", theta, 0.0, lo_open=True)
+        if theta2 is not None:
+            theta2 = check_range("theta2", theta2, 0.0, lo_open=True)
+        if self.regularized:
+            v = check_range("v", v)
+            psi = self._psi(theta, theta2)
+            av = np.abs(v)
+            with np.errstate(divide="ignore"):
+                lnz = np.log(av / (2.0 * self.v0)) + psi / self.a
+            return np.sign(v) * self.a * np.where(av > 0, asinh_exp(lnz), 0.0)
+        v = check_range("v", v, 0.0, lo_open=True)
+        return self._psi(theta, theta2) + self.a * np.log(v / self.v0)
+
+    def state_rate(self, v: ArrayLike, theta: ArrayLike, dc: float | None = None) -> Array:
+        """``dtheta/dt`` (s/s) of the chosen state law at slip velocity ``v`` (m/s).
+
+        ``dc`` defaults to the first state variable's; pass ``self.dc2`` for the second.
+        """
+        v = np.abs(check_range("v", v))
+        theta = check_range("theta", theta, 0.0, lo_open=True)
+        dc = self.dc if dc is None else dc
+        omega = v * theta / dc
+        if self.state_law == "ageing":
+            return 1.0 - omega
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(omega > 0, -omega * np.log(omega), 0.0)
+
+    def steady_state_theta(self, v: ArrayLike) -> Array:
+        """``theta_ss = Dc/V`` (s) for the first state variable (Ruina 1983)."""
+        v = check_range("v", v, 0.0, lo_open=True)
+        return self.dc / v
+
+    def steady_state_friction(self, v: ArrayLike) -> Array:
+        """Steady-state friction ``mu_ss(V)`` (Ruina 1983).
+
+        ``mu0 + (a - b - b2) ln(V/V0)`` for the standard law; the regularised law evaluated at
+        ``theta_i = Dc_i/V``.
+        """
+        v = check_range("v", v, 0.0, lo_open=True)
+        if not self.regularized:
+            return self.mu0 + (self.a - self.b_total) * np.log(v / self.v0)
+        th2 = None if self.dc2 is None else self.dc2 / v
+        return self.friction(v, self.dc / v, th2)
+
+    # ------------------------------------------------------------------ stability
+    def _one_state_standard(self, what: str) -> None:
+        if self.dc2 is not None or self.regularized:
+            raise ValueError(
+                f"the closed-form {what} is for one state variable and the standard law: "
+                "use dryfriction.rsf_driving.linear_stability for these parameters"
+            )
+
+    def critical_stiffness(self, v: float = 1.0, damping: float = 0.0, mass: float = 0.0) -> float:
+        """Critical spring stiffness ``k_c`` (1/m, per unit normal force) of steady sliding.
+
+        ``k_c = (b - a')/Dc * (1 + m V^2/(a' Dc))`` with ``a' = a + eta V``: Rice & Ruina
+        (1983) for ``eta = 0`` (``k_c = (b - a)/Dc`` quasi-statically); the ``eta`` term is
+        ours (same algebra). Negative when steady sliding is stable at any stiffness.
+
+        Parameters
+        ----------
+        v : float
+            Steady sliding velocity, m/s (irrelevant when ``damping = mass = 0``).
+        damping : float
+            Radiation damping ``eta/sigma``, s/m, ``>= 0``.
+        mass : float
+            Slider mass per unit normal force, s^2/m, ``>= 0``.
+        """
+        v = check_scalar("v", v, 0.0, lo_open=True)
+        damping = check_scalar("damping", damping, 0.0)
+        mass = check_scalar("mass", mass, 0.0)
+        self._one_state_standard("critical stiffness")
+        ap = self.a + damping * v
+        return (self.b - ap) / self.dc * (1.0 + mass * v * v / (ap * self.dc))
+
+    def hopf_frequency(self, v: float, damping: float = 0.0) -> float:
+        """Angular frequency (rad/s) of the oscillation at ``k = k_c``.
+
+        ``omega = (V/Dc) sqrt((b - a')/a')``, ``a' = a + eta V`` (Rice & Ruina 1983 for
+        ``eta = 0``; the ``eta`` term is ours); independent of the mass. Needs ``b > a'``.
+        """
+        v = check_scalar("v", v, 0.0, lo_open=True)
+        damping = check_scalar("damping", damping, 0.0)
+        self._one_state_standard("Hopf frequency")
+        ap = self.a + damping * v
+        if self.b <= ap:
+            raise ValueError(
+                f"b = {self.b:g} <= a + eta V = {ap:g}: steady sliding is stable at any "
+                "stiffness and there is no Hopf bifurcation"
+            )
+        return v / self.dc * math.sqrt((self.b - ap) / ap)

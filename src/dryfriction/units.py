@@ -1,0 +1,114 @@
+"""Physical (SI) units on top of the reduced core.
+
+The core works in the paper's reduced units: lengths in ``a0`` (m), times in ``t0`` (s),
+velocities in ``V* = a0/t0`` (m/s), forces in ``F_el`` (eq. 12). A friction experiment reports a
+friction coefficient ``F/W`` for a normal load ``W``; the model's elastic friction level
+``mu_el = F_el/W`` is then the one extra number that maps ``F/F_el`` onto it. Every conversion is
+explicit and every field says its unit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .static import static_friction
+from .steady import steady_friction
+from .validation import check_range, check_scalar
+
+__all__ = ["PhysicalScales", "static_friction_si", "steady_friction_si"]
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class PhysicalScales:
+    """The scales that turn reduced results into SI ones.
+
+    Parameters
+    ----------
+    a0 : float
+        Contact radius after the initial plastic crushing, m (``> 0``).
+    t0 : float
+        Plastic creep time of eq. 18, s (``> 0``).
+    mu_el : float
+        Elastic friction level ``F_el / W`` (dimensionless, ``> 0``).
+    normal_load : float, optional
+        Normal load ``W``, N (``> 0``); needed only to express forces in newtons.
+    """
+
+    a0: float
+    t0: float
+    mu_el: float = 1.0
+    normal_load: float | None = None
+
+    def __post_init__(self) -> None:
+        check_scalar("a0", self.a0, 0.0, lo_open=True)
+        check_scalar("t0", self.t0, 0.0, lo_open=True)
+        check_scalar("mu_el", self.mu_el, 0.0, lo_open=True)
+        if self.normal_load is not None:
+            check_scalar("normal_load", self.normal_load, 0.0, lo_open=True)
+
+    @property
+    def velocity_scale(self) -> float:
+        """``V* = a0/t0``, m/s."""
+        return self.a0 / self.t0
+
+    @property
+    def elastic_force(self) -> float:
+        """``F_el = mu_el W``, N."""
+        if self.normal_load is None:
+            raise ValueError("normal_load (N) is needed to express forces in newtons")
+        return self.mu_el * self.normal_load
+
+    def reduced_velocity(self, V: ArrayLike) -> Array:
+        """``u = V/V*`` from ``V`` in m/s."""
+        return check_range("V", V, 0.0, lo_open=True) / self.velocity_scale
+
+    def reduced_time(self, t: ArrayLike) -> Array:
+        """``T = t/t0`` from ``t`` in s."""
+        return check_range("t", t, 0.0) / self.t0
+
+    def reduced_length(self, x: ArrayLike) -> Array:
+        """``x/a0`` from ``x`` in m."""
+        return check_range("x", x) / self.a0
+
+    def friction_coefficient(self, mu_reduced: ArrayLike) -> Array:
+        """``F/W = mu_el * F/F_el``."""
+        return self.mu_el * np.asarray(mu_reduced, float)
+
+    def force(self, mu_reduced: ArrayLike) -> Array:
+        """``F`` in N from ``F/F_el``."""
+        return self.elastic_force * np.asarray(mu_reduced, float)
+
+    def memory_length(self, C: ArrayLike) -> Array:
+        """Dieterich length ``D0 = C a0`` in m (eq. 36)."""
+        return np.asarray(C, float) * self.a0
+
+
+def static_friction_si(
+    t_w: ArrayLike,
+    eps: float,
+    scales: PhysicalScales,
+    alpha: float = 0.13,
+    creep: str = "log",
+    load: float = 0.0,
+) -> Array:
+    """Static friction coefficient ``F_s/W`` after waiting ``t_w`` seconds (eq. 27).
+
+    ``load`` is the tangential force during the wait as a fraction of ``F_el`` (``[0, 1)``).
+    """
+    return scales.friction_coefficient(
+        static_friction(scales.reduced_time(t_w), eps, alpha, creep, load)
+    )
+
+
+def steady_friction_si(
+    V: ArrayLike, eps: float, scales: PhysicalScales, alpha: float = 0.13, creep: str = "log"
+) -> Array:
+    """Steady dynamic friction coefficient ``F_d/W`` at sliding velocity ``V`` in m/s (eq. 34)."""
+    return scales.friction_coefficient(
+        steady_friction(scales.reduced_velocity(V), eps, alpha, creep)
+    )

@@ -1,0 +1,37 @@
+"""Atomic writes: whole or nothing, ordinary permissions."""
+
+import os
+import stat
+
+import pytest
+
+from dryfriction.io import atomic_write_text, output_directory, write_csv
+
+
+def test_permissions_follow_umask(tmp_path):
+    old = os.umask(0o022)
+    try:
+        f = atomic_write_text(tmp_path / "a.txt", "x")
+        assert stat.S_IMODE(f.stat().st_mode) == 0o644
+        with output_directory(tmp_path / "res") as d:
+            (d / "b.txt").write_text("y")
+        assert stat.S_IMODE((tmp_path / "res").stat().st_mode) == 0o755
+    finally:
+        os.umask(old)
+
+
+def test_output_directory_whole_or_nothing(tmp_path):
+    out = tmp_path / "res"
+    with output_directory(out) as d:
+        (d / "one").write_text("1")
+    with pytest.raises(RuntimeError), output_directory(out) as d:
+        (d / "two").write_text("2")
+        raise RuntimeError("boom")
+    assert sorted(p.name for p in out.iterdir()) == ["one"]
+    assert [p.name for p in tmp_path.iterdir()] == ["res"]  # no temporary leftovers
+
+
+def test_csv_rejects_ragged_columns(tmp_path):
+    with pytest.raises(ValueError, match="different lengths"):
+        write_csv(tmp_path / "x.csv", {"a": [1.0, 2.0], "b": [1.0]})
+    assert not (tmp_path / "x.csv").exists()

@@ -1,0 +1,150 @@
+"""Linear stability of steady sliding (issue: stick-slip), against independent routes."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from dryfriction.creep import LogCreep
+from dryfriction.stability import (
+    critical_stiffness,
+    rightmost_root,
+    shift_stiffness,
+    steady_response,
+)
+from dryfriction.steady import steady_death_point, steady_friction
+from dryfriction.trap import Trap, force_forward
+
+
+@pytest.mark.parametrize("alpha, creep", [(0.13, "log"), (0.05, "log"), (0.13, "eyring-nabarro"),
+                                          (0.4, "log")])
+@pytest.mark.parametrize("u", [0.01, 0.3, 10.0])
+def test_zero_frequency_limits(alpha, creep, u):
+    eps = 0.04
+    resp = steady_response(u, eps, alpha, creep)
+    # a constant shift is a relabelling of the traps
+    assert abs(resp.Z(0.0)) < 1e-11
+    # Z'(0) is the slope of the steady friction law (independent quadrature of eq. 34)
+    h = 1e-6
+    dz = (resp.Z(h) - resp.Z(-h)).real / (2 * h)
+    du = 1e-5 * u
+    slope = (steady_friction(u + du, eps, alpha, creep) - steady_friction(u - du, eps, alpha,
+                                                                          creep)) / (2 * du)
+    assert dz == pytest.approx(slope, rel=1e-5)
+
+
+def test_conjugate_symmetry_and_no_ageing():
+    resp = steady_response(0.2, 0.03)
+    lam = np.array([0.3 + 2j, 1.0 - 0.5j, 5j])
+    np.testing.assert_allclose(resp.Z(lam.conj()), resp.Z(lam).conj(), rtol=1e-13)
+    # eps = 0: friction is rate-independent, the response vanishes at every frequency
+    el = steady_response(0.2, 0.0)
+    np.testing.assert_allclose(el.Z(np.array([0.1, 1j, 3 + 4j, 100.0])), 0.0, atol=1e-12)
+    fwd, bwd = shift_stiffness(0.2, 0.0)
+    trap = Trap(0.13)
+    assert fwd == pytest.approx(0.0, abs=1e-12)
+    # backward: every trap stiffens, int f_+' dy = f_+(y_c) - f_+(-1) (closed form)
+    assert bwd == pytest.approx(trap.f_c / trap.H0, rel=1e-10)
+
+
+def _shifted_force(delta, u, eps, alpha=0.13):
+    """Shift the steady population by delta at frozen ages: traps past the spinodal die.
+
+    Integrated in y with adaptive quadrature (an independent route to Z(inf)).
+    """
+    trap = Trap(alpha)
+    law = LogCreep(eps)
+    pd = float(steady_death_point(u, eps, alpha))
+
+    def g(y):
+        r = float(law.radius((y + 1) / u))
+        w = (y + delta) / r
+        return r * r * float(force_forward(w, alpha)) if w <= trap.y_c else 0.0
+
+    # for delta > 0 the traps with (y + delta)/r > y_c have died; find that edge
+    if delta > 0:
+        from scipy.optimize import brentq
+
+        edge = brentq(lambda y: (y + delta) / float(law.radius((y + 1) / u)) - trap.y_c,
+                      -1, pd)
+    else:
+        edge = pd
+    val, _ = quad(g, -1, edge, limit=400, epsabs=1e-13, epsrel=1e-12)
+    return val / trap.H0
+
+
+@pytest.mark.parametrize("u", [0.05, 1.0])
+def test_shift_stiffness_against_shifted_population(u):
+    eps = 0.04
+    fwd, bwd = shift_stiffness(u, eps)
+    d = 1e-5
+    base = float(steady_friction(u, eps))
+    assert _shifted_force(0.0, u, eps) == pytest.approx(base, rel=1e-9)
+    assert (_shifted_force(d, u, eps) - base) / d == pytest.approx(fwd, rel=2e-3)
+    assert (base - _shifted_force(-d, u, eps)) / d == pytest.approx(bwd, rel=2e-3)
+    assert fwd < 0 < bwd  # the non-smooth response: softening forward, elastic backward
+
+
+@pytest.mark.parametrize("u, mass, damping", [(0.1, 0.0, 0.05), (0.01, 0.0, 0.5),
+                                              (0.1, 1.0, 0.05), (1.0, 0.5, 0.01)])
+def test_critical_stiffness_separates_growth_from_decay(u, mass, damping):
+    res = critical_stiffness(u, 0.04, mass=mass, damping=damping)
+    assert res.critical_stiffness > 0 and np.isfinite(res.omega)
+    resp = steady_response(u, 0.04)
+    below = rightmost_root(resp, 0.9 * res.critical_stiffness, mass, damping)
+    above = rightmost_root(resp, 1.1 * res.critical_stiffness, mass, damping)
+    assert below.real > 0 > above.real
+    assert abs(below.imag) == pytest.approx(res.omega, rel=0.15)
+
+
+def test_velocity_strengthening_with_enough_damping_is_stable():
+    # zero-frequency slope d mu_d/du + eta > 0 and no crossing: stable for every K
+    res = critical_stiffness(1.0, 0.04, damping=1.0)
+    assert res.velocity_slope + 1.0 > 0
+    assert res.critical_stiffness == 0.0
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="u"):
+        steady_response(0.0, 0.04)
+    with pytest.raises(ValueError, match="mass"):
+        critical_stiffness(1.0, 0.04, mass=-1.0)
+    with pytest.raises(ValueError, match="stiffness"):
+        rightmost_root(steady_response(1.0, 0.04), 0.0)
+
+
+def test_cli_stability_json_matches_library():
+    import json
+
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    res = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "0.1", "0.01",
+                                   "--damping", "0.05", "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.output)
+    lib = critical_stiffness(0.01, 0.04, damping=0.05)
+    assert out["K_c"][1] == pytest.approx(lib.critical_stiffness, rel=1e-12)
+    bad = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "0"])
+    assert bad.exit_code == 2 and "u = 0" in bad.output
+
+
+@pytest.mark.parametrize("u", [0.01, 1.0])
+def test_effective_rsf_from_moments(u):
+    from dryfriction.stability import effective_rsf
+
+    eps = 0.04
+    p = effective_rsf(u, eps)
+    resp = steady_response(u, eps)
+    # the moment formulas against finite differences of Z itself (independent route)
+    h = 2e-3 / resp.tau_d
+    z = [resp.Z(k * h).real for k in (-2, -1, 0, 1, 2)]
+    d2 = (z[3] - 2 * z[2] + z[1]) / h**2
+    d3 = (z[4] - 2 * z[3] + 2 * z[1] - z[0]) / (2 * h**3)
+    assert resp.derivative_at_zero(2) == pytest.approx(d2, rel=1e-4)
+    assert resp.derivative_at_zero(3) == pytest.approx(d3, rel=1e-3)
+    # a - b is the steady-state slope u d mu_d/du (rate-and-state's mu0 + (a - b) ln V)
+    du = 1e-5 * u
+    slope = (steady_friction(u + du, eps) - steady_friction(u - du, eps)) / (2 * du)
+    assert p["a"] - p["b"] == pytest.approx(u * slope, rel=1e-5)
+    assert p["b"] > p["a"] > 0 and 0.3 < p["dc"] < 2.46  # velocity weakening, Dc < (1 + y_c) a0

@@ -1,0 +1,157 @@
+"""Static friction (spec §3): eq. 27, eq. 28, the pull, the loaded protocol."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dryfriction.static import (
+    fresh_force,
+    loaded_edge,
+    pull_force,
+    static_friction,
+    static_friction_at_radius,
+    static_friction_first_order,
+    static_slope_per_eps,
+    threshold_shift,
+)
+from dryfriction.trap import ALPHA0, Trap
+from reference import ref_pull_force, ref_static_eq27
+
+rng = np.random.default_rng(20261122)
+
+
+def _log_uniform(lo, hi, n):
+    return np.exp(rng.uniform(np.log(lo), np.log(hi), n))
+
+
+def test_precision_against_mpmath_eq27():
+    # paper's regime (very strong pinning, eq. 27 literally) over the whole stated box
+    alpha = rng.uniform(0.02, ALPHA0, 24)
+    eps = rng.uniform(0.0, 0.2, 24)
+    T = _log_uniform(1e-4, 1e4, 24)
+    for a, e, t in zip(alpha, eps, T, strict=True):
+        r = math.sqrt(1 + e * math.log1p(t))
+        if r * Trap(a).y_c - 1 > Trap(a).y_c:
+            continue  # fresh traps die before the aged edge: eq. 27 literally undefined there
+        assert static_friction(t, e, a) == pytest.approx(ref_static_eq27(t, e, a), rel=1e-9)
+
+
+def test_pull_force_against_trap_by_trap_sum():
+    cases = [(0.13, 1.05, 0.0), (0.13, 1.2, 0.5), (0.05, 1.1, 0.0), (0.3, 1.08, 0.2),
+             (0.6, 1.3, 0.05), (0.9, 1.1, 0.0)]
+    for alpha, r, d_w in cases:
+        yc = Trap(alpha).y_c
+        for d in np.linspace(0.0, 1.3 * (1 + yc) * r, 7)[1:]:
+            ref = ref_pull_force(d, r, alpha, d_w)
+            assert pull_force(d, r, alpha, d_w) == pytest.approx(ref, rel=1e-9, abs=1e-12)
+
+
+@given(st.floats(0.005, 0.995), st.floats(1.0, 2.5), st.floats(0.0, 0.99))
+@settings(max_examples=150, deadline=None)
+def test_threshold_is_max_of_pull(alpha, r, load):
+    d_w = loaded_edge(load, alpha)
+    d = np.linspace(0.0, 1.0 + r * Trap(alpha).death_point + 1.0, 40001)
+    scan = pull_force(d, r, alpha, d_w).max()
+    mu_s = static_friction_at_radius(r, alpha, d_w)
+    # the dense scan can only undershoot the true maximum, by at most slope * step; both carry
+    # rounding of relative size 1e-16 / H0 (H0 ~ (1 - alpha)^3 as alpha -> 1)
+    assert mu_s >= scan - 1e-12 - 1e-14 / Trap(alpha).H0
+    assert mu_s - scan < 50 * (d[1] - d[0]) * Trap(alpha).f_c * r**2 / Trap(alpha).H0
+
+
+def test_paper_regime_threshold_is_eq27_point():
+    # for the paper's parameters the maximum is at d* = r y_c (the [reading] of eq. 27)
+    for eps in (0.01, 0.05):
+        for T in (0.01, 1.0, 100.0):
+            r = math.sqrt(1 + eps * math.log1p(T))
+            assert static_friction(T, eps) == pytest.approx(
+                float(pull_force(threshold_shift(r), r)), rel=1e-15)
+
+
+def test_limits():
+    assert static_friction(0.0, 0.05) == pytest.approx(1.0, rel=1e-14)
+    assert static_friction(1e6, 0.0) == pytest.approx(1.0, rel=1e-14)
+    assert static_friction(0.0, 0.05, alpha=0.5) == pytest.approx(1.0, rel=1e-13)
+    # fresh contact: force 0 at rest (eq. 25), 1 at the elastic threshold d = y_c (eq. 12)
+    for alpha in (0.13, 0.5):
+        assert fresh_force(0.0, alpha) == pytest.approx(0.0, abs=1e-14)
+        assert fresh_force(Trap(alpha).y_c, alpha) == pytest.approx(1.0, rel=1e-13)
+
+
+@pytest.mark.parametrize("alpha", [0.05, 0.13, 0.3])
+def test_first_order_expansion_eq28(alpha):
+    T = np.logspace(-2, 2, 9)
+    prev = None
+    for eps in (1e-2, 1e-3, 1e-4):
+        err = np.max(np.abs(static_friction(T, eps, alpha) - static_friction_first_order(
+            T, eps, alpha)))
+        if prev is not None:  # the remainder is O(eps^2)
+            assert err < prev / 50
+        prev = err
+    assert prev < 1e-7
+
+
+def test_slope_per_eps_paper_value():
+    # independent arithmetic for alpha = 0.13 from eq. 28: y_c, f_+(y_c - 1), H1, H0
+    a = 0.13
+    yc = 0.87**2 / 0.52
+    y1 = yc - 1
+    f1 = 6 * a * (y1 + (0.87 + math.sqrt(0.87**2 - 4 * a * y1)) / 2)
+    trap = Trap(a)
+    assert static_slope_per_eps(a) == pytest.approx(
+        (3 * trap.H1 + y1 * f1) / (2 * trap.H0_paper), rel=1e-12)
+    # mu_s is not log-linear in T at short times (paper §4): slope grows with T
+    T = np.array([0.01, 0.1, 1, 10, 100])
+    mu = static_friction(T, 0.03)
+    slopes = np.diff(mu) / np.diff(np.log(T))
+    assert np.all(np.diff(slopes) > 0)
+    assert slopes[-1] == pytest.approx(0.03 * static_slope_per_eps(a), rel=0.05)
+
+
+@given(st.floats(0.01, ALPHA0), st.floats(0.001, 0.2), st.floats(1e-3, 1e3), st.floats(1.01, 10))
+@settings(max_examples=60, deadline=None)
+def test_monotone_in_T_and_eps(alpha, eps, T, k):
+    # very strong pinning (the paper's regime); strong pinning is checked below
+    assert static_friction(T * k, eps, alpha) > static_friction(T, eps, alpha)
+    assert static_friction(T, eps * min(k, 1.5), alpha) > static_friction(T, eps, alpha)
+
+
+def test_loaded_protocol_larger_and_steeper():
+    # paper §4: ageing under load gives larger mu_s and larger d mu_s / d ln t_w
+    T = np.array([1.0, 100.0])
+    rest = static_friction(T, 0.03)
+    slope_rest = np.diff(rest) / np.diff(np.log(T))
+    for load in (0.3, 0.6, 0.9):
+        loaded = static_friction(T, 0.03, load=load)
+        assert np.all(loaded > rest)
+        assert (np.diff(loaded) / np.diff(np.log(T)))[0] > slope_rest[0]
+        # the edge really carries the load at T = 0
+        assert fresh_force(loaded_edge(load), 0.13) == pytest.approx(load, rel=1e-12)
+        assert static_friction(0.0, 0.03, load=load) == pytest.approx(1.0, rel=1e-13)
+
+
+def test_eyring_nabarro_variant():
+    # the exact law ages faster than its first-order form (rate factor s e^{(1/s-1)/eps} >=
+    # e^{(1-s)/eps} for s >= 1), so its static friction is larger, by O(eps^2)
+    T = np.logspace(-2, 2, 5)
+    for eps in (0.02, 0.002):
+        en = static_friction(T, eps, creep="eyring-nabarro")
+        lg = static_friction(T, eps)
+        assert np.all(en >= lg - 1e-15)
+    assert np.max(en - lg) < 20 * 0.002**2 * np.log1p(T[-1]) ** 2
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [({"T": -1.0}, "T"), ({"T": math.nan}, "T"), ({"eps": -0.01}, "eps"),
+     ({"eps": math.inf}, "eps"), ({"alpha": 0.0}, "alpha"), ({"alpha": 1.0}, "alpha"),
+     ({"alpha": 1.5}, "alpha"), ({"load": 1.0}, "load"), ({"load": -0.1}, "load"),
+     ({"creep": "power"}, "creep")],
+)
+def test_bad_input(kwargs, name):
+    args = {"T": 1.0, "eps": 0.01} | kwargs
+    with pytest.raises(ValueError, match=name):
+        static_friction(**args)
