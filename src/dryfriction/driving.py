@@ -161,7 +161,9 @@ class Output:
         ``> 0``. Holds are then a single step. Under force control the force step is
         ``every_slip`` times the fresh contact stiffness.
     snapshots : tuple of float
-        Times (``t0``, ``>= 0``) at which the population is recorded.
+        Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
+        drives step exactly onto them; under force control (whose ramp ends at an unknown
+        time) a snapshot is taken at the first sample at or after the requested time.
     """
 
     every: float | None = None
