@@ -1,5 +1,9 @@
-"""Shared pytest options: ``--runslow`` runs the larger parameter sets of the convergence and
-coverage studies (the smaller sets always run)."""
+"""Shared test options: ``--runslow`` runs the larger variant of the convergence and coverage
+studies.
+
+Nothing is skipped without it: the parametrised studies always run a smaller but meaningful
+version.
+"""
 
 from __future__ import annotations
 
@@ -8,10 +12,10 @@ import pytest
 
 def pytest_addoption(parser: pytest.Parser) -> None:
     parser.addoption("--runslow", action="store_true", default=False,
-                     help="run the larger (slow) parameter sets of the statistical studies")
+                     help="run the larger variant of the convergence and coverage studies")
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def runslow(request: pytest.FixtureRequest) -> bool:
     """True when the larger parameter sets were asked for (``--runslow``)."""
     return bool(request.config.getoption("--runslow"))

@@ -440,6 +440,71 @@ def fit_command(
         raise typer.Exit(1)
 
 
+@app.command()
+@cli_errors
+def simulate(
+    protocol: str = typer.Argument(..., help="Protocol file (TOML), see dryfriction.protocol."),
+    out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all)."),
+    json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
+) -> None:
+    """Run the trap ensemble under a protocol (spec §6): timeseries.csv, summary.json, .png.
+
+    Ctrl-C stops the run and writes the samples so far as a complete result marked
+    ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
+    nothing.
+    """
+    import time
+    from pathlib import Path
+
+    from .io import check_output_dir, output_directory, write_csv, write_json
+    from .protocol import load_protocol
+
+    proto = load_protocol(protocol)  # every check before any work
+    check_output_dir(out)
+
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    started = time.monotonic()
+    bar: dict[str, Any] = {}
+
+    def progress(fraction: float) -> None:
+        if not err.is_terminal or time.monotonic() - started < 1.0:
+            return
+        if not bar:
+            p = Progress(TextColumn("simulate"), BarColumn(), TimeElapsedColumn(),
+                         console=err, transient=True)
+            p.start()
+            bar["p"], bar["task"] = p, p.add_task("simulate", total=1.0)
+        bar["p"].update(bar["task"], completed=fraction)
+
+    try:
+        result = proto.run(progress=progress, on_interrupt="partial")
+    finally:
+        if bar:
+            bar["p"].stop()
+    summary = result.summary()
+    summary["protocol"] = str(Path(protocol))
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .plotting import timeseries_figure
+
+    with output_directory(out) as tmp:
+        write_csv(tmp / "timeseries.csv", result.to_dict())
+        write_json(tmp / "summary.json", summary)
+        fig, _ = timeseries_figure(result)
+        fig.savefig(tmp / "timeseries.png", dpi=120)
+        for i, snap in enumerate(result.snapshots):
+            cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
+            write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
+    brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
+    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out}")
+    if result.partial:
+        err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
+        raise typer.Exit(130)
+
+
 def main() -> None:
     """Console-script entry point."""
     app()

@@ -52,6 +52,7 @@ __all__ = [
     "extra_creep_laws",
     "extra_local_dieterich_constant",
     "save_png",
+    "timeseries_figure",
 ]
 
 Array = NDArray[np.float64]
@@ -482,3 +483,32 @@ def extra_local_dieterich_constant(
     ax.legend(fontsize=7.5, loc="upper right")
     ax.grid(True, which="both", color="0.92")
     return fig, ax
+
+
+def timeseries_figure(result: Any) -> tuple[Figure, Any]:
+    """Friction against time and against slip, and the number of traps in contact.
+
+    Parameters
+    ----------
+    result : dryfriction.driving.SimulationResult
+        A run of the trap ensemble; times in ``t0``, slips in ``a0``, ``mu = mu_el F/F_el``.
+
+    Returns
+    -------
+    fig, axes
+        A new figure (Agg-renderable, not shown) and its three axes.
+    """
+    fig = Figure(figsize=(8.0, 7.5), layout="constrained")
+    axes = fig.subplots(3, 1)
+    t, x, mu = result.t, result.x, result.mu
+    axes[0].plot(t, mu, lw=0.8)
+    axes[0].set_xlabel("t / t0")
+    axes[0].set_ylabel("mu")
+    axes[1].plot(x - x[0], mu, lw=0.8)
+    axes[1].set_xlabel("slip (X - X0) / a0")
+    axes[1].set_ylabel("mu")
+    axes[2].plot(t, result.n_active, lw=0.8)
+    axes[2].set_xlabel("t / t0")
+    axes[2].set_ylabel("traps in contact")
+    fig.suptitle("partial result (interrupted)" if result.partial else "trap ensemble")
+    return fig, axes

@@ -1,0 +1,638 @@
+"""Driving the trap ensemble: velocity programs, force ramps, a spring-pulled slider (spec §6).
+
+Reduced units: lengths ``a0``, times ``t0``, forces ``F_el``; stiffness ``F_el/a0``, mass
+``F_el t0^2/a0``, damping ``F_el t0/a0``. The reported friction is ``mu = mu_el F/F_el``.
+
+One orchestrating call, :func:`simulate`, composes small frozen objects: a
+:class:`~dryfriction.ensemble.TrapModel`, a :class:`~dryfriction.ensemble.Track`, an
+:class:`~dryfriction.ensemble.Initial` population, a drive (:class:`VelocityDrive`,
+:class:`ForceDrive` or :class:`SpringDrive`) and an :class:`Output` sampling.
+
+Integrators (ours)
+------------------
+* **Prescribed motion** (:class:`VelocityDrive`). ``X(t)`` is piecewise linear, so the state at
+  any sampling time is exact: births are interpolated to the instant ``p = -1`` is crossed and a
+  trap dies at the first sample after its ``w`` passes the spinodal. A hold is one step, however
+  long (ageing is a function of time; ``|w|`` only shrinks at fixed ``p``). Steps end on every
+  segment boundary and requested snapshot time. The reported peak is the largest *sampled*
+  force: sample finely (``every_slip``) to resolve it.
+* **Quasi-static slider** (:class:`ForceDrive`, and :class:`SpringDrive` with ``mass = 0``). At
+  each sampling time the ages are advanced at fixed ``X``, then the slider jumps, ages frozen, to
+  the next stable equilibrium of ``A - K X = F(X)`` (``K`` = spring stiffness, 0 under force
+  control) in the direction of the unbalanced force. The jump goes event by event: between two
+  spinodals ``F(X)`` is continuous (entries and zero-force exits are continuous), so each stretch
+  is checked at its end and the root found by Brent's method inside it. The force just before
+  each spinodal is the local peak, so the static threshold is exact up to the sampling of the
+  applied force in time. Under force control, a jump longer than the reach of every trap in
+  contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
+  left, and the run stops there.
+* **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
+  ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
+  from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
+  fresh contact stiffness, eqs. 13-14) and a slip per step ``<= 1/(4 lambda)`` so each trap
+  death is resolved.
+
+Interruption: with ``on_interrupt="partial"`` a Ctrl-C (``KeyboardInterrupt``) ends the run at
+the last completed step and the result is marked ``partial``.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from collections.abc import Callable, Iterator
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from .ensemble import Ensemble, Initial, Observables, Track, TrapModel
+from .program import VelocityProgram
+from .validation import check_choice, check_range, check_scalar
+
+__all__ = [
+    "VelocityDrive",
+    "ForceDrive",
+    "SpringDrive",
+    "Output",
+    "SimulationResult",
+    "simulate",
+]
+
+Array = NDArray[np.float64]
+Progress = Callable[[float], None]
+
+_TINY = 1e-10  # a0: how far past a spinodal the slider is moved to kill the trap (ours)
+
+
+@dataclass(frozen=True)
+class VelocityDrive:
+    """Prescribed slider motion: the slider follows ``program`` (``a0/t0``, ``t0``, ``a0``)."""
+
+    program: VelocityProgram
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.program, VelocityProgram):
+            object.__setattr__(self, "program", VelocityProgram(self.program))
+
+
+@dataclass(frozen=True)
+class ForceDrive:
+    """Force control: hold the initial force for ``hold``, then ramp it up at ``rate``.
+
+    Parameters
+    ----------
+    rate : float
+        Loading rate of the tangential force, units ``F_el/t0``, ``> 0`` (a threshold is asked,
+        so the force must grow).
+    hold : float
+        Wait at constant force before the ramp, units ``t0``, ``>= 0``.
+    max_force : float
+        Safety stop, units ``F_el``: the run ends if the force reaches it without a runaway.
+    """
+
+    rate: float
+    hold: float = 0.0
+    max_force: float = 10.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "rate", check_scalar("rate", self.rate, 0.0, lo_open=True))
+        object.__setattr__(self, "hold", check_scalar("hold", self.hold, 0.0))
+        object.__setattr__(
+            self, "max_force", check_scalar("max_force", self.max_force, 0.0, lo_open=True)
+        )
+
+
+@dataclass(frozen=True)
+class SpringDrive:
+    """A slider of mass ``mass`` pulled through a spring ``stiffness`` by a load point.
+
+    ``M X'' = K (X_pull - X) - F - eta X'``; the load point follows ``program`` and starts where
+    the spring balances the initial friction force, ``X_pull(0) = X(0) + F(0)/K``.
+
+    Parameters
+    ----------
+    stiffness : float
+        ``K``, units ``F_el/a0``, ``> 0``.
+    mass : float
+        ``M``, units ``F_el t0^2/a0``, ``>= 0``; 0 is the quasi-static limit (slips are jumps
+        between equilibria with ageing frozen during the jump).
+    damping : float
+        ``eta``, units ``F_el t0/a0``, ``>= 0``; must be 0 when ``mass = 0`` (the quasi-static
+        jumps have no time scale).
+    program : VelocityProgram
+        Load-point velocity program.
+    """
+
+    stiffness: float
+    mass: float
+    program: VelocityProgram
+    damping: float = 0.0
+
+    def __post_init__(self) -> None:
+        k = check_scalar("stiffness", self.stiffness, 0.0, lo_open=True)
+        object.__setattr__(self, "stiffness", k)
+        object.__setattr__(self, "mass", check_scalar("mass", self.mass, 0.0))
+        object.__setattr__(self, "damping", check_scalar("damping", self.damping, 0.0))
+        if self.mass == 0.0 and self.damping != 0.0:
+            raise ValueError(
+                f"damping = {self.damping:g} is not allowed with mass = 0: the quasi-static "
+                "slider jumps between equilibria; allowed damping = 0"
+            )
+        if not isinstance(self.program, VelocityProgram):
+            object.__setattr__(self, "program", VelocityProgram(self.program))
+
+
+Drive = VelocityDrive | ForceDrive | SpringDrive
+
+
+@dataclass(frozen=True)
+class Output:
+    """Sampling of the time series: exactly one of ``every`` (``t0``) or ``every_slip`` (``a0``).
+
+    Parameters
+    ----------
+    every : float, optional
+        Sampling interval in time, ``> 0``.
+    every_slip : float, optional
+        Sampling interval in slip of the slider (velocity drive) or of the load point (spring),
+        ``> 0``. Holds are then a single step. Under force control the force step is
+        ``every_slip`` times the fresh contact stiffness.
+    snapshots : tuple of float
+        Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
+        drives step exactly onto them; under force control (whose ramp ends at an unknown
+        time) a snapshot is taken at the first sample at or after the requested time.
+    """
+
+    every: float | None = None
+    every_slip: float | None = None
+    snapshots: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        if (self.every is None) == (self.every_slip is None):
+            raise ValueError("give exactly one of every (in t0) and every_slip (in a0)")
+        if self.every is not None:
+            object.__setattr__(self, "every", check_scalar("every", self.every, 0.0, lo_open=True))
+        if self.every_slip is not None:
+            v = check_scalar("every_slip", self.every_slip, 0.0, lo_open=True)
+            object.__setattr__(self, "every_slip", v)
+        snaps = check_range("snapshots", np.asarray(self.snapshots, float).ravel(), 0.0)
+        object.__setattr__(self, "snapshots", tuple(sorted(float(s) for s in snaps)))
+
+
+COLUMNS: tuple[str, ...] = (
+    "t", "x", "v", "mu", "n_active", "mean_age", "x_pull", "f_applied", "births", "spinodal",
+)
+
+
+@dataclass
+class SimulationResult:
+    """Time series of a run (NumPy arrays, reduced units) and what happened.
+
+    Attributes
+    ----------
+    t, x, v : ndarray
+        Time (``t0``), slider position (``a0``), slider velocity (``a0/t0``).
+    mu : ndarray
+        Friction ``mu_el F/F_el``.
+    n_active, mean_age : ndarray
+        Traps in contact and their mean age (``t0``).
+    x_pull, f_applied : ndarray
+        Load-point position (spring drive; NaN otherwise) and applied force in ``mu`` units
+        (force drive; NaN otherwise).
+    births, spinodal : ndarray
+        Births and spinodal events during the step ending at each sample.
+    snapshots : list of dict
+        Population snapshots (``t``, ``x`` and the arrays of :meth:`Ensemble.snapshot`).
+    info : dict
+        Drive-specific scalars (threshold, runaway, ...), and ``partial``.
+    """
+
+    t: Array
+    x: Array
+    v: Array
+    mu: Array
+    n_active: Array
+    mean_age: Array
+    x_pull: Array
+    f_applied: Array
+    births: Array
+    spinodal: Array
+    snapshots: list[dict[str, Any]] = field(default_factory=list)
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def partial(self) -> bool:
+        return bool(self.info.get("partial", False))
+
+    def to_dict(self) -> dict[str, Array]:
+        """The time series as ``{column: array}`` (the order of :data:`COLUMNS`)."""
+        return {k: getattr(self, k) for k in COLUMNS}
+
+    def to_records(self) -> np.ndarray:
+        """The time series as a NumPy structured array."""
+        d = self.to_dict()
+        rec = np.empty(len(self.t), dtype=[(k, float) for k in d])
+        for k, v in d.items():
+            rec[k] = v
+        return rec
+
+    def to_dataframe(self) -> Any:
+        """A ``pandas.DataFrame`` of the time series (needs pandas, not a dependency)."""
+        try:
+            import pandas as pd
+        except ImportError as exc:  # pragma: no cover - depends on the environment
+            raise ImportError("to_dataframe needs pandas; use to_dict() or to_records()") from exc
+        return pd.DataFrame(self.to_dict())
+
+    def summary(self) -> dict[str, Any]:
+        """Peak, final and mean friction, slip and event counts, plus :attr:`info`."""
+        t, mu, x = self.t, self.mu, self.x
+        k = int(np.nanargmax(mu)) if len(mu) else 0
+        span = float(t[-1] - t[0]) if len(t) > 1 else 0.0
+        mean = float(np.trapezoid(mu, t) / span) if span > 0 else float(np.mean(mu))
+        out = {
+            "partial": self.partial,
+            "samples": int(len(t)),
+            "duration": span,
+            "peak_mu": float(mu[k]),
+            "peak_t": float(t[k]),
+            "peak_x": float(x[k]),
+            "final_mu": float(mu[-1]),
+            "mean_mu": mean,
+            "slip": float(x[-1] - x[0]),
+            "path_length": float(np.sum(np.abs(np.diff(x)))),
+            "events": {
+                "births": int(np.sum(self.births)),
+                "spinodal": int(np.sum(self.spinodal)),
+            },
+        }
+        out.update({k2: v for k2, v in self.info.items() if k2 != "partial"})
+        return out
+
+
+# ---------------------------------------------------------------- helpers
+
+
+class _Recorder:
+    def __init__(self, mu_el: float) -> None:
+        self.mu_el = mu_el
+        self.rows: list[tuple[float, ...]] = []
+        self.snapshots: list[dict[str, Any]] = []
+
+    def add(self, ens: Ensemble, o: Observables, v: float, x_pull: float = math.nan,
+            f_applied: float = math.nan, births: int = 0, spinodal: int = 0) -> None:
+        self.rows.append((ens.t, ens.x, v, self.mu_el * o.force, o.n_active, o.mean_age, x_pull,
+                          self.mu_el * f_applied, births, spinodal))
+
+    def snap(self, ens: Ensemble) -> None:
+        s = ens.snapshot()
+        s["force"] = s["force"] * ens._norm * self.mu_el  # per-trap share of mu
+        self.snapshots.append({"t": ens.t, "x": ens.x, **s})
+
+    def result(self, info: dict[str, Any]) -> SimulationResult:
+        a = np.array(self.rows, dtype=float).reshape(-1, len(COLUMNS))
+        cols = {k: a[:, i].copy() for i, k in enumerate(COLUMNS)}
+        return SimulationResult(**cols, snapshots=self.snapshots, info=info)
+
+
+def _segment_grid(program: VelocityProgram, output: Output) -> Array:
+    """Sampling times of a velocity program: every segment boundary plus the output grid."""
+    times = [0.0]
+    bounds = program.times
+    for seg, ta, tb in zip(program.segments, bounds[:-1], bounds[1:], strict=True):
+        if output.every is not None:
+            dt = output.every
+        elif seg.velocity != 0.0:
+            dt = float(output.every_slip) / abs(seg.velocity)
+        else:
+            dt = math.inf
+        n = max(1, math.ceil(seg.time / dt * (1.0 - 1e-9))) if math.isfinite(dt) else 1
+        times.extend(ta + (tb - ta) * np.arange(1, n + 1) / n)
+    grid = np.asarray(times)
+    snaps = [s for s in output.snapshots if s <= grid[-1]]
+    return np.union1d(grid, snaps)
+
+
+def _progress_caller(progress: Progress | None, total: float) -> Callable[[float], None]:
+    if progress is None or not (total > 0):
+        return lambda _t: None
+    last = [0.0]
+
+    def call(t: float) -> None:
+        now = _time.monotonic()
+        if now - last[0] > 0.05:
+            last[0] = now
+            progress(min(1.0, t / total))
+
+    return call
+
+
+def _max_reach(ens: Ensemble) -> float:
+    """Slip (``a0``) after which every trap now in contact has surely left it, frozen ages."""
+    age = ens.t - ens._oldest_birth
+    return max(1.0, ens._yc) * float(ens.radius(age)) + 1.0
+
+
+def _equilibrate(ens: Ensemble, A: float, K: float, max_slip: float) -> tuple[float, bool, int]:
+    """Jump, ages frozen, to the next stable root of ``A - K X - F(X) = 0``.
+
+    Returns
+    -------
+    extreme : float
+        The largest (forward jump) or smallest (backward) force met on the way: at the
+        spinodals passed (left limits) and at the end. The exact peak of a forward jump.
+    runaway : bool
+        True if no root lies within ``max_slip``; the slider is then left at the end of the
+        search.
+    spinodal : int
+        Spinodal events during the jump.
+    """
+    o = ens.observe(1)
+    G0 = A - K * ens.x - o.force
+    tol = 1e-13 * max(1.0, abs(A))
+    if abs(G0) <= tol:
+        return o.force, False, 0
+    d = 1 if G0 > 0 else -1
+    start = ens.x
+    extreme = o.force
+    spin = 0
+    while True:
+        o = ens.observe(d)
+        xe = o.next_event
+        capped = abs(xe - start) > max_slip
+        if capped:
+            xe = start + d * max_slip
+        xb = xe - d * _TINY
+        if (xb - ens.x) * d <= 0.0:  # the event is within rounding of here: step past it
+            xb = ens.x
+        pb = ens.probe(xb, d)
+        Gb = A - K * xb - pb.force
+        if Gb * d <= 0.0:
+            xa = ens.x
+            if xb == xa:
+                root = xa
+            else:
+                def g(x: float) -> float:
+                    return A - K * x - ens.probe(x, d).force
+
+                root = brentq(g, xa, xb, xtol=1e-13, rtol=4 * np.finfo(float).eps) \
+                    if g(xa) * d > 0 else xa
+            ob = ens.advance(root, ens.t)
+            spin += ob.spinodal
+            extreme = max(extreme, ob.force) if d > 0 else min(extreme, ob.force)
+            return extreme, False, spin
+        # the slider passes this stretch: its end (the spinodal's left limit) is a local extreme
+        extreme = max(extreme, pb.force) if d > 0 else min(extreme, pb.force)
+        if capped:
+            ens.advance(xb, ens.t)
+            return extreme, True, spin
+        spin += ens.advance(xe + d * _TINY, ens.t).spinodal
+
+
+# ---------------------------------------------------------------- the drivers
+
+
+def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: _Recorder,
+                  tick: Callable[[float], None], info: dict[str, Any]) -> None:
+    prog = drive.program
+    grid = _segment_grid(prog, output)
+    xs = prog.position(grid)
+    snaps = list(output.snapshots)
+    bounds = prog.times
+    for t1, x1 in zip(grid[1:], xs[1:], strict=True):
+        t_prev = ens.t
+        o = ens.advance(float(x1), float(t1))
+        # velocity of the segment that contains the step
+        k = int(np.searchsorted(bounds, 0.5 * (t_prev + t1), side="right")) - 1
+        v = float(prog.velocities[min(max(k, 0), len(prog.segments) - 1)])
+        rec.add(ens, o, v, births=o.births, spinodal=o.spinodal)
+        while snaps and snaps[0] <= t1 + 1e-12:
+            snaps.pop(0)
+            rec.snap(ens)
+        tick(t1)
+
+
+def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: _Recorder,
+               tick: Callable[[float], None], info: dict[str, Any]) -> None:
+    f0 = ens.observe().force
+    if output.every is not None:
+        dt_ramp = dt_hold = output.every
+    else:
+        dt_ramp = float(output.every_slip) * ens.model.trap.contact_stiffness / drive.rate
+        dt_hold = math.inf
+    snaps = list(output.snapshots)
+    threshold, t_threshold, runaway = f0, math.nan, False
+
+    def times() -> Iterator[float]:
+        h = drive.hold
+        if h > 0:
+            n = max(1, math.ceil(h / dt_hold - 1e-9)) if math.isfinite(dt_hold) else 1
+            for j in range(1, n + 1):
+                yield h * j / n
+        j = 1
+        while True:
+            yield h + j * dt_ramp
+            j += 1
+
+    for t1 in times():
+        f_app = f0 + drive.rate * max(0.0, t1 - drive.hold)
+        x_before, t_before = ens.x, ens.t
+        ens.advance(ens.x, t1)
+        max_slip = _max_reach(ens) + max(1.0, ens._yc) + 1.0 + 2.0 * ens.track.spacing
+        extreme, runaway, spin = _equilibrate(ens, f_app, 0.0, max_slip)
+        threshold = max(threshold, extreme)
+        if runaway:
+            t_threshold = t1
+            break
+        o = ens.observe()
+        rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), f_applied=f_app, spinodal=spin)
+        while snaps and snaps[0] <= t1 + 1e-12:
+            snaps.pop(0)
+            rec.snap(ens)
+        tick(t1)
+        if f_app >= drive.max_force:
+            break
+    info.update({
+        "threshold_mu": ens.model.mu_el * threshold,
+        "threshold_t": t_threshold,
+        "runaway": runaway,
+    })
+
+
+def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorder,
+                tick: Callable[[float], None], info: dict[str, Any]) -> None:
+    prog = drive.program
+    K = drive.stiffness
+    o = ens.observe()
+    x_pull0 = ens.x + o.force / K
+    grid = _segment_grid(prog, output)
+    xp = x_pull0 + (prog.position(grid) - prog.x0)
+    snaps = list(output.snapshots)
+    jumps: list[float] = []
+    if drive.mass == 0.0:
+        for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
+            x_before, t_before = ens.x, ens.t
+            ens.advance(ens.x, float(t1))
+            _, _, spin = _equilibrate(ens, K * float(xp1), K, 1e9)
+            jumps.append(ens.x - x_before)
+            o = ens.observe()
+            rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), x_pull=float(xp1),
+                    spinodal=spin)
+            while snaps and snaps[0] <= t1 + 1e-12:
+                snaps.pop(0)
+                rec.snap(ens)
+            tick(float(t1))
+    else:
+        M, eta = drive.mass, drive.damping
+        k_c = ens.model.trap.contact_stiffness
+        dt_osc = 0.05 * 2.0 * math.pi * math.sqrt(M / (K + k_c))
+        dx_max = 0.25 * ens.track.spacing
+        V = 0.0
+        F = o.force
+
+        def accel(x: float, v: float, f: float, t: float) -> float:
+            xpl = x_pull0 + float(prog.position(t)) - prog.x0
+            return (K * (xpl - x) - f - eta * v) / M
+
+        a = accel(ens.x, V, F, 0.0)
+        for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
+            x_before, births, spin = ens.x, 0, 0
+            while ens.t < t1:
+                dt = min(dt_osc, float(t1) - ens.t)
+                if V != 0.0:
+                    dt = min(dt, dx_max / abs(V))
+                if t1 - (ens.t + dt) < 1e-12 * max(1.0, t1):
+                    dt = float(t1) - ens.t
+                x_new = ens.x + V * dt + 0.5 * a * dt * dt
+                t_new = float(t1) if dt == float(t1) - ens.t else ens.t + dt
+                ob = ens.advance(x_new, t_new)
+                births += ob.births
+                spin += ob.spinodal
+                a_new = accel(x_new, V + a * dt, ob.force, t_new)
+                V = V + 0.5 * (a + a_new) * dt
+                a = a_new
+                o = ob
+            jumps.append(ens.x - x_before)
+            rec.add(ens, o, V, x_pull=float(xp1), births=births, spinodal=spin)
+            while snaps and snaps[0] <= t1 + 1e-12:
+                snaps.pop(0)
+                rec.snap(ens)
+            tick(float(t1))
+    thr = 0.5  # a0: a slip that renews a good part of the contacts (ours)
+    j = np.abs(np.asarray(jumps))
+    info.update({
+        "slip_event_threshold": thr,
+        "slip_events": int(np.sum(j > thr)) if drive.mass == 0.0 else _count_slips(rec, thr),
+        "largest_sample_slip": float(j.max()) if j.size else 0.0,
+    })
+
+
+def _count_slips(rec: _Recorder, thr: float) -> int:
+    """Slip events of an inertial run (ours): maximal runs of samples whose velocity exceeds
+    three times the mean slider velocity and that slide more than ``thr`` in total."""
+    if len(rec.rows) < 3:
+        return 0
+    a = np.array([(r[0], r[1], r[2]) for r in rec.rows])
+    t, x, v = a[:, 0], a[:, 1], a[:, 2]
+    v_mean = abs(x[-1] - x[0]) / (t[-1] - t[0]) if t[-1] > t[0] else 0.0
+    fast = v > 3.0 * v_mean
+    count, start = 0, -1
+    for i in range(len(fast) + 1):
+        f = bool(fast[i]) if i < len(fast) else False
+        if f and start < 0:
+            start = max(i - 1, 0)
+        elif not f and start >= 0:
+            if x[min(i, len(x) - 1)] - x[start] > thr:
+                count += 1
+            start = -1
+    return count
+
+
+# ---------------------------------------------------------------- the orchestrating call
+
+
+def simulate(
+    model: TrapModel,
+    track: Track,
+    initial: Initial,
+    drive: Drive,
+    output: Output,
+    *,
+    progress: Progress | None = None,
+    on_interrupt: str = "raise",
+) -> SimulationResult:
+    """Run the trap ensemble under a drive and sample it.
+
+    Parameters
+    ----------
+    model, track, initial : TrapModel, Track, Initial
+        Traps and creep law; pair positions; initial population (made at ``t = 0``, ``X = 0``).
+    drive : VelocityDrive, ForceDrive or SpringDrive
+        What moves the slider.
+    output : Output
+        Sampling.
+    progress : callable, optional
+        Called with the fraction of the run done (0..1), at most every 50 ms.
+    on_interrupt : {"raise", "partial"}
+        On ``KeyboardInterrupt``: re-raise, or stop and return the samples so far with
+        ``info["partial"] = True``.
+
+    Returns
+    -------
+    SimulationResult
+        The first sample is the initial state at ``t = 0``.
+    """
+    check_choice("on_interrupt", on_interrupt, ("raise", "partial"))
+    if isinstance(drive, ForceDrive):
+        horizon = drive.hold + drive.max_force / drive.rate
+        total = drive.hold + 2.0 / drive.rate
+    elif isinstance(drive, (VelocityDrive, SpringDrive)):
+        horizon = total = drive.program.total_time
+    else:
+        raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
+                         "SpringDrive")
+    ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
+    rec = _Recorder(model.mu_el)
+    o = ens.observe()
+    x_pull0 = ens.x + o.force / drive.stiffness if isinstance(drive, SpringDrive) else math.nan
+    f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
+    rec.add(ens, o, 0.0, x_pull=x_pull0, f_applied=f_app0)
+    if output.snapshots and output.snapshots[0] == 0.0:
+        rec.snap(ens)
+        output = Output(output.every, output.every_slip, output.snapshots[1:])
+    info: dict[str, Any] = {"partial": False, "regime": model.trap.regime.value}
+    tick = _progress_caller(progress, total)
+    runner = {VelocityDrive: _run_velocity, ForceDrive: _run_force, SpringDrive: _run_spring}
+    try:
+        runner[type(drive)](ens, drive, output, rec, tick, info)  # type: ignore[operator]
+    except KeyboardInterrupt:
+        if on_interrupt == "raise":
+            raise
+        info["partial"] = True
+    if progress is not None:
+        progress(1.0)
+    res = rec.result(info)
+    info["parameters"] = {
+        "model": asdict(model),
+        "track": asdict(track),
+        "initial": asdict(initial),
+        "drive": _describe(drive),
+    }
+    return res
+
+
+def _describe(drive: Drive) -> dict[str, Any]:
+    d: dict[str, Any] = {"kind": {VelocityDrive: "velocity", ForceDrive: "force",
+                                  SpringDrive: "spring"}[type(drive)]}
+    for k, v in asdict(drive).items():
+        if k == "program":
+            continue
+        d[k] = v
+    prog = getattr(drive, "program", None)
+    if prog is not None:
+        d["segments"] = [{k: v for k, v in asdict(s).items() if v is not None}
+                         for s in prog.segments]
+    return d

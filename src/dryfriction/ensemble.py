@@ -1,0 +1,690 @@
+"""The trap ensemble in time: a population of hysterons on a track (spec §6).
+
+Reduced units: lengths in ``a0``, times in ``t0``, forces per trap in ``Phi00/a0``, the total
+friction force in ``F_el`` (eq. 12).
+
+Model (spec §6; every choice below is ours unless an equation is cited)
+--------------------------------------------------------------------------
+* Asperity pairs sit at fixed track positions ``c_i`` with density ``lambda`` per ``a0``
+  (``traps_per_a0``), either on a regular lattice ``c_k = (k + 1/2)/lambda`` (the half offset keeps
+  a pair off the Maxwell point ``p = 0`` of the rest state) or uniformly at random, ``1024`` pairs
+  per block of length ``1024/lambda``, block ``b`` drawn from ``SeedSequence([seed, b'])`` so the
+  track is the same however far a run goes. The configuration coordinate is ``p_i = X - c_i``.
+* Each pair is a hysteron with four states: free on the near side (``p < -1``), on the (+)
+  branch, on the (-) branch, free on the far side. An active trap carries its birth time
+  ``t_b``; its radius ratio is ``r = a_r(t - t_b)`` (eq. 19) and, with ``w = p/r``, its force
+  ``r^2 f_+(w)`` on (+), ``r^2 f_-(w)`` on (-) (eq. 23). Total friction
+  ``F/F_el = sum_i f_i / (lambda H0)`` (eq. 12 with density ``lambda`` per ``a0``).
+* Transitions, in the trap's own units ``w``:
+
+  - free-near -> (+) when ``p`` reaches ``-1`` moving forward. **[model choice]** A pair that
+    enters contact, including one that re-enters, starts *fresh*: radius 1, birth time = the
+    time it crossed ``p = -1`` (interpolated linearly within a step);
+  - (+) at ``w > y_c``: dies (very strong pinning, ``alpha < alpha0``) or jumps to (-) keeping
+    its birth time (strong pinning);
+  - (-) at ``w > 1``: leaves contact (zero force, free-far);
+  - backwards: (+) at ``w < -1`` leaves contact (free-near, zero force); (-) at ``w < -y_c``
+    jumps to (+) if ``-y_c >= -1`` (strong pinning) else dies; free-far -> (-) entering fresh
+    at ``p = +1`` moving backwards.
+
+  Free traps do not age (spec §2). During ageing at fixed ``p``, ``|w|`` shrinks, so a hold
+  causes no transition and costs one step whatever its length.
+* Initial states (all births at ``t = 0`` unless said): ``rest`` (eq. 25: (+) on
+  ``[-1, 0)``, (-) on ``[0, 1]``); ``loaded`` (edge at ``d_w`` where the fresh force equals
+  ``f_w``, :func:`dryfriction.static.loaded_edge`: (+) on ``[-1, d_w)``, (-) on ``[d_w, 1]``);
+  ``steady`` at velocity ``u`` (eq. 29: (+) on ``[-1, p_d]`` with birth ``-(p + 1)/u``, in
+  strong pinning continued on (-) up to ``w = 1``).
+
+Numerics
+--------
+Only a window of pairs is touched: the pairs are kept sorted by ``c`` in a buffer that follows
+the slider, and every pair outside the window ``[lo, hi)`` is free, far-side below ``lo`` and
+near-side from ``hi`` on. The per-trap update is one Numba-compiled loop over the window. The
+radius ``a_r`` is read from a cubic Hermite table in ``ln(1 + age)`` built from the creep law's
+own exact functions (exact for the log law, whose ``a_r^2`` is linear in that variable).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numba
+import numpy as np
+from numpy.typing import NDArray
+
+from .creep import CREEP_LAWS, CreepLaw, creep_law
+from .static import loaded_edge
+from .trap import Regime, Trap
+from .validation import check_choice, check_scalar
+
+__all__ = [
+    "FREE_NEAR",
+    "PLUS",
+    "MINUS",
+    "FREE_FAR",
+    "TrapModel",
+    "Track",
+    "Initial",
+    "Observables",
+    "Ensemble",
+]
+
+Array = NDArray[np.float64]
+
+FREE_NEAR: int = 0
+"""Not in contact, on the near side (``p < -1``)."""
+PLUS: int = 1
+"""On the (+) branch (asperity held on the near side)."""
+MINUS: int = 2
+"""On the (-) branch (far side of the bump)."""
+FREE_FAR: int = 3
+"""Not in contact, on the far side."""
+
+LAYOUTS: tuple[str, ...] = ("regular", "random")
+INITIAL_KINDS: tuple[str, ...] = ("rest", "loaded", "steady")
+_BLOCK = 1024  # pairs per random block
+_TABLE_POINTS = 4097  # nodes of the a_r^2 table in ln(1 + age)
+_FORCE_TABLE = False  # tests set this to check the table against the closed-form log law
+# fast-math flags without "no NaN / no inf" (the kernel uses inf as a sentinel)
+_FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
+
+
+@dataclass(frozen=True)
+class TrapModel:
+    """Physical parameters of the traps.
+
+    Parameters
+    ----------
+    alpha : float
+        Reduced trap stiffness ``kappa a^2 / (6 Phi0)``, ``0 < alpha < 1`` (0.13 in the paper).
+    eps : float
+        Creep parameter ``S/Y``, ``>= 0`` (0: no ageing).
+    creep : {"log", "eyring-nabarro"}
+        Ageing law (eq. 17 or eqs. 15-16).
+    mu_el : float
+        Friction coefficient of the purely elastic model, ``F_el / N``: the reported
+        ``mu = mu_el F/F_el``. ``> 0``, default 1.
+    """
+
+    alpha: float = 0.13
+    eps: float = 0.0
+    creep: str = "log"
+    mu_el: float = 1.0
+
+    def __post_init__(self) -> None:
+        a = check_scalar("alpha", self.alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+        object.__setattr__(self, "alpha", a)
+        object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0))
+        check_choice("creep", self.creep, CREEP_LAWS)
+        object.__setattr__(self, "mu_el", check_scalar("mu_el", self.mu_el, 0.0, lo_open=True))
+
+    @property
+    def trap(self) -> Trap:
+        return Trap(self.alpha)
+
+    @property
+    def law(self) -> CreepLaw:
+        return creep_law(self.creep, self.eps)
+
+
+@dataclass(frozen=True)
+class Track:
+    """Positions ``c`` of the asperity pairs along the track, indexed by a global integer ``k``.
+
+    Parameters
+    ----------
+    traps_per_a0 : float
+        Density ``lambda`` of pairs per ``a0`` of track, ``> 0``.
+    layout : {"regular", "random"}
+        ``c_k = (k + 1/2)/lambda``, or seeded uniform positions, 1024 per block of length
+        ``1024/lambda`` (sorted within a block).
+    seed : int, optional
+        Required for ``layout = "random"``; a non-negative integer.
+    """
+
+    traps_per_a0: float
+    layout: str = "regular"
+    seed: int | None = None
+
+    def __post_init__(self) -> None:
+        lam = check_scalar("traps_per_a0", self.traps_per_a0, 0.0, lo_open=True)
+        object.__setattr__(self, "traps_per_a0", lam)
+        check_choice("layout", self.layout, LAYOUTS)
+        if self.layout == "random":
+            if self.seed is None:
+                raise ValueError("seed is required for layout = 'random' (random positions "
+                                 "come from an explicit seed)")
+        if self.seed is not None:
+            if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)):
+                raise ValueError(f"seed = {self.seed!r} is not allowed: a non-negative integer")
+            if self.seed < 0:
+                raise ValueError(f"seed = {self.seed} is out of range: allowed >= 0")
+
+    @property
+    def spacing(self) -> float:
+        """Mean distance between pairs, ``1/lambda`` (units ``a0``)."""
+        return 1.0 / self.traps_per_a0
+
+    def index_span(self, c_lo: float, c_hi: float) -> tuple[int, int]:
+        """Global indices ``[k0, k1)`` of a stretch that contains every pair in ``[c_lo, c_hi]``."""
+        lam = self.traps_per_a0
+        if self.layout == "regular":
+            return math.floor(c_lo * lam - 0.5) - 1, math.ceil(c_hi * lam - 0.5) + 2
+        L = _BLOCK / lam
+        return math.floor(c_lo / L) * _BLOCK, (math.floor(c_hi / L) + 1) * _BLOCK
+
+    def positions(self, k0: int, k1: int) -> Array:
+        """Positions ``c_k`` for ``k0 <= k < k1``, ascending, units ``a0``."""
+        lam = self.traps_per_a0
+        if self.layout == "regular":
+            return (np.arange(k0, k1, dtype=float) + 0.5) / lam
+        L = _BLOCK / lam
+        b0, b1 = k0 // _BLOCK, (k1 - 1) // _BLOCK + 1
+        parts = []
+        for b in range(b0, b1):
+            zig = 2 * b if b >= 0 else -2 * b - 1  # SeedSequence wants non-negative words
+            rng = np.random.default_rng(np.random.SeedSequence([int(self.seed or 0), zig]))
+            parts.append((b + np.sort(rng.random(_BLOCK))) * L)
+        allc = np.concatenate(parts)
+        return allc[k0 - b0 * _BLOCK : k1 - b0 * _BLOCK]
+
+
+@dataclass(frozen=True)
+class Initial:
+    """Initial population.
+
+    Parameters
+    ----------
+    kind : {"rest", "loaded", "steady"}
+        Contact made at rest under zero load (eq. 25), under a tangential force ``force``, or
+        the steady-sliding population at velocity ``velocity`` (eq. 29).
+    force : float, optional
+        ``loaded`` only: the tangential force during contact formation, units ``F_el``,
+        ``0 <= force < 1``.
+    velocity : float, optional
+        ``steady`` only: the reduced sliding velocity ``u > 0`` (units ``a0/t0``).
+    """
+
+    kind: str = "rest"
+    force: float | None = None
+    velocity: float | None = None
+
+    def __post_init__(self) -> None:
+        check_choice("initial", self.kind, INITIAL_KINDS)
+        if self.kind == "loaded":
+            if self.force is None:
+                raise ValueError("initial_force is required for initial = 'loaded'")
+            f = check_scalar("initial_force", self.force, 0.0, 1.0, hi_open=True)
+            object.__setattr__(self, "force", f)
+        elif self.force is not None:
+            raise ValueError(f"initial_force applies only to initial = 'loaded', "
+                             f"not {self.kind!r}")
+        if self.kind == "steady":
+            if self.velocity is None:
+                raise ValueError("initial_velocity is required for initial = 'steady'")
+            v = check_scalar("initial_velocity", self.velocity, 0.0, lo_open=True)
+            object.__setattr__(self, "velocity", v)
+        elif self.velocity is not None:
+            raise ValueError(f"initial_velocity applies only to initial = 'steady', "
+                             f"not {self.kind!r}")
+
+
+@dataclass(frozen=True)
+class Observables:
+    """What one ensemble step measures (units: ``F_el``, ``F_el/a0``, ``t0``).
+
+    Attributes
+    ----------
+    force : float
+        Friction force ``F/F_el`` (without ``mu_el``).
+    stiffness : float
+        ``dF/dX`` at frozen ages, units ``F_el/a0`` (diverges where a trap nears its spinodal).
+    n_active : int
+        Traps in contact.
+    mean_age : float
+        Mean age of the traps in contact (NaN if none), units ``t0``.
+    births, spinodal, exits : int
+        Pairs entering contact; traps reaching a spinodal (death in very strong pinning, jump
+        to the other branch in strong pinning, both force discontinuities); traps leaving
+        contact at zero force (``w = 1`` on (-), ``w = -1`` on (+)). Counted during the step.
+    next_event : float
+        Frozen-age slider position of the next spinodal in the step's direction (``+-inf``
+        if none): where the force jumps next.
+    """
+
+    force: float
+    stiffness: float
+    n_active: int
+    mean_age: float
+    births: int
+    spinodal: int
+    exits: int
+    next_event: float
+
+
+# ---------------------------------------------------------------- compiled kernel
+
+
+@numba.njit(cache=True, inline="always", fastmath=_FAST)
+def _radius_sq(age: float, h: float, s_tab: Array, ds_tab: Array) -> float:
+    """``a_r^2(age)`` by cubic Hermite interpolation in ``u = ln(1 + age)`` (ours).
+
+    ``h < 0`` flags the log law, ``a_r^2 = 1 + eps u`` with ``eps = s_tab[0]`` (eq. 17), which
+    the table would reproduce exactly (it is linear in ``u``) but more slowly.
+    """
+    u = math.log(1.0 + age)  # not log1p: 2.5x faster here; the rounding of 1 + age only
+    # shifts a_r^2 by eps * 1e-16 in absolute terms
+    if h < 0.0:
+        return 1.0 + s_tab[0] * u
+    x = u / h
+    j = int(x)
+    n = s_tab.shape[0]
+    if j > n - 2:
+        j = n - 2
+    tt = x - j
+    t2 = tt * tt
+    t3 = t2 * tt
+    return ((2.0 * t3 - 3.0 * t2 + 1.0) * s_tab[j] + (t3 - 2.0 * t2 + tt) * h * ds_tab[j]
+            + (3.0 * t2 - 2.0 * t3) * s_tab[j + 1] + (t3 - t2) * h * ds_tab[j + 1])
+
+
+@numba.njit(cache=True, inline="always", fastmath=_FAST)
+def _f_plus(w: float, alpha: float, want_k: bool) -> tuple[float, float]:
+    """``f_+(w)`` and (if ``want_k``, else 0) ``f_+'(w)``, units ``Phi0/a`` (spec §1).
+
+    ``f_+ = 6 alpha (w - z_+)``, ``z_+ = -((1 - alpha) + sqrt(D))/2``,
+    ``D = (1 - alpha)^2 - 4 alpha w``; ``f_+' = 6 alpha (1 - alpha/sqrt(D))`` (ours).
+    """
+    d = (1.0 - alpha) ** 2 - 4.0 * alpha * w
+    if d < 1e-300:
+        d = 1e-300
+    sd = math.sqrt(d)
+    z = -0.5 * ((1.0 - alpha) + sd)
+    return 6.0 * alpha * (w - z), (6.0 * alpha * (1.0 - alpha / sd) if want_k else 0.0)
+
+
+@numba.njit(cache=True, fastmath=_FAST)
+def _advance(c, state, birth, lo, hi, x0, x1, t0, t1, direction, alpha, yc, strong,
+             h, s_tab, ds_tab, commit, want_k, out):  # pragma: no cover - compiled
+    """Move the slider from ``x0`` (time ``t0``) to ``x1`` (time ``t1``), linearly in between.
+
+    Applies every transition of the module docstring to the pairs of the window (extended by
+    the pairs that enter contact), writes the new states when ``commit`` and returns the new
+    window ``(lo, hi)``. ``out`` receives ``[sum f, sum df/dp, n_active, sum age, births,
+    spinodal, exits, next_event, overflow]``; ``next_event`` is evaluated at frozen time
+    ``t1`` in ``direction`` (+1 or -1). ``overflow`` is 1 if the window reached the buffer end.
+    """
+    n = c.shape[0]
+    dx = x1 - x0
+    a = lo
+    b = hi
+    while b < n and x1 - c[b] >= -1.0:
+        b += 1
+    while a > 0 and x1 - c[a - 1] <= 1.0:
+        a -= 1
+    overflow = 0.0
+    if b >= n or a <= 0:
+        overflow = 1.0
+    F = 0.0
+    K = 0.0
+    nact = 0
+    agesum = 0.0
+    born = 0
+    spin = 0
+    exits = 0
+    nxt = math.inf if direction > 0 else -math.inf
+    for i in range(a, b):
+        s = state[i]
+        p = x1 - c[i]
+        if s == 1:  # fast path: a (+) trap that stays on (+)
+            tb = birth[i]
+            inv_r = 1.0 / math.sqrt(_radius_sq(t1 - tb, h, s_tab, ds_tab))
+            r = 1.0 / inv_r
+            w = p * inv_r
+            if -1.0 <= w <= yc:
+                f, df = _f_plus(w, alpha, want_k)
+                F += r * r * f
+                K += r * df
+                nact += 1
+                agesum += t1 - tb
+                if direction > 0:
+                    e = c[i] + yc * r
+                    if e < nxt:
+                        nxt = e
+                continue
+        tb = birth[i]
+        r = 1.0
+        w = p
+        for _ in range(6):
+            if s == 0:  # FREE_NEAR
+                if dx > 0.0 and p >= -1.0:
+                    frac = (-1.0 - (x0 - c[i])) / dx
+                    frac = min(max(frac, 0.0), 1.0)
+                    tb = t0 + frac * (t1 - t0)
+                    s = 1
+                    born += 1
+                else:
+                    break
+            elif s == 3:  # FREE_FAR
+                if dx < 0.0 and p <= 1.0:
+                    frac = (1.0 - (x0 - c[i])) / dx
+                    frac = min(max(frac, 0.0), 1.0)
+                    tb = t0 + frac * (t1 - t0)
+                    s = 2
+                    born += 1
+                else:
+                    break
+            else:
+                r = math.sqrt(_radius_sq(t1 - tb, h, s_tab, ds_tab))
+                w = p / r
+                if s == 1:
+                    if w > yc:
+                        spin += 1
+                        if strong:
+                            s = 2
+                        else:
+                            s = 3
+                            break
+                    elif w < -1.0:
+                        s = 0
+                        exits += 1
+                        break
+                    else:
+                        break
+                else:
+                    if w > 1.0:
+                        s = 3
+                        exits += 1
+                        break
+                    elif w < -yc:
+                        spin += 1
+                        if strong:
+                            s = 1
+                        else:
+                            s = 0
+                            break
+                    else:
+                        break
+        if s == 1 or s == 2:
+            if s == 1:
+                f, df = _f_plus(w, alpha, want_k)
+            else:
+                f, df = _f_plus(-w, alpha, want_k)
+                f = -f
+            F += r * r * f
+            K += r * df
+            nact += 1
+            agesum += t1 - tb
+            if direction > 0 and s == 1:
+                e = c[i] + yc * r
+                if e < nxt:
+                    nxt = e
+            elif direction < 0 and s == 2:
+                e = c[i] - yc * r
+                if e > nxt:
+                    nxt = e
+        elif s == 0 and direction > 0:
+            e = c[i] + yc
+            if e < nxt:
+                nxt = e
+        elif s == 3 and direction < 0:
+            e = c[i] - yc
+            if e > nxt:
+                nxt = e
+        if commit:
+            state[i] = s
+            birth[i] = tb
+    # pairs not yet in the window that would enter next
+    if direction > 0 and b < n:
+        e = c[b] + yc
+        if e < nxt:
+            nxt = e
+    if direction < 0 and a > 0:
+        e = c[a - 1] - yc
+        if e > nxt:
+            nxt = e
+    out[0] = F
+    out[1] = K
+    out[2] = nact
+    out[3] = agesum
+    out[4] = born
+    out[5] = spin
+    out[6] = exits
+    out[7] = nxt
+    out[8] = overflow
+    if not commit:
+        return lo, hi
+    while a < b and state[a] == 3:
+        a += 1
+    while b > a and state[b - 1] == 0:
+        b -= 1
+    return a, b
+
+
+# ---------------------------------------------------------------- the population
+
+
+class Ensemble:
+    """The state of the trap population and the operations on it (mutable by design).
+
+    Parameters
+    ----------
+    model : TrapModel
+        Trap and creep parameters.
+    track : Track
+        Positions of the pairs.
+    initial : Initial
+        Initial population, made at ``t = 0`` with the slider at ``x0``.
+    x0 : float
+        Initial slider position (units ``a0``).
+    age_horizon : float
+        Largest trap age (``t0``) the radius table must cover at first; extended on demand.
+
+    Notes
+    -----
+    The buffer holds the pairs with global indices ``[g0, g0 + n)``; the window ``[lo, hi)``
+    (buffer indices) contains every pair in contact. Pairs outside it are free.
+    """
+
+    def __init__(
+        self,
+        model: TrapModel,
+        track: Track,
+        initial: Initial,
+        x0: float = 0.0,
+        age_horizon: float = 1.0,
+    ) -> None:
+        self.model = model
+        self.track = track
+        self.initial = initial
+        trap = model.trap
+        self._alpha = model.alpha
+        self._yc = trap.y_c
+        self._strong = trap.regime is Regime.STRONG
+        self._norm = 1.0 / (track.traps_per_a0 * trap.H0)
+        self._law = model.law
+        self.x = float(x0)
+        self.t = 0.0
+        self._out = np.zeros(9)
+        self._want_k = False
+        self._oldest_birth = 0.0
+        self._margin = 8.0 + 2.0 * max(1.0, self._yc)
+        self._place_initial()
+        self._build_table(max(age_horizon, 1.0) - self._oldest_birth)
+
+    # -- radius table
+    def _build_table(self, age_max: float) -> None:
+        """Tabulate ``a_r^2`` and its derivative on a uniform grid of ``u = ln(1 + age)``."""
+        u_max = math.log1p(age_max) * 1.25 + 1.0
+        u = np.linspace(0.0, u_max, _TABLE_POINTS)
+        T = np.expm1(u)
+        law = self._law
+        q = law.clock(T)
+        s = law.radius_sq(q)
+        # d(a_r^2)/du = [d(a_r^2)/dc] / [dT/dc] * dT/du, dT/du = 1 + T
+        ds = law.dradius_sq(q) / law.dage(q) * (1.0 + T)
+        self._h = float(u[1] - u[0])
+        self._s_tab = np.ascontiguousarray(s, dtype=float)
+        self._ds_tab = np.ascontiguousarray(ds, dtype=float)
+        if law.name == "log" and not _FORCE_TABLE:
+            self._h = -1.0
+            self._s_tab = np.array([law.eps, 0.0])
+        self._age_cover = float(np.expm1(u_max))
+
+    def radius(self, age: Array) -> Array:
+        """``a_r(age)`` from the creep law (exact functions, not the table)."""
+        return self._law.radius(np.asarray(age, float))
+
+    # -- buffer
+    def _set_buffer(self, k0: int, k1: int) -> None:
+        self._g0 = k0
+        self.c = self.track.positions(k0, k1)
+        self.state = np.zeros(k1 - k0, dtype=np.int8)
+        self.birth = np.zeros(k1 - k0)
+
+    def _place_initial(self) -> None:
+        ini = self.initial
+        yc = self._yc
+        D = max(1.0, yc)
+        reach = D
+        if ini.kind == "steady":  # where the oldest trap leaves contact: p = D a_r((p + 1)/u)
+            for _ in range(100):
+                reach = min(D * float(self.radius((reach + 1.0) / float(ini.velocity or 1))), 1e3)
+        reach += 1.0
+        k0, k1 = self.track.index_span(self.x - reach - self._margin, self.x + reach + self._margin)
+        self._set_buffer(k0, k1)
+        p = self.x - self.c
+        st = np.where(p < -1.0, FREE_NEAR, FREE_FAR).astype(np.int8)
+        if ini.kind in ("rest", "loaded"):
+            d = 0.0 if ini.kind == "rest" else loaded_edge(float(ini.force or 0.0), self._alpha)
+            plus = (p >= -1.0) & (p < d) & (p <= yc)
+            minus = (p >= d) & (p <= 1.0) & (p >= -yc)
+            st[plus] = PLUS
+            st[minus] = MINUS
+            self.birth[:] = 0.0
+        else:
+            u = float(ini.velocity or 1.0)
+            inside = p >= -1.0
+            age = np.where(inside, (p + 1.0) / u, 0.0)
+            w = p / self.radius(age)
+            # a trap is alive if w never exceeded the threshold over its past; p descends with
+            # the index, so the running maximum runs from the high index end
+            wmax = np.maximum.accumulate(np.where(inside, w, -np.inf)[::-1])[::-1]
+            plus = inside & (wmax <= yc)
+            st[plus] = PLUS
+            if self._strong:
+                minus = inside & (wmax > yc) & (wmax <= 1.0)
+                st[minus] = MINUS
+            self.birth[:] = np.where(inside, -age, 0.0)
+        self.state[:] = st
+        active = np.flatnonzero((st == PLUS) | (st == MINUS))
+        if active.size:
+            self.lo, self.hi = int(active[0]), int(active[-1]) + 1
+        else:
+            k = int(np.searchsorted(self.c, self.x + 1.0, side="right"))
+            self.lo = self.hi = k
+        if active.size:
+            self._oldest_birth = min(self._oldest_birth, float(self.birth[active].min()))
+
+    def _ensure_cover(self, x_lo: float, x_hi: float) -> None:
+        """Make the buffer hold every pair with ``c`` in ``[x_lo - 1, x_hi + 1]`` plus margin."""
+        c = self.c
+        need_lo, need_hi = x_lo - 1.0 - 1.0, x_hi + 1.0 + 1.0
+        if c[0] < need_lo and c[-1] > need_hi and self.lo > 0 and self.hi < len(c):
+            return
+        m = self._margin
+        k0, k1 = self.track.index_span(need_lo - m, need_hi + m)
+        g_lo, g_hi = self._g0 + self.lo, self._g0 + self.hi
+        k0 = min(k0, g_lo - 1)
+        k1 = max(k1, g_hi + 1)
+        old_state, old_birth, old_g0 = self.state, self.birth, self._g0
+        self._set_buffer(k0, k1)
+        g = np.arange(k0, k1)
+        self.state[:] = np.where(g < g_lo, FREE_FAR, FREE_NEAR)
+        sl = slice(g_lo - k0, g_hi - k0)
+        self.state[sl] = old_state[g_lo - old_g0 : g_hi - old_g0]
+        self.birth[sl] = old_birth[g_lo - old_g0 : g_hi - old_g0]
+        self.lo, self.hi = g_lo - k0, g_hi - k0
+
+    def _ensure_ages(self, t: float) -> None:
+        if t - self._oldest_birth > self._age_cover:
+            self._build_table(2.0 * (t - self._oldest_birth))
+
+    # -- the two operations
+    def _call(self, x1: float, t1: float, direction: int, commit: bool) -> Observables:
+        self._ensure_cover(min(self.x, x1), max(self.x, x1))
+        self._ensure_ages(t1)
+        lo, hi = _advance(
+            self.c, self.state, self.birth, self.lo, self.hi, self.x, x1, self.t, t1,
+            direction, self._alpha, self._yc, self._strong, self._h, self._s_tab,
+            self._ds_tab, commit, self._want_k, self._out,
+        )
+        o = self._out
+        if o[8] != 0.0:  # pragma: no cover - the cover margin makes this unreachable
+            raise RuntimeError("ensemble window reached the end of its buffer")
+        if commit:
+            self.lo, self.hi = int(lo), int(hi)
+            self.x, self.t = float(x1), float(t1)
+        n = int(o[2])
+        return Observables(
+            force=float(o[0]) * self._norm,
+            stiffness=float(o[1]) * self._norm,
+            n_active=n,
+            mean_age=float(o[3]) / n if n else math.nan,
+            births=int(o[4]),
+            spinodal=int(o[5]),
+            exits=int(o[6]),
+            next_event=float(o[7]),
+        )
+
+    def advance(self, x1: float, t1: float) -> Observables:
+        """Move the slider linearly from its position to ``x1`` while time runs to ``t1``.
+
+        Parameters
+        ----------
+        x1 : float
+            New slider position (``a0``).
+        t1 : float
+            New time (``t0``), ``>= self.t``.
+
+        Returns
+        -------
+        Observables
+            Measured at ``(x1, t1)``; counts are those of the step.
+        """
+        if t1 < self.t:
+            raise ValueError(f"t1 = {t1:g} is before the ensemble time {self.t:g}")
+        direction = 1 if x1 >= self.x else -1
+        return self._call(float(x1), float(t1), direction, True)
+
+    def probe(self, x1: float, direction: int | None = None) -> Observables:
+        """Observables if the slider moved to ``x1`` at frozen ages, without changing anything."""
+        if direction is None:
+            direction = 1 if x1 >= self.x else -1
+        return self._call(float(x1), self.t, direction, False)
+
+    def observe(self, direction: int = 1) -> Observables:
+        """Observables of the present state (``next_event`` in ``direction``)."""
+        return self.probe(self.x, direction)
+
+    def snapshot(self) -> dict[str, Array]:
+        """The pairs in contact: ``p`` (``a0``), ``branch`` (+1/-1), ``age`` (``t0``),
+        ``radius`` (``a0``), ``force`` (units ``Phi00/a0``, eq. 23)."""
+        sl = slice(self.lo, self.hi)
+        st = self.state[sl]
+        act = (st == PLUS) | (st == MINUS)
+        p = (self.x - self.c[sl])[act]
+        age = self.t - self.birth[sl][act]
+        r = self.radius(age)
+        branch = np.where(st[act] == PLUS, 1.0, -1.0)
+        from .trap import force_minus, force_plus
+
+        w = p / r
+        f = np.where(branch > 0, force_plus(np.minimum(w, self._yc), self._alpha),
+                     force_minus(np.maximum(w, -self._yc), self._alpha))
+        return {"p": p, "branch": branch, "age": age, "radius": r, "force": r * r * f}
+
+
+_InitialKind = Literal["rest", "loaded", "steady"]

@@ -1,0 +1,264 @@
+"""Protocol files: TOML -> validated, frozen simulation parameters (the only module that parses).
+
+A protocol has four tables; unknown tables or keys are errors, not ignored::
+
+    [model]                      # TrapModel
+    alpha = 0.13                 # optional, 0 < alpha < 1
+    eps = 0.04                   # required, >= 0
+    creep = "log"                # optional: "log" | "eyring-nabarro"
+    mu_el = 1.0                  # optional, > 0
+
+    [ensemble]                   # Track and Initial
+    traps_per_a0 = 1000          # required, > 0
+    layout = "regular"           # optional: "regular" | "random"
+    seed = 1                     # required for layout = "random"
+    initial = "rest"             # required: "rest" | "loaded" | "steady"
+    initial_force = 0.5          # loaded only (units F_el, 0 <= f < 1)
+    initial_velocity = 1.0       # steady only (units a0/t0, > 0)
+
+    [drive]
+    kind = "velocity"            # required: "velocity" | "force" | "spring"
+    segments = [{velocity = 1.0, slip = 5.0}, {velocity = 0.0, duration = 100.0}]
+    # force:  rate (F_el/t0, > 0, required), hold (t0, >= 0), max_force (F_el, > 0)
+    # spring: stiffness (F_el/a0, > 0), mass (F_el t0^2/a0, >= 0), damping (F_el t0/a0, >= 0),
+    #         segments (the load-point program)
+
+    [output]
+    every_slip = 0.01            # exactly one of every (t0) and every_slip (a0)
+    snapshots = [10.0, 20.0]     # optional, times in t0
+
+Every error names the file, the table and key (``table.key``), and what is allowed, and is
+raised before any work starts. (Errors avoid square brackets around names, which the terminal's
+markup would swallow.)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tomllib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .driving import (
+    Drive,
+    ForceDrive,
+    Output,
+    SimulationResult,
+    SpringDrive,
+    VelocityDrive,
+    simulate,
+)
+from .ensemble import Initial, Track, TrapModel
+from .program import Segment, VelocityProgram
+
+__all__ = ["Protocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
+
+_TABLES = ("model", "ensemble", "drive", "output")
+_DRIVE_KEYS = {
+    "velocity": ("segments",),
+    "force": ("rate", "hold", "max_force"),
+    "spring": ("stiffness", "mass", "damping", "segments"),
+}
+_REQUIRED_DRIVE = {
+    "velocity": ("segments",),
+    "force": ("rate",),
+    "spring": ("stiffness", "mass", "segments"),
+}
+
+
+@dataclass(frozen=True)
+class Protocol:
+    """A validated protocol: everything :func:`dryfriction.driving.simulate` needs."""
+
+    model: TrapModel
+    track: Track
+    initial: Initial
+    drive: Drive
+    output: Output
+    source: str = "<string>"
+
+    def run(
+        self,
+        progress: Callable[[float], None] | None = None,
+        on_interrupt: str = "raise",
+    ) -> SimulationResult:
+        """Run the simulation (see :func:`dryfriction.driving.simulate`)."""
+        return simulate(self.model, self.track, self.initial, self.drive, self.output,
+                        progress=progress, on_interrupt=on_interrupt)
+
+
+class _Table:
+    """Typed access to one TOML table; every error names source, table and key."""
+
+    def __init__(self, source: str, name: str, data: Any) -> None:
+        self.source, self.name = source, name
+        if not isinstance(data, Mapping):
+            self.fail(f"{name} must be a table, got {type(data).__name__}")
+        self.data = dict(data)
+
+    def fail(self, msg: str) -> None:
+        raise ValueError(f"{self.source}: {msg}")
+
+    def where(self, key: str) -> str:
+        return f"{self.name}.{key}"
+
+    def allow(self, keys: tuple[str, ...]) -> None:
+        unknown = sorted(set(self.data) - set(keys))
+        if unknown:
+            self.fail(f"unknown key(s) {', '.join(self.name + '.' + k for k in unknown)}: allowed "
+                      f"{', '.join(keys)}")
+
+    def number(self, key: str, default: float | None = None, required: bool = False
+               ) -> float | None:
+        if key not in self.data:
+            if required:
+                self.fail(f"{self.where(key)} is missing: a number is required")
+            return default
+        v = self.data[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            self.fail(f"{self.where(key)} = {v!r} has the wrong type: a number is required")
+        if not math.isfinite(float(v)):
+            self.fail(f"{self.where(key)} = {v!r} is not allowed: a finite number")
+        return float(v)
+
+    def integer(self, key: str) -> int | None:
+        if key not in self.data:
+            return None
+        v = self.data[key]
+        if isinstance(v, bool) or not isinstance(v, int):
+            self.fail(f"{self.where(key)} = {v!r} has the wrong type: an integer is required")
+        return int(v)
+
+    def string(self, key: str, default: str | None = None, required: bool = False
+               ) -> str | None:
+        if key not in self.data:
+            if required:
+                self.fail(f"{self.where(key)} is missing: a string is required")
+            return default
+        v = self.data[key]
+        if not isinstance(v, str):
+            self.fail(f"{self.where(key)} = {v!r} has the wrong type: a string is required")
+        return v
+
+    def build(self, what: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+        """Call a validating constructor, prefixing its message with source and table."""
+        try:
+            return what(*args, **kwargs)
+        except ValueError as exc:
+            raise ValueError(f"{self.source}: in {self.name}: {exc}") from None
+
+
+def _segments(tab: _Table) -> VelocityProgram:
+    raw = tab.data.get("segments")
+    if raw is None:
+        tab.fail(f"{tab.where('segments')} is missing: a list of "
+                 "{velocity = ..., duration = ...} or {velocity = ..., slip = ...}")
+    if not isinstance(raw, list) or not raw:
+        tab.fail(f"{tab.where('segments')} = {raw!r} is not allowed: a non-empty list of tables")
+    segs = []
+    for i, item in enumerate(raw):
+        sub = _Table(tab.source, f"{tab.name}.segments[{i}]", item)
+        sub.allow(("velocity", "duration", "slip"))
+        v = sub.number("velocity", required=True)
+        d = sub.number("duration")
+        s = sub.number("slip")
+        segs.append(sub.build(Segment, v, d, s))
+    return VelocityProgram(segs)
+
+
+def parse_protocol(text: str, source: str = "<string>") -> Protocol:
+    """Parse and validate a protocol given as TOML text; ``source`` names it in errors."""
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{source}: malformed TOML: {exc}") from None
+    return protocol_from_dict(doc, source)
+
+
+def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>") -> Protocol:
+    """Validate a protocol already read into nested dicts (e.g. one point of a sweep)."""
+    if not isinstance(doc, Mapping):
+        raise ValueError(f"{source}: a protocol must be a table of tables")
+    unknown = sorted(set(doc) - set(_TABLES))
+    if unknown:
+        raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
+                         f"{', '.join(_TABLES)}")
+    for t in _TABLES:
+        if t not in doc:
+            raise ValueError(f"{source}: table '{t}' is missing")
+
+    m = _Table(source, "model", doc["model"])
+    m.allow(("alpha", "eps", "creep", "mu_el"))
+    model = m.build(
+        TrapModel,
+        alpha=m.number("alpha", 0.13),
+        eps=m.number("eps", required=True),
+        creep=m.string("creep", "log"),
+        mu_el=m.number("mu_el", 1.0),
+    )
+
+    e = _Table(source, "ensemble", doc["ensemble"])
+    e.allow(("traps_per_a0", "layout", "seed", "initial", "initial_force", "initial_velocity"))
+    track = e.build(
+        Track,
+        traps_per_a0=e.number("traps_per_a0", required=True),
+        layout=e.string("layout", "regular"),
+        seed=e.integer("seed"),
+    )
+    initial = e.build(
+        Initial,
+        kind=e.string("initial", required=True),
+        force=e.number("initial_force"),
+        velocity=e.number("initial_velocity"),
+    )
+
+    d = _Table(source, "drive", doc["drive"])
+    kind = d.string("kind", required=True)
+    if kind not in _DRIVE_KEYS:
+        d.fail(f"drive.kind = {kind!r} is not allowed: choose one of "
+               f"{', '.join(_DRIVE_KEYS)}")
+    assert kind is not None
+    extra = sorted(set(d.data) - {"kind", *_DRIVE_KEYS[kind]})
+    if extra:
+        others = {k for kk, keys in _DRIVE_KEYS.items() if kk != kind for k in keys}
+        why = "applies to another kind" if set(extra) <= others else "is unknown"
+        d.fail(f"drive key(s) {', '.join(extra)} {why}: kind = {kind!r} allows "
+               f"{', '.join(('kind', *_DRIVE_KEYS[kind]))}")
+    for key in _REQUIRED_DRIVE[kind]:
+        if key not in d.data:
+            d.fail(f"{d.where(key)} is missing: required for kind = {kind!r}")
+    drive: Drive
+    if kind == "velocity":
+        drive = d.build(VelocityDrive, _segments(d))
+    elif kind == "force":
+        drive = d.build(ForceDrive, rate=d.number("rate"), hold=d.number("hold", 0.0),
+                        max_force=d.number("max_force", 10.0))
+    else:
+        drive = d.build(SpringDrive, stiffness=d.number("stiffness"), mass=d.number("mass"),
+                        damping=d.number("damping", 0.0), program=_segments(d))
+
+    o = _Table(source, "output", doc["output"])
+    o.allow(("every", "every_slip", "snapshots"))
+    snaps = o.data.get("snapshots", [])
+    if not isinstance(snaps, list) or any(
+        isinstance(s, bool) or not isinstance(s, (int, float)) for s in snaps
+    ):
+        o.fail(f"{o.where('snapshots')} = {snaps!r} has the wrong type: a list of times (t0)")
+    output = o.build(Output, every=o.number("every"), every_slip=o.number("every_slip"),
+                     snapshots=tuple(float(s) for s in snaps))
+    return Protocol(model, track, initial, drive, output, source)
+
+
+def load_protocol(path: str | os.PathLike[str]) -> Protocol:
+    """Read and validate a protocol file (TOML). Errors name the file and the key."""
+    p = Path(path)
+    try:
+        text = p.read_bytes().decode("utf-8")
+    except UnicodeDecodeError:
+        raise ValueError(f"{p}: malformed TOML: not UTF-8 text") from None
+    except OSError as exc:
+        raise ValueError(f"{p}: cannot read the protocol: {exc.strerror}") from None
+    return parse_protocol(text, str(p))

@@ -1,0 +1,157 @@
+"""Protocol files: TOML -> validated parameters; every bad input is one clear error."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from dryfriction.driving import ForceDrive, SpringDrive, VelocityDrive
+from dryfriction.protocol import load_protocol, parse_protocol
+
+EXAMPLES = sorted((Path(__file__).parent.parent / "examples").glob("*.toml"))
+
+GOOD = """
+[model]
+alpha = 0.13
+eps = 0.04
+creep = "log"
+mu_el = 0.5
+
+[ensemble]
+traps_per_a0 = 100
+layout = "random"
+seed = 3
+initial = "loaded"
+initial_force = 0.4
+
+[drive]
+kind = "velocity"
+segments = [{velocity = 1.0, slip = 2.0}, {velocity = 0, duration = 10}]
+
+[output]
+every_slip = 0.01
+snapshots = [1, 2.5]
+"""
+
+
+def test_good_protocol_round_trip() -> None:
+    p = parse_protocol(GOOD, "good.toml")
+    assert p.model.mu_el == 0.5 and p.track.layout == "random" and p.track.seed == 3
+    assert p.initial.kind == "loaded" and p.initial.force == 0.4
+    assert isinstance(p.drive, VelocityDrive)
+    assert p.drive.program.total_time == pytest.approx(12.0)
+    assert p.output.snapshots == (1.0, 2.5)
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_examples_are_valid(path: Path) -> None:
+    p = load_protocol(path)
+    assert isinstance(p.drive, (VelocityDrive, ForceDrive, SpringDrive))
+
+
+def _edit(old: str, new: str) -> str:
+    assert old in GOOD
+    return GOOD.replace(old, new)
+
+
+BAD = [
+    ("[model", "malformed TOML"),  # unterminated table header
+    (_edit("mu_el = 0.5", "mu_el = 0.5\nfriction = 1"), r"unknown key\(s\) model.friction"),
+    (_edit("eps = 0.04\n", ""), r"model.eps is missing"),
+    (_edit("eps = 0.04", 'eps = "small"'), r"model.eps = 'small' has the wrong type"),
+    (_edit("eps = 0.04", "eps = true"), r"model.eps = True has the wrong type"),
+    (_edit("eps = 0.04", "eps = -0.04"), r"in model: eps = -0.04 is out of range"),
+    (_edit('creep = "log"', 'creep = "power"'), r"in model: creep = 'power' is not allowed"),
+    (_edit("traps_per_a0 = 100", "traps_per_a0 = -100"),
+     r"in ensemble: traps_per_a0 = -100 is out of range"),
+    (_edit("seed = 3\n", ""), r"in ensemble: seed is required"),
+    (_edit("seed = 3", "seed = 3.5"), r"ensemble.seed = 3.5 has the wrong type"),
+    (_edit("initial_force = 0.4\n", ""), r"in ensemble: initial_force is required"),
+    (_edit("initial_force = 0.4", "initial_force = 0.4\ninitial_velocity = 1"),
+     r"initial_velocity applies only"),
+    (_edit("duration = 10", "duration = -10"),
+     r"in drive.segments\[1\]: duration = -10 is out of range"),
+    (_edit("slip = 2.0", "slip = 2.0, duration = 1"),
+     r"drive.segments\[0\]: a segment needs exactly one"),
+    (_edit("segments = [", "rate = 1\nsegments = ["), r"drive key\(s\) rate applies to another"),
+    (_edit('kind = "velocity"', 'kind = "push"'), r"drive.kind = 'push' is not allowed"),
+    (_edit("every_slip = 0.01", "every_slip = 0.01\nevery = 1"), r"in output: give exactly one"),
+    (_edit("every_slip = 0.01", "every_slip = 0"), r"in output: every_slip = 0 is out of range"),
+    (GOOD + "\n[extra]\nx = 1\n", r"unknown table\(s\) extra"),
+    (GOOD.replace("[output]\nevery_slip = 0.01\nsnapshots = [1, 2.5]\n", ""),
+     r"table 'output' is missing"),
+]
+
+
+@pytest.mark.parametrize("text, match", BAD)
+def test_bad_protocols_name_file_and_key(text: str, match: str) -> None:
+    with pytest.raises(ValueError, match=r"^bad\.toml: .*" + match):
+        parse_protocol(text, "bad.toml")
+
+
+SPRING = """
+[model]
+eps = 0.04
+[ensemble]
+traps_per_a0 = 100
+initial = "rest"
+[drive]
+kind = "spring"
+stiffness = {K}
+mass = {M}
+damping = {eta}
+segments = [{{velocity = 1.0, slip = 1.0}}]
+[output]
+every = 0.1
+"""
+
+
+@pytest.mark.parametrize(
+    "K, M, eta, match",
+    [
+        (0.0, 0.0, 0.0, r"in drive: stiffness = 0 is out of range: allowed finite and > 0"),
+        (-1.0, 1.0, 0.0, r"in drive: stiffness = -1 is out of range"),
+        (1.0, -1.0, 0.0, r"in drive: mass = -1 is out of range"),
+        (1.0, 0.0, 0.5, r"in drive: damping = 0.5 is not allowed with mass = 0"),
+    ],
+)
+def test_spring_checks(K: float, M: float, eta: float, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        parse_protocol(SPRING.format(K=K, M=M, eta=eta), "s.toml")
+
+
+def test_force_drive_needs_a_growing_force() -> None:
+    text = """
+[model]
+eps = 0.0
+[ensemble]
+traps_per_a0 = 100
+initial = "rest"
+[drive]
+kind = "force"
+rate = 0
+[output]
+every = 0.1
+"""
+    with pytest.raises(ValueError, match=r"in drive: rate = 0 is out of range"):
+        parse_protocol(text, "f.toml")
+    with pytest.raises(ValueError, match=r"drive.rate is missing"):
+        parse_protocol(text.replace("rate = 0\n", ""), "f.toml")
+
+
+def test_unreadable_file(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="cannot read"):
+        load_protocol(tmp_path / "nope.toml")
+    bad = tmp_path / "bin.toml"
+    bad.write_bytes(b"\xff\xfe\x00")
+    with pytest.raises(ValueError, match="bin.toml: malformed TOML"):
+        load_protocol(bad)
+
+
+def test_protocol_from_dict_matches_text() -> None:
+    import tomllib
+
+    from dryfriction.protocol import protocol_from_dict
+
+    assert protocol_from_dict(tomllib.loads(GOOD), "good.toml") == parse_protocol(GOOD, "good.toml")
