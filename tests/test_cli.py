@@ -122,3 +122,20 @@ def test_reproduce_writes_the_folder(tmp_path):
     assert {"static_friction.csv", "steady_friction.csv", "summary.json", "report.html"} <= names
     s = json.loads((out / "summary.json").read_text())
     assert f"{s['dieterich_C_asymptotic']:.4f}" in r.stdout
+
+
+def test_error_lines_keep_square_brackets():
+    # messages are plain text: a table name such as [drive] must not vanish as Rich markup
+    import typer
+
+    from dryfriction.cli import cli_errors
+
+    @cli_errors
+    def boom() -> None:
+        raise ValueError("[drive] stiffness = -1 is out of range")
+
+    app = typer.Typer()
+    app.command()(boom)
+    res = CliRunner().invoke(app, [])
+    assert res.exit_code == 2
+    assert "[drive] stiffness = -1" in res.output

@@ -36,6 +36,13 @@ def _root() -> None:
     """The Caroli-Velicky elasto-plastic model of dry friction (reduced units: a0, t0, F_el)."""
 
 
+def error_line(message: str) -> None:
+    """Print ``error: message`` as one line; the message is plain text (``[drive]`` is not
+    Rich markup)."""
+    err.print("[bold red]error:[/] ", end="", highlight=False)
+    err.print(message, markup=False, highlight=False, soft_wrap=True)
+
+
 def cli_errors(fn: F) -> F:
     """Turn the library's ``ValueError``/``OSError`` into one line and exit code 2."""
 
@@ -44,7 +51,7 @@ def cli_errors(fn: F) -> F:
         try:
             return fn(*args, **kwargs)
         except (ValueError, OSError) as exc:
-            err.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+            error_line(str(exc))
             raise typer.Exit(2) from None
 
     return wrapper  # type: ignore[return-value]
@@ -111,7 +118,7 @@ class _ManyValues(typer.core.TyperCommand):
             if getattr(exc, "exit_code", None) != 2:
                 raise
             message = exc.format_message()  # type: ignore[attr-defined]
-            err.print(f"[bold red]error:[/] {message}", highlight=False, soft_wrap=True)
+            error_line(message)
             raise typer.Exit(2) from None
 
 
