@@ -340,12 +340,12 @@ def _advance(c, state, birth, lo, hi, x0, x1, t0, t1, direction, alpha, yc, stro
         p = x1 - c[i]
         if s == 1:  # fast path: a (+) trap that stays on (+)
             tb = birth[i]
-            inv_r = 1.0 / math.sqrt(_radius_sq(t1 - tb, h, s_tab, ds_tab))
-            r = 1.0 / inv_r
-            w = p * inv_r
+            R = _radius_sq(t1 - tb, h, s_tab, ds_tab)
+            r = math.sqrt(R)
+            w = p / r
             if -1.0 <= w <= yc:
                 f, df = _f_plus(w, alpha, want_k)
-                F += r * r * f
+                F += R * f
                 K += r * df
                 nact += 1
                 agesum += t1 - tb
