@@ -368,3 +368,31 @@ def test_drives_reject_bad_input() -> None:
         ForceDrive(rate=1.0, hold=-1.0)
     with pytest.raises(ValueError, match="exactly one"):
         Output(every=1.0, every_slip=1.0)
+
+
+@pytest.mark.parametrize("alpha", [0.13, 0.4])
+def test_event_accounting_closes(alpha: float) -> None:
+    """Every change of the number of traps in contact is an entry, a death or an exit.
+
+    Very strong pinning: deaths are the spinodal events; strong pinning: a spinodal event is a
+    jump between branches, and traps leave contact only past ``|w| = 1``. Checked for a
+    program with reversals and for quasi-static stick-slip, whose settling after each jump
+    moves the slider backwards a little while ageing raises the force.
+    """
+    model = TrapModel(alpha=alpha, eps=EPS)
+    strong = Trap(alpha).y_c < 1.0
+    runs = [
+        simulate(model, Track(200.0), Initial("rest"),
+                 VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": 4.0},
+                                                {"velocity": -0.5, "slip": 1.5},
+                                                {"velocity": 0.0, "duration": 50.0},
+                                                {"velocity": 2.0, "slip": 3.0}])),
+                 Output(every_slip=0.01)),
+        simulate(model, Track(200.0), Initial("steady", velocity=0.01),
+                 SpringDrive(0.05, 0.0, VelocityProgram([{"velocity": 0.01, "slip": 8.0}])),
+                 Output(every_slip=0.01)),
+    ]
+    for r in runs:
+        deaths = r.exits + (0 if strong else r.spinodal)
+        np.testing.assert_array_equal(np.diff(r.n_active), (r.births - deaths)[1:])
+        assert np.sum(r.births) > 0

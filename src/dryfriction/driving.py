@@ -184,6 +184,7 @@ class Output:
 
 COLUMNS: tuple[str, ...] = (
     "t", "x", "v", "mu", "n_active", "mean_age", "x_pull", "f_applied", "births", "spinodal",
+    "exits",
 )
 
 
@@ -202,8 +203,11 @@ class SimulationResult:
     x_pull, f_applied : ndarray
         Load-point position (spring drive; NaN otherwise) and applied force in ``mu`` units
         (force drive; NaN otherwise).
-    births, spinodal : ndarray
-        Births and spinodal events during the step ending at each sample.
+    births, spinodal, exits : ndarray
+        Pairs entering contact, spinodal events and pairs leaving contact past the edge of the
+        bump (``|w| > 1``) during the step ending at each sample. In very strong pinning a
+        spinodal event is a death, so ``births - spinodal - exits`` is the change of
+        ``n_active``; in strong pinning it is ``births - exits``.
     snapshots : list of dict
         Population snapshots (``t``, ``x`` and the arrays of :meth:`Ensemble.snapshot`).
     info : dict
@@ -220,6 +224,7 @@ class SimulationResult:
     f_applied: Array
     births: Array
     spinodal: Array
+    exits: Array
     snapshots: list[dict[str, Any]] = field(default_factory=list)
     info: dict[str, Any] = field(default_factory=dict)
 
@@ -267,6 +272,7 @@ class SimulationResult:
             "events": {
                 "births": int(np.sum(self.births)),
                 "spinodal": int(np.sum(self.spinodal)),
+                "exits": int(np.sum(self.exits)),
             },
         }
         out.update({k2: v for k2, v in self.info.items() if k2 != "partial"})
@@ -283,9 +289,10 @@ class _Recorder:
         self.snapshots: list[dict[str, Any]] = []
 
     def add(self, ens: Ensemble, o: Observables, v: float, x_pull: float = math.nan,
-            f_applied: float = math.nan, births: int = 0, spinodal: int = 0) -> None:
+            f_applied: float = math.nan, events: tuple[int, int, int] = (0, 0, 0)) -> None:
+        """Record a sample; ``events`` = (births, spinodal, exits) since the last one."""
         self.rows.append((ens.t, ens.x, v, self.mu_el * o.force, o.n_active, o.mean_age, x_pull,
-                          self.mu_el * f_applied, births, spinodal))
+                          self.mu_el * f_applied, *events))
 
     def snap(self, ens: Ensemble) -> None:
         s = ens.snapshot()
@@ -336,7 +343,17 @@ def _max_reach(ens: Ensemble) -> float:
     return max(1.0, ens._yc) * float(ens.radius(age)) + 1.0
 
 
-def _equilibrate(ens: Ensemble, A: float, K: float, max_slip: float) -> tuple[float, bool, int]:
+def _events(o: Observables) -> tuple[int, int, int]:
+    return (o.births, o.spinodal, o.exits)
+
+
+def _add_events(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, int]:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def _equilibrate(
+    ens: Ensemble, A: float, K: float, max_slip: float
+) -> tuple[float, bool, tuple[int, int, int]]:
     """Jump, ages frozen, to the next stable root of ``A - K X - F(X) = 0``.
 
     Returns
@@ -347,18 +364,18 @@ def _equilibrate(ens: Ensemble, A: float, K: float, max_slip: float) -> tuple[fl
     runaway : bool
         True if no root lies within ``max_slip``; the slider is then left at the end of the
         search.
-    spinodal : int
-        Spinodal events during the jump.
+    events : tuple of int
+        (births, spinodal, exits) during the jump.
     """
     o = ens.observe(1)
     G0 = A - K * ens.x - o.force
     tol = 1e-13 * max(1.0, abs(A))
     if abs(G0) <= tol:
-        return o.force, False, 0
+        return o.force, False, (0, 0, 0)
     d = 1 if G0 > 0 else -1
     start = ens.x
     extreme = o.force
-    spin = 0
+    ev = (0, 0, 0)
     while True:
         o = ens.observe(d)
         xe = o.next_event
@@ -381,15 +398,14 @@ def _equilibrate(ens: Ensemble, A: float, K: float, max_slip: float) -> tuple[fl
                 root = brentq(g, xa, xb, xtol=1e-13, rtol=4 * np.finfo(float).eps) \
                     if g(xa) * d > 0 else xa
             ob = ens.advance(root, ens.t)
-            spin += ob.spinodal
             extreme = max(extreme, ob.force) if d > 0 else min(extreme, ob.force)
-            return extreme, False, spin
+            return extreme, False, _add_events(ev, _events(ob))
         # the slider passes this stretch: its end (the spinodal's left limit) is a local extreme
         extreme = max(extreme, pb.force) if d > 0 else min(extreme, pb.force)
         if capped:
-            ens.advance(xb, ens.t)
-            return extreme, True, spin
-        spin += ens.advance(xe + d * _TINY, ens.t).spinodal
+            ob = ens.advance(xb, ens.t)
+            return extreme, True, _add_events(ev, _events(ob))
+        ev = _add_events(ev, _events(ens.advance(xe + d * _TINY, ens.t)))
 
 
 # ---------------------------------------------------------------- the drivers
@@ -408,7 +424,7 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: _Rec
         # velocity of the segment that contains the step
         k = int(np.searchsorted(bounds, 0.5 * (t_prev + t1), side="right")) - 1
         v = float(prog.velocities[min(max(k, 0), len(prog.segments) - 1)])
-        rec.add(ens, o, v, births=o.births, spinodal=o.spinodal)
+        rec.add(ens, o, v, events=_events(o))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -440,15 +456,16 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: _Recorder,
     for t1 in times():
         f_app = f0 + drive.rate * max(0.0, t1 - drive.hold)
         x_before, t_before = ens.x, ens.t
-        ens.advance(ens.x, t1)
+        ev = _events(ens.advance(ens.x, t1))
         max_slip = _max_reach(ens) + max(1.0, ens._yc) + 1.0 + 2.0 * ens.track.spacing
-        extreme, runaway, spin = _equilibrate(ens, f_app, 0.0, max_slip)
+        extreme, runaway, jump_ev = _equilibrate(ens, f_app, 0.0, max_slip)
         threshold = max(threshold, extreme)
         if runaway:
             t_threshold = t1
             break
         o = ens.observe()
-        rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), f_applied=f_app, spinodal=spin)
+        rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), f_applied=f_app,
+                events=_add_events(ev, jump_ev))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -475,12 +492,12 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
     if drive.mass == 0.0:
         for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
             x_before, t_before = ens.x, ens.t
-            ens.advance(ens.x, float(t1))
-            _, _, spin = _equilibrate(ens, K * float(xp1), K, 1e9)
+            ev = _events(ens.advance(ens.x, float(t1)))
+            _, _, jump_ev = _equilibrate(ens, K * float(xp1), K, 1e9)
             jumps.append(ens.x - x_before)
             o = ens.observe()
             rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), x_pull=float(xp1),
-                    spinodal=spin)
+                    events=_add_events(ev, jump_ev))
             while snaps and snaps[0] <= t1 + 1e-12:
                 snaps.pop(0)
                 rec.snap(ens)
@@ -499,7 +516,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
 
         a = accel(ens.x, V, F, 0.0)
         for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
-            x_before, births, spin = ens.x, 0, 0
+            x_before, ev = ens.x, (0, 0, 0)
             while ens.t < t1:
                 dt = min(dt_osc, float(t1) - ens.t)
                 if V != 0.0:
@@ -509,14 +526,13 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
                 x_new = ens.x + V * dt + 0.5 * a * dt * dt
                 t_new = float(t1) if dt == float(t1) - ens.t else ens.t + dt
                 ob = ens.advance(x_new, t_new)
-                births += ob.births
-                spin += ob.spinodal
+                ev = _add_events(ev, _events(ob))
                 a_new = accel(x_new, V + a * dt, ob.force, t_new)
                 V = V + 0.5 * (a + a_new) * dt
                 a = a_new
                 o = ob
             jumps.append(ens.x - x_before)
-            rec.add(ens, o, V, x_pull=float(xp1), births=births, spinodal=spin)
+            rec.add(ens, o, V, x_pull=float(xp1), events=ev)
             while snaps and snaps[0] <= t1 + 1e-12:
                 snaps.pop(0)
                 rec.snap(ens)
