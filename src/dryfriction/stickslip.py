@@ -29,7 +29,9 @@ smaller than ``rel_threshold`` of the stick-slip amplitude never confirm an extr
 * **class**: ``steady`` (0) if ``range < floor``; else ``undetermined`` (-1) with fewer than
   three events; ``transient`` (3) if the drops trend (least-squares slope of ``ln drop`` over
   the window) by more than 30 %; ``periodic`` (1) if the coefficients of variation of the
-  periods and of the drops are both below ``cv_periodic`` (0.1); ``irregular`` (2) otherwise.
+  periods and of the drops are both below ``cv_periodic`` (0.1) and the slider sticks at some
+  time; ``oscillation`` (4) if periodic but the slider never sticks (a finite-amplitude
+  oscillation of an inertial slider, not stick-slip); ``irregular`` (2) otherwise.
 
 Linear check (:func:`linear_check`)
 -----------------------------------
@@ -86,6 +88,7 @@ CLASSES: dict[int, str] = {
     1: "periodic",
     2: "irregular",
     3: "transient",
+    4: "oscillation",
 }
 """Class codes (a sweep stores numbers) and their names."""
 
@@ -246,7 +249,7 @@ def analyse(
         if abs(trend) > math.log(1.3):
             code = 3
         elif per_cv < cv_periodic and amp_cv < cv_periodic:
-            code = 1
+            code = 1 if stick_frac > 0 else 4
         else:
             code = 2
     return StickSlipStats(code, amp, rng, per, per_cv, amp_cv, slip, stick_time, stick_frac, n,
@@ -479,7 +482,8 @@ def bifurcation_scan(
     traps_per_a0: float = 100.0,
     travel: float = 20.0,
     transient: float = 10.0,
-    kick: float = 0.1,
+    kick: float = 0.03,
+    force_kick: float = 1e-3,
     samples_per_a0: float = 50.0,
 ) -> dict[str, Any]:
     """Continuation in ``K``: stick-slip amplitude and period down then up (module doc).
@@ -497,9 +501,11 @@ def bifurcation_scan(
         Density of the regular track.
     travel, transient : float
         Load-point travel per stiffness and the part of it left out of the analysis (``a0``).
-    kick : float
-        Initial perturbation of the steady state: slider velocity ``(1 + kick) u`` (``M > 0``)
-        or spring force ``(1 + kick/10)`` times the friction (``M = 0``).
+    kick, force_kick : float
+        Initial perturbation of the steady state: slider velocity ``(1 + kick) u`` (``M > 0``),
+        or the spring force above the friction by ``force_kick`` (``F_el``, ``M = 0``). Near
+        ``K_c`` the steady state's basin is small (the bifurcation is subcritical): a 1 %
+        force kick at ``1.1 K_c`` already starts stick-slip at ``u = 0.1``.
     samples_per_a0 : float
         Output samples per ``a0`` of load-point travel (and at least 20 per period of the
         mass on the spring when ``M > 0``).
@@ -523,7 +529,7 @@ def bifurcation_scan(
                    age_horizon=4 * len(ks) * travel / u)
     f0 = ens.observe().force
     velocity = (1 + kick) * u if mass > 0 else 0.0
-    force: float | None = None if mass > 0 else f0 * (1 + kick / 10)
+    force: float | None = None if mass > 0 else f0 + force_kick
     out: dict[str, Any] = {"K_c": lin.critical_stiffness, "omega_c": lin.omega, "u": u,
                            "mass": mass, "damping": damping, "down": [], "up": []}
     for leg, order in (("down", ks), ("up", ks[::-1][1:])):
@@ -544,3 +550,71 @@ def bifurcation_scan(
             velocity = float(r.v[-1]) if mass > 0 else 0.0
             force = float(load[-1])
     return out
+
+
+# ---------------------------------------------------------------- the (K, V) phase diagram
+
+_MARKERS = {0: ("o", "tab:blue"), 1: ("s", "tab:red"), 2: ("^", "tab:purple"),
+            3: ("D", "tab:orange"), 4: ("v", "tab:green"), -1: ("x", "0.4")}
+
+
+def phase_axes(spec: Any) -> tuple[str, str]:
+    """The stiffness and velocity keys of a (K, V) phase-diagram sweep.
+
+    The grid must sweep exactly ``drive.stiffness`` and the velocity of the last load-point
+    segment (``drive.segments.<last>.velocity``); raises ``ValueError`` otherwise.
+    """
+    segs = spec.base.get("drive", {}).get("segments", [])
+    v_key = f"drive.segments.{max(len(segs) - 1, 0)}.velocity"
+    keys = {a.key for a in spec.axes}
+    if keys != {"drive.stiffness", v_key}:
+        raise ValueError(f"a phase diagram sweeps exactly drive.stiffness and {v_key}; this "
+                         f"sweep has {', '.join(sorted(keys))}")
+    return "drive.stiffness", v_key
+
+
+def critical_line(base: Mapping[str, Any], u: ArrayLike) -> Array:
+    """``K_c(u)`` of the linear analysis for the model and spring of a protocol dict."""
+    m, d = base.get("model", {}), base.get("drive", {})
+    return np.array([
+        critical_stiffness(float(uu), float(m["eps"]), float(m.get("alpha", 0.13)),
+                           str(m.get("creep", "log")), float(d.get("mass", 0.0)),
+                           float(d.get("damping", 0.0))).critical_stiffness
+        for uu in np.asarray(u, float).ravel()
+    ])
+
+
+def phase_diagram_figure(ds: Any, base: Mapping[str, Any], k_key: str, v_key: str) -> Any:
+    """Simulated classes as markers in the (u, K) plane over the linear ``K_c(u)`` line."""
+    import matplotlib.pyplot as plt
+
+    K = np.asarray(ds[k_key].values, float)
+    V = np.asarray(ds[v_key].values, float)
+    code = ds["class"].transpose(k_key, v_key).values if "class" in ds else \
+        np.full((K.size, V.size), np.nan)
+    fig, ax = plt.subplots(figsize=(5.8, 4.4), layout="constrained")
+    vv, kk = np.meshgrid(V, K)
+    for c, (mk, col) in _MARKERS.items():
+        sel = code == c
+        if sel.any():
+            ax.scatter(vv[sel], kk[sel], marker=mk, color=col, label=CLASSES[c], zorder=3)
+    failed = ~np.isfinite(code)
+    if failed.any():
+        ax.scatter(vv[failed], kk[failed], marker="+", color="k", label="failed", zorder=3)
+    if V.size > 1 and V.min() > 0:
+        u = np.geomspace(V.min(), V.max(), 40)
+        ax.set_xscale("log")
+    else:
+        u = np.linspace(V.min(), V.max(), 40) if V.size > 1 else V
+    kc = critical_line(base, u)
+    ax.plot(u, kc, "k-", lw=1.2, label="linear $K_c(u)$")
+    if K.min() > 0 and K.max() / K.min() > 5:
+        ax.set_yscale("log")
+    d = base.get("drive", {})
+    ax.set_xlabel("pulling velocity u = V t0/a0")
+    ax.set_ylabel("spring stiffness K (F_el/a0)")
+    ax.set_title(f"stick-slip phase diagram, eps = {base['model']['eps']:g}, "
+                 f"M = {float(d.get('mass', 0.0)):g}, eta = {float(d.get('damping', 0.0)):g}",
+                 fontsize=9)
+    ax.legend(fontsize=8)
+    return fig
