@@ -512,6 +512,139 @@ def simulate(
         raise typer.Exit(130)
 
 
+# --------------------------------------------------------------------------------------------
+# sweep, phase-diagram (issue 5)
+# --------------------------------------------------------------------------------------------
+
+
+def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | None) -> Any:
+    """Parse a sweep protocol and check every grid point before any worker starts."""
+    import tomllib
+
+    from .io import check_output_dir
+    from .protocol import protocol_from_dict
+    from .sweep import MAX_POINTS, parse_sweep
+
+    path = Path(protocol)
+    try:
+        doc = tomllib.loads(path.read_bytes().decode("utf-8"))
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot read the protocol: {exc.strerror}") from None
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise ValueError(f"{path}: malformed TOML: {exc}") from None
+    spec = parse_sweep(doc, str(path))
+    if spec.size > MAX_POINTS and not confirm:
+        raise ValueError(f"{path}: the grid has {spec.size} points, more than {MAX_POINTS}: "
+                         "confirm with --yes")
+    if workers is not None and workers < 1:
+        raise ValueError(f"--workers {workers} is out of range: allowed >= 1")
+    for _, ov in spec.points():
+        point = {k: v for k, v in spec.protocol(ov).items() if k != "stickslip"}
+        where = f"{path} (point {', '.join(f'{k} = {v}' for k, v in ov.items())})"
+        protocol_from_dict(point, where)
+    stick = spec.base.get("stickslip", {})
+    from .stickslip import _ANALYSIS_KEYS
+
+    unknown = sorted(set(stick) - set(_ANALYSIS_KEYS)) if isinstance(stick, dict) else ["?"]
+    if unknown:
+        raise ValueError(f"{path}: unknown key(s) {', '.join('stickslip.' + k for k in unknown)}"
+                         f": allowed {', '.join(_ANALYSIS_KEYS)}")
+    check_output_dir(out_dir)
+    return spec
+
+
+def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
+                  workers: int | None, confirm: bool) -> Any:
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+    )
+
+    from .sweep import run_sweep
+
+    with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                  console=err, disable=not err.is_terminal, transient=True) as bar:
+        task = bar.add_task("sweep", total=spec.size)
+
+        def progress(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        return run_sweep(spec, runner, out_dir, scheduler=scheduler, n_workers=workers,
+                         confirm=confirm, progress=progress)
+
+
+_SCHED_HELP = "Address of a running Dask scheduler (default: a local cluster)."
+
+
+@app.command()
+@cli_errors
+def sweep(
+    protocol: str = typer.Argument(..., help="Protocol (TOML) with a [sweep] table of dotted "
+                                   "keys and values (lists, {log = [a, b, n]}, {lin = ...})."),
+    out_dir: str = typer.Option(..., "--out", help="Results folder: points/ (resumable) and "
+                                "sweep.nc."),
+    scheduler: str = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
+    yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
+    linear: bool = typer.Option(False, "--linear", help="Linear stability per point "
+                                "(stability.linear_summary) instead of simulating stick-slip."),
+) -> None:
+    """Run a parameter grid on Dask: stick-slip summaries (default) or linear stability,
+    written to OUT/sweep.nc. Re-running the same command resumes."""
+    from .stability import linear_summary
+    from .stickslip import stick_slip_summary
+
+    spec = _prepare_sweep(protocol, out_dir, yes, workers)
+    runner = linear_summary if linear else stick_slip_summary
+    ds = _run_with_bar(spec, runner, out_dir, scheduler, workers, yes)
+    out.print(f"wrote {out_dir}/sweep.nc: {spec.size} points, {ds.attrs['n_failed']} failed; "
+              f"variables {', '.join(v for v in ds.data_vars if v != 'error')}",
+              highlight=False, soft_wrap=True)
+
+
+@app.command("phase-diagram")
+@cli_errors
+def phase_diagram(
+    protocol: str = typer.Argument(..., help="Spring protocol (TOML) whose [sweep] table "
+                                   "sweeps drive.stiffness and drive.segments.<last>.velocity."),
+    out_dir: str = typer.Option(..., "--out", help="Results folder: sweep.nc, "
+                                "phase_diagram.png."),
+    scheduler: str = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
+    yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
+) -> None:
+    """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line."""
+    import io as _io
+
+    from .io import atomic_write_bytes
+    from .stickslip import CLASSES, phase_axes, phase_diagram_figure, stick_slip_summary
+
+    spec = _prepare_sweep(protocol, out_dir, yes, workers)
+    k_key, v_key = phase_axes(spec)  # before any worker starts
+    ds = _run_with_bar(spec, stick_slip_summary, out_dir, scheduler, workers, yes)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig = phase_diagram_figure(ds, spec.base, k_key, v_key)
+    buf = _io.BytesIO()
+    fig.savefig(buf, format="png", dpi=120)
+    plt.close(fig)
+    atomic_write_bytes(Path(out_dir) / "phase_diagram.png", buf.getvalue())
+    counts = {}
+    for c, name in CLASSES.items():
+        n = int((ds["class"].values == c).sum()) if "class" in ds else 0
+        if n:
+            counts[name] = n
+    out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.png: "
+              + ", ".join(f"{k} {v}" for k, v in counts.items())
+              + f", failed {ds.attrs['n_failed']}", highlight=False, soft_wrap=True)
+
+
 def main() -> None:
     """Console-script entry point."""
     app()

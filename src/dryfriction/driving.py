@@ -59,6 +59,7 @@ __all__ = [
     "Output",
     "SimulationResult",
     "simulate",
+    "continue_spring",
 ]
 
 Array = NDArray[np.float64]
@@ -480,13 +481,22 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: _Recorder,
 
 
 def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorder,
-                tick: Callable[[float], None], info: dict[str, Any]) -> None:
+                tick: Callable[[float], None], info: dict[str, Any], *,
+                velocity: float = 0.0, spring_force: float | None = None) -> None:
+    """Spring drive from the ensemble's present state (time ``ens.t``, position ``ens.x``).
+
+    The load point starts where the spring pulls with ``spring_force`` (default: the present
+    friction force, i.e. at rest in equilibrium); an inertial slider starts at ``velocity``.
+    The program's time 0 is ``ens.t`` (0 for :func:`simulate`).
+    """
     prog = drive.program
     K = drive.stiffness
     o = ens.observe()
-    x_pull0 = ens.x + o.force / K
+    t_start = ens.t
+    x_pull0 = ens.x + (o.force if spring_force is None else spring_force) / K
     grid = _segment_grid(prog, output)
     xp = x_pull0 + (prog.position(grid) - prog.x0)
+    grid = grid + t_start
     snaps = list(output.snapshots)
     jumps: list[float] = []
     if drive.mass == 0.0:
@@ -498,7 +508,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
             o = ens.observe()
             rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), x_pull=float(xp1),
                     events=_add_events(ev, jump_ev))
-            while snaps and snaps[0] <= t1 + 1e-12:
+            while snaps and snaps[0] <= t1 - t_start + 1e-12:
                 snaps.pop(0)
                 rec.snap(ens)
             tick(float(t1))
@@ -507,14 +517,14 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
         k_c = ens.model.trap.contact_stiffness
         dt_osc = 0.05 * 2.0 * math.pi * math.sqrt(M / (K + k_c))
         dx_max = 0.25 * ens.track.spacing
-        V = 0.0
+        V = float(velocity)
         F = o.force
 
         def accel(x: float, v: float, f: float, t: float) -> float:
-            xpl = x_pull0 + float(prog.position(t)) - prog.x0
+            xpl = x_pull0 + float(prog.position(t - t_start)) - prog.x0
             return (K * (xpl - x) - f - eta * v) / M
 
-        a = accel(ens.x, V, F, 0.0)
+        a = accel(ens.x, V, F, t_start)
         for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
             x_before, ev = ens.x, (0, 0, 0)
             while ens.t < t1:
@@ -533,7 +543,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
                 o = ob
             jumps.append(ens.x - x_before)
             rec.add(ens, o, V, x_pull=float(xp1), events=ev)
-            while snaps and snaps[0] <= t1 + 1e-12:
+            while snaps and snaps[0] <= t1 - t_start + 1e-12:
                 snaps.pop(0)
                 rec.snap(ens)
             tick(float(t1))
@@ -638,6 +648,59 @@ def simulate(
         "drive": _describe(drive),
     }
     return res
+
+
+def continue_spring(
+    ensemble: Ensemble,
+    drive: SpringDrive,
+    output: Output,
+    *,
+    velocity: float = 0.0,
+    spring_force: float | None = None,
+) -> SimulationResult:
+    """Go on pulling an existing ensemble with a spring drive (continuation, ours).
+
+    The run starts from the ensemble's present state (its time, position and population; the
+    ensemble is advanced in place, so successive calls continue one another), with the slider
+    at ``velocity`` (``a0/t0``; inertial drive only) and the spring pulling with
+    ``spring_force`` (``F_el``; default the present friction force, i.e. equilibrium). Keeping
+    the spring force and the velocity of the previous run's end while changing ``stiffness``
+    is a continuation in ``K`` with the mechanical state unchanged.
+
+    Parameters
+    ----------
+    ensemble : Ensemble
+        Population to drive (mutated).
+    drive : SpringDrive
+        Spring, mass, damping and load-point program (its time 0 is ``ensemble.t``).
+    output : Output
+        Sampling; snapshot times are counted from the start of this run.
+    velocity : float
+        Initial slider velocity, ``a0/t0``; must be 0 when ``drive.mass == 0``.
+    spring_force : float, optional
+        Initial spring force, ``F_el``.
+
+    Returns
+    -------
+    SimulationResult
+        The first sample is the state at the start (time ``ensemble.t``).
+    """
+    if not isinstance(drive, SpringDrive):
+        raise ValueError(f"drive = {drive!r} is not allowed: a SpringDrive")
+    velocity = check_scalar("velocity", velocity)
+    if drive.mass == 0.0 and velocity != 0.0:
+        raise ValueError(f"velocity = {velocity:g} is not allowed with mass = 0: the "
+                         "quasi-static slider has no velocity state; allowed 0")
+    if spring_force is not None:
+        spring_force = check_scalar("spring_force", spring_force)
+    rec = _Recorder(ensemble.model.mu_el)
+    o = ensemble.observe()
+    f_spring = o.force if spring_force is None else spring_force
+    rec.add(ensemble, o, velocity, x_pull=ensemble.x + f_spring / drive.stiffness)
+    info: dict[str, Any] = {"partial": False, "regime": ensemble.model.trap.regime.value}
+    _run_spring(ensemble, drive, output, rec, lambda _t: None, info, velocity=velocity,
+                spring_force=spring_force)
+    return rec.result(info)
 
 
 def _describe(drive: Drive) -> dict[str, Any]:
