@@ -35,3 +35,27 @@ def test_csv_rejects_ragged_columns(tmp_path):
     with pytest.raises(ValueError, match="different lengths"):
         write_csv(tmp_path / "x.csv", {"a": [1.0, 2.0], "b": [1.0]})
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_ctrl_c_during_the_swap_is_delivered_after_it(tmp_path, monkeypatch):
+    # a SIGINT arriving between "old results aside" and "new results in" is held back
+    import signal
+
+    import dryfriction.io as dio
+
+    out = tmp_path / "res"
+    with output_directory(out) as d:
+        (d / "old").write_text("old")
+    real_replace = os.replace
+    calls = []
+
+    def replace(a, b):
+        calls.append(b)
+        real_replace(a, b)
+        if len(calls) == 1:  # just after moving the old results aside
+            signal.raise_signal(signal.SIGINT)
+
+    monkeypatch.setattr(dio.os, "replace", replace)
+    with pytest.raises(KeyboardInterrupt), output_directory(out) as d:
+        (d / "new").write_text("new")
+    assert sorted(p.name for p in out.iterdir()) == ["new"]

@@ -13,7 +13,9 @@ import json
 import math
 import os
 import shutil
+import signal
 import tempfile
+import threading
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -117,6 +119,25 @@ def check_output_dir(out: str | os.PathLike[str]) -> Path:
 
 
 @contextlib.contextmanager
+def _sigint_deferred() -> Iterator[None]:
+    """Hold back Ctrl-C during a short critical section, then deliver it.
+
+    Only possible in the main thread (where Python handles signals); elsewhere a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if caught:
+            raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
 def output_directory(out: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary folder that replaces ``out`` only if the block finishes.
 
@@ -130,10 +151,12 @@ def output_directory(out: str | os.PathLike[str]) -> Iterator[Path]:
     try:
         yield tmp
         old = None
-        if out.exists():
-            old = Path(tempfile.mkdtemp(dir=parent, prefix=f".{out.name}.", suffix=".old"))
-            os.replace(out, old / "x")
-        os.replace(tmp, out)
+        # the old results move aside and the new ones in: no Ctrl-C in between
+        with _sigint_deferred():
+            if out.exists():
+                old = Path(tempfile.mkdtemp(dir=parent, prefix=f".{out.name}.", suffix=".old"))
+                os.replace(out, old / "x")
+            os.replace(tmp, out)
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
     except BaseException:
