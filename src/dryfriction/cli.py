@@ -454,9 +454,10 @@ def simulate(
     out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
 ) -> None:
-    """Run the trap ensemble under a protocol (spec §6): timeseries.csv, summary.json, .png.
+    """Run a protocol (trap ensemble, spec §6, or rate-and-state with ``model.law = "rsf"``):
+    timeseries.csv, summary.json, timeseries.png.
 
-    Ctrl-C stops the run and writes the samples so far as a complete result marked
+    Ctrl-C stops a trap-model run and writes the samples so far as a complete result marked
     ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
     nothing.
     """
@@ -464,10 +465,13 @@ def simulate(
     from pathlib import Path
 
     from .io import check_output_dir, output_directory, write_csv, write_json
-    from .protocol import load_protocol
+    from .protocol import RSFProtocol, load_protocol
 
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out)
+    if isinstance(proto, RSFProtocol):
+        _simulate_rsf_protocol(proto, protocol, out, json_out)
+        return
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -510,6 +514,67 @@ def simulate(
     if result.partial:
         err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
         raise typer.Exit(130)
+
+
+def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) -> None:
+    """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
+    import time
+    from pathlib import Path
+
+    from .io import output_directory, write_csv, write_json
+
+    start = time.perf_counter()
+    res = proto.run()
+    wall = time.perf_counter() - start
+    t, mu = res.t, res.mu
+    span = float(t[-1] - t[0])
+    k = int(np.argmax(mu))
+    summary: dict[str, Any] = {
+        "law": "rsf",
+        "partial": False,
+        "samples": int(len(t)),
+        "duration_s": span,
+        "peak_mu": float(mu[k]),
+        "peak_t_s": float(t[k]),
+        "final_mu": float(mu[-1]),
+        "mean_mu": float(np.trapezoid(mu, t) / span) if span > 0 else float(mu[0]),
+        "slip_m": float(res.x[-1] - res.x[0]),
+        "v_max_m_per_s": float(np.max(res.v)),
+        "steps": res.n_steps,
+        "rejected_steps": res.n_rejected,
+        "wall_s": wall,
+        "params": proto.params.to_dict(),
+        "stiffness_per_m": proto.stiffness,
+        "damping_s_per_m": proto.damping,
+        "mass_s2_per_m": proto.mass,
+        "rtol": proto.rtol,
+        "protocol": str(Path(protocol)),
+        "units": {"t": "s", "x": "m", "v": "m/s", "theta": "s", "x_load": "m",
+                  "v_load": "m/s", "mu": "", "stress": "spring force / normal force"},
+    }
+    p = proto.params
+    if p.n_state == 1 and not p.regularized and not np.isinf(proto.stiffness):
+        v = float(proto.program.velocities[-1]) or float(proto.v_init or 1.0)
+        summary["critical_stiffness_per_m"] = p.critical_stiffness(v, proto.damping, proto.mass)
+    cols: dict[str, Any] = {"t": res.t, "x": res.x, "v": res.v, "mu": res.mu,
+                            "theta": res.theta}
+    if res.theta2 is not None:
+        cols["theta2"] = res.theta2
+    cols.update(stress=res.stress, x_load=res.load, v_load=res.load_velocity)
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .plotting import rsf_timeseries_figure
+
+    with output_directory(out) as tmp:
+        write_csv(tmp / "timeseries.csv", cols)
+        write_json(tmp / "summary.json", summary)
+        fig, _ = rsf_timeseries_figure(res)
+        fig.savefig(tmp / "timeseries.png", dpi=120)
+    brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
+    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
+         "(rate-and-state, SI: t s, x m, v m/s, theta s)")
 
 
 def main() -> None:

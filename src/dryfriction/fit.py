@@ -122,7 +122,9 @@ class ParamSpec:
         return math.log(p) if self.log else float(p)
 
     def from_internal(self, th: float) -> float:
-        return math.exp(th) if self.log else float(th)
+        if not self.log:
+            return float(th)
+        return math.exp(th) if th < 709.0 else math.inf  # a huge Wald bound, not an error
 
     @property
     def bounds(self) -> tuple[float, float]:
