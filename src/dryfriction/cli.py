@@ -516,6 +516,46 @@ def simulate(
         raise typer.Exit(130)
 
 
+@app.command()
+@cli_errors
+def compare(
+    protocol: str = typer.Argument(..., help="Trap-model protocol file (TOML) with a velocity "
+                                   "drive."),
+    out: str = typer.Option(..., "--out", help="Results folder: compare.png, compare.json "
+                            "(written whole or not at all)."),
+    state_law: str = typer.Option("ageing", "--state-law", help="Twin's state law: ageing or "
+                                  "slip."),
+    json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
+) -> None:
+    """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
+
+    The twin is fitted to the run itself when it starts in steady sliding at its first velocity
+    and never holds, otherwise taken from the standard calibration (velocity steps and
+    slide-hold-slide at the first sliding velocity). Reduced units.
+    """
+    from .io import check_output_dir, output_directory, write_json
+    from .protocol import load_protocol
+    from .rsf_view import compare_protocol, comparison_figure
+    from .validation import check_choice
+
+    check_choice("state_law", state_law, ("ageing", "slip"))
+    proto = load_protocol(protocol)
+    check_output_dir(out)
+    c = compare_protocol(proto, state_law)
+    report = {"protocol": protocol, **c.to_dict()}
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    with output_directory(out) as tmp:
+        write_json(tmp / "compare.json", report)
+        fig = comparison_figure(c, Path(protocol).name)
+        fig.savefig(tmp / "compare.png", dpi=120)
+    brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
+    brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
+    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
+
+
 def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) -> None:
     """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
     import time

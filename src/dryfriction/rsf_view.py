@@ -69,6 +69,9 @@ __all__ = [
     "rsf_twin_series",
     "transient_shape",
     "trap_model_as_rsf",
+    "Comparison",
+    "compare_protocol",
+    "comparison_figure",
 ]
 
 Array = NDArray[np.float64]
@@ -461,3 +464,153 @@ def trap_model_as_rsf(
     )
     return RSFView(eps, alpha, creep, u0, factor, traps_per_a0, tuple(float(x) for x in holds),
                    twins, steady, linear, steps, shs, memory, findings)
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A trap-model protocol run with the trap model and with its fitted rate-and-state twin.
+
+    Attributes
+    ----------
+    t, x : ndarray
+        Sample times (``t0``) and slider positions (``a0``) of the trap-model run.
+    mu_trap, mu_rsf : ndarray
+        Friction ``mu_el F/F_el`` of the trap model and of the twin (NaN during kinematic
+        holds, where rate-and-state friction is undefined).
+    twin : RSFTwin
+        The twin's parameters (reduced units; friction in ``F_el``).
+    calibration : str
+        "own program" (fitted to this run) or "standard" (velocity steps and slide-hold-slide
+        at the protocol's first sliding velocity, :func:`trap_model_as_rsf`).
+    mu_el : float
+        The protocol's ``mu_el`` (the twin's ``a``, ``b``, ``mu0`` are multiplied by it).
+    """
+
+    t: Array
+    x: Array
+    mu_trap: Array
+    mu_rsf: Array
+    twin: RSFTwin
+    calibration: str
+    mu_el: float
+    notes: tuple[str, ...] = ()
+
+    @property
+    def misfit(self) -> dict[str, float]:
+        """RMS and largest absolute difference (friction units) where the twin is defined."""
+        ok = np.isfinite(self.mu_rsf)
+        d = self.mu_rsf[ok] - self.mu_trap[ok]
+        return {"rms": float(np.sqrt(np.mean(d * d))) if d.size else float("nan"),
+                "max_abs": float(np.max(np.abs(d))) if d.size else float("nan"),
+                "samples": int(d.size)}
+
+    def to_dict(self) -> dict[str, Any]:
+        tw = self.twin.to_dict()
+        return {
+            "units": "reduced: t in t0, slip and dc in a0, v0 in a0/t0; a, b, mu0 as friction "
+                     "coefficients (times mu_el)",
+            "calibration": self.calibration,
+            "state_law": self.twin.state_law,
+            "a": self.mu_el * self.twin.a, "b": self.mu_el * self.twin.b,
+            "dc_a0": self.twin.dc, "mu0": self.mu_el * self.twin.mu0,
+            "v0_a0_per_t0": self.twin.v0, "fit": tw, "misfit": self.misfit,
+            "notes": list(self.notes),
+        }
+
+
+def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
+    """Run a trap-model protocol and its rate-and-state twin on the same program.
+
+    The twin is fitted to the run itself when the protocol starts in steady sliding at its
+    first velocity and never holds (kinematic steps: the clean comparison); otherwise it is the
+    standard calibration of :func:`trap_model_as_rsf` at the first sliding velocity (ageing
+    law: steps + hold peaks; slip law: steps). Only velocity drives (kinematic machines) are
+    supported: a spring drive would need the twin on a spring in reduced units, not done yet.
+
+    Parameters
+    ----------
+    proto : dryfriction.protocol.Protocol
+        A trap-model protocol with ``drive.kind = "velocity"``.
+    state_law : {"ageing", "slip"}
+
+    Returns
+    -------
+    Comparison
+    """
+    from .protocol import Protocol
+
+    if not isinstance(proto, Protocol):
+        raise ValueError(f"{getattr(proto, 'source', 'protocol')}: compare runs a trap-model "
+                         "protocol (model.law = 'cv') next to its rate-and-state twin")
+    if not isinstance(proto.drive, VelocityDrive):
+        kind = "force" if type(proto.drive).__name__ == "ForceDrive" else "spring"
+        raise ValueError(f"{proto.source}: drive.kind = {kind!r} is not supported by compare: "
+                         "it needs drive.kind = 'velocity' (the kinematic machine)")
+    if state_law not in ("ageing", "slip"):
+        raise ValueError(f"state_law = {state_law!r} is not allowed: ageing or slip")
+    prog = proto.drive.program
+    vel = prog.velocities
+    if np.any(vel < 0):
+        raise ValueError(f"{proto.source}: drive.segments: backward motion is not supported by "
+                         "the rate-and-state twin")
+    if not np.any(vel > 0):
+        raise ValueError(f"{proto.source}: drive.segments: the program never slides")
+    model = proto.model
+    res = proto.run()
+    init = proto.initial
+    u_first = float(vel[vel > 0][0])
+    notes: list[str] = []
+    own = init.kind == "steady" and bool(np.all(vel > 0)) and init.velocity == vel[0]
+    if own:
+        u0 = float(vel[0])
+        data = SeriesData(res.t * SCALES.t0, prog.velocity(res.t) * SCALES.velocity_scale,
+                          res.mu / model.mu_el, source=proto.source)
+        twin = fit_rsf_twin([data], u0, state_law)
+        calibration = "own program"
+    else:
+        u0 = float(init.velocity) if init.kind == "steady" else u_first
+        view = trap_model_as_rsf(model.eps, model.alpha, u0, creep=model.creep)
+        twin = view.twins["ageing_with_holds" if state_law == "ageing" else "slip"]
+        calibration = "standard"
+        notes.append(f"twin from the standard calibration at u0 = {u0:g} (velocity steps x10 and "
+                     "/10, slide-hold-slide peaks): the protocol does not start in steady "
+                     "sliding at its first velocity or it holds")
+    if init.kind != "steady":
+        notes.append(f"the trap model starts from initial = {init.kind!r}; rate-and-state has "
+                     f"no such state: the twin starts in steady sliding at u = {u0:g}")
+    if np.any(vel == 0):
+        notes.append("during holds on a kinematic machine rate-and-state friction (ln V) is "
+                     "undefined: the twin is not drawn there; its state ages (ageing law) or "
+                     "not (slip law) and the reload starts from there")
+    mu_rsf = model.mu_el * rsf_twin_series(twin.params, prog, res.t, u_init=u0)
+    return Comparison(res.t, res.x, res.mu, mu_rsf, twin, calibration, model.mu_el,
+                      tuple(notes))
+
+
+def comparison_figure(c: Comparison, title: str = "") -> Any:
+    """``compare.png``: friction of both models against time and slip, and the difference."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8.0, 8.0), layout="constrained")
+    ax = fig.subplots(3, 1)
+    tw = c.twin
+    label = (f"RSF twin ({tw.state_law}; a = {c.mu_el * tw.a:.3g}, b = {c.mu_el * tw.b:.3g}, "
+             f"Dc = {tw.dc:.3g} a0)")
+    ax[0].plot(c.t, c.mu_trap, lw=1.2, label="trap model")
+    ax[0].plot(c.t, c.mu_rsf, lw=1.0, ls="--", label=label)
+    ax[0].set_xlabel("t / t0")
+    ax[0].set_ylabel("mu")
+    ax[0].legend(fontsize=8)
+    slip = c.x - c.x[0]
+    ax[1].plot(slip, c.mu_trap, lw=1.2, label="trap model")
+    ax[1].plot(slip, c.mu_rsf, lw=1.0, ls="--", label="RSF twin")
+    ax[1].set_xlabel("slip / a0")
+    ax[1].set_ylabel("mu")
+    ax[2].plot(slip, c.mu_rsf - c.mu_trap, lw=0.9)
+    ax[2].axhline(0.0, color="k", lw=0.6)
+    ax[2].set_xlabel("slip / a0")
+    ax[2].set_ylabel("RSF - trap")
+    m = c.misfit
+    fig.suptitle(f"{title}  ({c.calibration} calibration, rms misfit {m['rms']:.3g})",
+                 fontsize=9)
+    return fig
