@@ -382,6 +382,9 @@ def fit_command(
                                     "machine stiffness per unit normal force, 1/m; inf: "
                                     "kinematic."),
     regularized: bool = typer.Option(False, help="rsf: regularised law (holds, kinematic)."),
+    traps_per_a0: float = typer.Option(1000.0, "--traps-per-a0", help="cv time series: "
+                                       "density of the simulated ensemble (accuracy about its "
+                                       "inverse; cost grows with it)."),
     profile: bool = typer.Option(True, help="Profile-likelihood intervals and identifiability."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
@@ -408,8 +411,11 @@ def fit_command(
     datasets = [read_csv(p) for p in data]
     opts: dict[str, Any] = dict(alpha=alpha, creep=creep, v0=v0, state_law=state_law,
                                 stiffness=stiffness, regularized=regularized)
+    from .fit import CVModel
+
+    chosen: Any = CVModel(alpha, creep, traps_per_a0=traps_per_a0) if model == "cv" else model
     try:
-        result = fit(datasets, model, fix=fixed, profile=profile, **opts)
+        result = fit(datasets, chosen, fix=fixed, profile=profile, **opts)
     except NotImplementedError as exc:
         raise ValueError(str(exc)) from None
     report = result.to_dict()
