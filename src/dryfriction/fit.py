@@ -1005,8 +1005,6 @@ def fit(
     ValueError
         Bad input: unknown parameter names, too few points for the free parameters, data
         kinds the model cannot use, uncertainties in some files but not all.
-    NotImplementedError
-        Trap-model time series (the ensemble simulator is missing).
     """
     ds, m = _prepare(datasets, model, alpha, creep, v0, state_law, stiffness, regularized)
     kinds = _kinds(ds)
