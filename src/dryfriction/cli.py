@@ -382,6 +382,9 @@ def fit_command(
                                     "machine stiffness per unit normal force, 1/m; inf: "
                                     "kinematic."),
     regularized: bool = typer.Option(False, help="rsf: regularised law (holds, kinematic)."),
+    traps_per_a0: float = typer.Option(1000.0, "--traps-per-a0", help="cv time series: "
+                                       "density of the simulated ensemble (accuracy about its "
+                                       "inverse; cost grows with it)."),
     profile: bool = typer.Option(True, help="Profile-likelihood intervals and identifiability."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
@@ -408,8 +411,11 @@ def fit_command(
     datasets = [read_csv(p) for p in data]
     opts: dict[str, Any] = dict(alpha=alpha, creep=creep, v0=v0, state_law=state_law,
                                 stiffness=stiffness, regularized=regularized)
+    from .fit import CVModel
+
+    chosen: Any = CVModel(alpha, creep, traps_per_a0=traps_per_a0) if model == "cv" else model
     try:
-        result = fit(datasets, model, fix=fixed, profile=profile, **opts)
+        result = fit(datasets, chosen, fix=fixed, profile=profile, **opts)
     except NotImplementedError as exc:
         raise ValueError(str(exc)) from None
     report = result.to_dict()
@@ -454,9 +460,10 @@ def simulate(
     out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
 ) -> None:
-    """Run the trap ensemble under a protocol (spec §6): timeseries.csv, summary.json, .png.
+    """Run a protocol (trap ensemble, spec §6, or rate-and-state with ``model.law = "rsf"``):
+    timeseries.csv, summary.json, timeseries.png.
 
-    Ctrl-C stops the run and writes the samples so far as a complete result marked
+    Ctrl-C stops a trap-model run and writes the samples so far as a complete result marked
     ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
     nothing.
     """
@@ -464,10 +471,13 @@ def simulate(
     from pathlib import Path
 
     from .io import check_output_dir, output_directory, write_csv, write_json
-    from .protocol import load_protocol
+    from .protocol import RSFProtocol, load_protocol
 
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out)
+    if isinstance(proto, RSFProtocol):
+        _simulate_rsf_protocol(proto, protocol, out, json_out)
+        return
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -643,6 +653,107 @@ def phase_diagram(
     out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.png: "
               + ", ".join(f"{k} {v}" for k, v in counts.items())
               + f", failed {ds.attrs['n_failed']}", highlight=False, soft_wrap=True)
+
+
+@app.command()
+@cli_errors
+def compare(
+    protocol: str = typer.Argument(..., help="Trap-model protocol file (TOML) with a velocity "
+                                   "drive."),
+    out: str = typer.Option(..., "--out", help="Results folder: compare.png, compare.json "
+                            "(written whole or not at all)."),
+    state_law: str = typer.Option("ageing", "--state-law", help="Twin's state law: ageing or "
+                                  "slip."),
+    json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
+) -> None:
+    """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
+
+    The twin is fitted to the run itself when it starts in steady sliding at its first velocity
+    and never holds, otherwise taken from the standard calibration (velocity steps and
+    slide-hold-slide at the first sliding velocity). Reduced units.
+    """
+    from .io import check_output_dir, output_directory, write_json
+    from .protocol import load_protocol
+    from .rsf_view import compare_protocol, comparison_figure
+    from .validation import check_choice
+
+    check_choice("state_law", state_law, ("ageing", "slip"))
+    proto = load_protocol(protocol)
+    check_output_dir(out)
+    c = compare_protocol(proto, state_law)
+    report = {"protocol": protocol, **c.to_dict()}
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    with output_directory(out) as tmp:
+        write_json(tmp / "compare.json", report)
+        fig = comparison_figure(c, Path(protocol).name)
+        fig.savefig(tmp / "compare.png", dpi=120)
+    brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
+    brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
+    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
+
+
+def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) -> None:
+    """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
+    import time
+    from pathlib import Path
+
+    from .io import output_directory, write_csv, write_json
+
+    start = time.perf_counter()
+    res = proto.run()
+    wall = time.perf_counter() - start
+    t, mu = res.t, res.mu
+    span = float(t[-1] - t[0])
+    k = int(np.argmax(mu))
+    summary: dict[str, Any] = {
+        "law": "rsf",
+        "partial": False,
+        "samples": int(len(t)),
+        "duration_s": span,
+        "peak_mu": float(mu[k]),
+        "peak_t_s": float(t[k]),
+        "final_mu": float(mu[-1]),
+        "mean_mu": float(np.trapezoid(mu, t) / span) if span > 0 else float(mu[0]),
+        "slip_m": float(res.x[-1] - res.x[0]),
+        "v_max_m_per_s": float(np.max(res.v)),
+        "steps": res.n_steps,
+        "rejected_steps": res.n_rejected,
+        "wall_s": wall,
+        "params": proto.params.to_dict(),
+        "stiffness_per_m": proto.stiffness,
+        "damping_s_per_m": proto.damping,
+        "mass_s2_per_m": proto.mass,
+        "rtol": proto.rtol,
+        "protocol": str(Path(protocol)),
+        "units": {"t": "s", "x": "m", "v": "m/s", "theta": "s", "x_load": "m",
+                  "v_load": "m/s", "mu": "", "stress": "spring force / normal force"},
+    }
+    p = proto.params
+    if p.n_state == 1 and not p.regularized and not np.isinf(proto.stiffness):
+        v = float(proto.program.velocities[-1]) or float(proto.v_init or 1.0)
+        summary["critical_stiffness_per_m"] = p.critical_stiffness(v, proto.damping, proto.mass)
+    cols: dict[str, Any] = {"t": res.t, "x": res.x, "v": res.v, "mu": res.mu,
+                            "theta": res.theta}
+    if res.theta2 is not None:
+        cols["theta2"] = res.theta2
+    cols.update(stress=res.stress, x_load=res.load, v_load=res.load_velocity)
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .plotting import rsf_timeseries_figure
+
+    with output_directory(out) as tmp:
+        write_csv(tmp / "timeseries.csv", cols)
+        write_json(tmp / "summary.json", summary)
+        fig, _ = rsf_timeseries_figure(res)
+        fig.savefig(tmp / "timeseries.png", dpi=120)
+    brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
+    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
+         "(rate-and-state, SI: t s, x m, v m/s, theta s)")
 
 
 def main() -> None:

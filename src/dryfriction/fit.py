@@ -16,9 +16,12 @@ Models (SI units; friction coefficients ``F/W``):
   :func:`dryfriction.rsf_driving.simulate_rsf`.
 
 Time-series models are callables ``(values, data) -> predicted friction``
-(:data:`SeriesModel`); the rate-and-state one is :func:`rsf_series`. The trap model's needs the
-ensemble simulator (``dryfriction.driving.simulate``, being written on branch ``ensemble``);
-until it is there :func:`cv_series_unavailable` raises :class:`NotImplementedError`.
+(:data:`SeriesModel`); the rate-and-state one is :func:`rsf_series`, the trap model's is
+:func:`cv_series` (the ensemble simulator :func:`dryfriction.driving.simulate` with the data's
+load program as a kinematic :class:`~dryfriction.driving.VelocityDrive`, through
+:class:`~dryfriction.units.PhysicalScales`). The ensemble's friction is a sum over discrete
+traps, so it is a fine staircase in the parameters (a trap dies at a sample): its Jacobian is
+taken with a larger difference step (:attr:`CVModel.diff_step`).
 
 Method (ours, standard weighted least squares):
 
@@ -63,6 +66,7 @@ from .rsf import STATE_LAWS, RateState
 from .rsf_driving import SolverError, simulate_rsf
 from .static import static_friction_first_order
 from .steady import steady_friction_first_order
+from .trap import Trap
 from .units import PhysicalScales, static_friction_si, steady_friction_si
 from .validation import check_choice, check_scalar
 
@@ -72,7 +76,7 @@ __all__ = [
     "RSFModel",
     "SeriesModel",
     "rsf_series",
-    "cv_series_unavailable",
+    "cv_series",
     "ParameterEstimate",
     "FitResult",
     "fit",
@@ -122,7 +126,9 @@ class ParamSpec:
         return math.log(p) if self.log else float(p)
 
     def from_internal(self, th: float) -> float:
-        return math.exp(th) if self.log else float(th)
+        if not self.log:
+            return float(th)
+        return math.exp(th) if th < 709.0 else math.inf  # a huge Wald bound, not an error
 
     @property
     def bounds(self) -> tuple[float, float]:
@@ -130,14 +136,67 @@ class ParamSpec:
 
 
 # ----------------------------------------------------------------------------- time series
-def cv_series_unavailable(values: Mapping[str, float], data: SeriesData) -> Array:
-    """Placeholder time-series model of the trap model: always raises NotImplementedError."""
-    raise NotImplementedError(
-        f"{data.source}: fitting the trap model to a time series needs the ensemble simulator "
-        "dryfriction.driving.simulate (branch 'ensemble', not in this build); fit static and "
-        "steady data with --model cv, the series with --model rsf, or pass "
-        "CVModel(series=<callable>)"
-    )
+def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
+              creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
+              max_samples: int = 200_000) -> Array:
+    """The trap model's friction along a measured load program (the CV time-series model).
+
+    The ensemble starts in steady sliding at ``v_load[0]`` and the slider follows the data's
+    piecewise-constant ``v_load`` (:meth:`SeriesData.segments`) kinematically (the machine is
+    taken as infinitely stiff), in reduced units through
+    ``PhysicalScales(a0, t0, mu_el)``. It is sampled at least every ``every_slip`` a0 of slip
+    and at the data's own sampling interval (in slip without holds; in time, so that ageing
+    during a hold is followed, with holds), and read at the data's times by linear
+    interpolation.
+
+    Parameters
+    ----------
+    values : mapping
+        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless).
+    data : SeriesData
+        Times (s) and load velocities (m/s).
+    alpha : float
+        Trap stiffness (fixed).
+    creep : {"log", "eyring-nabarro"}
+    traps_per_a0 : float
+        Density of the regular track (accuracy about ``1/traps_per_a0`` relative).
+    every_slip : float
+        Largest slip between samples, ``a0``.
+    max_samples : int
+        Budget: more samples than this is an error (a trial ``t0`` far too small makes the
+        program very long in ``t0``).
+
+    Returns
+    -------
+    ndarray
+        Friction coefficient ``F/W`` at ``data.t``.
+    """
+    from .driving import Output, VelocityDrive, simulate
+    from .ensemble import Initial, Track, TrapModel
+
+    sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
+    dur, vel = data.segments()
+    u = vel / sc.velocity_scale
+    T = dur / sc.t0
+    prog = [Segment(float(ui), float(Ti)) for ui, Ti in zip(u, T, strict=True)]
+    dt_data = float(np.min(np.diff(data.t))) / sc.t0 if len(data.t) > 1 else float(np.sum(T))
+    u_max = float(np.max(u))
+    if np.all(u > 0):  # no holds: sample in slip (the state is exact at every sample)
+        ds_data = float(np.min(np.diff(data.t) * data.v_load[1:])) / sc.a0 \
+            if len(data.t) > 1 else every_slip
+        output = Output(every_slip=min(every_slip, max(ds_data, 1e-6)))
+        n = float(np.sum(u * T)) / output.every_slip  # type: ignore[operator]
+    else:  # holds: sample in time, so that ageing during the hold is followed
+        output = Output(every=min(dt_data, every_slip / u_max) if u_max > 0 else dt_data)
+        n = float(np.sum(T)) / output.every  # type: ignore[operator]
+    if n > max_samples:
+        raise ValueError(f"{data.source}: the trap-model series would need {n:.3g} samples "
+                         f"(> {max_samples}) for t0 = {values['t0']:.3g} s, a0 = "
+                         f"{values['a0']:.3g} m")
+    model = TrapModel(alpha, values["eps"], creep, values["mu_el"])
+    res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
+                   VelocityDrive(prog), output)
+    return np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
 
 
 def _kinds(datasets: Sequence[Dataset]) -> frozenset[str]:
@@ -178,13 +237,24 @@ class CVModel:
     creep : {"log", "eyring-nabarro"}
         Ageing law (eq. 17 or eqs. 15-16).
     series : callable, optional
-        Time-series model ``(values, SeriesData) -> mu``; the default raises
-        NotImplementedError until the ensemble simulator exists.
+        Time-series model ``(values, SeriesData) -> mu``; default (``None``): :func:`cv_series`
+        with this ``alpha``, ``creep`` and ``traps_per_a0``.
+    traps_per_a0 : float
+        Track density of the ensemble for time series.
+    diff_step : float
+        Relative step (in ``ln`` of the parameters) of the finite-difference Jacobian for time
+        series: the ensemble's friction is a staircase in the parameters, one step per trap
+        death that moves across a sample (module docstring), so the step must span many of
+        them (ours; 0.03 at the default density). With it the optimiser stops at a relative
+        change of 1e-6 in cost or parameters (1e-12 otherwise), which the staircase never
+        lets it reach.
     """
 
     alpha: float = 0.13
     creep: str = "log"
-    series: SeriesModel = cv_series_unavailable
+    series: SeriesModel | None = None
+    traps_per_a0: float = 1000.0
+    diff_step: float = 0.03
     name: str = field(default="cv", init=False)
 
     def __post_init__(self) -> None:
@@ -227,7 +297,9 @@ class CVModel:
         if d.kind == "steady":
             return steady_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep)
         assert isinstance(d, SeriesData)
-        return self.series(v, d)
+        if self.series is not None:
+            return self.series(v, d)
+        return cv_series(v, d, self.alpha, self.creep, self.traps_per_a0)
 
     def data_window(self, name: str, datasets: Sequence[Dataset]) -> tuple[float, float] | None:
         """Values of a time or velocity scale that the data probe directly (see _classify)."""
@@ -285,8 +357,38 @@ class CVModel:
                         "mu_el": math.sqrt(m1 * m2)})
             out.append({"eps": e1, "t0": t0, "a0": vs * t0, "mu_el": m1})
         else:
-            out.append({"eps": 0.02, "t0": 1.0, "a0": 1e-6, "mu_el": 0.5})
+            se = [d for d in datasets if isinstance(d, SeriesData)]
+            if se:
+                out.extend(self._series_guesses(se[0]))
+            else:
+                out.append({"eps": 0.02, "t0": 1.0, "a0": 1e-6, "mu_el": 0.5})
         return out
+
+    def _series_guesses(self, d: SeriesData) -> list[dict[str, float]]:
+        """Starts for a time series (ours): ``mu_el`` from the mean friction, ``eps`` from the
+        steady levels at the ends of the stretches (eq. 35: ``d mu/d ln V = -(3/2) eps
+        mu_el``), ``a0`` from the slip over which the friction changes after a step (the
+        memory, about ``(1 + y_c) a0``), ``V* = a0/t0`` from a few multiples of the mean
+        velocity."""
+        dur, vel = d.segments()
+        mu_el = float(np.mean(d.mu))
+        ends = []
+        t_rel = d.t - d.t[0]
+        bounds = np.concatenate([[0.0], np.cumsum(dur)])
+        for i in range(len(dur)):
+            k = int(np.searchsorted(t_rel, bounds[i + 1], side="left")) - 1
+            ends.append(float(d.mu[max(k, 0)]))
+        eps = 0.02
+        pos = vel > 0
+        if np.sum(pos) >= 2 and np.ptp(np.log(vel[pos])) > 0:
+            slope = float(np.polyfit(np.log(vel[pos]), np.array(ends)[pos], 1)[0])
+            eps = min(max(-slope / (1.5 * mu_el), 1e-3), 0.3)
+        yc = Trap(self.alpha).y_c
+        slip = float(np.sum(dur * vel))
+        a0 = max(slip / max(len(dur), 1) / (2.0 * (1.0 + yc)), 1e-12)
+        vm = float(np.exp(np.mean(np.log(vel[pos])))) if np.any(pos) else 1.0
+        return [{"eps": eps, "t0": a0 / (f * vm), "a0": a0, "mu_el": mu_el}
+                for f in (1.0, 0.1, 10.0)]
 
 
 def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -> Array:
@@ -629,7 +731,9 @@ class _Problem:
         return np.array(lo), np.array(hi)
 
     def diff_step(self) -> float | None:
-        return 1e-5 if any(isinstance(d, SeriesData) for d in self.datasets) else None
+        if not any(isinstance(d, SeriesData) for d in self.datasets):
+            return None
+        return float(getattr(self.model, "diff_step", 1e-5))
 
     def solve(self, theta0: Array, free: NDArray[np.bool_] | None = None,
               max_nfev: int | None = None) -> tuple[Array, float, Any]:
@@ -649,8 +753,9 @@ class _Problem:
         x0 = np.clip(theta0[free], lo[free] + 1e-12, hi[free] - 1e-12)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
+            tol = 1e-12 if self.diff_step() in (None, 1e-5) else 1e-6  # staircase: see CVModel
             sol = least_squares(res, x0, bounds=(lo[free], hi[free]), method="trf",
-                                x_scale="jac", ftol=1e-12, xtol=1e-12, gtol=1e-10,
+                                x_scale="jac", ftol=tol, xtol=tol, gtol=1e-10,
                                 diff_step=self.diff_step(),
                                 max_nfev=max_nfev or 200 * (int(free.sum()) + 1))
         out = theta0.copy()
@@ -659,7 +764,8 @@ class _Problem:
 
     def jacobian(self, theta: Array) -> Array:
         """Central-difference Jacobian of the residuals in the internal variables."""
-        h0 = 1e-4 if self.diff_step() else 1e-6
+        ds = self.diff_step()
+        h0 = (ds if ds > 1e-5 else 1e-4) if ds else 1e-6
         lo, hi = self.bounds
         J = np.empty((self.n, self.p))
         for j in range(self.p):
@@ -841,10 +947,6 @@ def _prepare(datasets: Dataset | Iterable[Dataset], model: str | Model, alpha: f
         m = model
     if isinstance(m, RSFModel):
         m = m.resolve(ds)
-    if isinstance(m, CVModel) and m.series is cv_series_unavailable:
-        for d in ds:
-            if isinstance(d, SeriesData):
-                cv_series_unavailable({}, d)
     return ds, m
 
 
@@ -903,8 +1005,6 @@ def fit(
     ValueError
         Bad input: unknown parameter names, too few points for the free parameters, data
         kinds the model cannot use, uncertainties in some files but not all.
-    NotImplementedError
-        Trap-model time series (the ensemble simulator is missing).
     """
     ds, m = _prepare(datasets, model, alpha, creep, v0, state_law, stiffness, regularized)
     kinds = _kinds(ds)

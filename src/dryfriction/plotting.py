@@ -512,3 +512,39 @@ def timeseries_figure(result: Any) -> tuple[Figure, Any]:
     axes[2].set_ylabel("traps in contact")
     fig.suptitle("partial result (interrupted)" if result.partial else "trap ensemble")
     return fig, axes
+
+
+def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
+    """Rate-and-state run: friction against time and slip, slip velocity against time.
+
+    Parameters
+    ----------
+    result : dryfriction.rsf_driving.RSFResult
+        A rate-and-state run (SI units: s, m, m/s).
+
+    Returns
+    -------
+    fig, axes
+        A new figure (Agg-renderable, not shown) and its three axes.
+    """
+    fig = Figure(figsize=(8.0, 7.5), layout="constrained")
+    axes = fig.subplots(3, 1)
+    t, x, mu = result.t, result.x, result.mu
+    axes[0].plot(t, mu, lw=0.8, label="friction mu")
+    if result.damping or result.mass:
+        axes[0].plot(t, result.stress, lw=0.8, ls="--", label="spring force / normal force")
+        axes[0].legend(fontsize=8)
+    axes[0].set_xlabel("t (s)")
+    axes[0].set_ylabel("mu")
+    axes[1].plot(x - x[0], mu, lw=0.8)
+    axes[1].set_xlabel("slip (m)")
+    axes[1].set_ylabel("mu")
+    v = np.abs(result.v)
+    axes[2].semilogy(t, np.where(v > 0, v, np.nan), lw=0.8, label="slip velocity")
+    vl = result.load_velocity
+    axes[2].semilogy(t, np.where(vl > 0, vl, np.nan), lw=0.8, ls="--", label="load velocity")
+    axes[2].set_xlabel("t (s)")
+    axes[2].set_ylabel("V (m/s)")
+    axes[2].legend(fontsize=8)
+    fig.suptitle(f"rate-and-state, {result.params.state_law} law")
+    return fig, axes

@@ -27,6 +27,31 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     every_slip = 0.01            # exactly one of every (t0) and every_slip (a0)
     snapshots = [10.0, 20.0]     # optional, times in t0
 
+Rate-and-state friction runs through the same files (issue 4), in SI units, with
+``law = "rsf"`` in ``[model]`` and no ``[ensemble]`` table::
+
+    [model]                      # RateState (dryfriction.rsf)
+    law = "rsf"                  # default "cv": the trap model above
+    state_law = "ageing"         # optional: "ageing" | "slip"
+    a = 0.005                    # required, > 0
+    b = 0.01                     # required, >= 0
+    dc = 1e-5                    # required, m, > 0
+    mu0 = 0.6                    # required
+    v0 = 1e-6                    # required, m/s, > 0
+    # optional: b2, dc2 (second state variable), regularized (true: asinh law, V = 0 allowed)
+
+    [drive]                      # dryfriction.rsf_driving.simulate_rsf
+    segments = [{velocity = 1e-6, duration = 10.0}, {velocity = 1e-5, slip = 1e-4}]
+    stiffness = 1e3              # optional, 1/m per unit normal force; absent or inf: kinematic
+    damping = 0.0                # optional, eta/sigma, s/m
+    mass = 0.0                   # optional, s^2/m per unit normal force
+    v_init = 1.01e-6             # optional, m/s: initial slip velocity (state at steady state
+                                 # for it); default the first segment's velocity
+
+    [output]                     # optional table
+    every = 0.01                 # optional, s: sampling interval (default: every solver step)
+    rtol = 1e-7                  # optional: the solver's local tolerance
+
 Every error names the file, the table and key (``table.key``), and what is allowed, and is
 raised before any work starts. (Errors avoid square brackets around names, which the terminal's
 markup would swallow.)
@@ -42,6 +67,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from .driving import (
     Drive,
     ForceDrive,
@@ -53,8 +80,15 @@ from .driving import (
 )
 from .ensemble import Initial, Track, TrapModel
 from .program import Segment, VelocityProgram
+from .rsf import RateState
+from .rsf_driving import RSFResult, SolverError, simulate_rsf
 
-__all__ = ["Protocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
+__all__ = ["Protocol", "RSFProtocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
+
+LAWS: tuple[str, ...] = ("cv", "rsf")
+_RSF_TABLES = ("model", "drive", "output")
+_RSF_MODEL_KEYS = ("law", "state_law", "a", "b", "dc", "mu0", "v0", "b2", "dc2", "regularized")
+_RSF_DRIVE_KEYS = ("segments", "stiffness", "damping", "mass", "v_init")
 
 _TABLES = ("model", "ensemble", "drive", "output")
 _DRIVE_KEYS = {
@@ -88,6 +122,63 @@ class Protocol:
         """Run the simulation (see :func:`dryfriction.driving.simulate`)."""
         return simulate(self.model, self.track, self.initial, self.drive, self.output,
                         progress=progress, on_interrupt=on_interrupt)
+
+
+@dataclass(frozen=True)
+class RSFProtocol:
+    """A validated rate-and-state protocol (SI units): what :func:`simulate_rsf` needs.
+
+    Attributes
+    ----------
+    params : RateState
+        Friction law and parameters.
+    program : VelocityProgram
+        Load-point velocity program, m/s and s (or slips in m).
+    stiffness : float
+        Spring stiffness per unit normal force, 1/m; ``inf`` for the kinematic machine.
+    damping : float
+        Radiation damping ``eta/sigma``, s/m.
+    mass : float
+        Mass per unit normal force, s^2/m.
+    v_init : float or None
+        Initial slip velocity, m/s (state at steady state for it); ``None``: the first
+        segment's velocity.
+    every : float or None
+        Sampling interval, s; ``None``: every accepted solver step.
+    rtol : float
+        Local error tolerance of the solver.
+    """
+
+    params: RateState
+    program: VelocityProgram
+    stiffness: float = math.inf
+    damping: float = 0.0
+    mass: float = 0.0
+    v_init: float | None = None
+    every: float | None = None
+    rtol: float = 1e-7
+    source: str = "<string>"
+
+    @property
+    def law(self) -> str:
+        return "rsf"
+
+    def run(self) -> RSFResult:
+        """Run :func:`dryfriction.rsf_driving.simulate_rsf`; a failed integration is a
+        ``ValueError`` naming the protocol file and the cause."""
+        t_eval = None
+        if self.every is not None:
+            total = self.program.total_time
+            n = max(1, math.ceil(total / self.every * (1.0 - 1e-12)))
+            t_eval = np.union1d(np.linspace(0.0, total, n + 1), self.program.times)
+        try:
+            return simulate_rsf(self.params, self.program, stiffness=self.stiffness,
+                                damping=self.damping, mass=self.mass, v_init=self.v_init,
+                                rtol=self.rtol, t_eval=t_eval)
+        except SolverError as exc:
+            raise ValueError(f"{self.source}: {exc}") from None
+        except ValueError as exc:
+            raise ValueError(f"{self.source}: {exc}") from None
 
 
 class _Table:
@@ -169,7 +260,7 @@ def _segments(tab: _Table) -> VelocityProgram:
     return VelocityProgram(segs)
 
 
-def parse_protocol(text: str, source: str = "<string>") -> Protocol:
+def parse_protocol(text: str, source: str = "<string>") -> Protocol | RSFProtocol:
     """Parse and validate a protocol given as TOML text; ``source`` names it in errors."""
     try:
         doc = tomllib.loads(text)
@@ -178,10 +269,21 @@ def parse_protocol(text: str, source: str = "<string>") -> Protocol:
     return protocol_from_dict(doc, source)
 
 
-def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>") -> Protocol:
-    """Validate a protocol already read into nested dicts (e.g. one point of a sweep)."""
+def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
+                       ) -> Protocol | RSFProtocol:
+    """Validate a protocol already read into nested dicts (e.g. one point of a sweep).
+
+    ``model.law = "rsf"`` gives an :class:`RSFProtocol`, otherwise a :class:`Protocol`.
+    """
     if not isinstance(doc, Mapping):
         raise ValueError(f"{source}: a protocol must be a table of tables")
+    model_tab = doc.get("model")
+    law = model_tab.get("law", "cv") if isinstance(model_tab, Mapping) else "cv"
+    if law not in LAWS:
+        raise ValueError(f"{source}: model.law = {law!r} is not allowed: choose one of "
+                         f"{', '.join(LAWS)}")
+    if law == "rsf":
+        return _rsf_protocol(doc, source)
     unknown = sorted(set(doc) - set(_TABLES))
     if unknown:
         raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
@@ -191,7 +293,7 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>") -> Pr
             raise ValueError(f"{source}: table '{t}' is missing")
 
     m = _Table(source, "model", doc["model"])
-    m.allow(("alpha", "eps", "creep", "mu_el"))
+    m.allow(("law", "alpha", "eps", "creep", "mu_el"))
     model = m.build(
         TrapModel,
         alpha=m.number("alpha", 0.13),
@@ -252,7 +354,83 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>") -> Pr
     return Protocol(model, track, initial, drive, output, source)
 
 
-def load_protocol(path: str | os.PathLike[str]) -> Protocol:
+def _rsf_protocol(doc: Mapping[str, Any], source: str) -> RSFProtocol:
+    """The ``law = "rsf"`` branch of :func:`protocol_from_dict` (SI units)."""
+    unknown = sorted(set(doc) - set(_RSF_TABLES))
+    if unknown:
+        why = " (the ensemble table applies to law = 'cv')" if "ensemble" in unknown else ""
+        raise ValueError(f"{source}: table(s) {', '.join(unknown)} not allowed with "
+                         f"model.law = 'rsf'{why}: allowed {', '.join(_RSF_TABLES)}")
+    for t in ("model", "drive"):
+        if t not in doc:
+            raise ValueError(f"{source}: table '{t}' is missing")
+    m = _Table(source, "model", doc["model"])
+    m.allow(_RSF_MODEL_KEYS)
+    for key in ("a", "b", "dc", "mu0", "v0"):
+        m.number(key, required=True)
+    for key in ("b2", "dc2"):
+        m.number(key)
+    m.string("state_law")
+    if "regularized" in m.data and not isinstance(m.data["regularized"], bool):
+        m.fail(f"{m.where('regularized')} = {m.data['regularized']!r} has the wrong type: "
+               "true or false")
+    params = m.build(RateState.from_mapping, m.data)
+
+    d = _Table(source, "drive", doc["drive"])
+    if "kind" in d.data:
+        d.fail("drive.kind is not used with model.law = 'rsf': give drive.stiffness for a "
+               "spring (absent or inf: the kinematic machine)")
+    d.allow(_RSF_DRIVE_KEYS)
+    stiffness = d.number("stiffness", math.inf) if d.data.get("stiffness") != math.inf \
+        else math.inf
+    assert stiffness is not None
+    if not stiffness > 0:
+        d.fail(f"{d.where('stiffness')} = {stiffness!r} is out of range: allowed > 0 (1/m), "
+               "or inf for the kinematic machine")
+    damping = d.number("damping", 0.0)
+    mass = d.number("mass", 0.0)
+    for key, val in (("damping", damping), ("mass", mass)):
+        if val is not None and val < 0:
+            d.fail(f"{d.where(key)} = {val!r} is out of range: allowed >= 0")
+    if math.isinf(stiffness) and (damping or mass):
+        d.fail("drive.damping and drive.mass need a spring: give drive.stiffness (1/m)")
+    v_init = d.number("v_init")
+    if v_init is not None and not v_init > 0:
+        d.fail(f"{d.where('v_init')} = {v_init!r} is out of range: allowed > 0 (m/s)")
+    program = _segments(d)
+
+    o = _Table(source, "output", doc.get("output", {}))
+    o.allow(("every", "rtol"))
+    every = o.number("every")
+    if every is not None and not every > 0:
+        o.fail(f"{o.where('every')} = {every!r} is out of range: allowed > 0 (s)")
+    rtol = o.number("rtol", 1e-7)
+    assert rtol is not None
+    if not 1e-13 <= rtol <= 1e-2:
+        o.fail(f"{o.where('rtol')} = {rtol!r} is out of range: allowed [1e-13, 1e-2]")
+    proto = RSFProtocol(params, program, stiffness, float(damping or 0.0), float(mass or 0.0),
+                        v_init, every, rtol, source)
+    _check_rsf_program(proto, d)
+    return proto
+
+
+def _check_rsf_program(p: RSFProtocol, d: _Table) -> None:
+    """The checks :func:`simulate_rsf` makes on the program, before any work."""
+    vel = p.program.velocities
+    kinematic = math.isinf(p.stiffness)
+    for i, v in enumerate(vel):
+        if kinematic and not p.params.regularized and v <= 0.0:
+            d.fail(f"drive.segments[{i}].velocity = {v:g} m/s is out of range: the kinematic "
+                   "machine (no drive.stiffness) with the standard law needs > 0 (ln V); set "
+                   "model.regularized = true for holds")
+        if not kinematic and v < 0.0:
+            d.fail(f"drive.segments[{i}].velocity = {v:g} m/s is out of range: the spring "
+                   "driver needs >= 0")
+    if p.v_init is None and vel[0] <= 0.0:
+        d.fail("drive.segments[0] is a hold: give drive.v_init (m/s), the initial slip velocity")
+
+
+def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol:
     """Read and validate a protocol file (TOML). Errors name the file and the key."""
     p = Path(path)
     try:
