@@ -148,3 +148,30 @@ def test_effective_rsf_from_moments(u):
     slope = (steady_friction(u + du, eps) - steady_friction(u - du, eps)) / (2 * du)
     assert p["a"] - p["b"] == pytest.approx(u * slope, rel=1e-5)
     assert p["b"] > p["a"] > 0 and 0.3 < p["dc"] < 2.46  # velocity weakening, Dc < (1 + y_c) a0
+
+
+@pytest.mark.parametrize("mass, damping", [(0.0, 0.0), (0.0, 0.05), (10.0, 0.1), (3.0, 0.0)])
+def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
+    # two independent routes: the numerical crossing search used for the trap model, fed with
+    # rate-and-state's linear response, against the closed form (Rice & Ruina 1983)
+    from dryfriction.rsf import RateState
+    from dryfriction.stability import nyquist_crossings, rsf_twin
+
+    u = 0.1
+    p = rsf_twin(u, 0.04, mass=mass, damping=damping)
+    a, b, dc = p["a"], p["b"], p["dc"]
+
+    def z_rsf(lam):
+        lam = np.asarray(lam, complex)
+        return (lam / u) * (a - b * u / (u + lam * dc))
+
+    K, om = nyquist_crossings(z_rsf, mass, damping, omega_max=1e3 * u / dc, n_omega=20000)
+    closed = RateState(a=a, b=b, dc=dc, mu0=1.0, v0=u)
+    assert K == pytest.approx(closed.critical_stiffness(u, damping, mass), rel=1e-8)
+    assert om == pytest.approx(closed.hopf_frequency(u, damping), rel=1e-8)
+    assert p["K_c"] == pytest.approx(K, rel=1e-8)
+    # with damping (which tames the model's delay-induced high-frequency crossings, see the
+    # module doc) the trap model is less unstable than its rate-and-state twin predicts
+    if damping > 0:
+        model = critical_stiffness(u, 0.04, mass=mass, damping=damping).critical_stiffness
+        assert model < p["K_c"]

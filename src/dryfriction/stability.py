@@ -42,6 +42,7 @@ arrives from infinity once ``K < -Z(inf)``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,6 +64,8 @@ __all__ = [
     "rightmost_root",
     "linear_summary",
     "effective_rsf",
+    "nyquist_crossings",
+    "rsf_twin",
 ]
 
 Array = NDArray[np.float64]
@@ -222,6 +225,36 @@ class StabilityResult:
         return dict(self.__dict__)
 
 
+def nyquist_crossings(
+    Z: Callable[[ArrayLike], CArray],
+    mass: float,
+    damping: float,
+    omega_max: float,
+    n_omega: int = 4000,
+) -> tuple[float, float]:
+    """Largest stiffness at which ``M lambda^2 + eta lambda + K + Z(lambda)`` has a root on the
+    imaginary axis, and that root's frequency: ``(K, omega)``; ``(-inf, nan)`` if none.
+
+    Scans ``omega`` on a log grid over ``[1e-7, 1] * omega_max``, brackets the zeros of
+    ``eta omega + Im Z(i omega)`` and evaluates ``K = M omega^2 - Re Z(i omega)`` there. Any
+    linear response ``Z`` (units of ``K``) can be given.
+    """
+    omega_max = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
+    om = np.geomspace(omega_max * 1e-7, omega_max, int(n_omega))
+
+    def im(o: float) -> float:
+        return float(damping * o + Z(1j * o).imag)
+
+    vals = damping * om + Z(1j * om).imag
+    best_K, best_om = -np.inf, np.nan
+    for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+        o = brentq(im, om[i], om[i + 1], xtol=1e-14 * om[i], maxiter=200)
+        K = mass * o**2 - float(Z(1j * o).real)
+        if K > best_K:
+            best_K, best_om = K, o
+    return best_K, best_om
+
+
 def critical_stiffness(
     u: float,
     eps: float,
@@ -245,19 +278,7 @@ def critical_stiffness(
     resp = steady_response(u, eps, alpha, creep)
     if omega_max is None:
         omega_max = 200.0 / resp.tau_d
-    omega_max = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
-    om = np.geomspace(omega_max * 1e-7, omega_max, int(n_omega))
-
-    def im(o: float) -> float:
-        return float(damping * o + resp.Z(1j * o).imag)
-
-    vals = damping * om + resp.Z(1j * om).imag
-    best_K, best_om = -np.inf, np.nan
-    for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-        o = brentq(im, om[i], om[i + 1], xtol=1e-14 * om[i], maxiter=200)
-        K = mass * o**2 - float(resp.Z(1j * o).real)
-        if K > best_K:
-            best_K, best_om = K, o
+    best_K, best_om = nyquist_crossings(resp.Z, mass, damping, omega_max, n_omega)
     fwd, bwd = (resp.A + resp.edge) / resp.H0, resp.A / resp.H0
     at_inf = False
     if mass == 0.0 and damping == 0.0 and -fwd > best_K:
@@ -356,3 +377,32 @@ def effective_rsf(
     dc = -u * z3 / (3.0 * z2)
     b = u * u * z2 / (2.0 * dc)
     return {"a": u * z1 + b, "b": b, "dc": dc, "u": u}
+
+
+def rsf_twin(
+    u: float,
+    eps: float,
+    alpha: float = 0.13,
+    creep: str = "log",
+    mass: float = 0.0,
+    damping: float = 0.0,
+) -> dict[str, float]:
+    """Critical stiffness that rate-and-state predicts with the model's effective ``a, b, Dc``.
+
+    Rice & Ruina (1983): ``K_c = (b - a)/Dc [1 + M V^2/(a Dc)]`` (the damping enters as
+    ``a -> a + eta V``, see :meth:`dryfriction.rsf.RateState.critical_stiffness`), with
+    ``a, b, Dc`` from :func:`effective_rsf`, in reduced units (``K`` in ``F_el/a0``).
+    Compare with :func:`critical_stiffness`: the twin matches the slow response only, so the
+    two differ wherever the model's fast response (negative forward stiffness, delay at the
+    spinodal edge) matters.
+    """
+    from .rsf import RateState
+
+    p = effective_rsf(u, eps, alpha, creep)
+    twin = RateState(a=p["a"], b=p["b"], dc=p["dc"], mu0=1.0, v0=u)
+    out = {**p, "K_c": twin.critical_stiffness(u, damping, mass)}
+    try:
+        out["omega_c"] = twin.hopf_frequency(u, damping)
+    except ValueError:
+        out["omega_c"] = float("nan")
+    return out
