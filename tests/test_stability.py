@@ -155,10 +155,10 @@ def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
     # two independent routes: the numerical crossing search used for the trap model, fed with
     # rate-and-state's linear response, against the closed form (Rice & Ruina 1983)
     from dryfriction.rsf import RateState
-    from dryfriction.stability import nyquist_crossings, rsf_twin
+    from dryfriction.stability import nyquist_crossings, rsf_stability_prediction
 
     u = 0.1
-    p = rsf_twin(u, 0.04, mass=mass, damping=damping)
+    p = rsf_stability_prediction(u, 0.04, mass=mass, damping=damping)
     a, b, dc = p["a"], p["b"], p["dc"]
 
     def z_rsf(lam):

@@ -344,12 +344,13 @@ def stability(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
-    from .stability import critical_stiffness, rsf_twin
+    from .stability import critical_stiffness, rsf_stability_prediction
     from .validation import check_range
 
     check_range("u", u, 0.0, lo_open=True)
     res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
-    twins = [rsf_twin(v, eps, alpha, creep, mass, damping) for v in u] if eps > 0 else []
+    twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping) for v in u]
+             if eps > 0 else [])
     params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep}
     cols = {
         "u": list(u),
@@ -360,7 +361,7 @@ def stability(
         "dmu_d_du": [r.velocity_slope for r in res],
     }
     if twins:  # rate-and-state with the model's effective a, b, Dc (Rice & Ruina 1983)
-        cols["K_c_rsf_twin"] = [t["K_c"] for t in twins]
+        cols["K_c_rsf"] = [t["K_c"] for t in twins]
     if json_out:
         emit({**params, **cols}, True, "stability")
     else:

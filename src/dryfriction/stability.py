@@ -65,7 +65,7 @@ __all__ = [
     "linear_summary",
     "effective_rsf",
     "nyquist_crossings",
-    "rsf_twin",
+    "rsf_stability_prediction",
 ]
 
 Array = NDArray[np.float64]
@@ -379,7 +379,7 @@ def effective_rsf(
     return {"a": u * z1 + b, "b": b, "dc": dc, "u": u}
 
 
-def rsf_twin(
+def rsf_stability_prediction(
     u: float,
     eps: float,
     alpha: float = 0.13,
