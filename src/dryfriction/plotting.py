@@ -147,6 +147,16 @@ def fig1_trap_hysteresis(alpha: float = 0.13, ax: Axes | None = None) -> tuple[F
 # --------------------------------------------------------------------------------------------
 
 
+def _per_trap_axes(ax: Axes, title: str) -> None:
+    """Axes, zero line, title and legend shared by the force-per-trap figures (2a, 2b, 4)."""
+    ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
+    ax.set_xlabel(r"configuration coordinate $p/a_0$")
+    ax.set_ylabel(r"pinning force per trap  [$\Phi_{00}/a_0$]")
+    ax.margins(y=0.1)
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=7.5, loc="upper left")
+
+
 def fig2a_aged_pinning_curve(
     T: float = 25.0, eps: float = 0.04, alpha: float = 0.13, creep: str = "log",
     ax: Axes | None = None,
@@ -177,14 +187,8 @@ def fig2a_aged_pinning_curve(
     ax.plot([r * yc], [r**2 * trap.f_c], "o", color="k", ms=4)
     ax.annotate(r"aged spinodal $r\,y_c$", (r * yc, r**2 * trap.f_c), textcoords="offset points",
                 xytext=(-6, 6), ha="right", fontsize=8)
-    ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
     ax.axvline(0.0, color="0.6", lw=0.6, zorder=0)
-    ax.set_xlabel(r"configuration coordinate $p/a_0$")
-    ax.set_ylabel(r"pinning force per trap  [$\Phi_{00}/a_0$]")
-    ax.margins(y=0.1)
-    ax.set_title(rf"Fig. 2a — aged at rest, $t_w$ = {T:g} $t_0$, $\varepsilon$ = {eps:g}",
-                 fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    _per_trap_axes(ax, rf"Fig. 2a — aged at rest, $t_w$ = {T:g} $t_0$, $\varepsilon$ = {eps:g}")
     return fig, ax
 
 
@@ -245,13 +249,8 @@ def fig2b_population_at_threshold(
     top = ax.get_ylim()[1]
     ax.text(-1.0 + d, top, r" $-a_0+p_c$", fontsize=8, va="top")
     ax.text(d, top, r" $p_c(t_w)$", fontsize=8, va="top")
-    ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
-    ax.set_xlabel(r"configuration coordinate $p/a_0$")
-    ax.set_ylabel(r"pinning force per trap  [$\Phi_{00}/a_0$]")
-    ax.margins(y=0.1)
-    ax.set_title(rf"Fig. 2b — at the static threshold: $p_c$ = {d:.4f} $a_0$, "
-                 rf"$\mu_s$ = {mu:.4f}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    _per_trap_axes(ax, rf"Fig. 2b — at the static threshold: $p_c$ = {d:.4f} $a_0$, "
+                   rf"$\mu_s$ = {mu:.4f}")
     return fig, ax
 
 
@@ -346,13 +345,8 @@ def fig4_steady_pinning_curve(
     ax.axvline(trap.y_c, color="0.5", lw=0.8, ls=":")
     ax.text(trap.y_c, 0.05, r"elastic $y_c$ ", fontsize=8, color="0.3", ha="right")
     mu = float(steady_friction(u, eps, alpha, creep))
-    ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
-    ax.set_xlabel(r"configuration coordinate $p/a_0$")
-    ax.set_ylabel(r"pinning force per trap  [$\Phi_{00}/a_0$]")
-    ax.margins(y=0.1)
-    ax.set_title(rf"Fig. 4 — steady motion, $u$ = {u:g}, $\varepsilon$ = {eps:g}: "
-                 rf"$\mu_d$ = {mu:.4f}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    _per_trap_axes(ax, rf"Fig. 4 — steady motion, $u$ = {u:g}, $\varepsilon$ = {eps:g}: "
+                   rf"$\mu_d$ = {mu:.4f}")
     return fig, ax
 
 
