@@ -4,11 +4,9 @@ from __future__ import annotations
 
 import csv
 import json
-import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -56,6 +54,47 @@ def test_simulate_writes_the_results(tmp_path: Path) -> None:
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".res")]
 
 
+def test_a_protocol_kept_in_its_own_results_folder_survives(tmp_path: Path) -> None:
+    # the run used to delete the folder's contents, its own protocol file included
+    out = tmp_path / "res"
+    out.mkdir()
+    proto = _write(out, PROTO)
+    r = runner.invoke(app, ["simulate", str(proto), "--out", str(out)])
+    assert r.exit_code == 2 and "--force" in r.output and len(r.output.strip().splitlines()) == 1
+    assert [p.name for p in out.iterdir()] == ["p.toml"]
+    for _ in range(2):  # again with --force: the protocol stays, the result is replaced
+        r = runner.invoke(app, ["simulate", str(proto), "--out", str(out), "--force"])
+        assert r.exit_code == 0, r.output
+        assert proto.read_text() == PROTO
+    assert {"p.toml", "summary.json", "timeseries.csv", "dryfriction.json"} <= {
+        p.name for p in out.iterdir()}
+
+
+@pytest.mark.parametrize("spelling", [".", "cwd"])
+def test_out_dot_or_the_working_directory_deletes_nothing(tmp_path: Path, monkeypatch,
+                                                          spelling: str) -> None:
+    monkeypatch.chdir(tmp_path)
+    proto = _write(tmp_path, PROTO)
+    (tmp_path / "thesis.tex").write_text("years of work")
+    out = "." if spelling == "." else str(tmp_path)
+    r = runner.invoke(app, ["simulate", str(proto), "--out", out])
+    assert r.exit_code == 2 and "thesis.tex" in r.output
+    assert {p.name for p in tmp_path.iterdir()} == {"p.toml", "thesis.tex"}
+    r = runner.invoke(app, ["simulate", str(proto), "--out", out, "--force"])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "thesis.tex").read_text() == "years of work"
+    assert proto.read_text() == PROTO
+    assert not [p for p in tmp_path.iterdir() if ".dftmp-" in p.name]
+
+
+def test_rerun_into_its_own_folder_replaces_and_says_so(tmp_path: Path) -> None:
+    proto = _write(tmp_path, PROTO)
+    out = tmp_path / "res"
+    assert runner.invoke(app, ["simulate", str(proto), "--out", str(out)]).exit_code == 0
+    r = runner.invoke(app, ["simulate", str(proto), "--out", str(out)])
+    assert r.exit_code == 0 and "replaced the previous simulate result" in r.output
+
+
 @pytest.mark.parametrize(
     "edit, key",
     [
@@ -95,34 +134,64 @@ def test_missing_file(tmp_path: Path) -> None:
     assert not (tmp_path / "o").exists()
 
 
-def test_ctrl_c_leaves_nothing_or_a_complete_partial_result(tmp_path: Path) -> None:
-    long = PROTO.replace("slip = 2.0", "slip = 2000.0").replace("snapshots = [5.0]\n", "")
+# The child reports "running" from inside the simulation loop (through the progress callback),
+# so the signal lands at a known point of the run: after start-up and compilation, before the
+# end. Each test then has one outcome to check, not two.
+_CHILD = """
+import sys
+import dryfriction.protocol as P
+from dryfriction.cli import main
+
+original = P.Protocol.run
+
+def run(self, progress=None, on_interrupt="raise"):
+    said = []
+
+    def tick(fraction):
+        if not said and fraction > 0.001:
+            said.append(1)
+            print("running", flush=True)
+        if progress is not None:
+            progress(fraction)
+
+    return original(self, progress=tick, on_interrupt=on_interrupt)
+
+P.Protocol.run = run
+main()
+"""
+
+
+def _start_long_run(tmp_path: Path) -> tuple[subprocess.Popen[str], Path]:
+    long = PROTO.replace("slip = 2.0", "slip = 5000.0").replace("snapshots = [5.0]\n", "")
     proto = _write(tmp_path, long)
     out = tmp_path / "res"
-    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
-    code = "from dryfriction.cli import main; main()"
-    proc = subprocess.Popen([sys.executable, "-c", code, "simulate", str(proto), "--out",
-                             str(out)], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    # wait until the run is under way (imports and compilation done), then interrupt
-    # (a second SIGINT is sent only if the first went unnoticed, e.g. during start-up; the
-    # generous wait keeps it from landing while a loaded machine writes the partial result)
-    deadline = time.monotonic() + 240
-    time.sleep(3.0)
-    while time.monotonic() < deadline and proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(timeout=60)
-        except subprocess.TimeoutExpired:
-            continue
-    assert proc.poll() is not None
-    leftovers = [p.name for p in tmp_path.iterdir() if p.name not in ("p.toml", "res")]
-    assert leftovers == []
-    if out.exists():
-        s = json.loads((out / "summary.json").read_text())
-        assert s["partial"] is True
-        rows = list(csv.DictReader((out / "timeseries.csv").open()))
-        assert len(rows) == s["samples"] >= 1
-        assert (out / "timeseries.png").stat().st_size > 0
-        assert proc.returncode == 130
-    else:
-        assert proc.returncode != 0
+    proc = subprocess.Popen([sys.executable, "-c", _CHILD, "simulate", str(proto), "--out",
+                             str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    line = proc.stdout.readline().strip()
+    assert line == "running", proc.communicate()[1]
+    return proc, out
+
+
+def test_ctrl_c_writes_a_complete_partial_result(tmp_path: Path) -> None:
+    proc, out = _start_long_run(tmp_path)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "partial result written" in err
+    s = json.loads((out / "summary.json").read_text())
+    assert s["partial"] is True
+    rows = list(csv.DictReader((out / "timeseries.csv").open()))
+    assert len(rows) == s["samples"] >= 2
+    assert float(rows[-1]["x"]) < 5000.0  # stopped early
+    assert (out / "timeseries.png").stat().st_size > 0
+    assert {p.name for p in tmp_path.iterdir()} == {"p.toml", "res"}
+
+
+def test_sigterm_writes_nothing_and_leaves_no_temporary(tmp_path: Path) -> None:
+    proc, out = _start_long_run(tmp_path)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 143, err
+    assert err.strip().splitlines()[-1] == "interrupted (SIGTERM)"
+    assert {p.name for p in tmp_path.iterdir()} == {"p.toml"}

@@ -37,7 +37,7 @@ def test_compare_own_program(tmp_path: Path) -> None:
     out = tmp_path / "cmp"
     r = runner.invoke(app, ["compare", str(f), "--out", str(out), "--json"])
     assert r.exit_code == 0, r.output
-    assert {p.name for p in out.iterdir()} == {"compare.json", "compare.png"}
+    assert {p.name for p in out.iterdir()} == {"compare.json", "compare.png", "dryfriction.json"}
     d = json.loads((out / "compare.json").read_text())
     assert d["calibration"] == "own program" and d["state_law"] == "ageing"
     # twin in friction-coefficient units (mu_el = 0.5): mu0 is the steady level at u0 (eq. 34)

@@ -298,7 +298,7 @@ def test_cli_fit_writes_fit_json_and_png(tmp_path: Path) -> None:
                             str(EXAMPLES / "synthetic_steady_paper.csv"), "--model", "cv",
                             "--out", str(out), "--no-profile"])
     assert r.exit_code == 0, r.output
-    assert sorted(p.name for p in out.iterdir()) == ["fit.json", "fit.png"]
+    assert sorted(p.name for p in out.iterdir()) == ["dryfriction.json", "fit.json", "fit.png"]
     got = json.loads((out / "fit.json").read_text())
     assert got["success"] and got["model"] == "cv" and got["options"]["alpha"] == 0.13
     assert set(got["parameters"]) == {"eps", "t0", "a0", "mu_el"}

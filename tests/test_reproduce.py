@@ -19,6 +19,7 @@ from dryfriction.dieterich import (
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
+from dryfriction.io import MANIFEST, output_directory
 from dryfriction.static import pull_force, static_friction, static_slope_per_eps, threshold_shift
 from dryfriction.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
 from dryfriction.trap import Trap
@@ -49,7 +50,7 @@ def test_every_file_is_written(run):
     out, _, _ = run
     names = {p.name for p in out.iterdir()}
     expected = set(figures.FIGURE_FILES) | set(figures.EXTRA_FILES) | set(figures.DATA_FILES)
-    assert names == expected
+    assert names == expected | {MANIFEST}
     for i in range(1, 7):
         assert f"fig{i}.png" in names
     for name in figures.FIGURE_FILES + figures.EXTRA_FILES:
@@ -250,14 +251,25 @@ def test_failure_midway_leaves_no_partial_folder(tmp_path, monkeypatch):
 
 def test_failure_midway_keeps_previous_results(tmp_path, monkeypatch):
     out = tmp_path / "results"
-    out.mkdir()
-    (out / "old.txt").write_text("previous run")
+    with output_directory(out, command="reproduce") as d:  # a previous result of ours
+        (d / "old.txt").write_text("previous run")
     monkeypatch.setattr(plotting, "fig6_dieterich",
                         lambda *a, **k: (_ for _ in ()).throw(RuntimeError("late failure")))
     with pytest.raises(RuntimeError):
         figures.reproduce(out)
     assert [p.name for p in tmp_path.iterdir()] == ["results"]
-    assert [p.name for p in out.iterdir()] == ["old.txt"]
+    assert {p.name for p in out.iterdir()} == {"old.txt", MANIFEST}
+    assert (out / "old.txt").read_text() == "previous run"
+
+
+def test_a_folder_of_someone_elses_files_is_refused_before_any_work(tmp_path, monkeypatch):
+    out = tmp_path / "results"
+    out.mkdir()
+    (out / "thesis.tex").write_text("years of work")
+    monkeypatch.setattr(figures, "compute_summary", lambda: pytest.fail("work started"))
+    with pytest.raises(ValueError, match=r"thesis\.tex.*--force"):
+        figures.reproduce(out)
+    assert [p.name for p in out.iterdir()] == ["thesis.tex"]
 
 
 # ---------------------------------------------------------------------------------- plotting

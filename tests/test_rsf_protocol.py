@@ -61,7 +61,7 @@ def test_kinematic_step_against_closed_forms(tmp_path: Path) -> None:
     r = runner.invoke(app, ["simulate", str(f), "--out", str(out), "--json"])
     assert r.exit_code == 0, r.output
     assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json",
-                                               "timeseries.png"}
+                                               "timeseries.png", "dryfriction.json"}
     rows = list(csv.DictReader((out / "timeseries.csv").open()))
     assert {"t", "x", "v", "mu", "theta"} <= set(rows[0])
     t = np.array([float(r_["t"]) for r_ in rows])

@@ -57,6 +57,15 @@ def cli_errors(fn: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
+_FORCE_HELP = ("Write into a folder that holds other files too: they are kept (one whose name "
+               "collides with a result is renamed NAME.~1~); nothing is deleted.")
+
+
+def say(line: str) -> None:
+    """One plain-text line on standard error (what was done to files already there)."""
+    err.print(line, markup=False, highlight=False, soft_wrap=True)
+
+
 def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
     """Print ``result`` as JSON (``--json``) or as a table."""
     if as_json:
@@ -197,7 +206,9 @@ def steady(
 @app.command(cls=_many())
 @cli_errors
 def reproduce(
-    out_dir: Annotated[Path, typer.Option("--out", help="Results folder (created or replaced).")],
+    out_dir: Annotated[Path, typer.Option("--out", help="Results folder: new, empty, or one "
+                                          "this program wrote before.")],
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ) -> None:
     """The paper's six figures, the data behind them, summary.json and report.html."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -205,7 +216,7 @@ def reproduce(
     from .figures import reproduce as run
     from .io import check_output_dir
 
-    check_output_dir(out_dir)  # fail on a bad --out before importing matplotlib
+    check_output_dir(out_dir, force=force)  # fail on a bad --out before importing matplotlib
     with Progress(
         TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
         TimeElapsedColumn(), console=err, disable=not err.is_terminal, transient=True,
@@ -215,7 +226,7 @@ def reproduce(
         def progress(done: int, total: int, what: str) -> None:
             bar.update(task, completed=done, total=total, description=what)
 
-        summary = run(out_dir, progress)
+        summary = run(out_dir, progress, force=force, report=say)
     out.print(
         f"wrote {out_dir}/: fig1-6.png, static_friction.csv, steady_friction.csv, "
         f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
@@ -250,7 +261,9 @@ def rsf(
                                  "stick-slip, since exact steady state never leaves)."),
     rtol: float = typer.Option(1e-7, help="Local error tolerance (relative in V and theta)."),
     out_dir: str = typer.Option(None, "--out", help="Write series.csv, summary.json and "
-                                "rsf.png into this folder (whole or not at all)."),
+                                "rsf.png into this folder (whole or not at all; new, empty, or "
+                                "written by this program before)."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
@@ -276,7 +289,7 @@ def rsf(
         if v_init is None:
             v_init = 1.01 * v1
     if out_dir is not None:
-        check_output_dir(out_dir)
+        check_output_dir(out_dir, force=force)
     start = time.perf_counter()
     try:
         theta_init = None if v_init is None else params.dc / v_init
@@ -299,7 +312,7 @@ def rsf(
     if params.n_state == 1 and not params.regularized and not math.isinf(stiffness):
         summary["k_c_per_m"] = params.critical_stiffness(max(v1, 1e-300), damping, mass)
     if out_dir is not None:
-        with output_directory(out_dir) as tmp:
+        with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
             write_csv(tmp / "series.csv", res.columns())
             write_json(tmp / "summary.json", {**summary, "params": params.to_dict(),
                                               "stiffness": stiffness, "damping": damping,
@@ -373,7 +386,8 @@ def fit_command(
                                                "(steady) or t,v_load,mu (time series); units "
                                                "in the header, e.g. V[um/s].")],
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: fit.json, fit.png "
-                                          "(written whole or not at all).")],
+                                          "(written whole or not at all; new, empty, or "
+                                          "written by this program before).")],
     model: str = typer.Option("cv", "--model", help="cv (trap model) or rsf (rate-and-state)."),
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness (cv), fixed."),
     creep: str = typer.Option("log", "--creep", help=_CREEP_HELP),
@@ -392,6 +406,7 @@ def fit_command(
     profile: bool = typer.Option(True, help="Profile-likelihood intervals and identifiability."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ) -> None:
     """Fit the trap model (cv) or rate-and-state (rsf) to measured friction; writes fit.json
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
@@ -402,7 +417,7 @@ def fit_command(
     from .validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))
-    check_output_dir(out_dir)
+    check_output_dir(out_dir, force=force, inputs=data)
     fixed: dict[str, float] = {}
     for item in fix or []:
         name, sep, value = item.partition("=")
@@ -430,7 +445,8 @@ def fit_command(
             report["comparison"] = compare_models([result, alt])
         except (ValueError, NotImplementedError) as exc:
             report["comparison"] = {"not_run": f"{other}: {exc}"}
-    with output_directory(out_dir) as tmp:
+    with output_directory(out_dir, command="fit", force=force, inputs=data,
+                          report=say) as tmp:
         write_json(tmp / "fit.json", report)
         plot_fit(result, datasets, tmp / "fit.png")
     if json_out:
@@ -461,8 +477,10 @@ def fit_command(
 @cli_errors
 def simulate(
     protocol: str = typer.Argument(..., help="Protocol file (TOML), see dryfriction.protocol."),
-    out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all)."),
+    out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all; "
+                            "new, empty, or written by this program before)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ) -> None:
     """Run a protocol (trap ensemble, spec §6, or rate-and-state with ``model.law = "rsf"``):
     timeseries.csv, summary.json, timeseries.png.
@@ -478,9 +496,9 @@ def simulate(
     from .protocol import RSFProtocol, load_protocol
 
     proto = load_protocol(protocol)  # every check before any work
-    check_output_dir(out)
+    check_output_dir(out, force=force, inputs=[protocol])
     if isinstance(proto, RSFProtocol):
-        _simulate_rsf_protocol(proto, protocol, out, json_out)
+        _simulate_rsf_protocol(proto, protocol, out, json_out, force)
         return
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -511,7 +529,8 @@ def simulate(
     matplotlib.use("Agg")
     from .plotting import timeseries_figure
 
-    with output_directory(out) as tmp:
+    with output_directory(out, command="simulate", force=force, inputs=[protocol],
+                          report=say) as tmp:
         write_csv(tmp / "timeseries.csv", result.to_dict())
         write_json(tmp / "summary.json", summary)
         fig, _ = timeseries_figure(result)
@@ -669,6 +688,7 @@ def compare(
     state_law: str = typer.Option("ageing", "--state-law", help="Twin's state law: ageing or "
                                   "slip."),
     json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ) -> None:
     """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
 
@@ -683,14 +703,15 @@ def compare(
 
     check_choice("state_law", state_law, ("ageing", "slip"))
     proto = load_protocol(protocol)
-    check_output_dir(out)
+    check_output_dir(out, force=force, inputs=[protocol])
     c = compare_protocol(proto, state_law)
     report = {"protocol": protocol, **c.to_dict()}
 
     import matplotlib
 
     matplotlib.use("Agg")
-    with output_directory(out) as tmp:
+    with output_directory(out, command="compare", force=force, inputs=[protocol],
+                          report=say) as tmp:
         write_json(tmp / "compare.json", report)
         fig = comparison_figure(c, Path(protocol).name)
         fig.savefig(tmp / "compare.png", dpi=120)
@@ -699,7 +720,8 @@ def compare(
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
 
 
-def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) -> None:
+def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
+                           force: bool) -> None:
     """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
     import time
     from pathlib import Path
@@ -750,7 +772,8 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) 
     matplotlib.use("Agg")
     from .plotting import rsf_timeseries_figure
 
-    with output_directory(out) as tmp:
+    with output_directory(out, command="simulate", force=force, inputs=[protocol],
+                          report=say) as tmp:
         write_csv(tmp / "timeseries.csv", cols)
         write_json(tmp / "summary.json", summary)
         fig, _ = rsf_timeseries_figure(res)
@@ -761,8 +784,41 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) 
 
 
 def main() -> None:
-    """Console-script entry point."""
-    app()
+    """Console-script entry point.
+
+    Ctrl-C and SIGTERM become exceptions, so every temporary file and folder is removed on the
+    way out (exit 130 and 143). An interrupt is never swallowed: one that a library swallowed
+    (raised inside a finaliser, say) still turns a finished run's exit 0 into 130.
+    """
+    import signal
+    import sys
+
+    interrupted: list[int] = []
+
+    def on_sigint(signum: int, frame: Any) -> None:
+        interrupted.append(signum)
+        raise KeyboardInterrupt
+
+    def on_sigterm(signum: int, frame: Any) -> None:
+        interrupted.append(signum)
+        raise SystemExit(128 + signum)
+
+    signal.signal(signal.SIGINT, on_sigint)
+    signal.signal(signal.SIGTERM, on_sigterm)
+    code: Any = 0
+    try:
+        app()
+    except SystemExit as exc:
+        code = exc.code
+    except KeyboardInterrupt:
+        code = 130
+    last = interrupted[-1] if interrupted else None
+    if last == signal.SIGTERM or (last == signal.SIGINT and code in (0, 1, None)):
+        # (click's Abort is exit 1; a command that handled Ctrl-C itself exits 130)
+        err.print(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})",
+                  highlight=False)
+        code = 128 + last
+    sys.exit(code)
 
 
 if __name__ == "__main__":

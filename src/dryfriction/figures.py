@@ -360,16 +360,22 @@ ln(1+T) between T = 1 and 100, divided by ε.</p>
 # --------------------------------------------------------------------------------------------
 
 
-def reproduce(out: str | Path, progress: Progress | None = None) -> dict[str, Any]:
+def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool = False,
+              report: Callable[[str], None] | None = None) -> dict[str, Any]:
     """Write the paper's figures, data, summary and report into ``out`` (whole or not at all).
 
     Parameters
     ----------
     out : path
-        Results folder; created, or replaced as a whole if it exists. An existing *file* or
-        an unwritable place raises ``ValueError`` before any work.
+        Results folder: new, empty, or holding a previous result of ours (replaced). A folder
+        holding anything else, an existing *file* or an unwritable place raises ``ValueError``
+        before any work (see :func:`dryfriction.io.output_directory`).
     progress : callable, optional
         ``progress(done, total, what)`` called after each step (the CLI's progress bar).
+    force : bool
+        Write beside other files in ``out`` (kept; see :func:`dryfriction.io.output_directory`).
+    report : callable, optional
+        ``report(line)`` for what was done to files already in ``out``.
 
     Returns
     -------
@@ -383,7 +389,7 @@ def reproduce(out: str | Path, progress: Progress | None = None) -> dict[str, An
         if progress is not None:
             progress(done, total, what)
 
-    with output_directory(out) as tmp:
+    with output_directory(out, command="reproduce", force=force, report=report) as tmp:
         done = 0
         write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"))
         done += 1
