@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
-from dryfriction.driving import Output, VelocityDrive, simulate
-from dryfriction.ensemble import Ensemble, Initial, Track, TrapModel
+from dryfriction.ensemble.driving import Output, VelocityDrive, simulate
+from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.program import VelocityProgram
 
 

@@ -25,8 +25,8 @@ import numpy as np  # noqa: E402
 
 from benchmarks.timing import best_time
 from dryfriction.program import Segment, VelocityProgram  # noqa: E402
-from dryfriction.rsf import RateState  # noqa: E402
-from dryfriction.rsf_driving import simulate_rsf  # noqa: E402
+from dryfriction.rsf.driving import simulate_rsf  # noqa: E402
+from dryfriction.rsf.law import RateState  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from rsf_reference import reference_run  # noqa: E402

@@ -10,8 +10,8 @@ from __future__ import annotations
 import tempfile
 import time
 
-from dryfriction.stability import critical_stiffness
-from dryfriction.sweep import parse_sweep, run_sweep
+from dryfriction.io.sweep import parse_sweep, run_sweep
+from dryfriction.theory.stability import critical_stiffness
 
 
 def heavy_point(protocol: dict) -> dict[str, float]:  # type: ignore[type-arg]

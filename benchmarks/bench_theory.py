@@ -19,9 +19,9 @@ from scipy.integrate import quad  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 
 from benchmarks.timing import best_time  # noqa: E402
-from dryfriction.static import static_friction  # noqa: E402
-from dryfriction.steady import steady_friction  # noqa: E402
-from dryfriction.trap import Trap, force_plus  # noqa: E402
+from dryfriction.theory.static import static_friction  # noqa: E402
+from dryfriction.theory.steady import steady_friction  # noqa: E402
+from dryfriction.theory.trap import Trap, force_plus  # noqa: E402
 
 EPS, ALPHA = 0.04, 0.13
 GRID = np.logspace(-4, 4, 1000)

@@ -1,4 +1,4 @@
-"""Continuation in K near K_c, down then up (dryfriction.stickslip.bifurcation_scan).
+"""Continuation in K near K_c, down then up (dryfriction.analysis.stickslip.bifurcation_scan).
 
 Usage: python examples/bifurcation_scan.py U MASS DAMPING TRAPS_PER_A0 FACTORS [TRAVEL]
 e.g.   python examples/bifurcation_scan.py 0.1 0 0 100 1.3,1.2,1.1,1.05,1.0,0.95,0.9,0.8,0.6 60
@@ -9,8 +9,8 @@ each stiffness's load-point travel TRAVEL, in a0, is analysed.)
 import sys
 import time
 
-from dryfriction.stability import critical_stiffness
-from dryfriction.stickslip import bifurcation_scan
+from dryfriction.analysis.stickslip import bifurcation_scan
+from dryfriction.theory.stability import critical_stiffness
 
 u, M, eta, n = (float(a) for a in sys.argv[1:5])
 factors = [float(a) for a in sys.argv[5].split(",")]

@@ -2,7 +2,7 @@
 
 Written from the equations (Dieterich 1979; Ruina 1983; Rice 1993 radiation damping) in
 *linear* variables ``(V, theta_i[, tau])`` with SciPy's explicit DOP853 at a tight tolerance;
-it shares no code with :mod:`dryfriction.rsf_driving` (which uses log variables, its own
+it shares no code with :mod:`dryfriction.rsf.driving` (which uses log variables, its own
 Rosenbrock method and the exact Jacobian).
 """
 

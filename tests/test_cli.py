@@ -10,8 +10,8 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
-from dryfriction.static import static_friction
-from dryfriction.steady import steady_friction
+from dryfriction.theory.static import static_friction
+from dryfriction.theory.steady import steady_friction
 
 runner = CliRunner()
 

@@ -139,7 +139,7 @@ def test_missing_file(tmp_path: Path) -> None:
 # end. Each test then has one outcome to check, not two.
 _CHILD = """
 import sys
-import dryfriction.protocol as P
+import dryfriction.io.protocol as P
 from dryfriction.cli import main
 
 original = P.Protocol.run

@@ -9,7 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
-from dryfriction.steady import steady_friction
+from dryfriction.theory.steady import steady_friction
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

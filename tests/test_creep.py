@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from dryfriction.creep import (
+from dryfriction.theory.creep import (
     CreepMaterial,
     EyringNabarroCreep,
     LogCreep,

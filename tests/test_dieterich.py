@@ -4,15 +4,15 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from dryfriction.dieterich import (
+from dryfriction.theory.dieterich import (
     dieterich_constant_asymptotic,
     dieterich_constant_least_squares,
     dieterich_constant_local,
     forward_moment,
 )
-from dryfriction.static import static_friction
-from dryfriction.steady import steady_friction, steady_friction_first_order
-from dryfriction.trap import Trap, force_forward
+from dryfriction.theory.static import static_friction
+from dryfriction.theory.steady import steady_friction, steady_friction_first_order
+from dryfriction.theory.trap import Trap, force_forward
 
 
 @pytest.mark.parametrize("alpha", [0.05, 0.13, 0.4, 0.8])

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from dryfriction.driving import (
+from dryfriction.ensemble.driving import (
     ForceDrive,
     Output,
     SimulationResult,
@@ -21,11 +21,11 @@ from dryfriction.driving import (
     VelocityDrive,
     simulate,
 )
-from dryfriction.ensemble import Initial, Track, TrapModel
+from dryfriction.ensemble.population import Initial, Track, TrapModel
 from dryfriction.program import VelocityProgram
-from dryfriction.static import static_friction
-from dryfriction.steady import steady_death_point, steady_friction
-from dryfriction.trap import Trap
+from dryfriction.theory.static import static_friction
+from dryfriction.theory.steady import steady_death_point, steady_friction
+from dryfriction.theory.trap import Trap
 
 EPS = 0.04
 YC = Trap(0.13).y_c

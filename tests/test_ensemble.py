@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dryfriction import ensemble as ens_mod
-from dryfriction.ensemble import (
+from dryfriction.ensemble import population as ens_mod
+from dryfriction.ensemble.population import (
     MINUS,
     PLUS,
     Ensemble,
@@ -14,9 +14,9 @@ from dryfriction.ensemble import (
     Track,
     TrapModel,
 )
-from dryfriction.static import fresh_force, loaded_edge
-from dryfriction.steady import steady_death_point, steady_friction
-from dryfriction.trap import Trap
+from dryfriction.theory.static import fresh_force, loaded_edge
+from dryfriction.theory.steady import steady_death_point, steady_friction
+from dryfriction.theory.trap import Trap
 
 
 def _sum_force(snap: dict[str, np.ndarray], lam: float, alpha: float) -> float:

@@ -13,9 +13,9 @@ from typer.testing import CliRunner
 
 from dryfriction import RateState, Segment, simulate_rsf
 from dryfriction.cli import app
-from dryfriction.data import SeriesData, StaticData, SteadyData
 from dryfriction.fit import CVModel, compare_models, fit, fit_joint, fit_static, fit_steady
-from dryfriction.units import PhysicalScales, static_friction_si, steady_friction_si
+from dryfriction.io.data import SeriesData, StaticData, SteadyData
+from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples" / "data"
 TRUE = PhysicalScales(a0=1e-6, t0=1.0, mu_el=0.4)

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-import dryfriction.io as dio
-from dryfriction.io import (
+import dryfriction.io.files as dio
+from dryfriction.io.files import (
     MANIFEST,
     atomic_write_text,
     check_output_dir,
@@ -256,7 +256,7 @@ def test_sigterm_removes_the_temporary_folder(tmp_path):
     code = (
         "import sys, time\n"
         "from dryfriction.cli import app, main\n"
-        "from dryfriction.io import output_directory\n"
+        "from dryfriction.io.files import output_directory\n"
         "@app.command('slow-test-writer')\n"
         "def w(out: str) -> None:\n"
         "    with output_directory(out) as d:\n"
@@ -305,7 +305,7 @@ def test_an_interrupt_swallowed_by_a_library_still_fails_the_run(monkeypatch):
 def test_sigkill_leaves_a_temporary_that_the_next_run_removes(tmp_path):
     code = (
         "import time\n"
-        "from dryfriction.io import output_directory\n"
+        "from dryfriction.io.files import output_directory\n"
         f"with output_directory({str(tmp_path / 'res')!r}) as d:\n"
         "    (d / 'a').write_text('1')\n"
         "    print('staged', flush=True)\n"

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from dryfriction.driving import ForceDrive, SpringDrive, VelocityDrive
-from dryfriction.protocol import RSFProtocol, load_protocol, parse_protocol
+from dryfriction.ensemble.driving import ForceDrive, SpringDrive, VelocityDrive
+from dryfriction.io.protocol import RSFProtocol, load_protocol, parse_protocol
 
 # sweep protocols ([sweep] table) are checked point by point in test_stickslip.py
 EXAMPLES = sorted(p for p in (Path(__file__).parent.parent / "examples").glob("*.toml")
@@ -157,6 +157,6 @@ def test_unreadable_file(tmp_path: Path) -> None:
 def test_protocol_from_dict_matches_text() -> None:
     import tomllib
 
-    from dryfriction.protocol import protocol_from_dict
+    from dryfriction.io.protocol import protocol_from_dict
 
     assert protocol_from_dict(tomllib.loads(GOOD), "good.toml") == parse_protocol(GOOD, "good.toml")

@@ -13,16 +13,22 @@ import pytest
 from matplotlib.figure import Figure
 from scipy.integrate import quad
 
-from dryfriction import figures, plotting
-from dryfriction.dieterich import (
+from dryfriction.io.files import MANIFEST, output_directory
+from dryfriction.plots import paper as plotting
+from dryfriction.plots import report as figures
+from dryfriction.theory.dieterich import (
     dieterich_constant_asymptotic,
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
-from dryfriction.io import MANIFEST, output_directory
-from dryfriction.static import pull_force, static_friction, static_slope_per_eps, threshold_shift
-from dryfriction.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
-from dryfriction.trap import Trap
+from dryfriction.theory.static import (
+    pull_force,
+    static_friction,
+    static_slope_per_eps,
+    threshold_shift,
+)
+from dryfriction.theory.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
+from dryfriction.theory.trap import Trap
 
 ALPHA = 0.13
 EPS = (0.01, 0.02, 0.03, 0.04, 0.05)

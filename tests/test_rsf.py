@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from dryfriction.program import Segment, VelocityProgram
-from dryfriction.rsf import RateState
-from dryfriction.rsf_driving import SolverError, linear_stability, simulate_rsf
+from dryfriction.rsf.driving import SolverError, linear_stability, simulate_rsf
+from dryfriction.rsf.law import RateState
 from rsf_reference import reference_run
 
 A, B, DC, MU0, V0 = 0.005, 0.01, 1e-5, 0.6, 1e-6

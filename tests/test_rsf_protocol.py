@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
-from dryfriction.protocol import Protocol, RSFProtocol, load_protocol, parse_protocol
+from dryfriction.io.protocol import Protocol, RSFProtocol, load_protocol, parse_protocol
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

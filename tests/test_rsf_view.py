@@ -9,14 +9,14 @@ import math
 import numpy as np
 import pytest
 
-from dryfriction.creep import radius
-from dryfriction.io import to_jsonable
+from dryfriction.analysis.rsf_view import rsf_twin_series, transient_shape, trap_model_as_rsf
+from dryfriction.io.files import to_jsonable
 from dryfriction.program import Segment, VelocityProgram
-from dryfriction.rsf import RateState
-from dryfriction.rsf_view import rsf_twin_series, transient_shape, trap_model_as_rsf
-from dryfriction.stability import effective_rsf
-from dryfriction.steady import steady_friction
-from dryfriction.trap import Trap
+from dryfriction.rsf.law import RateState
+from dryfriction.theory.creep import radius
+from dryfriction.theory.stability import effective_rsf
+from dryfriction.theory.steady import steady_friction
+from dryfriction.theory.trap import Trap
 
 EPS, ALPHA, U0 = 0.04, 0.13, 0.1
 

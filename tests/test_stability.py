@@ -4,15 +4,15 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from dryfriction.creep import LogCreep
-from dryfriction.stability import (
+from dryfriction.theory.creep import LogCreep
+from dryfriction.theory.stability import (
     critical_stiffness,
     rightmost_root,
     shift_stiffness,
     steady_response,
 )
-from dryfriction.steady import steady_death_point, steady_friction
-from dryfriction.trap import Trap, force_forward
+from dryfriction.theory.steady import steady_death_point, steady_friction
+from dryfriction.theory.trap import Trap, force_forward
 
 
 @pytest.mark.parametrize("alpha, creep", [(0.13, "log"), (0.05, "log"), (0.13, "eyring-nabarro"),
@@ -131,7 +131,7 @@ def test_cli_stability_json_matches_library():
 
 @pytest.mark.parametrize("u", [0.01, 1.0])
 def test_effective_rsf_from_moments(u):
-    from dryfriction.stability import effective_rsf
+    from dryfriction.theory.stability import effective_rsf
 
     eps = 0.04
     p = effective_rsf(u, eps)
@@ -154,8 +154,8 @@ def test_effective_rsf_from_moments(u):
 def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
     # two independent routes: the numerical crossing search used for the trap model, fed with
     # rate-and-state's linear response, against the closed form (Rice & Ruina 1983)
-    from dryfriction.rsf import RateState
-    from dryfriction.stability import nyquist_crossings, rsf_stability_prediction
+    from dryfriction.rsf.law import RateState
+    from dryfriction.theory.stability import nyquist_crossings, rsf_stability_prediction
 
     u = 0.1
     p = rsf_stability_prediction(u, 0.04, mass=mass, damping=damping)

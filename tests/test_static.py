@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dryfriction.static import (
+from dryfriction.theory.static import (
     fresh_force,
     loaded_edge,
     pull_force,
@@ -17,7 +17,7 @@ from dryfriction.static import (
     static_slope_per_eps,
     threshold_shift,
 )
-from dryfriction.trap import ALPHA0, Trap
+from dryfriction.theory.trap import ALPHA0, Trap
 from reference import ref_pull_force, ref_static_eq27
 
 rng = np.random.default_rng(20261122)

@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dryfriction.steady import (
+from dryfriction.theory.steady import (
     DYNAMIC_SLOPE_PER_EPS,
     low_velocity_constant,
     steady_death_point,
@@ -14,7 +14,7 @@ from dryfriction.steady import (
     steady_friction_low_velocity,
     steady_profile,
 )
-from dryfriction.trap import ALPHA0, Trap
+from dryfriction.theory.trap import ALPHA0, Trap
 from reference import ref_steady
 
 rng = np.random.default_rng(7)
@@ -131,7 +131,7 @@ def test_bad_input(kwargs, name):
 
 def test_continuity_across_alpha0():
     # the regime changes at alpha0 (jump out of contact vs onto the far side): results do not
-    from dryfriction.static import static_friction
+    from dryfriction.theory.static import static_friction
 
     lo, hi = ALPHA0 * (1 - 1e-9), ALPHA0 * (1 + 1e-9)
     u = np.logspace(-3, 3, 7)

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from dryfriction.analysis.stickslip import analyse, bifurcation_scan, linear_check
 from dryfriction.cli import app
-from dryfriction.ensemble import Ensemble, Initial, Track, TrapModel
-from dryfriction.stability import critical_stiffness
-from dryfriction.stickslip import analyse, bifurcation_scan, linear_check
-from dryfriction.sweep import MAX_POINTS, load_sweep
+from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
+from dryfriction.io.sweep import MAX_POINTS, load_sweep
+from dryfriction.theory.stability import critical_stiffness
 
 runner = CliRunner()
 
@@ -271,7 +271,7 @@ def test_sweep_unknown_stickslip_key_and_unreachable_scheduler(tmp_path):
 
 def test_continue_spring_keeps_the_state_between_runs():
     """Two successive continuations equal one run of the summed travel (same ensemble)."""
-    from dryfriction.driving import Output, SpringDrive, continue_spring
+    from dryfriction.ensemble.driving import Output, SpringDrive, continue_spring
     from dryfriction.program import Segment, VelocityProgram
 
     def fresh():

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 import sweep_runners
-from dryfriction.stability import critical_stiffness, linear_summary
-from dryfriction.sweep import MAX_POINTS, load_sweep, parse_sweep, run_sweep
+from dryfriction.io.sweep import MAX_POINTS, load_sweep, parse_sweep, run_sweep
+from dryfriction.theory.stability import critical_stiffness, linear_summary
 
 cloudpickle.register_pickle_by_value(sweep_runners)
 
@@ -66,7 +66,7 @@ def test_killed_sweep_resumes_without_recomputing(tmp_path):
         sys.path.insert(0, {str(Path(__file__).parent)!r})
         import sweep_runners
         cloudpickle.register_pickle_by_value(sweep_runners)
-        from dryfriction.sweep import parse_sweep, run_sweep
+        from dryfriction.io.sweep import parse_sweep, run_sweep
         proto = {json.dumps(_proto(markers, sleep=0.4))}
         if __name__ == "__main__":
             run_sweep(parse_sweep(proto), sweep_runners.counting_runner, {str(out)!r},

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-from dryfriction.trap import (
+from dryfriction.theory.trap import (
     ALPHA0,
     Regime,
     Trap,
@@ -136,7 +136,7 @@ def test_continuity_across_alpha0():
 
 
 def test_contact_stiffness_is_slope_of_fresh_force():
-    from dryfriction.static import fresh_force
+    from dryfriction.theory.static import fresh_force
 
     for alpha in (0.13, 0.4):
         h = 1e-7

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from dryfriction.static import static_friction
-from dryfriction.steady import steady_friction
-from dryfriction.units import PhysicalScales, static_friction_si, steady_friction_si
+from dryfriction.theory.static import static_friction
+from dryfriction.theory.steady import steady_friction
+from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 
 
 def test_scales_and_conversions():

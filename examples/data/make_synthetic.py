@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from dryfriction import PhysicalScales, RateState, Segment, simulate_rsf
-from dryfriction.units import static_friction_si, steady_friction_si
+from dryfriction.theory.units import static_friction_si, steady_friction_si
 
 SEED = 20240601
 HERE = Path(__file__).parent

@@ -1,59 +1,79 @@
 """dryfriction: the Caroli-Velicky elasto-plastic model of dry friction.
 
 Reduced units throughout the core: lengths in ``a0``, times in ``t0``, forces in ``F_el``
-(eq. 12). :mod:`dryfriction.units` converts from SI.
+(eq. 12). :mod:`dryfriction.theory.units` converts from SI.
+
+The package is layered, each layer importing only those below it::
+
+    cli/        the command line
+    plots/      every figure (the only matplotlib user)
+    analysis/   stick-slip, the trap model seen through rate-and-state
+    fit/        models, statistics, the fitting engine
+    io/         files, protocol files (the only parser), measured data, sweeps
+    ensemble/   the trap population and its drives      rsf/  rate-and-state laws and solver
+    theory/     the model's equations
+    program.py, validation.py
+
+The names below are loaded on first use, so ``import dryfriction`` is cheap.
 """
 
-from .creep import CreepMaterial, EyringNabarroCreep, LogCreep, creep_law
-from .dieterich import (
-    dieterich_constant_asymptotic,
-    dieterich_constant_least_squares,
-    dieterich_constant_local,
-)
-from .program import Segment, VelocityProgram
-from .rsf import RateState
-from .rsf_driving import RSFResult, SolverError, simulate_rsf
-from .rsf_driving import linear_stability as rsf_linear_stability
-from .static import loaded_edge, pull_force, static_friction, static_friction_first_order
-from .steady import (
-    steady_friction,
-    steady_friction_first_order,
-    steady_friction_low_velocity,
-    steady_profile,
-)
-from .trap import ALPHA0, Regime, Trap, regime
-from .units import PhysicalScales, static_friction_si, steady_friction_si
+from __future__ import annotations
 
-__all__ = [
-    "ALPHA0",
-    "Regime",
-    "Trap",
-    "regime",
-    "LogCreep",
-    "EyringNabarroCreep",
-    "CreepMaterial",
-    "creep_law",
-    "Segment",
-    "VelocityProgram",
-    "RateState",
-    "RSFResult",
-    "SolverError",
-    "simulate_rsf",
-    "rsf_linear_stability",
-    "static_friction",
-    "static_friction_first_order",
-    "loaded_edge",
-    "pull_force",
-    "steady_friction",
-    "steady_friction_first_order",
-    "steady_friction_low_velocity",
-    "steady_profile",
-    "dieterich_constant_asymptotic",
-    "dieterich_constant_least_squares",
-    "dieterich_constant_local",
-    "PhysicalScales",
-    "static_friction_si",
-    "steady_friction_si",
-]
+import importlib
+import sys
+from typing import Any
+
+from ._compat import MovedModuleFinder
 
 __version__ = "0.1.0"
+
+_PUBLIC: dict[str, str] = {
+    # theory
+    "ALPHA0": "theory.trap", "Regime": "theory.trap", "Trap": "theory.trap",
+    "regime": "theory.trap",
+    "LogCreep": "theory.creep", "EyringNabarroCreep": "theory.creep",
+    "CreepMaterial": "theory.creep", "creep_law": "theory.creep",
+    "static_friction": "theory.static", "static_friction_first_order": "theory.static",
+    "loaded_edge": "theory.static", "pull_force": "theory.static",
+    "steady_friction": "theory.steady", "steady_friction_first_order": "theory.steady",
+    "steady_friction_low_velocity": "theory.steady", "steady_profile": "theory.steady",
+    "dieterich_constant_asymptotic": "theory.dieterich",
+    "dieterich_constant_least_squares": "theory.dieterich",
+    "dieterich_constant_local": "theory.dieterich",
+    "critical_stiffness": "theory.stability",
+    "PhysicalScales": "theory.units", "static_friction_si": "theory.units",
+    "steady_friction_si": "theory.units",
+    # programs
+    "Segment": "program", "VelocityProgram": "program",
+    # simulators
+    "simulate": "ensemble.driving",
+    "RateState": "rsf.law",
+    "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
+    # files, fitting
+    "load_protocol": "io.protocol", "read_csv": "io.data",
+    "fit": "fit",
+}
+_RENAMED = {"rsf_linear_stability": ("rsf.driving", "linear_stability")}
+
+__all__ = sorted([*_PUBLIC, *_RENAMED, "__version__"])
+
+
+def __getattr__(name: str) -> Any:
+    if name in _PUBLIC:
+        module = importlib.import_module(f".{_PUBLIC[name]}", __name__)
+        value = module if name == "fit" else getattr(module, name)
+    elif name in _RENAMED:
+        where, attr = _RENAMED[name]
+        value = getattr(importlib.import_module(f".{where}", __name__), attr)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return __all__
+
+
+if not any(isinstance(f, MovedModuleFinder) for f in sys.meta_path):
+    sys.meta_path.append(MovedModuleFinder())

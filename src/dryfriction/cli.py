@@ -18,7 +18,7 @@ import typer.core
 from rich.console import Console
 from rich.table import Table
 
-from .io import to_jsonable
+from .io.files import to_jsonable
 
 app = typer.Typer(
     add_completion=False,
@@ -84,7 +84,7 @@ def trap(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """All single-trap constants and the pinning regime (spec §1)."""
-    from .trap import Trap
+    from .theory.trap import Trap
 
     emit(Trap(alpha).summary(), json_out, f"trap, alpha = {alpha:g}")
 
@@ -171,7 +171,7 @@ def static(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading)."""
-    from .static import static_friction
+    from .theory.static import static_friction
 
     mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
     params = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
@@ -193,7 +193,7 @@ def steady(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Steady dynamic friction mu_d = F_d/F_el at reduced velocity u = V/V* (eq. 34)."""
-    from .steady import steady_friction
+    from .theory.steady import steady_friction
 
     mu = steady_friction(np.asarray(u, float), eps, alpha, creep)
     params = {"eps": eps, "alpha": alpha, "creep": creep}
@@ -213,8 +213,8 @@ def reproduce(
     """The paper's six figures, the data behind them, summary.json and report.html."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from .figures import reproduce as run
-    from .io import check_output_dir
+    from .io.files import check_output_dir
+    from .plots.report import reproduce as run
 
     check_output_dir(out_dir, force=force)  # fail on a bad --out before importing matplotlib
     with Progress(
@@ -271,10 +271,10 @@ def rsf(
     import math
     import time
 
-    from .io import check_output_dir, output_directory, write_csv, write_json
+    from .io.files import check_output_dir, output_directory, write_csv, write_json
     from .program import Segment
-    from .rsf import RateState
-    from .rsf_driving import SolverError, simulate_rsf
+    from .rsf.driving import SolverError, simulate_rsf
+    from .rsf.law import RateState
     from .validation import check_choice
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
@@ -357,7 +357,7 @@ def stability(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
-    from .stability import critical_stiffness, rsf_stability_prediction
+    from .theory.stability import critical_stiffness, rsf_stability_prediction
     from .validation import check_range
 
     check_range("u", u, 0.0, lo_open=True)
@@ -411,9 +411,9 @@ def fit_command(
     """Fit the trap model (cv) or rate-and-state (rsf) to measured friction; writes fit.json
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
     fit.png (data, fitted curve, residuals)."""
-    from .data import read_csv
     from .fit import compare_models, fit, plot_fit
-    from .io import check_output_dir, output_directory, write_json
+    from .io.data import read_csv
+    from .io.files import check_output_dir, output_directory, write_json
     from .validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))
@@ -492,8 +492,8 @@ def simulate(
     import time
     from pathlib import Path
 
-    from .io import check_output_dir, output_directory, write_csv, write_json
-    from .protocol import RSFProtocol, load_protocol
+    from .io.files import check_output_dir, output_directory, write_csv, write_json
+    from .io.protocol import RSFProtocol, load_protocol
 
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out, force=force, inputs=[protocol])
@@ -527,7 +527,7 @@ def simulate(
     import matplotlib
 
     matplotlib.use("Agg")
-    from .plotting import timeseries_figure
+    from .plots.paper import timeseries_figure
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
@@ -554,9 +554,9 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
     """Parse a sweep protocol and check every grid point before any worker starts."""
     import tomllib
 
-    from .io import check_output_dir
-    from .protocol import protocol_from_dict
-    from .sweep import MAX_POINTS, parse_sweep
+    from .io.files import check_output_dir
+    from .io.protocol import protocol_from_dict
+    from .io.sweep import MAX_POINTS, parse_sweep
 
     path = Path(protocol)
     try:
@@ -576,7 +576,7 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
         where = f"{path} (point {', '.join(f'{k} = {v}' for k, v in ov.items())})"
         protocol_from_dict(point, where)
     stick = spec.base.get("stickslip", {})
-    from .stickslip import _ANALYSIS_KEYS
+    from .analysis.stickslip import _ANALYSIS_KEYS
 
     unknown = sorted(set(stick) - set(_ANALYSIS_KEYS)) if isinstance(stick, dict) else ["?"]
     if unknown:
@@ -596,7 +596,7 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
         TimeElapsedColumn,
     )
 
-    from .sweep import run_sweep
+    from .io.sweep import run_sweep
 
     with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                   console=err, disable=not err.is_terminal, transient=True) as bar:
@@ -627,8 +627,8 @@ def sweep(
 ) -> None:
     """Run a parameter grid on Dask: stick-slip summaries (default) or linear stability,
     written to OUT/sweep.nc. Re-running the same command resumes."""
-    from .stability import linear_summary
-    from .stickslip import stick_slip_summary
+    from .analysis.stickslip import stick_slip_summary
+    from .theory.stability import linear_summary
 
     spec = _prepare_sweep(protocol, out_dir, yes, workers)
     runner = linear_summary if linear else stick_slip_summary
@@ -652,8 +652,8 @@ def phase_diagram(
     """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line."""
     import io as _io
 
-    from .io import atomic_write_bytes
-    from .stickslip import CLASSES, phase_axes, phase_diagram_figure, stick_slip_summary
+    from .analysis.stickslip import CLASSES, phase_axes, phase_diagram_figure, stick_slip_summary
+    from .io.files import atomic_write_bytes
 
     spec = _prepare_sweep(protocol, out_dir, yes, workers)
     k_key, v_key = phase_axes(spec)  # before any worker starts
@@ -696,9 +696,9 @@ def compare(
     and never holds, otherwise taken from the standard calibration (velocity steps and
     slide-hold-slide at the first sliding velocity). Reduced units.
     """
-    from .io import check_output_dir, output_directory, write_json
-    from .protocol import load_protocol
-    from .rsf_view import compare_protocol, comparison_figure
+    from .analysis.rsf_view import compare_protocol, comparison_figure
+    from .io.files import check_output_dir, output_directory, write_json
+    from .io.protocol import load_protocol
     from .validation import check_choice
 
     check_choice("state_law", state_law, ("ageing", "slip"))
@@ -726,7 +726,7 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     import time
     from pathlib import Path
 
-    from .io import output_directory, write_csv, write_json
+    from .io.files import output_directory, write_csv, write_json
 
     start = time.perf_counter()
     res = proto.run()
@@ -770,7 +770,7 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     import matplotlib
 
     matplotlib.use("Agg")
-    from .plotting import rsf_timeseries_figure
+    from .plots.paper import rsf_timeseries_figure
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:

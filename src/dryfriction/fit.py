@@ -59,15 +59,15 @@ from numpy.typing import NDArray
 from scipy import stats
 from scipy.optimize import least_squares
 
-from .data import Dataset, SeriesData, StaticData, SteadyData
-from .dieterich import dieterich_constant_asymptotic
+from .io.data import Dataset, SeriesData, StaticData, SteadyData
 from .program import Segment
-from .rsf import STATE_LAWS, RateState
-from .rsf_driving import SolverError, simulate_rsf
-from .static import static_friction_first_order
-from .steady import steady_friction_first_order
-from .trap import Trap
-from .units import PhysicalScales, static_friction_si, steady_friction_si
+from .rsf.driving import SolverError, simulate_rsf
+from .rsf.law import STATE_LAWS, RateState
+from .theory.dieterich import dieterich_constant_asymptotic
+from .theory.static import static_friction_first_order
+from .theory.steady import steady_friction_first_order
+from .theory.trap import Trap
+from .theory.units import PhysicalScales, static_friction_si, steady_friction_si
 from .validation import check_choice, check_scalar
 
 __all__ = [
@@ -171,8 +171,8 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
     ndarray
         Friction coefficient ``F/W`` at ``data.t``.
     """
-    from .driving import Output, VelocityDrive, simulate
-    from .ensemble import Initial, Track, TrapModel
+    from .ensemble.driving import Output, VelocityDrive, simulate
+    from .ensemble.population import Initial, Track, TrapModel
 
     sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
     dur, vel = data.segments()
@@ -1339,7 +1339,7 @@ def plot_fit(result: FitResult, datasets: Sequence[Dataset], path: Any) -> None:
     """``fit.png``: each data set with the fitted curve (top) and the residuals (bottom)."""
     from matplotlib.figure import Figure
 
-    from .plotting import save_png
+    from .plots.paper import save_png
 
     k = len(datasets)
     fig = Figure(figsize=(4.6 * k, 5.6), layout="constrained")

@@ -48,9 +48,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from .ensemble import Ensemble, Initial, Observables, Track, TrapModel
-from .program import VelocityProgram
-from .validation import check_choice, check_range, check_scalar
+from ..program import VelocityProgram
+from ..validation import check_choice, check_range, check_scalar
+from .population import Ensemble, Initial, Observables, Track, TrapModel
 
 __all__ = [
     "VelocityDrive",

@@ -49,10 +49,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
+from ..validation import check_choice, check_scalar
 from .creep import CREEP_LAWS, CreepLaw, creep_law
 from .steady import _death_clock
 from .trap import Trap, force_minus, force_plus
-from .validation import check_choice, check_scalar
 
 __all__ = [
     "SteadyResponse",
@@ -396,7 +396,7 @@ def rsf_stability_prediction(
     two differ wherever the model's fast response (negative forward stiffness, delay at the
     spinodal edge) matters.
     """
-    from .rsf import RateState
+    from ..rsf.law import RateState
 
     p = effective_rsf(u, eps, alpha, creep)
     twin = RateState(a=p["a"], b=p["b"], dc=p["dc"], mu0=1.0, v0=u)

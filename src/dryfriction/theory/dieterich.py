@@ -18,11 +18,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize_scalar
 
+from ..validation import check_choice, check_range, check_scalar
 from .creep import CREEP_LAWS, per_eps
 from .static import static_friction, static_friction_at_radius, static_slope_per_eps
 from .steady import steady_friction
 from .trap import Trap, z_plus
-from .validation import check_choice, check_range, check_scalar
 
 __all__ = [
     "forward_moment",

@@ -69,7 +69,7 @@ from typing import Any
 
 import numpy as np
 
-from .driving import (
+from ..ensemble.driving import (
     Drive,
     ForceDrive,
     Output,
@@ -78,10 +78,10 @@ from .driving import (
     VelocityDrive,
     simulate,
 )
-from .ensemble import Initial, Track, TrapModel
-from .program import Segment, VelocityProgram
-from .rsf import RateState
-from .rsf_driving import RSFResult, SolverError, simulate_rsf
+from ..ensemble.population import Initial, Track, TrapModel
+from ..program import Segment, VelocityProgram
+from ..rsf.driving import RSFResult, SolverError, simulate_rsf
+from ..rsf.law import RateState
 
 __all__ = ["Protocol", "RSFProtocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
 

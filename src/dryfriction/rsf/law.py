@@ -45,7 +45,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .validation import check_choice, check_range, check_scalar
+from ..validation import check_choice, check_range, check_scalar
 
 __all__ = ["RateState", "STATE_LAWS"]
 

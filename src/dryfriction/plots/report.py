@@ -25,27 +25,27 @@ from typing import Any
 
 import numpy as np
 
-from . import plotting
-from .creep import creep_law_difference, radius
-from .dieterich import (
+from ..io.files import atomic_write_text, output_directory, to_jsonable, write_csv, write_json
+from ..theory.creep import creep_law_difference, radius
+from ..theory.dieterich import (
     dieterich_constant_asymptotic,
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
-from .io import atomic_write_text, output_directory, to_jsonable, write_csv, write_json
-from .static import (
+from ..theory.static import (
     loaded_edge,
     pull_force,
     static_friction,
     static_slope_per_eps,
     threshold_shift,
 )
-from .steady import (
+from ..theory.steady import (
     DYNAMIC_SLOPE_PER_EPS,
     steady_death_point,
     steady_friction,
 )
-from .trap import Trap
+from ..theory.trap import Trap
+from . import paper as plotting
 
 __all__ = ["reproduce", "FIGURE_FILES", "EXTRA_FILES", "DATA_FILES", "GRID"]
 

@@ -31,7 +31,7 @@ from typing import Literal, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .validation import check_choice, check_range, check_scalar
+from ..validation import check_choice, check_range, check_scalar
 
 __all__ = [
     "CreepLaw",

@@ -42,9 +42,9 @@ import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .program import Segment, VelocityProgram
-from .rsf import RateState
-from .validation import check_range, check_scalar
+from ..program import Segment, VelocityProgram
+from ..validation import check_range, check_scalar
+from .law import RateState
 
 __all__ = ["RSFResult", "SolverError", "simulate_rsf", "linear_stability"]
 

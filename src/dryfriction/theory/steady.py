@@ -24,9 +24,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import quad
 
+from ..validation import check_choice, check_range, check_scalar
 from .creep import CREEP_LAWS, CreepLaw, per_eps
 from .trap import Trap, force_forward, force_minus, force_plus
-from .validation import check_choice, check_range, check_scalar
 
 __all__ = [
     "steady_friction",

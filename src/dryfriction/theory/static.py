@@ -39,9 +39,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
+from ..validation import check_choice, check_range, check_scalar
 from .creep import CREEP_LAWS, radius
 from .trap import Trap, force_forward, work_forward, work_minus
-from .validation import check_choice, check_range, check_scalar
 
 __all__ = [
     "loaded_edge",

@@ -23,20 +23,25 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import ScalarFormatter
 from numpy.typing import NDArray
 
-from .creep import radius
-from .dieterich import (
+from ..theory.creep import radius
+from ..theory.dieterich import (
     dieterich_constant_asymptotic,
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
-from .static import pull_force, static_friction, static_friction_first_order, threshold_shift
-from .steady import (
+from ..theory.static import (
+    pull_force,
+    static_friction,
+    static_friction_first_order,
+    threshold_shift,
+)
+from ..theory.steady import (
     steady_death_point,
     steady_friction,
     steady_friction_low_velocity,
     steady_profile,
 )
-from .trap import Trap, force_minus, force_plus, z_unstable
+from ..theory.trap import Trap, force_minus, force_plus, z_unstable
 
 __all__ = [
     "EPS_FIGURES",

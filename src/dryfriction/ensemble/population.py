@@ -54,10 +54,10 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
-from .creep import CREEP_LAWS, CreepLaw, creep_law
-from .static import loaded_edge
-from .trap import Regime, Trap
-from .validation import check_choice, check_scalar
+from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
+from ..theory.static import loaded_edge
+from ..theory.trap import Regime, Trap
+from ..validation import check_choice, check_scalar
 
 __all__ = [
     "FREE_NEAR",
@@ -679,7 +679,7 @@ class Ensemble:
         age = self.t - self.birth[sl][act]
         r = self.radius(age)
         branch = np.where(st[act] == PLUS, 1.0, -1.0)
-        from .trap import force_minus, force_plus
+        from ..theory.trap import force_minus, force_plus
 
         w = p / r
         f = np.where(branch > 0, force_plus(np.minimum(w, self._yc), self._alpha),

@@ -31,7 +31,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .validation import check_scalar
+from ..validation import check_scalar
 
 __all__ = [
     "ALPHA0",

@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from .io import check_output_dir, write_json
+from .files import check_output_dir, write_json
 
 __all__ = [
     "SweepAxis",

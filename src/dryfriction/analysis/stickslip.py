@@ -63,11 +63,11 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import curve_fit
 from scipy.signal import hilbert
 
-from .driving import Output, SimulationResult, SpringDrive, continue_spring, simulate
-from .ensemble import Ensemble, Initial, Track, TrapModel
-from .program import Segment, VelocityProgram
-from .stability import critical_stiffness, rightmost_root, steady_response
-from .validation import check_scalar
+from ..ensemble.driving import Output, SimulationResult, SpringDrive, continue_spring, simulate
+from ..ensemble.population import Ensemble, Initial, Track, TrapModel
+from ..program import Segment, VelocityProgram
+from ..theory.stability import critical_stiffness, rightmost_root, steady_response
+from ..validation import check_scalar
 
 __all__ = [
     "CLASSES",
@@ -264,8 +264,8 @@ def granular_floor(traps_per_a0: float, u: float, eps: float, alpha: float = 0.1
     ``n H0`` (eq. 12), ``n`` traps per ``a0``; ``r_d`` is the radius at the steady death age at
     velocity ``u`` (eq. 32). Friction units.
     """
-    from .creep import creep_law
-    from .trap import Trap
+    from ..theory.creep import creep_law
+    from ..theory.trap import Trap
 
     trap = Trap(alpha)
     tau_d = steady_response(u, eps, alpha, creep).tau_d
@@ -297,7 +297,7 @@ def stick_slip_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     Returns :meth:`StickSlipStats.to_dict` plus ``u`` and ``stiffness``. Picklable (a module
     function), so :func:`dryfriction.sweep.run_sweep` can ship it to workers.
     """
-    from .protocol import protocol_from_dict
+    from ..io.protocol import protocol_from_dict
 
     doc = dict(protocol)
     opts = dict(doc.pop("stickslip", {}) or {})

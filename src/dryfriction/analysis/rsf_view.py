@@ -46,18 +46,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .data import SeriesData, StaticData
-from .driving import Output, SimulationResult, VelocityDrive, simulate
-from .ensemble import Initial, Track, TrapModel
-from .fit import FitResult, RSFModel, fit
-from .program import Segment, VelocityProgram
-from .rsf import RateState
-from .rsf_driving import simulate_rsf
-from .stability import effective_rsf, shift_stiffness
-from .steady import steady_friction
-from .trap import Trap
-from .units import PhysicalScales
-from .validation import check_scalar
+from ..ensemble.driving import Output, SimulationResult, VelocityDrive, simulate
+from ..ensemble.population import Initial, Track, TrapModel
+from ..fit import FitResult, RSFModel, fit
+from ..io.data import SeriesData, StaticData
+from ..program import Segment, VelocityProgram
+from ..rsf.driving import simulate_rsf
+from ..rsf.law import RateState
+from ..theory.stability import effective_rsf, shift_stiffness
+from ..theory.steady import steady_friction
+from ..theory.trap import Trap
+from ..theory.units import PhysicalScales
+from ..validation import check_scalar
 
 __all__ = [
     "SCALES",
@@ -537,7 +537,7 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
     -------
     Comparison
     """
-    from .protocol import Protocol
+    from ..io.protocol import Protocol
 
     if not isinstance(proto, Protocol):
         raise ValueError(f"{getattr(proto, 'source', 'protocol')}: compare runs a trap-model "

@@ -14,9 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..validation import check_range, check_scalar
 from .static import static_friction
 from .steady import steady_friction
-from .validation import check_range, check_scalar
 
 __all__ = ["PhysicalScales", "static_friction_si", "steady_friction_si"]
 
