@@ -315,12 +315,12 @@ def test_cli_bad_input_is_one_line_exit_2_and_leaves_out_alone(tmp_path: Path) -
     out = tmp_path / "res"
     out.mkdir()
     (out / "keep.txt").write_text("old")
-    r = runner.invoke(app, ["fit", str(bad), "--out", str(out)])
+    r = runner.invoke(app, ["fit", str(bad), "--out", str(out), "--force"])
     assert r.exit_code == 2
     assert "line 3, column 2 (mu_s)" in r.output and len(r.output.strip().splitlines()) == 1
     assert [p.name for p in out.iterdir()] == ["keep.txt"]
     r = runner.invoke(app, ["fit", str(EXAMPLES / "synthetic_static_paper.csv"),
-                            "--fix", "t0", "--out", str(out)])
+                            "--fix", "t0", "--out", str(out), "--force"])
     assert r.exit_code == 2 and "name=value" in r.output
 
 

@@ -154,8 +154,9 @@ def test_effective_rsf_from_moments(u):
 def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
     # two independent routes: the numerical crossing search used for the trap model, fed with
     # rate-and-state's linear response, against the closed form (Rice & Ruina 1983)
+    from dryfriction.analysis.rsf_stability import rsf_stability_prediction
     from dryfriction.rsf.law import RateState
-    from dryfriction.theory.stability import nyquist_crossings, rsf_stability_prediction
+    from dryfriction.theory.stability import nyquist_crossings
 
     u = 0.1
     p = rsf_stability_prediction(u, 0.04, mass=mass, damping=damping)

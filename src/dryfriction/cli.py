@@ -357,7 +357,8 @@ def stability(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
-    from .theory.stability import critical_stiffness, rsf_stability_prediction
+    from .analysis.rsf_stability import rsf_stability_prediction
+    from .theory.stability import critical_stiffness
     from .validation import check_range
 
     check_range("u", u, 0.0, lo_open=True)

@@ -51,7 +51,7 @@ from scipy.optimize import brentq
 
 from ..validation import check_choice, check_scalar
 from .creep import CREEP_LAWS, CreepLaw, creep_law
-from .steady import _death_clock
+from .steady import death_clock
 from .trap import Trap, force_minus, force_plus
 
 __all__ = [
@@ -65,7 +65,6 @@ __all__ = [
     "linear_summary",
     "effective_rsf",
     "nyquist_crossings",
-    "rsf_stability_prediction",
 ]
 
 Array = NDArray[np.float64]
@@ -127,13 +126,13 @@ def _pieces(law: CreepLaw, u: float, alpha: float) -> SteadyResponse:
     trap = Trap(alpha)
     yc = trap.y_c
     uu = np.array([u])
-    c_d = float(_death_clock(law, uu, yc)[0])
+    c_d = float(death_clock(law, uu, yc)[0])
     # (+) branch: c = c_d (1 - s^2) removes the 1/sqrt of f_+' at the spinodal
     c = c_d * (1.0 - _S**2)
     wts = 2.0 * c_d * _S * _SW
     branches = [(c, wts, force_plus, _dforce_plus)]
     if yc < 1.0:  # strong pinning: (-) branch up to w = 1
-        c_e = float(_death_clock(law, uu, 1.0)[0])
+        c_e = float(death_clock(law, uu, 1.0)[0])
         branches.append((c_d + (c_e - c_d) * _S, (c_e - c_d) * _SW, force_minus, _dforce_minus))
     A = 0.0
     Ts, bs = [], []
@@ -377,32 +376,3 @@ def effective_rsf(
     dc = -u * z3 / (3.0 * z2)
     b = u * u * z2 / (2.0 * dc)
     return {"a": u * z1 + b, "b": b, "dc": dc, "u": u}
-
-
-def rsf_stability_prediction(
-    u: float,
-    eps: float,
-    alpha: float = 0.13,
-    creep: str = "log",
-    mass: float = 0.0,
-    damping: float = 0.0,
-) -> dict[str, float]:
-    """Critical stiffness that rate-and-state predicts with the model's effective ``a, b, Dc``.
-
-    Rice & Ruina (1983): ``K_c = (b - a)/Dc [1 + M V^2/(a Dc)]`` (the damping enters as
-    ``a -> a + eta V``, see :meth:`dryfriction.rsf.RateState.critical_stiffness`), with
-    ``a, b, Dc`` from :func:`effective_rsf`, in reduced units (``K`` in ``F_el/a0``).
-    Compare with :func:`critical_stiffness`: the twin matches the slow response only, so the
-    two differ wherever the model's fast response (negative forward stiffness, delay at the
-    spinodal edge) matters.
-    """
-    from ..rsf.law import RateState
-
-    p = effective_rsf(u, eps, alpha, creep)
-    twin = RateState(a=p["a"], b=p["b"], dc=p["dc"], mu0=1.0, v0=u)
-    out = {**p, "K_c": twin.critical_stiffness(u, damping, mass)}
-    try:
-        out["omega_c"] = twin.hopf_frequency(u, damping)
-    except ValueError:
-        out["omega_c"] = float("nan")
-    return out

@@ -31,6 +31,7 @@ from .trap import Trap, force_forward, force_minus, force_plus
 __all__ = [
     "steady_friction",
     "steady_death_point",
+    "death_clock",
     "steady_profile",
     "steady_friction_first_order",
     "steady_friction_low_velocity",
@@ -76,7 +77,7 @@ def _check_alpha(alpha: float) -> float:
     return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
 
 
-def _death_clock(law: CreepLaw, u: Array, w_end: float) -> Array:
+def death_clock(law: CreepLaw, u: Array, w_end: float) -> Array:
     """Clock ``c`` at which ``y(c)/r(c) = w_end``, ``y(c) = -1 + u T(c)`` (eq. 32).
 
     ``g(c) = -1 + u T(c) - w_end r(c)`` is increasing and convex in ``c``; Newton's method
@@ -107,7 +108,7 @@ def _death_clock(law: CreepLaw, u: Array, w_end: float) -> Array:
 def _steady_one_law(law: CreepLaw, u: Array, alpha: float) -> Array:
     trap = Trap(alpha)
     yc = trap.y_c
-    c_d = _death_clock(law, u, yc)[:, None]
+    c_d = death_clock(law, u, yc)[:, None]
     # piece 1: (+) branch, c = c_d (1 - tau^2), smooth in tau despite the spinodal singularity
     c = c_d * (1.0 - _TAU**2)
     R = law.radius_sq(c)
@@ -116,7 +117,7 @@ def _steady_one_law(law: CreepLaw, u: Array, alpha: float) -> Array:
     integrand = u[:, None] * law.dage(c) * R * force_plus(w, alpha) * 2.0 * c_d * _TAU
     total = integrand @ _TAU_W
     if yc < 1.0:  # strong pinning: continue on the (-) branch up to w = 1
-        c_e = _death_clock(law, u, 1.0)[:, None]
+        c_e = death_clock(law, u, 1.0)[:, None]
         c, wts = _minus_branch_nodes(c_d, c_e, yc)
         R = law.radius_sq(c)
         y = -1.0 + u[:, None] * law.age(c)
@@ -172,7 +173,7 @@ def steady_death_point(
 
     def one(law: CreepLaw, x: Array) -> Array:
         x1 = np.atleast_1d(x)
-        return (-1.0 + x1 * law.age(_death_clock(law, x1, yc))).reshape(x.shape)
+        return (-1.0 + x1 * law.age(death_clock(law, x1, yc))).reshape(x.shape)
 
     return per_eps(one, creep, eps, u)
 
@@ -195,7 +196,7 @@ def steady_profile(
     r = law.radius(np.maximum(y + 1.0, 0.0) / u)
     w = y / r
     # the death point in y: once passed, the trap is gone even if w falls back below it
-    y_end = -1.0 + u * float(law.age(_death_clock(law, np.array([u]), Trap(alpha).death_point))[0])
+    y_end = -1.0 + u * float(law.age(death_clock(law, np.array([u]), Trap(alpha).death_point))[0])
     f = r**2 * force_forward(w, alpha)
     return np.where((y >= -1.0) & (y <= y_end), f, 0.0)
 
