@@ -28,8 +28,8 @@ def rsf_stability_prediction(
     ``a, b, Dc`` from :func:`~dryfriction.theory.stability.effective_rsf`, in reduced units
     (``K`` in ``F_el/a0``). Compare with
     :func:`~dryfriction.theory.stability.critical_stiffness`: the twin matches the slow response
-    only, so the two differ wherever the model's fast response (negative forward stiffness, delay at the
-    spinodal edge) matters.
+    only, so the two differ wherever the model's fast response (negative forward stiffness,
+    delay at the spinodal edge) matters.
     """
     p = effective_rsf(u, eps, alpha, creep)
     twin = RateState(a=p["a"], b=p["b"], dc=p["dc"], mu0=1.0, v0=u)
