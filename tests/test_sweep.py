@@ -240,7 +240,11 @@ def _http_server():
     import http.server
     import threading
 
-    srv = http.server.HTTPServer(("127.0.0.1", 0), http.server.SimpleHTTPRequestHandler)
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):  # the server's own log is not the command's output
+            pass
+
+    srv = http.server.HTTPServer(("127.0.0.1", 0), Quiet)
     threading.Thread(target=srv.serve_forever, daemon=True).start()
     return srv
 
@@ -267,3 +271,191 @@ def test_scheduler_that_is_not_dask_fails_fast_and_a_real_one_works(tmp_path):
         ds = run_sweep(parse_sweep(small), sweep_runners.counting_runner, tmp_path / "o",
                        scheduler=cluster.scheduler_address)
     assert ds["product"].item() == 2.0
+
+
+# ------------------------------------------------------------------ the commands
+
+CLI_PROTO = """\
+[model]
+eps = 0.04
+
+[ensemble]
+traps_per_a0 = 50
+initial = "steady"
+initial_velocity = 0.1
+
+[drive]
+kind = "spring"
+stiffness = 0.05
+mass = 0.0
+segments = [{velocity = 0.1, slip = SLIP}]
+
+[output]
+every_slip = 0.5
+
+[stickslip]
+transient = 10.0
+
+[sweep]
+"""
+
+
+def _cli_proto(tmp_path, sweep, slip=30.0, name="p.toml", **replace):
+    text = CLI_PROTO.replace("SLIP", repr(slip)) + sweep
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def _cli(*args, **kw):
+    return subprocess.Popen([sys.executable, "-m", "dryfriction.cli", *map(str, args)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+
+
+@pytest.mark.parametrize("table, message", [
+    ("transient = -5.0", "stickslip.transient = -5 is out of range"),
+    ("transient = 30.0", "less than the load-point travel 30"),
+    ("rel_threshold = 1.5", "stickslip.rel_threshold = 1.5 is out of range"),
+    ("stick_fraction = 0.0", "stickslip.stick_fraction = 0 is out of range"),
+    ("floor = -1.0", "stickslip.floor = -1 is out of range"),
+    ("transient = \"ten\"", "stickslip.transient = 'ten' is not a number"),
+    ("follow_velocity = 1", "stickslip.follow_velocity = 1 is not allowed"),
+])
+def test_bad_stickslip_values_refused_before_any_worker(tmp_path, table, message):
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    p = _cli_proto(tmp_path, '"drive.stiffness" = [0.04, 0.05]\n',
+                   **{"transient = 10.0": table})
+    # the table is checked with --linear too; the travel only matters to stick-slip
+    for extra in ([], ["--linear"])[:1 if "travel" in message else 2]:
+        r = CliRunner().invoke(app, ["sweep", str(p), "--out", str(tmp_path / "o"), *extra])
+        assert r.exit_code == 2, r.output
+        assert message in r.output.replace("\n", " ")
+        assert len(r.output.strip().splitlines()) == 1
+    assert not (tmp_path / "o").exists()
+
+
+def test_swept_stickslip_value_checked_per_point_rsf_and_workers_with_scheduler(tmp_path):
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    run = CliRunner().invoke
+    p = _cli_proto(tmp_path, '"stickslip.transient" = [5.0, -5.0]\n')
+    r = run(app, ["sweep", str(p), "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2 and "stickslip.transient = -5.0" in r.output
+    rsf = tmp_path / "rsf.toml"
+    rsf.write_text('[model]\nlaw = "rsf"\na = 0.005\nb = 0.01\ndc = 1e-5\nmu0 = 0.6\n'
+                   'v0 = 1e-6\n[drive]\nstiffness = 1e3\nsegments = [{velocity = 1e-6, '
+                   'duration = 10.0}]\n[sweep]\n"drive.stiffness" = [1e3, 2e3]\n')
+    for extra in ([], ["--linear"]):
+        r = run(app, ["sweep", str(rsf), "--out", str(tmp_path / "o"), *extra])
+        assert r.exit_code == 2 and "not supported yet" in r.output, r.output
+        assert len(r.output.strip().splitlines()) == 1
+    p = _cli_proto(tmp_path, '"drive.stiffness" = [0.05]\n')
+    r = run(app, ["sweep", str(p), "--out", str(tmp_path / "o"), "--workers", "2",
+                  "--scheduler", "tcp://127.0.0.1:9"])
+    assert r.exit_code == 2 and "--workers" in r.output and "--scheduler" in r.output
+    assert not (tmp_path / "o").exists()
+
+
+def test_cli_not_a_scheduler_fails_fast_with_one_line(tmp_path):
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    srv = _http_server()
+    try:
+        p = _cli_proto(tmp_path, '"drive.stiffness" = [0.05]\n')
+        t0 = time.monotonic()
+        r = CliRunner().invoke(app, ["sweep", str(p), "--out", str(tmp_path / "o"),
+                                     "--scheduler", f"127.0.0.1:{srv.server_port}",
+                                     "--connect-timeout", "1"])
+    finally:
+        srv.shutdown()
+    assert r.exit_code == 2 and "cannot reach a Dask scheduler" in r.output, r.output
+    assert len(r.output.strip().splitlines()) == 1 and time.monotonic() - t0 < 6
+    assert not (tmp_path / "o").exists()
+
+
+def test_some_or_all_points_failed_exit_1_with_one_line(tmp_path):
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    # transient 29.5 of 30 a0 leaves one sample (every 0.5 a0): fails at run time
+    p = _cli_proto(tmp_path, '"stickslip.transient" = [10.0, 29.5]\n')
+    r = CliRunner().invoke(app, ["sweep", str(p), "--out", str(tmp_path / "o"),
+                                 "--workers", "1"])
+    assert r.exit_code == 1, r.output
+    assert "1 of 2 points failed (first: ValueError: only 1 samples" in r.output
+    ds = load_sweep(tmp_path / "o" / "sweep.nc")  # written, the failure recorded
+    assert ds.attrs["n_failed"] == 1 and np.isfinite(ds["class"].values[0])
+    assert "only 1 samples" in str(ds["error"].values[1])
+    p = _cli_proto(tmp_path, '"stickslip.transient" = [29.5]\n', name="q.toml")
+    r = CliRunner().invoke(app, ["sweep", str(p), "--out", str(tmp_path / "q"),
+                                 "--workers", "1"])
+    assert r.exit_code == 1 and "all 1 points failed" in r.output, r.output
+    assert f"{tmp_path / 'q'}/points/*.json" in r.output.replace("\n", "")
+
+
+def test_concurrent_sweeps_into_one_folder_second_is_refused(tmp_path):
+    import psutil
+
+    out = tmp_path / "o"
+    # several seconds a point: the first run is still busy when the others try
+    grid = '"drive.stiffness" = [0.04, 0.05, 0.06, 0.07]\n'
+    a = _cli_proto(tmp_path, grid, slip=3000.0)
+    b = _cli_proto(tmp_path, grid, slip=3000.0, name="b.toml",
+                   **{"eps = 0.04": "eps = 0.05"})
+    first = _cli("sweep", a, "--out", out, "--workers", "1", start_new_session=True)
+    t0 = time.monotonic()
+    # the cluster is up once points/ exists (a Ctrl-C during its start can be lost)
+    while not (out / "points").exists() and time.monotonic() - t0 < 60:
+        time.sleep(0.05)
+    same = _cli("sweep", a, "--out", out, "--workers", "1")
+    other = _cli("sweep", b, "--out", out, "--workers", "1")
+    (_, err_same), (_, err_other) = same.communicate(timeout=60), other.communicate(timeout=60)
+    assert first.poll() is None  # still running: the lock, not the end of the run, refused
+    kids = psutil.Process(first.pid).children(recursive=True)
+    assert same.returncode == 2 and "another sweep is running" in err_same, err_same
+    assert other.returncode == 2 and "different sweep" in err_other, err_other
+    assert len(err_same.strip().splitlines()) == len(err_other.strip().splitlines()) == 1
+    # a crash of the first run (SIGKILL): its workers go, and nothing of the others got in
+    first.kill()
+    first.communicate(timeout=60)
+    _, alive = psutil.wait_procs(kids, timeout=15)
+    assert not alive
+    # nothing of the refused runs got in
+    for rec in (out / "points").glob("*.json"):
+        assert json.loads(rec.read_text())["protocol"]["model"]["eps"] == 0.04
+
+
+def test_ctrl_c_prints_the_resume_command_which_finishes_the_sweep(tmp_path):
+    import os
+    import shlex
+    import signal
+
+    out = tmp_path / "o"
+    p = _cli_proto(tmp_path, '"drive.stiffness" = [0.04, 0.05, 0.06]\n', slip=60.0)
+    proc = _cli("sweep", p, "--out", out, "--workers", "1", start_new_session=True)
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 60 and not (
+            (out / "points").exists() and list((out / "points").glob("*.json"))):
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    stored = len(list((out / "points").glob("*.json")))
+    assert f"interrupted: {stored} of 3 points stored" in err and stored < 3
+    cmd = shlex.split(err.split("resume with: ")[1].strip())
+    assert cmd[0] == "dryfriction"
+    resumed = _cli(*cmd[1:])
+    so, se = resumed.communicate(timeout=120)
+    assert resumed.returncode == 0, se
+    assert "3 points, 0 failed" in so
+    assert load_sweep(out / "sweep.nc")["class"].shape == (3,)

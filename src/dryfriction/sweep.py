@@ -383,7 +383,7 @@ def _client(scheduler: str | None, n_workers: int | None,
     worker = {"cls": Nanny, "options": {"nthreads": 1, "host": "127.0.0.1",
                                         "worker_class": quiet_worker, "dashboard": False,
                                         "silence_logs": logging.ERROR}}
-    with _children_ignore_sigint():
+    with _sigint_held() as caught:
         cluster = SpecCluster(
             scheduler={"cls": quiet_scheduler,
                        "options": {"host": "127.0.0.1", "port": 0, "dashboard": False,
@@ -391,28 +391,34 @@ def _client(scheduler: str | None, n_workers: int | None,
             workers={i: worker for i in range(n)},
             silence_logs=logging.ERROR,
         )
-    try:
-        return Client(cluster)
-    except BaseException:
-        cluster.close()
-        raise
+        try:
+            client = Client(cluster)
+        except BaseException:
+            cluster.close()
+            raise
+    if caught:  # Ctrl-C while starting: stop now, with nothing left behind
+        _close(client, None, [])
+        raise KeyboardInterrupt
+    return client
 
 
 @contextlib.contextmanager
-def _children_ignore_sigint() -> Iterator[None]:
-    """Start worker processes with Ctrl-C ignored (an ignored signal stays ignored across
-    exec, and Python then installs no handler of its own).
+def _sigint_held() -> Iterator[list[int]]:
+    """Hold back Ctrl-C while the cluster starts; yield a list that records one if it came.
 
-    Ctrl-C reaches every process of the terminal's group: without this each worker prints its
-    own traceback and the nannies log their deaths. The sweep process alone handles it and
-    closes the cluster. Only possible in the main thread; elsewhere a no-op.
+    A terminal sends Ctrl-C to every process of its group, and each worker would print its
+    own traceback: the workers are started with SIGINT ignored (an ignored signal stays
+    ignored across exec, and Python then installs no handler of its own), so the sweep
+    process alone handles it and closes the cluster. Known gap: a Ctrl-C during the start
+    itself (a few seconds) is ignored too. Only possible in the main thread; elsewhere a no-op.
     """
+    caught: list[int] = []
     if threading.current_thread() is not threading.main_thread():
-        yield
+        yield caught
         return
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
-        yield
+        yield caught
     finally:
         signal.signal(signal.SIGINT, previous)
 
@@ -523,7 +529,10 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
     if progress:
         progress(done, spec.size)
     if todo:
-        client = _client(scheduler, n_workers, connect_timeout)
+        try:
+            client = _client(scheduler, n_workers, connect_timeout)
+        except KeyboardInterrupt:
+            raise SweepInterrupted(done, spec.size, out) from None
         points_dir.mkdir(exist_ok=True)
         futures: dict[Any, tuple[tuple[int, ...], dict[str, Any]]] = {}
         try:
