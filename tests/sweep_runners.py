@@ -13,3 +13,9 @@ def counting_runner(protocol):
     if t["x"] == 3 and t.get("fail_at_3", False):
         raise RuntimeError("boom at x = 3")
     return {"product": t["x"] * t["y"], "sum": t["x"] + t["y"]}
+
+
+def other_runner(protocol):
+    """A different analysis of the same protocol (x - y)."""
+    t = protocol["test"]
+    return {"difference": t["x"] - t["y"]}

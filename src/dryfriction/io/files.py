@@ -46,6 +46,7 @@ __all__ = [
     "write_csv",
     "output_directory",
     "check_output_dir",
+    "check_writable_dir",
     "to_jsonable",
 ]
 
@@ -233,6 +234,25 @@ def _resolved(paths: Iterable[str | os.PathLike[str]]) -> set[Path]:
     return {Path(p).resolve() for p in paths}
 
 
+def check_writable_dir(out: str | os.PathLike[str]) -> Path:
+    """Check that ``out`` is, or can be created as, a writable folder; ``ValueError`` if not.
+
+    What the folder may already hold is the caller's rule (:func:`check_output_dir` for
+    results folders; sweeps keep their own marker)."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is an existing file, not a folder")
+    parent = out.resolve().parent
+    if not out.exists() and not parent.is_dir():
+        raise ValueError(f"--out {out}: parent folder {parent} does not exist")
+    if out.exists():
+        if not os.access(out, os.W_OK | os.X_OK):
+            raise ValueError(f"--out {out} is not writable")
+    elif not os.access(parent, os.W_OK | os.X_OK):
+        raise ValueError(f"--out {out} is not writable (cannot create it in {parent})")
+    return out
+
+
 def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
                      inputs: Iterable[str | os.PathLike[str]] = ()) -> Path:
     """Check, before any work, that ``out`` can receive a result; raise ``ValueError`` if not.
@@ -246,17 +266,7 @@ def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
     inputs : paths
         The files the run reads: never replaced, never removed.
     """
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"--out {out} is an existing file, not a folder")
-    parent = out.resolve().parent
-    if not out.exists() and not parent.is_dir():
-        raise ValueError(f"--out {out}: parent folder {parent} does not exist")
-    if out.exists():
-        if not os.access(out, os.W_OK | os.X_OK):
-            raise ValueError(f"--out {out} is not writable")
-    elif not os.access(parent, os.W_OK | os.X_OK):
-        raise ValueError(f"--out {out} is not writable (cannot create it in {parent})")
+    out = check_writable_dir(out)
     if out.is_dir() and not force:
         remove_stale_temporaries(out)
         manifest = _read_manifest(out)

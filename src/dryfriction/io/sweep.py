@@ -22,12 +22,16 @@ written to ``OUT/sweep.nc`` (NetCDF, whole or not at all).
 
 from __future__ import annotations
 
+import contextlib
 import copy
+import fcntl
 import hashlib
 import json
+import logging
 import math
 import os
-import tempfile
+import signal
+import threading
 import traceback
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
@@ -37,7 +41,8 @@ from typing import Any
 
 import numpy as np
 
-from .files import check_output_dir, write_json
+from ..validation import check_scalar
+from .files import atomic_write_bytes, check_writable_dir, write_json
 
 __all__ = [
     "SweepAxis",
@@ -48,6 +53,10 @@ __all__ = [
     "run_sweep",
     "MAX_POINTS",
     "load_sweep",
+    "point_key",
+    "sweep_fingerprint",
+    "SweepInterrupted",
+    "RESULT_VERSION",
 ]
 
 MAX_POINTS = 2000
@@ -166,10 +175,69 @@ def parse_sweep(protocol: Mapping[str, Any], source: str = "protocol") -> SweepS
     return SweepSpec(base, tuple(axes))
 
 
-def point_id(overrides: Mapping[str, Any]) -> str:
-    """Stable identifier of a grid point (hash of its overrides)."""
-    text = json.dumps(overrides, sort_keys=True, default=float)
-    return hashlib.sha1(text.encode()).hexdigest()[:16]
+RESULT_VERSION = 2
+"""Version of what a stored point means; part of every point's key and of the folder's
+fingerprint, so that results of an older format are never read as current ones. Bump it when a
+runner's output changes meaning (version 1: points keyed by their overrides only)."""
+
+SWEEP_FORMAT = "dryfriction-sweep"
+"""``format`` of the marker file ``sweep.json`` that says a folder holds one of our sweeps."""
+
+MARKER = "sweep.json"
+LOCK = ".sweep.lock"
+
+_CONNECT_TIMEOUT = 10.0
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C during :func:`run_sweep`; the finished points are stored, the cluster is closed.
+
+    Attributes
+    ----------
+    stored : int
+        Grid points with a stored result (they will not be computed again).
+    total : int
+        Points of the grid.
+    out : pathlib.Path
+        The results folder.
+    """
+
+    def __init__(self, stored: int, total: int, out: Path) -> None:
+        super().__init__(f"{stored} of {total} points stored in {out}")
+        self.stored, self.total, self.out = stored, total, out
+
+
+def _canonical(obj: Any) -> str:
+    # TOML can hold dates; everything else is JSON already
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"), default=str)
+
+
+def _digest(obj: Any) -> str:
+    return hashlib.sha256(_canonical(obj).encode()).hexdigest()
+
+
+def analysis_name(runner: Runner) -> str:
+    """Default analysis kind of a runner: its importable name (``module.qualname``)."""
+    return f"{getattr(runner, '__module__', '?')}.{getattr(runner, '__qualname__', repr(runner))}"
+
+
+def point_key(protocol: Mapping[str, Any], analysis: str) -> str:
+    """Key of a stored point: a hash of everything that determines its result.
+
+    That is the point's full resolved protocol (every table, ``[stickslip]`` included), the
+    analysis kind and :data:`RESULT_VERSION`; the grid it belongs to and its index do not
+    matter.
+    """
+    return _digest({"format": SWEEP_FORMAT, "version": RESULT_VERSION, "analysis": analysis,
+                    "protocol": protocol})[:32]
+
+
+def sweep_fingerprint(spec: SweepSpec, analysis: str) -> str:
+    """Hash of a whole sweep: base protocol, axes (keys and values, in order), analysis kind
+    and :data:`RESULT_VERSION`. A results folder belongs to one fingerprint."""
+    return _digest({"format": SWEEP_FORMAT, "version": RESULT_VERSION, "analysis": analysis,
+                    "base": spec.base,
+                    "axes": [[a.key, list(a.values)] for a in spec.axes]})
 
 
 def _run_point(runner: Runner, protocol: dict[str, Any]) -> dict[str, Any]:
@@ -181,18 +249,187 @@ def _run_point(runner: Runner, protocol: dict[str, Any]) -> dict[str, Any]:
         return {"error": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}
 
 
-def _client(scheduler: str | None, n_workers: int | None) -> Any:
-    from dask.distributed import Client, LocalCluster
+def _check_folder(out: Path, marker: Mapping[str, Any]) -> bool:
+    """Whether ``out`` already belongs to this sweep; ``ValueError`` if it belongs to another
+    one or holds anything else. Reads only."""
+    if not out.exists():
+        return False
+    path = out / MARKER
+    if not path.exists():
+        others = sorted(p.name for p in out.iterdir() if p.name != LOCK)
+        if others:
+            shown = ", ".join(others[:3]) + (", ..." if len(others) > 3 else "")
+            raise ValueError(f"--out {out} holds files that are not a dryfriction sweep "
+                             f"({shown}): use another --out (nothing in it was changed)")
+        return False
+    try:
+        old = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+        old = None
+    if not isinstance(old, dict) or old.get("format") != SWEEP_FORMAT:
+        raise ValueError(f"--out {out}: {path.name} is not a dryfriction sweep marker: use "
+                         "another --out (nothing in it was changed)")
+    if old.get("protocol_hash") == marker["protocol_hash"]:
+        return True
+    if old.get("version") != marker["version"]:
+        why = f"result format {old.get('version')} (this is {marker['version']})"
+    elif old.get("analysis") != marker["analysis"]:
+        why = f"analysis {old.get('analysis')} (this is {marker['analysis']})"
+    else:
+        why = f"protocol {old.get('source', '?')} (hash {str(old.get('protocol_hash'))[:12]})"
+    raise ValueError(f"--out {out} holds a different sweep ({why}): use another --out or "
+                     "remove that folder")
+
+
+def _claim_folder(out: Path, marker: Mapping[str, Any]) -> int:
+    """Lock ``out`` for this sweep and write its marker; return the lock's file descriptor.
+
+    The lock is ``fcntl.flock`` on ``out/.sweep.lock``: the kernel releases it when the
+    process ends, however it ends, so a killed sweep never leaves the folder locked.
+    """
+    _check_folder(out, marker)  # before creating anything in a folder that is not ours
+    out.mkdir(exist_ok=True)
+    fd = os.open(out / LOCK, os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise ValueError(f"--out {out}: another sweep is running into this folder (it "
+                             f"holds {out / LOCK}): wait for it or use another --out") from None
+        # again under the lock: another run may have claimed the folder since the first look
+        if not _check_folder(out, marker):
+            write_json(out / MARKER, marker)
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _probe_scheduler(address: str, timeout: float) -> None:
+    """Fail within ``timeout`` seconds unless a Dask scheduler answers at ``address``.
+
+    ``Client(address, timeout=...)`` waits forever when something else (an HTTP server, say)
+    accepts the connection and never completes Dask's handshake; this bounds the whole
+    exchange.
+    """
+    import asyncio
+
+    from distributed.comm import connect
+
+    async def identity() -> Any:
+        comm = await connect(address, timeout=timeout)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    try:
+        reply = asyncio.run(asyncio.wait_for(identity(), timeout))
+    except TimeoutError:
+        raise ValueError(f"--scheduler {address}: cannot reach a Dask scheduler there within "
+                         f"{timeout:g} s (raise --connect-timeout if it is slow)") from None
+    except (OSError, ValueError, TypeError) as exc:
+        raise ValueError(f"--scheduler {address}: cannot reach a Dask scheduler there "
+                         f"({exc})") from None
+    if not (isinstance(reply, Mapping) and reply.get("type") == "Scheduler"):
+        raise ValueError(f"--scheduler {address}: cannot reach a Dask scheduler there (it "
+                         "answered, but not as a Dask scheduler)")
+
+
+_QUIET: dict[str, type] = {}
+
+
+def _quiet_class(name: str) -> type:
+    """A scheduler or worker class that serves no HTTP at all.
+
+    ``dashboard_address=None`` only hides the dashboard's pages: the scheduler still listens
+    on port 8787 (and each worker on a random port) for its health and metrics routes, and
+    reports that server as its ``dashboard`` service. A local sweep needs none of it. Built on
+    first use (importing distributed is slow) and reached as ``dryfriction.sweep.<name>``
+    (module ``__getattr__``), so that the worker processes can unpickle it.
+    """
+    if name not in _QUIET:
+        from distributed import Scheduler, Worker
+        from distributed.http.routing import RoutingApplication
+
+        def start_http_server(self: Any, routes: Any, *args: Any, **kwargs: Any) -> None:
+            self.http_application = RoutingApplication(routes)  # stopping the node reads it
+
+        base = Scheduler if name == "_QuietScheduler" else Worker
+        _QUIET[name] = type(name, (base,), {"start_http_server": start_http_server,
+                                            "__module__": __name__, "__qualname__": name})
+    return _QUIET[name]
+
+
+def __getattr__(name: str) -> Any:
+    if name in ("_QuietScheduler", "_QuietWorker"):
+        return _quiet_class(name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _client(scheduler: str | None, n_workers: int | None,
+            connect_timeout: float = _CONNECT_TIMEOUT) -> Any:
+    from dask.distributed import Client, Nanny, SpecCluster
 
     if scheduler is not None:
+        _probe_scheduler(scheduler, connect_timeout)
         try:
-            return Client(scheduler, timeout="10s")
-        except OSError as exc:
+            return Client(scheduler, timeout=f"{connect_timeout}s")
+        except (OSError, TimeoutError) as exc:
             raise ValueError(f"--scheduler {scheduler}: cannot reach it ({exc})") from None
     n = n_workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                           dashboard_address=None)
-    return Client(cluster)
+    quiet_scheduler, quiet_worker = _quiet_class("_QuietScheduler"), _quiet_class("_QuietWorker")
+    worker = {"cls": Nanny, "options": {"nthreads": 1, "host": "127.0.0.1",
+                                        "worker_class": quiet_worker, "dashboard": False,
+                                        "silence_logs": logging.ERROR}}
+    with _sigint_held() as caught:
+        cluster = SpecCluster(
+            scheduler={"cls": quiet_scheduler,
+                       "options": {"host": "127.0.0.1", "port": 0, "dashboard": False,
+                                   "dashboard_address": None}},
+            workers={i: worker for i in range(n)},
+            silence_logs=logging.ERROR,
+        )
+        try:
+            client = Client(cluster)
+        except BaseException:
+            cluster.close()
+            raise
+    if caught:  # Ctrl-C while starting: stop now, with nothing left behind
+        _close(client, None, [])
+        raise KeyboardInterrupt
+    return client
+
+
+@contextlib.contextmanager
+def _sigint_held() -> Iterator[list[int]]:
+    """Hold back Ctrl-C while the cluster starts; yield a list that records one if it came.
+
+    A terminal sends Ctrl-C to every process of its group, and each worker would print its
+    own traceback: the workers are started with SIGINT ignored (an ignored signal stays
+    ignored across exec, and Python then installs no handler of its own), so the sweep
+    process alone handles it and closes the cluster. Known gap: a Ctrl-C during the start
+    itself (a few seconds) is ignored too. Only possible in the main thread; elsewhere a no-op.
+    """
+    caught: list[int] = []
+    if threading.current_thread() is not threading.main_thread():
+        yield caught
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield caught
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _stored(path: Path, key: str) -> bool:
+    """Whether ``path`` holds a successful result for ``key`` (failures are computed again)."""
+    try:
+        rec = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+        return False
+    return isinstance(rec, dict) and rec.get("key") == key and "result" in rec
 
 
 def run_sweep(
@@ -204,6 +441,10 @@ def run_sweep(
     n_workers: int | None = None,
     confirm: bool = False,
     progress: Callable[[int, int], None] | None = None,
+    analysis: str | None = None,
+    source: str | None = None,
+    protocol_text: str | None = None,
+    connect_timeout: float = _CONNECT_TIMEOUT,
 ) -> Any:
     """Run every grid point not already stored under ``out`` and return the Dataset.
 
@@ -214,15 +455,36 @@ def run_sweep(
     runner : callable
         Picklable ``protocol dict -> {name: number}``, run on the workers.
     out : path
-        Results folder: ``points/`` (one JSON per finished point) and ``sweep.nc``.
+        Results folder: ``sweep.json`` (marker), ``points/`` (one JSON per point) and
+        ``sweep.nc``. It belongs to one sweep: a different protocol or analysis is refused,
+        the same one resumes; a folder holding anything else is refused, and so is a second
+        run while one is running into it (``.sweep.lock``).
     scheduler : str, optional
         Address of an existing Dask scheduler; default: a local cluster.
     n_workers : int, optional
-        Workers of the local cluster (default: one per core).
+        Workers of the local cluster (default: one per core); not with ``scheduler``.
     confirm : bool
         Needed for grids larger than :data:`MAX_POINTS`.
     progress : callable, optional
         ``progress(done, total)`` after each finished point.
+    analysis : str, optional
+        Name of what the runner computes, part of every point's key (default:
+        :func:`analysis_name` of the runner).
+    source : str, optional
+        Where the protocol comes from (a file name), kept in ``sweep.json``.
+    protocol_text : str, optional
+        The protocol as the user wrote it, kept in ``sweep.json`` (default: the parsed
+        protocol as JSON).
+    connect_timeout : float
+        Seconds to wait for ``scheduler`` to answer, ``> 0``.
+
+    Raises
+    ------
+    ValueError
+        Bad arguments, a folder that is not this sweep's, a locked folder, an unreachable
+        scheduler; all before any point runs.
+    SweepInterrupted
+        On Ctrl-C, after the cluster is closed; the finished points are stored.
     """
     if spec.size > MAX_POINTS and not confirm:
         raise ValueError(
@@ -230,20 +492,49 @@ def run_sweep(
         )
     if n_workers is not None and n_workers < 1:
         raise ValueError(f"n_workers = {n_workers} is out of range: allowed >= 1")
-    out = check_output_dir(out)
+    if n_workers is not None and scheduler is not None:
+        raise ValueError("--workers is for the local cluster: a --scheduler has its own "
+                         "workers (give one of the two)")
+    connect_timeout = check_scalar("connect_timeout", connect_timeout, 0.0, lo_open=True)
+    analysis = analysis or analysis_name(runner)
+    out = check_writable_dir(out)
+    keys = {idx: point_key(spec.protocol(ov), analysis) for idx, ov in spec.points()}
+    marker = {"format": SWEEP_FORMAT, "version": RESULT_VERSION, "analysis": analysis,
+              "protocol_hash": sweep_fingerprint(spec, analysis), "source": source or "",
+              "protocol": protocol_text or _canonical(
+                  {**spec.base, "sweep": {a.key: list(a.values) for a in spec.axes}}),
+              "shape": list(spec.shape)}
+    _check_folder(out, marker)
+    if scheduler is not None:  # an unreachable scheduler is bad input: nothing written yet
+        _probe_scheduler(scheduler, connect_timeout)
+    lock = _claim_folder(out, marker)
+    try:
+        return _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
+                           connect_timeout)
+    finally:
+        os.close(lock)  # releases the flock
+
+
+def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[int, ...], str],
+                scheduler: str | None, n_workers: int | None,
+                progress: Callable[[int, int], None] | None, connect_timeout: float) -> Any:
     points_dir = out / "points"
     todo = []
     done = 0
     for idx, ov in spec.points():
-        if (points_dir / f"{point_id(ov)}.json").exists():
+        if _stored(points_dir / f"{keys[idx]}.json", keys[idx]):
             done += 1
         else:
             todo.append((idx, ov))
     if progress:
         progress(done, spec.size)
     if todo:
-        client = _client(scheduler, n_workers)
-        points_dir.mkdir(parents=True, exist_ok=True)
+        try:
+            client = _client(scheduler, n_workers, connect_timeout)
+        except KeyboardInterrupt:
+            raise SweepInterrupted(done, spec.size, out) from None
+        points_dir.mkdir(exist_ok=True)
+        futures: dict[Any, tuple[tuple[int, ...], dict[str, Any]]] = {}
         try:
             from dask.distributed import as_completed
 
@@ -253,35 +544,65 @@ def run_sweep(
             }
             for fut in as_completed(futures):
                 idx, ov = futures[fut]
-                record = {"index": list(idx), "overrides": ov, **fut.result()}
-                write_json(points_dir / f"{point_id(ov)}.json", record)
-                done += 1
+                try:
+                    outcome = fut.result()
+                except Exception as exc:  # noqa: BLE001 - a worker lost (killed, out of memory)
+                    outcome = {"error": f"{type(exc).__name__}: {exc}"}
+                record = {"key": keys[idx], "version": RESULT_VERSION, "index": list(idx),
+                          "overrides": ov, "protocol": spec.protocol(ov), **outcome}
+                write_json(points_dir / f"{keys[idx]}.json", record)
+                if "result" in outcome:
+                    done += 1
                 if progress:
                     progress(done, spec.size)
-        finally:
-            cluster = getattr(client, "cluster", None)
-            client.close()
-            if scheduler is None and cluster is not None:
-                cluster.close()
-    ds = assemble(spec, points_dir)
+        except KeyboardInterrupt:
+            _close(client, scheduler, list(futures))
+            raise SweepInterrupted(done, spec.size, out) from None
+        _close(client, scheduler, list(futures))
+    ds = assemble(spec, points_dir, keys)
     _write_netcdf(ds, out / "sweep.nc")
     return ds
 
 
-def assemble(spec: SweepSpec, points_dir: Path) -> Any:
-    """Build the Dataset from the stored points (NaN and an error message where one failed)."""
+def _close(client: Any, scheduler: str | None, futures: list[Any]) -> None:
+    """Cancel what is left, close the client and (local) cluster; a second Ctrl-C waits."""
+    with _sigint_ignored():
+        cluster = getattr(client, "cluster", None)
+        with contextlib.suppress(Exception):
+            client.cancel(futures)
+        with contextlib.suppress(Exception):
+            client.close(timeout=10)
+        if scheduler is None and cluster is not None:
+            cluster.close(timeout=20)
+
+
+@contextlib.contextmanager
+def _sigint_ignored() -> Iterator[None]:
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def assemble(spec: SweepSpec, points_dir: Path, keys: Mapping[tuple[int, ...], str]) -> Any:
+    """Build the Dataset from the stored points (NaN and an error message where one failed).
+
+    ``attrs``: ``n_failed`` (points with an error) and ``points_dir`` (where each failed
+    point's record holds its error and traceback).
+    """
     import xarray as xr
 
-    records = {}
-    for _, ov in spec.points():
-        path = points_dir / f"{point_id(ov)}.json"
-        records[point_id(ov)] = json.loads(path.read_text())
+    records = {idx: json.loads((points_dir / f"{key}.json").read_text())
+               for idx, key in keys.items()}
     names = sorted({k for r in records.values() for k in r.get("result", {})})
     dims = [a.key for a in spec.axes]
     data = {n: np.full(spec.shape, np.nan) for n in names}
     errors = np.full(spec.shape, "", dtype=object)
-    for idx, ov in spec.points():
-        rec = records[point_id(ov)]
+    for idx, rec in records.items():
         for n in names:
             data[n][idx] = rec.get("result", {}).get(n, np.nan)
         errors[idx] = rec.get("error", "")
@@ -289,19 +610,13 @@ def assemble(spec: SweepSpec, points_dir: Path) -> Any:
     ds = xr.Dataset({n: (dims, v) for n, v in data.items()}, coords=coords)
     ds["error"] = (dims, errors.astype(str))
     ds.attrs["n_failed"] = int(np.sum(errors != ""))
+    ds.attrs["points_dir"] = str(points_dir)
     return ds
 
 
 def _write_netcdf(ds: Any, path: Path) -> None:
-    """NetCDF through xarray's SciPy engine (no extra library), via a temporary file."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        ds.to_netcdf(tmp, engine="scipy")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    """NetCDF through xarray's SciPy engine (no extra library), written whole or not at all."""
+    atomic_write_bytes(path, bytes(ds.to_netcdf(engine="scipy")))
 
 
 def load_sweep(path: str | os.PathLike[str]) -> Any:
