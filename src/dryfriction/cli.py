@@ -760,10 +760,36 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool) 
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")
 
 
-def main() -> None:
-    """Console-script entry point."""
-    app()
+def main(argv: list[str] | None = None) -> int:
+    """Console-script entry point: runs the app and returns the exit status.
+
+    Click's usage errors (unknown option or command, missing or ill-typed value) become one
+    line ``error: ...`` on standard error and status 2, like the library's own errors (Click
+    would print a usage box). ``--help`` and a bare ``dryfriction`` still print the help.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments without the program name; default ``sys.argv[1:]``.
+    """
+    try:
+        rv = app(args=argv, prog_name="dryfriction", standalone_mode=False)
+    except typer.Abort:
+        error_line("aborted")
+        return 130
+    except typer.TyperException as exc:  # Click's exceptions (Typer vendors Click)
+        ctx = getattr(exc, "ctx", None)
+        if type(exc).__name__ == "NoArgsIsHelpError" and ctx is not None:
+            print(ctx.get_help())
+            return 2
+        message = exc.format_message()  # type: ignore[attr-defined]
+        if ctx is not None and getattr(exc, "exit_code", 1) == 2:
+            message += f" (see {ctx.command_path} --help)"
+        error_line(message)
+        return int(getattr(exc, "exit_code", 1))
+    # without standalone mode a command's typer.Exit(code) comes back as its code
+    return rv if isinstance(rv, int) else 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())
