@@ -262,9 +262,22 @@ def rsf(
     from .program import Segment
     from .rsf import RateState
     from .rsf_driving import SolverError, simulate_rsf
-    from .validation import check_choice
+    from .validation import check_choice, check_scalar
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
+    from .rsf import V_MAX
+
+    # durations and velocities a run can reach in floating point (a 1e308 s first segment
+    # would leave the later ones at t = inf, silently dropped)
+    for name, value in (("--t1", t1), ("--t2", t2), ("--hold", hold)):
+        check_scalar(name, value, 0.0, _LOAD_MAX, lo_open=True)
+    for name, value in (("--v1", v1), ("--v2", v2)):
+        check_scalar(name, value, -V_MAX, V_MAX)
+    if v_init is not None:
+        check_scalar("--v-init", v_init, 0.0, V_MAX, lo_open=True)
+    check_scalar("--damping", damping, 0.0, _LOAD_MAX)
+    check_scalar("--mass", mass, 0.0, _LOAD_MAX)
+    check_scalar("--rtol", rtol, 0.0, 0.1, lo_open=True)
     params = RateState(a, b, dc, mu0, v0, state_law=state_law,  # type: ignore[arg-type]
                        regularized=regularized)
     if case == "step":
@@ -330,6 +343,11 @@ def _rsf_figure(res: Any, path: Any, title: str) -> None:
     plt.close(fig)
 
 
+_LOAD_MAX = 1e12
+"""Largest mass, damping (reduced units) or duration (s) the commands accept: far beyond any
+experiment, and small enough that products with the other inputs stay finite."""
+
+
 @app.command(cls=_many("--u"))
 @cli_errors
 def stability(
@@ -345,9 +363,12 @@ def stability(
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
     from .stability import critical_stiffness, rsf_stability_prediction
-    from .validation import check_range
+    from .steady import check_steady_inputs
+    from .validation import check_scalar
 
-    check_range("u", u, 0.0, lo_open=True)
+    check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
+    check_scalar("mass", mass, 0.0, _LOAD_MAX)
+    check_scalar("damping", damping, 0.0, _LOAD_MAX)
     res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
     twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping) for v in u]
              if eps > 0 else [])

@@ -42,6 +42,7 @@ from scipy.optimize import brentq
 from .creep import CREEP_LAWS, check_age, radius
 from .trap import Trap, force_forward, work_forward, work_minus
 from .validation import (
+    ALPHA_MIN,
     EPS_MAX,
     T_MAX,
     check_broadcast,
@@ -66,7 +67,7 @@ Array = NDArray[np.float64]
 
 
 def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
 
 
 def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:

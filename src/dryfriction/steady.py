@@ -27,6 +27,7 @@ from scipy.integrate import quad
 from .creep import CREEP_LAWS, CreepLaw, EyringNabarroCreep, per_eps
 from .trap import Trap, force_forward, force_minus, force_plus
 from .validation import (
+    ALPHA_MIN,
     EPS_MAX,
     U_MAX,
     U_MIN,
@@ -40,6 +41,7 @@ from .validation import (
 __all__ = [
     "steady_friction",
     "min_velocity",
+    "check_steady_inputs",
     "steady_death_point",
     "steady_profile",
     "steady_friction_first_order",
@@ -83,7 +85,7 @@ def _minus_branch_nodes(c_d: Array, c_e: Array, yc: float) -> tuple[Array, Array
 
 
 def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
 
 
 def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro") -> float:
@@ -127,9 +129,13 @@ def _check_velocity(u: Array, eps: Array, alpha: float, creep: str) -> None:
             )
 
 
-def _check_inputs(u: ArrayLike, eps: ArrayLike, alpha: float, creep: str
+def check_steady_inputs(u: ArrayLike, eps: ArrayLike, alpha: float, creep: str
                   ) -> tuple[float, Array, Array]:
-    """Every check of the steady-sliding entry points, before any work."""
+    """Every check of the steady-sliding entry points, before any work.
+
+    Returns ``(alpha, u, eps)`` as floats and arrays; raises ``ValueError`` naming the
+    parameter and its allowed range (also used by the ``stability`` command).
+    """
     alpha = _check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     u_a = check_range("u", u, U_MIN, U_MAX)
@@ -227,7 +233,7 @@ def steady_friction(
     ndarray
         ``mu_d``; tends to 1 for ``u -> inf`` and grows like ``-(3/2) eps ln u`` for ``u -> 0``.
     """
-    alpha, u, eps = _check_inputs(u, eps, alpha, creep)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
     mu = per_eps(
         lambda law, x: _steady_one_law(law, np.atleast_1d(x), alpha).reshape(x.shape),
         creep,
@@ -242,7 +248,7 @@ def steady_death_point(
 ) -> Array:
     """Where a steadily sliding trap leaves the (+) branch, ``p_d/a0`` with ``p_d/a(p_d) = y_c``
     (eq. 32)."""
-    alpha, u, eps = _check_inputs(u, eps, alpha, creep)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
     yc = Trap(alpha).y_c
 
     def one(law: CreepLaw, x: Array) -> Array:
@@ -284,7 +290,7 @@ def steady_friction_first_order(u: ArrayLike, eps: ArrayLike, alpha: float = 0.1
     [3 ln(1 + (y + 1)/u) + y/(u + y + 1)] f(y) dy``. Tends to eq. 35 as ``u -> 0`` and to
     ``1 + (eps / 2 u H0) int (4 y + 3) f dy`` as ``u -> inf``.
     """
-    alpha, u, eps = _check_inputs(u, eps, alpha, "log")
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
     trap = Trap(alpha)
     ub = np.atleast_1d(u)[..., None].astype(float)
 
@@ -326,5 +332,5 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
 def steady_friction_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
     """Low-velocity expansion of eq. 34 (eq. 35 with its constant):
     ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for ``u << 1`` and ``eps << 1``."""
-    alpha, u, eps = _check_inputs(u, eps, alpha, "log")
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
     return 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))

@@ -17,11 +17,16 @@ __all__ = [
     "check_choice",
     "check_broadcast",
     "check_finite_result",
+    "ALPHA_MIN",
     "EPS_MAX",
     "U_MIN",
     "U_MAX",
     "T_MAX",
 ]
+
+ALPHA_MIN: float = 1e-6
+"""Smallest reduced trap stiffness accepted by the friction calculations: ``y_c ~ 1/(4 alpha)``
+grows without bound as ``alpha -> 0`` and the force integrals overflow far below this."""
 
 EPS_MAX: float = 1.0
 """Largest creep parameter ``eps = S/Y`` accepted: the activation stress ``S`` stays below the
