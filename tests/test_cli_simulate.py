@@ -157,7 +157,7 @@ def run(self, progress=None, on_interrupt="raise"):
     return original(self, progress=tick, on_interrupt=on_interrupt)
 
 P.Protocol.run = run
-main()
+sys.exit(main())
 """
 
 
@@ -193,5 +193,5 @@ def test_sigterm_writes_nothing_and_leaves_no_temporary(tmp_path: Path) -> None:
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 143, err
-    assert err.strip().splitlines()[-1] == "interrupted (SIGTERM)"
+    assert err.strip().splitlines()[-1] == "error: interrupted (SIGTERM)"
     assert {p.name for p in tmp_path.iterdir()} == {"p.toml"}

@@ -12,6 +12,7 @@ from dryfriction.theory.creep import (
     LogCreep,
     creep_law,
     creep_law_difference,
+    max_age,
     radius,
 )
 
@@ -52,7 +53,11 @@ def test_log_law_closed_form_and_first_order_agreement():
 def test_laws_differ_at_long_times_only():
     # the exact law runs away once T ~ exp(1/eps); over the figure ranges it stays close
     assert abs(creep_law_difference(0.01, 100.0)) < 1e-3
-    assert creep_law_difference(0.2, 1e4) > 100  # runaway regime
+    # at the end of the exact law's range a_r = eps^(-1/2) = 2.24 against 1.45 for the log law
+    assert creep_law_difference(0.2, max_age(0.2)) == pytest.approx(
+        0.2**-0.5 - math.sqrt(1 + 0.2 * math.log1p(max_age(0.2))), rel=1e-9)
+    with pytest.raises(ValueError, match="T = 10000 is beyond the Eyring-Nabarro"):
+        creep_law_difference(0.2, 1e4)  # the runaway regime is refused, not computed
 
 
 def test_material_round_trip():
@@ -75,3 +80,40 @@ def test_radius_broadcasts_and_validates():
         radius(-1.0, 0.1)
     with pytest.raises(ValueError, match="creep"):
         creep_law("power", 0.1)
+
+
+def _en_age_closed_form(eps: float, s: float) -> float:
+    """Independent route to T(a_r^2 = s): T = (e^{1/eps}/eps) [E1(1/(eps s)) - E1(1/eps)]."""
+    from scipy.special import exp1
+
+    return math.exp(1 / eps) / eps * (exp1(1 / (eps * s)) - exp1(1 / eps))
+
+
+@pytest.mark.parametrize("eps", [0.05, 0.1, 0.3])
+def test_en_range_end_is_where_the_stress_has_relaxed_to_s(eps):
+    # catches a wrong closed form of T_v (e.g. missing the E1(1/eps) term or the 1/eps prefactor)
+    # and an edge that is not where a_r^2 = 1/eps
+    t_v = max_age(eps)
+    assert t_v == pytest.approx(_en_age_closed_form(eps, 1 / eps), rel=1e-12)
+    # just inside the edge the radius agrees with the ODE and the closed form
+    T = 0.999 * t_v
+    r = float(radius(T, eps, "eyring-nabarro"))
+    assert float(_en_ode(eps, np.array([T]))[0]) == pytest.approx(r, rel=1e-8)
+    assert _en_age_closed_form(eps, r * r) == pytest.approx(T, rel=1e-9)
+    with pytest.raises(ValueError, match=r"T = .* beyond the Eyring-Nabarro law's range at eps"):
+        radius(1.001 * t_v, eps, "eyring-nabarro")
+    assert np.isfinite(radius(1e30, eps, "log"))  # the log law has no such limit
+
+
+def test_en_radius_alone_equals_radius_in_an_array():
+    # catches a vectorised Newton that keeps moving converged points while others iterate
+    eps = 0.1
+    T = np.concatenate([np.logspace(-3, np.log10(0.99 * max_age(eps)), 37), [0.0]])
+    together = radius(T, eps, "eyring-nabarro")
+    alone = np.array([float(radius(t, eps, "eyring-nabarro")) for t in T])
+    np.testing.assert_array_equal(together, alone)
+
+
+def test_radius_shape_mismatch_names_the_parameters():
+    with pytest.raises(ValueError, match=r"T has shape \(3,\) and eps \(2,\): they do not"):
+        radius(np.ones(3), np.full(2, 0.01))

@@ -155,3 +155,28 @@ def test_bad_input(kwargs, name):
     args = {"T": 1.0, "eps": 0.01} | kwargs
     with pytest.raises(ValueError, match=name):
         static_friction(**args)
+
+
+def test_eyring_nabarro_static_range_and_array_consistency():
+    # catches T past the law's range computed as garbage (7e14 at T = 1e12, eps = 0.05, before)
+    # and a T whose answer depends on its neighbours in the array
+    from dryfriction.creep import max_age
+
+    eps = 0.05
+    t_v = max_age(eps)
+    T = np.geomspace(1e-2, 0.999 * t_v, 23)
+    together = static_friction(T, eps, ALPHA0, "eyring-nabarro")
+    alone = np.array([float(static_friction(t, eps, ALPHA0, "eyring-nabarro")) for t in T])
+    np.testing.assert_array_equal(together, alone)
+    with pytest.raises(ValueError, match=r"T = 1e\+12 is beyond the Eyring-Nabarro law's range"):
+        static_friction(1e12, eps, ALPHA0, "eyring-nabarro")
+
+
+@pytest.mark.parametrize(("T", "eps", "word"), [
+    (1e308, 0.04, r"T = 1e\+308 is out of range: allowed finite and >= 0 and <= 1e\+30"),
+    (1.0, 1e308, r"eps = 1e\+308 is out of range: allowed finite and >= 0 and <= 1"),
+    (np.ones(3), np.full(2, 0.01), r"T has shape \(3,\) and eps \(2,\): they do not broadcast"),
+])
+def test_static_out_of_range_is_a_named_value_error(T, eps, word):
+    with pytest.raises(ValueError, match=word):
+        static_friction(T, eps)

@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 from dryfriction.theory.steady import (
     DYNAMIC_SLOPE_PER_EPS,
     low_velocity_constant,
+    min_velocity,
     steady_death_point,
     steady_friction,
     steady_friction_first_order,
@@ -143,3 +144,95 @@ def test_continuity_across_alpha0():
     for load in (0.3, 0.8):
         np.testing.assert_allclose(static_friction(T, 0.05, lo, load=load),
                                    static_friction(T, 0.05, hi, load=load), rtol=1e-6)
+
+
+# --- range of the inputs (issue 16) -----------------------------------------------------------
+
+
+def _en_steady_quadrature(u: float, eps: float, alpha: float) -> float:
+    """Eq. 34 for the Eyring-Nabarro law by an independent route: a_r from the closed form
+    T = (e^{1/eps}/eps)[E1(1/(eps s)) - E1(1/eps)] inverted by brentq, the death point by brentq,
+    the integral by scipy's adaptive quad in ln(y + 1) (very strong pinning)."""
+    import math
+
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+    from scipy.special import exp1
+
+    from dryfriction.trap import force_plus
+
+    def s_of_T(T: float) -> float:
+        if T <= 0:
+            return 1.0
+        f = lambda s: math.exp(1 / eps) / eps * (exp1(1 / (eps * s)) - exp1(1 / eps)) - T  # noqa: E731
+        return brentq(f, 1.0, 1.0 / eps, xtol=1e-14, rtol=1e-14)
+
+    def r(y: float) -> float:
+        return math.sqrt(s_of_T((y + 1.0) / u))
+
+    yc = Trap(alpha).y_c
+    yd = brentq(lambda y: y / r(y) - yc, yc, yc / math.sqrt(eps), xtol=1e-14)
+
+    def g(t: float) -> float:
+        y = -1.0 + math.exp(t)
+        rr = r(y)
+        return math.exp(t) * rr * rr * float(force_plus(min(y / rr, yc), alpha))
+
+    val, _ = quad(g, math.log(u) - 40.0, math.log1p(yd), limit=400, epsabs=1e-12, epsrel=1e-10)
+    return val / Trap(alpha).H0
+
+
+@pytest.mark.parametrize("eps", [0.1, 0.3])
+def test_eyring_nabarro_near_its_edge_matches_an_independent_quadrature(eps):
+    # catches a death-point search that lands past the law's range (NaN, 0, -1e17 before) and a
+    # wrong u_min (an edge refused too early or accepted too late)
+    u_min = min_velocity(eps, ALPHA0)
+    for u in (1.001 * u_min, 3.0 * u_min):
+        got = float(steady_friction(u, eps, ALPHA0, "eyring-nabarro"))
+        assert got == pytest.approx(_en_steady_quadrature(u, eps, ALPHA0), rel=1e-7)
+    with pytest.raises(ValueError, match=r"u = .* beyond the Eyring-Nabarro law's range at eps"):
+        steady_friction(0.999 * u_min, eps, ALPHA0, "eyring-nabarro")
+
+
+def test_min_velocity_is_where_traps_die_at_the_end_of_the_range():
+    # at u_min the trap dies (y = y_c a_r) exactly at T_v, where a_r^2 = 1/eps: -1 + u T_v = y_c
+    # eps^(-1/2); catches a criterion on the wrong age (e.g. (1 + y_c)/u without the radius)
+    from dryfriction.creep import max_age
+
+    eps = 0.1
+    u = min_velocity(eps, ALPHA0)
+    assert -1.0 + u * max_age(eps) == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-12)
+    yd = float(steady_death_point(u, eps, ALPHA0, "eyring-nabarro"))
+    assert yd == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-8)
+
+
+@pytest.mark.parametrize("creep", ["log", "eyring-nabarro"])
+def test_one_u_alone_equals_the_same_u_in_an_array(creep):
+    # catches shared iteration (converged points moved while others iterate) or a batch-size
+    # dependent sum
+    eps = 0.1
+    lo = 1.001 * min_velocity(eps, ALPHA0, creep) if creep != "log" else 1e-8
+    u = np.geomspace(lo, 1e3, 29)
+    together = steady_friction(u, eps, ALPHA0, creep)
+    alone = np.array([float(steady_friction(x, eps, ALPHA0, creep)) for x in u])
+    np.testing.assert_array_equal(together, alone)
+
+
+def test_extreme_but_allowed_velocities_are_right():
+    # the ends of the accepted range (1e-30, 1e30) against the mpmath reference and the
+    # high-velocity limit: catches overflow or lost precision at the edges
+    assert float(steady_friction(1e-30, 0.01, ALPHA0)) == pytest.approx(
+        ref_steady(1e-30, 0.01, ALPHA0), rel=1e-9)
+    assert float(steady_friction(1e30, 0.04, ALPHA0)) == pytest.approx(1.0, abs=1e-13)
+
+
+@pytest.mark.parametrize(("u", "eps", "word"), [
+    (1e-308, 0.04, "u = 1e-308 is out of range: allowed finite and >= 1e-30 and <= 1e\\+30"),
+    (1e308, 0.04, "u = 1e\\+308 is out of range"),
+    (1.0, 1e308, "eps = 1e\\+308 is out of range: allowed finite and >= 0 and <= 1"),
+    (np.ones(3), np.full(2, 0.01), r"u has shape \(3,\) and eps \(2,\): they do not broadcast"),
+])
+def test_out_of_range_is_a_named_value_error(u, eps, word):
+    # before: nan, inf, RuntimeError, NumPy's anonymous broadcast error
+    with pytest.raises(ValueError, match=word):
+        steady_friction(u, eps)

@@ -45,3 +45,14 @@ def test_force_needs_normal_load():
         PhysicalScales(1e-6, 1.0).force(1.0)
     with pytest.raises(ValueError, match="V"):
         PhysicalScales(1e-6, 1.0).reduced_velocity(-1.0)
+
+
+def test_si_shape_mismatch_and_range_name_the_si_inputs():
+    # catches NumPy's anonymous broadcast error and a range error that hides the SI meaning
+    s = PhysicalScales(a0=1e-6, t0=0.01)
+    with pytest.raises(ValueError, match=r"t_w has shape \(3,\) and eps \(2,\)"):
+        static_friction_si(np.ones(3), np.full(2, 0.01), s)
+    with pytest.raises(ValueError, match=r"V has shape \(3,\) and eps \(2,\)"):
+        steady_friction_si(np.ones(3), np.full(2, 0.01), s)
+    with pytest.raises(ValueError, match=r"u = 1e\+34 is out of range.*V\* = a0/t0 = 0.0001 m/s"):
+        steady_friction_si(1e30, 0.01, s)

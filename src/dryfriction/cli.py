@@ -275,9 +275,22 @@ def rsf(
     from .program import Segment
     from .rsf.driving import SolverError, simulate_rsf
     from .rsf.law import RateState
-    from .validation import check_choice
+    from .validation import check_choice, check_scalar
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
+    from .rsf.law import V_MAX
+
+    # durations and velocities a run can reach in floating point (a 1e308 s first segment
+    # would leave the later ones at t = inf, silently dropped)
+    for name, value in (("--t1", t1), ("--t2", t2), ("--hold", hold)):
+        check_scalar(name, value, 0.0, _LOAD_MAX, lo_open=True)
+    for name, value in (("--v1", v1), ("--v2", v2)):
+        check_scalar(name, value, -V_MAX, V_MAX)
+    if v_init is not None:
+        check_scalar("--v-init", v_init, 0.0, V_MAX, lo_open=True)
+    check_scalar("--damping", damping, 0.0, _LOAD_MAX)
+    check_scalar("--mass", mass, 0.0, _LOAD_MAX)
+    check_scalar("--rtol", rtol, 0.0, 0.1, lo_open=True)
     params = RateState(a, b, dc, mu0, v0, state_law=state_law,  # type: ignore[arg-type]
                        regularized=regularized)
     if case == "step":
@@ -343,6 +356,11 @@ def _rsf_figure(res: Any, path: Any, title: str) -> None:
     plt.close(fig)
 
 
+_LOAD_MAX = 1e12
+"""Largest mass, damping (reduced units) or duration (s) the commands accept: far beyond any
+experiment, and small enough that products with the other inputs stay finite."""
+
+
 @app.command(cls=_many("--u"))
 @cli_errors
 def stability(
@@ -359,9 +377,12 @@ def stability(
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
     from .analysis.rsf_stability import rsf_stability_prediction
     from .theory.stability import critical_stiffness
-    from .validation import check_range
+    from .theory.steady import check_steady_inputs
+    from .validation import check_scalar
 
-    check_range("u", u, 0.0, lo_open=True)
+    check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
+    check_scalar("mass", mass, 0.0, _LOAD_MAX)
+    check_scalar("damping", damping, 0.0, _LOAD_MAX)
     res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
     twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping) for v in u]
              if eps > 0 else [])
@@ -865,15 +886,23 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")
 
 
-def main() -> None:
-    """Console-script entry point.
+def main(argv: list[str] | None = None) -> int:
+    """Console-script entry point: runs the app and returns the exit status.
+
+    Click's usage errors (unknown option or command, missing or ill-typed value) become one
+    line ``error: ...`` on standard error and status 2, like the library's own errors (Click
+    would print a usage box). ``--help`` and a bare ``dryfriction`` still print the help.
 
     Ctrl-C and SIGTERM become exceptions, so every temporary file and folder is removed on the
-    way out (exit 130 and 143). An interrupt is never swallowed: one that a library swallowed
-    (raised inside a finaliser, say) still turns a finished run's exit 0 into 130.
+    way out (status 130 and 143). An interrupt is never swallowed: one that a library swallowed
+    (raised inside a finaliser, say) still turns a finished run's status 0 into 130.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments without the program name; default ``sys.argv[1:]``.
     """
     import signal
-    import sys
 
     interrupted: list[int] = []
 
@@ -887,21 +916,40 @@ def main() -> None:
 
     signal.signal(signal.SIGINT, on_sigint)
     signal.signal(signal.SIGTERM, on_sigterm)
-    code: Any = 0
     try:
-        app()
+        code = _run(argv)
     except SystemExit as exc:
-        code = exc.code
+        code = exc.code if isinstance(exc.code, int) else int(exc.code is not None)
     except KeyboardInterrupt:
+        error_line("interrupted (Ctrl-C)")
         code = 130
     last = interrupted[-1] if interrupted else None
-    if last == signal.SIGTERM or (last == signal.SIGINT and code in (0, 1, None)):
-        # (click's Abort is exit 1; a command that handled Ctrl-C itself exits 130)
-        err.print(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})",
-                  highlight=False)
+    if last == signal.SIGTERM or (last == signal.SIGINT and code == 0):
+        error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")
         code = 128 + last
-    sys.exit(code)
+    return code
+
+
+def _run(argv: list[str] | None) -> int:
+    """The app without Click's standalone mode: usage errors become one line."""
+    try:
+        rv = app(args=argv, prog_name="dryfriction", standalone_mode=False)
+    except typer.Abort:  # Ctrl-C, as Click reports it
+        error_line("interrupted (Ctrl-C)")
+        return 130
+    except typer.TyperException as exc:  # Click's exceptions (Typer vendors Click)
+        ctx = getattr(exc, "ctx", None)
+        if type(exc).__name__ == "NoArgsIsHelpError" and ctx is not None:
+            print(ctx.get_help())
+            return 2
+        message = exc.format_message()  # type: ignore[attr-defined]
+        if ctx is not None and getattr(exc, "exit_code", 1) == 2:
+            message += f" (see {ctx.command_path} --help)"
+        error_line(message)
+        return int(getattr(exc, "exit_code", 1))
+    # without standalone mode a command's typer.Exit(code) comes back as its code
+    return rv if isinstance(rv, int) else 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())

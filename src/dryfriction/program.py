@@ -19,6 +19,10 @@ from .validation import check_scalar
 
 __all__ = ["Segment", "VelocityProgram"]
 
+_RESOLVABLE = 1e-12
+"""Smallest segment duration relative to its end time: about 4500 rounding units of the time
+variable, so the segment is still resolved."""
+
 
 @dataclass(frozen=True)
 class Segment:
@@ -91,6 +95,20 @@ class VelocityProgram:
         segs = tuple(s if isinstance(s, Segment) else Segment.from_mapping(s) for s in segments)
         if not segs:
             raise ValueError("a velocity program needs at least one segment")
+        start = 0.0
+        for i, seg in enumerate(segs, 1):
+            # each segment must start at a finite time and last long enough to move the clock:
+            # otherwise it would be dropped silently in floating point
+            end = start + seg.time
+            if not np.isfinite(end) or seg.time < _RESOLVABLE * end:
+                what = "duration" if seg.duration is not None else "slip"
+                raise ValueError(
+                    f"segment {i} ({what} {getattr(seg, what):g}) starts at t = {start:g} and "
+                    f"would end at t = {end:g}: every segment must last at least "
+                    f"{_RESOLVABLE:g} of its end time and end at a finite time; shorten the "
+                    "segments before it"
+                )
+            start = end
         object.__setattr__(self, "segments", segs)
         object.__setattr__(self, "x0", check_scalar("x0", x0))
 

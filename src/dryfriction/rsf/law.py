@@ -47,7 +47,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..validation import check_choice, check_range, check_scalar
 
-__all__ = ["RateState", "STATE_LAWS"]
+__all__ = ["RateState", "STATE_LAWS", "V_MAX"]
+
+V_MAX: float = 1e3
+"""Largest reference or load velocity accepted, m/s: far above seismic slip rates (~1 m/s);
+``ln(V0 theta/Dc)`` and the integration stay finite below it."""
 
 Array = NDArray[np.float64]
 StateLaw = Literal["ageing", "slip"]
@@ -111,7 +115,7 @@ class RateState:
         set_(self, "b", check_scalar("b", self.b, 0.0))
         set_(self, "dc", check_scalar("dc", self.dc, 0.0, lo_open=True))
         set_(self, "mu0", check_scalar("mu0", self.mu0))
-        set_(self, "v0", check_scalar("v0", self.v0, 0.0, lo_open=True))
+        set_(self, "v0", check_scalar("v0", self.v0, 0.0, V_MAX, lo_open=True))
         check_choice("state_law", self.state_law, STATE_LAWS)
         set_(self, "b2", check_scalar("b2", self.b2, 0.0))
         if self.dc2 is None:

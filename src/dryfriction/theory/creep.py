@@ -19,6 +19,20 @@ quadratures over the age of traps (eq. 34) need no special care at short ages:
 The exact law grows without bound at long times (``s`` grows exponentially once the stress
 has relaxed, at the rate ``eps e^{-1/eps}``); it departs from the log law when
 ``T ~ e^{1/eps}``. :func:`creep_law_difference` measures the departure.
+
+**Range of the Eyring-Nabarro law (ours).** With ``v = 1/eps - q`` the age integral is an
+exponential integral, ``T(Q) = (e^{1/eps}/eps) [E1(b/eps) - E1(1/eps)]``, ``b = 1 - eps Q =
+1/s``. As ``b -> 0``, ``E1(x) ~ -gamma - ln x``: ``s ~ (1/eps) exp(T eps e^{-1/eps} - gamma)``,
+so the area grows without bound, exponentially with time constant ``e^{1/eps}/eps``, and never
+saturates: the contact runs away. It happens because eq. 15's creep rate ``edot0 exp(sigma/S)``
+stays finite as the contact stress ``sigma = Y/s`` (eq. 16) relaxes to zero; Eyring's form is the
+forward-jump half of ``sinh(sigma/S)`` and holds only while ``sigma >> S``. We accept the law up
+to ``sigma = S``, i.e. ``a_r^2 = 1/eps``, ``Q_v = (1 - eps)/eps``, reached at
+
+    T_v(eps) = (e^{1/eps}/eps) [E1(1) - E1(1/eps)]         (E1(1) = 0.2194)
+
+(:func:`max_age`; ``T_v = 2.1e9`` at ``eps = 0.05``, ``4.8e4`` at ``eps = 0.1``). Ages beyond it
+are refused (:func:`check_age`) rather than computed.
 """
 
 from __future__ import annotations
@@ -30,8 +44,9 @@ from typing import Literal, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.special import exp1
 
-from ..validation import check_choice, check_range, check_scalar
+from ..validation import EPS_MAX, check_broadcast, check_choice, check_range, check_scalar
 
 __all__ = [
     "CreepLaw",
@@ -43,6 +58,8 @@ __all__ = [
     "creep_law_difference",
     "radius",
     "per_eps",
+    "max_age",
+    "check_age",
 ]
 
 Array = NDArray[np.float64]
@@ -178,7 +195,10 @@ class EyringNabarroCreep:
         t_hi = np.minimum(-np.log1p(-eps * Q), np.log1p(_EN_CUT * eps / b))
         t = t_hi[..., None] * _GL_X
         integrand = np.exp(-(b[..., None] / eps) * np.expm1(t))
-        integral = t_hi * (integrand @ _GL_W)
+        # an elementwise product and a sum along the rule: each row is summed the same way
+        # whatever the batch (a matrix product need not be), so one T alone or in an array
+        # gives the same bits
+        integral = t_hi * np.sum(integrand * _GL_W, axis=-1)
         return np.exp(Q) * integral / eps
 
     def clock(self, T: ArrayLike) -> Array:
@@ -194,24 +214,77 @@ class EyringNabarroCreep:
         hi = np.minimum(np.log1p(Tp), (1.0 - 1e-15) / self.eps)
         lo = np.zeros_like(hi)
         q = hi.copy()
+        # iterate only the points not yet converged: a converged point must not move while
+        # its neighbours in the array still iterate (alone or in an array: the same answer)
+        act = np.arange(q.size)
         for _ in range(200):
-            Fq = self.age(q)
-            g = np.log(Fq) - np.log(Tp)
-            lo = np.where(g < 0, q, lo)
-            hi = np.where(g > 0, q, hi)
-            step = g * Fq / self.dage(q)
-            qn = q - step
-            outside = (qn <= lo) | (qn >= hi)
-            qn = np.where(outside, 0.5 * (lo + hi), qn)
-            done = np.abs(qn - q) <= 1e-15 * np.maximum(1.0, np.abs(q))
-            q = qn
-            if np.all(done):
+            qa = q[act]
+            Fq = self.age(qa)
+            g = np.log(Fq) - np.log(Tp[act])
+            lo[act] = np.where(g < 0, qa, lo[act])
+            hi[act] = np.where(g > 0, qa, hi[act])
+            qn = qa - g * Fq / self.dage(qa)
+            outside = (qn <= lo[act]) | (qn >= hi[act])
+            qn = np.where(outside, 0.5 * (lo[act] + hi[act]), qn)
+            done = np.abs(qn - qa) <= 1e-15 * np.maximum(1.0, np.abs(qa))
+            q[act] = qn
+            act = act[~done]
+            if act.size == 0:
                 break
         out[pos] = q
         return out.reshape(T.shape)
 
     def radius(self, T: ArrayLike) -> Array:
         return np.sqrt(self.radius_sq(self.clock(T)))
+
+    @property
+    def valid_clock(self) -> float:
+        """Clock ``Q_v = (1 - eps)/eps`` at which ``a_r^2 = 1/eps``: the contact stress has
+        relaxed to ``S``, the end of the law's range (module docstring)."""
+        return math.inf if self.eps == 0.0 else (1.0 - self.eps) / self.eps
+
+    @property
+    def max_age(self) -> float:
+        """Age ``T_v = (e^{1/eps}/eps) [E1(1) - E1(1/eps)]`` at the end of the law's range.
+
+        Evaluated in logarithms: ``inf`` once it exceeds the largest float (``eps < 0.0014``).
+        """
+        eps = self.eps
+        if eps == 0.0:
+            return math.inf
+        if eps >= 1.0:
+            return 0.0
+        gap = float(exp1(1.0) - exp1(1.0 / eps))
+        log_t = 1.0 / eps - math.log(eps) + math.log(gap)
+        return math.exp(log_t) if log_t < 709.0 else math.inf
+
+
+def max_age(eps: float, creep: str = "eyring-nabarro") -> float:
+    """Largest reduced age ``T`` a creep law is used for: ``inf`` for the log law, ``T_v(eps)``
+    (module docstring) for the Eyring-Nabarro law."""
+    check_choice("creep", creep, CREEP_LAWS)
+    eps = check_scalar("eps", eps, 0.0, EPS_MAX)
+    return math.inf if creep == "log" else EyringNabarroCreep(eps).max_age
+
+
+def check_age(T: ArrayLike, eps: ArrayLike, creep: str, name: str = "T") -> None:
+    """Refuse ages beyond the Eyring-Nabarro law's range (:func:`max_age`), naming ``name``.
+
+    ``T`` and ``eps`` are broadcast; the log law accepts every age.
+    """
+    if creep == "log":
+        return
+    T_b, eps_b = np.broadcast_arrays(np.asarray(T, float), np.asarray(eps, float))
+    for e in np.unique(eps_b):
+        t_v = EyringNabarroCreep(float(e)).max_age
+        over = (eps_b == e) & (T_b > t_v)
+        if np.any(over):
+            raise ValueError(
+                f"{name} = {float(T_b[over].flat[0]):g} is beyond the Eyring-Nabarro law's range "
+                f"at eps = {float(e):g}: by T = {t_v:.4g} the contact stress has relaxed to S "
+                f"(a_r^2 = 1/eps) and the contact runs away; use {name} <= {t_v:.4g} or "
+                "creep = log (--creep log)"
+            )
 
 
 def creep_law(name: str, eps: float) -> LogCreep | EyringNabarroCreep:
@@ -295,7 +368,9 @@ def radius(T: ArrayLike, eps: ArrayLike, creep: str = "log") -> NDArray[np.float
     """``a_r(T)`` for arrays of age ``T`` (in ``t0``) and ``eps``, broadcast (eqs. 17, 15-16)."""
     check_choice("creep", creep, CREEP_LAWS)
     T_a = check_range("T", T, 0.0)
-    eps_a = check_range("eps", eps, 0.0)
+    eps_a = check_range("eps", eps, 0.0, EPS_MAX)
+    check_broadcast(T=T_a, eps=eps_a)
+    check_age(T_a, eps_a, creep)
     return per_eps(lambda law, t: law.radius(t), creep, eps_a, T_a)
 
 

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize_scalar
 
-from ..validation import check_choice, check_range, check_scalar
+from ..validation import check_broadcast, check_choice, check_range, check_scalar
 from .creep import CREEP_LAWS, per_eps
 from .static import static_friction, static_friction_at_radius, static_slope_per_eps
 from .steady import steady_friction
@@ -112,6 +112,7 @@ def dieterich_constant_local(
     check_choice("creep", creep, CREEP_LAWS)
     u = check_range("u", u, 0.0, lo_open=True)
     eps = check_range("eps", eps, 0.0, lo_open=True)
+    check_broadcast(u=u, eps=eps)
 
     def one(law, x):  # type: ignore[no-untyped-def]
         tgt = np.atleast_1d(steady_friction(x, law.eps, alpha, creep))

@@ -39,8 +39,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from ..validation import check_choice, check_range, check_scalar
-from .creep import CREEP_LAWS, radius
+from ..validation import (
+    ALPHA_MIN,
+    EPS_MAX,
+    T_MAX,
+    check_broadcast,
+    check_choice,
+    check_finite_result,
+    check_range,
+    check_scalar,
+)
+from .creep import CREEP_LAWS, check_age, radius
 from .trap import Trap, force_forward, work_forward, work_minus
 
 __all__ = [
@@ -58,7 +67,7 @@ Array = NDArray[np.float64]
 
 
 def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
 
 
 def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
@@ -205,10 +214,13 @@ def static_friction(
     """
     alpha = _check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
-    T = check_range("T", T, 0.0)
-    eps = check_range("eps", eps, 0.0)
+    T = check_range("T", T, 0.0, T_MAX)
+    eps = check_range("eps", eps, 0.0, EPS_MAX)
+    check_broadcast(T=T, eps=eps)
+    check_age(T, eps, creep)
     d_w = loaded_edge(load, alpha)
-    return static_friction_at_radius(radius(T, eps, creep), alpha, d_w)
+    mu = static_friction_at_radius(radius(T, eps, creep), alpha, d_w)
+    return check_finite_result("mu_s", mu, T=T, eps=eps)
 
 
 def static_slope_per_eps(alpha: float = 0.13) -> float:
@@ -227,6 +239,7 @@ def static_friction_first_order(T: ArrayLike, eps: ArrayLike, alpha: float = 0.1
 
     ``mu_s ~ 1 + eps ln(1 + T) [3 H1 + (y_c - 1) f_+(y_c - 1)] / (2 H0)``.
     """
-    T = check_range("T", T, 0.0)
-    eps = check_range("eps", eps, 0.0)
+    T = check_range("T", T, 0.0, T_MAX)
+    eps = check_range("eps", eps, 0.0, EPS_MAX)
+    check_broadcast(T=T, eps=eps)
     return 1.0 + eps * np.log1p(T) * static_slope_per_eps(alpha)

@@ -24,12 +24,24 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import quad
 
-from ..validation import check_choice, check_range, check_scalar
-from .creep import CREEP_LAWS, CreepLaw, per_eps
+from ..validation import (
+    ALPHA_MIN,
+    EPS_MAX,
+    U_MAX,
+    U_MIN,
+    check_broadcast,
+    check_choice,
+    check_finite_result,
+    check_range,
+    check_scalar,
+)
+from .creep import CREEP_LAWS, CreepLaw, EyringNabarroCreep, per_eps
 from .trap import Trap, force_forward, force_minus, force_plus
 
 __all__ = [
     "steady_friction",
+    "min_velocity",
+    "check_steady_inputs",
     "steady_death_point",
     "death_clock",
     "steady_profile",
@@ -74,33 +86,106 @@ def _minus_branch_nodes(c_d: Array, c_e: Array, yc: float) -> tuple[Array, Array
 
 
 def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
+
+
+def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro") -> float:
+    """Smallest ``u`` at which steady sliding stays inside the creep law's range (ours).
+
+    A trap dies where ``-1 + u T = w_d a_r(T)`` (eq. 32; ``w_d`` = :attr:`Trap.death_point`).
+    The Eyring-Nabarro law holds up to the age ``T_v`` where ``a_r^2 = 1/eps``
+    (:func:`dryfriction.creep.max_age`). On the clock interval ``[0, Q_v]``,
+    ``g(Q) = -1 + u T(Q) - w a_r(Q)`` has ``g' = (u e^Q - w eps / (2 sqrt(b)))/b``, ``b = 1 - eps
+    Q``, and ``ln(u e^Q 2 sqrt(b) / (w eps))`` has slope ``1 - eps/(2b) > 0`` there: ``g``
+    falls, then rises, so the death lies inside the range exactly when ``g(Q_v) >= 0``, i.e.
+
+        u >= u_min = (1 + w_d / sqrt(eps)) / T_v(eps).
+
+    The log law has no such limit (0 is returned).
+    """
+    check_choice("creep", creep, CREEP_LAWS)
+    eps = check_scalar("eps", eps, 0.0, EPS_MAX)
+    if creep == "log" or eps == 0.0:
+        return 0.0
+    w_d = Trap(_check_alpha(alpha)).death_point
+    t_v = EyringNabarroCreep(eps).max_age
+    return (1.0 + w_d / math.sqrt(eps)) / t_v if t_v > 0 else math.inf
+
+
+def _check_velocity(u: Array, eps: Array, alpha: float, creep: str) -> None:
+    """Refuse velocities whose traps die beyond the creep law's range (:func:`min_velocity`)."""
+    if creep == "log":
+        return
+    u_b, eps_b = np.broadcast_arrays(u, eps)
+    for e in np.unique(eps_b):
+        u_min = min_velocity(float(e), alpha, creep)
+        low = (eps_b == e) & (u_b < u_min)
+        if np.any(low):
+            t_v = EyringNabarroCreep(float(e)).max_age
+            raise ValueError(
+                f"u = {float(u_b[low].flat[0]):g} is beyond the Eyring-Nabarro law's range at "
+                f"eps = {float(e):g}: its traps would die older than T = {t_v:.4g}, where the "
+                "contact stress has relaxed to S (a_r^2 = 1/eps) and the contact runs away; "
+                f"use u >= {u_min:.4g} or creep = log (--creep log)"
+            )
+
+
+def check_steady_inputs(u: ArrayLike, eps: ArrayLike, alpha: float, creep: str
+                  ) -> tuple[float, Array, Array]:
+    """Every check of the steady-sliding entry points, before any work.
+
+    Returns ``(alpha, u, eps)`` as floats and arrays; raises ``ValueError`` naming the
+    parameter and its allowed range (also used by the ``stability`` command).
+    """
+    alpha = _check_alpha(alpha)
+    check_choice("creep", creep, CREEP_LAWS)
+    u_a = check_range("u", u, U_MIN, U_MAX)
+    eps_a = check_range("eps", eps, 0.0, EPS_MAX)
+    check_broadcast(u=u_a, eps=eps_a)
+    _check_velocity(u_a, eps_a, alpha, creep)
+    return alpha, u_a, eps_a
 
 
 def death_clock(law: CreepLaw, u: Array, w_end: float) -> Array:
     """Clock ``c`` at which ``y(c)/r(c) = w_end``, ``y(c) = -1 + u T(c)`` (eq. 32).
 
-    ``g(c) = -1 + u T(c) - w_end r(c)`` is increasing and convex in ``c``; Newton's method
-    from the lower bound ``c(T = (w_end + 1)/u)`` with a bisection safeguard.
+    ``g(c) = -1 + u T(c) - w_end r(c)`` is increasing and convex in ``c`` for the log law, and
+    falls then rises up to the end ``Q_v`` of the Eyring-Nabarro law's range
+    (:func:`min_velocity`); Newton's method from the lower bound ``c(T = (w_end + 1)/u)`` with
+    a bisection safeguard, each point iterated until it alone has converged.
     """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c_max = float(law.clock_at_radius(np.inf)) if law.eps > 0 else np.inf
+    c_max = law.valid_clock if isinstance(law, EyringNabarroCreep) else math.inf
     lo = law.clock((w_end + 1.0) / u)
     hi = np.full_like(lo, c_max)
+    if math.isfinite(c_max):
+        g_hi = -1.0 + u * law.age(hi) - w_end * np.sqrt(law.radius_sq(hi))
+        # rounding may put g(Q_v) a hair below 0 at u = u_min: the root is then Q_v itself
+        if np.any(g_hi < -1e-9 * (1.0 + u * law.age(hi))):
+            raise ValueError(
+                f"u = {float(u[np.argmax(g_hi < 0)]):g} is beyond the Eyring-Nabarro law's "
+                f"range at eps = {law.eps:g}: its traps would die after the contact runs away; "
+                "use a larger u or creep = log"
+            )
     c = lo.copy()
+    # a converged point must not move while its neighbours still iterate (alone or in an
+    # array: the same answer), so only the active points are updated
+    act = np.arange(c.size)
     for _ in range(200):
-        R = law.radius_sq(c)
-        g = -1.0 + u * law.age(c) - w_end * np.sqrt(R)
-        lo = np.where(g <= 0, c, lo)
-        hi = np.where(g >= 0, c, hi)
-        dg = u * law.dage(c) - w_end * law.dradius_sq(c) / (2.0 * np.sqrt(R))
-        cn = c - g / dg
-        bad = ~np.isfinite(cn) | (cn < lo) | (cn > hi)
-        mid = np.where(np.isfinite(hi), 0.5 * (lo + hi), 2.0 * lo + 1.0)
+        ca, ua, lo_a, hi_a = c[act], u[act], lo[act], hi[act]
+        R = law.radius_sq(ca)
+        g = -1.0 + ua * law.age(ca) - w_end * np.sqrt(R)
+        lo_a = np.where(g <= 0, ca, lo_a)
+        hi_a = np.where(g >= 0, ca, hi_a)
+        dg = ua * law.dage(ca) - w_end * law.dradius_sq(ca) / (2.0 * np.sqrt(R))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cn = ca - g / dg
+        bad = ~np.isfinite(cn) | (cn < lo_a) | (cn > hi_a)
+        mid = np.where(np.isfinite(hi_a), 0.5 * (lo_a + hi_a), 2.0 * lo_a + 1.0)
         cn = np.where(bad, mid, cn)
-        done = np.abs(cn - c) <= 4e-16 * np.maximum(1.0, np.abs(c))
-        c = cn
-        if np.all(done):
+        done = (np.abs(cn - ca) <= 4e-16 * np.maximum(1.0, np.abs(ca))) | (hi_a - lo_a <= 0)
+        c[act], lo[act], hi[act] = cn, lo_a, hi_a
+        act = act[~done]
+        if act.size == 0:
             return c
     raise RuntimeError("steady sliding: the death point did not converge")  # pragma: no cover
 
@@ -115,7 +200,8 @@ def _steady_one_law(law: CreepLaw, u: Array, alpha: float) -> Array:
     y = -1.0 + u[:, None] * law.age(c)
     w = np.minimum(y / np.sqrt(R), yc)
     integrand = u[:, None] * law.dage(c) * R * force_plus(w, alpha) * 2.0 * c_d * _TAU
-    total = integrand @ _TAU_W
+    # a sum along the rule, not a matrix product: each u summed alike whatever the batch
+    total = np.sum(integrand * _TAU_W, axis=-1)
     if yc < 1.0:  # strong pinning: continue on the (-) branch up to w = 1
         c_e = death_clock(law, u, 1.0)[:, None]
         c, wts = _minus_branch_nodes(c_d, c_e, yc)
@@ -148,16 +234,14 @@ def steady_friction(
     ndarray
         ``mu_d``; tends to 1 for ``u -> inf`` and grows like ``-(3/2) eps ln u`` for ``u -> 0``.
     """
-    alpha = _check_alpha(alpha)
-    check_choice("creep", creep, CREEP_LAWS)
-    u = check_range("u", u, 0.0, lo_open=True)
-    eps = check_range("eps", eps, 0.0)
-    return per_eps(
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
+    mu = per_eps(
         lambda law, x: _steady_one_law(law, np.atleast_1d(x), alpha).reshape(x.shape),
         creep,
         eps,
         u,
     )
+    return check_finite_result("mu_d", mu, u=u, eps=eps)
 
 
 def steady_death_point(
@@ -165,10 +249,7 @@ def steady_death_point(
 ) -> Array:
     """Where a steadily sliding trap leaves the (+) branch, ``p_d/a0`` with ``p_d/a(p_d) = y_c``
     (eq. 32)."""
-    alpha = _check_alpha(alpha)
-    check_choice("creep", creep, CREEP_LAWS)
-    u = check_range("u", u, 0.0, lo_open=True)
-    eps = check_range("eps", eps, 0.0)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
     yc = Trap(alpha).y_c
 
     def one(law: CreepLaw, x: Array) -> Array:
@@ -187,8 +268,9 @@ def steady_profile(
     """
     alpha = _check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
-    u = check_scalar("u", u, 0.0, lo_open=True)
-    eps = check_scalar("eps", eps, 0.0)
+    u = check_scalar("u", u, U_MIN, U_MAX)
+    eps = check_scalar("eps", eps, 0.0, EPS_MAX)
+    _check_velocity(np.asarray(u), np.asarray(eps), alpha, creep)
     y = check_range("y", y)
     from .creep import creep_law
 
@@ -209,9 +291,7 @@ def steady_friction_first_order(u: ArrayLike, eps: ArrayLike, alpha: float = 0.1
     [3 ln(1 + (y + 1)/u) + y/(u + y + 1)] f(y) dy``. Tends to eq. 35 as ``u -> 0`` and to
     ``1 + (eps / 2 u H0) int (4 y + 3) f dy`` as ``u -> inf``.
     """
-    alpha = _check_alpha(alpha)
-    u = check_range("u", u, 0.0, lo_open=True)
-    eps = check_range("eps", eps, 0.0)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
     trap = Trap(alpha)
     ub = np.atleast_1d(u)[..., None].astype(float)
 
@@ -253,6 +333,5 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
 def steady_friction_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
     """Low-velocity expansion of eq. 34 (eq. 35 with its constant):
     ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for ``u << 1`` and ``eps << 1``."""
-    u = check_range("u", u, 0.0, lo_open=True)
-    eps = check_range("eps", eps, 0.0)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
     return 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))

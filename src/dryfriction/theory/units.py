@@ -9,12 +9,14 @@ explicit and every field says its unit.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..validation import check_range, check_scalar
+from ..validation import check_broadcast, check_range, check_scalar
 from .static import static_friction
 from .steady import steady_friction
 
@@ -88,6 +90,15 @@ class PhysicalScales:
         return np.asarray(C, float) * self.a0
 
 
+@contextmanager
+def _in_reduced_units(meaning: str) -> Iterator[None]:
+    """Say what the reduced variable of a core range error is in SI (``T = t_w/t0, ...``)."""
+    try:
+        yield
+    except ValueError as exc:
+        raise ValueError(f"{exc} ({meaning})") from None
+
+
 def static_friction_si(
     t_w: ArrayLike,
     eps: float,
@@ -100,15 +111,19 @@ def static_friction_si(
 
     ``load`` is the tangential force during the wait as a fraction of ``F_el`` (``[0, 1)``).
     """
-    return scales.friction_coefficient(
-        static_friction(scales.reduced_time(t_w), eps, alpha, creep, load)
-    )
+    check_broadcast(t_w=t_w, eps=eps)
+    T = scales.reduced_time(t_w)
+    with _in_reduced_units(f"T = t_w/t0, t0 = {scales.t0:g} s"):
+        mu = static_friction(T, eps, alpha, creep, load)
+    return scales.friction_coefficient(mu)
 
 
 def steady_friction_si(
     V: ArrayLike, eps: float, scales: PhysicalScales, alpha: float = 0.13, creep: str = "log"
 ) -> Array:
     """Steady dynamic friction coefficient ``F_d/W`` at sliding velocity ``V`` in m/s (eq. 34)."""
-    return scales.friction_coefficient(
-        steady_friction(scales.reduced_velocity(V), eps, alpha, creep)
-    )
+    check_broadcast(V=V, eps=eps)
+    u = scales.reduced_velocity(V)
+    with _in_reduced_units(f"u = V/V*, V* = a0/t0 = {scales.velocity_scale:g} m/s"):
+        mu = steady_friction(u, eps, alpha, creep)
+    return scales.friction_coefficient(mu)
