@@ -236,3 +236,18 @@ def test_out_of_range_is_a_named_value_error(u, eps, word):
     # before: nan, inf, RuntimeError, NumPy's anonymous broadcast error
     with pytest.raises(ValueError, match=word):
         steady_friction(u, eps)
+
+
+def test_grouping_and_chunking_do_not_change_a_point(monkeypatch):
+    # per_eps sorts the points by eps and evaluates them in chunks: a mix-up of indices would
+    # give a point another point's value. Each point alone is the reference.
+    import dryfriction.theory.creep as creep_mod
+
+    rng = np.random.default_rng(3)
+    u = 10.0 ** rng.uniform(-2, 2, 37)
+    eps = rng.choice([0.0, 0.02, 0.04, 0.07], 37)
+    monkeypatch.setattr(creep_mod, "PER_EPS_CHUNK", 5)
+    together = steady_friction(u.reshape(37, 1), eps.reshape(37, 1))
+    alone = np.array([steady_friction(a, b) for a, b in zip(u, eps, strict=True)])
+    assert together.shape == (37, 1)
+    np.testing.assert_array_equal(together[:, 0], alone)

@@ -345,6 +345,11 @@ class CreepMaterial:
         return cls(Y=Y, S=eps * Y, edot0=math.exp(-x - math.log(t0) - math.log(x)))
 
 
+PER_EPS_CHUNK = 8192
+"""Points evaluated at once by :func:`per_eps`: the quadratures hold a few kB of temporaries
+per point, so this bounds their memory (tens of MB) for any array size, at no cost in speed."""
+
+
 def per_eps(
     fn: Callable[[CreepLaw, NDArray[np.float64]], NDArray[np.float64]],
     creep: str,
@@ -353,15 +358,24 @@ def per_eps(
 ) -> NDArray[np.float64]:
     """Broadcast ``fn(law, x)`` over arrays of ``eps``, building one law per distinct ``eps``.
 
-    The creep laws carry a scalar ``eps``; this groups the points of a grid by ``eps`` so that
-    every public function broadcasts over ``(eps, x)`` like a NumPy ufunc.
+    The creep laws carry a scalar ``eps``; this groups the points of a grid by ``eps`` (one
+    sort, so many distinct values cost no more than one each) so that every public function
+    broadcasts over ``(eps, x)`` like a NumPy ufunc, and evaluates ``fn`` on at most
+    :data:`PER_EPS_CHUNK` points at a time (every point is independent of the others, so the
+    result does not depend on the chunking).
     """
     eps_b, x_b = np.broadcast_arrays(eps, x)
-    out = np.empty(eps_b.shape)
-    for e in np.unique(eps_b):
-        m = eps_b == e
-        out[m] = fn(creep_law(creep, float(e)), x_b[m])
-    return out if out.ndim else out[()]
+    flat_e, flat_x = eps_b.ravel(), x_b.ravel()
+    out = np.empty(flat_e.size)
+    order = np.argsort(flat_e, kind="stable")
+    e_sorted = flat_e[order]
+    starts = np.flatnonzero(np.r_[True, e_sorted[1:] != e_sorted[:-1]])
+    for i0, i1 in zip(starts, np.r_[starts[1:], e_sorted.size], strict=True):
+        law = creep_law(creep, float(e_sorted[i0]))
+        for j in range(i0, i1, PER_EPS_CHUNK):
+            idx = order[j:min(j + PER_EPS_CHUNK, i1)]
+            out[idx] = fn(law, flat_x[idx])
+    return out.reshape(eps_b.shape) if eps_b.ndim else out[0]
 
 
 def radius(T: ArrayLike, eps: ArrayLike, creep: str = "log") -> NDArray[np.float64]:
