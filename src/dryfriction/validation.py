@@ -12,6 +12,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "Array",
+    "check_alpha",
     "check_range",
     "check_scalar",
     "check_choice",
@@ -23,6 +25,9 @@ __all__ = [
     "U_MAX",
     "T_MAX",
 ]
+
+Array = NDArray[np.float64]
+"""The one alias for float arrays, used by every module's annotations."""
 
 ALPHA_MIN: float = 1e-6
 """Smallest reduced trap stiffness accepted by the friction calculations: ``y_c ~ 1/(4 alpha)``
@@ -155,3 +160,9 @@ def check_finite_result(what: str, result: ArrayLike, **inputs: ArrayLike) -> ND
         raise ValueError(f"{what} is not finite at {where}: these inputs are beyond the range "
                          "where the numerics hold")
     return arr
+
+
+def check_alpha(alpha: float) -> float:
+    """Reduced trap stiffness of a pinning trap, ``ALPHA_MIN <= alpha < 1`` (``alpha >= 1``:
+    no pinning, no friction)."""
+    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)

@@ -43,6 +43,8 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..validation import Array
+
 __all__ = [
     "StaticData",
     "SteadyData",
@@ -53,7 +55,6 @@ __all__ = [
     "LENGTH_UNITS",
 ]
 
-Array = NDArray[np.float64]
 
 TIME_UNITS: dict[str, float] = {
     "s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "ns": 1e-9, "min": 60.0, "h": 3600.0,

@@ -46,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import exp1
 
-from ..validation import EPS_MAX, check_broadcast, check_choice, check_range, check_scalar
+from ..validation import EPS_MAX, Array, check_broadcast, check_choice, check_range, check_scalar
 
 __all__ = [
     "CreepLaw",
@@ -62,7 +62,6 @@ __all__ = [
     "check_age",
 ]
 
-Array = NDArray[np.float64]
 CreepName = Literal["log", "eyring-nabarro"]
 CREEP_LAWS: tuple[str, ...] = ("log", "eyring-nabarro")
 
@@ -291,15 +290,6 @@ def creep_law(name: str, eps: float) -> LogCreep | EyringNabarroCreep:
     """Build a creep law by name: ``"log"`` (eq. 17) or ``"eyring-nabarro"`` (eqs. 15-16)."""
     check_choice("creep", name, CREEP_LAWS)
     return LogCreep(eps) if name == "log" else EyringNabarroCreep(eps)
-
-
-def as_creep_law(creep: str | CreepLaw, eps: float) -> CreepLaw:
-    """Accept a law object (its ``eps`` must match) or a law name."""
-    if isinstance(creep, str):
-        return creep_law(creep, eps)
-    if creep.eps != eps:
-        raise ValueError(f"creep law has eps = {creep.eps:g} but eps = {eps:g} was given")
-    return creep
 
 
 @dataclass(frozen=True)

@@ -15,10 +15,17 @@ units, ``mu_d(u) = mu_s(T = C/u)``. The model satisfies it only asymptotically:
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from ..validation import check_broadcast, check_choice, check_range, check_scalar
+from ..validation import (
+    Array,
+    check_alpha,
+    check_broadcast,
+    check_choice,
+    check_range,
+    check_scalar,
+)
 from .creep import CREEP_LAWS, per_eps
 from .static import static_friction, static_friction_at_radius, static_slope_per_eps
 from .steady import steady_friction
@@ -31,13 +38,8 @@ __all__ = [
     "dieterich_constant_local",
 ]
 
-Array = NDArray[np.float64]
 
 _ZX, _ZW = np.polynomial.legendre.leggauss(16)
-
-
-def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
 
 
 def forward_moment(k: int, alpha: float = 0.13) -> float:
@@ -47,7 +49,7 @@ def forward_moment(k: int, alpha: float = 0.13) -> float:
     integrand is a polynomial in ``z`` of degree ``2k + 3``; 16-point Gauss-Legendre in ``z`` is
     exact for ``k <= 14``. The (-) part (strong pinning) follows from ``f_-(y) = -f_+(-y)``.
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     if not 0 <= k <= 14:
         raise ValueError(f"k = {k} is out of range: allowed 0 <= k <= 14")
     trap = Trap(alpha)
@@ -67,7 +69,7 @@ def forward_moment(k: int, alpha: float = 0.13) -> float:
 
 def dieterich_constant_asymptotic(alpha: float = 0.13) -> float:
     """``C_inf``: Dieterich constant matching ``mu_d`` and ``mu_s`` as ``u -> inf`` (ours)."""
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     trap = Trap(alpha)
     dyn = 4.0 * forward_moment(1, alpha) + 3.0 * forward_moment(0, alpha)
     stat = 2.0 * trap.H0 * static_slope_per_eps(alpha)
@@ -84,7 +86,7 @@ def dieterich_constant_least_squares(
 ) -> float:
     """``C`` minimising ``sum (mu_d(u_i) - mu_s(C/u_i))^2`` on ``n`` log-spaced ``u`` (Fig. 6)."""
     eps = check_scalar("eps", eps, 0.0, lo_open=True)
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     u_min = check_scalar("u_min", u_min, 0.0, lo_open=True)
     u_max = check_scalar("u_max", u_max, u_min, lo_open=True)
     check_choice("creep", creep, CREEP_LAWS)
@@ -108,7 +110,7 @@ def dieterich_constant_local(
     it; ``r`` is found by bisection and ``T`` from the creep law's inverse. NaN where
     ``mu_d(u) < 1`` (no waiting time gives a static friction that low).
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     u = check_range("u", u, 0.0, lo_open=True)
     eps = check_range("eps", eps, 0.0, lo_open=True)

@@ -49,7 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from ..validation import check_choice, check_scalar
+from ..validation import Array, check_choice, check_scalar
 from .creep import CREEP_LAWS, CreepLaw, creep_law
 from .steady import death_clock
 from .trap import Trap, force_minus, force_plus
@@ -67,7 +67,6 @@ __all__ = [
     "nyquist_crossings",
 ]
 
-Array = NDArray[np.float64]
 CArray = NDArray[np.complex128]
 
 _S, _SW = np.polynomial.legendre.leggauss(96)

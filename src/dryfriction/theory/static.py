@@ -36,13 +36,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from ..validation import (
-    ALPHA_MIN,
     EPS_MAX,
     T_MAX,
+    Array,
+    check_alpha,
     check_broadcast,
     check_choice,
     check_finite_result,
@@ -63,12 +64,6 @@ __all__ = [
     "static_slope_per_eps",
 ]
 
-Array = NDArray[np.float64]
-
-
-def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
-
 
 def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
     """Force (units ``F_el``) of a fresh rest population shifted by ``d`` (units ``a0``).
@@ -77,7 +72,7 @@ def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
     and 1 at ``d = y_c`` (the elastic threshold equals ``F_el``). Its slope at 0 is the contact
     stiffness ``Delta f / H0`` (eqs. 13-14).
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     trap = Trap(alpha)
     d = check_range("d", d, 0.0, trap.y_c)
     dm = np.minimum(d, 1.0)
@@ -95,7 +90,7 @@ def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
         Reduced trap stiffness, ``0 < alpha < 1``.
     """
     f_w = check_scalar("load", f_w, 0.0, 1.0, hi_open=True)
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     if f_w == 0.0:
         return 0.0
     yc = Trap(alpha).y_c
@@ -117,7 +112,7 @@ def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
     d_w : float
         Population edge during the wait (0: waiting at zero load; see :func:`loaded_edge`).
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     trap = Trap(alpha)
     d = check_range("d", d, 0.0)
     r = check_range("r", r, 1.0)
@@ -132,7 +127,7 @@ def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
 
 def threshold_shift(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
     """Shift ``d* = r y_c - d_w`` at which the aged (+) edge reaches its spinodal (eq. 26)."""
-    return np.asarray(r, float) * Trap(_check_alpha(alpha)).y_c - d_w
+    return np.asarray(r, float) * Trap(check_alpha(alpha)).y_c - d_w
 
 
 def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
@@ -174,7 +169,7 @@ def static_friction_at_radius(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.
     force ``mu(0)`` and an interior maximum before ``d*`` are candidates too. The tests check
     the result against a dense scan of ``mu(d)`` over both regimes.
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     r = check_range("r", r, 1.0)
     trap = Trap(alpha)
     best = np.maximum(pull_force(threshold_shift(r, alpha, d_w), r, alpha, d_w), 1.0)
@@ -212,7 +207,7 @@ def static_friction(
     ndarray
         ``mu_s``, same broadcast shape as ``(T, eps)``; ``mu_s(T = 0) = 1``.
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     T = check_range("T", T, 0.0, T_MAX)
     eps = check_range("eps", eps, 0.0, EPS_MAX)
@@ -229,7 +224,7 @@ def static_slope_per_eps(alpha: float = 0.13) -> float:
     ``[3 H1 + (y_c - 1) f(y_c - 1)] / (2 H0)``, with ``f`` the forward force (``f_+`` in the
     paper's regime) and ``H1`` of eq. 28b.
     """
-    trap = Trap(_check_alpha(alpha))
+    trap = Trap(check_alpha(alpha))
     f1 = float(force_forward(trap.y_c - 1.0, alpha))
     return (3.0 * trap.H1 + (trap.y_c - 1.0) * f1) / (2.0 * trap.H0)
 

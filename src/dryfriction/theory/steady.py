@@ -21,14 +21,15 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.integrate import quad
 
 from ..validation import (
-    ALPHA_MIN,
     EPS_MAX,
     U_MAX,
     U_MIN,
+    Array,
+    check_alpha,
     check_broadcast,
     check_choice,
     check_finite_result,
@@ -51,7 +52,6 @@ __all__ = [
     "DYNAMIC_SLOPE_PER_EPS",
 ]
 
-Array = NDArray[np.float64]
 
 DYNAMIC_SLOPE_PER_EPS: float = -1.5
 """``(1/eps) d mu_d / d ln u`` for ``u << 1`` (eq. 35 reading): ``-3/2``, independent of alpha."""
@@ -85,10 +85,6 @@ def _minus_branch_nodes(c_d: Array, c_e: Array, yc: float) -> tuple[Array, Array
     return c_d + x, wts
 
 
-def _check_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
-
-
 def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro") -> float:
     """Smallest ``u`` at which steady sliding stays inside the creep law's range (ours).
 
@@ -107,7 +103,7 @@ def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro")
     eps = check_scalar("eps", eps, 0.0, EPS_MAX)
     if creep == "log" or eps == 0.0:
         return 0.0
-    w_d = Trap(_check_alpha(alpha)).death_point
+    w_d = Trap(check_alpha(alpha)).death_point
     t_v = EyringNabarroCreep(eps).max_age
     return (1.0 + w_d / math.sqrt(eps)) / t_v if t_v > 0 else math.inf
 
@@ -137,7 +133,7 @@ def check_steady_inputs(u: ArrayLike, eps: ArrayLike, alpha: float, creep: str
     Returns ``(alpha, u, eps)`` as floats and arrays; raises ``ValueError`` naming the
     parameter and its allowed range (also used by the ``stability`` command).
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     u_a = check_range("u", u, U_MIN, U_MAX)
     eps_a = check_range("eps", eps, 0.0, EPS_MAX)
@@ -266,7 +262,7 @@ def steady_profile(
 
     ``r(y)^2 f(y/r(y))`` for traps in contact, 0 before contact (``y < -1``) and after death.
     """
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     u = check_scalar("u", u, U_MIN, U_MAX)
     eps = check_scalar("eps", eps, 0.0, EPS_MAX)
@@ -319,7 +315,7 @@ def steady_friction_first_order(u: ArrayLike, eps: ArrayLike, alpha: float = 0.1
 def low_velocity_constant(alpha: float = 0.13) -> float:
     """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` (ours, eq. 35's
     order-``eps`` constant)."""
-    alpha = _check_alpha(alpha)
+    alpha = check_alpha(alpha)
     trap = Trap(alpha)
 
     def g(y: float) -> float:

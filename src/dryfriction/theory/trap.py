@@ -29,9 +29,9 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from ..validation import check_scalar
+from ..validation import Array, check_scalar
 
 __all__ = [
     "ALPHA0",
@@ -54,8 +54,6 @@ __all__ = [
 ALPHA0: float = 3.0 - 2.0 * math.sqrt(2.0)
 """Boundary between very strong and strong pinning, where ``y_c = 1`` (ours, from §1)."""
 
-Array = NDArray[np.float64]
-
 
 class Regime(StrEnum):
     """Pinning regime of a trap (spec §1)."""
@@ -71,10 +69,6 @@ def regime(alpha: float) -> Regime:
     if alpha >= 1.0:
         return Regime.NONE
     return Regime.VERY_STRONG if alpha < ALPHA0 else Regime.STRONG
-
-
-def _pinned_alpha(alpha: float) -> float:
-    return check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
 
 
 def psi(z: ArrayLike) -> Array:

@@ -14,15 +14,13 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from ..validation import check_broadcast, check_range, check_scalar
+from ..validation import Array, check_broadcast, check_range, check_scalar
 from .static import static_friction
 from .steady import steady_friction
 
 __all__ = ["PhysicalScales", "static_friction_si", "steady_friction_si"]
-
-Array = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
