@@ -101,6 +101,23 @@ def test_no_private_name_read_across_modules(module, path):
         assert not private, f"{path.relative_to(SRC.parent)}:{line} reads {private} of {target}"
 
 
+# private names that are public API of the standard library or of NumPy
+_PUBLIC_UNDERSCORED = {"_replace", "_asdict", "_fields", "_make", "_getframe", "_exit"}
+
+
+@pytest.mark.parametrize("module, path", MODULES, ids=[m for m, _ in MODULES])
+def test_no_private_attribute_of_another_object(module, path):
+    # ``ens._norm`` read by the driver couples it to the population's insides; an object's
+    # own methods (self, cls) are the only readers of its private attributes
+    tree = ast.parse(path.read_text())
+    bad = [f"{path.relative_to(SRC.parent)}:{node.lineno} reads {ast.unparse(node)}"
+           for node in ast.walk(tree)
+           if isinstance(node, ast.Attribute) and node.attr.startswith("_")
+           and not node.attr.startswith("__") and node.attr not in _PUBLIC_UNDERSCORED
+           and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))]
+    assert not bad, "; ".join(bad)
+
+
 @pytest.mark.parametrize("module, path", MODULES, ids=[m for m, _ in MODULES])
 def test_only_plots_draw(module, path):
     if module.startswith("dryfriction.plots"):
