@@ -325,7 +325,7 @@ def test_cli_bad_input_is_one_line_exit_2_and_leaves_out_alone(tmp_path: Path) -
 
 
 def test_cli_outputs_whole_or_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import dryfriction.fit as fm
+    import dryfriction.plotting as fm
 
     def boom(*_a: object, **_k: object) -> None:
         raise OSError("disk full while drawing")

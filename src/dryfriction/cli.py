@@ -397,8 +397,9 @@ def fit_command(
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
     fit.png (data, fitted curve, residuals)."""
     from .data import read_csv
-    from .fit import compare_models, fit, plot_fit
+    from .fit import compare_models, fit
     from .io import check_output_dir, output_directory, write_json
+    from .plotting import plot_fit
     from .validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))
