@@ -325,7 +325,7 @@ def test_cli_bad_input_is_one_line_exit_2_and_leaves_out_alone(tmp_path: Path) -
 
 
 def test_cli_outputs_whole_or_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import dryfriction.fit as fm
+    import dryfriction.plots.paper as fm
 
     def boom(*_a: object, **_k: object) -> None:
         raise OSError("disk full while drawing")
@@ -336,3 +336,93 @@ def test_cli_outputs_whole_or_nothing(tmp_path: Path, monkeypatch: pytest.Monkey
                             str(out), "--no-profile", "--no-compare"])
     assert r.exit_code == 2 and not out.exists()
     assert [p.name for p in tmp_path.iterdir()] == []
+
+
+# ----------------------------------------------------------------------------- the split, fit.png
+def test_jacobian_is_evaluated_once_at_the_optimum(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The covariance behind the profiles' steps and the reported errors is one computation at
+    the optimum (it used to be two Jacobians and two pseudo-inverses at the same point)."""
+    from dryfriction.fit.problem import Problem
+
+    calls: list[np.ndarray] = []
+    orig = Problem.jacobian
+
+    def counted(self, theta):  # type: ignore[no-untyped-def]
+        calls.append(theta.copy())
+        return orig(self, theta)
+
+    monkeypatch.setattr(Problem, "jacobian", counted)
+    r = fit_static(static_data(5), "cv")
+    assert r["eps"].profile_95 is not None  # the profiles ran
+    assert not any("restarted" in n for n in r.notes)
+    assert len(calls) == 1
+    calls.clear()
+    fit_static(static_data(5), "cv", profile=False)
+    assert len(calls) == 1
+
+
+def test_fit_package_draws_nothing() -> None:
+    """Importing and running the fit must not pull in matplotlib (plot_fit is in plotting)."""
+    import subprocess
+    import sys
+
+    code = ("import sys, numpy as np; from dryfriction.data import StaticData; "
+            "from dryfriction.fit import fit; tw = np.geomspace(1, 1e3, 8); "
+            "fit(StaticData(tw, 0.5 + 0.01 * np.log(tw)), profile=False); "
+            "bad = [m for m in sys.modules if m.startswith(('matplotlib', 'dryfriction.plot'))]; "
+            "assert not bad, bad")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+
+
+def _toy_series(values, data):  # type: ignore[no-untyped-def]
+    """A cheap stand-in for the trap-model series: the steady level at each load velocity."""
+    return values["mu_el"] * (1.0 - values["eps"] * np.log(data.v_load * values["t0"]
+                                                              / values["a0"]))
+
+
+def test_plot_fit_of_a_million_point_series_draws_a_bounded_binned_view(
+        tmp_path: Path) -> None:
+    """1e6 samples: every artist draws at most max_points points (what keeps fit.png at
+    about a second instead of minutes), the bins keep their extremes (a spike survives in the
+    data's band, which plain striding would lose) and their means (the level), the fitted line
+    is drawn over the data, and the figure renders."""
+    from dryfriction.plots.paper import MAX_POINTS_DRAWN, plot_fit
+
+    model = CVModel(series=_toy_series)
+    true = {"eps": 0.03, "t0": 0.01, "a0": 1e-6, "mu_el": 0.5}
+
+    def series(n: int, seed: int) -> SeriesData:
+        t = np.linspace(0.0, 100.0, n)
+        v = np.where(t < 50.0, 1e-5, 1e-4)
+        rng = np.random.default_rng(seed)
+        mu = _toy_series(true, SeriesData(t, v, np.zeros(n))) + rng.normal(0.0, 1e-3, n)
+        return SeriesData(t, v, mu, np.full(n, 1e-3), f"toy-{n}")
+
+    r = fit(series(200, 0), model, fix={"eps": 0.03, "a0": 1e-6}, profile=False)
+    big = series(1_000_000, 1)
+    mu = big.mu.copy()
+    mu[123_457] = 0.9  # a spike inside one bin
+    big = SeriesData(big.t, big.v_load, mu, big.sigma, big.source)
+    fig, axes = plot_fit(r, [big], tmp_path / "big.png")
+    assert axes.shape == (2, 1)
+    drawn = 0
+    for ax in axes.ravel():
+        for line in ax.get_lines():
+            assert len(line.get_xdata()) <= MAX_POINTS_DRAWN
+            drawn += len(line.get_xdata())
+        for coll in ax.collections:  # the bands; error bars would be one path per point
+            assert sum(len(pth.vertices) for pth in coll.get_paths()) <= MAX_POINTS_DRAWN
+    assert drawn > 1000
+    top = axes[0, 0]
+    means, fit_line = top.get_lines()[0], top.get_lines()[-1]
+    band = np.concatenate([pth.vertices[:, 1] for pth in top.collections[0].get_paths()])
+    assert band.max() == 0.9
+    # bin means follow the level (noise of a 400-sample mean 5e-5), not the band's edges
+    # (3e-3 away); the bins holding the spike or the velocity step are the exceptions
+    level = np.interp(np.asarray(means.get_xdata()), big.t, r.predict(big))
+    assert np.quantile(np.abs(np.asarray(means.get_ydata()) - level), 0.99) < 3e-4
+    assert fit_line.get_zorder() > max(means.get_zorder(), top.collections[0].get_zorder())
+    assert (tmp_path / "big.png").read_bytes()[:4] == b"\x89PNG"
+    _, small_axes = plot_fit(r, [series(200, 2)])  # small data: every point
+    assert len(small_axes[0, 0].get_lines()[0].get_xdata()) == 200

@@ -433,9 +433,10 @@ def fit_command(
     """Fit the trap model (cv) or rate-and-state (rsf) to measured friction; writes fit.json
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
     fit.png (data, fitted curve, residuals)."""
-    from .fit import compare_models, fit, plot_fit
+    from .fit import compare_models, fit
     from .io.data import read_csv
     from .io.files import check_output_dir, output_directory, write_json
+    from .plots.paper import plot_fit
     from .validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))

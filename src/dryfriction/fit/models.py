@@ -1,0 +1,526 @@
+"""The models a fit can use: the trap model (:class:`CVModel`) and rate-and-state friction
+(:class:`RSFModel`), their fitted parameters (:class:`ParamSpec`), time-series predictions
+(:func:`cv_series`, :func:`rsf_series`) and data-driven starting points.
+
+A model knows its parameters for each combination of data kinds, predicts the data, says which
+scale of a parameter the data probe directly (for identifiability) and proposes starts; the
+least squares, statistics and orchestration live in :mod:`.problem`, :mod:`.statistics` and
+:mod:`.engine` (see the package docstring).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..io.data import Dataset, SeriesData, StaticData, SteadyData
+from ..program import Segment
+from ..rsf.driving import simulate_rsf
+from ..rsf.law import STATE_LAWS, RateState
+from ..theory.dieterich import dieterich_constant_asymptotic
+from ..theory.static import static_friction_first_order
+from ..theory.steady import steady_friction_first_order
+from ..theory.trap import Trap
+from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
+from ..validation import check_choice, check_scalar
+
+__all__ = [
+    "ParamSpec",
+    "CVModel",
+    "RSFModel",
+    "Model",
+    "SeriesModel",
+    "rsf_series",
+    "cv_series",
+    "data_kinds",
+]
+
+Array = NDArray[np.float64]
+
+SeriesModel = Callable[[Mapping[str, float], SeriesData], Array]
+"""A time-series model: ``(parameter values, data) -> predicted friction at data.t``."""
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One fitted parameter.
+
+    Parameters
+    ----------
+    name : str
+        Name (``eps``, ``t0``, ...).
+    unit : str
+        Unit ("" for dimensionless).
+    log : bool
+        Fitted as ``ln p`` (a positive scale).
+    lo, hi : float
+        Search bounds in the parameter's own units.
+    """
+
+    name: str
+    unit: str
+    log: bool
+    lo: float
+    hi: float
+
+    def to_internal(self, p: float) -> float:
+        return math.log(p) if self.log else float(p)
+
+    def from_internal(self, th: float) -> float:
+        if not self.log:
+            return float(th)
+        return math.exp(th) if th < 709.0 else math.inf  # a huge Wald bound, not an error
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        return self.to_internal(self.lo), self.to_internal(self.hi)
+
+
+
+# ----------------------------------------------------------------------------- time series
+def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
+              creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
+              max_samples: int = 200_000) -> Array:
+    """The trap model's friction along a measured load program (the CV time-series model).
+
+    The ensemble starts in steady sliding at ``v_load[0]`` and the slider follows the data's
+    piecewise-constant ``v_load`` (:meth:`SeriesData.segments`) kinematically (the machine is
+    taken as infinitely stiff), in reduced units through
+    ``PhysicalScales(a0, t0, mu_el)``. It is sampled at least every ``every_slip`` a0 of slip
+    and at the data's own sampling interval (in slip without holds; in time, so that ageing
+    during a hold is followed, with holds), and read at the data's times by linear
+    interpolation.
+
+    Parameters
+    ----------
+    values : mapping
+        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless).
+    data : SeriesData
+        Times (s) and load velocities (m/s).
+    alpha : float
+        Trap stiffness (fixed).
+    creep : {"log", "eyring-nabarro"}
+    traps_per_a0 : float
+        Density of the regular track (accuracy about ``1/traps_per_a0`` relative).
+    every_slip : float
+        Largest slip between samples, ``a0``.
+    max_samples : int
+        Budget: more samples than this is an error (a trial ``t0`` far too small makes the
+        program very long in ``t0``).
+
+    Returns
+    -------
+    ndarray
+        Friction coefficient ``F/W`` at ``data.t``.
+    """
+    from ..ensemble.driving import Output, VelocityDrive, simulate
+    from ..ensemble.population import Initial, Track, TrapModel
+
+    sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
+    dur, vel = data.segments()
+    u = vel / sc.velocity_scale
+    T = dur / sc.t0
+    prog = [Segment(float(ui), float(Ti)) for ui, Ti in zip(u, T, strict=True)]
+    dt_data = float(np.min(np.diff(data.t))) / sc.t0 if len(data.t) > 1 else float(np.sum(T))
+    u_max = float(np.max(u))
+    if np.all(u > 0):  # no holds: sample in slip (the state is exact at every sample)
+        ds_data = float(np.min(np.diff(data.t) * data.v_load[1:])) / sc.a0 \
+            if len(data.t) > 1 else every_slip
+        output = Output(every_slip=min(every_slip, max(ds_data, 1e-6)))
+        n = float(np.sum(u * T)) / output.every_slip  # type: ignore[operator]
+    else:  # holds: sample in time, so that ageing during the hold is followed
+        output = Output(every=min(dt_data, every_slip / u_max) if u_max > 0 else dt_data)
+        n = float(np.sum(T)) / output.every  # type: ignore[operator]
+    if n > max_samples:
+        raise ValueError(f"{data.source}: the trap-model series would need {n:.3g} samples "
+                         f"(> {max_samples}) for t0 = {values['t0']:.3g} s, a0 = "
+                         f"{values['a0']:.3g} m")
+    model = TrapModel(alpha, values["eps"], creep, values["mu_el"])
+    res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
+                   VelocityDrive(prog), output)
+    return np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
+
+
+def data_kinds(datasets: Sequence[Dataset]) -> frozenset[str]:
+    """The kinds of the data sets ("static", "steady", "series"): they choose the parameters."""
+    return frozenset(d.kind for d in datasets)
+
+
+def _linear_scan(y: Array, w: Array, basis: Callable[[float], Array], grid: Array
+                 ) -> list[tuple[float, float, float, float]]:
+    """For each grid value ``g``: weighted LS fit ``y = A + B basis(g)``; ``(cost, g, A, B)``."""
+    out = []
+    for g in grid:
+        X = np.column_stack([np.ones_like(y), basis(float(g))]) * w[:, None]
+        coef, *_ = np.linalg.lstsq(X, y * w, rcond=None)
+        r = X @ coef - y * w
+        out.append((float(r @ r), float(g), float(coef[0]), float(coef[1])))
+    out.sort()
+    return out
+
+
+def _window(xs: Sequence[Array]) -> tuple[float, float] | None:
+    pos = np.concatenate([np.ravel(x) for x in xs]) if xs else np.zeros(0)
+    pos = pos[pos > 0]
+    return (float(pos.min()), float(pos.max())) if pos.size else None
+
+
+def _weights(d: Dataset) -> Array:
+    return np.ones(len(d)) if d.sigma is None else 1.0 / d.sigma
+
+
+@dataclass(frozen=True)
+class CVModel:
+    """The Caroli–Velický trap model for fitting (SI; module docstring).
+
+    Parameters
+    ----------
+    alpha : float
+        Reduced trap stiffness, fixed (0.13 in the paper).
+    creep : {"log", "eyring-nabarro"}
+        Ageing law (eq. 17 or eqs. 15-16).
+    series : callable, optional
+        Time-series model ``(values, SeriesData) -> mu``; default (``None``): :func:`cv_series`
+        with this ``alpha``, ``creep`` and ``traps_per_a0``.
+    traps_per_a0 : float
+        Track density of the ensemble for time series.
+    diff_step : float
+        Relative step (in ``ln`` of the parameters) of the finite-difference Jacobian for time
+        series: the ensemble's friction is a staircase in the parameters, one step per trap
+        death that moves across a sample (module docstring), so the step must span many of
+        them (ours; 0.03 at the default density). With it the optimiser stops at a relative
+        change of 1e-6 in cost or parameters (1e-12 otherwise), which the staircase never
+        lets it reach.
+    """
+
+    alpha: float = 0.13
+    creep: str = "log"
+    series: SeriesModel | None = None
+    traps_per_a0: float = 1000.0
+    diff_step: float = 0.03
+    name: str = field(default="cv", init=False)
+
+    def __post_init__(self) -> None:
+        check_scalar("alpha", self.alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+        check_choice("creep", self.creep, ("log", "eyring-nabarro"))
+
+    def options(self) -> dict[str, Any]:
+        return {"alpha": self.alpha, "creep": self.creep}
+
+    def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
+        eps = ParamSpec("eps", "", True, 1e-6, 1.0)
+        mu_el = ParamSpec("mu_el", "", True, 1e-3, 10.0)
+        t0 = ParamSpec("t0", "s", True, 1e-12, 1e9)
+        if kinds == {"static"}:
+            return eps, t0, mu_el
+        if kinds == {"steady"}:
+            return eps, ParamSpec("vstar", "m/s", True, 1e-15, 1e6), mu_el
+        return eps, t0, ParamSpec("a0", "m", True, 1e-15, 1.0), mu_el
+
+    def notes(self, kinds: frozenset[str]) -> list[str]:
+        n = [f"alpha = {self.alpha:g} fixed; creep law {self.creep}"]
+        if kinds == {"steady"}:
+            n.append("steady data depend on a0 and t0 only through V* = a0/t0 (eq. 34): "
+                     "vstar is fitted, a0 and t0 are not determined separately")
+        if kinds == {"static"}:
+            n.append("static data do not depend on a0 (eq. 27): a0 is not determined")
+        return n
+
+    def _scales(self, v: Mapping[str, float]) -> PhysicalScales:
+        if "a0" in v:
+            return PhysicalScales(v["a0"], v["t0"], v["mu_el"])
+        if "vstar" in v:  # t0 = 1 s: only a0/t0 matters for steady data
+            return PhysicalScales(v["vstar"] * 1.0, 1.0, v["mu_el"])
+        return PhysicalScales(1.0, v["t0"], v["mu_el"])  # a0 does not enter eq. 27
+
+    def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
+        x = d.x if x is None else x
+        if d.kind == "static":
+            return static_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep)
+        if d.kind == "steady":
+            return steady_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep)
+        assert isinstance(d, SeriesData)
+        if self.series is not None:
+            return self.series(v, d)
+        return cv_series(v, d, self.alpha, self.creep, self.traps_per_a0)
+
+    def data_window(self, name: str, datasets: Sequence[Dataset]) -> tuple[float, float] | None:
+        """Values of a time or velocity scale that the data probe directly (see
+        :func:`.statistics.classify`)."""
+        if name == "t0":
+            return _window([d.x for d in datasets if isinstance(d, StaticData)])
+        if name == "vstar":
+            return _window([d.x for d in datasets if isinstance(d, SteadyData)])
+        return None
+
+    def derived(self, v: Mapping[str, float]) -> dict[str, tuple[float, str]]:
+        out: dict[str, tuple[float, str]] = {}
+        if "a0" in v:
+            out["vstar"] = (v["a0"] / v["t0"], "m/s")
+            out["D0"] = (dieterich_constant_asymptotic(self.alpha) * v["a0"], "m")
+        return out
+
+    # -- starting points ---------------------------------------------------------------
+    def _static_scan(self, d: StaticData) -> list[tuple[float, float, float, float]]:
+        tpos = d.t_w[d.t_w > 0]
+        lo, hi = (tpos.min(), tpos.max()) if tpos.size else (1.0, 1.0)
+        grid = np.geomspace(lo * 1e-5, hi * 10.0, 25)
+        return _linear_scan(d.mu_s, _weights(d),
+                            lambda t0: static_friction_first_order(d.t_w / t0, 1.0, self.alpha)
+                            - 1.0, grid)
+
+    def _steady_scan(self, d: SteadyData) -> list[tuple[float, float, float, float]]:
+        grid = np.geomspace(d.V.min() * 1e-2, d.V.max() * 1e5, 25)
+        return _linear_scan(d.mu_d, _weights(d),
+                            lambda vs: steady_friction_first_order(d.V / vs, 1.0, self.alpha)
+                            - 1.0, grid)
+
+    def guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
+        def ok(A: float, B: float) -> tuple[float, float]:
+            A = A if A > 0 else float(np.mean(np.concatenate([d.y for d in datasets])))
+            return A, min(max(B / A, 1e-4), 0.5)
+
+        st = [d for d in datasets if isinstance(d, StaticData)]
+        sd = [d for d in datasets if isinstance(d, SteadyData)]
+        s_scan = self._static_scan(st[0]) if st else []
+        d_scan = self._steady_scan(sd[0]) if sd else []
+        out: list[dict[str, float]] = []
+        if st and not sd:
+            for _, t0, A, B in (s_scan[0], s_scan[len(s_scan) // 2]):
+                mu_el, eps = ok(A, B)
+                out.append({"eps": eps, "t0": t0, "mu_el": mu_el})
+        elif sd and not st:
+            for _, vs, A, B in (d_scan[0], d_scan[len(d_scan) // 2]):
+                mu_el, eps = ok(A, B)
+                out.append({"eps": eps, "vstar": vs, "mu_el": mu_el})
+        elif st and sd:
+            (_, t0, A1, B1), (_, vs, A2, B2) = s_scan[0], d_scan[0]
+            m1, e1 = ok(A1, B1)
+            m2, e2 = ok(A2, B2)
+            out.append({"eps": math.sqrt(e1 * e2), "t0": t0, "a0": vs * t0,
+                        "mu_el": math.sqrt(m1 * m2)})
+            out.append({"eps": e1, "t0": t0, "a0": vs * t0, "mu_el": m1})
+        else:
+            se = [d for d in datasets if isinstance(d, SeriesData)]
+            if se:
+                out.extend(self._series_guesses(se[0]))
+            else:
+                out.append({"eps": 0.02, "t0": 1.0, "a0": 1e-6, "mu_el": 0.5})
+        return out
+
+    def _series_guesses(self, d: SeriesData) -> list[dict[str, float]]:
+        """Starts for a time series (ours): ``mu_el`` from the mean friction, ``eps`` from the
+        steady levels at the ends of the stretches (eq. 35: ``d mu/d ln V = -(3/2) eps
+        mu_el``), ``a0`` from the slip over which the friction changes after a step (the
+        memory, about ``(1 + y_c) a0``), ``V* = a0/t0`` from a few multiples of the mean
+        velocity."""
+        dur, vel = d.segments()
+        mu_el = float(np.mean(d.mu))
+        ends = []
+        t_rel = d.t - d.t[0]
+        bounds = np.concatenate([[0.0], np.cumsum(dur)])
+        for i in range(len(dur)):
+            k = int(np.searchsorted(t_rel, bounds[i + 1], side="left")) - 1
+            ends.append(float(d.mu[max(k, 0)]))
+        eps = 0.02
+        pos = vel > 0
+        if np.sum(pos) >= 2 and np.ptp(np.log(vel[pos])) > 0:
+            slope = float(np.polyfit(np.log(vel[pos]), np.array(ends)[pos], 1)[0])
+            eps = min(max(-slope / (1.5 * mu_el), 1e-3), 0.3)
+        yc = Trap(self.alpha).y_c
+        slip = float(np.sum(dur * vel))
+        a0 = max(slip / max(len(dur), 1) / (2.0 * (1.0 + yc)), 1e-12)
+        vm = float(np.exp(np.mean(np.log(vel[pos])))) if np.any(pos) else 1.0
+        return [{"eps": eps, "t0": a0 / (f * vm), "a0": a0, "mu_el": mu_el}
+                for f in (1.0, 0.1, 10.0)]
+
+
+def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -> Array:
+    """Rate-and-state friction along a measured load program (the RSF time-series model).
+
+    The slider starts in steady sliding at ``v_load[0]``; the program is the data's
+    piecewise-constant ``v_load`` (:meth:`SeriesData.segments`); the returned friction is the
+    spring force per unit normal force (what a load cell measures), at the data's times,
+    from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's stiffness, damping and
+    state law. Integration tolerance ``rtol = 1e-9``.
+    """
+    assert model.v0 is not None
+    params = RateState(values["a"], values["b"], values["dc"], values["mu0"], model.v0,
+                       state_law=model.state_law,  # type: ignore[arg-type]
+                       regularized=model.regularized)
+    dur, vel = data.segments()
+    prog = [Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)]
+    te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
+    res = simulate_rsf(params, prog, stiffness=model.stiffness, damping=model.damping,
+                       rtol=1e-9, t_eval=te, max_steps=200_000)
+    return np.asarray(res.stress, float)
+
+
+@dataclass(frozen=True)
+class RSFModel:
+    """Rate-and-state friction for fitting (SI; module docstring).
+
+    Parameters
+    ----------
+    v0 : float, optional
+        Reference velocity, m/s, fixed. For static (healing) data it is also the sliding and
+        reloading velocity of the hold tests, and must be given. Otherwise it defaults to the
+        first load velocity of a time series or the geometric mean of the steady velocities.
+    state_law : {"ageing", "slip"}
+        State evolution law (static data need the ageing law: the slip law does not heal at
+        rest).
+    stiffness : float
+        Machine stiffness per unit normal force for time series, 1/m; ``inf``: kinematic.
+    damping : float
+        Radiation damping ``eta/sigma`` for time series, s/m.
+    regularized : bool
+        Regularised (``asinh``) law, needed for holds on a kinematic machine.
+    series : callable
+        Time-series model; default :func:`rsf_series`.
+    """
+
+    v0: float | None = None
+    state_law: str = "ageing"
+    stiffness: float = math.inf
+    damping: float = 0.0
+    regularized: bool = False
+    series: Callable[[RSFModel, Mapping[str, float], SeriesData], Array] = rsf_series
+    name: str = field(default="rsf", init=False)
+
+    def __post_init__(self) -> None:
+        if self.v0 is not None:
+            object.__setattr__(self, "v0", check_scalar("v0", self.v0, 0.0, lo_open=True))
+        check_choice("state_law", self.state_law, STATE_LAWS)
+        if not math.isinf(self.stiffness):
+            check_scalar("stiffness", self.stiffness, 0.0, lo_open=True)
+        check_scalar("damping", self.damping, 0.0)
+
+    def options(self) -> dict[str, Any]:
+        return {"v0": self.v0, "state_law": self.state_law, "stiffness": self.stiffness,
+                "damping": self.damping, "regularized": self.regularized}
+
+    def resolve(self, datasets: Sequence[Dataset]) -> RSFModel:
+        """Fill in ``v0`` from the data where it may be (see the class docstring)."""
+        kinds = data_kinds(datasets)
+        if "static" in kinds and self.state_law != "ageing":
+            raise ValueError("static (healing) data need the ageing law: with the slip law "
+                             "the state does not evolve at rest and mu_s does not grow")
+        if self.v0 is not None:
+            return self
+        if "static" in kinds:
+            raise ValueError("rate-and-state static (healing) data need v0 (--v0): the "
+                             "sliding and reloading velocity of the hold tests, m/s")
+        series = [d for d in datasets if isinstance(d, SeriesData)]
+        if series:
+            v0 = float(series[0].v_load[0])
+        else:
+            v0 = float(np.exp(np.mean(np.log(np.concatenate([d.x for d in datasets])))))
+        return dataclasses.replace(self, v0=v0)
+
+    def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
+        mu0 = ParamSpec("mu0", "", False, -5.0, 5.0)
+        a = ParamSpec("a", "", True, 1e-6, 1.0)
+        b = ParamSpec("b", "", True, 1e-6, 1.0)
+        dc = ParamSpec("dc", "m", True, 1e-12, 1.0)
+        if kinds == {"steady"}:
+            return mu0, ParamSpec("a_minus_b", "", False, -1.0, 1.0)
+        if kinds == {"static"}:
+            return mu0, b, dc
+        return mu0, a, b, dc
+
+    def notes(self, kinds: frozenset[str]) -> list[str]:
+        n = [f"v0 = {self.v0:g} m/s fixed (reference velocity)"]
+        if kinds == {"steady"}:
+            n.append("steady-state data determine only a - b and mu0 (mu_ss = mu0 + (a - b) "
+                     "ln(V/V0), Ruina 1983): a, b and Dc separately need transients")
+        if kinds == {"static"}:
+            n.append("static (healing) data determine mu0, b and Dc (mu_s = mu0 + b ln(1 + "
+                     "t_w V0/Dc), ageing law, infinitely stiff reload at V0) but not a")
+        if "series" in kinds:
+            mach = "kinematic" if math.isinf(self.stiffness) else f"k = {self.stiffness:g} 1/m"
+            n.append(f"time series simulated with {self.state_law} law, {mach} machine")
+        return n
+
+    def _params(self, v: Mapping[str, float]) -> RateState:
+        assert self.v0 is not None
+        if "a_minus_b" in v:  # only a - b enters the steady state: any a, b with that difference
+            b = max(0.0, -v["a_minus_b"]) + 1.0
+            return RateState(v["a_minus_b"] + b, b, 1.0, v["mu0"], self.v0)
+        return RateState(v.get("a", 1.0), v["b"], v["dc"], v["mu0"], self.v0,
+                         state_law=self.state_law,  # type: ignore[arg-type]
+                         regularized=self.regularized)
+
+    def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
+        x = d.x if x is None else x
+        if d.kind == "steady":
+            return self._params(v).steady_state_friction(x)
+        if d.kind == "static":
+            assert self.v0 is not None
+            return self._params(v).hold_peak_friction(x, self.v0)
+        assert isinstance(d, SeriesData)
+        return self.series(self, v, d)
+
+    def data_window(self, name: str, datasets: Sequence[Dataset]) -> tuple[float, float] | None:
+        """Slips that the data probe directly, for ``dc`` (see :func:`.statistics.classify`)."""
+        if name != "dc" or self.v0 is None:
+            return None
+        slips = [self.v0 * d.x for d in datasets if isinstance(d, StaticData)]
+        for d in datasets:
+            if isinstance(d, SeriesData):
+                dur, vel = d.segments()
+                slips.append(np.array([float(np.min(np.diff(d.t))) * float(vel.max()),
+                                       float(np.sum(dur * vel))]))
+        return _window(slips)
+
+    def derived(self, v: Mapping[str, float]) -> dict[str, tuple[float, str]]:
+        if "a" in v and "b" in v:
+            return {"a_minus_b": (v["a"] - v["b"], "")}
+        return {}
+
+    def guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
+        assert self.v0 is not None
+        v0 = self.v0
+        st = [d for d in datasets if isinstance(d, StaticData)]
+        sd = [d for d in datasets if isinstance(d, SteadyData)]
+        se = [d for d in datasets if isinstance(d, SeriesData)]
+        amb, mu0 = 0.0, float(np.mean(np.concatenate([d.y for d in datasets])))
+        if sd:
+            s = _linear_scan(sd[0].mu_d, _weights(sd[0]), lambda _: np.log(sd[0].V / v0),
+                             np.array([0.0]))[0]
+            mu0, amb = s[2], s[3]
+        b, dcs = 0.01, [1e-6, 1e-5]
+        if st:
+            d = st[0]
+            tpos = d.t_w[d.t_w > 0]
+            lo, hi = (tpos.min(), tpos.max()) if tpos.size else (1.0, 1.0)
+            scan = _linear_scan(d.mu_s, _weights(d), lambda dc: np.log1p(d.t_w * v0 / dc),
+                                np.geomspace(lo * v0 * 1e-5, hi * v0 * 10.0, 25))
+            mu0 = scan[0][2] if not sd else mu0
+            b = min(max(scan[0][3], 1e-4), 0.5)
+            dcs = [scan[0][1], scan[len(scan) // 2][1]]
+        kinds = data_kinds(datasets)
+        if kinds == {"steady"}:
+            return [{"mu0": mu0, "a_minus_b": amb}]
+        if kinds == {"static"}:
+            return [{"mu0": mu0, "b": b, "dc": dc} for dc in dcs]
+        out = []
+        if se:
+            d0 = se[0]
+            dur, vel = d0.segments()
+            slip = float(np.sum(dur * vel))
+            mu0 = float(d0.mu[0]) - amb * math.log(float(d0.v_load[0]) / v0) if not sd else mu0
+            if not st:
+                dcs = list(np.geomspace(slip / 300.0, slip / 10.0, 3))
+        for dc in dcs:
+            for a in ((0.005, 0.02) if se and not st else (max(b + amb, 1e-4),)):
+                out.append({"mu0": mu0, "a": a, "b": max(a - amb, 1e-4), "dc": float(dc)})
+        return out
+
+
+Model = CVModel | RSFModel

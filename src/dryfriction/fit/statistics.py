@@ -1,0 +1,272 @@
+"""The statistics of a least-squares fit: covariance and Wald standard errors, Student-t
+quantiles, profile likelihood, the runs test on residual signs, information criteria,
+identifiability classification and the test that one parameter set explains several data sets.
+
+Everything works in the fitted (internal) variables of :class:`~.problem.Problem`; the methods
+are described in the package docstring.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import stats
+
+from .models import ParamSpec
+from .problem import Problem
+
+__all__ = [
+    "PROFILE_THRESHOLD",
+    "Z95",
+    "Covariance",
+    "covariance",
+    "quantile_95",
+    "runs_test",
+    "information_criteria",
+    "format_value",
+    "profile_interval",
+    "classify",
+    "consistency_test",
+]
+
+Array = NDArray[np.float64]
+
+PROFILE_THRESHOLD: float = float(stats.chi2.ppf(0.95, 1))
+"""Rise of ``chi^2`` (3.84) that bounds a 95 % profile-likelihood interval (one parameter) with
+given uncertainties; with the noise level estimated the threshold is ``t_{0.975, n-p}^2``."""
+
+Z95: float = float(stats.norm.ppf(0.975))
+"""The normal 97.5 % quantile (1.96): two-sided 95 % intervals with given uncertainties."""
+
+
+@dataclass(frozen=True)
+class Covariance:
+    """Covariance ``C = s^2 (J^T J)^+`` of the fitted (internal) variables.
+
+    Attributes
+    ----------
+    matrix : ndarray
+        ``C``, ``p x p``; ``inf`` everywhere when ``J`` is singular.
+    stderr : ndarray
+        ``sqrt(C_ii)``.
+    singular : bool
+        ``J`` has a singular value below ``1e-10`` of the largest: some parameter combinations
+        are not determined by the data at all.
+    """
+
+    matrix: Array
+    stderr: Array
+    singular: bool
+
+    @property
+    def correlation(self) -> Array:
+        """``C_ij / (se_i se_j)`` (read-only; ``nan`` where a standard error is 0 or inf)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            corr = np.asarray(self.matrix / np.outer(self.stderr, self.stderr), float)
+        corr.setflags(write=False)
+        return corr
+
+
+def covariance(J: Array, s2: float) -> Covariance:
+    """The covariance from the Jacobian ``J`` of the weighted residuals (one pseudo-inverse).
+
+    Parameters
+    ----------
+    J : ndarray
+        ``n x p`` Jacobian in the internal variables.
+    s2 : float
+        Noise variance: 1 with given uncertainties, ``RSS/(n - p)`` otherwise.
+    """
+    p = J.shape[1]
+    if p == 0:
+        return Covariance(np.zeros((0, 0)), np.zeros(0), False)
+    S, Vt = np.linalg.svd(J, full_matrices=False)[1:]
+    keep = S > S[0] * 1e-10 if S.size and S[0] > 0 else np.zeros_like(S, bool)
+    inv = np.where(keep, 1.0 / np.where(keep, S, 1.0) ** 2, np.inf)
+    singular = not bool(np.all(keep))
+    with np.errstate(invalid="ignore"):
+        cov = np.full((p, p), np.inf) if singular else (Vt.T * inv) @ Vt * s2
+    return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), singular)
+
+
+def quantile_95(sigma_given: bool, dof: int) -> float:
+    """Two-sided 95 % quantile: normal with given uncertainties, Student t with ``dof``
+    degrees of freedom when the noise level is estimated from the residuals."""
+    return Z95 if sigma_given or dof <= 0 else float(stats.t.ppf(0.975, dof))
+
+
+def runs_test(r: Array) -> float | None:
+    """Two-sided p-value of the Wald–Wolfowitz runs test on the signs of ``r`` (in order)."""
+    s = np.sign(r[r != 0])
+    n1, n2 = int(np.sum(s > 0)), int(np.sum(s < 0))
+    if n1 == 0 or n2 == 0 or n1 + n2 < 6:
+        return None
+    runs = 1 + int(np.sum(s[1:] != s[:-1]))
+    n = n1 + n2
+    mean = 2.0 * n1 * n2 / n + 1.0
+    var = 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n * n * (n - 1.0))
+    if var <= 0:
+        return None
+    return float(2.0 * stats.norm.sf(abs(runs - mean) / math.sqrt(var)))
+
+
+def information_criteria(cost: float, n: int, p: int, sigma_given: bool) -> dict[str, float]:
+    """AIC, AICc and BIC from the Gaussian likelihood (constants dropped consistently)."""
+    if sigma_given:
+        m2ll, k = 2.0 * cost, p
+    else:  # noise level estimated: -2 ln L = n ln(RSS/n) + const, one more parameter
+        m2ll, k = n * math.log(max(2.0 * cost, 1e-300) / n), p + 1
+    aicc = m2ll + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else math.inf)
+    return {"n": n, "k": k, "minus_2_log_likelihood": m2ll, "aic": m2ll + 2 * k,
+            "aicc": aicc, "bic": m2ll + k * math.log(n)}
+
+
+def format_value(x: float, unit: str) -> str:
+    """``x`` to three digits, with its unit if it has one (for the notes)."""
+    return f"{x:.3g}" + (f" {unit}" if unit else "")
+
+
+def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int, se: float,
+                     thr: float = PROFILE_THRESHOLD) -> tuple[
+                         float | None, float | None, float, float, tuple[Array, float] | None]:
+    """95 % profile interval of parameter ``j`` (internal variable); ``None`` for open sides.
+
+    Walks away from the optimum in each direction with steps starting near the Jacobian
+    standard error and doubling while the profile stays flat, re-minimising over the other
+    parameters from the previous point, until ``2 (cost - cost_min)/s^2`` exceeds the
+    threshold (then bisects the crossing) or the search bound is reached.
+    """
+    spec = prob.specs[j]
+    lo_b, hi_b = spec.bounds
+    free = np.ones(prob.p, bool)
+    free[j] = False
+    better: tuple[Array, float] | None = None
+    ends: list[float | None] = []
+    reached: list[float] = []
+    max_step = 2.3 if spec.log else 50.0 * (se if math.isfinite(se) and se > 0 else 1.0)
+    for direction in (-1.0, 1.0):
+        bound = lo_b if direction < 0 else hi_b
+        step = se if math.isfinite(se) and se > 0 else 0.1
+        step = min(max(step, 1e-3 if spec.log else 1e-9), max_step)
+        prev_t, prev_d = theta.copy(), 0.0
+        crossing: float | None = None
+        for _ in range(60):
+            x = prev_t[j] + direction * step
+            at_bound = (x - bound) * direction >= 0
+            t_try = prev_t.copy()
+            t_try[j] = bound if at_bound else x
+            t_new, c_new, _ = prob.solve(t_try, free)
+            d = 2.0 * (c_new - cost) / s2
+            if d < -0.05 and (better is None or c_new < better[1]):
+                better = (t_new, c_new)
+            if d >= thr:
+                a_t, b_t = prev_t, t_new  # bisect the crossing
+                a_d = prev_d
+                for _ in range(6):
+                    m = a_t.copy()
+                    m[j] = 0.5 * (a_t[j] + b_t[j])
+                    m, c_m, _ = prob.solve(m, free)
+                    d_m = 2.0 * (c_m - cost) / s2
+                    if d_m >= thr:
+                        b_t = m
+                    else:
+                        a_t, a_d = m, d_m
+                crossing = 0.5 * (a_t[j] + b_t[j])
+                del a_d
+                break
+            if at_bound:
+                break
+            if d < thr / 8:
+                step = min(2.0 * step, max_step)
+            prev_t, prev_d = t_new, d
+        ends.append(crossing)
+        reached.append(float(t_try[j]))
+    return ends[0], ends[1], reached[0], reached[1], better
+
+
+_FAR = math.log(1e3)
+"""A profile limit more than this far (in ln p) outside the data window counts as open."""
+
+
+def classify(s: ParamSpec, th: float, se: float, lo_c: float | None, hi_c: float | None,
+              r_lo: float, r_hi: float, window: tuple[float, float] | None = None,
+              z: float = Z95) -> tuple[str, str]:
+    """Identifiability label and sentence from a parameter's profile (internal variables).
+
+    ``window`` is the range of the parameter the data probe directly (for ``t0`` the waiting
+    times, for ``V*`` the velocities, for ``Dc`` the slips ``V0 t_w``). A profile limit more
+    than three decades outside it rests only on the model's higher-order curvature (e.g.
+    ``t0`` far below the shortest waiting time, where eq. 27 is log-linear in ``t_w``): that
+    side is reported as practically open, with the far limit quoted (ours).
+    """
+    u = f" {s.unit}" if s.unit else ""
+    f = s.from_internal
+    far_lo = lo_c is not None and window is not None and math.log(window[0]) - lo_c > _FAR
+    far_hi = hi_c is not None and window is not None and hi_c - math.log(window[1]) > _FAR
+    open_lo, open_hi = lo_c is None or far_lo, hi_c is None or far_hi
+    if not open_lo and not open_hi:
+        assert lo_c is not None and hi_c is not None
+        if math.isfinite(se) and se > 0:
+            off = max(abs(th - z * se - lo_c), abs(th + z * se - hi_c))
+            if off > 0.2 * z * se:
+                return ("identified (nonlinear: use profile_95)",
+                        f"{s.name}: the 95 % profile interval [{format_value(f(lo_c), s.unit)}, "
+                        f"{format_value(f(hi_c), s.unit)}] differs from the Jacobian one: use it")
+        return "identified", ""
+
+    def far_side(c: float | None, reached: float) -> str:
+        if c is None:
+            return f"searched to {f(reached):.3g}{u} without reaching the 95 % limit"
+        return (f"the 95 % profile limit {f(c):.3g}{u} is more than three decades outside "
+                "the range the data probe and "
+                "rests only on the model's higher-order curvature")
+
+    if open_lo and not open_hi:
+        assert hi_c is not None
+        return ("bounded above only",
+                f"{s.name} is only bounded above by {format_value(f(hi_c), s.unit)} (95 % profile "
+                f"likelihood); the data do not bound it from below ({far_side(lo_c, r_lo)})")
+    if open_hi and not open_lo:
+        assert lo_c is not None
+        return ("bounded below only",
+                f"{s.name} is only bounded below by {format_value(f(lo_c), s.unit)} (95 % profile "
+                f"likelihood); the data do not bound it from above ({far_side(hi_c, r_hi)})")
+    return ("not identified",
+            f"{s.name} is not determined by the data: below, {far_side(lo_c, r_lo)}; above, "
+            f"{far_side(hi_c, r_hi)}")
+
+
+def consistency_test(cost: float, p: int, n: int, sep_cost: float, sep_p: int,
+                     sigma_given: bool) -> dict[str, Any]:
+    """Joint fit against separate fits of each data set (a Chow-type test, ours).
+
+    Parameters
+    ----------
+    cost, p : float, int
+        Cost (``RSS/2`` in weighted residuals) and free parameters of the joint fit.
+    n : int
+        Number of points.
+    sep_cost, sep_p : float, int
+        Summed costs and free parameters of the separate fits.
+    sigma_given : bool
+        Chi-square difference test with given uncertainties, F test without.
+    """
+    df1 = sep_p - p
+    if df1 <= 0:
+        return {"test": "not run", "reason": "the joint fit has as many parameters as the "
+                                             "separate fits"}
+    delta = 2.0 * (cost - sep_cost)
+    if sigma_given:
+        pv = float(stats.chi2.sf(max(delta, 0.0), df1))
+        return {"test": "chi-square difference", "delta_chi2": delta, "df": df1, "p_value": pv,
+                "separate_chi2": 2.0 * sep_cost}
+    df2 = n - sep_p
+    if df2 <= 0:
+        return {"test": "not run", "reason": "too few points for the F test"}
+    F = (max(delta, 0.0) / df1) / (2.0 * sep_cost / df2)
+    return {"test": "F", "F": F, "df": [df1, df2], "p_value": float(stats.f.sf(F, df1, df2)),
+            "separate_rss": 2.0 * sep_cost, "joint_rss": 2.0 * cost}
