@@ -17,11 +17,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy import stats
 
 from ..io.data import Dataset, SeriesData, StaticData, SteadyData
-from ..validation import check_choice, check_scalar
+from ..validation import Array, check_choice, check_scalar
 from .models import CVModel, Model, ParamSpec, RSFModel, data_kinds
 from .problem import Problem
 from .results import FitResult, ParameterEstimate
@@ -39,7 +38,6 @@ from .statistics import (
 
 __all__ = ["fit", "fit_static", "fit_steady", "fit_joint", "compare_models"]
 
-Array = NDArray[np.float64]
 
 Profiles = dict[int, tuple[float | None, float | None, float, float]]
 """Per free parameter: profile limits (``None`` where open) and how far each side was searched,

@@ -17,7 +17,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..io.data import Dataset, SeriesData, StaticData, SteadyData
 from ..program import Segment
@@ -28,7 +27,7 @@ from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
-from ..validation import check_choice, check_scalar
+from ..validation import Array, check_choice, check_scalar
 
 __all__ = [
     "ParamSpec",
@@ -41,7 +40,6 @@ __all__ = [
     "data_kinds",
 ]
 
-Array = NDArray[np.float64]
 
 SeriesModel = Callable[[Mapping[str, float], SeriesData], Array]
 """A time-series model: ``(parameter values, data) -> predicted friction at data.t``."""
@@ -80,7 +78,6 @@ class ParamSpec:
     @property
     def bounds(self) -> tuple[float, float]:
         return self.to_internal(self.lo), self.to_internal(self.hi)
-
 
 
 # ----------------------------------------------------------------------------- time series

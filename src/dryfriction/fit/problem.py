@@ -18,11 +18,10 @@ from scipy.optimize import least_squares
 
 from ..io.data import Dataset, SeriesData
 from ..rsf.driving import SolverError
+from ..validation import Array
 from .models import Model, ParamSpec
 
 __all__ = ["Problem"]
-
-Array = NDArray[np.float64]
 
 
 class Problem:

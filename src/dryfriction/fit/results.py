@@ -7,15 +7,11 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-from numpy.typing import NDArray
-
 from ..io.data import Dataset
+from ..validation import Array
 from .models import Model
 
 __all__ = ["ParameterEstimate", "FitResult"]
-
-Array = NDArray[np.float64]
 
 
 @dataclass(frozen=True)

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy import stats
 
+from ..validation import Array
 from .models import ParamSpec
 from .problem import Problem
 
@@ -33,7 +33,6 @@ __all__ = [
     "consistency_test",
 ]
 
-Array = NDArray[np.float64]
 
 PROFILE_THRESHOLD: float = float(stats.chi2.ppf(0.95, 1))
 """Rise of ``chi^2`` (3.84) that bounds a 95 % profile-likelihood interval (one parameter) with
