@@ -16,6 +16,11 @@ $(STAMP): pyproject.toml
 
 demo: $(STAMP)
 	$(BIN)/dryfriction reproduce --out results/
+	@echo
+	@echo "Open results/report.html in a browser (every figure and the key numbers)."
+	@echo "The command line is $(BIN)/dryfriction (or: source $(BIN)/activate), e.g."
+	@echo "  $(BIN)/dryfriction simulate examples/velocity_step.toml --out run/"
+	@echo "  $(BIN)/dryfriction --help"
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
