@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dryfriction.ensemble import population as ens_mod
+from dryfriction.ensemble import kernel
 from dryfriction.ensemble.population import (
     MINUS,
     PLUS,
@@ -68,10 +68,49 @@ def test_log_table_equals_closed_form(monkeypatch: pytest.MonkeyPatch) -> None:
     prog = [(1.0, 1.0), (1.0, 50.0), (3.5, 51.0)]
     runs = []
     for table in (False, True):
-        monkeypatch.setattr(ens_mod, "_FORCE_TABLE", table)
+        monkeypatch.setattr(kernel, "_FORCE_TABLE", table)
         e = Ensemble(model, Track(200.0), Initial("rest"))
         runs.append([e.advance(x, t).force for x, t in prog])
     np.testing.assert_allclose(runs[0], runs[1], rtol=0, atol=1e-13)
+
+
+def test_radius_table_is_eq17_for_the_log_law(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Closed form by default; when forced, a table of a_r^2 = 1 + eps u (eq. 17) and eps."""
+    law = TrapModel(eps=0.04).law
+    h, s_tab, _, cover = kernel.radius_table(law, 500.0)
+    assert h < 0 and s_tab[0] == 0.04 and cover >= 500.0
+    monkeypatch.setattr(kernel, "_FORCE_TABLE", True)
+    h, s_tab, ds_tab, cover = kernel.radius_table(law, 500.0)
+    u = h * np.arange(len(s_tab))
+    assert h > 0 and np.expm1(u[-1]) == pytest.approx(cover) and cover >= 500.0
+    np.testing.assert_allclose(s_tab, 1.0 + 0.04 * u, rtol=1e-14)
+    np.testing.assert_allclose(ds_tab, 0.04, rtol=1e-12)
+
+
+def test_radius_table_slope_is_the_derivative_in_u() -> None:
+    """The Hermite slopes are d(a_r^2)/du of the tabulated values (chain rule through the age)."""
+    law = TrapModel(eps=0.04, creep="eyring-nabarro").law
+    h, s_tab, ds_tab, cover = kernel.radius_table(law, 1e3)
+    u = h * np.arange(len(s_tab))
+    np.testing.assert_allclose(s_tab, law.radius(np.expm1(u)) ** 2, rtol=1e-12)
+    # centred differences are O(h^2) accurate: h ~ 2e-3 here
+    np.testing.assert_allclose(np.gradient(s_tab, h)[1:-1], ds_tab[1:-1], rtol=1e-4)
+    assert cover >= 1e3
+
+
+def test_public_views_of_the_ensemble() -> None:
+    """force_scale is 1/(lambda H0) (eq. 12), y_c the trap's, oldest_birth the oldest trap's."""
+    lam, alpha, u = 300.0, 0.2, 0.5
+    trap = Trap(alpha)
+    e = Ensemble(TrapModel(alpha=alpha, eps=0.04), Track(lam), Initial("steady", velocity=u))
+    assert e.force_scale == pytest.approx(1.0 / (lam * trap.H0), rel=1e-15)
+    assert e.y_c == trap.y_c
+    snap = e.snapshot()
+    assert e.oldest_birth == pytest.approx(-snap["age"].max(), rel=1e-15) and e.oldest_birth < 0
+    assert e.observe().force == pytest.approx(snap["force"].sum() * e.force_scale, abs=1e-12)
+    rest = Ensemble(TrapModel(alpha=alpha, eps=0.04), Track(lam), Initial("rest"))
+    rest.advance(0.5, 10.0)
+    assert rest.oldest_birth == 0.0
 
 
 @pytest.mark.parametrize("u", [0.01, 1.0, 100.0])

@@ -297,7 +297,7 @@ class _Recorder:
 
     def snap(self, ens: Ensemble) -> None:
         s = ens.snapshot()
-        s["force"] = s["force"] * ens._norm * self.mu_el  # per-trap share of mu
+        s["force"] = s["force"] * ens.force_scale * self.mu_el  # per-trap share of mu
         self.snapshots.append({"t": ens.t, "x": ens.x, **s})
 
     def result(self, info: dict[str, Any]) -> SimulationResult:
@@ -340,8 +340,8 @@ def _progress_caller(progress: Progress | None, total: float) -> Callable[[float
 
 def _max_reach(ens: Ensemble) -> float:
     """Slip (``a0``) after which every trap now in contact has surely left it, frozen ages."""
-    age = ens.t - ens._oldest_birth
-    return max(1.0, ens._yc) * float(ens.radius(age)) + 1.0
+    age = ens.t - ens.oldest_birth
+    return max(1.0, ens.y_c) * float(ens.radius(age)) + 1.0
 
 
 def _events(o: Observables) -> tuple[int, int, int]:
@@ -458,7 +458,7 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: _Recorder,
         f_app = f0 + drive.rate * max(0.0, t1 - drive.hold)
         x_before, t_before = ens.x, ens.t
         ev = _events(ens.advance(ens.x, t1))
-        max_slip = _max_reach(ens) + max(1.0, ens._yc) + 1.0 + 2.0 * ens.track.spacing
+        max_slip = _max_reach(ens) + max(1.0, ens.y_c) + 1.0 + 2.0 * ens.track.spacing
         extreme, runaway, jump_ev = _equilibrate(ens, f_app, 0.0, max_slip)
         threshold = max(threshold, extreme)
         if runaway:
