@@ -1,4 +1,4 @@
-"""The ensemble's compiled kernel: one Numba loop over the window of pairs (spec §6).
+"""The ensemble's compiled kernel: one Numba loop over the window of pairs (docs/model.md §6).
 
 The model (states, transitions, units) is described in :mod:`.population`, which owns the
 population and calls :func:`advance_window`; this module holds only what is compiled and the
@@ -108,7 +108,7 @@ def _radius_sq(age: float, h: float, s_tab: Array, ds_tab: Array) -> float:
 
 @numba.njit(cache=True, inline="always", fastmath=_FAST)
 def _f_plus(w: float, alpha: float, want_k: bool) -> tuple[float, float]:
-    """``f_+(w)`` and (if ``want_k``, else 0) ``f_+'(w)``, units ``Phi0/a`` (spec §1).
+    """``f_+(w)`` and (if ``want_k``, else 0) ``f_+'(w)``, units ``Phi0/a`` (docs/model.md §1).
 
     ``f_+ = 6 alpha (w - z_+)``, ``z_+ = -((1 - alpha) + sqrt(D))/2``,
     ``D = (1 - alpha)^2 - 4 alpha w``; ``f_+' = 6 alpha (1 - alpha/sqrt(D))`` (ours).

@@ -1,9 +1,9 @@
-"""The trap ensemble in time: a population of hysterons on a track (spec §6).
+"""The trap ensemble in time: a population of hysterons on a track (docs/model.md §6).
 
 Reduced units: lengths in ``a0``, times in ``t0``, forces per trap in ``Phi00/a0``, the total
 friction force in ``F_el`` (eq. 12).
 
-Model (spec §6; every choice below is ours unless an equation is cited)
+Model (docs/model.md §6; every choice below is ours unless an equation is cited)
 --------------------------------------------------------------------------
 * Asperity pairs sit at fixed track positions ``c_i`` with density ``lambda`` per ``a0``
   (``traps_per_a0``), either on a regular lattice ``c_k = (k + 1/2)/lambda`` (the half offset keeps
@@ -27,7 +27,7 @@ Model (spec §6; every choice below is ours unless an equation is cited)
     jumps to (+) if ``-y_c >= -1`` (strong pinning) else dies; free-far -> (-) entering fresh
     at ``p = +1`` moving backwards.
 
-  Free traps do not age (spec §2). During ageing at fixed ``p``, ``|w|`` shrinks, so a hold
+  Free traps do not age (docs/model.md §2). During ageing at fixed ``p``, ``|w|`` shrinks, so a hold
   causes no transition and costs one step whatever its length.
 * Initial states (all births at ``t = 0`` unless said): ``rest`` (eq. 25: (+) on
   ``[-1, 0)``, (-) on ``[0, 1]``); ``loaded`` (edge at ``d_w`` where the fresh force equals

@@ -1,4 +1,4 @@
-"""Static against dynamic friction: Dieterich's memory length (paper §6, spec §5).
+"""Static against dynamic friction: Dieterich's memory length (paper §6, docs/model.md §5).
 
 Dieterich's scaling ``mu_d(V) = mu_s(t_w = D0/V)`` with ``D0 = C a0`` (eq. 36) reads, in reduced
 units, ``mu_d(u) = mu_s(T = C/u)``. The model satisfies it only asymptotically:

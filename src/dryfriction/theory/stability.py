@@ -1,4 +1,4 @@
-"""Linear stability of steady sliding against stick-slip (spec §6 "Stability"; ours).
+"""Linear stability of steady sliding against stick-slip (docs/model.md §6 "Stability"; ours).
 
 The paper's §7 is not in the seed; this module rebuilds the linear analysis from the model.
 Reduced units: lengths ``a0``, times ``t0``, forces ``F_el``; stiffness ``K`` in ``F_el/a0``,
@@ -75,7 +75,7 @@ _SW = 0.5 * _SW
 
 
 def _dforce_plus(w: Array, alpha: float) -> Array:
-    """``f_+'(w) = 6 alpha (1 - alpha / sqrt((1-alpha)^2 - 4 alpha w))`` (from spec §1)."""
+    """``f_+'(w) = 6 alpha (1 - alpha / sqrt((1-alpha)^2 - 4 alpha w))`` (from docs/model.md §1)."""
     disc = np.maximum((1.0 - alpha) ** 2 - 4.0 * alpha * w, 1e-300)
     return 6.0 * alpha * (1.0 - alpha / np.sqrt(disc))
 

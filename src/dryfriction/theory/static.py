@@ -1,4 +1,4 @@
-"""Static ageing and the static friction threshold (paper §4, spec §3).
+"""Static ageing and the static friction threshold (paper §4, docs/model.md §3).
 
 Protocol: contact made at ``t = 0``, held for ``t_w``, then a fast tangential pull. Reduced
 units: lengths in ``a0``, times in ``t0`` (``T = t_w/t0``), forces in ``F_el`` (eq. 12).

@@ -1,4 +1,4 @@
-"""Steady sliding: the dynamic friction force (paper §5, spec §4).
+"""Steady sliding: the dynamic friction force (paper §5, docs/model.md §4).
 
 At reduced velocity ``u = V/V*``, ``V* = a0/t0``, a trap born at ``y = p/a0 = -1`` has age
 ``(y + 1)/u`` (eq. 29), radius ratio ``r(y) = a_r((y + 1)/u)`` (eq. 30) and force

@@ -1,4 +1,4 @@
-"""One elastic trap: a pair of touching asperities (paper §3.1, spec §1).
+"""One elastic trap: a pair of touching asperities (paper §3.1, docs/model.md §1).
 
 Reduced units of this module: lengths in the contact radius ``a`` (``y = p/a`` is the
 configuration coordinate, ``z = x/a`` the actual relative position), energies in ``Phi0``,
@@ -56,7 +56,7 @@ ALPHA0: float = 3.0 - 2.0 * math.sqrt(2.0)
 
 
 class Regime(StrEnum):
-    """Pinning regime of a trap (spec §1)."""
+    """Pinning regime of a trap (docs/model.md §1)."""
 
     VERY_STRONG = "very strong pinning"
     STRONG = "strong pinning"
@@ -91,7 +91,7 @@ def _discriminant(y: Array, alpha: float) -> Array:
 
 
 def z_plus(y: ArrayLike, alpha: float) -> Array:
-    """Stable near-side (+) branch ``z_+(y)``, ``-1 <= y <= y_c`` (spec §1).
+    """Stable near-side (+) branch ``z_+(y)``, ``-1 <= y <= y_c`` (docs/model.md §1).
 
     Root of ``z^2 + (1 - alpha) z + alpha y = 0`` with ``z <= -(1 - alpha)/2``. Outside the
     branch's domain the value is NaN.
@@ -178,7 +178,7 @@ def work_forward(x: ArrayLike, alpha: float) -> Array:
 
 @dataclass(frozen=True)
 class Trap:
-    """Constants of one trap of reduced stiffness ``alpha`` (spec §1).
+    """Constants of one trap of reduced stiffness ``alpha`` (docs/model.md §1).
 
     Parameters
     ----------
