@@ -1,4 +1,5 @@
-"""Compressive creep of a contact: the radius ratio ``a_r = a/a0`` against its age (docs/model.md §2).
+"""Compressive creep of a contact: the radius ratio ``a_r = a/a0`` against its age
+(docs/model.md §2).
 
 Times are reduced, ``T = theta / t0``. Two laws, one interface:
 
