@@ -460,10 +460,11 @@ def test_cli_rsf_writes_whole_results(tmp_path: Path) -> None:
                               "--json"])
     assert res.exit_code == 0, res.output
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["v_max_m_per_s"] > 1e-3  # events happened
+    assert summary["v_max"] > 1e-3 and summary["units"]["v"] == "m/s"  # events happened
+    assert summary["law"] == "rsf" and summary["case"] == "stick-slip"
     assert (out / "rsf.png").stat().st_size > 0
     header = (out / "series.csv").read_text().splitlines()[0]
-    assert header.startswith("t_s,x_m,v_m_per_s,theta_s,mu,stress")
+    assert header.startswith("t,x,v,mu,theta,stress,x_load,v_load")
     # runaway without damping: one line, exit 2, the old results left untouched
     res = runner.invoke(app, ["rsf", "--case", "stick-slip", "--stiffness", "250", "--t1",
                               "1000", "--out", str(out)])
