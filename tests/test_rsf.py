@@ -472,3 +472,24 @@ def test_cli_rsf_writes_whole_results(tmp_path: Path) -> None:
     assert json.loads((out / "summary.json").read_text()) == summary
     res = runner.invoke(app, ["rsf", "--dc", "0"])
     assert res.exit_code == 2 and "dc = 0 is out of range" in res.output
+
+
+def test_bad_stiffness_gives_the_same_message_everywhere(tmp_path: Path) -> None:
+    """The spring is checked in one place (rsf.spring): the API, a protocol file and a fit
+    report a bad stiffness in the same words."""
+    from dryfriction.fit import RSFModel
+    from dryfriction.io.protocol import parse_protocol
+
+    with pytest.raises(ValueError) as api:
+        SpringSlider(ONE, stiffness=-3.0)
+    with pytest.raises(ValueError) as fit_model:
+        RSFModel(stiffness=-3.0)
+    text = ('[model]\nlaw = "rsf"\na = 0.005\nb = 0.01\ndc = 1e-5\nmu0 = 0.6\nv0 = 1e-6\n'
+            '[drive]\nkind = "spring"\nstiffness = -3.0\n'
+            'segments = [{velocity = 1e-6, duration = 1.0}]\n')
+    with pytest.raises(ValueError) as proto:
+        parse_protocol(text, "p.toml")
+    msg = str(api.value)
+    assert msg.startswith("stiffness = -3 is out of range") and "inf" in msg
+    assert str(fit_model.value) == msg
+    assert str(proto.value) == f"p.toml: in drive: {msg}"
