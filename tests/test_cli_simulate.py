@@ -195,3 +195,30 @@ def test_sigterm_writes_nothing_and_leaves_no_temporary(tmp_path: Path) -> None:
     assert proc.returncode == 143, err
     assert err.strip().splitlines()[-1] == "error: interrupted (SIGTERM)"
     assert {p.name for p in tmp_path.iterdir()} == {"p.toml"}
+
+
+def test_one_summary_schema_for_rsf_and_both_laws_of_simulate(tmp_path: Path) -> None:
+    """summary.json of ``rsf --out``, ``simulate`` (rsf) and ``simulate`` (cv) come from one
+    writer: the common keys are in all three, with the units of each law."""
+    from dryfriction.results import COMMON_SUMMARY_KEYS
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    runs = {
+        "cv": ["simulate", str(_write(tmp_path, PROTO)), "--out", str(tmp_path / "cv")],
+        "rsf-protocol": ["simulate", str(examples / "rsf_velocity_step.toml"), "--out",
+                         str(tmp_path / "rsf-protocol")],
+        "rsf": ["rsf", "--t1", "1", "--t2", "1", "--out", str(tmp_path / "rsf")],
+    }
+    summaries = {}
+    for name, args in runs.items():
+        r = runner.invoke(app, args)
+        assert r.exit_code == 0, r.output
+        summaries[name] = json.loads((tmp_path / name / "summary.json").read_text())
+    for name, s in summaries.items():
+        assert set(COMMON_SUMMARY_KEYS) <= set(s), (name, set(COMMON_SUMMARY_KEYS) - set(s))
+    assert summaries["cv"]["law"] == "cv" and summaries["cv"]["units"]["x"] == "a0"
+    for name in ("rsf", "rsf-protocol"):
+        assert summaries[name]["law"] == "rsf" and summaries[name]["units"]["x"] == "m"
+    assert summaries["rsf"]["duration"] == pytest.approx(2.0)  # --t1 1 --t2 1
+    assert summaries["rsf"]["case"] == "step"
+    assert summaries["cv"]["protocol"].endswith("p.toml")

@@ -396,3 +396,34 @@ def test_event_accounting_closes(alpha: float) -> None:
         deaths = r.exits + (0 if strong else r.spinodal)
         np.testing.assert_array_equal(np.diff(r.n_active), (r.births - deaths)[1:])
         assert np.sum(r.births) > 0
+
+
+def test_both_simulators_give_the_same_summary_keys_and_columns() -> None:
+    """One schema (dryfriction.results): the trap model and rate-and-state share the common
+    keys and columns, with values checked against what each run was asked to do."""
+    from dryfriction.results import COMMON_COLUMNS, COMMON_SUMMARY_KEYS
+    from dryfriction.rsf import RateState, RSFOutput, SpringSlider, simulate_rsf
+
+    cv = simulate(TrapModel(eps=EPS), Track(100.0), Initial("rest"),
+                  VelocityDrive(VelocityProgram([{"velocity": 0.0, "duration": 10.0},
+                                                 {"velocity": 1.0, "slip": 0.5}])),
+                  Output(every_slip=0.01))
+    rsf = simulate_rsf(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6),
+                       SpringSlider([{"velocity": 1e-6, "duration": 10.0},
+                                     {"velocity": 1e-5, "slip": 3e-4}]),
+                       output=RSFOutput(every=0.5))
+    sc, sr = cv.summary(), rsf.summary()
+    common = set(COMMON_SUMMARY_KEYS)
+    assert common <= set(sc) and common <= set(sr)
+    assert list(cv.columns())[:4] == list(rsf.columns())[:4] == list(COMMON_COLUMNS)
+    assert set(sc["units"]) == set(cv.columns()) and set(sr["units"]) == set(rsf.columns())
+    assert (sc["law"], sr["law"]) == ("cv", "rsf")
+    assert (sc["units"]["t"], sr["units"]["t"]) == ("t0", "s")
+    # the programs: 10 t0 of hold then 0.5 a0 at 1 a0/t0; 10 s then 3e-4 m at 1e-5 m/s
+    assert sc["duration"] == pytest.approx(10.5) and sc["slip"] == pytest.approx(0.5)
+    assert sr["duration"] == pytest.approx(40.0) and sr["slip"] == pytest.approx(3.1e-4)
+    assert sr["v_max"] == pytest.approx(1e-5) and sc["v_max"] == pytest.approx(1.0)
+    # kinematic step: the peak is the direct effect right after the step, a ln 10 above mu0
+    assert sr["peak_t"] == pytest.approx(10.0) and sr["peak_x"] == pytest.approx(1e-5)
+    assert sr["peak_mu"] == pytest.approx(0.6 + 0.005 * math.log(10.0), abs=1e-9)
+    assert sr["partial"] is False and sr["samples"] == len(rsf.t)

@@ -15,6 +15,7 @@ from dryfriction import RateState, Segment, simulate_rsf
 from dryfriction.cli import app
 from dryfriction.fit import CVModel, compare_models, fit, fit_joint, fit_static, fit_steady
 from dryfriction.io.data import SeriesData, StaticData, SteadyData
+from dryfriction.rsf import RSFOutput, SpringSlider
 from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples" / "data"
@@ -142,8 +143,8 @@ def test_healing_closed_form_matches_simulated_slide_hold_slide() -> None:
     equal mu_ss + b ln(1 + V t_h/Dc)."""
     p = RateState(0.01, 0.015, 1e-5, 0.6, 1e-6, regularized=True)
     for th in (1.0, 100.0):
-        r = simulate_rsf(p, [Segment(1e-6, 50.0), Segment(0.0, th), Segment(1e-6, 5.0)],
-                         rtol=1e-10)
+        prog = [Segment(1e-6, 50.0), Segment(0.0, th), Segment(1e-6, 5.0)]
+        r = simulate_rsf(p, SpringSlider(prog), output=RSFOutput(rtol=1e-10))
         peak = r.mu[r.t > 50.0 + th].max()
         assert peak == pytest.approx(0.6 + 0.015 * math.log1p(1e-6 * th / 1e-5), abs=1e-6)
     assert RateState(0.01, 0.015, 1e-5, 0.6, 1e-6, "slip").hold_peak_friction(100.0, 1e-6) \
@@ -153,8 +154,9 @@ def test_healing_closed_form_matches_simulated_slide_hold_slide() -> None:
 def test_rsf_time_series_spring_machine_recovers_parameters() -> None:
     p = RateState(0.008, 0.012, 1e-5, 0.6, 1e-6)
     t = np.linspace(0.0, 90.0, 181)  # samples at the velocity changes (SeriesData.segments)
-    res = simulate_rsf(p, [Segment(1e-6, 20.0), Segment(1e-5, 10.0), Segment(1e-6, 60.0)],
-                       stiffness=1e3, t_eval=t, rtol=1e-10)
+    prog = [Segment(1e-6, 20.0), Segment(1e-5, 10.0), Segment(1e-6, 60.0)]
+    res = simulate_rsf(p, SpringSlider(prog, stiffness=1e3),
+                       output=RSFOutput(t_eval=t, rtol=1e-10))
     vl = np.where((t >= 20.0) & (t < 30.0), 1e-5, 1e-6)
     y = res.stress + np.random.default_rng(10).normal(0.0, 2e-4, t.size)
     r = fit(SeriesData(t, vl, y, np.full(t.size, 2e-4)), "rsf", stiffness=1e3, profile=False)

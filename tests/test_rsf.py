@@ -13,7 +13,14 @@ import numpy as np
 import pytest
 
 from dryfriction.program import Segment, VelocityProgram
-from dryfriction.rsf.driving import SolverError, linear_stability, simulate_rsf
+from dryfriction.rsf.driving import (
+    RSFInitial,
+    RSFOutput,
+    SolverError,
+    SpringSlider,
+    linear_stability,
+    simulate_rsf,
+)
 from dryfriction.rsf.law import RateState
 from rsf_reference import reference_run
 
@@ -50,7 +57,8 @@ def test_regularised_matches_standard_away_from_zero() -> None:
 
 def test_constant_velocity_from_steady_state_stays() -> None:
     p = lab("slip")
-    r = simulate_rsf(p, [Segment(3e-6, 50.0)], stiffness=300.0, rtol=1e-10)
+    r = simulate_rsf(p, SpringSlider([Segment(3e-6, 50.0)], stiffness=300.0),
+                     output=RSFOutput(rtol=1e-10))
     assert np.max(np.abs(r.mu - p.steady_state_friction(3e-6))) < 1e-13
     assert np.allclose(r.x, r.load, rtol=0, atol=1e-15)
 
@@ -63,8 +71,9 @@ def test_ageing_theta_at_constant_velocity(two_state: bool) -> None:
     kw = {"b2": 0.003, "dc2": 1e-4} if two_state else {}
     p = lab(**kw)
     te = np.linspace(0.0, 200.0, 401)
-    r = simulate_rsf(p, [Segment(v, 200.0)], theta_init=th0,
-                 theta2_init=7.0 if two_state else None, rtol=1e-11, t_eval=te)
+    r = simulate_rsf(p, SpringSlider([Segment(v, 200.0)]),
+                     RSFInitial(theta=th0, theta2=7.0 if two_state else None),
+                     RSFOutput(rtol=1e-11, t_eval=te))
     exact = DC / v + (th0 - DC / v) * np.exp(-v * te / DC)
     assert np.max(np.abs(r.theta / exact - 1)) < 1e-9
     if two_state:
@@ -80,7 +89,7 @@ def test_slip_law_velocity_step_kinematic() -> None:
     p = lab("slip")
     prog = VelocityProgram([Segment(v1, 10.0), Segment(v2, slip=10 * DC)])
     te = np.linspace(10.0, prog.total_time, 301)
-    r = simulate_rsf(p, prog, rtol=1e-11, t_eval=te)
+    r = simulate_rsf(p, SpringSlider(prog), output=RSFOutput(rtol=1e-11, t_eval=te))
     slip = v2 * (te - 10.0)
     exact = p.steady_state_friction(v2) + B * math.log(v2 / v1) * np.exp(-slip / DC)
     assert np.max(np.abs(r.mu - exact)) < 1e-11
@@ -92,7 +101,8 @@ def test_ageing_law_velocity_step_kinematic() -> None:
     v1, v2 = 1e-6, 1e-5
     p = lab("ageing")
     te = np.linspace(10.0, 30.0, 201)
-    r = simulate_rsf(p, [Segment(v1, 10.0), Segment(v2, 20.0)], rtol=1e-11, t_eval=te)
+    r = simulate_rsf(p, SpringSlider([Segment(v1, 10.0), Segment(v2, 20.0)]),
+                     output=RSFOutput(rtol=1e-11, t_eval=te))
     th = DC / v2 + (DC / v1 - DC / v2) * np.exp(-v2 * (te - 10.0) / DC)
     exact = MU0 + A * math.log(v2 / V0) + B * np.log(V0 * th / DC)
     assert np.max(np.abs(r.mu - exact)) < 1e-11
@@ -105,7 +115,8 @@ def test_kinematic_slide_hold_slide(law: str) -> None:
     p = lab(law, regularized=True)
     v = 1e-5
     for th in (10.0, 1000.0):
-        r = simulate_rsf(p, [Segment(v, 5.0), Segment(0.0, th), Segment(v, 5.0)], rtol=1e-11)
+        r = simulate_rsf(p, SpringSlider([Segment(v, 5.0), Segment(0.0, th), Segment(v, 5.0)]),
+                         output=RSFOutput(rtol=1e-11))
         i = np.searchsorted(r.t, 5.0 + th, side="right") - 1  # start of the reload
         heal = r.mu[i] - p.steady_state_friction(v)
         expect = B * math.log(1 + v * th / DC) if law == "ageing" else 0.0
@@ -126,8 +137,8 @@ def test_velocity_step_peak_tends_to_direct_effect() -> None:
     short = []
     for k in ks:
         te = np.linspace(10.0, 10.0 + 40 * (direct / k) / v2, 2001)
-        r = simulate_rsf(p, [Segment(v1, 10.0), Segment(v2, 10.0)], stiffness=k, rtol=1e-11,
-                     t_eval=te)
+        r = simulate_rsf(p, SpringSlider([Segment(v1, 10.0), Segment(v2, 10.0)], stiffness=k),
+                         output=RSFOutput(rtol=1e-11, t_eval=te))
         short.append(direct - (r.mu.max() - p.steady_state_friction(v1)))
     assert 0 < short[2] < short[1] < short[0]
     assert short[2] / direct < 1e-3
@@ -142,8 +153,8 @@ def test_slide_hold_slide_healing_rate_is_b() -> None:
     v = 1e-5
     peaks = []
     for th in (1e3, 1e4):
-        r = simulate_rsf(p, [Segment(v, slip=1e-4), Segment(0.0, th), Segment(v, slip=2e-4)],
-                     stiffness=1e3, rtol=1e-9)
+        prog = [Segment(v, slip=1e-4), Segment(0.0, th), Segment(v, slip=2e-4)]
+        r = simulate_rsf(p, SpringSlider(prog, stiffness=1e3), output=RSFOutput(rtol=1e-9))
         peaks.append(r.mu[r.t > 10.0 + th].max())
     assert (peaks[1] - peaks[0]) / math.log(10) == pytest.approx(B, rel=0.01)
 
@@ -204,8 +215,9 @@ def test_small_oscillations_follow_linear_theory(law: str, kfac: float) -> None:
     lam = eig_closed_form(p, v, k)[-1]
     period = 2 * math.pi / lam.imag
     te = np.linspace(0.0, 6 * period, 6001)
-    r = simulate_rsf(p, [Segment(v, te[-1])], stiffness=k, v_init=v * (1 + 1e-4), rtol=1e-11,
-                 t_eval=te)
+    r = simulate_rsf(p, SpringSlider([Segment(v, te[-1])], stiffness=k),
+                     RSFInitial(v=v * (1 + 1e-4)),
+                     RSFOutput(rtol=1e-11, t_eval=te))
     u = np.log(r.v / v)
     tc = _crossings(te, u)
     assert np.diff(tc) == pytest.approx(period, rel=2e-4)
@@ -221,7 +233,8 @@ def test_quasistatic_runaway_is_a_clear_error() -> None:
     solution (rsfmodel diverges here): a SolverError that says so, never NaNs."""
     p = lab()
     with pytest.raises(SolverError, match="runs away"):
-        simulate_rsf(p, [Segment(1e-6, 1000.0)], stiffness=250.0, v_init=1.01e-6)
+        simulate_rsf(p, SpringSlider([Segment(1e-6, 1000.0)], stiffness=250.0),
+                     RSFInitial(v=1.01e-6))
 
 
 @pytest.mark.parametrize("law", ["ageing", "slip"])
@@ -229,11 +242,11 @@ def test_damped_stick_slip_is_finite_and_periodic(law: str) -> None:
     """Radiation damping (eta/sigma = 0.5 s/m ~ G/(2 c_s sigma) for a lab granite at 10 MPa)
     turns the runaway into finite, periodic events whose period converges with rtol."""
     p = lab(law)
-    kw = {"stiffness": 0.8 * p.critical_stiffness(), "damping": 0.5, "v_init": 1.01e-5}
     prog = [Segment(1e-5, 300.0)]
     periods = {}
     for rtol in (1e-8, 1e-10):
-        r = simulate_rsf(p, prog, rtol=rtol, **kw)  # type: ignore[arg-type]
+        r = simulate_rsf(p, SpringSlider(prog, stiffness=0.8 * p.critical_stiffness(),
+                                         damping=0.5), RSFInitial(v=1.01e-5), RSFOutput(rtol=rtol))
         assert np.all(np.isfinite(r.v)) and r.v.max() < 1.0
         tc = _crossings(r.t, np.log(r.v / 1e-4))
         assert len(tc) >= 10
@@ -268,8 +281,8 @@ def test_velocity_step_agrees_with_reference(case: str) -> None:
     segs = [(1e-6, 10.0), (1e-5, 30.0)]
     ref = reference_run(A, B, DC, MU0, V0, law, segs, v_init=1e-6, t_eval=te, **extra,
                         **dk)  # type: ignore[arg-type]
-    r = simulate_rsf(p, [Segment(v, d) for v, d in segs], rtol=1e-9, t_eval=te,
-                 **dk)  # type: ignore[arg-type]
+    r = simulate_rsf(p, SpringSlider([Segment(v, d) for v, d in segs], **dk),
+                     output=RSFOutput(t_eval=te, rtol=1e-9))
     assert np.max(np.abs(r.mu - ref["mu"])) < 1e-9
     assert np.max(np.abs(r.stress - ref["stress"])) < 1e-9
     assert np.max(np.abs(np.log(r.v / ref["v"]))) < 1e-7
@@ -281,7 +294,9 @@ def test_slip_law_runaway_after_large_step_matches_reference() -> None:
     time although k > k_c (Gu, Rice, Ruina & Tse 1984). Both integrations find the same time."""
     p = lab("slip")
     with pytest.raises(SolverError, match="runs away") as info:
-        simulate_rsf(p, [Segment(1e-5, 30.0)], stiffness=1e3, v_init=1e-6, rtol=1e-10)
+        simulate_rsf(p, SpringSlider([Segment(1e-5, 30.0)], stiffness=1e3),
+                     RSFInitial(v=1e-6),
+                     RSFOutput(rtol=1e-10))
     # the reference (DOP853, rtol 1e-12, linear variables) stops at the blow-up time
     from scipy.integrate import solve_ivp
 
@@ -306,8 +321,9 @@ def test_stick_slip_agrees_with_reference() -> None:
     te = np.linspace(0.0, 100.0, 10001)
     ref = reference_run(A, B, DC, MU0, V0, "ageing", [(1e-5, 100.0)], stiffness=k, damping=0.5,
                         v_init=1.01e-5, t_eval=te)
-    r = simulate_rsf(p, [Segment(1e-5, 100.0)], stiffness=k, damping=0.5, v_init=1.01e-5,
-                 rtol=1e-9, t_eval=te)
+    r = simulate_rsf(p, SpringSlider([Segment(1e-5, 100.0)], stiffness=k, damping=0.5),
+                     RSFInitial(v=1.01e-5),
+                     RSFOutput(rtol=1e-9, t_eval=te))
     e_ref = _crossings(te, np.log(ref["v"] / 1e-4))
     e = _crossings(te, np.log(r.v / 1e-4))
     assert len(e) == len(e_ref) >= 4
@@ -318,8 +334,10 @@ def test_stick_slip_agrees_with_reference() -> None:
 def test_regularised_run_matches_standard_run() -> None:
     prog = [Segment(1e-6, 10.0), Segment(1e-5, 30.0)]
     te = np.linspace(0, 40, 81)
-    a = simulate_rsf(lab(), prog, stiffness=1e3, rtol=1e-10, t_eval=te)
-    b = simulate_rsf(lab(regularized=True), prog, stiffness=1e3, rtol=1e-10, t_eval=te)
+    a = simulate_rsf(lab(), SpringSlider(prog, stiffness=1e3),
+                     output=RSFOutput(rtol=1e-10, t_eval=te))
+    b = simulate_rsf(lab(regularized=True), SpringSlider(prog, stiffness=1e3),
+                     output=RSFOutput(rtol=1e-10, t_eval=te))
     assert np.max(np.abs(a.mu - b.mu)) < 1e-9
 
 
@@ -329,9 +347,9 @@ def test_result_and_mapping_round_trip() -> None:
     assert RateState.from_mapping(p.to_dict()) == p
     q = RateState.from_mapping({"law": "rsf", "a": A, "b": B, "dc": DC, "mu0": MU0, "v0": V0})
     assert q == lab()
-    r = simulate_rsf(q, [Segment(1e-6, 1.0)], stiffness=1e3)
+    r = simulate_rsf(q, SpringSlider([Segment(1e-6, 1.0)], stiffness=1e3))
     d = r.to_dict()
-    assert d["params"]["a"] == A and len(d["t_s"]) == len(r.t)
+    assert d["params"]["a"] == A and len(d["t"]) == len(r.t)
     with pytest.raises(ValueError):
         r.mu[0] = 1.0  # read-only
 
@@ -367,33 +385,64 @@ def test_bad_mapping() -> None:
         RateState.from_mapping({**base, "law": "trap"})
 
 
+def _segs(*pairs: tuple[float, float]) -> list[Segment]:
+    return [Segment(v, d) for v, d in pairs]
+
+
+ONE = _segs((1e-6, 1.0))
+
+
 @pytest.mark.parametrize(
-    ("segs", "kwargs", "match"),
+    ("make", "match"),
     [
-        ([(1e-6, 1.0)], {"stiffness": -5.0}, r"stiffness = -5 is out of range"),
-        ([(1e-6, 1.0)], {"stiffness": 0.0}, r"stiffness = 0 is out of range"),
-        ([(1e-6, 1.0)], {"damping": -1.0}, r"damping = -1 is out of range"),
-        ([(1e-6, 1.0)], {"mass": math.nan}, r"mass = nan is out of range"),
-        ([(1e-6, 1.0)], {"rtol": 0.5}, r"rtol = 0.5 is out of range"),
-        ([(1e-6, 1.0), (0.0, 1.0)], {}, r"segment 1 velocity = 0 m/s .* regularized"),
-        ([(1e-6, 1.0), (-1e-6, 1.0)], {"stiffness": 1e3}, r"segment 1 velocity = -1e-06"),
-        ([(0.0, 1.0)], {"stiffness": 1e3}, r"starts with load velocity 0 m/s: give v_init"),
-        ([(1e-6, 1.0)], {"v_init": 0.0}, r"v_init = 0 is out of range"),
-        ([(1e-6, 1.0)], {"theta_init": -1.0}, r"theta_init = -1 is out of range"),
-        ([(1e-6, 1.0)], {"theta2_init": 1.0}, r"theta2_init is given"),
-        ([(1e-6, 1.0)], {"t_eval": [0.5, 2.0]}, r"t_eval = 2 is out of range"),
-        ([(1e-6, 1.0)], {"max_steps": 0}, r"max_steps = 0 is out of range"),
+        (lambda: SpringSlider(ONE, stiffness=-5.0), r"stiffness = -5 is out of range"),
+        (lambda: SpringSlider(ONE, stiffness=0.0), r"stiffness = 0 is out of range.*or inf"),
+        (lambda: SpringSlider(ONE, 1e3, damping=-1.0), r"damping = -1 is out of range"),
+        (lambda: SpringSlider(ONE, 1e3, mass=math.nan), r"mass = nan is out of range"),
+        (lambda: SpringSlider(ONE, damping=0.5), r"damping = 0.5 is not allowed on the kinem"),
+        (lambda: SpringSlider(ONE, mass=1.0), r"mass = 1 is not allowed on the kinematic"),
+        (lambda: RSFOutput(rtol=0.5), r"rtol = 0.5 is out of range"),
+        (lambda: simulate_rsf(lab(), SpringSlider(_segs((1e-6, 1.0), (0.0, 1.0)))),
+         r"segments\[1\].velocity = 0 m/s .* regularized"),
+        (lambda: SpringSlider(_segs((1e-6, 1.0), (-1e-6, 1.0)), stiffness=1e3),
+         r"segments\[1\].velocity = -1e-06"),
+        (lambda: simulate_rsf(lab(), SpringSlider(_segs((0.0, 1.0)), stiffness=1e3)),
+         r"starts with load velocity 0 m/s: give v_init"),
+        (lambda: RSFInitial(v=0.0), r"v_init = 0 is out of range"),
+        (lambda: RSFInitial(theta=-1.0), r"theta_init = -1 is out of range"),
+        (lambda: simulate_rsf(lab(), SpringSlider(ONE), RSFInitial(theta2=1.0)),
+         r"theta2_init is given"),
+        (lambda: simulate_rsf(lab(), SpringSlider(ONE), output=RSFOutput(t_eval=[0.5, 2.0])),
+         r"t_eval = 2 is out of range"),
+        (lambda: RSFOutput(max_steps=0), r"max_steps = 0 is out of range"),
+        (lambda: RSFOutput(every=1.0, t_eval=[0.5]), r"at most one of every"),
+        (lambda: simulate_rsf(lab(), SpringSlider(ONE), "initial"), r"is not an RSFInitial"),
     ],
 )
-def test_bad_driver_input(segs: list[tuple[float, float]], kwargs: dict[str, object],
-                          match: str) -> None:
+def test_bad_driver_input(make: object, match: str) -> None:
     with pytest.raises(ValueError, match=match):
-        simulate_rsf(lab(), [Segment(v, d) for v, d in segs], **kwargs)  # type: ignore[arg-type]
+        make()  # type: ignore[operator]
+
+
+def test_old_keyword_form_still_works_and_warns() -> None:
+    """The deprecated ``simulate_rsf(params, program, stiffness=...)`` gives the same run."""
+    prog = _segs((1e-6, 10.0), (1e-5, 30.0))
+    te = np.linspace(0.0, 40.0, 81)
+    with pytest.warns(DeprecationWarning, match="SpringSlider"):
+        old = simulate_rsf(lab(), prog, stiffness=1e3, v_init=1.01e-6, rtol=1e-9, t_eval=te)
+    new = simulate_rsf(lab(), SpringSlider(prog, 1e3), RSFInitial(v=1.01e-6),
+                       RSFOutput(t_eval=te, rtol=1e-9))
+    assert np.array_equal(old.mu, new.mu) and np.array_equal(old.x, new.x)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="stiffness = -1"):
+        simulate_rsf(lab(), prog, stiffness=-1.0)
+    with pytest.raises(TypeError, match="stifness"):
+        simulate_rsf(lab(), prog, stifness=1e3)
 
 
 def test_step_budget_is_a_clear_error() -> None:
     with pytest.raises(SolverError, match="max_steps = 5"):
-        simulate_rsf(lab(), [Segment(1e-6, 10.0), Segment(1e-5, 30.0)], stiffness=1e3, max_steps=5)
+        simulate_rsf(lab(), SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 30.0)], stiffness=1e3),
+                     output=RSFOutput(max_steps=5))
 
 
 # ----------------------------------------------------------------------------- CLI
@@ -411,10 +460,11 @@ def test_cli_rsf_writes_whole_results(tmp_path: Path) -> None:
                               "--json"])
     assert res.exit_code == 0, res.output
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["v_max_m_per_s"] > 1e-3  # events happened
+    assert summary["v_max"] > 1e-3 and summary["units"]["v"] == "m/s"  # events happened
+    assert summary["law"] == "rsf" and summary["case"] == "stick-slip"
     assert (out / "rsf.png").stat().st_size > 0
     header = (out / "series.csv").read_text().splitlines()[0]
-    assert header.startswith("t_s,x_m,v_m_per_s,theta_s,mu,stress")
+    assert header.startswith("t,x,v,mu,theta,stress,x_load,v_load")
     # runaway without damping: one line, exit 2, the old results left untouched
     res = runner.invoke(app, ["rsf", "--case", "stick-slip", "--stiffness", "250", "--t1",
                               "1000", "--out", str(out)])
@@ -422,3 +472,24 @@ def test_cli_rsf_writes_whole_results(tmp_path: Path) -> None:
     assert json.loads((out / "summary.json").read_text()) == summary
     res = runner.invoke(app, ["rsf", "--dc", "0"])
     assert res.exit_code == 2 and "dc = 0 is out of range" in res.output
+
+
+def test_bad_stiffness_gives_the_same_message_everywhere(tmp_path: Path) -> None:
+    """The spring is checked in one place (rsf.spring): the API, a protocol file and a fit
+    report a bad stiffness in the same words."""
+    from dryfriction.fit import RSFModel
+    from dryfriction.io.protocol import parse_protocol
+
+    with pytest.raises(ValueError) as api:
+        SpringSlider(ONE, stiffness=-3.0)
+    with pytest.raises(ValueError) as fit_model:
+        RSFModel(stiffness=-3.0)
+    text = ('[model]\nlaw = "rsf"\na = 0.005\nb = 0.01\ndc = 1e-5\nmu0 = 0.6\nv0 = 1e-6\n'
+            '[drive]\nkind = "spring"\nstiffness = -3.0\n'
+            'segments = [{velocity = 1e-6, duration = 1.0}]\n')
+    with pytest.raises(ValueError) as proto:
+        parse_protocol(text, "p.toml")
+    msg = str(api.value)
+    assert msg.startswith("stiffness = -3 is out of range") and "inf" in msg
+    assert str(fit_model.value) == msg
+    assert str(proto.value) == f"p.toml: in drive: {msg}"

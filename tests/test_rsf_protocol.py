@@ -28,6 +28,7 @@ mu0 = 0.6
 v0 = 1e-6
 
 [drive]
+kind = "velocity"
 segments = [{velocity = 1e-6, duration = 10.0}, {velocity = 1e-5, slip = 3e-4}]
 
 [output]
@@ -73,7 +74,7 @@ def test_kinematic_step_against_closed_forms(tmp_path: Path) -> None:
     assert after[0] - 0.6 == pytest.approx(a * math.log(10.0), abs=2e-4)  # one 0.01 s sample
     assert mu[-1] == pytest.approx(0.6 + (a - b) * math.log(10.0), abs=1e-6)  # 30 Dc of slip
     s = json.loads((out / "summary.json").read_text())
-    assert s["law"] == "rsf" and s["slip_m"] == pytest.approx(1e-5 + 3e-4, rel=1e-9)
+    assert s["law"] == "rsf" and s["slip"] == pytest.approx(1e-5 + 3e-4, rel=1e-9)
 
 
 def test_stick_slip_example_is_finite_and_periodic(tmp_path: Path) -> None:
@@ -94,11 +95,14 @@ def test_stick_slip_example_is_finite_and_periodic(tmp_path: Path) -> None:
         (("a = 0.005\n", ""), "model.a is missing"),
         (("dc = 1e-5", "dc = -1e-5"), "in model: dc"),
         (('state_law = "ageing"', 'state_law = "aging"'), "state_law"),
-        (("[drive]", "[drive]\nstiffness = -3.0"), "drive.stiffness"),
-        (("[drive]", "[drive]\nkind = \"spring\""), "drive.kind"),
-        (("[drive]", "[drive]\ndamping = 0.1"), "drive.damping"),
+        (('kind = "velocity"', 'kind = "spring"\nstiffness = -3.0'), "in drive: stiffness = -3"),
+        (('kind = "velocity"', 'kind = "spring"'), "drive.stiffness is missing"),
+        (('kind = "velocity"\n', ""), "drive.kind is missing"),
+        (('kind = "velocity"', 'kind = "force"'), "not allowed with model.law = 'rsf'"),
+        (('kind = "velocity"', 'kind = "ramp"'), "'velocity', 'force', 'spring'"),
+        (("[drive]", "[drive]\ndamping = 0.1"), "drive key(s) damping not allowed"),
         (("velocity = 1e-6, duration", "velocity = 0.0, duration"),
-         "drive.segments[0].velocity"),
+         "segments[0].velocity = 0"),
         (("[output]", "[ensemble]\ntraps_per_a0 = 3\n[output]"), "ensemble"),
         (("every = 0.01", "every = 0.01\nevery_slip = 1.0"), "output.every_slip"),
         (('law = "rsf"', 'law = "rs"'), "model.law"),
@@ -129,3 +133,27 @@ def test_runaway_without_damping_is_an_error_not_nan(tmp_path: Path) -> None:
     assert r.exit_code == 2
     assert "runaway.toml" in r.output and "damping" in r.output
     assert not out.exists()
+
+
+def test_old_rsf_file_without_kind_is_one_line_that_tells_the_fix(tmp_path: Path) -> None:
+    """Before issue 9 a rate-and-state [drive] had no kind (stiffness absent = kinematic)."""
+    f = tmp_path / "old.toml"
+    f.write_text(STEP.replace('kind = "velocity"\n', "stiffness = 1e3\n"))
+    out = tmp_path / "res"
+    r = runner.invoke(app, ["simulate", str(f), "--out", str(out)])
+    assert r.exit_code == 2 and not out.exists()
+    lines = [ln for ln in r.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "drive.kind is missing" in lines[0]
+    assert "kind = 'spring'" in lines[0] and "'velocity'" in lines[0]
+
+
+def test_kind_means_the_same_for_both_laws() -> None:
+    """kind = "velocity" is the kinematic program, "spring" the spring slider, for both laws."""
+    cv_spring = load_protocol(EXAMPLES / "spring_stick_slip.toml")
+    assert type(cv_spring.drive).__name__ == "SpringDrive"
+    rsf_spring = load_protocol(EXAMPLES / "rsf_velocity_step.toml")
+    assert isinstance(rsf_spring, RSFProtocol) and rsf_spring.stiffness == 1e3
+    rsf_kin = parse_protocol(STEP)
+    assert isinstance(rsf_kin, RSFProtocol) and math.isinf(rsf_kin.stiffness)
+    with pytest.raises(ValueError, match="inf"):
+        parse_protocol(STEP.replace('kind = "velocity"', 'kind = "spring"\nstiffness = 0.0'))

@@ -77,6 +77,17 @@ def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
     out.print(table)
 
 
+def write_summary(path: Any, result: Any, context: dict[str, Any]) -> dict[str, Any]:
+    """Write ``result.summary()`` plus the run's ``context`` (protocol, wall time, ...) as
+    ``path`` (JSON): the one summary.json writer of ``rsf`` and ``simulate`` (both laws).
+    Returns what was written."""
+    from .io.files import write_json
+
+    summary = {**result.summary(), **context}
+    write_json(path, summary)
+    return summary
+
+
 @app.command()
 @cli_errors
 def trap(
@@ -268,12 +279,11 @@ def rsf(
 ) -> None:
     """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
     stick-slip, on a spring with optional radiation damping and inertia."""
-    import math
     import time
 
-    from .io.files import check_output_dir, output_directory, write_csv, write_json
+    from .io.files import check_output_dir, output_directory, write_csv
     from .program import Segment
-    from .rsf.driving import SolverError, simulate_rsf
+    from .rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate_rsf
     from .rsf.law import RateState
     from .validation import check_choice, check_scalar
 
@@ -301,37 +311,26 @@ def rsf(
         segs = [Segment(v1, t1)]
         if v_init is None:
             v_init = 1.01 * v1
+    drive = SpringSlider(segs, stiffness, damping, mass)  # every check before any work
+    init, output = RSFInitial(v=v_init), RSFOutput(rtol=rtol)
+    drive.check_model(params)
+    init.resolve(params, drive)
     if out_dir is not None:
         check_output_dir(out_dir, force=force)
     start = time.perf_counter()
     try:
-        theta_init = None if v_init is None else params.dc / v_init
-        res = simulate_rsf(params, segs, stiffness=stiffness, damping=damping, mass=mass,
-                           v_init=v_init, theta_init=theta_init, rtol=rtol)
+        res = simulate_rsf(params, drive, init, output)
     except SolverError as exc:
         raise ValueError(str(exc)) from None
-    wall = time.perf_counter() - start
-    summary: dict[str, Any] = {
-        "case": case,
-        "points": len(res.t),
-        "steps": res.n_steps,
-        "wall_s": wall,
-        "mu_initial": float(res.mu[0]),
-        "mu_max": float(res.mu.max()),
-        "mu_min": float(res.mu.min()),
-        "mu_final": float(res.mu[-1]),
-        "v_max_m_per_s": float(res.v.max()),
-    }
-    if params.n_state == 1 and not params.regularized and not math.isinf(stiffness):
-        summary["k_c_per_m"] = params.critical_stiffness(max(v1, 1e-300), damping, mass)
+    context = {"case": case, "wall_s": time.perf_counter() - start}
+    summary = {**res.summary(), **context}
     if out_dir is not None:
         with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
             write_csv(tmp / "series.csv", res.columns())
-            write_json(tmp / "summary.json", {**summary, "params": params.to_dict(),
-                                              "stiffness": stiffness, "damping": damping,
-                                              "mass": mass, "rtol": rtol})
+            summary = write_summary(tmp / "summary.json", res, context)
             _rsf_figure(res, tmp / "rsf.png", f"{case}, {state_law} law")
-    emit(summary, json_out, f"rate-and-state, {case}")
+    brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
+    emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
 
 
 def _rsf_figure(res: Any, path: Any, title: str) -> None:
@@ -515,7 +514,7 @@ def simulate(
     import time
     from pathlib import Path
 
-    from .io.files import check_output_dir, output_directory, write_csv, write_json
+    from .io.files import check_output_dir, output_directory, write_csv
     from .io.protocol import RSFProtocol, load_protocol
 
     proto = load_protocol(protocol)  # every check before any work
@@ -544,9 +543,6 @@ def simulate(
     finally:
         if bar:
             bar["p"].stop()
-    summary = result.summary()
-    summary["protocol"] = str(Path(protocol))
-
     import matplotlib
 
     matplotlib.use("Agg")
@@ -554,8 +550,9 @@ def simulate(
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
-        write_csv(tmp / "timeseries.csv", result.to_dict())
-        write_json(tmp / "summary.json", summary)
+        write_csv(tmp / "timeseries.csv", result.columns())
+        summary = write_summary(tmp / "summary.json", result,
+                                {"protocol": str(Path(protocol))})
         fig, _ = timeseries_figure(result)
         fig.savefig(tmp / "timeseries.png", dpi=120)
         for i, snap in enumerate(result.snapshots):
@@ -830,46 +827,11 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     import time
     from pathlib import Path
 
-    from .io.files import output_directory, write_csv, write_json
+    from .io.files import output_directory, write_csv
 
     start = time.perf_counter()
     res = proto.run()
-    wall = time.perf_counter() - start
-    t, mu = res.t, res.mu
-    span = float(t[-1] - t[0])
-    k = int(np.argmax(mu))
-    summary: dict[str, Any] = {
-        "law": "rsf",
-        "partial": False,
-        "samples": int(len(t)),
-        "duration_s": span,
-        "peak_mu": float(mu[k]),
-        "peak_t_s": float(t[k]),
-        "final_mu": float(mu[-1]),
-        "mean_mu": float(np.trapezoid(mu, t) / span) if span > 0 else float(mu[0]),
-        "slip_m": float(res.x[-1] - res.x[0]),
-        "v_max_m_per_s": float(np.max(res.v)),
-        "steps": res.n_steps,
-        "rejected_steps": res.n_rejected,
-        "wall_s": wall,
-        "params": proto.params.to_dict(),
-        "stiffness_per_m": proto.stiffness,
-        "damping_s_per_m": proto.damping,
-        "mass_s2_per_m": proto.mass,
-        "rtol": proto.rtol,
-        "protocol": str(Path(protocol)),
-        "units": {"t": "s", "x": "m", "v": "m/s", "theta": "s", "x_load": "m",
-                  "v_load": "m/s", "mu": "", "stress": "spring force / normal force"},
-    }
-    p = proto.params
-    if p.n_state == 1 and not p.regularized and not np.isinf(proto.stiffness):
-        v = float(proto.program.velocities[-1]) or float(proto.v_init or 1.0)
-        summary["critical_stiffness_per_m"] = p.critical_stiffness(v, proto.damping, proto.mass)
-    cols: dict[str, Any] = {"t": res.t, "x": res.x, "v": res.v, "mu": res.mu,
-                            "theta": res.theta}
-    if res.theta2 is not None:
-        cols["theta2"] = res.theta2
-    cols.update(stress=res.stress, x_load=res.load, v_load=res.load_velocity)
+    context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
 
     import matplotlib
 
@@ -878,8 +840,8 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
-        write_csv(tmp / "timeseries.csv", cols)
-        write_json(tmp / "summary.json", summary)
+        write_csv(tmp / "timeseries.csv", res.columns())
+        summary = write_summary(tmp / "summary.json", res, context)
         fig, _ = rsf_timeseries_figure(res)
         fig.savefig(tmp / "timeseries.png", dpi=120)
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}

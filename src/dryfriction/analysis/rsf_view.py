@@ -51,7 +51,7 @@ from ..ensemble.population import Initial, Track, TrapModel
 from ..fit import FitResult, RSFModel, fit
 from ..io.data import SeriesData, StaticData
 from ..program import Segment, VelocityProgram
-from ..rsf.driving import simulate_rsf
+from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
 from ..theory.stability import effective_rsf, shift_stiffness
 from ..theory.steady import steady_friction
@@ -257,8 +257,9 @@ def rsf_twin_series(params: RateState, program: VelocityProgram, t: Array,
         if seg.velocity < 0.0:
             raise ValueError("backward motion is not supported by the rate-and-state twin")
         te = np.clip(t[inside] - t0, 0.0, t1 - t0)
-        res = simulate_rsf(params, [Segment(seg.velocity, t1 - t0)], theta_init=theta,
-                           rtol=1e-9, t_eval=np.union1d(te, [t1 - t0]))
+        res = simulate_rsf(params, SpringSlider([Segment(seg.velocity, t1 - t0)]),
+                           RSFInitial(theta=theta),
+                           RSFOutput(t_eval=np.union1d(te, [t1 - t0]), rtol=1e-9))
         if te.size:
             out[inside] = np.interp(te, res.t, res.mu)
         theta = float(res.theta[-1])

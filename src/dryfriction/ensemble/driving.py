@@ -41,7 +41,7 @@ from __future__ import annotations
 import math
 import time as _time
 from collections.abc import Callable, Iterator
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
@@ -49,8 +49,9 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq
 
 from ..program import VelocityProgram
-from ..validation import check_choice, check_range, check_scalar
+from ..validation import check_choice, check_scalar
 from .population import Ensemble, Initial, Observables, Track, TrapModel
+from .result import COLUMNS, Output, Recorder, SimulationResult, segment_grid
 
 __all__ = [
     "VelocityDrive",
@@ -58,6 +59,7 @@ __all__ = [
     "SpringDrive",
     "Output",
     "SimulationResult",
+    "COLUMNS",
     "simulate",
     "continue_spring",
 ]
@@ -149,179 +151,7 @@ class SpringDrive:
 Drive = VelocityDrive | ForceDrive | SpringDrive
 
 
-@dataclass(frozen=True)
-class Output:
-    """Sampling of the time series: exactly one of ``every`` (``t0``) or ``every_slip`` (``a0``).
-
-    Parameters
-    ----------
-    every : float, optional
-        Sampling interval in time, ``> 0``.
-    every_slip : float, optional
-        Sampling interval in slip of the slider (velocity drive) or of the load point (spring),
-        ``> 0``. Holds are then a single step. Under force control the force step is
-        ``every_slip`` times the fresh contact stiffness.
-    snapshots : tuple of float
-        Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
-        drives step exactly onto them; under force control (whose ramp ends at an unknown
-        time) a snapshot is taken at the first sample at or after the requested time.
-    """
-
-    every: float | None = None
-    every_slip: float | None = None
-    snapshots: tuple[float, ...] = ()
-
-    def __post_init__(self) -> None:
-        if (self.every is None) == (self.every_slip is None):
-            raise ValueError("give exactly one of every (in t0) and every_slip (in a0)")
-        if self.every is not None:
-            object.__setattr__(self, "every", check_scalar("every", self.every, 0.0, lo_open=True))
-        if self.every_slip is not None:
-            v = check_scalar("every_slip", self.every_slip, 0.0, lo_open=True)
-            object.__setattr__(self, "every_slip", v)
-        snaps = check_range("snapshots", np.asarray(self.snapshots, float).ravel(), 0.0)
-        object.__setattr__(self, "snapshots", tuple(sorted(float(s) for s in snaps)))
-
-
-COLUMNS: tuple[str, ...] = (
-    "t", "x", "v", "mu", "n_active", "mean_age", "x_pull", "f_applied", "births", "spinodal",
-    "exits",
-)
-
-
-@dataclass
-class SimulationResult:
-    """Time series of a run (NumPy arrays, reduced units) and what happened.
-
-    Attributes
-    ----------
-    t, x, v : ndarray
-        Time (``t0``), slider position (``a0``), slider velocity (``a0/t0``).
-    mu : ndarray
-        Friction ``mu_el F/F_el``.
-    n_active, mean_age : ndarray
-        Traps in contact and their mean age (``t0``).
-    x_pull, f_applied : ndarray
-        Load-point position (spring drive; NaN otherwise) and applied force in ``mu`` units
-        (force drive; NaN otherwise).
-    births, spinodal, exits : ndarray
-        Pairs entering contact, spinodal events and pairs leaving contact past the edge of the
-        bump (``|w| > 1``) during the step ending at each sample. In very strong pinning a
-        spinodal event is a death, so ``births - spinodal - exits`` is the change of
-        ``n_active``; in strong pinning it is ``births - exits``.
-    snapshots : list of dict
-        Population snapshots (``t``, ``x`` and the arrays of :meth:`Ensemble.snapshot`).
-    info : dict
-        Drive-specific scalars (threshold, runaway, ...), and ``partial``.
-    """
-
-    t: Array
-    x: Array
-    v: Array
-    mu: Array
-    n_active: Array
-    mean_age: Array
-    x_pull: Array
-    f_applied: Array
-    births: Array
-    spinodal: Array
-    exits: Array
-    snapshots: list[dict[str, Any]] = field(default_factory=list)
-    info: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def partial(self) -> bool:
-        return bool(self.info.get("partial", False))
-
-    def to_dict(self) -> dict[str, Array]:
-        """The time series as ``{column: array}`` (the order of :data:`COLUMNS`)."""
-        return {k: getattr(self, k) for k in COLUMNS}
-
-    def to_records(self) -> np.ndarray:
-        """The time series as a NumPy structured array."""
-        d = self.to_dict()
-        rec = np.empty(len(self.t), dtype=[(k, float) for k in d])
-        for k, v in d.items():
-            rec[k] = v
-        return rec
-
-    def to_dataframe(self) -> Any:
-        """A ``pandas.DataFrame`` of the time series (needs pandas, not a dependency)."""
-        try:
-            import pandas as pd
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError("to_dataframe needs pandas; use to_dict() or to_records()") from exc
-        return pd.DataFrame(self.to_dict())
-
-    def summary(self) -> dict[str, Any]:
-        """Peak, final and mean friction, slip and event counts, plus :attr:`info`."""
-        t, mu, x = self.t, self.mu, self.x
-        k = int(np.nanargmax(mu)) if len(mu) else 0
-        span = float(t[-1] - t[0]) if len(t) > 1 else 0.0
-        mean = float(np.trapezoid(mu, t) / span) if span > 0 else float(np.mean(mu))
-        out = {
-            "partial": self.partial,
-            "samples": int(len(t)),
-            "duration": span,
-            "peak_mu": float(mu[k]),
-            "peak_t": float(t[k]),
-            "peak_x": float(x[k]),
-            "final_mu": float(mu[-1]),
-            "mean_mu": mean,
-            "slip": float(x[-1] - x[0]),
-            "path_length": float(np.sum(np.abs(np.diff(x)))),
-            "events": {
-                "births": int(np.sum(self.births)),
-                "spinodal": int(np.sum(self.spinodal)),
-                "exits": int(np.sum(self.exits)),
-            },
-        }
-        out.update({k2: v for k2, v in self.info.items() if k2 != "partial"})
-        return out
-
-
 # ---------------------------------------------------------------- helpers
-
-
-class _Recorder:
-    def __init__(self, mu_el: float) -> None:
-        self.mu_el = mu_el
-        self.rows: list[tuple[float, ...]] = []
-        self.snapshots: list[dict[str, Any]] = []
-
-    def add(self, ens: Ensemble, o: Observables, v: float, x_pull: float = math.nan,
-            f_applied: float = math.nan, events: tuple[int, int, int] = (0, 0, 0)) -> None:
-        """Record a sample; ``events`` = (births, spinodal, exits) since the last one."""
-        self.rows.append((ens.t, ens.x, v, self.mu_el * o.force, o.n_active, o.mean_age, x_pull,
-                          self.mu_el * f_applied, *events))
-
-    def snap(self, ens: Ensemble) -> None:
-        s = ens.snapshot()
-        s["force"] = s["force"] * ens.force_scale * self.mu_el  # per-trap share of mu
-        self.snapshots.append({"t": ens.t, "x": ens.x, **s})
-
-    def result(self, info: dict[str, Any]) -> SimulationResult:
-        a = np.array(self.rows, dtype=float).reshape(-1, len(COLUMNS))
-        cols = {k: a[:, i].copy() for i, k in enumerate(COLUMNS)}
-        return SimulationResult(**cols, snapshots=self.snapshots, info=info)
-
-
-def _segment_grid(program: VelocityProgram, output: Output) -> Array:
-    """Sampling times of a velocity program: every segment boundary plus the output grid."""
-    times = [0.0]
-    bounds = program.times
-    for seg, ta, tb in zip(program.segments, bounds[:-1], bounds[1:], strict=True):
-        if output.every is not None:
-            dt = output.every
-        elif seg.velocity != 0.0:
-            dt = float(output.every_slip) / abs(seg.velocity)
-        else:
-            dt = math.inf
-        n = max(1, math.ceil(seg.time / dt * (1.0 - 1e-9))) if math.isfinite(dt) else 1
-        times.extend(ta + (tb - ta) * np.arange(1, n + 1) / n)
-    grid = np.asarray(times)
-    snaps = [s for s in output.snapshots if s <= grid[-1]]
-    return np.union1d(grid, snaps)
 
 
 def _progress_caller(progress: Progress | None, total: float) -> Callable[[float], None]:
@@ -412,10 +242,10 @@ def _equilibrate(
 # ---------------------------------------------------------------- the drivers
 
 
-def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: _Recorder,
+def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Recorder,
                   tick: Callable[[float], None], info: dict[str, Any]) -> None:
     prog = drive.program
-    grid = _segment_grid(prog, output)
+    grid = segment_grid(prog, output)
     xs = prog.position(grid)
     snaps = list(output.snapshots)
     bounds = prog.times
@@ -432,7 +262,7 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: _Rec
         tick(t1)
 
 
-def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: _Recorder,
+def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
                tick: Callable[[float], None], info: dict[str, Any]) -> None:
     f0 = ens.observe().force
     if output.every is not None:
@@ -480,7 +310,7 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: _Recorder,
     })
 
 
-def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorder,
+def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder,
                 tick: Callable[[float], None], info: dict[str, Any], *,
                 velocity: float = 0.0, spring_force: float | None = None) -> None:
     """Spring drive from the ensemble's present state (time ``ens.t``, position ``ens.x``).
@@ -494,7 +324,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
     o = ens.observe()
     t_start = ens.t
     x_pull0 = ens.x + (o.force if spring_force is None else spring_force) / K
-    grid = _segment_grid(prog, output)
+    grid = segment_grid(prog, output)
     xp = x_pull0 + (prog.position(grid) - prog.x0)
     grid = grid + t_start
     snaps = list(output.snapshots)
@@ -556,7 +386,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: _Recorde
     })
 
 
-def _count_slips(rec: _Recorder, thr: float) -> int:
+def _count_slips(rec: Recorder, thr: float) -> int:
     """Slip events of an inertial run (ours): maximal runs of samples whose velocity exceeds
     three times the mean slider velocity and that slide more than ``thr`` in total."""
     if len(rec.rows) < 3:
@@ -621,7 +451,7 @@ def simulate(
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
-    rec = _Recorder(model.mu_el)
+    rec = Recorder(model.mu_el)
     o = ens.observe()
     x_pull0 = ens.x + o.force / drive.stiffness if isinstance(drive, SpringDrive) else math.nan
     f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
@@ -693,7 +523,7 @@ def continue_spring(
                          "quasi-static slider has no velocity state; allowed 0")
     if spring_force is not None:
         spring_force = check_scalar("spring_force", spring_force)
-    rec = _Recorder(ensemble.model.mu_el)
+    rec = Recorder(ensemble.model.mu_el)
     o = ensemble.observe()
     f_spring = o.force if spring_force is None else spring_force
     rec.add(ensemble, o, velocity, x_pull=ensemble.x + f_spring / drive.stiffness)

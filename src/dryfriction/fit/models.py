@@ -20,8 +20,9 @@ import numpy as np
 
 from ..io.data import Dataset, SeriesData, StaticData, SteadyData
 from ..program import Segment
-from ..rsf.driving import simulate_rsf
+from ..rsf.driving import RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import STATE_LAWS, RateState
+from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
 from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
@@ -354,8 +355,8 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     dur, vel = data.segments()
     prog = [Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)]
     te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
-    res = simulate_rsf(params, prog, stiffness=model.stiffness, damping=model.damping,
-                       rtol=1e-9, t_eval=te, max_steps=200_000)
+    res = simulate_rsf(params, SpringSlider(prog, model.stiffness, model.damping),
+                       output=RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
     return np.asarray(res.stress, float)
 
 
@@ -394,9 +395,9 @@ class RSFModel:
         if self.v0 is not None:
             object.__setattr__(self, "v0", check_scalar("v0", self.v0, 0.0, lo_open=True))
         check_choice("state_law", self.state_law, STATE_LAWS)
-        if not math.isinf(self.stiffness):
-            check_scalar("stiffness", self.stiffness, 0.0, lo_open=True)
-        check_scalar("damping", self.damping, 0.0)
+        k, eta, _ = check_spring(self.stiffness, self.damping)
+        object.__setattr__(self, "stiffness", k)
+        object.__setattr__(self, "damping", eta)
 
     def options(self) -> dict[str, Any]:
         return {"v0": self.v0, "state_law": self.state_law, "stiffness": self.stiffness,

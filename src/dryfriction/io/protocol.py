@@ -40,11 +40,13 @@ Rate-and-state friction runs through the same files (issue 4), in SI units, with
     v0 = 1e-6                    # required, m/s, > 0
     # optional: b2, dc2 (second state variable), regularized (true: asinh law, V = 0 allowed)
 
-    [drive]                      # dryfriction.rsf_driving.simulate_rsf
+    [drive]                      # dryfriction.rsf.SpringSlider
+    kind = "spring"              # required: "velocity" (kinematic machine) | "spring"
+                                 # ("force" is the trap model's only)
     segments = [{velocity = 1e-6, duration = 10.0}, {velocity = 1e-5, slip = 1e-4}]
-    stiffness = 1e3              # optional, 1/m per unit normal force; absent or inf: kinematic
-    damping = 0.0                # optional, eta/sigma, s/m
-    mass = 0.0                   # optional, s^2/m per unit normal force
+    stiffness = 1e3              # spring: required, 1/m per unit normal force (inf: kinematic)
+    damping = 0.0                # spring: optional, eta/sigma, s/m
+    mass = 0.0                   # spring: optional, s^2/m per unit normal force
     v_init = 1.01e-6             # optional, m/s: initial slip velocity (state at steady state
                                  # for it); default the first segment's velocity
 
@@ -67,8 +69,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from ..ensemble.driving import (
     Drive,
     ForceDrive,
@@ -82,13 +82,17 @@ from ..ensemble.population import Initial, Track, TrapModel
 from ..program import Segment, VelocityProgram
 from ..rsf.driving import RSFResult, SolverError, simulate_rsf
 from ..rsf.law import RateState
+from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 
 __all__ = ["Protocol", "RSFProtocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
 
 LAWS: tuple[str, ...] = ("cv", "rsf")
 _RSF_TABLES = ("model", "drive", "output")
 _RSF_MODEL_KEYS = ("law", "state_law", "a", "b", "dc", "mu0", "v0", "b2", "dc2", "regularized")
-_RSF_DRIVE_KEYS = ("segments", "stiffness", "damping", "mass", "v_init")
+_RSF_DRIVE_KEYS = {
+    "velocity": ("segments", "v_init"),
+    "spring": ("segments", "stiffness", "damping", "mass", "v_init"),
+}
 
 _TABLES = ("model", "ensemble", "drive", "output")
 _DRIVE_KEYS = {
@@ -132,52 +136,46 @@ class RSFProtocol:
     ----------
     params : RateState
         Friction law and parameters.
-    program : VelocityProgram
-        Load-point velocity program, m/s and s (or slips in m).
-    stiffness : float
-        Spring stiffness per unit normal force, 1/m; ``inf`` for the kinematic machine.
-    damping : float
-        Radiation damping ``eta/sigma``, s/m.
-    mass : float
-        Mass per unit normal force, s^2/m.
-    v_init : float or None
-        Initial slip velocity, m/s (state at steady state for it); ``None``: the first
-        segment's velocity.
-    every : float or None
-        Sampling interval, s; ``None``: every accepted solver step.
-    rtol : float
-        Local error tolerance of the solver.
+    drive : SpringSlider
+        Load-point program and machine (``stiffness = inf``: kinematic).
+    initial : RSFInitial
+        Initial slip velocity (state at steady state for it).
+    output : RSFOutput
+        Sampling interval and solver tolerance.
     """
 
     params: RateState
-    program: VelocityProgram
-    stiffness: float = math.inf
-    damping: float = 0.0
-    mass: float = 0.0
-    v_init: float | None = None
-    every: float | None = None
-    rtol: float = 1e-7
+    drive: SpringSlider
+    initial: RSFInitial = RSFInitial()
+    output: RSFOutput = RSFOutput()
     source: str = "<string>"
 
     @property
     def law(self) -> str:
         return "rsf"
 
+    @property
+    def program(self) -> VelocityProgram:
+        return self.drive.program
+
+    @property
+    def stiffness(self) -> float:
+        return self.drive.stiffness
+
+    @property
+    def damping(self) -> float:
+        return self.drive.damping
+
+    @property
+    def mass(self) -> float:
+        return self.drive.mass
+
     def run(self) -> RSFResult:
-        """Run :func:`dryfriction.rsf_driving.simulate_rsf`; a failed integration is a
+        """Run :func:`dryfriction.rsf.driving.simulate_rsf`; a failed integration is a
         ``ValueError`` naming the protocol file and the cause."""
-        t_eval = None
-        if self.every is not None:
-            total = self.program.total_time
-            n = max(1, math.ceil(total / self.every * (1.0 - 1e-12)))
-            t_eval = np.union1d(np.linspace(0.0, total, n + 1), self.program.times)
         try:
-            return simulate_rsf(self.params, self.program, stiffness=self.stiffness,
-                                damping=self.damping, mass=self.mass, v_init=self.v_init,
-                                rtol=self.rtol, t_eval=t_eval)
-        except SolverError as exc:
-            raise ValueError(f"{self.source}: {exc}") from None
-        except ValueError as exc:
+            return simulate_rsf(self.params, self.drive, self.initial, self.output)
+        except (SolverError, ValueError) as exc:
             raise ValueError(f"{self.source}: {exc}") from None
 
 
@@ -318,11 +316,7 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
     )
 
     d = _Table(source, "drive", doc["drive"])
-    kind = d.string("kind", required=True)
-    if kind not in _DRIVE_KEYS:
-        d.fail(f"drive.kind = {kind!r} is not allowed: choose one of "
-               f"{', '.join(_DRIVE_KEYS)}")
-    assert kind is not None
+    kind = _drive_kind(d, "cv")
     extra = sorted(set(d.data) - {"kind", *_DRIVE_KEYS[kind]})
     if extra:
         others = {k for kk, keys in _DRIVE_KEYS.items() if kk != kind for k in keys}
@@ -377,57 +371,47 @@ def _rsf_protocol(doc: Mapping[str, Any], source: str) -> RSFProtocol:
     params = m.build(RateState.from_mapping, m.data)
 
     d = _Table(source, "drive", doc["drive"])
-    if "kind" in d.data:
-        d.fail("drive.kind is not used with model.law = 'rsf': give drive.stiffness for a "
-               "spring (absent or inf: the kinematic machine)")
-    d.allow(_RSF_DRIVE_KEYS)
-    stiffness = d.number("stiffness", math.inf) if d.data.get("stiffness") != math.inf \
-        else math.inf
-    assert stiffness is not None
-    if not stiffness > 0:
-        d.fail(f"{d.where('stiffness')} = {stiffness!r} is out of range: allowed > 0 (1/m), "
-               "or inf for the kinematic machine")
-    damping = d.number("damping", 0.0)
-    mass = d.number("mass", 0.0)
-    for key, val in (("damping", damping), ("mass", mass)):
-        if val is not None and val < 0:
-            d.fail(f"{d.where(key)} = {val!r} is out of range: allowed >= 0")
-    if math.isinf(stiffness) and (damping or mass):
-        d.fail("drive.damping and drive.mass need a spring: give drive.stiffness (1/m)")
-    v_init = d.number("v_init")
-    if v_init is not None and not v_init > 0:
-        d.fail(f"{d.where('v_init')} = {v_init!r} is out of range: allowed > 0 (m/s)")
-    program = _segments(d)
+    kind = _drive_kind(d, "rsf")
+    keys = _RSF_DRIVE_KEYS[kind]
+    extra = sorted(set(d.data) - {"kind", *keys})
+    if extra:
+        d.fail(f"drive key(s) {', '.join(extra)} not allowed: kind = {kind!r} with model.law = "
+               f"'rsf' allows {', '.join(('kind', *keys))}")
+    stiffness = math.inf
+    if kind == "spring":
+        if "stiffness" not in d.data:
+            d.fail("drive.stiffness is missing: required for kind = 'spring' (1/m; kind = "
+                   "'velocity' is the kinematic machine)")
+        raw = d.data["stiffness"]
+        stiffness = raw if raw == math.inf else d.number("stiffness")
+    drive = d.build(SpringSlider, _segments(d), stiffness, d.number("damping", 0.0),
+                    d.number("mass", 0.0))
+    initial = d.build(RSFInitial, v=d.number("v_init"))
 
     o = _Table(source, "output", doc.get("output", {}))
     o.allow(("every", "rtol"))
-    every = o.number("every")
-    if every is not None and not every > 0:
-        o.fail(f"{o.where('every')} = {every!r} is out of range: allowed > 0 (s)")
-    rtol = o.number("rtol", 1e-7)
-    assert rtol is not None
-    if not 1e-13 <= rtol <= 1e-2:
-        o.fail(f"{o.where('rtol')} = {rtol!r} is out of range: allowed [1e-13, 1e-2]")
-    proto = RSFProtocol(params, program, stiffness, float(damping or 0.0), float(mass or 0.0),
-                        v_init, every, rtol, source)
-    _check_rsf_program(proto, d)
-    return proto
+    output = o.build(RSFOutput, every=o.number("every"), rtol=o.number("rtol", 1e-7))
+    d.build(drive.check_model, params)
+    d.build(initial.resolve, params, drive)
+    return RSFProtocol(params, drive, initial, output, source)
 
 
-def _check_rsf_program(p: RSFProtocol, d: _Table) -> None:
-    """The checks :func:`simulate_rsf` makes on the program, before any work."""
-    vel = p.program.velocities
-    kinematic = math.isinf(p.stiffness)
-    for i, v in enumerate(vel):
-        if kinematic and not p.params.regularized and v <= 0.0:
-            d.fail(f"drive.segments[{i}].velocity = {v:g} m/s is out of range: the kinematic "
-                   "machine (no drive.stiffness) with the standard law needs > 0 (ln V); set "
-                   "model.regularized = true for holds")
-        if not kinematic and v < 0.0:
-            d.fail(f"drive.segments[{i}].velocity = {v:g} m/s is out of range: the spring "
-                   "driver needs >= 0")
-    if p.v_init is None and vel[0] <= 0.0:
-        d.fail("drive.segments[0] is a hold: give drive.v_init (m/s), the initial slip velocity")
+def _drive_kind(d: _Table, law: str) -> str:
+    """``drive.kind``, required and the same grammar for both laws: ``velocity`` (kinematic
+    program), ``spring`` (spring slider), ``force`` (force ramp, trap model only)."""
+    kinds = ", ".join(repr(k) for k in _DRIVE_KEYS)
+    if "kind" not in d.data:
+        hint = (" (rate-and-state files without it: add kind = 'spring' with drive.stiffness, "
+                "or kind = 'velocity' for the kinematic machine)" if law == "rsf" else "")
+        d.fail(f"drive.kind is missing: a string is required, one of {kinds}{hint}")
+    kind = d.string("kind")
+    if kind not in _DRIVE_KEYS:
+        d.fail(f"drive.kind = {kind!r} is not allowed: choose one of {kinds}")
+    assert kind is not None
+    if law == "rsf" and kind not in _RSF_DRIVE_KEYS:
+        d.fail(f"drive.kind = {kind!r} is not allowed with model.law = 'rsf' (force control is "
+               "for the trap model): choose 'velocity' (kinematic) or 'spring'")
+    return kind
 
 
 def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol:

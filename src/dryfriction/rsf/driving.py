@@ -34,19 +34,22 @@ interpolation of the log variables (ours).
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numba as nb
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
-from ..validation import check_range, check_scalar
+from ..validation import check_scalar
 from .law import RateState
+from .result import RSFResult, build_result, hermite
+from .spring import RSFInitial, RSFOutput, SpringSlider, check_spring
 
-__all__ = ["RSFResult", "SolverError", "simulate_rsf", "linear_stability"]
+__all__ = ["RSFInitial", "RSFOutput", "RSFResult", "SolverError", "SpringSlider", "simulate_rsf",
+           "linear_stability"]
 
 Array = NDArray[np.float64]
 
@@ -408,85 +411,6 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
 
 
 # --------------------------------------------------------------------------- Python side
-@dataclass(frozen=True)
-class RSFResult:
-    """A rate-and-state run (arrays read-only, one entry per output time).
-
-    Attributes
-    ----------
-    t : ndarray
-        Time, s. Segment boundaries appear twice (end of one segment, start of the next).
-    x : ndarray
-        Slider position, m (``x(0)`` = the program's ``x0``).
-    v : ndarray
-        Slip velocity, m/s.
-    theta, theta2 : ndarray
-        State variables, s (``theta2`` is ``None`` with one state variable).
-    mu : ndarray
-        Friction coefficient ``mu(V, theta)``.
-    stress : ndarray
-        Spring force per unit normal force, ``mu + eta V + m dV/dt``.
-    load : ndarray
-        Load-point position, m.
-    load_velocity : ndarray
-        Load-point velocity, m/s (right-continuous).
-    n_steps, n_rejected, n_rhs : int
-        Accepted and rejected steps and right-hand-side evaluations.
-    """
-
-    t: Array
-    x: Array
-    v: Array
-    theta: Array
-    theta2: Array | None
-    mu: Array
-    stress: Array
-    load: Array
-    load_velocity: Array
-    params: RateState
-    stiffness: float
-    damping: float
-    mass: float
-    rtol: float
-    n_steps: int
-    n_rejected: int
-    n_rhs: int
-    meta: dict[str, Any] = field(default_factory=dict)
-
-    def columns(self) -> dict[str, Array]:
-        """The time series as named columns (units in the names), for CSV."""
-        cols = {
-            "t_s": self.t,
-            "x_m": self.x,
-            "v_m_per_s": self.v,
-            "theta_s": self.theta,
-        }
-        if self.theta2 is not None:
-            cols["theta2_s"] = self.theta2
-        cols.update(
-            mu=self.mu,
-            stress=self.stress,
-            load_m=self.load,
-            load_velocity_m_per_s=self.load_velocity,
-        )
-        return cols
-
-    def to_dict(self) -> dict[str, Any]:
-        """Everything as a plain mapping (arrays as NumPy arrays; see ``io.to_jsonable``)."""
-        return {
-            "params": self.params.to_dict(),
-            "stiffness": self.stiffness,
-            "damping": self.damping,
-            "mass": self.mass,
-            "rtol": self.rtol,
-            "n_steps": self.n_steps,
-            "n_rejected": self.n_rejected,
-            "n_rhs": self.n_rhs,
-            **self.meta,
-            **self.columns(),
-        }
-
-
 def _param_vector(params: RateState, stiffness: float, damping: float, mass: float,
                   mode: int) -> Array:
     p = np.zeros(_NP)
@@ -504,54 +428,33 @@ def _param_vector(params: RateState, stiffness: float, damping: float, mass: flo
     return p
 
 
-def _as_program(program: VelocityProgram | Iterable[Segment | Mapping[str, float]]
-                ) -> VelocityProgram:
-    if isinstance(program, VelocityProgram):
-        return program
-    return VelocityProgram(program)
+_LEGACY = ("stiffness", "damping", "mass", "v_init", "theta_init", "theta2_init", "rtol", "t_eval",
+           "max_steps")
 
 
 def simulate_rsf(
-    params: RateState,
-    program: VelocityProgram | Iterable[Segment | Mapping[str, float]],
-    *,
-    stiffness: float = math.inf,
-    damping: float = 0.0,
-    mass: float = 0.0,
-    v_init: float | None = None,
-    theta_init: float | None = None,
-    theta2_init: float | None = None,
-    rtol: float = 1e-7,
-    t_eval: ArrayLike | None = None,
-    max_steps: int = 1_000_000,
+    model: RateState,
+    drive: SpringSlider | VelocityProgram | Iterable[Segment | Mapping[str, float]],
+    initial: RSFInitial | None = None,
+    output: RSFOutput | None = None,
+    **legacy: Any,
 ) -> RSFResult:
-    """Run rate-and-state friction through a load-point velocity program.
+    """Run rate-and-state friction on a spring slider through a load-point velocity program.
 
     Parameters
     ----------
-    params : RateState
+    model : RateState
         Friction law and parameters.
-    program : VelocityProgram or iterable of segments
-        Load-point velocity (m/s) with durations (s) or slips (m).
-    stiffness : float
-        Spring stiffness per unit normal force ``k``, 1/m, ``> 0``; ``inf`` (default) is the
-        kinematic machine (``V = V_load``).
-    damping : float
-        Radiation damping ``eta/sigma``, s/m, ``>= 0``.
-    mass : float
-        Slider mass per unit normal force, s^2/m, ``>= 0`` (0: quasi-static).
-    v_init : float, optional
-        Initial slip velocity, m/s, ``> 0``; defaults to the first segment's load velocity.
-        With ``stiffness = inf`` it only sets the default initial state.
-    theta_init, theta2_init : float, optional
-        Initial state, s, ``> 0``; default steady state ``Dc/v_init`` (``Dc2/v_init``).
-    rtol : float
-        Local error tolerance per step, in ``[1e-13, 1e-2]``: absolute in ``ln V`` and
-        ``ln theta`` (i.e. relative in ``V`` and ``theta``), ``rtol * a`` in the spring force.
-    t_eval : array_like, optional
-        Output times, s, within the program; by default every accepted step.
-    max_steps : int
-        Step budget; exceeding it raises :class:`SolverError`.
+    drive : SpringSlider
+        Load-point program, stiffness (``inf``: kinematic machine), damping and mass.
+    initial : RSFInitial, optional
+        Initial slip velocity and state; default steady sliding at the first load velocity.
+    output : RSFOutput, optional
+        Output times, tolerance and step budget; default every accepted step, ``rtol = 1e-7``.
+    **legacy
+        Deprecated: the old form ``simulate_rsf(params, program, stiffness=..., damping=...,
+        mass=..., v_init=..., theta_init=..., theta2_init=..., rtol=..., t_eval=...,
+        max_steps=...)`` still works for one release and warns (``DeprecationWarning``).
 
     Returns
     -------
@@ -565,61 +468,26 @@ def simulate_rsf(
         The integration failed (step-size underflow: e.g. an unbounded slip velocity below
         the critical stiffness without damping; or the step budget ran out).
     """
-    if not isinstance(params, RateState):
-        raise ValueError(f"params = {params!r} is not a RateState")
-    prog = _as_program(program)
-    kinematic = False
-    if isinstance(stiffness, (int, float)) and math.isinf(stiffness) and stiffness > 0:
-        kinematic = True
-        stiffness = math.inf
-    else:
-        stiffness = check_scalar("stiffness", stiffness, 0.0, lo_open=True)
-    damping = check_scalar("damping", damping, 0.0)
-    mass = check_scalar("mass", mass, 0.0)
-    rtol = check_scalar("rtol", rtol, 1e-13, 1e-2)
-    if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)) or max_steps < 1:
-        raise ValueError(f"max_steps = {max_steps!r} is out of range: allowed an integer >= 1")
-    vel = prog.velocities
-    for i, vl in enumerate(vel):
-        if kinematic and not params.regularized and vl <= 0.0:
-            raise ValueError(
-                f"segment {i} velocity = {vl:g} m/s is out of range: the kinematic machine "
-                "with the standard law needs > 0 (ln V); use regularized=True for holds"
-            )
-        if not kinematic and vl < 0.0:
-            raise ValueError(
-                f"segment {i} velocity = {vl:g} m/s is out of range: the spring driver needs "
-                ">= 0 (it integrates ln V of the slider)"
-            )
-    if v_init is None:
-        if vel[0] <= 0.0:
-            raise ValueError(
-                f"the program starts with load velocity {vel[0]:g} m/s: give v_init (> 0) "
-                "to set the initial slip velocity and steady state"
-            )
-        v_init = float(vel[0])
-    else:
-        v_init = check_scalar("v_init", v_init, 0.0, lo_open=True)
-    if theta_init is None:
-        theta_init = params.dc / v_init
-    else:
-        theta_init = check_scalar("theta_init", theta_init, 0.0, lo_open=True)
-    if params.dc2 is not None:
-        if theta2_init is None:
-            theta2_init = params.dc2 / v_init
-        else:
-            theta2_init = check_scalar("theta2_init", theta2_init, 0.0, lo_open=True)
-    elif theta2_init is not None:
-        raise ValueError("theta2_init is given but the parameters have one state variable")
-    te = None
-    if t_eval is not None:
-        te = check_range("t_eval", t_eval, 0.0, prog.total_time).ravel()
+    if not isinstance(drive, SpringSlider) or legacy:
+        drive, initial, output = _from_legacy(drive, initial, output, legacy)
+    if not isinstance(model, RateState):
+        raise ValueError(f"model = {model!r} is not a RateState")
+    initial = RSFInitial() if initial is None else initial
+    output = RSFOutput() if output is None else output
+    if not isinstance(initial, RSFInitial):
+        raise ValueError(f"initial = {initial!r} is not an RSFInitial")
+    if not isinstance(output, RSFOutput):
+        raise ValueError(f"output = {output!r} is not an RSFOutput")
+    drive.check_model(model)
+    v_init, theta_init, theta2_init = initial.resolve(model, drive)
+    prog = drive.program
+    te = output.times(prog)
+    stiffness, damping, mass = drive.stiffness, drive.damping, drive.mass
 
-    mode = _KINEMATIC if kinematic else (_INERTIAL if mass > 0.0 else _QUASISTATIC)
-    ns = params.n_state
-    lnth = [math.log(theta_init)] + ([math.log(theta2_init)] if ns == 2 else [])
-    th2_0 = theta2_init if ns == 2 else None
-    stress0 = float(params.friction(v_init, theta_init, th2_0)) + damping * v_init
+    mode = _KINEMATIC if drive.kinematic else (_INERTIAL if mass > 0.0 else _QUASISTATIC)
+    ns = model.n_state
+    lnth = [math.log(theta_init)] + ([math.log(theta2_init)] if theta2_init is not None else [])
+    stress0 = float(model.friction(v_init, theta_init, theta2_init)) + damping * v_init
     if mode == _KINEMATIC:
         y0 = np.array(lnth)
         w = np.ones(ns)
@@ -628,21 +496,48 @@ def simulate_rsf(
         w = np.ones(ns + 1)
     else:
         y0 = np.array([math.log(v_init), *lnth, stress0])
-        w = np.array([1.0] * (ns + 1) + [params.a])
-    p = _param_vector(params, stiffness, damping, mass, mode)
+        w = np.array([1.0] * (ns + 1) + [model.a])
+    p = _param_vector(model, stiffness, damping, mass, mode)
 
     T, Y, F, SEG, stats, status, t_fail, y_fail = _integrate(
-        y0, p, prog.times, vel, rtol, w, int(max_steps), _RA, _RC, _RM
+        y0, p, prog.times, prog.velocities, output.rtol, w, output.max_steps, _RA, _RC, _RM
     )
     if status != 0:
         v_fail = math.nan if mode == _KINEMATIC else math.exp(min(float(y_fail[0]), 709.0))
-        raise SolverError(_failure_message(status, mode, t_fail, y_fail, params, stiffness,
-                                           damping, int(max_steps)), float(t_fail), v_fail)
+        raise SolverError(_failure_message(status, mode, t_fail, y_fail, model, stiffness,
+                                           damping, output.max_steps), float(t_fail), v_fail)
     if te is not None:
-        Y, SEG = _hermite(T, Y, F, te), np.asarray(prog._index(te))
-        T = te
-    return _assemble(T, Y, SEG, prog, params, mode, stiffness, damping, mass, rtol,
-                     stress0, stats)
+        Y, SEG = hermite(T, Y, F, te), np.asarray(prog._index(te))
+        T = te.copy()
+    return build_result(T, Y, SEG, prog, model, kinematic=mode == _KINEMATIC,
+                        inertial=mode == _INERTIAL, stiffness=stiffness, damping=damping,
+                        mass=mass, rtol=output.rtol, stress0=stress0, stats=stats)
+
+
+def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]
+                 ) -> tuple[SpringSlider, RSFInitial, RSFOutput]:
+    """The old keyword form of :func:`simulate_rsf` as the frozen objects (with a warning)."""
+    unknown = sorted(set(legacy) - set(_LEGACY))
+    if unknown:
+        raise TypeError(f"simulate_rsf() got unexpected keyword argument(s) {', '.join(unknown)}")
+    if isinstance(program, SpringSlider) or initial is not None or output is not None:
+        raise ValueError(
+            "simulate_rsf(model, drive, initial, output) takes SpringSlider, RSFInitial and "
+            f"RSFOutput: give {', '.join(sorted(legacy))} through them, not as keywords"
+        )
+    warnings.warn(
+        "simulate_rsf(params, program, stiffness=..., ...) is deprecated and will be removed "
+        "in the next release: use simulate_rsf(model, SpringSlider(program, stiffness, "
+        "damping, mass), RSFInitial(v, theta, theta2), RSFOutput(every|t_eval, rtol, "
+        "max_steps))", DeprecationWarning, stacklevel=3)
+    g = legacy.get
+    te = g("t_eval")
+    return (
+        SpringSlider(program, g("stiffness", math.inf), g("damping", 0.0), g("mass", 0.0)),
+        RSFInitial(g("v_init"), g("theta_init"), g("theta2_init")),
+        RSFOutput(t_eval=None if te is None else np.asarray(te, float), rtol=g("rtol", 1e-7),
+                  max_steps=g("max_steps", 1_000_000)),
+    )
 
 
 def _failure_message(status: int, mode: int, t: float, y: Array, params: RateState,
@@ -661,55 +556,6 @@ def _failure_message(status: int, mode: int, t: float, y: Array, params: RateSta
             "above it (Gu, Rice, Ruina & Tse 1984) - add damping (eta/sigma, s/m) or mass"
         )
     return msg
-
-
-def _hermite(T: Array, Y: Array, F: Array, te: Array) -> Array:
-    """Cubic Hermite interpolation of the step values at ``te`` (right-continuous)."""
-    n = len(T)
-    i = np.clip(np.searchsorted(T, te, side="right") - 1, 0, n - 1)
-    j = np.minimum(i + 1, n - 1)
-    h = T[j] - T[i]
-    out = Y[i].copy()
-    ok = h > 0
-    if np.any(ok):
-        hh = h[ok][:, None]
-        s = ((te[ok] - T[i[ok]]) / h[ok])[:, None]
-        h00 = (1 + 2 * s) * (1 - s) ** 2
-        h10 = s * (1 - s) ** 2
-        h01 = s * s * (3 - 2 * s)
-        h11 = s * s * (s - 1)
-        out[ok] = h00 * Y[i[ok]] + h10 * hh * F[i[ok]] + h01 * Y[j[ok]] + h11 * hh * F[j[ok]]
-    return out
-
-
-def _assemble(T: Array, Y: Array, SEG: NDArray[np.int64], prog: VelocityProgram,
-              params: RateState, mode: int, stiffness: float, damping: float, mass: float,
-              rtol: float, stress0: float, stats: tuple[int, int, int]) -> RSFResult:
-    ns = params.n_state
-    vl = prog.velocities[SEG]
-    if mode == _KINEMATIC:
-        v = vl.copy()
-        lnth = Y[:, :ns]
-    else:
-        v = np.exp(Y[:, 0])
-        lnth = Y[:, 1 : 1 + ns]
-    theta = np.exp(lnth[:, 0])
-    theta2 = np.exp(lnth[:, 1]) if ns == 2 else None
-    mu = params.friction(v, theta, theta2)
-    load = prog.position(T)
-    if mode == _INERTIAL:
-        stress = Y[:, ns + 1].copy()
-    else:
-        stress = mu + damping * v
-    x = load.copy() if mode == _KINEMATIC else load - (stress - stress0) / stiffness
-    arrays = [T, x, v, theta, mu, stress, load, vl] + ([theta2] if theta2 is not None else [])
-    for arr in arrays:
-        arr.setflags(write=False)
-    return RSFResult(
-        t=T, x=x, v=v, theta=theta, theta2=theta2, mu=mu, stress=stress, load=load,
-        load_velocity=vl, params=params, stiffness=stiffness, damping=damping, mass=mass,
-        rtol=rtol, n_steps=int(stats[0]), n_rejected=int(stats[1]), n_rhs=int(stats[2]),
-    )
 
 
 def linear_stability(params: RateState, v: float, stiffness: float, damping: float = 0.0,
@@ -734,9 +580,10 @@ def linear_stability(params: RateState, v: float, stiffness: float, damping: flo
         Mass per unit normal force, s^2/m, ``>= 0``.
     """
     v = check_scalar("v", v, 0.0, lo_open=True)
-    stiffness = check_scalar("stiffness", stiffness, 0.0, lo_open=True)
-    damping = check_scalar("damping", damping, 0.0)
-    mass = check_scalar("mass", mass, 0.0)
+    stiffness, damping, mass = check_spring(stiffness, damping, mass)
+    if math.isinf(stiffness):
+        raise ValueError("stiffness = inf is out of range: the linearisation needs a finite "
+                         "spring, allowed > 0 (1/m)")
     mode = _INERTIAL if mass > 0.0 else _QUASISTATIC
     p = _param_vector(params, stiffness, damping, mass, mode)
     p[_VL] = v

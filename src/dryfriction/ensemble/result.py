@@ -1,0 +1,198 @@
+"""What a trap-ensemble run produces: its sampling (:class:`Output`), the recorder that collects
+the samples, and :class:`SimulationResult` (the shared schema of :mod:`dryfriction.results`).
+
+Reduced units: lengths ``a0``, times ``t0``; friction ``mu = mu_el F/F_el``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..program import VelocityProgram
+from ..results import summarize
+from ..validation import check_range, check_scalar
+from .population import Ensemble, Observables
+
+__all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "segment_grid"]
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Output:
+    """Sampling of the time series: exactly one of ``every`` (``t0``) or ``every_slip`` (``a0``).
+
+    Parameters
+    ----------
+    every : float, optional
+        Sampling interval in time, ``> 0``.
+    every_slip : float, optional
+        Sampling interval in slip of the slider (velocity drive) or of the load point (spring),
+        ``> 0``. Holds are then a single step. Under force control the force step is
+        ``every_slip`` times the fresh contact stiffness.
+    snapshots : tuple of float
+        Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
+        drives step exactly onto them; under force control (whose ramp ends at an unknown
+        time) a snapshot is taken at the first sample at or after the requested time.
+    """
+
+    every: float | None = None
+    every_slip: float | None = None
+    snapshots: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        if (self.every is None) == (self.every_slip is None):
+            raise ValueError("give exactly one of every (in t0) and every_slip (in a0)")
+        if self.every is not None:
+            object.__setattr__(self, "every", check_scalar("every", self.every, 0.0, lo_open=True))
+        if self.every_slip is not None:
+            v = check_scalar("every_slip", self.every_slip, 0.0, lo_open=True)
+            object.__setattr__(self, "every_slip", v)
+        snaps = check_range("snapshots", np.asarray(self.snapshots, float).ravel(), 0.0)
+        object.__setattr__(self, "snapshots", tuple(sorted(float(s) for s in snaps)))
+
+
+COLUMNS: tuple[str, ...] = (
+    "t", "x", "v", "mu", "n_active", "mean_age", "x_pull", "f_applied", "births", "spinodal",
+    "exits",
+)
+UNITS: dict[str, str] = {
+    "t": "t0", "x": "a0", "v": "a0/t0", "mu": "", "n_active": "", "mean_age": "t0",
+    "x_pull": "a0", "f_applied": "", "births": "", "spinodal": "", "exits": "",
+}
+"""Unit of every column (reduced; ``f_applied`` is in ``mu`` units, counts are plain)."""
+
+
+@dataclass
+class SimulationResult:
+    """Time series of a run (NumPy arrays, reduced units) and what happened.
+
+    Attributes
+    ----------
+    t, x, v : ndarray
+        Time (``t0``), slider position (``a0``), slider velocity (``a0/t0``).
+    mu : ndarray
+        Friction ``mu_el F/F_el``.
+    n_active, mean_age : ndarray
+        Traps in contact and their mean age (``t0``).
+    x_pull, f_applied : ndarray
+        Load-point position (spring drive; NaN otherwise) and applied force in ``mu`` units
+        (force drive; NaN otherwise).
+    births, spinodal, exits : ndarray
+        Pairs entering contact, spinodal events and pairs leaving contact past the edge of the
+        bump (``|w| > 1``) during the step ending at each sample. In very strong pinning a
+        spinodal event is a death, so ``births - spinodal - exits`` is the change of
+        ``n_active``; in strong pinning it is ``births - exits``.
+    snapshots : list of dict
+        Population snapshots (``t``, ``x`` and the arrays of :meth:`Ensemble.snapshot`).
+    info : dict
+        Drive-specific scalars (threshold, runaway, ...), and ``partial``.
+    """
+
+    t: Array
+    x: Array
+    v: Array
+    mu: Array
+    n_active: Array
+    mean_age: Array
+    x_pull: Array
+    f_applied: Array
+    births: Array
+    spinodal: Array
+    exits: Array
+    snapshots: list[dict[str, Any]] = field(default_factory=list)
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def partial(self) -> bool:
+        return bool(self.info.get("partial", False))
+
+    def to_dict(self) -> dict[str, Array]:
+        """The time series as ``{column: array}``: the same as :meth:`columns`."""
+        return self.columns()
+
+    def to_records(self) -> np.ndarray:
+        """The time series as a NumPy structured array."""
+        d = self.to_dict()
+        rec = np.empty(len(self.t), dtype=[(k, float) for k in d])
+        for k, v in d.items():
+            rec[k] = v
+        return rec
+
+    def to_dataframe(self) -> Any:
+        """A ``pandas.DataFrame`` of the time series (needs pandas, not a dependency)."""
+        try:
+            import pandas as pd
+        except ImportError as exc:  # pragma: no cover - depends on the environment
+            raise ImportError("to_dataframe needs pandas; use to_dict() or to_records()") from exc
+        return pd.DataFrame(self.to_dict())
+
+    def columns(self) -> dict[str, Array]:
+        """The time series as ``{column: array}`` (the shared names of
+        :mod:`dryfriction.results`, in the order of :data:`COLUMNS`)."""
+        return {k: getattr(self, k) for k in COLUMNS}
+
+    def summary(self) -> dict[str, Any]:
+        """The shared summary (:func:`dryfriction.results.summarize`, ``law = "cv"``), then the
+        event counts (``events``) and :attr:`info` (drive scalars, ``regime``, ``parameters``)."""
+        extra: dict[str, Any] = {
+            "events": {
+                "births": int(np.sum(self.births)),
+                "spinodal": int(np.sum(self.spinodal)),
+                "exits": int(np.sum(self.exits)),
+            },
+        }
+        extra.update({k: v for k, v in self.info.items() if k != "partial"})
+        return summarize("cv", self.t, self.x, self.v, self.mu, UNITS, partial=self.partial,
+                         extra=extra)
+
+
+# ---------------------------------------------------------------- recording
+
+
+class Recorder:
+    """Collects the samples of a run (one row per sample) and its population snapshots."""
+
+    def __init__(self, mu_el: float) -> None:
+        self.mu_el = mu_el
+        self.rows: list[tuple[float, ...]] = []
+        self.snapshots: list[dict[str, Any]] = []
+
+    def add(self, ens: Ensemble, o: Observables, v: float, x_pull: float = math.nan,
+            f_applied: float = math.nan, events: tuple[int, int, int] = (0, 0, 0)) -> None:
+        """Record a sample; ``events`` = (births, spinodal, exits) since the last one."""
+        self.rows.append((ens.t, ens.x, v, self.mu_el * o.force, o.n_active, o.mean_age, x_pull,
+                          self.mu_el * f_applied, *events))
+
+    def snap(self, ens: Ensemble) -> None:
+        s = ens.snapshot()
+        s["force"] = s["force"] * ens.force_scale * self.mu_el  # per-trap share of mu
+        self.snapshots.append({"t": ens.t, "x": ens.x, **s})
+
+    def result(self, info: dict[str, Any]) -> SimulationResult:
+        a = np.array(self.rows, dtype=float).reshape(-1, len(COLUMNS))
+        cols = {k: a[:, i].copy() for i, k in enumerate(COLUMNS)}
+        return SimulationResult(**cols, snapshots=self.snapshots, info=info)
+
+
+def segment_grid(program: VelocityProgram, output: Output) -> Array:
+    """Sampling times of a velocity program: every segment boundary plus the output grid."""
+    times = [0.0]
+    bounds = program.times
+    for seg, ta, tb in zip(program.segments, bounds[:-1], bounds[1:], strict=True):
+        if output.every is not None:
+            dt = output.every
+        elif seg.velocity != 0.0:
+            dt = float(output.every_slip) / abs(seg.velocity)
+        else:
+            dt = math.inf
+        n = max(1, math.ceil(seg.time / dt * (1.0 - 1e-9))) if math.isfinite(dt) else 1
+        times.extend(ta + (tb - ta) * np.arange(1, n + 1) / n)
+    grid = np.asarray(times)
+    snaps = [s for s in output.snapshots if s <= grid[-1]]
+    return np.union1d(grid, snaps)
