@@ -1,8 +1,9 @@
 """The paper's six figures (and a few extra panels), drawn from the library's functions.
 
 Every function has the form ``fig_name(..., ax=None) -> (fig, ax)``: with ``ax=None`` it makes a
-new :class:`matplotlib.figure.Figure` (no pyplot, no global state, no display; PNGs are rendered
-by Agg); otherwise it draws into ``ax``. Nothing here computes physics beyond evaluating the
+new :class:`matplotlib.figure.Figure` in the style of :mod:`.style` (no pyplot, no global state,
+no display; PNGs are rendered by Agg); otherwise it draws into ``ax``. Figures of runs are in
+:mod:`.runs`. Nothing here computes physics beyond evaluating the
 library's functions on grids: forces come from :mod:`dryfriction.trap`, friction from
 :mod:`dryfriction.static` and :mod:`dryfriction.steady`, Dieterich constants from
 :mod:`dryfriction.dieterich`.
@@ -15,7 +16,6 @@ friction in ``F_el`` (eq. 12).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 from matplotlib.axes import Axes
@@ -42,6 +42,7 @@ from ..theory.steady import (
     steady_profile,
 )
 from ..theory.trap import Trap, force_minus, force_plus, z_unstable
+from .style import LEGEND_SIZE, PANEL, TITLE_SIZE, new_figure, save_png
 
 __all__ = [
     "EPS_FIGURES",
@@ -57,7 +58,6 @@ __all__ = [
     "extra_creep_laws",
     "extra_local_dieterich_constant",
     "save_png",
-    "timeseries_figure",
 ]
 
 Array = NDArray[np.float64]
@@ -68,16 +68,10 @@ EPS_FIGURES: tuple[float, ...] = (0.01, 0.02, 0.03, 0.04, 0.05)
 _COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e")
 
 
-def _axes(ax: Axes | None, figsize: tuple[float, float] = (5.6, 4.2)) -> tuple[Figure, Axes]:
+def _axes(ax: Axes | None, figsize: tuple[float, float] = PANEL) -> tuple[Figure, Axes]:
     if ax is not None:
         return ax.figure, ax  # type: ignore[return-value]
-    fig = Figure(figsize=figsize, layout="constrained")
-    return fig, fig.add_subplot()
-
-
-def save_png(fig: Figure, path: Any, dpi: int = 110) -> None:
-    """Render ``fig`` to a PNG file with the Agg canvas."""
-    fig.savefig(path, format="png", dpi=dpi)
+    return new_figure(figsize)
 
 
 def _label_curves(ax: Axes, x: Array, ys: Sequence[Array], where: float) -> None:
@@ -142,8 +136,8 @@ def fig1_trap_hysteresis(alpha: float = 0.13, ax: Axes | None = None) -> tuple[F
     ax.set_xlabel(r"configuration coordinate $y = p/a$")
     ax.set_ylabel(r"pinning force $f$  [$\Phi_0/a$]")
     ax.set_title(rf"Fig. 1 — elastic trap, $\alpha$ = {alpha:g} ({trap.regime.value})",
-                 fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+                 fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
     return fig, ax
 
 
@@ -158,8 +152,8 @@ def _per_trap_axes(ax: Axes, title: str) -> None:
     ax.set_xlabel(r"configuration coordinate $p/a_0$")
     ax.set_ylabel(r"pinning force per trap  [$\Phi_{00}/a_0$]")
     ax.margins(y=0.1)
-    ax.set_title(title, fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.set_title(title, fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
 
 
 def fig2a_aged_pinning_curve(
@@ -286,8 +280,8 @@ def fig3_static_friction(
     ax.set_xlim(T[0], T[-1])
     ax.set_xlabel(r"reduced waiting time $T = t_w/t_0$")
     ax.set_ylabel(r"static friction $\mu_s = F_s/F_{el}$")
-    ax.set_title(rf"Fig. 3 — static friction, $\alpha$ = {alpha:g}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.set_title(rf"Fig. 3 — static friction, $\alpha$ = {alpha:g}", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -315,8 +309,8 @@ def fig5_steady_friction(
     ax.set_xlim(u[0], u[-1])
     ax.set_xlabel(r"reduced velocity $u = V/V^*$,  $V^* = a_0/t_0$")
     ax.set_ylabel(r"dynamic friction $\mu_d = F_d/F_{el}$")
-    ax.set_title(rf"Fig. 5 — steady dynamic friction, $\alpha$ = {alpha:g}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper right")
+    ax.set_title(rf"Fig. 5 — steady dynamic friction, $\alpha$ = {alpha:g}", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -395,8 +389,8 @@ def fig6_dieterich(
     ax.set_xlim(u[0], u[-1])
     ax.set_xlabel(r"reduced velocity $u = V/V^*$  (static curves at $T = C/u$)")
     ax.set_ylabel(r"$\mu_d(u)$,  $\mu_s(T = C/u)$   [$F_{el}$]")
-    ax.set_title(rf"Fig. 6 — Dieterich comparison, $\varepsilon$ = {eps:g}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper right")
+    ax.set_title(rf"Fig. 6 — Dieterich comparison, $\varepsilon$ = {eps:g}", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -422,8 +416,8 @@ def extra_loaded_static(
     ax.set_xlabel(r"reduced waiting time $T = t_w/t_0$")
     ax.set_ylabel(r"static friction $\mu_s = F_s/F_{el}$")
     ax.set_title(rf"Extra — ageing under a tangential load, $\varepsilon$ = {eps:g}",
-                 fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+                 fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -451,7 +445,7 @@ def extra_creep_laws(
     ax.set_xlim(x[0], x[-1])
     ax.set_xlabel(r"$T = t_w/t_0$  (static)   or   $u = V/V^*$  (steady)")
     ax.set_ylabel(r"$\mu_s$, $\mu_d$   [$F_{el}$]")
-    ax.set_title("Extra — logarithmic vs exact Eyring–Nabarro creep", fontsize=10)
+    ax.set_title("Extra — logarithmic vs exact Eyring–Nabarro creep", fontsize=TITLE_SIZE)
     ax.legend(fontsize=7, loc="upper center", ncol=2)
     ax.grid(True, which="major", color="0.9")
     return fig, ax
@@ -478,72 +472,7 @@ def extra_local_dieterich_constant(
     ax.set_xlim(u[0], u[-1])
     ax.set_xlabel(r"reduced velocity $u = V/V^*$")
     ax.set_ylabel(r"local Dieterich constant $C(u) = D_0/a_0$")
-    ax.set_title("Extra — no single Dieterich length fits everywhere", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper right")
+    ax.set_title("Extra — no single Dieterich length fits everywhere", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     ax.grid(True, which="both", color="0.92")
     return fig, ax
-
-
-def timeseries_figure(result: Any) -> tuple[Figure, Any]:
-    """Friction against time and against slip, and the number of traps in contact.
-
-    Parameters
-    ----------
-    result : dryfriction.driving.SimulationResult
-        A run of the trap ensemble; times in ``t0``, slips in ``a0``, ``mu = mu_el F/F_el``.
-
-    Returns
-    -------
-    fig, axes
-        A new figure (Agg-renderable, not shown) and its three axes.
-    """
-    fig = Figure(figsize=(8.0, 7.5), layout="constrained")
-    axes = fig.subplots(3, 1)
-    t, x, mu = result.t, result.x, result.mu
-    axes[0].plot(t, mu, lw=0.8)
-    axes[0].set_xlabel("t / t0")
-    axes[0].set_ylabel("mu")
-    axes[1].plot(x - x[0], mu, lw=0.8)
-    axes[1].set_xlabel("slip (X - X0) / a0")
-    axes[1].set_ylabel("mu")
-    axes[2].plot(t, result.n_active, lw=0.8)
-    axes[2].set_xlabel("t / t0")
-    axes[2].set_ylabel("traps in contact")
-    fig.suptitle("partial result (interrupted)" if result.partial else "trap ensemble")
-    return fig, axes
-
-
-def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
-    """Rate-and-state run: friction against time and slip, slip velocity against time.
-
-    Parameters
-    ----------
-    result : dryfriction.rsf_driving.RSFResult
-        A rate-and-state run (SI units: s, m, m/s).
-
-    Returns
-    -------
-    fig, axes
-        A new figure (Agg-renderable, not shown) and its three axes.
-    """
-    fig = Figure(figsize=(8.0, 7.5), layout="constrained")
-    axes = fig.subplots(3, 1)
-    t, x, mu = result.t, result.x, result.mu
-    axes[0].plot(t, mu, lw=0.8, label="friction mu")
-    if result.damping or result.mass:
-        axes[0].plot(t, result.stress, lw=0.8, ls="--", label="spring force / normal force")
-        axes[0].legend(fontsize=8)
-    axes[0].set_xlabel("t (s)")
-    axes[0].set_ylabel("mu")
-    axes[1].plot(x - x[0], mu, lw=0.8)
-    axes[1].set_xlabel("slip (m)")
-    axes[1].set_ylabel("mu")
-    v = np.abs(result.v)
-    axes[2].semilogy(t, np.where(v > 0, v, np.nan), lw=0.8, label="slip velocity")
-    vl = result.load_velocity
-    axes[2].semilogy(t, np.where(vl > 0, vl, np.nan), lw=0.8, ls="--", label="load velocity")
-    axes[2].set_xlabel("t (s)")
-    axes[2].set_ylabel("V (m/s)")
-    axes[2].legend(fontsize=8)
-    fig.suptitle(f"rate-and-state, {result.params.state_law} law")
-    return fig, axes
