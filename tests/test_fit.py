@@ -327,7 +327,7 @@ def test_cli_bad_input_is_one_line_exit_2_and_leaves_out_alone(tmp_path: Path) -
 
 
 def test_cli_outputs_whole_or_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import dryfriction.plots.paper as fm
+    import dryfriction.plots.fits as fm
 
     def boom(*_a: object, **_k: object) -> None:
         raise OSError("disk full while drawing")
@@ -389,7 +389,7 @@ def test_plot_fit_of_a_million_point_series_draws_a_bounded_binned_view(
     about a second instead of minutes), the bins keep their extremes (a spike survives in the
     data's band, which plain striding would lose) and their means (the level), the fitted line
     is drawn over the data, and the figure renders."""
-    from dryfriction.plots.paper import MAX_POINTS_DRAWN, plot_fit
+    from dryfriction.plots.fits import MAX_POINTS_DRAWN, plot_fit
 
     model = CVModel(series=_toy_series)
     true = {"eps": 0.03, "t0": 0.01, "a0": 1e-6, "mu_el": 0.5}

@@ -325,34 +325,16 @@ def rsf(
     context = {"case": case, "wall_s": time.perf_counter() - start}
     summary = {**res.summary(), **context}
     if out_dir is not None:
+        from .plots.runs import rsf_figure
+        from .plots.style import save_png
+
         with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
-            _rsf_figure(res, tmp / "rsf.png", f"{case}, {state_law} law")
+            fig, _ = rsf_figure(res, f"{case}, {state_law} law")
+            save_png(fig, tmp / "rsf.png")
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
-
-
-def _rsf_figure(res: Any, path: Any, title: str) -> None:
-    """Friction and slip velocity against time (Agg backend, no display needed)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 5.5), layout="constrained")
-    ax1.plot(res.t, res.mu, lw=1.2, label="friction mu")
-    ax1.plot(res.t, res.stress, lw=0.8, ls="--", label="spring force / normal force")
-    ax1.set_ylabel("mu")
-    ax1.legend(fontsize=8)
-    ax1.set_title(title)
-    ax2.semilogy(res.t, res.v, lw=1.2, label="slip velocity")
-    ax2.semilogy(res.t, res.load_velocity, lw=0.8, ls="--", label="load velocity")
-    ax2.set_xlabel("t (s)")
-    ax2.set_ylabel("V (m/s)")
-    ax2.legend(fontsize=8)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
 
 
 _LOAD_MAX = 1e12
@@ -435,7 +417,7 @@ def fit_command(
     from .fit import compare_models, fit
     from .io.data import read_csv
     from .io.files import check_output_dir, output_directory, write_json
-    from .plots.paper import plot_fit
+    from .plots.fits import plot_fit
     from .validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))
@@ -543,10 +525,8 @@ def simulate(
     finally:
         if bar:
             bar["p"].stop()
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from .plots.paper import timeseries_figure
+    from .plots.runs import timeseries_figure
+    from .plots.style import save_png
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
@@ -554,7 +534,7 @@ def simulate(
         summary = write_summary(tmp / "summary.json", result,
                                 {"protocol": str(Path(protocol))})
         fig, _ = timeseries_figure(result)
-        fig.savefig(tmp / "timeseries.png", dpi=120)
+        save_png(fig, tmp / "timeseries.png")
         for i, snap in enumerate(result.snapshots):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
@@ -747,8 +727,10 @@ def phase_diagram(
     Exit code 1 if any point failed, 130 on Ctrl-C (re-run to resume)."""
     import io as _io
 
-    from .analysis.stickslip import CLASSES, phase_axes, phase_diagram_figure, stick_slip_summary
+    from .analysis.stickslip import CLASSES, phase_axes, stick_slip_summary
     from .io.files import atomic_write_bytes
+    from .plots.runs import phase_diagram_figure
+    from .plots.style import save_png
 
     spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, False,
                                 connect_timeout)
@@ -758,15 +740,9 @@ def phase_diagram(
     ds = _run_with_bar(spec, stick_slip_summary, out_dir, scheduler, workers, yes,
                        source=protocol, protocol_text=_text_of(protocol),
                        connect_timeout=connect_timeout, resume=resume)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig = phase_diagram_figure(ds, spec.base, k_key, v_key)
+    fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
     buf = _io.BytesIO()
-    fig.savefig(buf, format="png", dpi=120)
-    plt.close(fig)
+    save_png(fig, buf)
     atomic_write_bytes(Path(out_dir) / "phase_diagram.png", buf.getvalue())
     counts = {}
     for c, name in CLASSES.items():
@@ -797,9 +773,11 @@ def compare(
     and never holds, otherwise taken from the standard calibration (velocity steps and
     slide-hold-slide at the first sliding velocity). Reduced units.
     """
-    from .analysis.rsf_view import compare_protocol, comparison_figure
+    from .analysis.rsf_view import compare_protocol
     from .io.files import check_output_dir, output_directory, write_json
     from .io.protocol import load_protocol
+    from .plots.runs import comparison_figure
+    from .plots.style import save_png
     from .validation import check_choice
 
     check_choice("state_law", state_law, ("ageing", "slip"))
@@ -808,14 +786,11 @@ def compare(
     c = compare_protocol(proto, state_law)
     report = {"protocol": protocol, **c.to_dict()}
 
-    import matplotlib
-
-    matplotlib.use("Agg")
     with output_directory(out, command="compare", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_json(tmp / "compare.json", report)
-        fig = comparison_figure(c, Path(protocol).name)
-        fig.savefig(tmp / "compare.png", dpi=120)
+        fig, _ = comparison_figure(c, Path(protocol).name)
+        save_png(fig, tmp / "compare.png")
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
@@ -833,17 +808,15 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     res = proto.run()
     context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from .plots.paper import rsf_timeseries_figure
+    from .plots.runs import rsf_timeseries_figure
+    from .plots.style import save_png
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", res.columns())
         summary = write_summary(tmp / "summary.json", res, context)
         fig, _ = rsf_timeseries_figure(res)
-        fig.savefig(tmp / "timeseries.png", dpi=120)
+        save_png(fig, tmp / "timeseries.png")
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")

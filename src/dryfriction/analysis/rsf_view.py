@@ -71,7 +71,6 @@ __all__ = [
     "trap_model_as_rsf",
     "Comparison",
     "compare_protocol",
-    "comparison_figure",
 ]
 
 Array = NDArray[np.float64]
@@ -586,32 +585,3 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
     mu_rsf = model.mu_el * rsf_twin_series(twin.params, prog, res.t, u_init=u0)
     return Comparison(res.t, res.x, res.mu, mu_rsf, twin, calibration, model.mu_el,
                       tuple(notes))
-
-
-def comparison_figure(c: Comparison, title: str = "") -> Any:
-    """``compare.png``: friction of both models against time and slip, and the difference."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(8.0, 8.0), layout="constrained")
-    ax = fig.subplots(3, 1)
-    tw = c.twin
-    label = (f"RSF twin ({tw.state_law}; a = {c.mu_el * tw.a:.3g}, b = {c.mu_el * tw.b:.3g}, "
-             f"Dc = {tw.dc:.3g} a0)")
-    ax[0].plot(c.t, c.mu_trap, lw=1.2, label="trap model")
-    ax[0].plot(c.t, c.mu_rsf, lw=1.0, ls="--", label=label)
-    ax[0].set_xlabel("t / t0")
-    ax[0].set_ylabel("mu")
-    ax[0].legend(fontsize=8)
-    slip = c.x - c.x[0]
-    ax[1].plot(slip, c.mu_trap, lw=1.2, label="trap model")
-    ax[1].plot(slip, c.mu_rsf, lw=1.0, ls="--", label="RSF twin")
-    ax[1].set_xlabel("slip / a0")
-    ax[1].set_ylabel("mu")
-    ax[2].plot(slip, c.mu_rsf - c.mu_trap, lw=0.9)
-    ax[2].axhline(0.0, color="k", lw=0.6)
-    ax[2].set_xlabel("slip / a0")
-    ax[2].set_ylabel("RSF - trap")
-    m = c.misfit
-    fig.suptitle(f"{title}  ({c.calibration} calibration, rms misfit {m['rms']:.3g})",
-                 fontsize=9)
-    return fig

@@ -80,6 +80,8 @@ __all__ = [
     "fit_growth",
     "linear_check",
     "bifurcation_scan",
+    "phase_axes",
+    "critical_line",
 ]
 
 Array = NDArray[np.float64]
@@ -635,10 +637,6 @@ def bifurcation_scan(
 
 # ---------------------------------------------------------------- the (K, V) phase diagram
 
-_MARKERS = {0: ("o", "tab:blue"), 1: ("s", "tab:red"), 2: ("^", "tab:purple"),
-            3: ("D", "tab:orange"), 4: ("v", "tab:green"), -1: ("x", "0.4")}
-
-
 def phase_axes(spec: Any) -> tuple[str, str]:
     """The stiffness and velocity keys of a (K, V) phase-diagram sweep.
 
@@ -663,39 +661,3 @@ def critical_line(base: Mapping[str, Any], u: ArrayLike) -> Array:
                            float(d.get("damping", 0.0))).critical_stiffness
         for uu in np.asarray(u, float).ravel()
     ])
-
-
-def phase_diagram_figure(ds: Any, base: Mapping[str, Any], k_key: str, v_key: str) -> Any:
-    """Simulated classes as markers in the (u, K) plane over the linear ``K_c(u)`` line."""
-    import matplotlib.pyplot as plt
-
-    K = np.asarray(ds[k_key].values, float)
-    V = np.asarray(ds[v_key].values, float)
-    code = ds["class"].transpose(k_key, v_key).values if "class" in ds else \
-        np.full((K.size, V.size), np.nan)
-    fig, ax = plt.subplots(figsize=(5.8, 4.4), layout="constrained")
-    vv, kk = np.meshgrid(V, K)
-    for c, (mk, col) in _MARKERS.items():
-        sel = code == c
-        if sel.any():
-            ax.scatter(vv[sel], kk[sel], marker=mk, color=col, label=CLASSES[c], zorder=3)
-    failed = ~np.isfinite(code)
-    if failed.any():
-        ax.scatter(vv[failed], kk[failed], marker="+", color="k", label="failed", zorder=3)
-    if V.size > 1 and V.min() > 0:
-        u = np.geomspace(V.min(), V.max(), 40)
-        ax.set_xscale("log")
-    else:
-        u = np.linspace(V.min(), V.max(), 40) if V.size > 1 else V
-    kc = critical_line(base, u)
-    ax.plot(u, kc, "k-", lw=1.2, label="linear $K_c(u)$")
-    if K.min() > 0 and K.max() / K.min() > 5:
-        ax.set_yscale("log")
-    d = base.get("drive", {})
-    ax.set_xlabel("pulling velocity u = V t0/a0")
-    ax.set_ylabel("spring stiffness K (F_el/a0)")
-    ax.set_title(f"stick-slip phase diagram, eps = {base['model']['eps']:g}, "
-                 f"M = {float(d.get('mass', 0.0)):g}, eta = {float(d.get('damping', 0.0)):g}",
-                 fontsize=9)
-    ax.legend(fontsize=8)
-    return fig

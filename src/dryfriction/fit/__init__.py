@@ -14,7 +14,7 @@ The package is split by concern (each module is imported by the ones after it):
 * :mod:`.engine` — :func:`fit` as a sequence of named steps, :func:`fit_static`,
   :func:`fit_steady`, :func:`fit_joint`, :func:`compare_models`.
 
-Nothing here draws: the figure ``fit.png`` is :func:`dryfriction.plots.paper.plot_fit`.
+Nothing here draws: the figure ``fit.png`` is :func:`dryfriction.plots.fits.plot_fit`.
 
 Models (SI units; friction coefficients ``F/W``):
 

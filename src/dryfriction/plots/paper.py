@@ -1,8 +1,9 @@
 """The paper's six figures (and a few extra panels), drawn from the library's functions.
 
 Every function has the form ``fig_name(..., ax=None) -> (fig, ax)``: with ``ax=None`` it makes a
-new :class:`matplotlib.figure.Figure` (no pyplot, no global state, no display; PNGs are rendered
-by Agg); otherwise it draws into ``ax``. Nothing here computes physics beyond evaluating the
+new :class:`matplotlib.figure.Figure` in the style of :mod:`.style` (no pyplot, no global state,
+no display; PNGs are rendered by Agg); otherwise it draws into ``ax``. Figures of runs are in
+:mod:`.runs`. Nothing here computes physics beyond evaluating the
 library's functions on grids: forces come from :mod:`dryfriction.trap`, friction from
 :mod:`dryfriction.static` and :mod:`dryfriction.steady`, Dieterich constants from
 :mod:`dryfriction.dieterich`.
@@ -15,7 +16,7 @@ friction in ``F_el`` (eq. 12).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.axes import Axes
@@ -42,10 +43,10 @@ from ..theory.steady import (
     steady_profile,
 )
 from ..theory.trap import Trap, force_minus, force_plus, z_unstable
+from .style import LEGEND_SIZE, PANEL, TITLE_SIZE, new_figure, save_png
 
 if TYPE_CHECKING:
-    from ..fit import FitResult
-    from ..io.data import Dataset
+    pass
 
 __all__ = [
     "EPS_FIGURES",
@@ -61,9 +62,6 @@ __all__ = [
     "extra_creep_laws",
     "extra_local_dieterich_constant",
     "save_png",
-    "timeseries_figure",
-    "plot_fit",
-    "MAX_POINTS_DRAWN",
 ]
 
 Array = NDArray[np.float64]
@@ -74,16 +72,10 @@ EPS_FIGURES: tuple[float, ...] = (0.01, 0.02, 0.03, 0.04, 0.05)
 _COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e")
 
 
-def _axes(ax: Axes | None, figsize: tuple[float, float] = (5.6, 4.2)) -> tuple[Figure, Axes]:
+def _axes(ax: Axes | None, figsize: tuple[float, float] = PANEL) -> tuple[Figure, Axes]:
     if ax is not None:
         return ax.figure, ax  # type: ignore[return-value]
-    fig = Figure(figsize=figsize, layout="constrained")
-    return fig, fig.add_subplot()
-
-
-def save_png(fig: Figure, path: Any, dpi: int = 110) -> None:
-    """Render ``fig`` to a PNG file with the Agg canvas."""
-    fig.savefig(path, format="png", dpi=dpi)
+    return new_figure(figsize)
 
 
 def _label_curves(ax: Axes, x: Array, ys: Sequence[Array], where: float) -> None:
@@ -148,8 +140,8 @@ def fig1_trap_hysteresis(alpha: float = 0.13, ax: Axes | None = None) -> tuple[F
     ax.set_xlabel(r"configuration coordinate $y = p/a$")
     ax.set_ylabel(r"pinning force $f$  [$\Phi_0/a$]")
     ax.set_title(rf"Fig. 1 — elastic trap, $\alpha$ = {alpha:g} ({trap.regime.value})",
-                 fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+                 fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
     return fig, ax
 
 
@@ -164,8 +156,8 @@ def _per_trap_axes(ax: Axes, title: str) -> None:
     ax.set_xlabel(r"configuration coordinate $p/a_0$")
     ax.set_ylabel(r"pinning force per trap  [$\Phi_{00}/a_0$]")
     ax.margins(y=0.1)
-    ax.set_title(title, fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.set_title(title, fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
 
 
 def fig2a_aged_pinning_curve(
@@ -292,8 +284,8 @@ def fig3_static_friction(
     ax.set_xlim(T[0], T[-1])
     ax.set_xlabel(r"reduced waiting time $T = t_w/t_0$")
     ax.set_ylabel(r"static friction $\mu_s = F_s/F_{el}$")
-    ax.set_title(rf"Fig. 3 — static friction, $\alpha$ = {alpha:g}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.set_title(rf"Fig. 3 — static friction, $\alpha$ = {alpha:g}", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -321,8 +313,8 @@ def fig5_steady_friction(
     ax.set_xlim(u[0], u[-1])
     ax.set_xlabel(r"reduced velocity $u = V/V^*$,  $V^* = a_0/t_0$")
     ax.set_ylabel(r"dynamic friction $\mu_d = F_d/F_{el}$")
-    ax.set_title(rf"Fig. 5 — steady dynamic friction, $\alpha$ = {alpha:g}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper right")
+    ax.set_title(rf"Fig. 5 — steady dynamic friction, $\alpha$ = {alpha:g}", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -401,8 +393,8 @@ def fig6_dieterich(
     ax.set_xlim(u[0], u[-1])
     ax.set_xlabel(r"reduced velocity $u = V/V^*$  (static curves at $T = C/u$)")
     ax.set_ylabel(r"$\mu_d(u)$,  $\mu_s(T = C/u)$   [$F_{el}$]")
-    ax.set_title(rf"Fig. 6 — Dieterich comparison, $\varepsilon$ = {eps:g}", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper right")
+    ax.set_title(rf"Fig. 6 — Dieterich comparison, $\varepsilon$ = {eps:g}", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -428,8 +420,8 @@ def extra_loaded_static(
     ax.set_xlabel(r"reduced waiting time $T = t_w/t_0$")
     ax.set_ylabel(r"static friction $\mu_s = F_s/F_{el}$")
     ax.set_title(rf"Extra — ageing under a tangential load, $\varepsilon$ = {eps:g}",
-                 fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper left")
+                 fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
     ax.grid(True, which="major", color="0.9")
     return fig, ax
 
@@ -457,7 +449,7 @@ def extra_creep_laws(
     ax.set_xlim(x[0], x[-1])
     ax.set_xlabel(r"$T = t_w/t_0$  (static)   or   $u = V/V^*$  (steady)")
     ax.set_ylabel(r"$\mu_s$, $\mu_d$   [$F_{el}$]")
-    ax.set_title("Extra — logarithmic vs exact Eyring–Nabarro creep", fontsize=10)
+    ax.set_title("Extra — logarithmic vs exact Eyring–Nabarro creep", fontsize=TITLE_SIZE)
     ax.legend(fontsize=7, loc="upper center", ncol=2)
     ax.grid(True, which="major", color="0.9")
     return fig, ax
@@ -484,180 +476,7 @@ def extra_local_dieterich_constant(
     ax.set_xlim(u[0], u[-1])
     ax.set_xlabel(r"reduced velocity $u = V/V^*$")
     ax.set_ylabel(r"local Dieterich constant $C(u) = D_0/a_0$")
-    ax.set_title("Extra — no single Dieterich length fits everywhere", fontsize=10)
-    ax.legend(fontsize=7.5, loc="upper right")
+    ax.set_title("Extra — no single Dieterich length fits everywhere", fontsize=TITLE_SIZE)
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
     ax.grid(True, which="both", color="0.92")
     return fig, ax
-
-
-def timeseries_figure(result: Any) -> tuple[Figure, Any]:
-    """Friction against time and against slip, and the number of traps in contact.
-
-    Parameters
-    ----------
-    result : dryfriction.driving.SimulationResult
-        A run of the trap ensemble; times in ``t0``, slips in ``a0``, ``mu = mu_el F/F_el``.
-
-    Returns
-    -------
-    fig, axes
-        A new figure (Agg-renderable, not shown) and its three axes.
-    """
-    fig = Figure(figsize=(8.0, 7.5), layout="constrained")
-    axes = fig.subplots(3, 1)
-    t, x, mu = result.t, result.x, result.mu
-    axes[0].plot(t, mu, lw=0.8)
-    axes[0].set_xlabel("t / t0")
-    axes[0].set_ylabel("mu")
-    axes[1].plot(x - x[0], mu, lw=0.8)
-    axes[1].set_xlabel("slip (X - X0) / a0")
-    axes[1].set_ylabel("mu")
-    axes[2].plot(t, result.n_active, lw=0.8)
-    axes[2].set_xlabel("t / t0")
-    axes[2].set_ylabel("traps in contact")
-    fig.suptitle("partial result (interrupted)" if result.partial else "trap ensemble")
-    return fig, axes
-
-
-def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
-    """Rate-and-state run: friction against time and slip, slip velocity against time.
-
-    Parameters
-    ----------
-    result : dryfriction.rsf_driving.RSFResult
-        A rate-and-state run (SI units: s, m, m/s).
-
-    Returns
-    -------
-    fig, axes
-        A new figure (Agg-renderable, not shown) and its three axes.
-    """
-    fig = Figure(figsize=(8.0, 7.5), layout="constrained")
-    axes = fig.subplots(3, 1)
-    t, x, mu = result.t, result.x, result.mu
-    axes[0].plot(t, mu, lw=0.8, label="friction mu")
-    if result.damping or result.mass:
-        axes[0].plot(t, result.stress, lw=0.8, ls="--", label="spring force / normal force")
-        axes[0].legend(fontsize=8)
-    axes[0].set_xlabel("t (s)")
-    axes[0].set_ylabel("mu")
-    axes[1].plot(x - x[0], mu, lw=0.8)
-    axes[1].set_xlabel("slip (m)")
-    axes[1].set_ylabel("mu")
-    v = np.abs(result.v)
-    axes[2].semilogy(t, np.where(v > 0, v, np.nan), lw=0.8, label="slip velocity")
-    vl = result.load_velocity
-    axes[2].semilogy(t, np.where(vl > 0, vl, np.nan), lw=0.8, ls="--", label="load velocity")
-    axes[2].set_xlabel("t (s)")
-    axes[2].set_ylabel("V (m/s)")
-    axes[2].legend(fontsize=8)
-    fig.suptitle(f"rate-and-state, {result.params.state_law} law")
-    return fig, axes
-
-
-# ----------------------------------------------------------------------------- fit.png
-MAX_POINTS_DRAWN: int = 5000
-"""Most points :func:`plot_fit` draws per artist: beyond it the data are binned (drawing a
-million points took most of a large fit's time and shows no more than their envelope)."""
-
-
-def _bin_edges(n: int, n_bins: int) -> NDArray[np.intp]:
-    """Edges of ``n_bins`` runs of consecutive samples out of ``n`` (empty runs dropped)."""
-    return np.unique(np.linspace(0, n, n_bins + 1).astype(np.intp))
-
-
-def _envelope(y: Array, n_bins: int) -> NDArray[np.intp]:
-    """Indices of the smallest and largest ``y`` in each of ``n_bins`` runs of consecutive
-    samples, in order: a decimated line that keeps every step and spike (plain striding would
-    drop them)."""
-    edges = _bin_edges(y.size, n_bins)
-    bin_of = np.repeat(np.arange(edges.size - 1), np.diff(edges))
-    by_bin = np.lexsort((y, bin_of))  # bins stay in place, sorted by y within each
-    return np.unique(np.concatenate([by_bin[edges[:-1]], by_bin[edges[1:] - 1]]))
-
-
-def _draw_data(ax: Axes, x: Array, y: Array, err: Array | None, n_bins: int | None,
-               label: str | None) -> None:
-    """Data as small light points under everything else; with ``n_bins`` (big data) their
-    range in each run of consecutive samples as a band and the run means as points."""
-    light = {"color": "0.55", "alpha": 0.6, "zorder": 1}
-    if n_bins is None:
-        ax.errorbar(x, y, yerr=err, fmt="o", ms=2.5, lw=0.6, label=label, **light)
-        return
-    edges = _bin_edges(y.size, n_bins)
-    start, count = edges[:-1], np.diff(edges)
-    xc = np.add.reduceat(x, start) / count
-    per = f"{y.size / count.size:.3g} samples"
-    ax.fill_between(xc, np.minimum.reduceat(y, start), np.maximum.reduceat(y, start), lw=0,
-                    color="0.85", zorder=0, label=label and f"{label}: range per {per}")
-    ax.plot(xc, np.add.reduceat(y, start) / count, "o", ms=1.5, mew=0,
-            label=label and f"{label}: mean per {per}", **light)
-
-
-def plot_fit(result: FitResult, datasets: Sequence[Dataset], path: Any = None,
-             max_points: int = MAX_POINTS_DRAWN) -> tuple[Figure, Any]:
-    """``fit.png``: each data set with the fitted curve (top) and the residuals (bottom).
-
-    The data are small light points under the fitted line. A data set with more than
-    ``max_points`` samples is drawn binned: sorted by abscissa (time for a series) and cut into
-    about ``max_points/2`` runs of consecutive samples, each drawn as its range (a light band)
-    and its mean (a point), for the data and the residuals, without error bars; the fitted line
-    is evaluated on the data and drawn through the smallest and largest value of each run.
-
-    Parameters
-    ----------
-    result : dryfriction.fit.FitResult
-        The fit (its ``predict`` evaluates the fitted model).
-    datasets : sequence of Dataset
-        The data sets fitted, in order.
-    path : path-like or file, optional
-        Where to write the PNG; ``None``: not written.
-    max_points : int
-        Most points (vertices) drawn per artist (at least 8).
-
-    Returns
-    -------
-    fig, axes
-        A new figure (Agg-renderable, not shown) and its ``2 x len(datasets)`` axes.
-    """
-    from ..io.data import SeriesData
-
-    if max_points < 8:
-        raise ValueError(f"max_points = {max_points}: must be at least 8")
-    k = len(datasets)
-    fig = Figure(figsize=(4.6 * k, 5.6), layout="constrained")
-    axes = fig.subplots(2, k, sharex="col", squeeze=False, height_ratios=[3, 1.3])
-    for i, d in enumerate(datasets):
-        top, bot = axes[0, i], axes[1, i]
-        order = np.argsort(d.x, kind="stable")
-        x, y, f = d.x[order], d.y[order], result.predict(d)[order]
-        r = y - f
-        thin = x.size > max_points
-        # a million error bars show nothing but cost minutes
-        err = None if d.sigma is None or thin else d.sigma[order]
-        if isinstance(d, SeriesData):  # the fitted line evaluated on the data, decimated
-            keep_f = _envelope(f, max_points // 2) if thin else slice(None)
-            xs, fs = x[keep_f], f[keep_f]
-        else:
-            pos = d.x[d.x > 0]
-            lo = pos.min() if pos.size else 1e-3
-            xs = np.geomspace(lo / 1.5, d.x.max() * 1.5, 200)
-            fs = result.predict(d, xs)
-        n_bins = (max_points - 4) // 2 if thin else None  # a band has 2 n_bins + 3 vertices
-        _draw_data(top, x, y, err, n_bins, "data")
-        top.plot(xs, fs, "-", lw=1.4, color="C3", zorder=3, label=f"{result.model} fit")
-        _draw_data(bot, x, r, err, n_bins, None)
-        bot.axhline(0.0, color="k", lw=0.6, zorder=2)
-        if not isinstance(d, SeriesData):
-            top.set_xscale("log")
-        top.set_ylabel(d.y_name)
-        top.set_title(str(d.source).split("/")[-1], fontsize=9)
-        top.legend(fontsize=8)
-        bot.set_ylabel("residual")
-        bot.set_xlabel(f"{d.x_name} ({d.x_unit})")
-    status = "" if result.success else "  [NOT CONVERGED]"
-    fig.suptitle(", ".join(f"{p.name} = {p.value:.4g}" for p in result.parameters) + status,
-                 fontsize=8)
-    if path is not None:
-        save_png(fig, path)
-    return fig, axes

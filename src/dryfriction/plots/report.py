@@ -46,6 +46,7 @@ from ..theory.steady import (
 )
 from ..theory.trap import Trap
 from . import paper as plotting
+from .style import PANEL, new_figure, save_png
 
 __all__ = ["reproduce", "FIGURE_FILES", "EXTRA_FILES", "DATA_FILES", "GRID"]
 
@@ -68,19 +69,16 @@ Progress = Callable[[int, int, str], None]
 
 
 def _fig2(path: Path) -> None:
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(11.2, 4.2), layout="constrained")
-    ax_a, ax_b = fig.subplots(1, 2)
+    fig, (ax_a, ax_b) = new_figure((2 * PANEL[0], PANEL[1]), 1, 2)
     plotting.fig2a_aged_pinning_curve(T_FIG2, EPS_FIG2, ALPHA, ax=ax_a)
     plotting.fig2b_population_at_threshold(T_FIG2, EPS_FIG2, ALPHA, ax=ax_b)
-    plotting.save_png(fig, path)
+    save_png(fig, path)
 
 
 def _single(fn: Callable[..., Any], **kw: Any) -> Callable[[Path], None]:
     def draw(path: Path) -> None:
         fig, _ = fn(**kw)
-        plotting.save_png(fig, path)
+        save_png(fig, path)
 
     return draw
 

@@ -1,0 +1,91 @@
+"""The one style of every figure: sizes, resolution, line and font sizes, a fixed layout, and the
+axis labels of the run figures with their units.
+
+Figures are :class:`matplotlib.figure.Figure` objects (no pyplot: no global state, no backend to
+choose; ``fig.savefig`` renders with Agg). The layout is fixed margins in inches, not
+constrained layout: every figure here is a simple grid of panels, and constrained layout drew
+each figure twice on saving (more than half of ``dryfriction reproduce``'s time).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from matplotlib.figure import Figure
+
+__all__ = [
+    "DPI", "LINE", "THIN", "TITLE_SIZE", "LEGEND_SIZE", "PANEL", "RUN_WIDTH", "ROW_HEIGHT",
+    "new_figure", "save_png",
+    "TIME_T0", "SLIP_A0", "FRICTION_EL", "CONTACTS", "VELOCITY_U", "STIFFNESS_K",
+    "TIME_S", "SLIP_M", "VELOCITY_SI", "FRICTION_SI",
+]
+
+DPI = 110
+"""Resolution of every PNG (dots per inch)."""
+LINE = 1.2
+"""Width of a data line (points)."""
+THIN = 0.8
+"""Width of a reference line, or of a dense time series."""
+TITLE_SIZE = 10.0
+LEGEND_SIZE = 7.5
+
+PANEL = (5.6, 4.2)
+"""Size of a one-panel figure (inches)."""
+RUN_WIDTH = 7.5
+ROW_HEIGHT = 2.3
+"""Width of a run figure and height of each of its stacked panels (inches)."""
+
+# Margins in inches, so that they hold the tick labels and axis labels (10 pt) whatever the
+# figure's size; ``top`` holds an axes title, ``suptitle`` a figure title above it.
+_LEFT, _RIGHT, _BOTTOM, _TOP, _SUPTITLE = 0.85, 0.3, 0.6, 0.35, 0.3
+_HGAP, _WGAP = 0.75, 0.95  # between rows (x labels above, a title below), between columns
+
+# axis labels of the run figures; the trap model in reduced units, rate-and-state in SI
+TIME_T0 = r"time $t$  [$t_0$]"
+SLIP_A0 = r"slip $X - X_0$  [$a_0$]"
+FRICTION_EL = r"friction $\mu = \mu_{el}\,F/F_{el}$"
+CONTACTS = r"traps in contact  [count]"
+VELOCITY_U = r"pulling velocity $u = V t_0/a_0$  [$a_0/t_0$]"
+STIFFNESS_K = r"spring stiffness $K$  [$F_{el}/a_0$]"
+TIME_S = r"time $t$  [s]"
+SLIP_M = r"slip $x - x_0$  [m]"
+VELOCITY_SI = r"velocity $V$  [m/s]"
+FRICTION_SI = r"friction $\mu = \tau/\sigma_n$"
+
+
+def new_figure(size: tuple[float, float] = PANEL, nrows: int = 1, ncols: int = 1, *,
+               sharex: bool = False, suptitle: bool = False) -> tuple[Figure, Any]:
+    """A figure with an ``nrows`` x ``ncols`` grid of axes in the fixed layout.
+
+    Parameters
+    ----------
+    size : (float, float)
+        Width and height in inches.
+    nrows, ncols : int
+        The grid; a single axes is returned bare, a grid as an array (``Figure.subplots``).
+    sharex : bool
+        Share the x axis between panels.
+    suptitle : bool
+        Leave room for a figure title (``fig.suptitle``) above the panels' own titles.
+
+    Returns
+    -------
+    fig, axes
+    """
+    fig = Figure(figsize=size)
+    axes = fig.subplots(nrows, ncols, sharex=sharex)
+    w, h = size
+    top = _TOP + (_SUPTITLE if suptitle else 0.0)
+    ax_w = (w - _LEFT - _RIGHT - (ncols - 1) * _WGAP) / ncols
+    ax_h = (h - _BOTTOM - top - (nrows - 1) * _HGAP) / nrows
+    if ax_w <= 0 or ax_h <= 0:
+        raise ValueError(f"size = {size} is too small for {nrows} x {ncols} panels")
+    # matplotlib's spaces are fractions of the mean axes width and height
+    fig.subplots_adjust(left=_LEFT / w, right=1 - _RIGHT / w, bottom=_BOTTOM / h,
+                        top=1 - top / h, wspace=_WGAP / ax_w, hspace=_HGAP / ax_h)
+    return fig, axes
+
+
+def save_png(fig: Figure, path: Any, dpi: int = DPI) -> None:
+    """Render ``fig`` to a PNG file (or binary file object) with the Agg canvas."""
+    fig.savefig(path, format="png", dpi=dpi)
