@@ -130,17 +130,19 @@ class VelocityProgram:
     def total_time(self) -> float:
         return float(self.times[-1])
 
-    def _index(self, t: NDArray[np.float64]) -> NDArray[np.intp]:
+    def segment_index(self, t: NDArray[np.float64]) -> NDArray[np.intp]:
+        """Index of the segment that holds each time ``t`` (right-continuous at boundaries;
+        times outside the program clip to the first or last segment)."""
         i = np.searchsorted(self.times, t, side="right") - 1
         return np.clip(i, 0, len(self.segments) - 1)
 
     def velocity(self, t: ArrayLike) -> NDArray[np.float64]:
         """Load-point velocity at times ``t`` (right-continuous at boundaries)."""
         t = np.asarray(t, float)
-        return self.velocities[self._index(t)]
+        return self.velocities[self.segment_index(t)]
 
     def position(self, t: ArrayLike) -> NDArray[np.float64]:
         """Load-point position at times ``t`` (continuous, piecewise linear)."""
         t = np.asarray(t, float)
-        i = self._index(t)
+        i = self.segment_index(t)
         return self.positions[i] + self.velocities[i] * (t - self.times[i])

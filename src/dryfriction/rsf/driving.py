@@ -507,7 +507,7 @@ def simulate_rsf(
         raise SolverError(_failure_message(status, mode, t_fail, y_fail, model, stiffness,
                                            damping, output.max_steps), float(t_fail), v_fail)
     if te is not None:
-        Y, SEG = hermite(T, Y, F, te), np.asarray(prog._index(te))
+        Y, SEG = hermite(T, Y, F, te), np.asarray(prog.segment_index(te))
         T = te.copy()
     return build_result(T, Y, SEG, prog, model, kinematic=mode == _KINEMATIC,
                         inertial=mode == _INERTIAL, stiffness=stiffness, damping=damping,
