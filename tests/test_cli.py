@@ -128,7 +128,7 @@ def test_error_lines_keep_square_brackets():
     # messages are plain text: a table name such as [drive] must not vanish as Rich markup
     import typer
 
-    from dryfriction.cli import cli_errors
+    from dryfriction.cli.common import cli_errors
 
     @cli_errors
     def boom() -> None:

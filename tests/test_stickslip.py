@@ -292,7 +292,7 @@ def test_continue_spring_keeps_the_state_between_runs():
 
 
 def test_sweep_examples_are_valid_at_every_point(tmp_path):
-    from dryfriction.cli import _prepare_sweep
+    from dryfriction.cli.sweeps import _prepare_sweep
 
     examples = [p for p in (Path(__file__).parent.parent / "examples").glob("*.toml")
                 if "\n[sweep]" in p.read_text()]

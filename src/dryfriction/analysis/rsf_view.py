@@ -1,4 +1,4 @@
-"""The trap model seen through rate-and-state friction (issue 4; the analysis is ours).
+"""The trap model seen through rate-and-state friction (the analysis is ours).
 
 Run the standard rate-and-state experiments on the trap ensemble (reduced units, kinematic
 loading: the ensemble's :class:`~dryfriction.driving.VelocityDrive` prescribes the slider's

@@ -1,5 +1,5 @@
 """Stick-slip of the spring-pulled trap ensemble: classification, the linear check, the
-bifurcation (spec §6 "Stability"; every definition here is ours unless an equation is cited).
+bifurcation (docs/model.md §6; every definition here is ours unless an equation is cited).
 
 Reduced units throughout: lengths ``a0``, times ``t0``, velocities ``a0/t0``, forces ``F_el``
 (reported forces are friction units ``mu_el F/F_el``, like :class:`~dryfriction.driving.

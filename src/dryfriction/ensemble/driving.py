@@ -1,4 +1,5 @@
-"""Driving the trap ensemble: velocity programs, force ramps, a spring-pulled slider (spec §6).
+"""Driving the trap ensemble: velocity programs, force ramps, a spring-pulled slider
+(docs/model.md §6).
 
 Reduced units: lengths ``a0``, times ``t0``, forces ``F_el``; stiffness ``F_el/a0``, mass
 ``F_el t0^2/a0``, damping ``F_el t0/a0``. The reported friction is ``mu = mu_el F/F_el``.

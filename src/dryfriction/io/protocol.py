@@ -27,7 +27,7 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     every_slip = 0.01            # exactly one of every (t0) and every_slip (a0)
     snapshots = [10.0, 20.0]     # optional, times in t0
 
-Rate-and-state friction runs through the same files (issue 4), in SI units, with
+Rate-and-state friction runs through the same files, in SI units, with
 ``law = "rsf"`` in ``[model]`` and no ``[ensemble]`` table::
 
     [model]                      # RateState (dryfriction.rsf)

@@ -1,0 +1,5 @@
+"""``python -m dryfriction.cli``: the same as the ``dryfriction`` command."""
+
+from . import main
+
+raise SystemExit(main())

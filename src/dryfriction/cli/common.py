@@ -1,0 +1,155 @@
+"""What every command shares: the app, one-line errors, printing."""
+
+from __future__ import annotations
+
+import functools
+import json
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import typer
+import typer.core
+from rich.console import Console
+from rich.table import Table
+
+from ..io.files import to_jsonable
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    context_settings={"help_option_names": ["-h", "--help"]},
+    help="The Caroli-Velicky elasto-plastic model of dry friction (reduced units: a0, t0, F_el).",
+)
+err = Console(stderr=True)
+out = Console()
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def _print_version(value: bool) -> None:
+    if value:
+        from .. import __version__
+
+        print(f"dryfriction {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(False, "--version", callback=_print_version, is_eager=True,
+                                 help="Print the version and exit."),
+) -> None:
+    """The Caroli-Velicky elasto-plastic model of dry friction (reduced units: a0, t0, F_el)."""
+
+
+def error_line(message: str) -> None:
+    """Print ``error: message`` as one line; the message is plain text (``[drive]`` is not
+    Rich markup)."""
+    err.print("[bold red]error:[/] ", end="", highlight=False)
+    err.print(message, markup=False, highlight=False, soft_wrap=True)
+
+
+def cli_errors(fn: F) -> F:
+    """Turn the library's ``ValueError``/``OSError`` into one line and exit code 2."""
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return fn(*args, **kwargs)
+        except BrokenPipeError:
+            raise  # the reader went away (``| head``): not an error of the input
+        except (ValueError, OSError) as exc:
+            error_line(str(exc))
+            raise typer.Exit(2) from None
+
+    return wrapper  # type: ignore[return-value]
+
+
+FORCE_HELP = ("Write into a folder that holds other files too: they are kept (one whose name "
+               "collides with a result is renamed NAME.~1~); nothing is deleted.")
+
+
+def say(line: str) -> None:
+    """One plain-text line on standard error (what was done to files already there)."""
+    err.print(line, markup=False, highlight=False, soft_wrap=True)
+
+
+def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
+    """Print ``result`` as JSON (``--json``) or as a table."""
+    if as_json:
+        print(json.dumps(to_jsonable(result), indent=2))
+        return
+    table = Table(title=title, show_header=False)
+    for k, v in result.items():
+        table.add_row(k, f"{v:.10g}" if isinstance(v, float) else str(v))
+    out.print(table)
+
+
+def write_summary(path: Any, result: Any, context: dict[str, Any]) -> dict[str, Any]:
+    """Write ``result.summary()`` plus the run's ``context`` (protocol, wall time, ...) as
+    ``path`` (JSON): the one summary.json writer of ``rsf`` and ``simulate`` (both laws).
+    Returns what was written."""
+    from ..io.files import write_json
+
+    summary = {**result.summary(), **context}
+    write_json(path, summary)
+    return summary
+
+
+class _ManyValues(typer.core.TyperCommand):
+    """A command whose list options take several values after one flag: ``--T 1 10 100``.
+
+    Before Click parses, ``--T 1 10 100`` is rewritten to ``--T 1 --T 10 --T 100``: every token
+    after a listed flag that reads as a number (``-1``, ``1e3``, ``nan`` included, so that the
+    library's range checks see it) is taken as another value. Repeating the flag also works.
+    Click's own usage errors (missing option, not a number) are printed as one line, exit 2.
+    """
+
+    many: tuple[str, ...] = ()
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        expanded: list[str] = []
+        i = 0
+        while i < len(args):
+            tok = args[i]
+            expanded.append(tok)
+            i += 1
+            if tok == "--":
+                expanded += args[i:]
+                break
+            if tok in self.many and i < len(args):
+                expanded.append(args[i])  # the first value, whatever it is: Click checks it
+                i += 1
+                while i < len(args) and _is_number(args[i]):
+                    expanded += [tok, args[i]]
+                    i += 1
+        try:
+            return super().parse_args(ctx, expanded)
+        except typer.TyperException as exc:  # Click's UsageError and its kin (exit code 2)
+            if getattr(exc, "exit_code", None) != 2:
+                raise
+            message = exc.format_message()  # type: ignore[attr-defined]
+            error_line(message)
+            raise typer.Exit(2) from None
+
+
+def _is_number(tok: str) -> bool:
+    try:
+        float(tok)
+    except ValueError:
+        return False
+    return True
+
+
+def many(*flags: str) -> type[_ManyValues]:
+    return type("ManyValues", (_ManyValues,), {"many": flags})
+
+
+def columns(title: str, params: dict[str, Any], cols: dict[str, Any]) -> None:
+    out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()), highlight=False)
+    table = Table()
+    for name in cols:
+        table.add_column(name, justify="right")
+    for row in zip(*cols.values(), strict=True):
+        table.add_row(*(f"{float(v):.10g}" for v in row))
+    out.print(table)

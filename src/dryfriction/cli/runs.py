@@ -1,0 +1,274 @@
+"""Commands that run a history and write a results folder: reproduce, rsf, simulate,
+compare."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+import typer.core
+
+from .common import FORCE_HELP, app, cli_errors, emit, err, many, out, say, write_summary
+from .model import LOAD_MAX
+
+
+@app.command(cls=many())
+@cli_errors
+def reproduce(
+    out_dir: Annotated[Path, typer.Option("--out", help="Results folder: new, empty, or one "
+                                          "this program wrote before.")],
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+) -> None:
+    """The paper's six figures, the data behind them, summary.json and report.html."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from ..io.files import check_output_dir
+    from ..plots.report import reproduce as run
+
+    check_output_dir(out_dir, force=force)  # fail on a bad --out before importing matplotlib
+    with Progress(
+        TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+        TimeElapsedColumn(), console=err, disable=not err.is_terminal, transient=True,
+    ) as bar:
+        task = bar.add_task("reproduce", total=None)
+
+        def progress(done: int, total: int, what: str) -> None:
+            bar.update(task, completed=done, total=total, description=what)
+
+        summary = run(out_dir, progress, force=force, report=say)
+    out.print(
+        f"wrote {out_dir}/: fig1-6.png, static_friction.csv, steady_friction.csv, "
+        f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
+        f"C_LS = {summary['dieterich_C_least_squares']:.4f})",
+        highlight=False, soft_wrap=True,
+    )
+
+
+@app.command()
+@cli_errors
+def rsf(
+    case: str = typer.Option("step", help="step (v1 for t1, then v2 for t2), shs (slide-hold-"
+                             "slide: v1 for t1, hold for --hold, v1 for t2) or stick-slip "
+                             "(v1 for t1)."),
+    a: float = typer.Option(0.005, help="Direct effect a, > 0."),
+    b: float = typer.Option(0.01, help="Evolution effect b, >= 0."),
+    dc: float = typer.Option(1e-5, help="Characteristic slip Dc, m, > 0."),
+    mu0: float = typer.Option(0.6, help="Reference friction at V0."),
+    v0: float = typer.Option(1e-6, help="Reference velocity V0, m/s, > 0."),
+    state_law: str = typer.Option("ageing", help="ageing (Dieterich) or slip (Ruina)."),
+    regularized: bool = typer.Option(False, help="Regularised asinh law (needed for holds "
+                                     "with --stiffness inf)."),
+    stiffness: float = typer.Option(1e3, help="Spring stiffness k per unit normal force, 1/m, "
+                                    "> 0; inf for a kinematic machine."),
+    damping: float = typer.Option(0.0, help="Radiation damping eta/sigma, s/m, >= 0."),
+    mass: float = typer.Option(0.0, help="Mass per unit normal force, s^2/m, >= 0."),
+    v1: float = typer.Option(1e-6, help="Load velocity of the first segment, m/s."),
+    v2: float = typer.Option(1e-5, help="Load velocity after the step (case step), m/s."),
+    t1: float = typer.Option(10.0, help="Duration of the first segment, s."),
+    t2: float = typer.Option(30.0, help="Duration of the last segment, s."),
+    hold: float = typer.Option(100.0, help="Hold time (case shs), s."),
+    v_init: float = typer.Option(None, help="Initial slip velocity, m/s, with the state at "
+                                 "steady state for v_init (default v1; 1.01 v1 for "
+                                 "stick-slip, since exact steady state never leaves)."),
+    rtol: float = typer.Option(1e-7, help="Local error tolerance (relative in V and theta)."),
+    out_dir: str = typer.Option(None, "--out", help="Write series.csv, summary.json and "
+                                "rsf.png into this folder (whole or not at all; new, empty, or "
+                                "written by this program before)."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+) -> None:
+    """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
+    stick-slip, on a spring with optional radiation damping and inertia."""
+    import time
+
+    from ..io.files import check_output_dir, output_directory, write_csv
+    from ..program import Segment
+    from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate_rsf
+    from ..rsf.law import RateState
+    from ..validation import check_choice, check_scalar
+
+    check_choice("case", case, ("step", "shs", "stick-slip"))
+    from ..rsf.law import V_MAX
+
+    # durations and velocities a run can reach in floating point (a 1e308 s first segment
+    # would leave the later ones at t = inf, silently dropped)
+    for name, value in (("--t1", t1), ("--t2", t2), ("--hold", hold)):
+        check_scalar(name, value, 0.0, LOAD_MAX, lo_open=True)
+    for name, value in (("--v1", v1), ("--v2", v2)):
+        check_scalar(name, value, -V_MAX, V_MAX)
+    if v_init is not None:
+        check_scalar("--v-init", v_init, 0.0, V_MAX, lo_open=True)
+    check_scalar("--damping", damping, 0.0, LOAD_MAX)
+    check_scalar("--mass", mass, 0.0, LOAD_MAX)
+    check_scalar("--rtol", rtol, 0.0, 0.1, lo_open=True)
+    params = RateState(a, b, dc, mu0, v0, state_law=state_law,  # type: ignore[arg-type]
+                       regularized=regularized)
+    if case == "step":
+        segs = [Segment(v1, t1), Segment(v2, t2)]
+    elif case == "shs":
+        segs = [Segment(v1, t1), Segment(0.0, hold), Segment(v1, t2)]
+    else:
+        segs = [Segment(v1, t1)]
+        if v_init is None:
+            v_init = 1.01 * v1
+    drive = SpringSlider(segs, stiffness, damping, mass)  # every check before any work
+    init, output = RSFInitial(v=v_init), RSFOutput(rtol=rtol)
+    drive.check_model(params)
+    init.resolve(params, drive)
+    if out_dir is not None:
+        check_output_dir(out_dir, force=force)
+    start = time.perf_counter()
+    try:
+        res = simulate_rsf(params, drive, init, output)
+    except SolverError as exc:
+        raise ValueError(str(exc)) from None
+    context = {"case": case, "wall_s": time.perf_counter() - start}
+    summary = {**res.summary(), **context}
+    if out_dir is not None:
+        from ..plots.runs import rsf_figure
+        from ..plots.style import save_png
+
+        with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
+            write_csv(tmp / "series.csv", res.columns())
+            summary = write_summary(tmp / "summary.json", res, context)
+            fig, _ = rsf_figure(res, f"{case}, {state_law} law")
+            save_png(fig, tmp / "rsf.png")
+    brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
+    emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
+
+
+@app.command()
+@cli_errors
+def simulate(
+    protocol: str = typer.Argument(..., help="Protocol file (TOML), see dryfriction.protocol."),
+    out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all; "
+                            "new, empty, or written by this program before)."),
+    json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+) -> None:
+    """Run a protocol (trap ensemble, docs/model.md §6, or rate-and-state with
+    ``model.law = "rsf"``):
+    timeseries.csv, summary.json, timeseries.png.
+
+    Ctrl-C stops a trap-model run and writes the samples so far as a complete result marked
+    ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
+    nothing.
+    """
+    import time
+    from pathlib import Path
+
+    from ..io.files import check_output_dir, output_directory, write_csv
+    from ..io.protocol import RSFProtocol, load_protocol
+
+    proto = load_protocol(protocol)  # every check before any work
+    check_output_dir(out, force=force, inputs=[protocol])
+    if isinstance(proto, RSFProtocol):
+        _simulate_rsf_protocol(proto, protocol, out, json_out, force)
+        return
+
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    started = time.monotonic()
+    bar: dict[str, Any] = {}
+
+    def progress(fraction: float) -> None:
+        if not err.is_terminal or time.monotonic() - started < 1.0:
+            return
+        if not bar:
+            p = Progress(TextColumn("simulate"), BarColumn(), TimeElapsedColumn(),
+                         console=err, transient=True)
+            p.start()
+            bar["p"], bar["task"] = p, p.add_task("simulate", total=1.0)
+        bar["p"].update(bar["task"], completed=fraction)
+
+    try:
+        result = proto.run(progress=progress, on_interrupt="partial")
+    finally:
+        if bar:
+            bar["p"].stop()
+    from ..plots.runs import timeseries_figure
+    from ..plots.style import save_png
+
+    with output_directory(out, command="simulate", force=force, inputs=[protocol],
+                          report=say) as tmp:
+        write_csv(tmp / "timeseries.csv", result.columns())
+        summary = write_summary(tmp / "summary.json", result,
+                                {"protocol": str(Path(protocol))})
+        fig, _ = timeseries_figure(result)
+        save_png(fig, tmp / "timeseries.png")
+        for i, snap in enumerate(result.snapshots):
+            cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
+            write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
+    brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
+    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out}")
+    if result.partial:
+        err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
+        raise typer.Exit(130)
+
+
+@app.command()
+@cli_errors
+def compare(
+    protocol: str = typer.Argument(..., help="Trap-model protocol file (TOML) with a velocity "
+                                   "drive."),
+    out: str = typer.Option(..., "--out", help="Results folder: compare.png, compare.json "
+                            "(written whole or not at all)."),
+    state_law: str = typer.Option("ageing", "--state-law", help="Twin's state law: ageing or "
+                                  "slip."),
+    json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+) -> None:
+    """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
+
+    The twin is fitted to the run itself when it starts in steady sliding at its first velocity
+    and never holds, otherwise taken from the standard calibration (velocity steps and
+    slide-hold-slide at the first sliding velocity). Reduced units.
+    """
+    from ..analysis.rsf_view import compare_protocol
+    from ..io.files import check_output_dir, output_directory, write_json
+    from ..io.protocol import load_protocol
+    from ..plots.runs import comparison_figure
+    from ..plots.style import save_png
+    from ..validation import check_choice
+
+    check_choice("state_law", state_law, ("ageing", "slip"))
+    proto = load_protocol(protocol)
+    check_output_dir(out, force=force, inputs=[protocol])
+    c = compare_protocol(proto, state_law)
+    report = {"protocol": protocol, **c.to_dict()}
+
+    with output_directory(out, command="compare", force=force, inputs=[protocol],
+                          report=say) as tmp:
+        write_json(tmp / "compare.json", report)
+        fig, _ = comparison_figure(c, Path(protocol).name)
+        save_png(fig, tmp / "compare.png")
+    brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
+    brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
+    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
+
+
+def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
+                           force: bool) -> None:
+    """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
+    import time
+    from pathlib import Path
+
+    from ..io.files import output_directory, write_csv
+
+    start = time.perf_counter()
+    res = proto.run()
+    context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
+
+    from ..plots.runs import rsf_timeseries_figure
+    from ..plots.style import save_png
+
+    with output_directory(out, command="simulate", force=force, inputs=[protocol],
+                          report=say) as tmp:
+        write_csv(tmp / "timeseries.csv", res.columns())
+        summary = write_summary(tmp / "summary.json", res, context)
+        fig, _ = rsf_timeseries_figure(res)
+        save_png(fig, tmp / "timeseries.png")
+    brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
+    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
+         "(rate-and-state, SI: t s, x m, v m/s, theta s)")

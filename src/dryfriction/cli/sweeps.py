@@ -1,0 +1,220 @@
+"""Parameter sweeps on Dask and the stick-slip phase diagram."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import typer
+import typer.core
+
+from .common import app, cli_errors, err, error_line, out
+
+
+def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | None,
+                   scheduler: str | None = None, linear: bool = False,
+                   connect_timeout: float = 10.0) -> Any:
+    """Parse a sweep protocol and check every grid point before any worker starts (the
+    ``[stickslip]`` table too, and, without ``linear``, everything the stick-slip runner would
+    refuse at run time)."""
+    import tomllib
+
+    from ..analysis.stickslip import analysis_options, stick_slip_point
+    from ..io.files import check_writable_dir
+    from ..io.protocol import protocol_from_dict
+    from ..io.sweep import MAX_POINTS, parse_sweep
+
+    path = Path(protocol)
+    try:
+        text = path.read_bytes().decode("utf-8")
+        doc = tomllib.loads(text)
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot read the protocol: {exc.strerror}") from None
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise ValueError(f"{path}: malformed TOML: {exc}") from None
+    spec = parse_sweep(doc, str(path))
+    if spec.size > MAX_POINTS and not confirm:
+        raise ValueError(f"{path}: the grid has {spec.size} points, more than {MAX_POINTS}: "
+                         "confirm with --yes")
+    if workers is not None and workers < 1:
+        raise ValueError(f"--workers {workers} is out of range: allowed >= 1")
+    if workers is not None and scheduler is not None:
+        raise ValueError("--workers is for the local cluster and --scheduler brings its own "
+                         "workers: give one of the two")
+    if not connect_timeout > 0:
+        raise ValueError(f"--connect-timeout {connect_timeout:g} is out of range: allowed > 0")
+    for _, ov in spec.points():
+        point = spec.protocol(ov)
+        where = f"{path} (point {', '.join(f'{k} = {v}' for k, v in ov.items())})"
+        if linear:
+            analysis_options(point.get("stickslip"), where)
+            model = point.get("model", {})
+            if isinstance(model, dict) and model.get("law", "cv") == "rsf":
+                raise ValueError(f"{where}: model.law = 'rsf': sweeps of rate-and-state "
+                                 "protocols are not supported yet (--linear needs the trap "
+                                 "model)")
+            protocol_from_dict({k: v for k, v in point.items() if k != "stickslip"}, where)
+        else:
+            stick_slip_point(point, where)
+    check_writable_dir(out_dir)
+    return spec
+
+
+def _text_of(protocol: str) -> str:
+    """The protocol file's text, for the results folder's ``sweep.json`` (informative only:
+    the sweep's identity is the hash of the parsed protocol)."""
+    try:
+        return Path(protocol).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return ""
+
+
+def _resume_command(command: str, protocol: str, out_dir: str, scheduler: str | None,
+                    workers: int | None, yes: bool, linear: bool,
+                    connect_timeout: float) -> str:
+    """The command line that resumes this sweep (the same options, shell-quoted)."""
+    import shlex
+
+    args = ["dryfriction", command, protocol, "--out", out_dir]
+    if scheduler is not None:
+        args += ["--scheduler", scheduler]
+    if workers is not None:
+        args += ["--workers", str(workers)]
+    if connect_timeout != 10.0:
+        args += ["--connect-timeout", f"{connect_timeout:g}"]
+    args += ["--yes"] * yes + ["--linear"] * linear
+    return shlex.join(args)
+
+
+def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
+                  workers: int | None, confirm: bool, *, source: str = "",
+                  protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "") -> Any:
+    """:func:`~dryfriction.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
+    are stored and the command that resumes, and exits with 130."""
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+    )
+
+    from ..io.sweep import SweepInterrupted, run_sweep
+
+    try:
+        with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
+                      TimeElapsedColumn(), console=err, disable=not err.is_terminal,
+                      transient=True) as bar:
+            task = bar.add_task("sweep", total=spec.size)
+
+            def progress(done: int, total: int) -> None:
+                bar.update(task, completed=done, total=total)
+
+            return run_sweep(spec, runner, out_dir, scheduler=scheduler, n_workers=workers,
+                             confirm=confirm, progress=progress, source=source,
+                             protocol_text=protocol_text, connect_timeout=connect_timeout)
+    except SweepInterrupted as exc:
+        err.print(f"[bold yellow]interrupted:[/] {exc.stored} of {exc.total} points stored in "
+                  f"{out_dir}; resume with: {resume}", highlight=False, soft_wrap=True)
+        raise typer.Exit(130) from None
+
+
+def _fail_if_points_failed(ds: Any, out_dir: str) -> None:
+    """Exit 1 with one line when any point failed (sweep.nc is written, failures included)."""
+    n_failed = int(ds.attrs["n_failed"])
+    if not n_failed:
+        return
+    size = int(ds["error"].size)
+    first = next(e for e in ds["error"].values.ravel() if e)
+    what = "all" if n_failed == size else f"{n_failed} of"
+    error_line(f"{what} {size} points failed (first: {first}); the errors are in "
+               f"{out_dir}/sweep.nc (variable 'error', NaN results) and the tracebacks in "
+               f"{out_dir}/points/*.json; re-running the command retries them")
+    raise typer.Exit(1)
+
+
+_SCHED_HELP = "Address of a running Dask scheduler (default: a local cluster)."
+
+
+_TIMEOUT_HELP = "Seconds to wait for --scheduler to answer, > 0."
+
+
+_OUT_HELP = ("Results folder: sweep.json, points/ (resumable) and sweep.nc; it belongs to one "
+             "sweep (a different protocol is refused).")
+
+
+@app.command()
+@cli_errors
+def sweep(
+    protocol: str = typer.Argument(..., help="Protocol (TOML) with a [sweep] table of dotted "
+                                   "keys and values (lists, {log = [a, b, n]}, {lin = ...})."),
+    out_dir: str = typer.Option(..., "--out", help=_OUT_HELP),
+    scheduler: str = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
+    yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
+    linear: bool = typer.Option(False, "--linear", help="Linear stability per point "
+                                "(stability.linear_summary) instead of simulating stick-slip."),
+    connect_timeout: float = typer.Option(10.0, "--connect-timeout", help=_TIMEOUT_HELP),
+) -> None:
+    """Run a parameter grid on Dask: stick-slip summaries (default) or linear stability,
+    written to OUT/sweep.nc. Re-running the same command resumes; exit code 1 if any point
+    failed, 130 on Ctrl-C."""
+    from ..analysis.stickslip import stick_slip_summary
+    from ..theory.stability import linear_summary
+
+    spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, linear,
+                                connect_timeout)
+    runner = linear_summary if linear else stick_slip_summary
+    resume = _resume_command("sweep", protocol, out_dir, scheduler, workers, yes, linear,
+                             connect_timeout)
+    ds = _run_with_bar(spec, runner, out_dir, scheduler, workers, yes,
+                       source=protocol, protocol_text=_text_of(protocol),
+                       connect_timeout=connect_timeout, resume=resume)
+    out.print(f"wrote {out_dir}/sweep.nc: {spec.size} points, {ds.attrs['n_failed']} failed; "
+              f"variables {', '.join(v for v in ds.data_vars if v != 'error')}",
+              highlight=False, soft_wrap=True)
+    _fail_if_points_failed(ds, out_dir)
+
+
+@app.command("phase-diagram")
+@cli_errors
+def phase_diagram(
+    protocol: str = typer.Argument(..., help="Spring protocol (TOML) whose [sweep] table "
+                                   "sweeps drive.stiffness and drive.segments.<last>.velocity."),
+    out_dir: str = typer.Option(..., "--out", help="Results folder: sweep.nc, "
+                                "phase_diagram.png."),
+    scheduler: str = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
+    yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
+    connect_timeout: float = typer.Option(10.0, "--connect-timeout", help=_TIMEOUT_HELP),
+) -> None:
+    """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line.
+    Exit code 1 if any point failed, 130 on Ctrl-C (re-run to resume)."""
+    import io as _io
+
+    from ..analysis.stickslip import CLASSES, phase_axes, stick_slip_summary
+    from ..io.files import atomic_write_bytes
+    from ..plots.runs import phase_diagram_figure
+    from ..plots.style import save_png
+
+    spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, False,
+                                connect_timeout)
+    k_key, v_key = phase_axes(spec)  # before any worker starts
+    resume = _resume_command("phase-diagram", protocol, out_dir, scheduler, workers, yes,
+                             False, connect_timeout)
+    ds = _run_with_bar(spec, stick_slip_summary, out_dir, scheduler, workers, yes,
+                       source=protocol, protocol_text=_text_of(protocol),
+                       connect_timeout=connect_timeout, resume=resume)
+    fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
+    buf = _io.BytesIO()
+    save_png(fig, buf)
+    atomic_write_bytes(Path(out_dir) / "phase_diagram.png", buf.getvalue())
+    counts = {}
+    for c, name in CLASSES.items():
+        n = int((ds["class"].values == c).sum()) if "class" in ds else 0
+        if n:
+            counts[name] = n
+    out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.png: "
+              + ", ".join(f"{k} {v}" for k, v in counts.items())
+              + f", failed {ds.attrs['n_failed']}", highlight=False, soft_wrap=True)
+    _fail_if_points_failed(ds, out_dir)
