@@ -14,8 +14,9 @@ import pytest
 
 import dryfriction.io.sweep as sweep_mod
 import sweep_runners
+from dryfriction.analysis.linear import linear_summary
 from dryfriction.io.sweep import MAX_POINTS, load_sweep, parse_sweep, point_key, run_sweep
-from dryfriction.theory.stability import critical_stiffness, linear_summary
+from dryfriction.theory.stability import critical_stiffness
 
 cloudpickle.register_pickle_by_value(sweep_runners)
 
@@ -96,13 +97,16 @@ def test_killed_sweep_resumes_without_recomputing(tmp_path):
 
 
 def test_linear_stability_runner_on_a_grid(tmp_path):
+    # a whole protocol: the runner reads it through the protocol parser, like every point
     proto = {"model": {"alpha": 0.13, "eps": 0.04},
-             "drive": {"kind": "spring", "stiffness": 0.05, "mass": 0.0, "damping": 0.05,
+             "ensemble": {"traps_per_a0": 100, "initial": "steady", "initial_velocity": 0.1},
+             "drive": {"kind": "spring", "stiffness": 0.05, "mass": 1.0, "damping": 0.05,
                        "segments": [{"velocity": 0.1, "duration": 100.0}]},
+             "output": {"every_slip": 0.1},
              "sweep": {"drive.segments.0.velocity": [0.01, 0.1]}}
     ds = run_sweep(parse_sweep(proto), linear_summary, tmp_path / "out", n_workers=1)
     for u in (0.01, 0.1):
-        ref = critical_stiffness(u, 0.04, damping=0.05).critical_stiffness
+        ref = critical_stiffness(u, 0.04, mass=1.0, damping=0.05).critical_stiffness
         assert float(ds["K_c"].sel({"drive.segments.0.velocity": u})) == pytest.approx(ref)
 
 

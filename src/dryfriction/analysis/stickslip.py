@@ -65,6 +65,7 @@ from scipy.signal import hilbert
 
 from ..ensemble.driving import Output, SimulationResult, SpringDrive, continue_spring, simulate
 from ..ensemble.population import Ensemble, Initial, Track, TrapModel
+from ..io.protocol import pulling_velocity, spring_point
 from ..program import Segment, VelocityProgram
 from ..theory.stability import critical_stiffness, rightmost_root, steady_response
 from ..validation import check_scalar
@@ -75,8 +76,6 @@ __all__ = [
     "analyse",
     "granular_floor",
     "stick_slip_summary",
-    "stick_slip_point",
-    "analysis_options",
     "fit_growth",
     "linear_check",
     "bifurcation_scan",
@@ -96,7 +95,6 @@ CLASSES: dict[int, str] = {
 }
 """Class codes (a sweep stores numbers) and their names."""
 
-_ANALYSIS_KEYS = ("transient", "stick_fraction", "rel_threshold", "floor", "follow_velocity")
 
 
 @dataclass(frozen=True)
@@ -280,112 +278,12 @@ def granular_floor(traps_per_a0: float, u: float, eps: float, alpha: float = 0.1
 # ---------------------------------------------------------------- the sweep runner
 
 
-def _pulling_velocity(drive: Any) -> float:
-    return float(drive.program.segments[-1].velocity)
-
-
-_ANALYSIS_RANGES: dict[str, tuple[float, float | None, bool, bool]] = {
-    # key: (lo, hi, lo_open, hi_open), as validation.check_scalar takes them
-    "transient": (0.0, None, False, False),
-    "stick_fraction": (0.0, 1.0, True, False),
-    "rel_threshold": (0.0, 1.0, True, True),
-    "floor": (0.0, None, True, False),
-}
-
-
-def analysis_options(table: Any, source: str = "protocol") -> dict[str, Any]:
-    """Check a ``[stickslip]`` table (keys, types and ranges) and return it as a dict.
-
-    Parameters
-    ----------
-    table : mapping or None
-        The table; ``None`` means no table (every default).
-    source : str
-        Where the table comes from, put in front of every message.
-
-    Raises
-    ------
-    ValueError
-        For an unknown key, a value that is not a number (or, for ``follow_velocity``, not a
-        boolean) or a number out of its range; the message names ``stickslip.<key>``.
-    """
-    if table is None:
-        return {}
-    if not isinstance(table, Mapping):
-        raise ValueError(f"{source}: [stickslip] must be a table of "
-                         f"{', '.join(_ANALYSIS_KEYS)}")
-    unknown = sorted(set(table) - set(_ANALYSIS_KEYS))
-    if unknown:
-        raise ValueError(f"{source}: unknown key(s) "
-                         f"{', '.join('stickslip.' + str(k) for k in unknown)}: "
-                         f"allowed {', '.join(_ANALYSIS_KEYS)}")
-    opts: dict[str, Any] = {}
-    for key, value in table.items():
-        if key == "follow_velocity":
-            if not isinstance(value, bool):
-                raise ValueError(f"{source}: stickslip.follow_velocity = {value!r} is not "
-                                 "allowed: true or false")
-            opts[key] = value
-            continue
-        # a TOML boolean is an int to Python: refuse it rather than read true as 1
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ValueError(f"{source}: stickslip.{key} = {value!r} is not a number")
-        lo, hi, lo_open, hi_open = _ANALYSIS_RANGES[key]
-        try:
-            opts[key] = check_scalar(f"stickslip.{key}", value, lo, hi, lo_open=lo_open,
-                                     hi_open=hi_open)
-        except ValueError as exc:
-            raise ValueError(f"{source}: {exc}") from None
-    return opts
-
-
-def stick_slip_point(protocol: Mapping[str, Any], source: str = "sweep point"
-                     ) -> tuple[Any, dict[str, Any]]:
-    """Check a stick-slip sweep point completely, without simulating it.
-
-    Returns the parsed :class:`~dryfriction.protocol.Protocol` (after ``follow_velocity``) and
-    the checked ``[stickslip]`` options; raises ``ValueError`` for anything
-    :func:`stick_slip_summary` would refuse at run time: a bad ``[stickslip]`` table, a
-    rate-and-state protocol, a drive that is not a spring, a last segment that does not pull,
-    a ``transient`` not shorter than the load-point travel.
-    """
-    from ..io.protocol import RSFProtocol, protocol_from_dict
-
-    doc = dict(protocol)
-    opts = analysis_options(doc.pop("stickslip", None), source)
-    model_tab = doc.get("model", {})
-    if isinstance(model_tab, Mapping) and model_tab.get("law", "cv") == "rsf":
-        raise ValueError(f"{source}: model.law = 'rsf': sweeps of rate-and-state protocols "
-                         "are not supported yet (stick-slip summaries and --linear need the "
-                         "trap model)")
-    ens = dict(doc.get("ensemble", {}))
-    drive_tab = doc.get("drive", {})
-    if opts.get("follow_velocity", True) and ens.get("initial") == "steady" and \
-            isinstance(drive_tab, Mapping) and drive_tab.get("segments"):
-        ens["initial_velocity"] = float(drive_tab["segments"][-1]["velocity"])
-        doc["ensemble"] = ens
-    proto = protocol_from_dict(doc, source)
-    if isinstance(proto, RSFProtocol):  # unreachable after the check above; kept for types
-        raise ValueError(f"{source}: rate-and-state sweeps are not supported yet")
-    if not isinstance(proto.drive, SpringDrive):
-        raise ValueError(f"{source}: drive.kind must be 'spring' for a stick-slip summary")
-    u = _pulling_velocity(proto.drive)
-    if u <= 0.0:
-        raise ValueError(f"{source}: the last segment's velocity {u:g} must be > 0 to pull")
-    positions = proto.drive.program.positions
-    travel = float(positions[-1] - positions[0])
-    if opts.get("transient", 0.0) >= travel:
-        raise ValueError(f"{source}: stickslip.transient = {opts['transient']:g} a0 is out of "
-                         f"range: allowed less than the load-point travel {travel:g} a0")
-    return proto, opts
-
-
 def stick_slip_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     """Sweep runner: simulate a spring protocol (dict) and summarise its stick-slip.
 
-    The protocol is that of :mod:`dryfriction.protocol` (``drive.kind = "spring"``) plus an
+    The protocol is that of :mod:`dryfriction.io.protocol` (``drive.kind = "spring"``) plus an
     optional ``[stickslip]`` table (not passed to the simulator; checked by
-    :func:`analysis_options`):
+    :func:`dryfriction.io.protocol.stickslip_options`):
 
     * ``transient`` — load-point travel (``a0``, ``>= 0`` and less than the travel) discarded
       before the analysis; default half of the total travel;
@@ -397,9 +295,9 @@ def stick_slip_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
       ``drive.segments.0.velocity`` moves both.
 
     Returns :meth:`StickSlipStats.to_dict` plus ``u`` and ``stiffness``. Picklable (a module
-    function), so :func:`dryfriction.sweep.run_sweep` can ship it to workers.
+    function), so :func:`dryfriction.io.sweep.run_sweep` can ship it to workers.
     """
-    proto, opts = stick_slip_point(protocol)
+    proto, opts = spring_point(protocol)
     res = simulate(proto.model, proto.track, proto.initial, proto.drive, proto.output)
     return summarise(res, proto.drive, proto.model, proto.track,
                      **{k: v for k, v in opts.items() if k != "follow_velocity"})
@@ -414,7 +312,7 @@ def summarise(res: SimulationResult, drive: SpringDrive, model: TrapModel, track
               transient: float | None = None, stick_fraction: float = 0.5,
               rel_threshold: float = 0.25, floor: float | None = None) -> dict[str, float]:
     """:func:`analyse` a spring run after ``transient`` ``a0`` of load-point travel."""
-    u = _pulling_velocity(drive)
+    u = pulling_velocity(drive)
     travel = res.x_pull - res.x_pull[0]
     if transient is None:
         transient = 0.5 * float(travel[-1])

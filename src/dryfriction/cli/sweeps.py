@@ -19,9 +19,8 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
     refuse at run time)."""
     import tomllib
 
-    from ..analysis.stickslip import analysis_options, stick_slip_point
     from ..io.files import check_writable_dir
-    from ..io.protocol import protocol_from_dict
+    from ..io.protocol import spring_point
     from ..io.sweep import MAX_POINTS, parse_sweep
 
     path = Path(protocol)
@@ -46,16 +45,7 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
     for _, ov in spec.points():
         point = spec.protocol(ov)
         where = f"{path} (point {', '.join(f'{k} = {v}' for k, v in ov.items())})"
-        if linear:
-            analysis_options(point.get("stickslip"), where)
-            model = point.get("model", {})
-            if isinstance(model, dict) and model.get("law", "cv") == "rsf":
-                raise ValueError(f"{where}: model.law = 'rsf': sweeps of rate-and-state "
-                                 "protocols are not supported yet (--linear needs the trap "
-                                 "model)")
-            protocol_from_dict({k: v for k, v in point.items() if k != "stickslip"}, where)
-        else:
-            stick_slip_point(point, where)
+        spring_point(point, where, "linear" if linear else "stick-slip")
     check_writable_dir(out_dir)
     return spec
 
@@ -153,14 +143,15 @@ def sweep(
     workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
     yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
     linear: bool = typer.Option(False, "--linear", help="Linear stability per point "
-                                "(stability.linear_summary) instead of simulating stick-slip."),
+                                "(analysis.linear.linear_summary) instead of simulating "
+                                "stick-slip."),
     connect_timeout: float = typer.Option(10.0, "--connect-timeout", help=_TIMEOUT_HELP),
 ) -> None:
     """Run a parameter grid on Dask: stick-slip summaries (default) or linear stability,
     written to OUT/sweep.nc. Re-running the same command resumes; exit code 1 if any point
     failed, 130 on Ctrl-C."""
+    from ..analysis.linear import linear_summary
     from ..analysis.stickslip import stick_slip_summary
-    from ..theory.stability import linear_summary
 
     spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, linear,
                                 connect_timeout)

@@ -83,8 +83,19 @@ from ..program import Segment, VelocityProgram
 from ..rsf.driving import RSFResult, SolverError, simulate_rsf
 from ..rsf.law import RateState
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
+from ..validation import check_scalar
 
-__all__ = ["Protocol", "RSFProtocol", "load_protocol", "parse_protocol", "protocol_from_dict"]
+__all__ = [
+    "Protocol",
+    "RSFProtocol",
+    "STICKSLIP_KEYS",
+    "load_protocol",
+    "parse_protocol",
+    "protocol_from_dict",
+    "pulling_velocity",
+    "spring_point",
+    "stickslip_options",
+]
 
 LAWS: tuple[str, ...] = ("cv", "rsf")
 _RSF_TABLES = ("model", "drive", "output")
@@ -424,3 +435,114 @@ def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol:
     except OSError as exc:
         raise ValueError(f"{p}: cannot read the protocol: {exc.strerror}") from None
     return parse_protocol(text, str(p))
+
+
+# ------------------------------------------------------------------ [stickslip] sweep points
+
+STICKSLIP_KEYS = ("transient", "stick_fraction", "rel_threshold", "floor", "follow_velocity")
+"""Keys of the ``[stickslip]`` table (the stick-slip analysis; see
+:func:`dryfriction.analysis.stickslip.stick_slip_summary`)."""
+
+
+def pulling_velocity(drive: SpringDrive) -> float:
+    """The load velocity of a spring drive's last segment (what a sweep point pulls at)."""
+    return float(drive.program.segments[-1].velocity)
+
+
+_STICKSLIP_RANGES: dict[str, tuple[float, float | None, bool, bool]] = {
+    # key: (lo, hi, lo_open, hi_open), as validation.check_scalar takes them
+    "transient": (0.0, None, False, False),
+    "stick_fraction": (0.0, 1.0, True, False),
+    "rel_threshold": (0.0, 1.0, True, True),
+    "floor": (0.0, None, True, False),
+}
+
+
+def stickslip_options(table: Any, source: str = "protocol") -> dict[str, Any]:
+    """Check a ``[stickslip]`` table (keys, types and ranges) and return it as a dict.
+
+    Parameters
+    ----------
+    table : mapping or None
+        The table; ``None`` means no table (every default).
+    source : str
+        Where the table comes from, put in front of every message.
+
+    Raises
+    ------
+    ValueError
+        For an unknown key, a value that is not a number (or, for ``follow_velocity``, not a
+        boolean) or a number out of its range; the message names ``stickslip.<key>``.
+    """
+    if table is None:
+        return {}
+    if not isinstance(table, Mapping):
+        raise ValueError(f"{source}: [stickslip] must be a table of "
+                         f"{', '.join(STICKSLIP_KEYS)}")
+    unknown = sorted(set(table) - set(STICKSLIP_KEYS))
+    if unknown:
+        raise ValueError(f"{source}: unknown key(s) "
+                         f"{', '.join('stickslip.' + str(k) for k in unknown)}: "
+                         f"allowed {', '.join(STICKSLIP_KEYS)}")
+    opts: dict[str, Any] = {}
+    for key, value in table.items():
+        if key == "follow_velocity":
+            if not isinstance(value, bool):
+                raise ValueError(f"{source}: stickslip.follow_velocity = {value!r} is not "
+                                 "allowed: true or false")
+            opts[key] = value
+            continue
+        # a TOML boolean is an int to Python: refuse it rather than read true as 1
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ValueError(f"{source}: stickslip.{key} = {value!r} is not a number")
+        lo, hi, lo_open, hi_open = _STICKSLIP_RANGES[key]
+        try:
+            opts[key] = check_scalar(f"stickslip.{key}", value, lo, hi, lo_open=lo_open,
+                                     hi_open=hi_open)
+        except ValueError as exc:
+            raise ValueError(f"{source}: {exc}") from None
+    return opts
+
+
+def spring_point(protocol: Mapping[str, Any], source: str = "sweep point",
+                 analysis: str = "stick-slip") -> tuple[Protocol, dict[str, Any]]:
+    """Parse a spring-slider sweep point completely, without running it.
+
+    Returns the parsed :class:`Protocol` (after ``follow_velocity``) and the checked
+    ``[stickslip]`` options; raises ``ValueError`` for anything the sweep runners
+    (:func:`dryfriction.analysis.stickslip.stick_slip_summary`,
+    :func:`dryfriction.analysis.linear.linear_summary`) would refuse at run time: a bad
+    ``[stickslip]`` table, a rate-and-state protocol, a drive that is not a spring, a last
+    segment that does not pull and, for ``analysis = "stick-slip"``, a ``transient`` not shorter
+    than the load-point travel.
+    """
+    doc = dict(protocol)
+    opts = stickslip_options(doc.pop("stickslip", None), source)
+    model_tab = doc.get("model", {})
+    if isinstance(model_tab, Mapping) and model_tab.get("law", "cv") == "rsf":
+        raise ValueError(f"{source}: model.law = 'rsf': sweeps of rate-and-state protocols "
+                         "are not supported yet (stick-slip summaries and --linear need the "
+                         "trap model)")
+    ens = dict(doc.get("ensemble", {}))
+    drive_tab = doc.get("drive", {})
+    if opts.get("follow_velocity", True) and ens.get("initial") == "steady" and \
+            isinstance(drive_tab, Mapping) and drive_tab.get("segments"):
+        ens["initial_velocity"] = float(drive_tab["segments"][-1]["velocity"])
+        doc["ensemble"] = ens
+    proto = protocol_from_dict(doc, source)
+    if isinstance(proto, RSFProtocol):  # unreachable after the check above; kept for types
+        raise ValueError(f"{source}: rate-and-state sweeps are not supported yet")
+    if not isinstance(proto.drive, SpringDrive):
+        raise ValueError(f"{source}: drive.kind must be 'spring' for a stick-slip or "
+                         "linear-stability sweep")
+    u = pulling_velocity(proto.drive)
+    if u <= 0.0:
+        raise ValueError(f"{source}: the last segment's velocity {u:g} must be > 0 to pull")
+    if analysis != "stick-slip":
+        return proto, opts
+    positions = proto.drive.program.positions
+    travel = float(positions[-1] - positions[0])
+    if opts.get("transient", 0.0) >= travel:
+        raise ValueError(f"{source}: stickslip.transient = {opts['transient']:g} a0 is out of "
+                         f"range: allowed less than the load-point travel {travel:g} a0")
+    return proto, opts

@@ -62,7 +62,6 @@ __all__ = [
     "StabilityResult",
     "critical_stiffness",
     "rightmost_root",
-    "linear_summary",
     "effective_rsf",
     "nyquist_crossings",
 ]
@@ -321,36 +320,6 @@ def rightmost_root(
                 z.real > best.real:
             best = z
     return best
-
-
-def linear_summary(protocol: dict) -> dict[str, float]:  # type: ignore[type-arg]
-    """Sweep runner: linear stability of the spring-slider described by a protocol dict.
-
-    Reads ``model.alpha``, ``model.eps``, ``model.creep`` and ``drive.stiffness``,
-    ``drive.mass``, ``drive.damping`` and the pulling velocity of the last segment of
-    ``drive.segments`` (reduced units). Returns ``K_c``, ``omega_c``, the growth rate
-    ``Re lambda`` of the rightmost mode at the given stiffness, and ``linearly_stable``
-    (1 or 0).
-    """
-    model = protocol.get("model", {})
-    drive = protocol.get("drive", {})
-    if "segments" not in drive or not drive["segments"]:
-        raise ValueError("drive.segments: the pulling velocity is needed")
-    u = float(drive["segments"][-1]["velocity"])
-    alpha = float(model.get("alpha", 0.13))
-    eps = float(model["eps"])
-    creep = str(model.get("creep", "log"))
-    K = float(drive["stiffness"])
-    M = float(drive.get("mass", 0.0))
-    eta = float(drive.get("damping", 0.0))
-    res = critical_stiffness(u, eps, alpha, creep, M, eta)
-    root = rightmost_root(steady_response(u, eps, alpha, creep), K, M, eta)
-    return {
-        "K_c": res.critical_stiffness,
-        "omega_c": res.omega,
-        "growth_rate": root.real,
-        "linearly_stable": float(K > res.critical_stiffness),
-    }
 
 
 def effective_rsf(

@@ -1,0 +1,42 @@
+"""The linear stability of a protocol's spring slider, as a sweep runner (ours).
+
+:func:`linear_summary` reads a sweep point through :func:`dryfriction.io.protocol.spring_point`
+(the one parser of protocol dictionaries) and evaluates the linear theory of
+:mod:`dryfriction.theory.stability` there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from ..io.protocol import pulling_velocity, spring_point
+from ..theory.stability import critical_stiffness, rightmost_root, steady_response
+
+__all__ = ["linear_summary"]
+
+
+def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
+    """Sweep runner: linear stability of the spring slider described by a protocol dict.
+
+    Uses ``model.alpha``, ``model.eps``, ``model.creep``, ``drive.stiffness``, ``drive.mass``,
+    ``drive.damping`` and the pulling velocity of the last segment (reduced units).
+
+    Returns
+    -------
+    dict
+        ``K_c`` (``F_el/a0``), ``omega_c`` (``1/t0``), the growth rate ``Re lambda`` of the
+        rightmost mode at the given stiffness (``1/t0``), and ``linearly_stable`` (1 or 0).
+    """
+    proto, _ = spring_point(protocol, analysis="linear")
+    m, drive = proto.model, proto.drive
+    u = pulling_velocity(drive)
+    res = critical_stiffness(u, m.eps, m.alpha, m.creep, drive.mass, drive.damping)
+    root = rightmost_root(steady_response(u, m.eps, m.alpha, m.creep), drive.stiffness,
+                          drive.mass, drive.damping)
+    return {
+        "K_c": res.critical_stiffness,
+        "omega_c": res.omega,
+        "growth_rate": root.real,
+        "linearly_stable": float(drive.stiffness > res.critical_stiffness),
+    }
