@@ -25,7 +25,12 @@ import numpy as np  # noqa: E402
 
 from benchmarks.timing import best_time
 from dryfriction.program import Segment, VelocityProgram  # noqa: E402
-from dryfriction.rsf.driving import simulate_rsf  # noqa: E402
+from dryfriction.rsf.driving import (  # noqa: E402
+    RSFInitial,
+    RSFOutput,
+    SpringSlider,
+    simulate_rsf,
+)
 from dryfriction.rsf.law import RateState  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
@@ -48,10 +53,12 @@ def velocity_step(rtols: tuple[float, ...]) -> None:
                         t_eval=te)
     print("velocity step 1 -> 10 um/s, 40 s, k = 1e3 /m (goal <= 1 ms)")
     print(f"  {'rtol':>7} {'time':>10} {'steps':>6} {'max|dmu|':>10} {'max|dlnV|':>10}")
+    drive = SpringSlider(prog, stiffness=1e3)
     for rtol in rtols:
-        t = best_time(lambda rtol=rtol: simulate_rsf(p, prog, stiffness=1e3, rtol=rtol))
-        r0 = simulate_rsf(p, prog, stiffness=1e3, rtol=rtol)
-        r = simulate_rsf(p, prog, stiffness=1e3, rtol=rtol, t_eval=te)
+        out = RSFOutput(rtol=rtol)
+        t = best_time(lambda out=out: simulate_rsf(p, drive, output=out))
+        r0 = simulate_rsf(p, drive, output=out)
+        r = simulate_rsf(p, drive, output=RSFOutput(rtol=rtol, t_eval=te))
         dmu = np.max(np.abs(r.mu - ref["mu"]))
         dlv = np.max(np.abs(np.log(r.v / ref["v"])))
         print(f"  {rtol:7.0e} {t * 1e3:8.3f}ms {r0.n_steps:6d} {dmu:10.2e} {dlv:10.2e}")
@@ -69,10 +76,13 @@ def stick_slip(rtols: tuple[float, ...]) -> None:
     print(f"stick-slip {total:g} s, k = 0.8 k_c, eta/sigma = {eta} s/m, "
           f"{len(e_ref)} events (goal <= 50 ms)")
     print(f"  {'rtol':>7} {'time':>10} {'steps':>6} {'max|dt_event|':>14} {'max|dmu|':>10}")
+    drive = SpringSlider(prog, stiffness=k, damping=eta)
+    init = RSFInitial(v=1.01 * vl)
     for rtol in rtols:
-        t = best_time(lambda rtol=rtol: simulate_rsf(p, prog, rtol=rtol, **kw), 5, 2)
-        r0 = simulate_rsf(p, prog, rtol=rtol, **kw)
-        r = simulate_rsf(p, prog, rtol=rtol, t_eval=te, **kw)
+        out = RSFOutput(rtol=rtol)
+        t = best_time(lambda out=out: simulate_rsf(p, drive, init, out), 5, 2)
+        r0 = simulate_rsf(p, drive, init, out)
+        r = simulate_rsf(p, drive, init, RSFOutput(rtol=rtol, t_eval=te))
         e = _crossings(te, np.log(r.v / (10 * vl)))
         dte = np.max(np.abs(e - e_ref)) if len(e) == len(e_ref) else math.nan
         dmu = np.max(np.abs(r.mu - ref["mu"]))
