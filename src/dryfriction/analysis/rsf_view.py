@@ -44,7 +44,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..ensemble.driving import Output, SimulationResult, VelocityDrive, simulate
 from ..ensemble.population import Initial, Track, TrapModel
@@ -57,7 +56,7 @@ from ..theory.stability import effective_rsf, shift_stiffness
 from ..theory.steady import steady_friction
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales
-from ..validation import check_scalar
+from ..validation import Array, check_scalar
 
 __all__ = [
     "SCALES",
@@ -73,7 +72,6 @@ __all__ = [
     "compare_protocol",
 ]
 
-Array = NDArray[np.float64]
 
 SCALES = PhysicalScales(a0=1e-6, t0=1.0, mu_el=1.0)
 """The SI scales the reduced runs are expressed in for the fit (any choice gives the same

@@ -59,7 +59,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 from scipy.optimize import curve_fit
 from scipy.signal import hilbert
 
@@ -68,7 +68,7 @@ from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..io.protocol import pulling_velocity, spring_point
 from ..program import Segment, VelocityProgram
 from ..theory.stability import critical_stiffness, rightmost_root, steady_response
-from ..validation import check_scalar
+from ..validation import Array, check_scalar
 
 __all__ = [
     "CLASSES",
@@ -83,7 +83,6 @@ __all__ = [
     "critical_line",
 ]
 
-Array = NDArray[np.float64]
 
 CLASSES: dict[int, str] = {
     -1: "undetermined",
@@ -94,7 +93,6 @@ CLASSES: dict[int, str] = {
     4: "oscillation",
 }
 """Class codes (a sweep stores numbers) and their names."""
-
 
 
 @dataclass(frozen=True)

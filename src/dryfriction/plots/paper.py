@@ -22,7 +22,6 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import ScalarFormatter
-from numpy.typing import NDArray
 
 from ..theory.creep import radius
 from ..theory.dieterich import (
@@ -43,6 +42,7 @@ from ..theory.steady import (
     steady_profile,
 )
 from ..theory.trap import Trap, force_minus, force_plus, z_unstable
+from ..validation import Array
 from .style import LEGEND_SIZE, PANEL, TITLE_SIZE, new_figure, save_png
 
 if TYPE_CHECKING:
@@ -64,7 +64,6 @@ __all__ = [
     "save_png",
 ]
 
-Array = NDArray[np.float64]
 
 EPS_FIGURES: tuple[float, ...] = (0.01, 0.02, 0.03, 0.04, 0.05)
 """The creep parameters of Figs. 3 and 5, labelled 1-5 in the paper."""
