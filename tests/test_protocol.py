@@ -231,3 +231,17 @@ def test_default_limit_is_half_the_available_memory(monkeypatch: pytest.MonkeyPa
     avail = next(int(ln.split()[1]) * 1024 for ln in Path("/proc/meminfo").read_text().splitlines()
                  if ln.startswith("MemAvailable:"))
     assert memory_limit() == pytest.approx(0.5 * avail, rel=0.2)  # it moves while we read
+
+
+def test_continue_spring_refuses_what_the_machine_cannot_hold(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from dryfriction.ensemble.driving import continue_spring
+    from dryfriction.ensemble.population import Ensemble
+
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "8GiB")
+    ens = Ensemble(TrapModel(eps=0.04), Track(100.0), Initial("rest"))
+    drive = SpringDrive(stiffness=1.0, mass=0.0,
+                        program=VelocityProgram([Segment(1.0, slip=1e300)]))
+    with pytest.raises(ValueError, match="every_slip = 0.01 gives 1.0e\\+302 samples"):
+        continue_spring(ens, drive, Output(every_slip=0.01))
+    assert ens.t == 0.0 and ens.x == 0.0  # nothing was run

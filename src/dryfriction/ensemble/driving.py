@@ -532,6 +532,7 @@ def continue_spring(
                          "quasi-static slider has no velocity state; allowed 0")
     if spring_force is not None:
         spring_force = check_scalar("spring_force", spring_force)
+    check_run(ensemble.model, ensemble.track, ensemble.initial, drive, output)
     rec = Recorder(ensemble.model.mu_el)
     o = ensemble.observe()
     f_spring = o.force if spring_force is None else spring_force

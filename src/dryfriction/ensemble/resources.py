@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 from ..validation import check_memory
 from .population import Initial, Track, TrapModel
-from .result import Output
+from .result import Output, sample_interval
 
 __all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "RunEstimate", "check_run", "estimate_run"]
 
@@ -118,13 +118,8 @@ def estimate_run(model: TrapModel, track: Track, initial: Initial, drive: object
         horizon = program.total_time
         samples = 0.0
         for seg in program.segments:
-            if output.every is not None:
-                dt = output.every
-            elif seg.velocity != 0.0:
-                dt = float(output.every_slip) / abs(seg.velocity)
-            else:
-                dt = math.inf
-            n = max(1.0, seg.time / dt)
+            # segment_grid's count, in floats: no OverflowError before the refusal
+            n = max(1.0, seg.time / sample_interval(seg.velocity, output))
             samples += n
             step_slip = max(step_slip, abs(seg.velocity) * seg.time / n)
     samples += 2.0 + len(output.snapshots)
