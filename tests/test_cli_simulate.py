@@ -222,3 +222,82 @@ def test_one_summary_schema_for_rsf_and_both_laws_of_simulate(tmp_path: Path) ->
     assert summaries["rsf"]["duration"] == pytest.approx(2.0)  # --t1 1 --t2 1
     assert summaries["rsf"]["case"] == "step"
     assert summaries["cv"]["protocol"].endswith("p.toml")
+
+
+# ---------------------------------------------------------------- resource checks (issue 13)
+
+RSF_PROTO = """
+[model]
+law = "rsf"
+a = 0.005
+b = 0.01
+dc = 1e-5
+mu0 = 0.6
+v0 = 1e-6
+[drive]
+kind = "velocity"
+segments = [{velocity = 1e-6, duration = 10.0}, {velocity = 1e-5, slip = 3e-4}]
+[output]
+every = 0.01
+"""
+
+# (law, (old, new), the key the message must name): each input used to end in a MemoryError,
+# an OverflowError or a run that could not finish
+HUGE = [
+    ("cv", ("traps_per_a0 = 200", "traps_per_a0 = 1e10"), "ensemble.traps_per_a0"),
+    ("cv", ("traps_per_a0 = 200", "traps_per_a0 = 1e308"), "ensemble.traps_per_a0"),
+    ("cv", ("traps_per_a0 = 200", "traps_per_a0 = inf"), "ensemble.traps_per_a0"),
+    ("cv", ("traps_per_a0 = 200", "traps_per_a0 = nan"), "ensemble.traps_per_a0"),
+    ("cv", ("every_slip = 0.01", "every = 1e-300"), "output.every"),
+    ("cv", ("every_slip = 0.01", "every = 1e-9"), "output.every"),
+    ("cv", ("duration = 10.0", "duration = 1e300"), "segment"),
+    ("cv", ("slip = 2.0", "slip = 1e300"), "output.every_slip"),
+    ("cv", ("{velocity = 0.0, duration = 10.0}, ", ""), None),  # the control: runs
+    ("cv", ("snapshots = [5.0]", "snapshots = [" + ", ".join(str(0.001 * i) for i in
+                                                           range(1, 5001)) + "]"),
+     "output.snapshots"),
+    ("rsf", ("every = 0.01", "every = 1e-300"), "output.every"),
+    ("rsf", ("every = 0.01", "every = 1e-9"), "output.every"),
+    ("rsf", ("duration = 10.0", "duration = 1e300"), "segment 2"),
+    ("rsf", ("slip = 3e-4", "duration = 1e300"), "output.every"),
+    ("rsf", ("slip = 3e-4", "slip = 1e300"), "output.every"),
+]
+
+
+@pytest.mark.parametrize("law, edit, key", HUGE)
+def test_inputs_too_big_for_the_machine_are_one_line_before_any_work(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, law: str, edit: tuple[str, str],
+        key: str | None) -> None:
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "8GiB")  # the same answer on any machine
+    base = PROTO if law == "cv" else RSF_PROTO
+    if "snapshots" in edit[1]:  # 5000 snapshots of a dense track: ~ 65 GiB
+        base = base.replace("traps_per_a0 = 200", "traps_per_a0 = 1e5")
+    assert edit[0] in base
+    proto = _write(tmp_path, base.replace(*edit))
+    out = tmp_path / "res"
+    r = runner.invoke(app, ["simulate", str(proto), "--out", str(out)])
+    if key is None:
+        assert r.exit_code == 0, r.output
+        return
+    lines = [ln for ln in r.output.splitlines() if ln.strip()]
+    assert r.exit_code == 2 and len(lines) == 1, r.output
+    assert "p.toml" in lines[0] and key in lines[0], lines[0]
+    assert not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]
+
+
+def test_the_memory_limit_is_the_environment_variable(tmp_path: Path,
+                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    # the small default protocol holds ~ 1 MiB: refused under 100 KiB, run under 1 GiB
+    proto = _write(tmp_path, PROTO)
+    out = tmp_path / "res"
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "100KiB")
+    r = runner.invoke(app, ["simulate", str(proto), "--out", str(out)])
+    assert r.exit_code == 2 and "more than the limit 100.0 KiB" in r.output, r.output
+    assert "DRYFRICTION_MEMORY_LIMIT" in r.output and not out.exists()
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "lots")
+    r = runner.invoke(app, ["simulate", str(proto), "--out", str(out)])
+    assert r.exit_code == 2 and "DRYFRICTION_MEMORY_LIMIT = 'lots'" in r.output, r.output
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "1GiB")
+    r = runner.invoke(app, ["simulate", str(proto), "--out", str(out)])
+    assert r.exit_code == 0, r.output

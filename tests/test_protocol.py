@@ -2,12 +2,18 @@
 
 from __future__ import annotations
 
+import tracemalloc
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from dryfriction.ensemble.driving import ForceDrive, SpringDrive, VelocityDrive
+from dryfriction.ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive, simulate
+from dryfriction.ensemble.population import Initial, Track, TrapModel
+from dryfriction.ensemble.resources import estimate_run
 from dryfriction.io.protocol import RSFProtocol, load_protocol, parse_protocol
+from dryfriction.program import Segment, VelocityProgram
+from dryfriction.validation import memory_limit, parse_bytes
 
 # sweep protocols ([sweep] table) are checked point by point in test_stickslip.py
 EXAMPLES = sorted(p for p in (Path(__file__).parent.parent / "examples").glob("*.toml")
@@ -160,3 +166,82 @@ def test_protocol_from_dict_matches_text() -> None:
     from dryfriction.io.protocol import protocol_from_dict
 
     assert protocol_from_dict(tomllib.loads(GOOD), "good.toml") == parse_protocol(GOOD, "good.toml")
+
+
+# ---------------------------------------------------------------- resource checks (issue 13)
+
+
+@pytest.mark.parametrize(
+    "make, key",
+    [
+        (lambda: dict(track=Track(1e10)), "traps_per_a0 = 1e+10"),
+        (lambda: dict(track=Track(1e308)), "traps_per_a0 = 1e+308"),
+        (lambda: dict(output=Output(every=1e-300)), "every = 1e-300"),
+        (lambda: dict(drive=VelocityDrive(VelocityProgram([Segment(1.0, slip=1e300)]))),
+         "every_slip = 0.01"),
+        (lambda: dict(drive=ForceDrive(rate=1e-6), output=Output(every=1e-3)), "every = 0.001"),
+        (lambda: dict(output=Output(every_slip=0.01, snapshots=tuple(np.arange(1, 5001) * 1e-3)),
+                      track=Track(1e5)), "snapshots"),
+    ],
+)
+def test_simulate_refuses_what_the_machine_cannot_hold(monkeypatch: pytest.MonkeyPatch, make,
+                                                       key: str) -> None:
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "8GiB")
+    args = dict(model=TrapModel(eps=0.04), track=Track(100.0), initial=Initial("rest"),
+                drive=VelocityDrive(VelocityProgram([Segment(1.0, slip=1.0)])),
+                output=Output(every_slip=0.01))
+    args.update(make())
+    with pytest.raises(ValueError, match="more than the limit 8.0 GiB") as exc:
+        simulate(**args)
+    assert key in str(exc.value) and "DRYFRICTION_MEMORY_LIMIT" in str(exc.value)
+    assert "output." not in str(exc.value)  # API names, not protocol keys
+
+
+def test_the_estimate_bounds_what_a_run_holds() -> None:
+    # the per-sample and per-pair costs against tracemalloc's peak: a bound, not far above it
+    model, drive = TrapModel(eps=0.04), VelocityDrive(VelocityProgram([Segment(1.0, slip=3.0)]))
+    simulate(model, Track(10.0), Initial("rest"), drive, Output(every_slip=1.0))  # load the kernel
+    for track, output in [(Track(10.0), Output(every_slip=1e-4)),     # samples dominate
+                          (Track(1e5), Output(every_slip=0.5))]:     # pairs dominate
+        est = estimate_run(model, track, Initial("rest"), drive, output)
+        tracemalloc.start()
+        res = simulate(model, track, Initial("rest"), drive, output)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        assert len(res.t) <= est.samples <= len(res.t) + 5
+        assert peak <= est.total_bytes <= 3.0 * peak
+
+
+@pytest.mark.parametrize(
+    "text, value",
+    [("8GiB", 8 * 2**30), ("512 MB", 512e6), ("1e9", 1e9), ("100kib", 102400.0)],
+)
+def test_memory_sizes(text: str, value: float) -> None:
+    assert parse_bytes(text) == value
+
+
+@pytest.mark.parametrize("text", ["lots", "-1GiB", "0", "inf", "8 GiBs", "nan"])
+def test_bad_memory_sizes_name_the_variable(text: str) -> None:
+    with pytest.raises(ValueError, match="DRYFRICTION_MEMORY_LIMIT"):
+        parse_bytes(text)
+
+
+def test_default_limit_is_half_the_available_memory(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("DRYFRICTION_MEMORY_LIMIT", raising=False)
+    avail = next(int(ln.split()[1]) * 1024 for ln in Path("/proc/meminfo").read_text().splitlines()
+                 if ln.startswith("MemAvailable:"))
+    assert memory_limit() == pytest.approx(0.5 * avail, rel=0.2)  # it moves while we read
+
+
+def test_continue_spring_refuses_what_the_machine_cannot_hold(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from dryfriction.ensemble.driving import continue_spring
+    from dryfriction.ensemble.population import Ensemble
+
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "8GiB")
+    ens = Ensemble(TrapModel(eps=0.04), Track(100.0), Initial("rest"))
+    drive = SpringDrive(stiffness=1.0, mass=0.0,
+                        program=VelocityProgram([Segment(1.0, slip=1e300)]))
+    with pytest.raises(ValueError, match="every_slip = 0.01 gives 1.0e\\+302 samples"):
+        continue_spring(ens, drive, Output(every_slip=0.01))
+    assert ens.t == 0.0 and ens.x == 0.0  # nothing was run

@@ -157,3 +157,30 @@ def test_kind_means_the_same_for_both_laws() -> None:
     assert isinstance(rsf_kin, RSFProtocol) and math.isinf(rsf_kin.stiffness)
     with pytest.raises(ValueError, match="inf"):
         parse_protocol(STEP.replace('kind = "velocity"', 'kind = "spring"\nstiffness = 0.0'))
+
+
+@pytest.mark.parametrize(
+    "output, limit, key",
+    [
+        ({"every": 1e-300}, "8GiB", "every = 1e-300"),
+        ({"every": 1e-9}, "8GiB", "every = 1e-09"),
+        ({"t_eval": np.linspace(0.0, 10.0, 10**7)}, "1GiB", "t_eval"),
+        # every solver step kept: max_steps bounds the buffers (~ 100 MiB at the default)
+        ({}, "10MiB", "max_steps = 1000000"),
+    ],
+)
+def test_simulate_rsf_refuses_what_the_machine_cannot_hold(monkeypatch: pytest.MonkeyPatch,
+                                                           output: dict, limit: str,
+                                                           key: str) -> None:
+    from dryfriction.rsf import RSFOutput, SpringSlider, simulate_rsf
+
+    proto = parse_protocol(STEP)
+    assert isinstance(proto, RSFProtocol)
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", limit)
+    with pytest.raises(ValueError, match="more than the limit") as exc:
+        simulate_rsf(proto.params, SpringSlider(proto.program), output=RSFOutput(**output))
+    assert key in str(exc.value) and "DRYFRICTION_MEMORY_LIMIT" in str(exc.value)
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "4GiB")  # the control: the same run fits
+    if not output:
+        res = simulate_rsf(proto.params, SpringSlider(proto.program), output=RSFOutput())
+        assert np.all(np.isfinite(res.mu))

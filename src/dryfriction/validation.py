@@ -7,6 +7,8 @@ allowed range, before any work starts. The CLI turns these into one line and exi
 from __future__ import annotations
 
 import math
+import os
+import re
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -19,6 +21,11 @@ __all__ = [
     "check_choice",
     "check_broadcast",
     "check_finite_result",
+    "check_memory",
+    "format_bytes",
+    "memory_limit",
+    "parse_bytes",
+    "MEMORY_ENV",
     "ALPHA_MIN",
     "EPS_MAX",
     "U_MIN",
@@ -166,3 +173,88 @@ def check_alpha(alpha: float) -> float:
     """Reduced trap stiffness of a pinning trap, ``ALPHA_MIN <= alpha < 1`` (``alpha >= 1``:
     no pinning, no friction)."""
     return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
+
+
+# ---------------------------------------------------------------- memory budget
+
+MEMORY_ENV = "DRYFRICTION_MEMORY_LIMIT"
+"""Environment variable overriding the memory limit of one run (``"8GiB"``, ``"500MB"``,
+``"1e9"`` bytes)."""
+
+MEMORY_FRACTION = 0.5
+"""Default limit: this fraction of the memory the machine has available (other processes, and
+the copies a run makes when it writes its results, need the rest)."""
+
+_UNITS = {"": 1, "B": 1, "K": 1e3, "KB": 1e3, "M": 1e6, "MB": 1e6, "G": 1e9, "GB": 1e9,
+          "T": 1e12, "TB": 1e12, "KIB": 2**10, "MIB": 2**20, "GIB": 2**30, "TIB": 2**40}
+
+
+def parse_bytes(text: str, name: str = MEMORY_ENV) -> float:
+    """A size such as ``"8GiB"``, ``"512 MB"`` or ``"1e9"`` (bytes) as a number of bytes.
+
+    Raises
+    ------
+    ValueError
+        Naming ``name`` unless the text is a positive finite number with a known unit.
+    """
+    m = re.fullmatch(r"\s*([0-9.eE+-]+)\s*([A-Za-z]*)\s*", text)
+    value = math.nan
+    if m and m.group(2).upper() in _UNITS:
+        try:
+            value = float(m.group(1)) * _UNITS[m.group(2).upper()]
+        except ValueError:
+            value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} = {text!r} is not allowed: a positive size such as 8GiB, "
+                         "512MB or 1e9 (bytes)")
+    return value
+
+
+def format_bytes(n: float) -> str:
+    """``2.9 TiB``-style size of ``n`` bytes (binary units)."""
+    if not math.isfinite(n):
+        return "more than any machine has"
+    if n >= 2**50:
+        return f"{n / 2**40:.1e} TiB"
+    for unit, size in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
+        if n >= size:
+            return f"{n / size:.1f} {unit}"
+    return f"{n:.0f} B"
+
+
+def _available_memory() -> float | None:
+    """Bytes of memory available to a new allocation (``MemAvailable``), else physical memory."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024.0
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def memory_limit() -> float:
+    """Bytes one run may plan to hold: :data:`MEMORY_ENV` if set, else :data:`MEMORY_FRACTION`
+    of the available memory (8 GiB where the machine does not say)."""
+    text = os.environ.get(MEMORY_ENV, "").strip()
+    if text:
+        return parse_bytes(text)
+    avail = _available_memory()
+    return MEMORY_FRACTION * avail if avail else 8.0 * 2**30
+
+
+def check_memory(what: str, need: float, hint: str) -> None:
+    """Refuse a run whose estimate ``need`` (bytes) is over :func:`memory_limit`.
+
+    The message reads ``{what} ({size}), more than the limit {limit}: {hint} or set
+    DRYFRICTION_MEMORY_LIMIT``; ``what`` names the key and what it gives, ``hint`` the key to
+    change.
+    """
+    limit = memory_limit()
+    if not need <= limit:  # NaN (an estimate that overflowed) is refused too
+        raise ValueError(f"{what} ({format_bytes(need)}), more than the limit "
+                         f"{format_bytes(limit)}: {hint} or set {MEMORY_ENV}")

@@ -52,6 +52,7 @@ from scipy.optimize import brentq
 from ..program import VelocityProgram
 from ..validation import check_choice, check_scalar
 from .population import Ensemble, Initial, Observables, Track, TrapModel
+from .resources import check_run
 from .result import COLUMNS, Output, Recorder, SimulationResult, segment_grid
 
 __all__ = [
@@ -441,6 +442,12 @@ def simulate(
     -------
     SimulationResult
         The first sample is the initial state at ``t = 0``.
+
+    Raises
+    ------
+    ValueError
+        Bad input, or a run whose samples, pairs and snapshots would not fit the memory limit
+        (:func:`dryfriction.validation.memory_limit`), before any work.
     """
     check_choice("on_interrupt", on_interrupt, ("raise", "partial"))
     if isinstance(drive, ForceDrive):
@@ -451,6 +458,7 @@ def simulate(
     else:
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
+    check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
     o = ens.observe()
@@ -524,6 +532,7 @@ def continue_spring(
                          "quasi-static slider has no velocity state; allowed 0")
     if spring_force is not None:
         spring_force = check_scalar("spring_force", spring_force)
+    check_run(ensemble.model, ensemble.track, ensemble.initial, drive, output)
     rec = Recorder(ensemble.model.mu_el)
     o = ensemble.observe()
     f_spring = o.force if spring_force is None else spring_force

@@ -18,7 +18,8 @@ from ..results import summarize
 from ..validation import check_range, check_scalar
 from .population import Ensemble, Observables
 
-__all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "segment_grid"]
+__all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "sample_interval",
+           "segment_grid"]
 
 Array = NDArray[np.float64]
 
@@ -180,17 +181,22 @@ class Recorder:
         return SimulationResult(**cols, snapshots=self.snapshots, info=info)
 
 
+def sample_interval(velocity: float, output: Output) -> float:
+    """Sampling interval (``t0``) in a segment at ``velocity``; ``inf`` for a hold sampled in
+    slip (one step)."""
+    if output.every is not None:
+        return output.every
+    if velocity != 0.0:
+        return float(output.every_slip) / abs(velocity)
+    return math.inf
+
+
 def segment_grid(program: VelocityProgram, output: Output) -> Array:
     """Sampling times of a velocity program: every segment boundary plus the output grid."""
     times = [0.0]
     bounds = program.times
     for seg, ta, tb in zip(program.segments, bounds[:-1], bounds[1:], strict=True):
-        if output.every is not None:
-            dt = output.every
-        elif seg.velocity != 0.0:
-            dt = float(output.every_slip) / abs(seg.velocity)
-        else:
-            dt = math.inf
+        dt = sample_interval(seg.velocity, output)
         n = max(1, math.ceil(seg.time / dt * (1.0 - 1e-9))) if math.isfinite(dt) else 1
         times.extend(ta + (tb - ta) * np.arange(1, n + 1) / n)
     grid = np.asarray(times)

@@ -79,9 +79,11 @@ from ..ensemble.driving import (
     simulate,
 )
 from ..ensemble.population import Initial, Track, TrapModel
+from ..ensemble.resources import check_run
 from ..program import Segment, VelocityProgram
 from ..rsf.driving import RSFResult, SolverError, simulate_rsf
 from ..rsf.law import RateState
+from ..rsf.resources import check_rsf_run
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 from ..validation import check_scalar
 
@@ -266,7 +268,7 @@ def _segments(tab: _Table) -> VelocityProgram:
         d = sub.number("duration")
         s = sub.number("slip")
         segs.append(sub.build(Segment, v, d, s))
-    return VelocityProgram(segs)
+    return tab.build(VelocityProgram, segs)
 
 
 def parse_protocol(text: str, source: str = "<string>") -> Protocol | RSFProtocol:
@@ -356,6 +358,10 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         o.fail(f"{o.where('snapshots')} = {snaps!r} has the wrong type: a list of times (t0)")
     output = o.build(Output, every=o.number("every"), every_slip=o.number("every_slip"),
                      snapshots=tuple(float(s) for s in snaps))
+    try:  # the memory a run would hold, before any work
+        check_run(model, track, initial, drive, output, qualified=True)
+    except ValueError as exc:
+        raise ValueError(f"{source}: {exc}") from None
     return Protocol(model, track, initial, drive, output, source)
 
 
@@ -404,6 +410,10 @@ def _rsf_protocol(doc: Mapping[str, Any], source: str) -> RSFProtocol:
     output = o.build(RSFOutput, every=o.number("every"), rtol=o.number("rtol", 1e-7))
     d.build(drive.check_model, params)
     d.build(initial.resolve, params, drive)
+    try:  # the memory a run would hold, before any work
+        check_rsf_run(params, drive, output, qualified=True)
+    except ValueError as exc:
+        raise ValueError(f"{source}: {exc}") from None
     return RSFProtocol(params, drive, initial, output, source)
 
 

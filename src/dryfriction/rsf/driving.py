@@ -45,6 +45,7 @@ from numpy.typing import NDArray
 from ..program import Segment, VelocityProgram
 from ..validation import check_scalar
 from .law import RateState
+from .resources import check_rsf_run
 from .result import RSFResult, build_result, hermite
 from .spring import RSFInitial, RSFOutput, SpringSlider, check_spring
 
@@ -480,6 +481,7 @@ def simulate_rsf(
         raise ValueError(f"output = {output!r} is not an RSFOutput")
     drive.check_model(model)
     v_init, theta_init, theta2_init = initial.resolve(model, drive)
+    check_rsf_run(model, drive, output)
     prog = drive.program
     te = output.times(prog)
     stiffness, damping, mass = drive.stiffness, drive.damping, drive.mass

@@ -1,0 +1,172 @@
+"""How much memory a trap-ensemble run will hold, estimated before any work (issue 13).
+
+:func:`check_run` is called by :func:`~dryfriction.ensemble.driving.simulate` and by the protocol
+parser, so that a run that cannot fit is refused in one line before anything is allocated. All
+arithmetic is in floats: an absurd input gives an estimate of ``inf``, never an
+``OverflowError``.
+
+The per-item costs were measured with :mod:`tracemalloc` (peak over a run, NumPy 2, CPython
+3.12) and rounded up:
+
+* a sample costs about 456 bytes: the recorder's row (a tuple of 11 Python floats), the
+  sampling grid and the columns it becomes;
+* a pair in the buffer around the slider costs about 33 bytes at the peak: position (8),
+  birth time (8) and state (1) held, plus the temporaries made when the buffer is built or
+  moved;
+* a snapshot holds 6 float arrays over the traps in contact.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..validation import check_memory
+from .population import Initial, Track, TrapModel
+from .result import Output, sample_interval
+
+__all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "RunEstimate", "check_run", "estimate_run"]
+
+BYTES_PER_SAMPLE = 480.0
+"""Peak bytes per recorded sample (measured 456)."""
+BYTES_PER_TRAP = 40.0
+"""Peak bytes per pair in the buffer (measured 33)."""
+BYTES_PER_SNAPSHOT_TRAP = 6 * 8.0
+"""Bytes per trap in contact in one snapshot (six float arrays)."""
+
+_MAX_REACH = 1e3  # a0: the cap population.Ensemble puts on the initial reach
+
+
+@dataclass(frozen=True)
+class RunEstimate:
+    """What a run will hold at its peak.
+
+    Attributes
+    ----------
+    samples : float
+        Recorded samples (an upper bound; ``inf`` if it overflows).
+    traps : float
+        Pairs in the buffer that follows the slider.
+    active : float
+        Traps in contact (what a snapshot records).
+    snapshots : int
+        Population snapshots requested.
+    """
+
+    samples: float
+    traps: float
+    active: float
+    snapshots: int
+
+    @property
+    def sample_bytes(self) -> float:
+        return self.samples * BYTES_PER_SAMPLE
+
+    @property
+    def trap_bytes(self) -> float:
+        return self.traps * BYTES_PER_TRAP
+
+    @property
+    def snapshot_bytes(self) -> float:
+        return self.snapshots * self.active * BYTES_PER_SNAPSHOT_TRAP
+
+    @property
+    def total_bytes(self) -> float:
+        return self.sample_bytes + self.trap_bytes + self.snapshot_bytes
+
+
+def _reach(model: TrapModel, initial: Initial, horizon: float) -> float:
+    """Slip (a0) ahead of the slider over which traps can be in contact (as population.py)."""
+    D = max(1.0, model.trap.y_c)
+    law = model.law
+    reach = D * float(law.radius(min(max(horizon, 1.0), 1e12)))
+    if initial.kind == "steady":
+        r = D
+        for _ in range(100):
+            r = min(D * float(law.radius((r + 1.0) / float(initial.velocity or 1.0))), _MAX_REACH)
+        reach = max(reach, r)
+    return min(reach, _MAX_REACH) + 1.0
+
+
+def estimate_run(model: TrapModel, track: Track, initial: Initial, drive: object,
+                 output: Output) -> RunEstimate:
+    """Estimate the samples and pairs a run of :func:`~.driving.simulate` will hold.
+
+    Parameters
+    ----------
+    model, track, initial, drive, output
+        As :func:`~.driving.simulate` takes them (``drive`` a velocity, force or spring drive).
+
+    Returns
+    -------
+    RunEstimate
+    """
+    from .driving import ForceDrive  # driving imports this module
+
+    D = max(1.0, model.trap.y_c)
+    step_slip = 0.0
+    if isinstance(drive, ForceDrive):
+        horizon = drive.hold + drive.max_force / drive.rate
+        if output.every is not None:
+            samples = (drive.hold + drive.max_force / drive.rate) / output.every
+        else:
+            k_c = model.trap.contact_stiffness
+            samples = 1.0 + drive.max_force / (float(output.every_slip) * k_c)
+        step_slip = 2.0 * D + 2.0  # a jump stops within the reach (driving._max_reach)
+    else:
+        program = drive.program  # type: ignore[attr-defined]
+        horizon = program.total_time
+        samples = 0.0
+        for seg in program.segments:
+            # segment_grid's count, in floats: no OverflowError before the refusal
+            n = max(1.0, seg.time / sample_interval(seg.velocity, output))
+            samples += n
+            step_slip = max(step_slip, abs(seg.velocity) * seg.time / n)
+    samples += 2.0 + len(output.snapshots)
+    reach = _reach(model, initial, horizon)
+    margin = 8.0 + 2.0 * D  # population.Ensemble._margin
+    lam = track.traps_per_a0
+    traps = lam * (2.0 * (reach + margin + 2.0) + step_slip) + 4.0
+    if track.layout == "random":
+        traps += 2.0 * 1024  # whole blocks
+    active = lam * (reach + 1.0) + 2.0
+    return RunEstimate(samples, traps, active, len(output.snapshots))
+
+
+def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, output: Output,
+              *, qualified: bool = False) -> RunEstimate:
+    """Refuse a run whose estimate is over :func:`dryfriction.validation.memory_limit`.
+
+    Parameters
+    ----------
+    qualified : bool
+        Name the keys as a protocol file spells them (``output.every``,
+        ``ensemble.traps_per_a0``) rather than as the API's arguments.
+
+    Raises
+    ------
+    ValueError
+        One line with the estimate, the limit and the key to change; the key named is that of
+        the largest part of the estimate.
+    """
+    est = estimate_run(model, track, initial, drive, output)
+    out = "output." if qualified else ""
+    lam_key = ("ensemble." if qualified else "") + "traps_per_a0"
+    parts = {"samples": est.sample_bytes, "traps": est.trap_bytes,
+             "snapshots": est.snapshot_bytes}
+    worst = max(parts, key=lambda k: parts[k] if not math.isnan(parts[k]) else math.inf)
+    if worst == "samples":
+        key = "every" if output.every is not None else "every_slip"
+        value = output.every if output.every is not None else output.every_slip
+        what = f"{out}{key} = {value:g} gives {est.samples:.1e} samples"
+        hint = f"raise {out}{key} (or shorten the drive)"
+    elif worst == "traps":
+        what = (f"{lam_key} = {track.traps_per_a0:g} keeps {est.traps:.1e} pairs around the "
+                "slider")
+        hint = f"lower {lam_key}"
+    else:
+        what = (f"{out}snapshots: {est.snapshots} snapshots of {est.active:.1e} traps in "
+                "contact")
+        hint = f"ask for fewer {out}snapshots or lower {lam_key}"
+    check_memory(what, est.total_bytes, hint)
+    return est
