@@ -42,8 +42,8 @@ WRONG_TYPES: list[Any] = ["x", True, [1.0], {"a": 1}, ""]
 # inf, -1e308, wrong types), never with huge-but-valid ones.
 SIZE_KEYS = {"traps_per_a0", "duration", "slip", "every", "every_slip", "rate", "hold",
              "max_force", "velocity", "snapshots", "v_init", "dc", "v0", "stiffness", "mass",
-             "damping", "rtol", "initial_velocity", "a", "b", "b2", "dc2", "eps", "alpha",
-             "mu_el", "initial_force"}
+             "damping", "rtol", "initial_velocity", "a", "b", "b2", "dc2", "eps", "alpha"}
+# (mu_el, initial_force and the strings, tables and integers take the full list of bad values)
 SIZE_SAFE_BAD = [0, -1, math.nan, math.inf, -math.inf, -1e308]
 
 
