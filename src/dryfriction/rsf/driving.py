@@ -501,9 +501,15 @@ def simulate_rsf(
         w = np.array([1.0] * (ns + 1) + [model.a])
     p = _param_vector(model, stiffness, damping, mass, mode)
 
-    T, Y, F, SEG, stats, status, t_fail, y_fail = _integrate(
-        y0, p, prog.times, prog.velocities, output.rtol, w, output.max_steps, _RA, _RC, _RM
-    )
+    try:
+        T, Y, F, SEG, stats, status, t_fail, y_fail = _integrate(
+            y0, p, prog.times, prog.velocities, output.rtol, w, output.max_steps, _RA, _RC, _RM
+        )
+    except ZeroDivisionError:  # a rate overflowed, so the step size became 0 (a, dc ~ 1e-308)
+        v_top = float(np.max(np.abs(prog.velocities)))
+        raise SolverError(f"the integration failed: the step size fell to zero, the rates "
+                          f"overflow floating point (a = {model.a:g}, dc = {model.dc:g}, load "
+                          f"velocity up to {v_top:g} m/s)") from None
     if status != 0:
         v_fail = math.nan if mode == _KINEMATIC else math.exp(min(float(y_fail[0]), 709.0))
         raise SolverError(_failure_message(status, mode, t_fail, y_fail, model, stiffness,
