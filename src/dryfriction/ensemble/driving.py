@@ -110,6 +110,16 @@ class ForceDrive:
         )
 
 
+STIFFNESS_MAX: float = 1e6
+"""Stiffest spring accepted, ``F_el/a0`` (a million times a trap population's contact stiffness,
+about 0.7 ``F_el/a0``): stiffer is the velocity drive (``kind = "velocity"``), without the
+spring's ever smaller steps."""
+
+MASS_MIN: float = 1e-6
+"""Smallest nonzero slider mass accepted, ``F_el t0^2/a0``: below it the inertial time
+``sqrt(M/K)`` makes the steps vanish while the motion is the quasi-static one (``mass = 0``)."""
+
+
 @dataclass(frozen=True)
 class SpringDrive:
     """A slider of mass ``mass`` pulled through a spring ``stiffness`` by a load point.
@@ -137,9 +147,13 @@ class SpringDrive:
     damping: float = 0.0
 
     def __post_init__(self) -> None:
-        k = check_scalar("stiffness", self.stiffness, 0.0, lo_open=True)
+        k = check_scalar("stiffness", self.stiffness, 0.0, STIFFNESS_MAX, lo_open=True)
         object.__setattr__(self, "stiffness", k)
         object.__setattr__(self, "mass", check_scalar("mass", self.mass, 0.0))
+        if 0.0 < self.mass < MASS_MIN:
+            raise ValueError(f"mass = {self.mass:g} is out of range: allowed 0 (the quasi-static "
+                             f"slider) or >= {MASS_MIN:g} (the inertial time sqrt(M/K) sets the "
+                             "step: a smaller mass is the quasi-static limit, only slower)")
         object.__setattr__(self, "damping", check_scalar("damping", self.damping, 0.0))
         if self.mass == 0.0 and self.damping != 0.0:
             raise ValueError(

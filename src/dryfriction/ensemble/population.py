@@ -53,7 +53,7 @@ from numpy.typing import NDArray
 from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
 from ..theory.static import loaded_edge
 from ..theory.trap import Regime, Trap
-from ..validation import check_choice, check_scalar
+from ..validation import ALPHA_MIN, EPS_MAX, check_choice, check_scalar
 from .kernel import FREE_FAR, FREE_NEAR, MINUS, OUT_SIZE, PLUS, advance_window, radius_table
 
 __all__ = [
@@ -98,9 +98,9 @@ class TrapModel:
     mu_el: float = 1.0
 
     def __post_init__(self) -> None:
-        a = check_scalar("alpha", self.alpha, 0.0, 1.0, lo_open=True, hi_open=True)
+        a = check_scalar("alpha", self.alpha, ALPHA_MIN, 1.0, hi_open=True)
         object.__setattr__(self, "alpha", a)
-        object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0))
+        object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0, EPS_MAX))
         check_choice("creep", self.creep, CREEP_LAWS)
         object.__setattr__(self, "mu_el", check_scalar("mu_el", self.mu_el, 0.0, lo_open=True))
 

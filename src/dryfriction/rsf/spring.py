@@ -26,7 +26,12 @@ from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
 from ..validation import check_range, check_scalar
-from .law import RateState
+from .law import V_MAX, RateState
+
+K_MAX: float = 1e15
+"""Stiffest finite machine accepted, 1/m per unit normal force: a spring so stiff that its
+elastic slip ``mu/k`` is below a femtometre is the kinematic machine (``inf``), which is
+integrated without the stiff spring's tiny time scale."""
 
 __all__ = ["RSFInitial", "RSFOutput", "SpringSlider", "check_spring"]
 
@@ -57,7 +62,7 @@ def check_spring(stiffness: Any, damping: Any = 0.0, mass: Any = 0.0) -> tuple[f
         k = math.inf
     else:
         try:
-            k = check_scalar("stiffness", stiffness, 0.0, lo_open=True)
+            k = check_scalar("stiffness", stiffness, 0.0, K_MAX, lo_open=True)
         except ValueError as exc:
             raise ValueError(f"{exc} (1/m), or inf for the kinematic machine") from None
     eta = check_scalar("damping", damping, 0.0)
@@ -101,6 +106,10 @@ class SpringSlider:
         object.__setattr__(self, "damping", eta)
         object.__setattr__(self, "mass", m)
         vel = self.program.velocities
+        for i, vl in enumerate(vel):
+            if abs(vl) > V_MAX:
+                raise ValueError(f"segments[{i}].velocity = {vl:g} m/s is out of range: "
+                                 f"allowed |velocity| <= {V_MAX:g} m/s")
         if not self.kinematic:
             for i, vl in enumerate(vel):
                 if vl < 0.0:
@@ -155,7 +164,8 @@ class RSFInitial:
             value = getattr(self, name)
             if value is not None:
                 label = "v_init" if name == "v" else f"{name}_init"
-                object.__setattr__(self, name, check_scalar(label, value, 0.0, lo_open=True))
+                hi = V_MAX if name == "v" else None
+                object.__setattr__(self, name, check_scalar(label, value, 0.0, hi, lo_open=True))
 
     def resolve(self, model: RateState, drive: SpringSlider) -> tuple[float, float, float | None]:
         """``(v, theta, theta2)`` for this model and drive, defaults filled in.
