@@ -97,7 +97,7 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("spinodal force f_c with y_c + z_c", "theory/trap.py",
        "6.0 * self.alpha * (self.y_c - self.z_c) if self.pinned",
        "6.0 * self.alpha * (self.y_c + self.z_c) if self.pinned",
-       "tests/test_trap.py"),
+       _DRV, "-k", "sawtooth"),
     _m("H1: sign of the subtracted work", "theory/trap.py",
        "return self.H0 - float(work_forward(self.y_c - 1.0, self.alpha))",
        "return self.H0 + float(work_forward(self.y_c - 1.0, self.alpha))",
@@ -120,7 +120,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "    yc = Trap(alpha).y_c\n",
        "    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)\n"
        "    yc = Trap(alpha).death_point\n",
-       "tests/test_steady.py"),
+       _DRV, "-k", "strong_pinning_steady"),
     # --- the ensemble ------------------------------------------------------------------------
     _m("kernel f_+: wrong root of z_+", "ensemble/kernel.py",
        "    z = -0.5 * ((1.0 - alpha) + sd)", "    z = -0.5 * ((1.0 - alpha) - sd)",
@@ -155,7 +155,7 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("manifest check ignores the format", "io/files.py",
        "if not isinstance(m, dict) or m.get(\"format\") != MANIFEST_FORMAT:",
        "if not isinstance(m, dict):",
-       "tests/test_io.py"),
+       "tests/test_io.py", "-k", "manifest"),
     _m("sweep point key leaves out the analysis", "io/sweep.py",
        "return _digest({\"format\": SWEEP_FORMAT, \"version\": RESULT_VERSION, "
        "\"analysis\": analysis,\n                    \"protocol\": protocol})[:32]",
@@ -183,8 +183,11 @@ def _pytest(src: Path, tests: tuple[str, ...], timeout: float) -> tuple[str, flo
                            timeout=timeout)
     except subprocess.TimeoutExpired:
         return "timeout", time.monotonic() - t0, ""
-    tail = (p.stdout + p.stderr).strip().splitlines()[-1:] or [""]
-    return ("pass" if p.returncode == 0 else "fail"), time.monotonic() - t0, tail[0]
+    lines = (p.stdout + p.stderr).strip().splitlines()
+    # the failing test's name when pytest names one, else the last line (a collection error)
+    named = [ln for ln in lines if ln.startswith(("FAILED", "ERROR"))]
+    tail = (named or lines[-1:] or [""])[0]
+    return ("pass" if p.returncode == 0 else "fail"), time.monotonic() - t0, tail
 
 
 def _stale(mutants: tuple[Mutant, ...]) -> list[str]:
@@ -232,6 +235,7 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"baseline {res:7s} {dt:6.1f}s  pytest {' '.join(sel)}", flush=True)
                 if res != "pass":
                     broken.append(f"BASELINE FAILS: pytest {' '.join(sel)}: {tail}")
+                    print(broken[-1], flush=True)
         killed = survived = 0
         t_all = time.monotonic()
         for m in mutants:
@@ -247,7 +251,8 @@ def main(argv: list[str] | None = None) -> int:
             ok = res != "pass"
             killed += ok
             survived += not ok
-            print(f"{'killed ' if ok else 'SURVIVED'} ({res:7s} {dt:6.1f}s) {m.name}", flush=True)
+            print(f"{'killed ' if ok else 'SURVIVED'} ({res:7s} {dt:6.1f}s) {m.name}"
+                  + (f"  <- {tail}" if ok and tail else ""), flush=True)
         n = killed + survived
         rate = killed / n if n else 0.0
         print(f"\n{killed}/{n} mutants killed ({100 * rate:.1f} %, required "

@@ -457,6 +457,15 @@ def test_strong_pinning_steady_sliding_matches_eq34(alpha: float) -> None:
     mean = np.mean([e.advance(float(x), float(x) / u).force for x in xs])
     # m-point average of the sawtooth of height J/lambda: error well below 1/lambda
     assert mean == pytest.approx(float(steady_friction(u, EPS, alpha)), rel=2e-3)
+    # the kernel's jumps (w > y_c on (+), w > 1 on (-)) against eq. 32: the most advanced (+)
+    # trap sits within one lattice spacing before the (+) exit p_d, the most advanced (-) one
+    # before p_1, where w reaches 1
+    snap = e.snapshot()
+    law = TrapModel(alpha=alpha, eps=EPS).law
+    p_1 = -1.0 + u * float(law.age(death_clock(law, np.array([u]), 1.0))[0])
+    for branch, edge in ((1, p_d), (-1, p_1)):
+        front = float(snap["p"][snap["branch"] == branch].max())
+        assert edge - 1.0 / lam - 1e-9 < front <= edge + 1e-9
 
 
 @pytest.mark.parametrize("alpha", [0.3, 0.6])
