@@ -21,10 +21,10 @@ from dryfriction.ensemble.driving import (
     VelocityDrive,
     simulate,
 )
-from dryfriction.ensemble.population import Initial, Track, TrapModel
+from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.program import VelocityProgram
 from dryfriction.theory.static import static_friction
-from dryfriction.theory.steady import steady_death_point, steady_friction
+from dryfriction.theory.steady import death_clock, steady_death_point, steady_friction
 from dryfriction.theory.trap import Trap
 
 EPS = 0.04
@@ -427,3 +427,76 @@ def test_both_simulators_give_the_same_summary_keys_and_columns() -> None:
     assert sr["peak_t"] == pytest.approx(10.0) and sr["peak_x"] == pytest.approx(1e-5)
     assert sr["peak_mu"] == pytest.approx(0.6 + 0.005 * math.log(10.0), abs=1e-9)
     assert sr["partial"] is False and sr["samples"] == len(rsf.t)
+
+
+# ---------------------------------------------------------------- strong pinning (y_c < 1)
+
+
+def _velocity_at(alpha: float, segments: list[dict], lam: float, initial: Initial,
+                 every_slip: float) -> SimulationResult:
+    return simulate(TrapModel(alpha=alpha, eps=EPS), Track(lam), initial,
+                    VelocityDrive(VelocityProgram(segments)), Output(every_slip=every_slip))
+
+
+@pytest.mark.parametrize("alpha", [0.3, 0.6])
+def test_strong_pinning_steady_sliding_matches_eq34(alpha: float) -> None:
+    """Strong pinning: from rest at u = 1, once the initial traps are gone, the force averaged
+    over one lattice period is eq. 34 at this alpha. The very strong pinning H0 (off by a factor
+    1.2-5.5 here) or a wrong (-) branch would miss it.
+
+    The ensemble is advanced directly so that the period average uses uniform phases (the
+    sampler adds event samples in strong pinning, so fixed-size blocks of samples drift in phase).
+    """
+    lam, m, u = 500.0, 16, 1.0
+    p_d = float(steady_death_point(u, EPS, alpha))
+    e = Ensemble(TrapModel(alpha=alpha, eps=EPS), Track(lam), Initial("rest"))
+    x0 = math.ceil((2.0 + p_d) * lam) / lam
+    for x in np.linspace(0.0, x0, 200)[1:]:
+        e.advance(float(x), float(x) / u)
+    xs = x0 + np.arange(1, m + 1) / (m * lam)
+    mean = np.mean([e.advance(float(x), float(x) / u).force for x in xs])
+    # m-point average of the sawtooth of height J/lambda: error well below 1/lambda
+    assert mean == pytest.approx(float(steady_friction(u, EPS, alpha)), rel=2e-3)
+    # the kernel's jumps (w > y_c on (+), w > 1 on (-)) against eq. 32: the most advanced (+)
+    # trap sits within one lattice spacing before the (+) exit p_d, the most advanced (-) one
+    # before p_1, where w reaches 1
+    snap = e.snapshot()
+    law = TrapModel(alpha=alpha, eps=EPS).law
+    p_1 = -1.0 + u * float(law.age(death_clock(law, np.array([u]), 1.0))[0])
+    for branch, edge in ((1, p_d), (-1, p_1)):
+        front = float(snap["p"][snap["branch"] == branch].max())
+        assert edge - 1.0 / lam - 1e-9 < front <= edge + 1e-9
+
+
+@pytest.mark.parametrize("alpha", [0.3, 0.6])
+def test_strong_pinning_static_peak_matches_eq27(alpha: float) -> None:
+    """Strong pinning: rest, hold T, fast pull; the peak is eq. 27 at this alpha. A trap that
+    restarts its age when it jumps from (+) to (-) changes the pull-force curve and the peak."""
+    lam, T = 1000.0, 100.0
+    mu_s = float(static_friction(T, EPS, alpha))
+    r = _velocity_at(alpha, [{"velocity": 0.0, "duration": T}, {"velocity": 1e6, "slip": 2.5}],
+                     lam, Initial("rest"), 2e-4)
+    # first-order density error, at most one trap's force at its spinodal: r^2 f_c/(lambda H0)
+    trap = Trap(alpha)
+    tol = 1.5 * (1.0 + EPS * math.log1p(T)) * trap.f_c / (lam * trap.H0)
+    assert r.summary()["peak_mu"] == pytest.approx(mu_s, abs=tol)
+
+
+def test_strong_pinning_velocity_step_memory_length() -> None:
+    """alpha = 0.3, u = 1 -> 0.01: traps live on (-) after the spinodal until w = p/a_r = 1, so
+    the memory of u1 ends after a slip 1 + p_1(u2), p_1 where a steadily sliding trap reaches
+    w = 1 (eq. 32 with w_end = 1), beyond the (+) exit p_d(u2). A trap whose age restarts at
+    the (+) -> (-) jump dies at p = 1 instead, and the memory is shorter."""
+    alpha, lam, m, u1, u2, s0 = 0.3, 400.0, 8, 1.0, 0.01, 0.5
+    d = 1 / (m * lam)
+    law = TrapModel(alpha=alpha, eps=EPS).law
+    p_1 = -1.0 + u2 * float(law.age(death_clock(law, np.array([u2]), 1.0))[0])
+    assert p_1 > 1.0 + 2.0 / lam and p_1 > float(steady_death_point(u2, EPS, alpha))
+    step = _velocity_at(alpha, [{"velocity": u1, "slip": s0}, {"velocity": u2, "slip": 3.5}],
+                        lam, Initial("steady", velocity=u1), d)
+    ref = _velocity_at(alpha, [{"velocity": u2, "slip": s0 + 3.5}], lam,
+                       Initial("steady", velocity=u2), d)
+    assert np.max(np.abs(step.x - ref.x)) < 1e-9
+    diff = np.abs(step.mu - ref.mu)
+    memory_exact = float(step.x[np.flatnonzero(diff > 1e-9)[-1] + 1] - s0)
+    assert memory_exact == pytest.approx(1.0 + p_1, abs=2.0 / lam)

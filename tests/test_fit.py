@@ -428,3 +428,25 @@ def test_plot_fit_of_a_million_point_series_draws_a_bounded_binned_view(
     assert (tmp_path / "big.png").read_bytes()[:4] == b"\x89PNG"
     _, small_axes = plot_fit(r, [series(200, 2)])  # small data: every point
     assert len(small_axes[0, 0].get_lines()[0].get_xdata()) == 200
+
+
+def test_wald_half_width_is_student_t_times_stderr_with_estimated_noise() -> None:
+    """Noise estimated from the residuals: the Wald interval is theta +- t_{0.975, n-p} se in the
+    fitted variable (ln theta for a log-scaled parameter). With n = 8, p = 3 the quantile is
+    2.57, far from the normal 1.96 that known uncertainties would use."""
+    from scipy import stats
+
+    tw = np.geomspace(0.01, 1e4, 8)
+    r = fit_static(static_data(21, tw=tw, sigma=False), "cv", profile=False)
+    assert r.success, r.message
+    q = float(stats.t.ppf(0.975, tw.size - 3))
+    assert len(r.free) == 3
+    for name in r.free:
+        p = r[name]
+        assert p.interval_95 is not None and p.stderr is not None and p.stderr > 0
+        lo, hi = p.interval_95
+        if math.isclose(0.5 * (lo + hi), p.value, rel_tol=1e-9):
+            half = 0.5 * (hi - lo) / p.stderr  # linear parameter
+        else:
+            half = 0.5 * math.log(hi / lo) / (p.stderr / p.value)  # log-scaled parameter
+        assert half == pytest.approx(q, rel=1e-9), name

@@ -321,3 +321,21 @@ def test_sigkill_leaves_a_temporary_that_the_next_run_removes(tmp_path):
     with output_directory(tmp_path / "res") as d:
         (d / "b").write_text("2")
     assert _names(tmp_path) == {"res"}
+
+
+def test_a_manifest_of_another_format_does_not_make_the_folder_ours(tmp_path):
+    # another program's manifest under our file name, listing its files with their true
+    # hashes: only our format marks a result of ours, so the folder is refused and left alone
+    import hashlib
+
+    out = tmp_path / "res"
+    out.mkdir()
+    (out / "data.csv").write_text("theirs\n")
+    digest = hashlib.sha256((out / "data.csv").read_bytes()).hexdigest()
+    (out / MANIFEST).write_text(json.dumps({"format": "some-other-tool", "command": "x",
+                                            "files": {"data.csv": digest}}))
+    with pytest.raises(ValueError, match=r"did not write"):
+        with output_directory(out, command="simulate") as d:
+            (d / "a.csv").write_text("1\n")
+    assert _names(out) == {"data.csv", MANIFEST}
+    assert (out / "data.csv").read_text() == "theirs\n"

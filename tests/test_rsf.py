@@ -493,3 +493,58 @@ def test_bad_stiffness_gives_the_same_message_everywhere(tmp_path: Path) -> None
     assert msg.startswith("stiffness = -3 is out of range") and "inf" in msg
     assert str(fit_model.value) == msg
     assert str(proto.value) == f"p.toml: in drive: {msg}"
+
+
+# ----------------------------------------------------------------------------- closed forms
+@pytest.mark.parametrize("law", ["ageing", "slip"])
+def test_state_rate_closed_forms(law: str) -> None:
+    """Dieterich's ageing law dtheta/dt = 1 - V theta/Dc; Ruina's slip law
+    -(V theta/Dc) ln(V theta/Dc); both vanish in steady state theta = Dc/V, and the slip law
+    does not evolve at rest. ``dc`` selects the second state variable's slip."""
+    p = lab(law, b2=0.003, dc2=1e-4)
+    v = np.array([1e-7, 1e-6, 3e-5, 1e-6])
+    theta = np.array([50.0, 0.4, 2.0, 10.0])
+    for dc in (DC, 1e-4):
+        om = v * theta / dc
+        exact = 1.0 - om if law == "ageing" else -om * np.log(om)
+        got = p.state_rate(v, theta) if dc == DC else p.state_rate(v, theta, dc=p.dc2)
+        np.testing.assert_allclose(got, exact, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(p.state_rate(v, DC / v), 0.0, atol=1e-14)
+    at_rest = p.state_rate(0.0, 30.0)
+    assert at_rest == (1.0 if law == "ageing" else 0.0)
+
+
+def test_two_state_hold_peak_matches_simulate_rsf() -> None:
+    """hold_peak_friction with two state variables: both heal by t_hold at rest (ageing law).
+    The reference is the kinematic simulation of the hold (regularised law, V = 0), whose
+    state variables after the hold give the reload friction."""
+    p = lab(b2=0.004, dc2=1e-4, regularized=True)
+    v = 1e-5
+    for th in (10.0, 1000.0):
+        r = simulate_rsf(p, SpringSlider([Segment(v, 50.0), Segment(0.0, th), Segment(v, 5.0)]),
+                         RSFInitial(theta=DC / v, theta2=1e-4 / v), RSFOutput(rtol=1e-11))
+        i = np.searchsorted(r.t, 50.0 + th, side="right") - 1  # start of the reload
+        assert r.theta2 is not None
+        assert r.theta2[i] == pytest.approx(1e-4 / v + th, rel=1e-9)
+        peak = float(p.friction(v, r.theta[i], r.theta2[i]))
+        assert float(p.hold_peak_friction(th, v)) == pytest.approx(peak, abs=1e-10)
+        # and the healing is the sum of both: b ln(1 + V t/Dc) + b2 ln(1 + V t/Dc2)
+        heal = B * math.log1p(v * th / DC) + 0.004 * math.log1p(v * th / 1e-4)
+        assert peak - float(p.steady_state_friction(v)) == pytest.approx(heal, abs=1e-9)
+
+
+def test_spring_outputs_are_consistent_with_the_velocity() -> None:
+    """Quasi-static damped spring slider through a velocity step: the reported position is the
+    integral of the reported velocity, x(t) - x(0) = int v dt, and the spring stress balances
+    friction plus radiation damping, stress = mu + eta V."""
+    p = lab()
+    eta = 200.0
+    te = np.linspace(0.0, 60.0, 60001)
+    r = simulate_rsf(p, SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 50.0)], stiffness=1e3,
+                                     damping=eta), output=RSFOutput(rtol=1e-10, t_eval=te))
+    np.testing.assert_allclose(r.stress, r.mu + eta * r.v, rtol=0, atol=1e-12)
+    dx = np.concatenate([[0.0], np.cumsum(0.5 * (r.v[1:] + r.v[:-1]) * np.diff(r.t))])
+    span = float(r.x[-1] - r.x[0])
+    assert span > 4e-4  # the slider moved forward about the load point's slip
+    # trapezoid error on this grid is far below 1e-6 of the slip
+    np.testing.assert_allclose(r.x - r.x[0], dx, rtol=0, atol=1e-6 * span)

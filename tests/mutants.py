@@ -1,0 +1,267 @@
+"""Hand-written mutation testing: does the test suite notice plausible mistakes?
+
+Run from the repository root (``make mutants``; not part of CI)::
+
+    python -m tests.mutants [--list] [--only NAME ...] [--timeout S] [--no-baseline]
+
+Each mutant is one exact text replacement in one source file, with the pytest selection that
+should notice it. The runner copies ``src/`` once to a temporary directory, first runs every
+selection there unchanged (the *baseline*: a selection that fails without a mutant could not
+tell killed from broken, and the run also fills that copy's Numba cache), then, per mutant,
+copies the warm tree again, applies the replacement and runs the selection with ``-x -q -p
+no:cacheprovider`` and a timeout, ``PYTHONPATH`` pointing at the copy. The working tree is never
+touched. A mutant whose original text is not found exactly once is *stale*: an error, reported
+as such (the source moved on; update the list).
+
+Exit status 0 only when every mutant applied cleanly, the baseline passed and at least
+:data:`REQUIRED_RATE` of the mutants were killed (a timeout counts as killed: the mutant made
+the selection hang or crawl, which the run would notice too).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+REQUIRED_RATE = 0.95
+D = "src/dryfriction/"
+
+
+@dataclass(frozen=True)
+class Mutant:
+    """One plausible mistake: ``original`` (found exactly once in ``file``) -> ``replacement``;
+    ``tests`` are pytest arguments (files, ``-k`` expressions) that should fail with it."""
+
+    name: str
+    file: str
+    original: str
+    replacement: str
+    tests: tuple[str, ...]
+
+
+def _m(name: str, file: str, original: str, replacement: str, *tests: str) -> Mutant:
+    return Mutant(name, D + file, original, replacement, tests)
+
+
+_DRV = "tests/test_driving.py"
+_RSF = "tests/test_rsf.py"
+
+MUTANTS: tuple[Mutant, ...] = (
+    # --- the survivors of the earlier measurement (issue 13) --------------------------------
+    _m("population: very strong pinning H0 in strong pinning", "ensemble/population.py",
+       "self._norm = 1.0 / (track.traps_per_a0 * trap.H0)",
+       "self._norm = 1.0 / (track.traps_per_a0 * trap.H0_paper)",
+       _DRV, "-k", "strong_pinning"),
+    _m("kernel: age restarts at the (+) -> (-) jump", "ensemble/kernel.py",
+       "                        if strong:\n                            s = 2\n",
+       "                        if strong:\n                            s = 2\n"
+       "                            tb = t1\n",
+       _DRV, "-k", "strong_pinning"),
+    _m("RateState.state_rate: ageing law sign flipped", "rsf/law.py",
+       "            return 1.0 - omega", "            return omega - 1.0",
+       _RSF, "-k", "state_rate"),
+    _m("hold_peak_friction: second state never heals", "rsf/law.py",
+       "th2 = None if self.dc2 is None else self.dc2 / v + heal",
+       "th2 = None if self.dc2 is None else self.dc2 / v",
+       _RSF, "-k", "two_state_hold"),
+    _m("RSF spring: slider position with the wrong sign", "rsf/result.py",
+       "load - (stress - stress0) / stiffness", "load + (stress - stress0) / stiffness",
+       _RSF, "-k", "spring_outputs"),
+    _m("RSF spring: quasi-static stress without eta V", "rsf/result.py",
+       "        stress = mu + damping * v", "        stress = mu + 0.0 * v",
+       _RSF, "-k", "spring_outputs"),
+    _m("atomic_write_bytes writes the file directly", "io/files.py",
+       "    fd, tmp = _make_temp(path.parent, path.name, directory=False)\n",
+       "    fd, tmp = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666), path\n",
+       "tests/test_io.py", "-k", "atomic_write"),
+    _m("Student-t quantile replaced by 1.96", "fit/statistics.py",
+       "return Z95 if sigma_given or dof <= 0 else float(stats.t.ppf(0.975, dof))",
+       "return Z95",
+       "tests/test_fit.py", "-k", "student_t"),
+    # --- trap geometry (theory/trap.py) ----------------------------------------------------
+    _m("spinodal y_c with 2 alpha", "theory/trap.py",
+       "(1.0 - self.alpha) ** 2 / (4.0 * self.alpha) if self.pinned",
+       "(1.0 - self.alpha) ** 2 / (2.0 * self.alpha) if self.pinned",
+       "tests/test_trap.py"),
+    _m("death point: min instead of max", "theory/trap.py",
+       "return max(self.y_c, 1.0)", "return min(self.y_c, 1.0)",
+       "tests/test_trap.py", "tests/test_steady.py"),
+    _m("spinodal force f_c with y_c + z_c", "theory/trap.py",
+       "6.0 * self.alpha * (self.y_c - self.z_c) if self.pinned",
+       "6.0 * self.alpha * (self.y_c + self.z_c) if self.pinned",
+       _DRV, "-k", "sawtooth"),
+    _m("H1: sign of the subtracted work", "theory/trap.py",
+       "return self.H0 - float(work_forward(self.y_c - 1.0, self.alpha))",
+       "return self.H0 + float(work_forward(self.y_c - 1.0, self.alpha))",
+       "tests/test_static.py"),
+    # --- creep laws (theory/creep.py) ------------------------------------------------------
+    _m("log creep law without eps", "theory/creep.py",
+       "        return 1.0 + self.eps * np.asarray(c, float)",
+       "        return 1.0 + np.asarray(c, float)",
+       "tests/test_creep.py"),
+    _m("Eyring-Nabarro radius without eps", "theory/creep.py",
+       "        return 1.0 / (1.0 - self.eps * np.asarray(c, float))",
+       "        return 1.0 / (1.0 - np.asarray(c, float))",
+       "tests/test_creep.py"),
+    # --- static and steady friction (theory/static.py, theory/steady.py) -------------------
+    _m("eq. 27: r^2 instead of r^3 on the aged traps", "theory/static.py",
+       "r**3 * (aged_plus + aged_minus)", "r**2 * (aged_plus + aged_minus)",
+       "tests/test_static.py"),
+    _m("steady death point: death_point instead of y_c", "theory/steady.py",
+       "    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)\n"
+       "    yc = Trap(alpha).y_c\n",
+       "    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)\n"
+       "    yc = Trap(alpha).death_point\n",
+       _DRV, "-k", "strong_pinning_steady"),
+    # --- the ensemble ------------------------------------------------------------------------
+    _m("kernel f_+: wrong root of z_+", "ensemble/kernel.py",
+       "    z = -0.5 * ((1.0 - alpha) + sd)", "    z = -0.5 * ((1.0 - alpha) - sd)",
+       "tests/test_ensemble.py"),
+    _m("kernel: (-) trap dies at y_c instead of w = 1", "ensemble/kernel.py",
+       "                    if w > 1.0:\n                        s = 3",
+       "                    if w > yc:\n                        s = 3",
+       _DRV, "-k", "strong_pinning"),
+    _m("steady initial state: age from p instead of p + 1", "ensemble/population.py",
+       "age = np.where(inside, (p + 1.0) / u, 0.0)", "age = np.where(inside, p / u, 0.0)",
+       "tests/test_ensemble.py", "-k", "steady"),
+    _m("driving: velocity of the segment before (off by one)", "ensemble/driving.py",
+       "side=\"right\")) - 1\n        v = float(", "side=\"right\")) - 2\n        v = float(",
+       _DRV, "tests/test_cli_simulate.py"),
+    # --- programs, rate-and-state --------------------------------------------------------------
+    _m("segment_index left-continuous at boundaries", "program.py",
+       "i = np.searchsorted(self.times, t, side=\"right\") - 1",
+       "i = np.searchsorted(self.times, t, side=\"left\") - 1",
+       "tests/test_protocol.py", _RSF, "-k", "not reference"),
+    _m("RSF friction: direct effect sign", "rsf/law.py",
+       "return self._psi(theta, theta2) + self.a * np.log(v / self.v0)",
+       "return self._psi(theta, theta2) - self.a * np.log(v / self.v0)",
+       _RSF, "-k", "not reference"),
+    _m("RSF steady state: b2 left out", "rsf/law.py",
+       "return self.mu0 + (self.a - self.b_total) * np.log(v / self.v0)",
+       "return self.mu0 + (self.a - self.b) * np.log(v / self.v0)",
+       _RSF),
+    # --- fitting, files, sweeps --------------------------------------------------------------
+    _m("fit: residual variance RSS/(2(n - p))", "fit/engine.py",
+       "(2.0 * cost / dof if dof > 0 else math.nan)", "(cost / dof if dof > 0 else math.nan)",
+       "tests/test_fit.py", "-k", "estimated_noise"),
+    _m("manifest check ignores the format", "io/files.py",
+       "if not isinstance(m, dict) or m.get(\"format\") != MANIFEST_FORMAT:",
+       "if not isinstance(m, dict):",
+       "tests/test_io.py", "-k", "manifest"),
+    _m("sweep point key leaves out the analysis", "io/sweep.py",
+       "return _digest({\"format\": SWEEP_FORMAT, \"version\": RESULT_VERSION, "
+       "\"analysis\": analysis,\n                    \"protocol\": protocol})[:32]",
+       "return _digest({\"format\": SWEEP_FORMAT, \"version\": RESULT_VERSION,\n"
+       "                    \"protocol\": protocol})[:32]",
+       "tests/test_sweep.py", "-k", "point_key"),
+)
+
+
+# ----------------------------------------------------------------------------- the runner
+def _apply(text: str, m: Mutant) -> str | None:
+    """The mutated text, or ``None`` when the original is not found exactly once (stale)."""
+    if text.count(m.original) != 1:
+        return None
+    return text.replace(m.original, m.replacement)
+
+
+def _pytest(src: Path, tests: tuple[str, ...], timeout: float) -> tuple[str, float, str]:
+    """Run a selection against the tree ``src``: ``("pass" | "fail" | "timeout", s, tail)``."""
+    env = {**os.environ, "PYTHONPATH": str(src)}
+    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *tests]
+    t0 = time.monotonic()
+    try:
+        p = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True,
+                           timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return "timeout", time.monotonic() - t0, ""
+    lines = (p.stdout + p.stderr).strip().splitlines()
+    # the failing test's name when pytest names one, else the last line (a collection error)
+    named = [ln for ln in lines if ln.startswith(("FAILED", "ERROR"))]
+    tail = (named or lines[-1:] or [""])[0]
+    return ("pass" if p.returncode == 0 else "fail"), time.monotonic() - t0, tail
+
+
+def _stale(mutants: tuple[Mutant, ...]) -> list[str]:
+    out = []
+    for m in mutants:
+        n = (ROOT / m.file).read_text().count(m.original)
+        if n != 1:
+            out.append(f"STALE {m.name}: original text found {n} times in {m.file}")
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m tests.mutants", description=__doc__.split("\n")[0])
+    ap.add_argument("--list", action="store_true", help="list the mutants and exit")
+    ap.add_argument("--only", nargs="+", metavar="TEXT",
+                    help="run only the mutants whose name contains one of these")
+    ap.add_argument("--timeout", type=float, default=300.0, help="seconds per pytest run")
+    ap.add_argument("--no-baseline", action="store_true",
+                    help="skip the unmutated run of each selection (faster, less safe)")
+    args = ap.parse_args(argv)
+    if args.timeout <= 0:
+        ap.error(f"--timeout = {args.timeout:g} is not allowed: > 0")
+    mutants = MUTANTS
+    if args.only:
+        mutants = tuple(m for m in MUTANTS if any(s in m.name for s in args.only))
+        if not mutants:
+            ap.error(f"--only {' '.join(args.only)}: no mutant's name contains that")
+    if args.list:
+        for m in mutants:
+            print(f"{m.name}  [{m.file}]  pytest {' '.join(m.tests)}")
+        return 0
+    stale = _stale(mutants)
+    for line in stale:
+        print(line, flush=True)
+    with tempfile.TemporaryDirectory(prefix="dryfriction-mutants-") as tmp:
+        base = Path(tmp) / "base" / "src"
+        # copy2 keeps the mtimes, so Numba's cache filled by the baseline stays valid for every
+        # file a mutant leaves alone
+        shutil.copytree(ROOT / "src", base, ignore=shutil.ignore_patterns("__pycache__",
+                                                                          "*.egg-info"))
+        broken: list[str] = []
+        if not args.no_baseline:
+            for sel in dict.fromkeys(m.tests for m in mutants):
+                res, dt, tail = _pytest(base, sel, args.timeout)
+                print(f"baseline {res:7s} {dt:6.1f}s  pytest {' '.join(sel)}", flush=True)
+                if res != "pass":
+                    broken.append(f"BASELINE FAILS: pytest {' '.join(sel)}: {tail}")
+                    print(broken[-1], flush=True)
+        killed = survived = 0
+        t_all = time.monotonic()
+        for m in mutants:
+            src = base.parent.parent / "mutant" / "src"
+            shutil.rmtree(src.parent, ignore_errors=True)
+            shutil.copytree(base, src)
+            target = src.parent / m.file
+            new = _apply(target.read_text(), m)
+            if new is None:
+                continue  # reported as stale above
+            target.write_text(new)
+            res, dt, tail = _pytest(src, m.tests, args.timeout)
+            ok = res != "pass"
+            killed += ok
+            survived += not ok
+            print(f"{'killed ' if ok else 'SURVIVED'} ({res:7s} {dt:6.1f}s) {m.name}"
+                  + (f"  <- {tail}" if ok and tail else ""), flush=True)
+        n = killed + survived
+        rate = killed / n if n else 0.0
+        print(f"\n{killed}/{n} mutants killed ({100 * rate:.1f} %, required "
+              f"{100 * REQUIRED_RATE:.0f} %); {len(stale)} stale; "
+              f"{time.monotonic() - t_all:.0f} s")
+        for line in stale + broken:
+            print(line)
+    return 0 if (rate >= REQUIRED_RATE and not stale and not broken) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
