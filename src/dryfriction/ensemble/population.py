@@ -53,7 +53,7 @@ from numpy.typing import NDArray
 from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
 from ..theory.static import loaded_edge
 from ..theory.trap import Regime, Trap
-from ..validation import ALPHA_MIN, EPS_MAX, check_choice, check_scalar
+from ..validation import ALPHA_MIN, EPS_MAX, U_MAX, U_MIN, check_choice, check_scalar
 from .kernel import FREE_FAR, FREE_NEAR, MINUS, OUT_SIZE, PLUS, advance_window, radius_table
 
 __all__ = [
@@ -208,7 +208,7 @@ class Initial:
         if self.kind == "steady":
             if self.velocity is None:
                 raise ValueError("initial_velocity is required for initial = 'steady'")
-            v = check_scalar("initial_velocity", self.velocity, 0.0, lo_open=True)
+            v = check_scalar("initial_velocity", self.velocity, U_MIN, U_MAX)
             object.__setattr__(self, "velocity", v)
         elif self.velocity is not None:
             raise ValueError(f"initial_velocity applies only to initial = 'steady', "
