@@ -46,7 +46,6 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy.optimize import brentq
 
 from ..program import VelocityProgram
@@ -66,7 +65,6 @@ __all__ = [
     "continue_spring",
 ]
 
-Array = NDArray[np.float64]
 Progress = Callable[[float], None]
 
 _TINY = 1e-10  # a0: how far past a spinodal the slider is moved to kill the trap (ours)

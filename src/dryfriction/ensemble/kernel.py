@@ -22,13 +22,12 @@ import math
 
 import numba
 import numpy as np
-from numpy.typing import NDArray
 
 from ..theory.creep import CreepLaw
+from ..validation import Array
 
 __all__ = ["FREE_NEAR", "PLUS", "MINUS", "FREE_FAR", "OUT_SIZE", "radius_table", "advance_window"]
 
-Array = NDArray[np.float64]
 
 # The kernel spells these states as the literals 0-3 (see advance_window).
 FREE_NEAR: int = 0

@@ -48,12 +48,11 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
 from ..theory.static import loaded_edge
 from ..theory.trap import Regime, Trap
-from ..validation import ALPHA_MIN, EPS_MAX, U_MAX, U_MIN, check_choice, check_scalar
+from ..validation import ALPHA_MIN, EPS_MAX, U_MAX, U_MIN, Array, check_choice, check_scalar
 from .kernel import FREE_FAR, FREE_NEAR, MINUS, OUT_SIZE, PLUS, advance_window, radius_table
 
 __all__ = [
@@ -68,7 +67,6 @@ __all__ = [
     "Ensemble",
 ]
 
-Array = NDArray[np.float64]
 
 LAYOUTS: tuple[str, ...] = ("regular", "random")
 INITIAL_KINDS: tuple[str, ...] = ("rest", "loaded", "steady")

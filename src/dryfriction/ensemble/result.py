@@ -11,17 +11,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..program import VelocityProgram
 from ..results import summarize
-from ..validation import check_range, check_scalar
+from ..validation import Array, check_range, check_scalar
 from .population import Ensemble, Observables
 
 __all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "sample_interval",
            "segment_grid"]
-
-Array = NDArray[np.float64]
 
 
 @dataclass(frozen=True)

@@ -43,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
-from ..validation import check_scalar
+from ..validation import Array, check_scalar
 from .law import RateState
 from .resources import check_rsf_run
 from .result import RSFResult, build_result, hermite
@@ -52,7 +52,6 @@ from .spring import RSFInitial, RSFOutput, SpringSlider, check_spring
 __all__ = ["RSFInitial", "RSFOutput", "RSFResult", "SolverError", "SpringSlider", "simulate_rsf",
            "linear_stability"]
 
-Array = NDArray[np.float64]
 
 # modes of the driver
 _KINEMATIC, _QUASISTATIC, _INERTIAL = 0, 1, 2

@@ -43,9 +43,9 @@ from dataclasses import asdict, dataclass
 from typing import Any, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from ..validation import check_choice, check_range, check_scalar
+from ..validation import Array, check_choice, check_range, check_scalar
 
 __all__ = ["RateState", "STATE_LAWS", "V_MAX"]
 
@@ -53,7 +53,6 @@ V_MAX: float = 1e3
 """Largest reference or load velocity accepted, m/s: far above seismic slip rates (~1 m/s);
 ``ln(V0 theta/Dc)`` and the integration stay finite below it."""
 
-Array = NDArray[np.float64]
 StateLaw = Literal["ageing", "slip"]
 STATE_LAWS: tuple[str, ...] = ("ageing", "slip")
 

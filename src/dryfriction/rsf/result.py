@@ -12,11 +12,11 @@ from numpy.typing import NDArray
 
 from ..program import VelocityProgram
 from ..results import summarize
+from ..validation import Array
 from .law import RateState
 
 __all__ = ["RSFResult", "UNITS", "build_result", "hermite"]
 
-Array = NDArray[np.float64]
 
 UNITS: dict[str, str] = {
     "t": "s", "x": "m", "v": "m/s", "mu": "", "theta": "s", "theta2": "s",

@@ -22,10 +22,9 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
-from ..validation import check_range, check_scalar
+from ..validation import Array, check_range, check_scalar
 from .law import V_MAX, RateState
 
 K_MAX: float = 1e15
@@ -35,7 +34,6 @@ integrated without the stiff spring's tiny time scale."""
 
 __all__ = ["RSFInitial", "RSFOutput", "SpringSlider", "check_spring"]
 
-Array = NDArray[np.float64]
 RTOL_RANGE = (1e-13, 1e-2)
 """Accepted local error tolerances of the solver."""
 
