@@ -463,3 +463,21 @@ def test_ctrl_c_prints_the_resume_command_which_finishes_the_sweep(tmp_path):
     assert resumed.returncode == 0, se
     assert "3 points, 0 failed" in so
     assert load_sweep(out / "sweep.nc")["class"].shape == (3,)
+
+
+def test_ctrl_c_while_the_cluster_starts_is_not_lost(tmp_path):
+    # the interrupt is recorded during the start and acted on as soon as it is over
+    import os
+    import signal
+
+    out = tmp_path / "o"
+    p = _cli_proto(tmp_path, '"drive.stiffness" = [0.04, 0.05, 0.06]\n', slip=60.0)
+    proc = _cli("sweep", p, "--out", out, "--workers", "2", start_new_session=True)
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 60 and not (out / "sweep.json").exists():
+        time.sleep(0.01)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "interrupted" in err, err
+    assert len(list((out / "points").glob("*.json"))) < 3

@@ -357,8 +357,19 @@ def _quiet_class(name: str) -> type:
             self.http_application = RoutingApplication(routes)  # stopping the node reads it
 
         base = Scheduler if name == "_QuietScheduler" else Worker
-        _QUIET[name] = type(name, (base,), {"start_http_server": start_http_server,
-                                            "__module__": __name__, "__qualname__": name})
+        attrs: dict[str, Any] = {"start_http_server": start_http_server,
+                                 "__module__": __name__, "__qualname__": name}
+        if base is Worker:
+            def __init__(self: Any, *args: Any, **kwargs: Any) -> None:  # noqa: N807
+                # a terminal's Ctrl-C reaches every process of its group: the sweep process
+                # handles it and closes the cluster; a worker printing its own traceback
+                # would only bury the one line that says how to resume
+                if threading.current_thread() is threading.main_thread():
+                    signal.signal(signal.SIGINT, signal.SIG_IGN)
+                base.__init__(self, *args, **kwargs)
+
+            attrs["__init__"] = __init__
+        _QUIET[name] = type(name, (base,), attrs)
     return _QUIET[name]
 
 
@@ -404,19 +415,19 @@ def _client(scheduler: str | None, n_workers: int | None,
 
 @contextlib.contextmanager
 def _sigint_held() -> Iterator[list[int]]:
-    """Hold back Ctrl-C while the cluster starts; yield a list that records one if it came.
+    """Record a Ctrl-C that comes while the cluster starts; yield the list that records it.
 
-    A terminal sends Ctrl-C to every process of its group, and each worker would print its
-    own traceback: the workers are started with SIGINT ignored (an ignored signal stays
-    ignored across exec, and Python then installs no handler of its own), so the sweep
-    process alone handles it and closes the cluster. Known gap: a Ctrl-C during the start
-    itself (a few seconds) is ignored too. Only possible in the main thread; elsewhere a no-op.
+    The start must not be cut in the middle (a half-started cluster leaves processes behind),
+    and the interrupt must not be lost either: it is recorded here and acted on as soon as the
+    start is over (the caller closes the cluster and raises ``KeyboardInterrupt``). The
+    workers ignore SIGINT themselves (``_QuietWorker``), so they print no tracebacks. Only
+    possible in the main thread; elsewhere a no-op.
     """
     caught: list[int] = []
     if threading.current_thread() is not threading.main_thread():
         yield caught
         return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
     try:
         yield caught
     finally:
