@@ -54,7 +54,7 @@ def fit_command(
     from ..validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))
-    check_output_dir(out_dir, force=force, inputs=data)
+    check_output_dir(out_dir, force=force)
     fixed: dict[str, float] = {}
     for item in fix or []:
         name, sep, value = item.partition("=")

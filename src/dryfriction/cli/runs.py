@@ -162,7 +162,7 @@ def simulate(
     from ..io.protocol import RSFProtocol, load_protocol
 
     proto = load_protocol(protocol)  # every check before any work
-    check_output_dir(out, force=force, inputs=[protocol])
+    check_output_dir(out, force=force)
     if isinstance(proto, RSFProtocol):
         _simulate_rsf_protocol(proto, protocol, out, json_out, force)
         return
@@ -234,7 +234,7 @@ def compare(
 
     check_choice("state_law", state_law, ("ageing", "slip"))
     proto = load_protocol(protocol)
-    check_output_dir(out, force=force, inputs=[protocol])
+    check_output_dir(out, force=force)
     c = compare_protocol(proto, state_law)
     report = {"protocol": protocol, **c.to_dict()}
 

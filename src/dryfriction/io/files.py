@@ -253,8 +253,7 @@ def check_writable_dir(out: str | os.PathLike[str]) -> Path:
     return out
 
 
-def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
-                     inputs: Iterable[str | os.PathLike[str]] = ()) -> Path:
+def check_output_dir(out: str | os.PathLike[str], *, force: bool = False) -> Path:
     """Check, before any work, that ``out`` can receive a result; raise ``ValueError`` if not.
 
     Parameters
@@ -263,8 +262,6 @@ def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
         The results folder: new, empty, or holding a previous result of ours.
     force : bool
         Accept a folder that holds other files too (they are kept; see the module docstring).
-    inputs : paths
-        The files the run reads: never replaced, never removed.
     """
     out = check_writable_dir(out)
     if out.is_dir() and not force:
@@ -278,7 +275,6 @@ def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
             raise ValueError(
                 f"--out {out} holds {what} ({shown}): choose a new or empty folder, or add "
                 "--force to write beside them (nothing there is deleted or overwritten)")
-    _ = _resolved(inputs)  # an unreadable input path fails here, before any work
     return out
 
 
@@ -400,7 +396,7 @@ def output_directory(out: str | os.PathLike[str], *, command: str = "results",
     report : callable, optional
         ``report(line)`` for what happened to existing files (default: nothing).
     """
-    out = check_output_dir(out, force=force, inputs=inputs)
+    out = check_output_dir(out, force=force)
     protected = _resolved(inputs)
     say = report if report is not None else (lambda line: None)
     existed = out.is_dir()
