@@ -339,3 +339,21 @@ def test_a_manifest_of_another_format_does_not_make_the_folder_ours(tmp_path):
             (d / "a.csv").write_text("1\n")
     assert _names(out) == {"data.csv", MANIFEST}
     assert (out / "data.csv").read_text() == "theirs\n"
+
+
+def test_a_file_appearing_during_the_run_refuses_the_whole_result(tmp_path):
+    # the check comes before any file moves: the earlier results must not be half-replaced
+    out = tmp_path / "res"
+    with output_directory(out) as d:
+        (d / "a").write_text("old a")
+        (d / "b").write_text("old b")
+    with pytest.raises(ValueError, match="appeared there during the run"):
+        with output_directory(out) as d:
+            (d / "a").write_text("new a")
+            (d / "b").write_text("new b")
+            (d / "c").write_text("new c")
+            (out / "c").write_text("someone else's")  # after the checks, before the commit
+    assert (out / "a").read_text() == "old a" and (out / "b").read_text() == "old b"
+    assert (out / "c").read_text() == "someone else's"
+    assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"a", "b"}
+    assert not [n for n in _names(tmp_path) | _names(out) if ".dftmp-" in n]

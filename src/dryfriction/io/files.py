@@ -328,6 +328,8 @@ def _commit(stage: Path, out: Path, command: str, protected: set[Path], force: b
     new = _relative_files(stage)
     digests = {rel: _sha256(stage / rel) for rel in new}
     replaced, removed, backed_up, kept = [], [], [], {}
+    collide = []
+    # every refusal before the first file moves: "nothing was written" must stay true
     for rel in new:
         dest = out / rel
         if dest.resolve() in protected:
@@ -338,13 +340,17 @@ def _commit(stage: Path, out: Path, command: str, protected: set[Path], force: b
                     old_files[rel] == _sha256(dest):
                 replaced.append(rel)
             elif force:
-                backup = _backup_name(dest)
-                os.replace(dest, backup)
-                backed_up.append(f"{rel} -> {backup.name}")
+                collide.append(dest)
             else:  # appeared during the run
                 raise ValueError(f"--out {out}: {rel} appeared there during the run and is "
                                  "not ours; nothing was written (use --force to keep it as a "
                                  "backup)")
+    for dest in collide:
+        backup = _backup_name(dest)
+        os.replace(dest, backup)
+        backed_up.append(f"{dest.relative_to(out).as_posix()} -> {backup.name}")
+    for rel in new:
+        dest = out / rel
         dest.parent.mkdir(parents=True, exist_ok=True)
         os.replace(stage / rel, dest)
     for rel, digest in old_files.items():
