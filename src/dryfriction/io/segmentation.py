@@ -101,8 +101,14 @@ def hinge_segments(
     min_duration: float = 0.0,
     penalty: float = 10.0,
     max_segments: int = 10_000,
+    max_points: int = 20_000,
 ) -> list[int]:
     """Sample indices of the slope changes of ``x(t)``, with ``0`` and ``len(t)`` at the ends.
+
+    A long record (more than ``max_points`` samples) is searched on the means of blocks of
+    ``len(t) // max_points`` samples (time averaged too, so the sampling may vary), and each
+    change found is then placed on the samples within two blocks of it: the cost stays
+    about linear in the length. A stretch is then at least three blocks long.
 
     Parameters
     ----------
@@ -117,21 +123,48 @@ def hinge_segments(
         ``penalty * sigma**2 * ln(n)``.
     max_segments : int
         Stop splitting beyond this many stretches.
+    max_points : int
+        Longest signal searched sample by sample.
     """
     n = len(t)
     xs = (np.asarray(x, float) - x[0]) / sigma
-    threshold = penalty * np.log(max(n, 2))
+    block = max(1, n // max_points)
+    if block == 1:
+        return _segment(t, xs, penalty * np.log(max(n, 2)), min_samples, min_duration,
+                        max_segments)
+    nb = n // block
+    tb = t[: nb * block].reshape(nb, block).mean(axis=1)
+    xb = xs[: nb * block].reshape(nb, block).mean(axis=1)
+    # white noise averages down by sqrt(block); slow wander (a motor's wobble) does not
+    sb = max(1.0 / np.sqrt(block), noise_level(xb))
+    coarse = _segment(tb, xb / sb, penalty * np.log(nb), max(3, -(-min_samples // block)),
+                      min_duration, max_segments)
+    out = [0]
+    for j in range(1, len(coarse) - 1):
+        k = coarse[j] * block
+        a = max(out[-1], k - 2 * block)
+        b = min(coarse[j + 1] * block, k + 2 * block)
+        kk, _ = _best_hinge(t[a:b], xs[a:b], min(min_samples, (b - a) // 3), 0.0)
+        out.append(a + kk if kk > 0 else k)
+    # a block that straddles a kink lies off both lines: it may have left a short stretch
+    return prune(t, xs, out + [n], penalty * np.log(n), min_samples, 0.0, window=4 * block)
+
+
+def _segment(t: Array, xs: Array, threshold: float, m: int, min_dur: float,
+             max_segments: int) -> list[int]:
+    """Binary segmentation, then each boundary refined and the stretches pruned."""
+    n = len(t)
     bounds = [0, n]
     todo = [(0, n)]
     while todo and len(bounds) - 1 < max_segments:
         a, b = todo.pop()
-        k, gain = _best_hinge(t[a:b], xs[a:b], min_samples, min_duration)
+        k, gain = _best_hinge(t[a:b], xs[a:b], m, min_dur)
         if k > 0 and gain > threshold:
             bounds.append(a + k)
             todo += [(a, a + k), (a + k, b)]
     bounds.sort()
-    bounds = refine(t, xs, bounds, min_samples, min_duration)
-    return prune(t, xs, bounds, threshold, min_samples, min_duration)
+    bounds = refine(t, xs, bounds, m, min_dur)
+    return prune(t, xs, bounds, threshold, m, min_dur)
 
 
 def _rss(t: Array, xs: Array, bounds: list[int]) -> float:
@@ -145,12 +178,14 @@ def _rss(t: Array, xs: Array, bounds: list[int]) -> float:
 
 
 def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
-          min_dur: float) -> list[int]:
+          min_dur: float, window: int | None = None) -> list[int]:
     """Drop the stretches that do not earn their place, shortest first.
 
     Binary segmentation can leave a short stretch across a kink (two splits where one
     would do): a stretch is dropped when one hinge between its neighbours fits within
-    ``threshold`` (in RSS) of the three stretches.
+    ``threshold`` (in RSS) of the three stretches. With ``window``, only stretches shorter
+    than ``2 * window`` samples are tried, each on its neighbours' samples within
+    ``window`` of it (the cost stays local).
     """
     out = list(bounds)
     changed = True
@@ -158,18 +193,23 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
         changed = False
         order = sorted(range(len(out) - 1), key=lambda j: out[j + 1] - out[j])
         for j in order:
+            if window is not None and out[j + 1] - out[j] >= 2 * window:
+                break
             lo, hi = max(j - 1, 0), min(j + 2, len(out) - 1)
-            a, b = out[lo], out[hi]
-            now = _rss(t, xs, out[lo:hi + 1])
-            if hi - lo == 3:
-                k, _ = _best_hinge(t[a:b], xs[a:b], m, min_dur)
+            sub = list(out[lo:hi + 1])
+            if window is not None:
+                sub[0], sub[-1] = max(sub[0], out[j] - window), min(sub[-1], out[j + 1] + window)
+            a, b = sub[0], sub[-1]
+            now = _rss(t, xs, sub)
+            if len(sub) == 4:
+                k, _ = _best_hinge(t[a:b], xs[a:b], min(m, (b - a) // 3), 0.0)
                 if k <= 0:
                     continue
-                alt = [a, a + k, b]
+                alt, new = [a, a + k, b], [a + k]
             else:
-                alt = [a, b]
+                alt, new = [a, b], []
             if _rss(t, xs, alt) - now < threshold:
-                out[lo:hi + 1] = alt
+                out[lo + 1:hi] = new
                 changed = True
                 break
     return out
