@@ -3,6 +3,7 @@ column; the load program detected from a noisy displacement; the steps cut from 
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -324,3 +325,26 @@ def test_shared_record_program_and_step() -> None:
     w = steps[0]
     assert w.v_before < w.v_after and w.i_start < segs[1].i_start < w.i_end
     assert r.time[segs[1].i_start] - r.time[w.i_start] == pytest.approx(250.0, abs=1.0)
+
+
+# ----------------------------------------------------------------------------- command line
+def test_record_command_shows_columns_program_and_steps(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    rec = synthetic([(0.0, 1e-6), (200.0, 1e-5)], 400.0, seed=7)
+    rows = np.column_stack([rec.time, rec.load_point * 1e3, rec.friction])
+    p = write(tmp_path, table("time[s],LP_disp[mm],mu", rows.tolist(), ","), "r.csv")
+    runner = CliRunner()
+    r = runner.invoke(app, ["record", str(p)])
+    assert r.exit_code == 0, r.output
+    assert "LP_disp[mm]" in r.output and "velocity (m/s)" in r.output
+    assert "step" in r.output.split("steps:")[1]
+    r = runner.invoke(app, ["record", str(p), "--segments", "0:1e-6,200:1e-5", "--json"])
+    assert r.exit_code == 0, r.output
+    rep = json.loads(r.output)
+    assert [s["velocity"] for s in rep["segments"]] == [1e-6, 1e-5]
+    assert rep["steps"][0]["t_change"] == pytest.approx(700.0)
+    r = runner.invoke(app, ["record", str(p), "--columns", "disp=nope"])
+    assert r.exit_code == 2 and "r.csv, line 1" in r.output and "nope" in r.output
