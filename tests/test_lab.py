@@ -257,6 +257,17 @@ def test_detects_velocity_steps_through_noise_and_a_sampling_rate_change() -> No
     assert segs[0].velocity == segs[2].velocity == segs[4].velocity
 
 
+def test_slow_wobble_makes_no_false_steps_and_keeps_the_hold() -> None:
+    # a load point that wobbles 0.3 um with a 20 s period (a motor's gear), sampled 10x
+    # faster from 650 s: short stretches' slopes scatter, yet they are neither steps nor moves
+    prog = [(0.0, 1e-6), (300.0, 1e-5), (420.0, 1e-6), (700.0, 3e-6), (900.0, 0.0),
+            (1000.0, 1e-6)]
+    rec = synthetic(prog, 1300.0, noise=0.5e-6, dt=(0.1, 0.01), t_rate=650.0, seed=3)
+    x = np.asarray(rec.load_point) + 0.3e-6 * np.sin(2 * np.pi * rec.time / 20.0)
+    wobbly = LabRecord("w.txt", rec.time, x, None, rec.friction, None, "", {}, 2)
+    check_program(detect_segments(wobbly), prog, 500.0, 0.1)
+
+
 def test_detects_holds_and_slices_slide_hold_slide() -> None:
     prog = [(0.0, 1e-5), (100.0, 0.0), (130.0, 1e-5), (230.0, 0.0), (530.0, 1e-5),
             (640.0, 3e-5)]

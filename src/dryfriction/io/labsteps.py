@@ -120,36 +120,60 @@ def detect_segments(
     sigma = max(noise_level(x), 1e-9 * span, 1e-300)
     bounds = hinge_segments(t, x, sigma, min_samples=min_samples, min_duration=min_duration,
                             penalty=penalty)
+    xs = (x - x[0]) / sigma
+    wander = _wander(t, xs, bounds) * sigma
     while True:
         fits = [line_fit(t[a:b], x[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
         vel = [f[0] for f in fits]
         vmax = max(abs(v) for v in vel)
-        hold = [abs(v) <= (hold_velocity if hold_velocity is not None else
-                           max(4.0 * sigma / np.sqrt(f[2]), 1e-4 * vmax)) for v, f in
-                zip(vel, fits, strict=True)]
+        # a velocity is known to within white noise over the stretch's samples, and to within
+        # the slow wander (a motor's wobble) over its duration: 2 sqrt(12) w / T at most
+        noise = [max(4.0 * sigma / np.sqrt(f[2]),
+                     2.0 * np.sqrt(12.0) * wander / max(t[b - 1] - t[a], 1e-300))
+                 for f, a, b in zip(fits, bounds[:-1], bounds[1:], strict=True)]
+        hold = [abs(v) <= (hold_velocity if hold_velocity is not None else max(e, 1e-4 * vmax))
+                for v, e in zip(vel, noise, strict=True)]
         join = [j for j in range(1, len(vel)) if (hold[j] and hold[j - 1]) or (
-            not hold[j] and not hold[j - 1]
-            and abs(vel[j] - vel[j - 1]) <= rel_tol * max(abs(vel[j]), abs(vel[j - 1])))]
+            not hold[j] and not hold[j - 1] and abs(vel[j] - vel[j - 1]) <= max(
+                rel_tol * max(abs(vel[j]), abs(vel[j - 1])), noise[j] + noise[j - 1]))]
         if not join:
             break
-        bounds = refine(t, (x - x[0]) / sigma, [b for j, b in enumerate(bounds) if j not in join],
-                        min_samples, min_duration)
-    plateau = list(vel)
+        gone = set(join)
+        near = {bounds[i] for j in join for i in (j - 1, j + 1) if i not in gone}
+        bounds = refine(t, xs, [b for j, b in enumerate(bounds) if j not in gone],
+                        min_samples, min_duration, only=near)
+    # one plateau value for the velocities within rel_tol of each other (same sign)
+    plateau = [0.0] * len(vel)
     order = sorted((j for j in range(len(vel)) if not hold[j]), key=lambda j: vel[j])
     groups: list[list[int]] = []
     for j in order:
-        if groups and vel[groups[-1][-1]] * (1 + rel_tol) >= vel[j] > 0 or (
-                groups and vel[groups[-1][0]] * (1 - rel_tol) <= vel[j] < 0):
+        p = groups[-1][-1] if groups else None
+        if p is not None and vel[p] * vel[j] > 0 and (
+                abs(vel[j] - vel[p]) <= rel_tol * max(abs(vel[j]), abs(vel[p]))):
             groups[-1].append(j)
         else:
             groups.append([j])
     for g in groups:
-        w = np.array([t[min(bounds[j + 1], len(t) - 1)] - t[bounds[j]] for j in g])
+        w = np.array([t[bounds[j + 1] - 1] - t[bounds[j]] for j in g])
         v = float(np.average([vel[j] for j in g], weights=w if w.sum() > 0 else None))
         for j in g:
             plateau[j] = v
-    return _make_segments(t, bounds, [0.0 if h else v for v, h in zip(plateau, hold,
-                                                                      strict=True)])
+    # neighbours that now share a value are one stretch
+    keep = [0] + [bounds[j] for j in range(1, len(plateau)) if plateau[j] != plateau[j - 1]]
+    vals = [plateau[0]] + [plateau[j] for j in range(1, len(plateau))
+                           if plateau[j] != plateau[j - 1]]
+    return _make_segments(t, keep + [len(t)], vals)
+
+
+def _wander(t: Array, xs: Array, bounds: list[int]) -> float:
+    """RMS of the residuals about the broken line beyond the white noise (``xs`` in units of
+    the noise): the slow part that makes short stretches' slopes scatter."""
+    total = 0.0
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        slope, mean, _ = line_fit(t[a:b], xs[a:b])
+        r = xs[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
+        total += float(np.sum(r * r))
+    return float(np.sqrt(max(total / len(t) - 1.0, 0.0)))
 
 
 def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:

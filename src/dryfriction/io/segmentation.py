@@ -101,7 +101,7 @@ def hinge_segments(
     min_duration: float = 0.0,
     penalty: float = 10.0,
     max_segments: int = 10_000,
-    max_points: int = 20_000,
+    max_points: int = 5_000,
 ) -> list[int]:
     """Sample indices of the slope changes of ``x(t)``, with ``0`` and ``len(t)`` at the ends.
 
@@ -188,6 +188,7 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
     ``window`` of it (the cost stays local).
     """
     out = list(bounds)
+    kept: set[tuple[int, ...]] = set()  # the outcome depends only on these boundaries
     changed = True
     while changed and len(out) > 2:
         changed = False
@@ -199,11 +200,14 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
             sub = list(out[lo:hi + 1])
             if window is not None:
                 sub[0], sub[-1] = max(sub[0], out[j] - window), min(sub[-1], out[j + 1] + window)
+            if tuple(sub) in kept:
+                continue
             a, b = sub[0], sub[-1]
             now = _rss(t, xs, sub)
             if len(sub) == 4:
                 k, _ = _best_hinge(t[a:b], xs[a:b], min(m, (b - a) // 3), 0.0)
                 if k <= 0:
+                    kept.add(tuple(sub))
                     continue
                 alt, new = [a, a + k, b], [a + k]
             else:
@@ -212,13 +216,18 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
                 out[lo + 1:hi] = new
                 changed = True
                 break
+            kept.add(tuple(sub))
     return out
 
 
-def refine(t: Array, xs: Array, bounds: list[int], m: int, min_dur: float) -> list[int]:
-    """Move each inner boundary to the best hinge between its two neighbours (one pass)."""
+def refine(t: Array, xs: Array, bounds: list[int], m: int, min_dur: float,
+           only: set[int] | None = None) -> list[int]:
+    """Move each inner boundary (or those whose sample index is in ``only``) to the best hinge
+    between its two neighbours (one pass)."""
     out = list(bounds)
     for j in range(1, len(out) - 1):
+        if only is not None and out[j] not in only:
+            continue
         a, b = out[j - 1], out[j + 1]
         k, _ = _best_hinge(t[a:b], xs[a:b], m, min_dur)
         if k > 0:
