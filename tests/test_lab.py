@@ -268,6 +268,13 @@ def test_slow_wobble_makes_no_false_steps_and_keeps_the_hold() -> None:
     check_program(detect_segments(wobbly), prog, 500.0, 0.1)
 
 
+def test_wide_range_of_velocities_slowest_is_not_a_hold() -> None:
+    # 0.1 and 300 um/s in one record (factor 3000), then a real hold
+    prog = [(0.0, 3e-4), (50.0, 1e-7), (550.0, 3e-4), (600.0, 0.0), (700.0, 1e-7)]
+    rec = synthetic(prog, 1200.0, noise=0.3e-6, seed=8)
+    check_program(detect_segments(rec), prog, 500.0, 0.1)
+
+
 def test_detects_holds_and_slices_slide_hold_slide() -> None:
     prog = [(0.0, 1e-5), (100.0, 0.0), (130.0, 1e-5), (230.0, 0.0), (530.0, 1e-5),
             (640.0, 3e-5)]
