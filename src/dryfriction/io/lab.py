@@ -370,9 +370,9 @@ def read_record(
     src = str(path)
     size = path.stat().st_size
     with open(path, "rb") as fh:
-        chunk = fh.read(65536)
+        chunk = fh.read(1 << 20)
     head = _decode(chunk).splitlines()
-    if len(chunk) == 65536 and len(head) > 1:
+    if len(chunk) == 1 << 20 and len(head) > 1:
         head.pop()  # may be cut short
     header, hline, sample, sline, units_row = None, 0, None, 0, None
     for n, line in enumerate(head, start=1):

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..validation import Array
-from .segmentation import hinge_segments, line_fit, noise_level, refine
+from .segmentation import hinge_segments, line_fit, noise_level, refine, rss
 
 if TYPE_CHECKING:
     from .lab import LabRecord
@@ -168,12 +168,7 @@ def detect_segments(
 def _wander(t: Array, xs: Array, bounds: list[int]) -> float:
     """RMS of the residuals about the broken line beyond the white noise (``xs`` in units of
     the noise): the slow part that makes short stretches' slopes scatter."""
-    total = 0.0
-    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
-        slope, mean, _ = line_fit(t[a:b], xs[a:b])
-        r = xs[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
-        total += float(np.sum(r * r))
-    return float(np.sqrt(max(total / len(t) - 1.0, 0.0)))
+    return float(np.sqrt(max(rss(t, xs, bounds) / len(t) - 1.0, 0.0)))
 
 
 def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..validation import Array
 
-__all__ = ["noise_level", "line_fit", "hinge_segments", "refine", "prune"]
+__all__ = ["noise_level", "line_fit", "rss", "hinge_segments", "refine", "prune"]
 
 
 def noise_level(x: Array) -> float:
@@ -167,7 +167,7 @@ def _segment(t: Array, xs: Array, threshold: float, m: int, min_dur: float,
     return prune(t, xs, bounds, threshold, m, min_dur)
 
 
-def _rss(t: Array, xs: Array, bounds: list[int]) -> float:
+def rss(t: Array, xs: Array, bounds: list[int]) -> float:
     """Residual sum of squares of a line fitted to each stretch."""
     total = 0.0
     for a, b in zip(bounds[:-1], bounds[1:], strict=True):
@@ -203,7 +203,7 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
             if tuple(sub) in kept:
                 continue
             a, b = sub[0], sub[-1]
-            now = _rss(t, xs, sub)
+            now = rss(t, xs, sub)
             if len(sub) == 4:
                 k, _ = _best_hinge(t[a:b], xs[a:b], min(m, (b - a) // 3), 0.0)
                 if k <= 0:
@@ -212,7 +212,7 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
                 alt, new = [a, a + k, b], [a + k]
             else:
                 alt, new = [a, b], []
-            if _rss(t, xs, alt) - now < threshold:
+            if rss(t, xs, alt) - now < threshold:
                 out[lo + 1:hi] = new
                 changed = True
                 break
