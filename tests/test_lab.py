@@ -72,6 +72,12 @@ def test_tab_dialect_disp_um_time_ms(tmp_path: Path) -> None:
     r = read_record(write(tmp_path, table("Time(ms)\tDisp(um)\tFriction", rows)))
     assert r.time[1] == pytest.approx(0.5) and r.load_point[1] == pytest.approx(2e-6)
     assert r.normal_stress is None and r.normal_unit == ""
+    # trailing empty columns on every line; the effective normal stress wins over the total
+    text = "Time(s)\tNormal_stress(MPa)\tDisp(um)\tEffective_normal_stress(MPa)\tmu\t\t\n"
+    text += "".join(f"{i}\t50\t{i}\t30\t0.6\t\t\n" for i in range(12))
+    r = read_record(write(tmp_path, text, "trailing.txt"))
+    assert r.columns["normal"] == "Effective_normal_stress(MPa)"
+    assert r.normal_stress[0] == pytest.approx(30e6) and len(r) == 12
 
 
 @pytest.mark.parametrize("header, column, value, expect", [
