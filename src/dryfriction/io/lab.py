@@ -400,6 +400,24 @@ def read_record(
                          f"{len(names)}: separate the columns with tabs or commas")
     idx, forced = _assign(src, hline, names, columns)
     row_units = _header_cells(units_row[0], delim) if units_row else []
+    roles = list(idx)
+    factors: dict[str, float] = {}
+    kinds: dict[str, str] = {}
+    units: dict[str, str] = {}
+    for role in roles:  # every unit is checked before the data are read
+        j = idx[role]
+        unit = forced.get(role)
+        if unit is None:
+            unit = _split_cell(names[j])[1]
+        if unit is None and j < len(row_units):
+            unit = row_units[j].strip().strip("()[]")
+        where = f"{src}, line {hline}, column {j + 1} ({names[j].strip()})"
+        factors[role], kinds[role] = _unit(role, unit or "", where)
+        units[role] = unit or ""
+    if "mu" not in idx and kinds["shear"] != kinds["normal"]:
+        raise ValueError(f"{src}, line {hline}: shear column {names[idx['shear']]!r} is a "
+                         f"{kinds['shear']} and normal column {names[idx['normal']]!r} a "
+                         f"{kinds['normal']}: friction needs two stresses or two forces")
     need = size + size / max(len(sample), 8) * (120 + 24 * len(idx))
     check_memory(f"{src}: reading this {size / 1e6:.0f} MB record needs", need,
                  "split the file")
@@ -408,30 +426,18 @@ def read_record(
         raw = fh.read()
     if decimal_comma:
         raw = raw.replace(b",", b".")
-    roles = list(idx)
     usecols = [idx[r] for r in roles]
     data = _parse(raw, sline - 1, delim, usecols, src, names, roles)
     line_of = _line_mapper(raw, sline, len(data))
     vals: dict[str, Array] = {}
-    kinds: dict[str, str] = {}
-    units: dict[str, str] = {}
     for k, role in enumerate(roles):
-        j = idx[role]
-        where = f"{src}, line {hline}, column {j + 1} ({names[j].strip()})"
-        unit = forced.get(role)
-        if unit is None:
-            unit = _split_cell(names[j])[1]
-        if unit is None and j < len(row_units):
-            unit = row_units[j].strip().strip("()[]")
-        factor, kinds[role] = _unit(role, unit or "", where)
-        units[role] = unit or ""
-        col = data[:, k]
+        j, col = idx[role], data[:, k]
         bad = ~np.isfinite(col)
         if bad.any():
             i = int(np.argmax(bad))
             raise ValueError(f"{src}, line {line_of(i)}, column {j + 1} ({names[j].strip()}): "
                              f"{col[i]} is not a finite number")
-        vals[role] = col * factor if factor != 1.0 else col.copy()
+        vals[role] = col * factors[role] if factors[role] != 1.0 else col.copy()
     if len(data) < MIN_ROWS:
         raise ValueError(f"{src}, line {line_of(len(data) - 1)}: only {len(data)} data rows: "
                          f"at least {MIN_ROWS} needed")
@@ -444,10 +450,6 @@ def read_record(
     if "mu" in vals:
         friction = vals["mu"]
     else:
-        if kinds["shear"] != kinds["normal"]:
-            raise ValueError(f"{src}, line {hline}: shear column {names[idx['shear']]!r} is a "
-                             f"{kinds['shear']} and normal column {names[idx['normal']]!r} a "
-                             f"{kinds['normal']}: friction needs two stresses or two forces")
         zero = np.flatnonzero(vals["normal"] == 0.0)
         if zero.size:
             j = idx["normal"]

@@ -81,11 +81,17 @@ def detect_segments(
     """The load program of a record: constant load velocities and holds, from the displacement.
 
     The displacement is cut where its slope changes (:func:`.segmentation.hinge_segments`: a
-    continuous broken line against *time*, so noise and sampling-rate changes do not matter);
-    neighbours whose velocities differ by less than ``rel_tol`` are joined, and velocities
+    continuous broken line against *time*, so noise and sampling-rate changes do not matter;
+    a change starts at the sample where the two lines meet); neighbours whose velocities
+    differ by less than ``rel_tol``, or by less than their noise, are joined, and velocities
     within ``rel_tol`` of each other anywhere in the record are set to their common
     (duration-weighted) plateau value: a record that returns to 0.2 um/s gives 0.2 um/s each
     time. A stretch slower than the hold velocity is a hold (velocity 0).
+
+    A stretch's velocity noise is the larger of 4 standard errors from the white noise of
+    the displacement and ``2 sqrt(12) w / T``, with ``w`` the slow wander of the displacement
+    about the broken line (a motor's wobble; RMS beyond the white noise) and ``T`` the
+    stretch's duration.
 
     Parameters
     ----------
@@ -94,8 +100,8 @@ def detect_segments(
     rel_tol : float
         Relative difference below which two velocities are one, ``0 < rel_tol < 1``.
     hold_velocity : float, optional
-        Speed (m/s) below which a stretch is a hold. Default: the larger of 4 standard errors
-        of the stretch's velocity (noise) and 1e-4 of the fastest velocity in the record.
+        Speed (m/s) below which a stretch is a hold. Default: the larger of the stretch's
+        velocity noise and 1e-4 of the fastest velocity in the record.
     min_samples, min_duration : int, float
         Shortest stretch, in samples (``>= 3``) and in seconds.
     penalty : float
