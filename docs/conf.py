@@ -59,6 +59,7 @@ sphinx_gallery_conf = {
     "matplotlib_animations": False,
     "within_subsection_order": "FileNameSortKey",
     "show_memory": False,
+    "capture_repr": (),  # no "Out: Text(...)" under the figures
     # its page loads DataTables from a CDN: the site must work offline
     "write_computation_times": False,
     "plot_gallery": "True",
