@@ -104,6 +104,18 @@ def test_wheel_ships_the_package_and_the_examples(tmp_path: Path) -> None:
         assert mod in names
     assert not any(n.startswith("tests/") or n.endswith((".pyc", ".nbc", ".nbi"))
                    for n in names)
+    # installed from the wheel, the examples are found as package data (not the checkout's)
+    site = tmp_path / "site"
+    zipfile.ZipFile(wheel).extractall(site)
+    r = subprocess.run([sys.executable, "-c", "from dryfriction.io.examples import "
+                        "examples_path, example_files; print(examples_path()); "
+                        "print(len(example_files()))"],
+                       capture_output=True, text=True, timeout=120, cwd=tmp_path,
+                       env={**os.environ, "PYTHONPATH": str(site)})
+    assert r.returncode == 0, r.stderr
+    where, count = r.stdout.split()
+    assert Path(where) == site / "dryfriction" / "examples"
+    assert int(count) == len(example_files())
     meta = zipfile.ZipFile(wheel).read(
         next(n for n in names if n.endswith("METADATA"))).decode()
     requires = [line for line in meta.splitlines() if line.startswith("Requires-Dist:")]

@@ -27,8 +27,8 @@ SETUP = ("make", "source", ".", "cd")
 
 SKIPPED: dict[str, str] = {
     "dryfriction phase-diagram examples/phase_diagram.toml --out phase/ --workers 2":
-        "a 3 x 3 grid of stick-slip runs on a Dask cluster, about 70 s on 2 cores; the sweep "
-        "runner in tests/test_sweep.py, the phase diagram figure in tests/test_plots.py",
+        "a 3 x 3 grid of stick-slip runs on a Dask cluster, about 70 s on 2 cores; tested "
+        "instead: the sweep runner (tests/test_sweep.py) and the figure (tests/test_plots.py)",
 }
 SLOW = ("dryfriction fit", "dryfriction compare", "dryfriction simulate", "dryfriction reproduce")
 

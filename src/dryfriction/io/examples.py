@@ -8,7 +8,6 @@ README's command lines run as written (``dryfriction simulate DIR/velocity_step.
 
 from __future__ import annotations
 
-import importlib.resources
 import os
 import shutil
 from collections.abc import Callable
@@ -27,16 +26,12 @@ def examples_path() -> Path:
     OSError
         When neither exists (a broken install).
     """
-    try:
-        found = Path(str(importlib.resources.files("dryfriction.examples")))
-    except ModuleNotFoundError:
-        found = None
-    if found is not None and (found / "velocity_step.toml").is_file():
-        return found
-    # running from a source tree on PYTHONPATH=src: the examples sit beside src/
-    checkout = Path(__file__).resolve().parents[3] / "examples"
-    if (checkout / "velocity_step.toml").is_file():
-        return checkout
+    here = Path(__file__).resolve()
+    # installed: the package data beside the package's modules; a source tree run with
+    # PYTHONPATH=src (or installed editable): the repository's examples/ beside src/
+    for folder in (here.parents[1] / "examples", here.parents[3] / "examples"):
+        if (folder / "velocity_step.toml").is_file():
+            return folder
     raise OSError("the examples are not installed with this copy of dryfriction "
                   "(expected the package data dryfriction/examples)")
 
