@@ -24,7 +24,8 @@ def test_records_keep_order_values_and_kinds() -> None:
     rec = records({"b": [3.0, 4.0], "a": np.array([1, 2], np.int32), "ok": [True, False]})
     assert rec.dtype.names == ("b", "a", "ok")
     # a column reordered or shifted by one record would pass a length check, not this one
-    assert rec["b"].tolist() == [3.0, 4.0] and rec["a"].tolist() == [1.0, 2.0]
+    assert rec["b"].tolist() == [3.0, 4.0] and rec["a"].tolist() == [1, 2]
+    assert rec["a"].dtype == np.int32 and rec["b"].dtype == np.float64
     assert rec["ok"].dtype == bool and rec[1]["ok"] == np.False_
     rows = records([{"n": "eps", "v": 0.1, "e": None}, {"n": "t0", "v": 2.0, "e": 0.5}])
     assert rows["n"].tolist() == ["eps", "t0"] and np.isnan(rows["e"][0]) and rows["e"][1] == 0.5

@@ -121,8 +121,8 @@ def records(columns: Mapping[str, ArrayLike] | Sequence[Mapping[str, Any]]) -> n
     ----------
     columns : mapping or sequence of mappings
         Equal-length 1-D columns by name, or rows (``{name: scalar}``, every row with the same
-        names in the same order). Numbers become ``float64`` (integers and booleans keep their
-        kind), ``None`` becomes NaN, text a fixed-width unicode field.
+        names in the same order). Floats become ``float64``, integers and booleans keep their
+        kind, ``None`` among numbers becomes NaN, text is a fixed-width unicode field.
 
     Returns
     -------
@@ -163,9 +163,7 @@ def _column(name: str, values: ArrayLike) -> np.ndarray:
             raw = np.array(["" if v is None else str(v) for v in items])
     if raw.ndim != 1:
         raise ValueError(f"column {name!r} has shape {raw.shape}: a record field must be 1-D")
-    if raw.dtype.kind in "fc" or raw.dtype.kind == "i" and raw.dtype.itemsize < 8:
-        return raw.astype(np.result_type(raw.dtype, np.float64))
-    return raw
+    return raw.astype(np.float64) if raw.dtype.kind == "f" else raw
 
 
 def to_dataframe(columns: Mapping[str, ArrayLike] | np.ndarray) -> Any:
