@@ -6,6 +6,7 @@ allowed range, before any work starts. The CLI turns these into one line and exi
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import re
@@ -25,6 +26,8 @@ __all__ = [
     "format_bytes",
     "memory_limit",
     "parse_bytes",
+    "require_extra",
+    "MissingExtraError",
     "MEMORY_ENV",
     "ALPHA_MIN",
     "EPS_MAX",
@@ -258,3 +261,37 @@ def check_memory(what: str, need: float, hint: str) -> None:
     if not need <= limit:  # NaN (an estimate that overflowed) is refused too
         raise ValueError(f"{what} ({format_bytes(need)}), more than the limit "
                          f"{format_bytes(limit)}: {hint} or set {MEMORY_ENV}")
+
+
+class MissingExtraError(ImportError, ValueError):
+    """An optional dependency group (``pip install 'dryfriction[NAME]'``) is not installed.
+
+    Also a :class:`ValueError`, so the CLI reports it in one line (exit code 2) like bad input.
+    """
+
+
+def require_extra(extra: str, modules: tuple[str, ...], purpose: str) -> None:
+    """Raise :class:`MissingExtraError` naming the extra to install when any of ``modules``
+    (top-level import names) is missing. Looks the modules up without importing them.
+
+    Parameters
+    ----------
+    extra : str
+        Name of the optional dependency group in ``pyproject.toml`` (e.g. ``"sweep"``).
+    modules : tuple of str
+        Top-level modules the feature imports.
+    purpose : str
+        What needs them, for the message ("a sweep").
+    """
+    missing = []
+    for name in modules:
+        try:
+            found = importlib.util.find_spec(name) is not None
+        except (ImportError, ValueError):  # a broken or half-removed install counts as missing
+            found = False
+        if not found:
+            missing.append(name)
+    if missing:
+        raise MissingExtraError(
+            f"{purpose} needs the optional packages {', '.join(missing)}: "
+            f"pip install 'dryfriction[{extra}]'")

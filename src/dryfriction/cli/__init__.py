@@ -11,7 +11,7 @@ from typing import Any
 
 import typer
 
-from . import fitting, model, record, runs, sweeps  # noqa: F401  (registers the commands)
+from . import examples, fitting, model, record, runs, sweeps  # noqa: F401  (registers the commands)
 from .common import app, error_line
 
 __all__ = ["app", "main"]

@@ -21,8 +21,10 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
 
     from ..io.files import check_writable_dir
     from ..io.protocol import spring_point
-    from ..io.sweep import MAX_POINTS, parse_sweep
+    from ..io.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
+    from ..validation import require_extra
 
+    require_extra("sweep", SWEEP_MODULES, "a sweep")  # before any work, like bad input
     path = Path(protocol)
     try:
         text = path.read_bytes().decode("utf-8")

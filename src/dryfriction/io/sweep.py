@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from ..validation import check_scalar
+from ..validation import check_scalar, require_extra
 from .files import atomic_write_bytes, check_writable_dir, write_json
 
 __all__ = [
@@ -61,6 +61,7 @@ __all__ = [
 
 MAX_POINTS = 2000
 """Largest grid run without ``confirm=True`` (``--yes`` on the command line)."""
+SWEEP_MODULES = ("dask", "distributed", "xarray")  # the optional extra dryfriction[sweep]
 
 Runner = Callable[[dict[str, Any]], Mapping[str, float]]
 
@@ -497,6 +498,7 @@ def run_sweep(
     SweepInterrupted
         On Ctrl-C, after the cluster is closed; the finished points are stored.
     """
+    require_extra("sweep", SWEEP_MODULES, "a sweep")
     if spec.size > MAX_POINTS and not confirm:
         raise ValueError(
             f"the grid has {spec.size} points, more than {MAX_POINTS}: confirm with --yes"
