@@ -20,9 +20,9 @@ from dryfriction.io.lab import (
     slice_steps,
 )
 
-SHARED = Path("/work/shared/data/lab/sepiolite_velstep_0.2-2um_s.txt")
-if not SHARED.exists():  # the copy shipped with the project, where there is one
-    SHARED = Path(__file__).resolve().parents[1] / "examples" / "data" / SHARED.name
+# shipped with its licence and citation (examples/data/lab/README.md)
+SHARED = (Path(__file__).resolve().parents[1] / "examples" / "data" / "lab"
+          / "sepiolite_velstep_0.2-2um_s.txt")
 
 
 def write(tmp_path: Path, text: str, name: str = "rec.txt") -> Path:
@@ -41,7 +41,6 @@ def ramp(n: int = 12) -> list[list[float]]:
 
 
 # ----------------------------------------------------------------------------- reading
-@pytest.mark.skipif(not SHARED.exists(), reason="shared lab record not present")
 def test_shared_record_reads_in_si() -> None:
     r = read_record(SHARED)
     assert len(r) == 23790 and r.first_line == 2  # README: 23,790 rows under one header
@@ -334,7 +333,6 @@ def test_segments_given_by_hand() -> None:
             parse_segments(bad, rec)
 
 
-@pytest.mark.skipif(not SHARED.exists(), reason="shared lab record not present")
 def test_shared_record_program_and_step() -> None:
     r = read_record(SHARED)
     segs = detect_segments(r)

@@ -30,6 +30,7 @@ def test_every_source_package_is_listed_for_the_wheel() -> None:
     found = {".".join(p.parent.relative_to(SRC).parts) for p in SRC.rglob("__init__.py")}
     assert found <= listed
     assert listed - found == {"dryfriction.examples", "dryfriction.examples.data",
+                              "dryfriction.examples.data.lab",
                               "dryfriction.examples.gallery"}
 
 
