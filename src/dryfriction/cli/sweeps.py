@@ -78,7 +78,8 @@ def _resume_command(command: str, protocol: str, out_dir: str, scheduler: str | 
 
 def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                   workers: int | None, confirm: bool, *, source: str = "",
-                  protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "") -> Any:
+                  protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "",
+                  variables: Any = None) -> Any:
     """:func:`~dryfriction.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
     are stored and the command that resumes, and exits with 130."""
     from rich.progress import (
@@ -102,7 +103,8 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
 
             return run_sweep(spec, runner, out_dir, scheduler=scheduler, n_workers=workers,
                              confirm=confirm, progress=progress, source=source,
-                             protocol_text=protocol_text, connect_timeout=connect_timeout)
+                             protocol_text=protocol_text, connect_timeout=connect_timeout,
+                             variables=variables)
     except SweepInterrupted as exc:
         err.print(f"[bold yellow]interrupted:[/] {exc.stored} of {exc.total} points stored in "
                   f"{out_dir}; resume with: {resume}", highlight=False, soft_wrap=True)
@@ -150,17 +152,19 @@ def sweep(
     """Run a parameter grid on Dask: stick-slip summaries (default) or linear stability,
     written to OUT/sweep.nc. Re-running the same command resumes; exit code 1 if any point
     failed, 130 on Ctrl-C."""
-    from ..analysis.linear import linear_summary
-    from ..analysis.stickslip import stick_slip_summary
+    from ..analysis import linear as linear_analysis
+    from ..analysis import stickslip
 
     spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, linear,
                                 connect_timeout)
-    runner = linear_summary if linear else stick_slip_summary
+    runner, variables = (
+        (linear_analysis.linear_summary, linear_analysis.SWEEP_VARIABLES) if linear
+        else (stickslip.stick_slip_summary, stickslip.SWEEP_VARIABLES))
     resume = _resume_command("sweep", protocol, out_dir, scheduler, workers, yes, linear,
                              connect_timeout)
     ds = _run_with_bar(spec, runner, out_dir, scheduler, workers, yes,
                        source=protocol, protocol_text=_text_of(protocol),
-                       connect_timeout=connect_timeout, resume=resume)
+                       connect_timeout=connect_timeout, resume=resume, variables=variables)
     out.print(f"wrote {out_dir}/sweep.nc: {spec.size} points, {ds.attrs['n_failed']} failed; "
               f"variables {', '.join(v for v in ds.data_vars if v != 'error')}",
               highlight=False, soft_wrap=True)
@@ -183,7 +187,7 @@ def phase_diagram(
     Exit code 1 if any point failed, 130 on Ctrl-C (re-run to resume)."""
     import io as _io
 
-    from ..analysis.stickslip import CLASSES, phase_axes, stick_slip_summary
+    from ..analysis.stickslip import CLASSES, SWEEP_VARIABLES, phase_axes, stick_slip_summary
     from ..io.files import atomic_write_bytes
     from ..plots.runs import phase_diagram_figure
     from ..plots.style import save_png
@@ -195,7 +199,8 @@ def phase_diagram(
                              False, connect_timeout)
     ds = _run_with_bar(spec, stick_slip_summary, out_dir, scheduler, workers, yes,
                        source=protocol, protocol_text=_text_of(protocol),
-                       connect_timeout=connect_timeout, resume=resume)
+                       connect_timeout=connect_timeout, resume=resume,
+                       variables=SWEEP_VARIABLES)
     fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
     buf = _io.BytesIO()
     save_png(fig, buf)
