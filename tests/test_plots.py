@@ -237,6 +237,7 @@ def _fig2() -> Figure:
 
 PAPER = {
     "fig1": lambda: paper.fig1_trap_hysteresis()[0],
+    "fig1b": lambda: paper.fig1b_population_at_rest()[0],
     "fig2": _fig2,
     "fig3": lambda: paper.fig3_static_friction(n=41)[0],
     "fig4": lambda: paper.fig4_steady_pinning_curve()[0],
@@ -279,6 +280,51 @@ def test_paper_figures_fit_their_fixed_layout(name):
 @pytest.mark.parametrize("name", sorted(UNITS))
 def test_run_figures_fit_their_fixed_layout(figures, name):
     _assert_laid_out(figures[name][0], name)
+
+
+def test_fig1b_population_at_rest_cancels_and_spans_one_a0_each_side():
+    # eq. 25: (+) on -a0 < p < 0, (-) on 0 < p < a0, forces cancel (the Maxwell plateau)
+    _, ax = paper.fig1b_population_at_rest()
+    occ = {ln.get_label(): ln for ln in ax.lines if ln.get_label().startswith("occupied")}
+    assert len(occ) == 2
+    (plus,) = [ln for k, ln in occ.items() if "(+)" in k]
+    (minus,) = [ln for k, ln in occ.items() if "(−)" in k]
+    pp, fp = plus.get_xdata(), plus.get_ydata()
+    pm, fm = minus.get_xdata(), minus.get_ydata()
+    assert (pp.min(), pp.max()) == (-1.0, 0.0) and (pm.min(), pm.max()) == (0.0, 1.0)
+    assert (fp >= 0).all() and (fm <= 0).all()
+    om = np.argsort(pm)  # the (-) branch is drawn right to left
+    total = np.trapezoid(fp, pp) + np.trapezoid(fm[om], pm[om])
+    assert abs(total) < 1e-9 * np.trapezoid(fp, pp)
+
+
+def test_fig3_shows_the_first_order_lines_over_the_curves():
+    # they lie within 6e-4 of the full curves: under them they were invisible, yet in the legend
+    _, ax = paper.fig3_static_friction(n=41)
+    curves = [ln for ln in ax.lines if ln.get_label().startswith("(")]
+    first = [ln for ln in ax.lines if ln.get_color() == "k" and len(ln.get_xdata())]
+    assert len(curves) == len(first) == 5
+    assert all(f.get_zorder() > c.get_zorder() for f in first for c in curves)
+    assert all(f.get_linestyle() != "-" for f in first)
+    assert any("eq. 28" in t.get_text() for t in ax.get_legend().get_texts())
+
+
+def test_fig6_names_every_c_in_the_legend_and_writes_nothing_on_the_curves():
+    _, ax = paper.fig6_dieterich(n=41)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    for C in (1, 2, 3, 4):
+        assert any(lb.endswith(f"$C$ = {C}") for lb in labels), labels
+    assert not ax.texts  # a label on a curve is struck through by its neighbours
+
+
+def test_trap_forces_share_one_unit_across_figures():
+    units = set()
+    for fn in (paper.fig1_trap_hysteresis, paper.fig1b_population_at_rest,
+               paper.fig2a_aged_pinning_curve, paper.fig2b_population_at_threshold,
+               paper.fig4_steady_pinning_curve):
+        label = fn()[1].get_ylabel()
+        units.add(label[label.index("["):])
+    assert units == {r"[$\Phi_{00}/a_0$]"}
 
 
 def test_layout_check_catches_a_clipped_label():
