@@ -70,6 +70,10 @@ def cli_errors(fn: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
+FORMAT_HELP = "Figure file format: png, pdf or svg (vector)."
+DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 110; 300 for print)."
+
+
 FORCE_HELP = ("Write into a folder that holds other files too: they are kept (one whose name "
                "collides with a result is renamed NAME.~1~); nothing is deleted.")
 

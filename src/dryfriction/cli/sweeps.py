@@ -8,7 +8,7 @@ from typing import Any
 import typer
 import typer.core
 
-from .common import app, cli_errors, err, error_line, out
+from .common import DPI_HELP, FORMAT_HELP, app, cli_errors, err, error_line, out
 
 
 def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | None,
@@ -182,6 +182,8 @@ def phase_diagram(
     workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
     yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
     connect_timeout: float = typer.Option(10.0, "--connect-timeout", help=_TIMEOUT_HELP),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line.
     Exit code 1 if any point failed, 130 on Ctrl-C (re-run to resume)."""
@@ -190,8 +192,10 @@ def phase_diagram(
     from ..analysis.stickslip import CLASSES, SWEEP_VARIABLES, phase_axes, stick_slip_summary
     from ..io.files import atomic_write_bytes
     from ..plots.runs import phase_diagram_figure
-    from ..plots.style import save_png
+    from ..plots.style import save_figure
+    from ..validation import check_figure_format
 
+    fmt, dpi = check_figure_format(fmt, dpi)
     spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, False,
                                 connect_timeout)
     k_key, v_key = phase_axes(spec)  # before any worker starts
@@ -203,14 +207,14 @@ def phase_diagram(
                        variables=SWEEP_VARIABLES)
     fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
     buf = _io.BytesIO()
-    save_png(fig, buf)
-    atomic_write_bytes(Path(out_dir) / "phase_diagram.png", buf.getvalue())
+    save_figure(fig, buf, fmt, dpi)
+    atomic_write_bytes(Path(out_dir) / f"phase_diagram.{fmt}", buf.getvalue())
     counts = {}
     for c, name in CLASSES.items():
         n = int((ds["class"].values == c).sum()) if "class" in ds else 0
         if n:
             counts[name] = n
-    out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.png: "
+    out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.{fmt}: "
               + ", ".join(f"{k} {v}" for k, v in counts.items())
               + f", failed {ds.attrs['n_failed']}", highlight=False, soft_wrap=True)
     _fail_if_points_failed(ds, out_dir)

@@ -18,12 +18,14 @@ from __future__ import annotations
 
 import base64
 import html
+import io
 import math
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..io.files import atomic_write_text, output_directory, to_jsonable, write_csv, write_json
 from ..theory.creep import creep_law_difference, radius
@@ -45,8 +47,9 @@ from ..theory.steady import (
     steady_friction,
 )
 from ..theory.trap import Trap
+from ..validation import check_figure_format
 from . import paper as plotting
-from .style import PANEL, new_figure, save_png
+from .style import PANEL, new_figure, save_figure
 
 __all__ = ["reproduce", "report_html", "build_info", "FIGURE_FILES", "EXTRA_FILES", "DATA_FILES",
            "GRID"]
@@ -69,29 +72,29 @@ DATA_FILES = ("static_friction.csv", "steady_friction.csv", "summary.json", "rep
 Progress = Callable[[int, int, str], None]
 
 
-def _fig1(path: Path) -> None:
+def _fig1() -> Figure:
     fig, (ax_a, ax_b) = new_figure((2 * PANEL[0], PANEL[1]), 1, 2)
     plotting.fig1_trap_hysteresis(ALPHA, ax=ax_a)
     plotting.fig1b_population_at_rest(ALPHA, ax=ax_b)
-    save_png(fig, path)
+    return fig
 
 
-def _fig2(path: Path) -> None:
+def _fig2() -> Figure:
     fig, (ax_a, ax_b) = new_figure((2 * PANEL[0], PANEL[1]), 1, 2)
     plotting.fig2a_aged_pinning_curve(T_FIG2, EPS_FIG2, ALPHA, ax=ax_a)
     plotting.fig2b_population_at_threshold(T_FIG2, EPS_FIG2, ALPHA, ax=ax_b)
-    save_png(fig, path)
+    return fig
 
 
-def _single(fn: Callable[..., Any], **kw: Any) -> Callable[[Path], None]:
-    def draw(path: Path) -> None:
+def _single(fn: Callable[..., Any], **kw: Any) -> Callable[[], Figure]:
+    def draw() -> Figure:
         fig, _ = fn(**kw)
-        save_png(fig, path)
+        return fig  # type: ignore[no-any-return]
 
     return draw
 
 
-def _plots() -> list[tuple[str, Callable[[Path], None]]]:
+def _plots() -> list[tuple[str, Callable[[], Figure]]]:
     # looked up at call time so that tests can replace a plotting function
     return [
         ("fig1.png", _fig1),
@@ -254,9 +257,12 @@ def build_info() -> dict[str, str]:
     return {"version": __version__, "commit": commit, "date": now}
 
 
-def _img(folder: Path, name: str) -> str:
-    data = base64.b64encode((folder / name).read_bytes()).decode("ascii")
-    return f'<img alt="{html.escape(name)}" src="data:image/png;base64,{data}">'
+_MIME = {"png": "image/png", "svg": "image/svg+xml"}
+
+
+def _img(name: str, mime: str, raw: bytes) -> str:
+    data = base64.b64encode(raw).decode("ascii")
+    return f'<img alt="{html.escape(name)}" src="data:{mime};base64,{data}">'
 
 
 def _fmt(x: Any, digits: int = 6) -> str:
@@ -265,7 +271,8 @@ def _fmt(x: Any, digits: int = 6) -> str:
     return html.escape(str(x))
 
 
-def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = None) -> str:
+def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = None,
+                images: dict[str, tuple[str, str, bytes]] | None = None) -> str:
     """The text of ``report.html``: key numbers beside the paper's, claims checked, readings,
     the loaded protocol and every figure of ``folder`` embedded (nothing fetched).
 
@@ -277,6 +284,9 @@ def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = 
         The summary (:func:`compute_summary`).
     build : dict, optional
         ``version``, ``commit`` and ``date`` shown on the page (default :func:`build_info`).
+    images : dict, optional
+        PNG name (``"fig1.png"``) -> ``(file name, MIME type, bytes)`` of the image to embed;
+        default: the PNGs in ``folder``.
     """
     e = html.escape
     b = build or build_info()
@@ -350,8 +360,10 @@ def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = 
         ("extra_creep.png", "Extra (ours) — logarithmic creep law (eq. 17) against the exact "
          "Eyring–Nabarro law (eqs. 15–16)."),
     ]
+    if images is None:
+        images = {n: (n, "image/png", (folder / n).read_bytes()) for n, _ in figs}
     fig_html = "".join(
-        f"<figure>{_img(folder, n)}<figcaption>{e(c)}</figcaption></figure>" for n, c in figs
+        f"<figure>{_img(*images[n])}<figcaption>{e(c)}</figcaption></figure>" for n, c in figs
     )
     ratio = s["static_slope_per_eps"] / abs(s["dynamic_slope_per_eps"])
     return f"""<!DOCTYPE html>
@@ -429,7 +441,8 @@ ln(1+T) between T = 1 and 100, divided by ε.</p>
 
 
 def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool = False,
-              report: Callable[[str], None] | None = None) -> dict[str, Any]:
+              report: Callable[[str], None] | None = None, fmt: str = "png",
+              dpi: int | None = None) -> dict[str, Any]:
     """Write the paper's figures, data, summary and report into ``out`` (whole or not at all).
 
     Parameters
@@ -444,12 +457,18 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         Write beside other files in ``out`` (kept; see :func:`dryfriction.io.output_directory`).
     report : callable, optional
         ``report(line)`` for what was done to files already in ``out``.
+    fmt : str
+        Format of the figures: png, pdf or svg (``fig1.svg``, ...). report.html embeds them
+        (a PDF as a PNG rendered beside it, since browsers show no PDF in a page).
+    dpi : int, optional
+        Resolution of PNG figures (default :data:`.style.DPI`).
 
     Returns
     -------
     dict
         The summary written to ``summary.json``.
     """
+    fmt, dpi = check_figure_format(fmt, dpi)
     plots = _plots()
     total = len(plots) + 4
 
@@ -469,11 +488,20 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         write_json(tmp / "summary.json", summary)
         done += 1
         tick(done, "summary.json")
+        images: dict[str, tuple[str, str, bytes]] = {}
         for name, draw in plots:
-            draw(tmp / name)
+            fig = draw()
+            target = tmp / name.replace(".png", f".{fmt}")
+            save_figure(fig, target, fmt, dpi)
+            if fmt in _MIME:
+                images[name] = (target.name, _MIME[fmt], target.read_bytes())
+            else:
+                buf = io.BytesIO()
+                save_figure(fig, buf, "png")
+                images[name] = (target.name, "image/png", buf.getvalue())
             done += 1
-            tick(done, name)
-        atomic_write_text(tmp / "report.html", report_html(tmp, summary))
+            tick(done, target.name)
+        atomic_write_text(tmp / "report.html", report_html(tmp, summary, images=images))
         done += 1
         tick(done, "report.html")
     return summary
