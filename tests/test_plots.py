@@ -105,8 +105,9 @@ def run_figures() -> dict[str, tuple[Figure, object]]:
 UNITS = {
     "timeseries": [("[$t_0$]", "F_{el}"), ("[$a_0$]", "F_{el}"), ("[$t_0$]", "[$a_0/t_0$]"),
                    ("[$t_0$]", "[$a_0$]")],
-    "rsf_timeseries": [("[s]", r"\mu"), ("[m]", r"\mu"), ("[s]", "[m/s]")],
-    "rsf": [(None, r"\mu"), ("[s]", "[m/s]")],
+    "rsf_timeseries": [("[s]", r"\mu"), ("[m]", r"\mu"), ("[s]", "[m/s]"),
+                       ("[m/s]", r"\mu")],
+    "rsf": [("[s]", r"\mu"), ("[s]", "[m/s]"), ("[m/s]", r"\mu")],
     "compare": [("[$t_0$]", "F_{el}"), ("[$a_0$]", "F_{el}"), ("[$a_0$]", "F_{el}")],
     "phase_diagram": [("[$a_0/t_0$]", "[$F_{el}/a_0$]")],
 }

@@ -82,7 +82,9 @@ def rsf(
     v1: float = typer.Option(1e-6, help="Load velocity of the first segment, m/s."),
     v2: float = typer.Option(1e-5, help="Load velocity after the step (case step), m/s."),
     t1: float = typer.Option(10.0, help="Duration of the first segment, s."),
-    t2: float = typer.Option(30.0, help="Duration of the last segment, s."),
+    t2: float = typer.Option(None, help="Duration of the last segment, s (default: 30 for "
+                             "step; for shs long enough to pass the reload peak and slide "
+                             "10 Dc beyond)."),
     hold: float = typer.Option(100.0, help="Hold time (case shs), s."),
     v_init: float = typer.Option(None, help="Initial slip velocity, m/s, with the state at "
                                  "steady state for v_init (default v1; 1.01 v1 for "
@@ -108,6 +110,8 @@ def rsf(
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
     fmt, dpi = check_figure_format(fmt, dpi)
+    if t2 is None:
+        t2 = _reload_time(a, b, dc, v1, hold, stiffness) if case == "shs" else 30.0
     from ..rsf.law import V_MAX
 
     # durations and velocities a run can reach in floating point (a 1e308 s first segment
@@ -155,6 +159,35 @@ def rsf(
             save_figure(fig, tmp / f"rsf.{fmt}", fmt, dpi)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
+    if case == "shs" and _peak_at_end(res, t1 + hold):
+        say(f"note: the reload had not reached its peak when the run ended (t2 = {t2:g} s): "
+            "raise --t2")
+
+
+def _reload_time(a: float, b: float, dc: float, v: float, hold: float,
+                 stiffness: float) -> float:
+    """Duration (s) of the reload of a slide-hold-slide at load velocity ``v`` that passes the
+    peak: the spring takes up the friction the contact healed during the hold (about
+    ``b ln(1 + hold v/dc)`` plus the direct effect ``a``, over ``stiffness``), then the slider
+    slides ``10 dc`` (the evolution back to steady state). At least 30 s."""
+    import math
+
+    if not (a > 0 and dc > 0 and v != 0 and math.isfinite(a + b + dc + v + hold)):
+        return 30.0  # the law's own checks reject these, with their own message
+    speed = abs(v)
+    heal = max(b, 0.0) * math.log1p(hold * speed / dc) + 2.0 * a
+    load = heal / (stiffness * speed) if math.isfinite(stiffness) and stiffness > 0 else 0.0
+    return max(30.0, min(load + 10.0 * dc / speed, LOAD_MAX))
+
+
+def _peak_at_end(res: Any, reload_start: float) -> bool:
+    """Whether the friction of the reload (after ``reload_start``) is still at its maximum at
+    the last sample: the run ended before the peak."""
+    import numpy as np
+
+    sel = np.asarray(res.t) >= reload_start
+    mu = np.asarray(res.mu)[sel]
+    return bool(mu.size > 1 and int(np.argmax(mu)) == mu.size - 1)
 
 
 @app.command()

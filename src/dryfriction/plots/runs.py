@@ -223,9 +223,32 @@ def timeseries_figure(result: Any) -> tuple[Figure, Any]:
     return fig, grid.ravel()
 
 
+def _friction_against_velocity(ax: Any, result: Any) -> None:
+    """Friction against the slip velocity on a log axis (the plot rate-and-state users read),
+    with the law's steady state ``mu_ss(V)`` for reference: a velocity step is a loop around
+    it, a slide-hold-slide a detour to low velocity and back over the peak."""
+    v = _positive(np.abs(np.asarray(result.v, float)))
+    ax.semilogx(v, result.mu, lw=LINE, label="run")
+    ok = v[np.isfinite(v)]
+    if ok.size:
+        grid = np.geomspace(ok.min(), ok.max(), 200) if ok.max() > ok.min() else ok[:1]
+        try:
+            ss = result.params.steady_state_friction(grid)
+        except (AttributeError, ValueError):  # a stand-in without the law, or no steady state
+            ss = None
+        if ss is not None:
+            ax.semilogx(grid, ss, lw=THIN, ls="--", color="0.35",
+                        label=r"steady state $\mu_{ss}(V)$")
+        ax.plot(ok[:1], np.asarray(result.mu, float)[np.isfinite(v)][:1], "o", ms=4,
+                color="C0")  # where the run starts
+    ax.set_xlabel(r"slip velocity $V$  [m/s]  (log scale: $\ln V$)")
+    ax.set_ylabel(FRICTION_SI)
+    ax.legend(fontsize=LEGEND_SIZE)
+
+
 def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
     """Rate-and-state run (``simulate`` with ``law = "rsf"``): friction against time and slip,
-    slip and load velocity against time.
+    slip and load velocity against time, friction against ``ln V``.
 
     Parameters
     ----------
@@ -235,9 +258,9 @@ def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
     Returns
     -------
     fig, axes
-        A new figure and its three axes.
+        A new figure and its four axes.
     """
-    fig, axes = _stack(3, f"rate-and-state, {result.params.state_law} law")
+    fig, axes = _stack(4, f"rate-and-state, {result.params.state_law} law")
     t, x, mu = result.t, result.x, result.mu
     axes[0].plot(t, mu, lw=THIN, label="friction")
     if result.damping or result.mass:
@@ -255,12 +278,13 @@ def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
     axes[2].set_xlabel(TIME_S)
     axes[2].set_ylabel(VELOCITY_SI)
     axes[2].legend(fontsize=LEGEND_SIZE)
+    _friction_against_velocity(axes[3], result)
     return fig, axes
 
 
 def rsf_figure(result: Any, title: str) -> tuple[Figure, Any]:
     """``rsf.png`` of the ``rsf`` command: friction and spring force, slip and load velocity,
-    against time (SI units).
+    against time, and friction against ``ln V`` with the steady state (SI units).
 
     Parameters
     ----------
@@ -272,9 +296,10 @@ def rsf_figure(result: Any, title: str) -> tuple[Figure, Any]:
     Returns
     -------
     fig, axes
-        A new figure and its two axes (time shared).
+        A new figure and its three axes (the first two share time).
     """
-    fig, (ax1, ax2) = _stack(2, title, sharex=True)
+    fig, (ax1, ax2, ax3) = _stack(3, title)
+    ax2.sharex(ax1)
     ax1.plot(result.t, result.mu, lw=LINE, label="friction")
     ax1.plot(result.t, result.stress, lw=THIN, ls="--", label="spring force / normal force")
     ax1.set_ylabel(FRICTION_SI)
@@ -282,10 +307,12 @@ def rsf_figure(result: Any, title: str) -> tuple[Figure, Any]:
     ax2.semilogy(result.t, _positive(result.v), lw=LINE, label="slip velocity")
     ax2.semilogy(result.t, _positive(result.load_velocity), lw=THIN, ls="--",
                  label="load velocity")
+    ax1.set_xlabel(TIME_S)
     ax2.set_xlabel(TIME_S)
     ax2.set_ylabel(VELOCITY_SI)
     ax2.legend(fontsize=LEGEND_SIZE)
-    return fig, (ax1, ax2)
+    _friction_against_velocity(ax3, result)
+    return fig, (ax1, ax2, ax3)
 
 
 def comparison_figure(c: Any, title: str = "") -> tuple[Figure, Any]:
