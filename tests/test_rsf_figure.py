@@ -44,7 +44,10 @@ def test_friction_against_ln_v_over_the_steady_state():
     law = RateState(0.005, 0.01, 1e-5, 0.6, 1e-6)
     drive = SpringSlider([Segment(1e-6, 5.0), Segment(1e-5, 10.0)], 1e3)
     res = simulate_rsf(law, drive, RSFInitial(), RSFOutput())
-    _, (ax1, ax2, ax3) = rsf_figure(res, "step")
+    fig, (ax1, ax2, ax3) = rsf_figure(res, "step")
+    title = fig.get_suptitle()
+    for part in ("step", "a = 0.005", "b = 0.01", "1e-05 m", "k = 1000 1/m"):
+        assert part in title, title
     assert ax3.get_xscale() == "log" and "V" in ax3.get_xlabel()
     run, ss = ax3.lines[0], ax3.lines[1]
     np.testing.assert_array_equal(run.get_xdata(), np.abs(res.v))

@@ -246,6 +246,23 @@ def _friction_against_velocity(ax: Any, result: Any) -> None:
     ax.legend(fontsize=LEGEND_SIZE)
 
 
+def _rsf_title(result: Any, head: str = "") -> str:
+    """``head`` (default: the law) with the law's parameters, then ``mu0`` and the machine on
+    a second line (SI units)."""
+    p = result.params
+    head = head or f"rate-and-state, {p.state_law} law"
+    second = []
+    if hasattr(p, "a"):
+        head += f": a = {p.a:g}, b = {p.b:g}, " r"$D_c$" f" = {p.dc:g} m"
+        second.append(r"$\mu_0$" f" = {p.mu0:g} at " r"$V_0$" f" = {p.v0:g} m/s")
+    k = getattr(result, "stiffness", None)
+    if k is not None:
+        second.append("kinematic machine" if not np.isfinite(k) else f"spring k = {k:g} 1/m")
+        second += [f"{n} = {v:g} {u}" for n, v, u in (("damping", result.damping, "s/m"),
+                                                      ("mass", result.mass, "s²/m")) if v]
+    return head + ("\n" + ", ".join(second) if second else "")
+
+
 def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
     """Rate-and-state run (``simulate`` with ``law = "rsf"``): friction against time and slip,
     slip and load velocity against time, friction against ``ln V``.
@@ -260,7 +277,7 @@ def rsf_timeseries_figure(result: Any) -> tuple[Figure, Any]:
     fig, axes
         A new figure and its four axes.
     """
-    fig, axes = _stack(4, f"rate-and-state, {result.params.state_law} law")
+    fig, axes = _stack(4, _rsf_title(result))
     t, x, mu = result.t, result.x, result.mu
     axes[0].plot(t, mu, lw=THIN, label="friction")
     if result.damping or result.mass:
@@ -298,7 +315,7 @@ def rsf_figure(result: Any, title: str) -> tuple[Figure, Any]:
     fig, axes
         A new figure and its three axes (the first two share time).
     """
-    fig, (ax1, ax2, ax3) = _stack(3, title)
+    fig, (ax1, ax2, ax3) = _stack(3, _rsf_title(result, title))
     ax2.sharex(ax1)
     ax1.plot(result.t, result.mu, lw=LINE, label="friction")
     ax1.plot(result.t, result.stress, lw=THIN, ls="--", label="spring force / normal force")
