@@ -20,6 +20,9 @@ __all__ = [
     "check_range",
     "check_scalar",
     "check_choice",
+    "check_figure_format",
+    "FIGURE_FORMATS",
+    "DPI_RANGE",
     "check_broadcast",
     "check_finite_result",
     "check_memory",
@@ -134,6 +137,27 @@ def check_choice(name: str, value: str, choices: tuple[str, ...]) -> str:
     if value not in choices:
         raise ValueError(f"{name} = {value!r} is not allowed: choose one of {', '.join(choices)}")
     return value
+
+
+FIGURE_FORMATS: tuple[str, ...] = ("png", "pdf", "svg")
+"""File formats of the figures (``--format``); pdf and svg are vector graphics."""
+DPI_RANGE: tuple[int, int] = (50, 1200)
+"""Resolutions a figure may be rendered at (``--dpi``): about 110 on screen, 300-600 in print."""
+
+
+def check_figure_format(fmt: str, dpi: float | None = None) -> tuple[str, int | None]:
+    """``(fmt, dpi)`` checked, before any figure is drawn (no matplotlib needed): ``fmt`` one
+    of :data:`FIGURE_FORMATS`, ``dpi`` a whole number in :data:`DPI_RANGE` or ``None`` (the
+    figure style's default)."""
+    if fmt not in FIGURE_FORMATS:
+        raise ValueError(f"--format {fmt!r} is not allowed: choose one of "
+                         f"{', '.join(FIGURE_FORMATS)}")
+    if dpi is None:
+        return fmt, None
+    lo, hi = DPI_RANGE
+    if not (lo <= dpi <= hi and float(dpi).is_integer()):
+        raise ValueError(f"--dpi {dpi:g} is out of range: allowed a whole number in [{lo}, {hi}]")
+    return fmt, int(dpi)
 
 
 def check_broadcast(**arrays: ArrayLike) -> tuple[int, ...]:

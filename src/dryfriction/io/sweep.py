@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from ..validation import check_scalar, require_extra
+from .cf import describe
 from .files import atomic_write_bytes, check_writable_dir, write_json
 
 __all__ = [
@@ -457,6 +458,7 @@ def run_sweep(
     source: str | None = None,
     protocol_text: str | None = None,
     connect_timeout: float = _CONNECT_TIMEOUT,
+    variables: Mapping[str, Any] | None = None,
 ) -> Any:
     """Run every grid point not already stored under ``out`` and return the Dataset.
 
@@ -489,6 +491,8 @@ def run_sweep(
         protocol as JSON).
     connect_timeout : float
         Seconds to wait for ``scheduler`` to answer, ``> 0``.
+    variables : mapping, optional
+        CF attributes of the runner's results (:func:`dryfriction.io.cf.describe`).
 
     Raises
     ------
@@ -522,8 +526,12 @@ def run_sweep(
         _probe_scheduler(scheduler, connect_timeout)
     lock = _claim_folder(out, marker)
     try:
-        return _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
-                           connect_timeout)
+        ds = _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
+                         connect_timeout)
+        describe(ds, variables, protocol=marker["protocol"], source=source or "",
+                 analysis=analysis)
+        _write_netcdf(ds, out / "sweep.nc")
+        return ds
     finally:
         os.close(lock)  # releases the flock
 
@@ -572,9 +580,7 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
             _close(client, scheduler, list(futures))
             raise SweepInterrupted(done, spec.size, out) from None
         _close(client, scheduler, list(futures))
-    ds = assemble(spec, points_dir, keys)
-    _write_netcdf(ds, out / "sweep.nc")
-    return ds
+    return assemble(spec, points_dir, keys)
 
 
 def _close(client: Any, scheduler: str | None, futures: list[Any]) -> None:
