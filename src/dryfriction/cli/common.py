@@ -65,6 +65,9 @@ def cli_errors(fn: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
+FIGURE_HELP = ("Draw the figure (PNG); --no-figure skips it, and matplotlib's start-up with it "
+               "(a previous run's figure in --out is removed, like any file it no longer "
+               "writes).")
 FORCE_HELP = ("Write into a folder that holds other files too: they are kept (one whose name "
                "collides with a result is renamed NAME.~1~); nothing is deleted.")
 

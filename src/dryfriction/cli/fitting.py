@@ -11,7 +11,7 @@ import typer.core
 from rich.table import Table
 
 from ..io.files import to_jsonable
-from .common import FORCE_HELP, app, cli_errors, err, out, say
+from .common import FIGURE_HELP, FORCE_HELP, app, cli_errors, err, out, say
 from .model import CREEP_HELP
 
 
@@ -43,6 +43,7 @@ def fit_command(
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Fit the trap model (cv) or rate-and-state (rsf) to measured friction; writes fit.json
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
@@ -50,7 +51,6 @@ def fit_command(
     from ..fit import compare_models, fit
     from ..io.data import read_csv
     from ..io.files import check_output_dir, output_directory, write_json
-    from ..plots.fits import plot_fit
     from ..validation import check_choice
 
     check_choice("model", model, ("cv", "rsf"))
@@ -85,7 +85,10 @@ def fit_command(
     with output_directory(out_dir, command="fit", force=force, inputs=data,
                           report=say) as tmp:
         write_json(tmp / "fit.json", report)
-        plot_fit(result, datasets, tmp / "fit.png")
+        if figure:
+            from ..plots.fits import plot_fit
+
+            plot_fit(result, datasets, tmp / "fit.png")
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
@@ -103,7 +106,8 @@ def fit_command(
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if "comparison" in report and "verdict" in report["comparison"]:
             out.print(f"comparison: {report['comparison']['verdict']}", highlight=False)
-        out.print(f"wrote {out_dir}/fit.json, fit.png", highlight=False)
+        out.print(f"wrote {out_dir}/fit.json" + (", fit.png" if figure else ""),
+                  highlight=False)
     if not result.success:
         err.print(f"[bold red]fit did not converge:[/] {result.message}", highlight=False,
                   soft_wrap=True)

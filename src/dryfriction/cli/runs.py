@@ -9,7 +9,18 @@ from typing import Annotated, Any
 import typer
 import typer.core
 
-from .common import FORCE_HELP, app, cli_errors, emit, err, many, out, say, write_summary
+from .common import (
+    FIGURE_HELP,
+    FORCE_HELP,
+    app,
+    cli_errors,
+    emit,
+    err,
+    many,
+    out,
+    say,
+    write_summary,
+)
 from .model import LOAD_MAX
 
 
@@ -77,6 +88,7 @@ def rsf(
                                 "written by this program before)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
     stick-slip, on a spring with optional radiation damping and inertia."""
@@ -126,14 +138,15 @@ def rsf(
     context = {"case": case, "wall_s": time.perf_counter() - start}
     summary = {**res.summary(), **context}
     if out_dir is not None:
-        from ..plots.runs import rsf_figure
-        from ..plots.style import save_png
-
         with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
-            fig, _ = rsf_figure(res, f"{case}, {state_law} law")
-            save_png(fig, tmp / "rsf.png")
+            if figure:
+                from ..plots.runs import rsf_figure
+                from ..plots.style import save_png
+
+                fig, _ = rsf_figure(res, f"{case}, {state_law} law")
+                save_png(fig, tmp / "rsf.png")
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
 
@@ -146,6 +159,7 @@ def simulate(
                             "new, empty, or written by this program before)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Run a protocol (trap ensemble, docs/model.md §6, or rate-and-state with
     ``model.law = "rsf"``):
@@ -164,7 +178,7 @@ def simulate(
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out, force=force)
     if isinstance(proto, RSFProtocol):
-        _simulate_rsf_protocol(proto, protocol, out, json_out, force)
+        _simulate_rsf_protocol(proto, protocol, out, json_out, force, figure)
         return
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -187,16 +201,17 @@ def simulate(
     finally:
         if bar:
             bar["p"].stop()
-    from ..plots.runs import timeseries_figure
-    from ..plots.style import save_png
-
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", result.columns())
         summary = write_summary(tmp / "summary.json", result,
                                 {"protocol": str(Path(protocol))})
-        fig, _ = timeseries_figure(result)
-        save_png(fig, tmp / "timeseries.png")
+        if figure:
+            from ..plots.runs import timeseries_figure
+            from ..plots.style import save_png
+
+            fig, _ = timeseries_figure(result)
+            save_png(fig, tmp / "timeseries.png")
         for i, snap in enumerate(result.snapshots):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
@@ -218,6 +233,7 @@ def compare(
                                   "slip."),
     json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
 
@@ -228,8 +244,6 @@ def compare(
     from ..analysis.rsf_view import compare_protocol
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.protocol import load_protocol
-    from ..plots.runs import comparison_figure
-    from ..plots.style import save_png
     from ..validation import check_choice
 
     check_choice("state_law", state_law, ("ageing", "slip"))
@@ -241,15 +255,19 @@ def compare(
     with output_directory(out, command="compare", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_json(tmp / "compare.json", report)
-        fig, _ = comparison_figure(c, Path(protocol).name)
-        save_png(fig, tmp / "compare.png")
+        if figure:
+            from ..plots.runs import comparison_figure
+            from ..plots.style import save_png
+
+            fig, _ = comparison_figure(c, Path(protocol).name)
+            save_png(fig, tmp / "compare.png")
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
 
 
 def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
-                           force: bool) -> None:
+                           force: bool, figure: bool = True) -> None:
     """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
     import time
     from pathlib import Path
@@ -260,15 +278,16 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     res = proto.run()
     context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
 
-    from ..plots.runs import rsf_timeseries_figure
-    from ..plots.style import save_png
-
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", res.columns())
         summary = write_summary(tmp / "summary.json", res, context)
-        fig, _ = rsf_timeseries_figure(res)
-        save_png(fig, tmp / "timeseries.png")
+        if figure:
+            from ..plots.runs import rsf_timeseries_figure
+            from ..plots.style import save_png
+
+            fig, _ = rsf_timeseries_figure(res)
+            save_png(fig, tmp / "timeseries.png")
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")

@@ -37,7 +37,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from ..validation import (
     EPS_MAX,
@@ -94,6 +93,8 @@ def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
     if f_w == 0.0:
         return 0.0
     yc = Trap(alpha).y_c
+    from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
+
     return float(brentq(lambda d: float(fresh_force(d, alpha)) - f_w, 0.0, yc, xtol=1e-15,
                         rtol=4 * np.finfo(float).eps, maxiter=200))
 
