@@ -98,3 +98,32 @@ def test_no_figure_removes_the_figure_of_a_previous_run(tmp_path: Path, figure: 
     assert r.exit_code == 0, r.output
     assert (out / "timeseries.png").is_file() == figure
     assert (out / "timeseries.csv").is_file()
+
+
+@pytest.mark.slow
+def test_warm_compiles_every_kernel_the_examples_use(tmp_path: Path) -> None:
+    """After ``python -m dryfriction.warm`` on a fresh copy of the package (no Numba cache),
+    no example protocol compiles anything: the install step leaves no compile pause."""
+    import shutil
+
+    import dryfriction
+
+    src = tmp_path / "src"
+    shutil.copytree(Path(dryfriction.__file__).resolve().parent, src / "dryfriction",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    env = {**os.environ, "PYTHONPATH": str(src), "NUMBA_DEBUG_CACHE": "1",
+           "MPLBACKEND": "Agg"}
+
+    def run(*args: str) -> str:
+        r = subprocess.run([sys.executable, *args], capture_output=True, text=True,
+                           cwd=tmp_path, env=env, timeout=600)
+        assert r.returncode == 0, r.stderr[-2000:]
+        return r.stdout + r.stderr
+
+    assert "data saved" in run("-m", "dryfriction.warm")  # it did compile, into the copy
+    for proto in sorted(EXAMPLES.glob("*.toml")):
+        if "[sweep]" in proto.read_text():
+            continue
+        log = run("-m", "dryfriction.cli", "simulate", str(proto), "--out",
+                  f"out_{proto.stem}", "--no-figure", "--json")
+        assert "data saved" not in log, f"{proto.name} compiled after the warm-up"

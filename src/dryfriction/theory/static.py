@@ -49,7 +49,7 @@ from ..validation import (
     check_range,
     check_scalar,
 )
-from .creep import CREEP_LAWS, check_age, radius
+from .creep import CREEP_LAWS, check_age, per_eps
 from .trap import Trap, force_forward, work_forward, work_minus
 
 __all__ = [
@@ -215,7 +215,10 @@ def static_friction(
     check_broadcast(T=T, eps=eps)
     check_age(T, eps, creep)
     d_w = loaded_edge(load, alpha)
-    mu = static_friction_at_radius(radius(T, eps, creep), alpha, d_w)
+    # radius and threshold together, chunk by chunk: the threshold's temporaries (~80 bytes a
+    # point) would otherwise be held for the whole array at once
+    mu = per_eps(lambda law, t: static_friction_at_radius(law.radius(t), alpha, d_w), creep,
+                 eps, T)
     return check_finite_result("mu_s", mu, T=T, eps=eps)
 
 
