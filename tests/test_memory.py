@@ -56,3 +56,47 @@ def test_the_memory_probe_sees_an_unchunked_evaluation() -> None:
     """The probe itself can fail: with one chunk for the whole array the same call goes over
     the bound."""
     assert _extra_mb("steady", 50_000, chunk=10**9) > 80.0
+
+
+@pytest.mark.parametrize("initial", [{"kind": "steady", "velocity": 0.01},
+                                     {"kind": "rest"}])
+def test_ensemble_start_up_holds_one_buffer(initial: dict[str, object]) -> None:
+    """Placing the initial population costs little beyond the 17 bytes a pair the buffer holds
+    (position, birth, state): the temporaries are bounded (a chunk's), where they were 51 bytes
+    a pair for a steady population placed at once."""
+    import tracemalloc
+
+    from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
+
+    model, init = TrapModel(eps=0.04), Initial(**initial)  # type: ignore[arg-type]
+    Ensemble(model, Track(100.0), init)  # caches and lazy imports first
+    tracemalloc.start()
+    try:
+        ens = Ensemble(model, Track(5e4), init)
+        held, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert ens.c.size > 1e6  # the buffer, not the fixed costs, dominates
+    assert held / ens.c.size == pytest.approx(17.0, abs=0.5)
+    assert peak - held < 8e6  # a few chunks' temporaries: 69 MB here when placed at once
+
+
+def test_ensemble_buffer_move_holds_one_buffer() -> None:
+    """Moving the buffer with the slider (a long slip) copies the window, not the buffer: the
+    old buffer was held beside the new one with two index arrays (34 bytes a pair)."""
+    import tracemalloc
+
+    from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
+
+    small = Ensemble(TrapModel(eps=0.04), Track(100.0), Initial("rest"))
+    small.advance(30.0, 30.0)  # load the compiled kernel first: that is not what is measured
+    ens = Ensemble(TrapModel(eps=0.04), Track(5e4), Initial("rest"))
+    g0 = ens._g0  # noqa: SLF001 - the test checks that the buffer did move
+    tracemalloc.start()
+    try:
+        ens.advance(30.0, 30.0)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert ens._g0 != g0  # noqa: SLF001
+    assert peak / ens.c.size < 20.0
