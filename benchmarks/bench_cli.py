@@ -20,6 +20,7 @@ Run: ``python -m benchmarks bench_cli`` (add ``--first-run`` when run directly).
 from __future__ import annotations
 
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -39,14 +40,23 @@ def _command() -> list[str]:
     return [str(script)] if script.exists() else [sys.executable, "-m", "dryfriction.cli"]
 
 
-def _wall(args: list[str], cwd: str, env: dict[str, str] | None = None) -> float:
+def _run(args: list[str], cwd: str, env: dict[str, str] | None = None) -> tuple[float, float]:
+    """Wall and CPU (user + system) seconds of one run of ``args``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
-    subprocess.run(args, cwd=cwd, env=env, check=True, stdout=subprocess.DEVNULL)
-    return time.perf_counter() - t
+    subprocess.run(args, cwd=cwd, env=env, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    wall = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def whole_process(rounds: int = 9) -> dict[str, float]:
-    """Median wall times (s) of the variants, run interleaved ``rounds`` times."""
+def _wall(args: list[str], cwd: str, env: dict[str, str] | None = None) -> float:
+    return _run(args, cwd, env)[0]
+
+
+def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
+    """Median wall and CPU times (s) of the variants, run interleaved ``rounds`` times."""
     cmd = _command()
     variants = {
         "python -c pass": [sys.executable, "-c", "pass"],
@@ -55,14 +65,15 @@ def whole_process(rounds: int = 9) -> dict[str, float]:
                                  "--no-figure", "--json"],
         "simulate (figure)": [*cmd, "simulate", str(PROTOCOL), "--out", "fig", "--json"],
     }
-    times: dict[str, list[float]] = {k: [] for k in variants}
+    times: dict[str, list[tuple[float, float]]] = {k: [] for k in variants}
     with tempfile.TemporaryDirectory() as tmp:
         for args in variants.values():  # warm the file cache and the kernels' cache
-            _wall(args, tmp)
+            _run(args, tmp)
         for _ in range(rounds):
             for name, args in variants.items():
-                times[name].append(_wall(args, tmp))
-    return {k: statistics.median(v) for k, v in times.items()}
+                times[name].append(_run(args, tmp))
+    return {k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v))
+            for k, v in times.items()}
 
 
 def first_run_after_install() -> dict[str, float]:
@@ -87,11 +98,13 @@ def main(first_run: bool = False) -> None:
     med = whole_process()
     print(f"whole process, warm cache, median of 9 interleaved runs "
           f"(load average {load:.2f} -> {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores):")
-    for name, t in med.items():
-        print(f"  {name:22s} {t:6.3f} s")
+    print(f"  {'':22s} {'wall':>7s} {'CPU':>7s}")
+    for name, (wall, cpu) in med.items():
+        print(f"  {name:22s} {wall:6.3f}s {cpu:6.3f}s")
+    fig, nofig = med["simulate (figure)"][0], med["simulate --no-figure"][0]
     for ref, t in REFERENCE.items():
-        print(f"  {ref} (issue's figure, {t} s): with figure x{t / med['simulate (figure)']:.2f},"
-              f" without x{t / med['simulate --no-figure']:.2f} (> 1: dryfriction faster)")
+        print(f"  {ref} (issue's figure, {t} s): with figure x{t / fig:.2f}, without "
+              f"x{t / nofig:.2f} (wall; > 1: dryfriction faster)")
     if first_run:
         print("first run after install (fresh copy, no Numba cache):")
         for name, t in first_run_after_install().items():
