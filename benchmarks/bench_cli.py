@@ -51,10 +51,6 @@ def _run(args: list[str], cwd: str, env: dict[str, str] | None = None) -> tuple[
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def _wall(args: list[str], cwd: str, env: dict[str, str] | None = None) -> float:
-    return _run(args, cwd, env)[0]
-
-
 def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
     """Median wall and CPU times (s) of the variants, run interleaved ``rounds`` times."""
     cmd = _command()
@@ -76,8 +72,9 @@ def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
             for k, v in times.items()}
 
 
-def first_run_after_install() -> dict[str, float]:
-    """Wall times (s) on a fresh copy of the package: the warm-up, the first run, the second."""
+def first_run_after_install() -> dict[str, tuple[float, float]]:
+    """Wall and CPU times (s) on a fresh copy of the package: the warm-up, the first run, the
+    second."""
     import dryfriction
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -87,9 +84,9 @@ def first_run_after_install() -> dict[str, float]:
         env = {**os.environ, "PYTHONPATH": str(src)}
         run = [sys.executable, "-m", "dryfriction.cli", "simulate", str(PROTOCOL), "--json",
                "--no-figure", "--out"]
-        warm = _wall([sys.executable, "-m", "dryfriction.warm"], tmp, env)
-        first = _wall([*run, "first"], tmp, env)
-        second = _wall([*run, "second"], tmp, env)
+        warm = _run([sys.executable, "-m", "dryfriction.warm"], tmp, env)
+        first = _run([*run, "first"], tmp, env)
+        second = _run([*run, "second"], tmp, env)
     return {"warm-up (make)": warm, "first run": first, "second run": second}
 
 
@@ -107,8 +104,8 @@ def main(first_run: bool = False) -> None:
               f"x{t / nofig:.2f} (wall; > 1: dryfriction faster)")
     if first_run:
         print("first run after install (fresh copy, no Numba cache):")
-        for name, t in first_run_after_install().items():
-            print(f"  {name:22s} {t:6.3f} s")
+        for name, (wall, cpu) in first_run_after_install().items():
+            print(f"  {name:22s} {wall:6.3f}s {cpu:6.3f}s")
 
 
 if __name__ == "__main__":
