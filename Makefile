@@ -13,6 +13,8 @@ $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -e '.[test]'
+	# compile the Numba kernels now (cached beside the sources), not in the user's first run
+	$(BIN)/python -m dryfriction.warm
 	touch $(STAMP)
 
 demo: $(STAMP)

@@ -60,8 +60,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import curve_fit
-from scipy.signal import hilbert
 
 from ..ensemble.driving import Output, SimulationResult, SpringDrive, continue_spring, simulate
 from ..ensemble.population import Ensemble, Initial, Track, TrapModel
@@ -364,6 +362,11 @@ def fit_growth(t: ArrayLike, y: ArrayLike) -> tuple[float, float]:
     t, y = np.asarray(t, float), np.asarray(y, float)
     if t.size < 20:
         raise ValueError(f"only {t.size} samples to fit a growth rate: at least 20")
+    # lazily: scipy.signal and SciPy's optimizers take ~1 s to import, and only this fit and
+    # the decay envelope below use them
+    from scipy.optimize import curve_fit
+    from scipy.signal import hilbert
+
     tt = t - t[0]
     yc = y - y.mean()
     env = np.abs(hilbert(yc))
@@ -450,6 +453,8 @@ def linear_check(
         # and, for a decay, while the envelope is above three times the noise it decays into
         # (the median envelope of the run's last tenth, where only granular noise is left)
         if lam.real < 0 and sel.size:
+            from scipy.signal import hilbert
+
             env = np.abs(hilbert(dv - dv.mean()))
             noise = 3.0 * float(np.median(env[-max(dv.size // 10, 1):]))
             low = np.flatnonzero(env[sel] < noise)

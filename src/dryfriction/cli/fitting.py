@@ -14,6 +14,7 @@ from rich.text import Text
 from ..io.files import to_jsonable
 from .common import (
     DPI_HELP,
+    FIGURE_HELP,
     FORCE_HELP,
     FORMAT_HELP,
     app,
@@ -56,6 +57,7 @@ def fit_command(
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Fit the trap model (cv) or rate-and-state (rsf) to measured friction; writes fit.json
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
@@ -63,8 +65,6 @@ def fit_command(
     from ..fit import compare_models, fit
     from ..io.data import read_csv
     from ..io.files import check_output_dir, output_directory, write_json
-    from ..plots.fits import plot_fit
-    from ..plots.style import save_figure
     from ..validation import check_choice, check_figure_format
 
     check_choice("model", model, ("cv", "rsf"))
@@ -100,8 +100,12 @@ def fit_command(
     with output_directory(out_dir, command="fit", force=force, inputs=data,
                           report=say) as tmp:
         write_json(tmp / "fit.json", report)
-        fig, _ = plot_fit(result, datasets)
-        save_figure(fig, tmp / f"fit.{fmt}", fmt, dpi)
+        if figure:
+            from ..plots.fits import plot_fit
+            from ..plots.style import save_figure
+
+            fig, _ = plot_fit(result, datasets)
+            save_figure(fig, tmp / f"fit.{fmt}", fmt, dpi)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
@@ -120,7 +124,8 @@ def fit_command(
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if "comparison" in report and "verdict" in report["comparison"]:
             out.print(f"comparison: {report['comparison']['verdict']}", highlight=False)
-        out.print(f"wrote {out_dir}/fit.json, fit.{fmt}", highlight=False)
+        out.print(f"wrote {out_dir}/fit.json" + (f", fit.{fmt}" if figure else ""),
+                  highlight=False)
     if not result.success:
         err.print(f"[bold red]fit did not converge:[/] {result.message}", highlight=False,
                   soft_wrap=True)

@@ -11,6 +11,7 @@ import typer.core
 
 from .common import (
     DPI_HELP,
+    FIGURE_HELP,
     FORCE_HELP,
     FORMAT_HELP,
     app,
@@ -97,6 +98,7 @@ def rsf(
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
     fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
     stick-slip, on a spring with optional radiation damping and inertia."""
@@ -149,14 +151,15 @@ def rsf(
     context = {"case": case, "wall_s": time.perf_counter() - start}
     summary = {**res.summary(), **context}
     if out_dir is not None:
-        from ..plots.runs import rsf_figure
-        from ..plots.style import save_figure
-
         with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
-            fig, _ = rsf_figure(res, f"{case}, {state_law} law")
-            save_figure(fig, tmp / f"rsf.{fmt}", fmt, dpi)
+            if figure:
+                from ..plots.runs import rsf_figure
+                from ..plots.style import save_figure
+
+                fig, _ = rsf_figure(res, f"{case}, {state_law} law")
+                save_figure(fig, tmp / f"rsf.{fmt}", fmt, dpi)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
     if case == "shs" and _peak_at_end(res, t1 + hold):
@@ -200,6 +203,7 @@ def simulate(
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Run a protocol (trap ensemble, docs/model.md §6, or rate-and-state with
     ``model.law = "rsf"``):
@@ -220,7 +224,7 @@ def simulate(
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out, force=force)
     if isinstance(proto, RSFProtocol):
-        _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi)
+        _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi, figure)
         return
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -243,16 +247,17 @@ def simulate(
     finally:
         if bar:
             bar["p"].stop()
-    from ..plots.runs import timeseries_figure
-    from ..plots.style import save_figure
-
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", result.columns())
         summary = write_summary(tmp / "summary.json", result,
                                 {"protocol": str(Path(protocol))})
-        fig, _ = timeseries_figure(result)
-        save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
+        if figure:
+            from ..plots.runs import timeseries_figure
+            from ..plots.style import save_figure
+
+            fig, _ = timeseries_figure(result)
+            save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
         for i, snap in enumerate(result.snapshots):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
@@ -276,6 +281,7 @@ def compare(
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
+    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
     """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
 
@@ -286,8 +292,6 @@ def compare(
     from ..analysis.rsf_view import compare_protocol
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.protocol import load_protocol
-    from ..plots.runs import comparison_figure
-    from ..plots.style import save_figure
     from ..validation import check_choice, check_figure_format
 
     check_choice("state_law", state_law, ("ageing", "slip"))
@@ -300,15 +304,20 @@ def compare(
     with output_directory(out, command="compare", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_json(tmp / "compare.json", report)
-        fig, _ = comparison_figure(c, Path(protocol).name)
-        save_figure(fig, tmp / f"compare.{fmt}", fmt, dpi)
+        if figure:
+            from ..plots.runs import comparison_figure
+            from ..plots.style import save_figure
+
+            fig, _ = comparison_figure(c, Path(protocol).name)
+            save_figure(fig, tmp / f"compare.{fmt}", fmt, dpi)
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
 
 
 def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
-                           force: bool, fmt: str = "png", dpi: int | None = None) -> None:
+                           force: bool, fmt: str = "png", dpi: int | None = None,
+                           figure: bool = True) -> None:
     """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
     import time
     from pathlib import Path
@@ -319,15 +328,16 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     res = proto.run()
     context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
 
-    from ..plots.runs import rsf_timeseries_figure
-    from ..plots.style import save_figure
-
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", res.columns())
         summary = write_summary(tmp / "summary.json", res, context)
-        fig, _ = rsf_timeseries_figure(res)
-        save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
+        if figure:
+            from ..plots.runs import rsf_timeseries_figure
+            from ..plots.style import save_figure
+
+            fig, _ = rsf_timeseries_figure(res)
+            save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")

@@ -46,7 +46,6 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..program import VelocityProgram
 from ..validation import check_choice, check_scalar
@@ -237,6 +236,8 @@ def _equilibrate(
             if xb == xa:
                 root = xa
             else:
+                from scipy.optimize import brentq  # only force-controlled runs need it
+
                 def g(x: float) -> float:
                     return A - K * x - ens.probe(x, d).force
 

@@ -71,6 +71,10 @@ __all__ = [
 LAYOUTS: tuple[str, ...] = ("regular", "random")
 INITIAL_KINDS: tuple[str, ...] = ("rest", "loaded", "steady")
 _BLOCK = 1024  # pairs per random block
+_CHUNK = 1 << 16
+"""Pairs placed at once by ``Ensemble._place_initial``: its temporaries (about 50 bytes a
+pair for a steady population) are then bounded, and the start-up peak is the 17 bytes a pair
+the buffer holds (position, birth, state) plus a few MB."""
 
 
 @dataclass(frozen=True)
@@ -161,7 +165,10 @@ class Track:
         """Positions ``c_k`` for ``k0 <= k < k1``, ascending, units ``a0``."""
         lam = self.traps_per_a0
         if self.layout == "regular":
-            return (np.arange(k0, k1, dtype=float) + 0.5) / lam
+            c = np.arange(k0, k1, dtype=float)
+            c += 0.5  # in place: one array of 8 bytes a pair at the peak, not two
+            c /= lam
+            return c
         L = _BLOCK / lam
         b0, b1 = k0 // _BLOCK, (k1 - 1) // _BLOCK + 1
         parts = []
@@ -340,38 +347,51 @@ class Ensemble:
         reach += 1.0
         k0, k1 = self.track.index_span(self.x - reach - self._margin, self.x + reach + self._margin)
         self._set_buffer(k0, k1)
-        p = self.x - self.c
-        st = np.where(p < -1.0, FREE_NEAR, FREE_FAR).astype(np.int8)
-        if ini.kind in ("rest", "loaded"):
-            d = 0.0 if ini.kind == "rest" else loaded_edge(float(ini.force or 0.0), self._alpha)
-            plus = (p >= -1.0) & (p < d) & (p <= yc)
-            minus = (p >= d) & (p <= 1.0) & (p >= -yc)
-            st[plus] = PLUS
-            st[minus] = MINUS
-            self.birth[:] = 0.0
-        else:
-            u = float(ini.velocity or 1.0)
-            inside = p >= -1.0
-            age = np.where(inside, (p + 1.0) / u, 0.0)
-            w = p / self.radius(age)
-            # a trap is alive if w never exceeded the threshold over its past; p descends with
-            # the index, so the running maximum runs from the high index end
-            wmax = np.maximum.accumulate(np.where(inside, w, -np.inf)[::-1])[::-1]
-            plus = inside & (wmax <= yc)
-            st[plus] = PLUS
-            if self._strong:
-                minus = inside & (wmax > yc) & (wmax <= 1.0)
+        d = 0.0 if ini.kind != "loaded" else loaded_edge(float(ini.force or 0.0), self._alpha)
+        u = float(ini.velocity or 1.0)
+        lo = hi = -1
+        carry = -np.inf  # running maximum of w over the higher indices (steady only)
+        # chunk by chunk from the high-index end, where the steady population's running
+        # maximum starts: the same values as one pass over the whole buffer, in bounded memory
+        for j1 in range(self.c.size, 0, -_CHUNK):
+            j0 = max(j1 - _CHUNK, 0)
+            p = self.x - self.c[j0:j1]
+            st = np.where(p < -1.0, FREE_NEAR, FREE_FAR).astype(np.int8)
+            if ini.kind in ("rest", "loaded"):
+                plus = (p >= -1.0) & (p < d) & (p <= yc)
+                minus = (p >= d) & (p <= 1.0) & (p >= -yc)
+                st[plus] = PLUS
                 st[minus] = MINUS
-            self.birth[:] = np.where(inside, -age, 0.0)
-        self.state[:] = st
-        active = np.flatnonzero((st == PLUS) | (st == MINUS))
-        if active.size:
-            self.lo, self.hi = int(active[0]), int(active[-1]) + 1
+                self.birth[j0:j1] = 0.0
+            else:
+                inside = p >= -1.0
+                age = np.where(inside, (p + 1.0) / u, 0.0)
+                w = p / self.radius(age)
+                # a trap is alive if w never exceeded the threshold over its past; p descends
+                # with the index, so the running maximum runs from the high index end
+                w_rev = np.where(inside, w, -np.inf)[::-1]
+                w_rev[0] = max(w_rev[0], carry)
+                wmax = np.maximum.accumulate(w_rev)[::-1]
+                carry = wmax[0]
+                plus = inside & (wmax <= yc)
+                st[plus] = PLUS
+                if self._strong:
+                    minus = inside & (wmax > yc) & (wmax <= 1.0)
+                    st[minus] = MINUS
+                self.birth[j0:j1] = np.where(inside, -age, 0.0)
+            self.state[j0:j1] = st
+            active = np.flatnonzero((st == PLUS) | (st == MINUS))
+            if active.size:
+                if hi < 0:
+                    hi = j0 + int(active[-1]) + 1
+                lo = j0 + int(active[0])
+                self._oldest_birth = min(self._oldest_birth,
+                                         float(self.birth[j0:j1][active].min()))
+        if hi >= 0:
+            self.lo, self.hi = lo, hi
         else:
             k = int(np.searchsorted(self.c, self.x + 1.0, side="right"))
             self.lo = self.hi = k
-        if active.size:
-            self._oldest_birth = min(self._oldest_birth, float(self.birth[active].min()))
 
     def _ensure_cover(self, x_lo: float, x_hi: float) -> None:
         """Make the buffer hold every pair with ``c`` in ``[x_lo - 1, x_hi + 1]`` plus margin."""
@@ -384,13 +404,18 @@ class Ensemble:
         g_lo, g_hi = self._g0 + self.lo, self._g0 + self.hi
         k0 = min(k0, g_lo - 1)
         k1 = max(k1, g_hi + 1)
-        old_state, old_birth, old_g0 = self.state, self.birth, self._g0
+        # only the window (the pairs in contact) carries over: copy it, and let the old
+        # buffer go before the new one is made, so that a move holds one buffer, not two
+        old = slice(self.lo, self.hi)
+        win_state, win_birth = self.state[old].copy(), self.birth[old].copy()
+        del c
+        self.c, self.state, self.birth = np.empty(0), np.empty(0, np.int8), np.empty(0)
         self._set_buffer(k0, k1)
-        g = np.arange(k0, k1)
-        self.state[:] = np.where(g < g_lo, FREE_FAR, FREE_NEAR)
+        self.state[: g_lo - k0] = FREE_FAR  # no index array either
+        self.state[g_lo - k0 :] = FREE_NEAR
         sl = slice(g_lo - k0, g_hi - k0)
-        self.state[sl] = old_state[g_lo - old_g0 : g_hi - old_g0]
-        self.birth[sl] = old_birth[g_lo - old_g0 : g_hi - old_g0]
+        self.state[sl] = win_state
+        self.birth[sl] = win_birth
         self.lo, self.hi = g_lo - k0, g_hi - k0
 
     def _ensure_ages(self, t: float) -> None:

@@ -10,9 +10,11 @@ The per-item costs were measured with :mod:`tracemalloc` (peak over a run, NumPy
 
 * a sample costs about 456 bytes: the recorder's row (a tuple of 11 Python floats), the
   sampling grid and the columns it becomes;
-* a pair in the buffer around the slider costs about 33 bytes at the peak: position (8),
-  birth time (8) and state (1) held, plus the temporaries made when the buffer is built or
-  moved;
+* a pair in the buffer around the slider costs 17 bytes held: position (8), birth time (8) and
+  state (1). The initial population is placed in chunks and a move of the buffer carries over
+  only the pairs in contact, so neither holds two buffers at once: the peak of a run is about
+  16 bytes per pair of the estimate below (which counts a little more than the buffer holds);
+  it was 58 before issue 12 (68 bytes per pair at the start-up of a steady population);
 * a snapshot holds 6 float arrays over the traps in contact.
 """
 
@@ -29,8 +31,8 @@ __all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "RunEstimate", "check_run", "es
 
 BYTES_PER_SAMPLE = 480.0
 """Peak bytes per recorded sample (measured 456)."""
-BYTES_PER_TRAP = 40.0
-"""Peak bytes per pair in the buffer (measured 33)."""
+BYTES_PER_TRAP = 18.0
+"""Peak bytes per estimated pair in the buffer (measured 15-16)."""
 BYTES_PER_SNAPSHOT_TRAP = 6 * 8.0
 """Bytes per trap in contact in one snapshot (six float arrays)."""
 

@@ -67,25 +67,21 @@ import tomllib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..ensemble.driving import (
-    Drive,
-    ForceDrive,
-    Output,
-    SimulationResult,
-    SpringDrive,
-    VelocityDrive,
-    simulate,
-)
-from ..ensemble.population import Initial, Track, TrapModel
-from ..ensemble.resources import check_run
 from ..program import Segment, VelocityProgram
-from ..rsf.driving import RSFResult, SolverError, simulate_rsf
 from ..rsf.law import RateState
 from ..rsf.resources import check_rsf_run
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 from ..validation import check_scalar
+
+if TYPE_CHECKING:
+    # the trap model's classes import the compiled ensemble kernel (Numba) and SciPy, and the
+    # rate-and-state solver imports Numba: each is imported where a run of its law needs it,
+    # so that parsing a protocol of the other law (or a sweep's grid) does not pay for it
+    from ..ensemble.driving import Drive, Output, SimulationResult, SpringDrive
+    from ..ensemble.population import Initial, Track, TrapModel
+    from ..rsf.result import RSFResult
 
 __all__ = [
     "Protocol",
@@ -137,6 +133,8 @@ class Protocol:
         on_interrupt: str = "raise",
     ) -> SimulationResult:
         """Run the simulation (see :func:`dryfriction.driving.simulate`)."""
+        from ..ensemble.driving import simulate
+
         return simulate(self.model, self.track, self.initial, self.drive, self.output,
                         progress=progress, on_interrupt=on_interrupt)
 
@@ -186,6 +184,8 @@ class RSFProtocol:
     def run(self) -> RSFResult:
         """Run :func:`dryfriction.rsf.driving.simulate_rsf`; a failed integration is a
         ``ValueError`` naming the protocol file and the cause."""
+        from ..rsf.driving import SolverError, simulate_rsf
+
         try:
             return simulate_rsf(self.params, self.drive, self.initial, self.output)
         except (SolverError, ValueError) as exc:
@@ -295,6 +295,10 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
                          f"{', '.join(LAWS)}")
     if law == "rsf":
         return _rsf_protocol(doc, source)
+    from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive
+    from ..ensemble.population import Initial, Track, TrapModel
+    from ..ensemble.resources import check_run
+
     unknown = sorted(set(doc) - set(_TABLES))
     if unknown:
         raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
@@ -542,6 +546,8 @@ def spring_point(protocol: Mapping[str, Any], source: str = "sweep point",
     proto = protocol_from_dict(doc, source)
     if isinstance(proto, RSFProtocol):  # unreachable after the check above; kept for types
         raise ValueError(f"{source}: rate-and-state sweeps are not supported yet")
+    from ..ensemble.driving import SpringDrive
+
     if not isinstance(proto.drive, SpringDrive):
         raise ValueError(f"{source}: drive.kind must be 'spring' for a stick-slip or "
                          "linear-stability sweep")

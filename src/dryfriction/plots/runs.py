@@ -15,7 +15,6 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..analysis.stickslip import CLASSES, critical_line
 from .style import (
     FRICTION_SI,
     LEGEND_SIZE,
@@ -403,6 +402,10 @@ def phase_diagram_figure(ds: Any, base: Mapping[str, Any], k_key: str, v_key: st
     -------
     fig, ax
     """
+    # here, not at the top: the stick-slip analysis imports the trap model's compiled kernel,
+    # which a rate-and-state run's figure does not need
+    from ..analysis.stickslip import CLASSES, critical_line
+
     K = np.asarray(ds[k_key].values, float)
     V = np.asarray(ds[v_key].values, float)
     code = ds["class"].transpose(k_key, v_key).values if "class" in ds else \

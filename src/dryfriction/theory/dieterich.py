@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import minimize_scalar
 
 from ..validation import (
     Array,
@@ -95,6 +94,8 @@ def dieterich_constant_least_squares(
 
     def cost(log_c: float) -> float:
         return float(np.sum((mu_d - static_friction(np.exp(log_c) / u, eps, alpha, creep)) ** 2))
+
+    from scipy.optimize import minimize_scalar  # lazily: slow to import
 
     res = minimize_scalar(cost, bounds=(np.log(1e-3), np.log(1e3)), method="bounded",
                           options={"xatol": 1e-10})

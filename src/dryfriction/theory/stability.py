@@ -47,7 +47,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from ..validation import Array, check_choice, check_scalar
 from .creep import CREEP_LAWS, CreepLaw, creep_law
@@ -244,6 +243,8 @@ def nyquist_crossings(
 
     vals = damping * om + Z(1j * om).imag
     best_K, best_om = -np.inf, np.nan
+    from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
+
     for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
         o = brentq(im, om[i], om[i + 1], xtol=1e-14 * om[i], maxiter=200)
         K = mass * o**2 - float(Z(1j * o).real)

@@ -37,7 +37,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from ..validation import (
     EPS_MAX,
@@ -50,7 +49,7 @@ from ..validation import (
     check_range,
     check_scalar,
 )
-from .creep import CREEP_LAWS, check_age, radius
+from .creep import CREEP_LAWS, check_age, per_eps
 from .trap import Trap, force_forward, work_forward, work_minus
 
 __all__ = [
@@ -94,6 +93,8 @@ def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
     if f_w == 0.0:
         return 0.0
     yc = Trap(alpha).y_c
+    from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
+
     return float(brentq(lambda d: float(fresh_force(d, alpha)) - f_w, 0.0, yc, xtol=1e-15,
                         rtol=4 * np.finfo(float).eps, maxiter=200))
 
@@ -214,7 +215,10 @@ def static_friction(
     check_broadcast(T=T, eps=eps)
     check_age(T, eps, creep)
     d_w = loaded_edge(load, alpha)
-    mu = static_friction_at_radius(radius(T, eps, creep), alpha, d_w)
+    # radius and threshold together, chunk by chunk: the threshold's temporaries (~80 bytes a
+    # point) would otherwise be held for the whole array at once
+    mu = per_eps(lambda law, t: static_friction_at_radius(law.radius(t), alpha, d_w), creep,
+                 eps, T)
     return check_finite_result("mu_s", mu, T=T, eps=eps)
 
 

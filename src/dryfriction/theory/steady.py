@@ -22,7 +22,6 @@ from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.integrate import quad
 
 from ..validation import (
     EPS_MAX,
@@ -322,6 +321,8 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
         return (3.0 * math.log1p(y) + y / (1.0 + y)) * float(force_forward(y, alpha))
 
     pts = [trap.y_c] if trap.y_c < 1.0 else None
+    from scipy.integrate import quad  # lazily: scipy.integrate imports SciPy's optimizers
+
     val, _ = quad(g, -1.0, trap.death_point, points=pts, limit=400, epsabs=1e-13, epsrel=1e-13)
     return val / trap.H0
 

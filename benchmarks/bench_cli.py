@@ -1,0 +1,112 @@
+"""Whole-process wall time of ``dryfriction simulate examples/rsf_velocity_step.toml`` (issue 12).
+
+What a user waits for: interpreter start, imports, loading the cached kernels, the solve and
+the files, with the figure and with ``--no-figure``. The variants run interleaved (round robin)
+so that a change in the machine's load hits them all alike; medians are reported, with the
+load average, since the machine may be shared. Targets: <= 1.0 s with the figure, <= 0.5 s
+without.
+
+``--first-run`` also measures the pause of the first run after an install: a fresh copy of the
+package (no Numba cache) is warmed with ``python -m dryfriction.warm`` (what ``make`` does),
+then timed once, then again.
+
+rsfmodel and PyRSF are not on PyPI, so they are not run here; the reference figures are the
+issue's, measured the same way on a 2-core machine: rsfmodel 0.41 s (import-bound), PyRSF
+1.2 s.
+
+Run: ``python -m benchmarks bench_cli`` (add ``--first-run`` when run directly).
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PROTOCOL = ROOT / "examples" / "rsf_velocity_step.toml"
+REFERENCE = {"rsfmodel": 0.41, "PyRSF": 1.2}  # s, issue 12 (not installable from PyPI)
+
+
+def _command() -> list[str]:
+    """The installed console script when there is one (what a user runs), else ``-m``."""
+    script = Path(sys.executable).with_name("dryfriction")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "dryfriction.cli"]
+
+
+def _run(args: list[str], cwd: str, env: dict[str, str] | None = None) -> tuple[float, float]:
+    """Wall and CPU (user + system) seconds of one run of ``args``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t = time.perf_counter()
+    subprocess.run(args, cwd=cwd, env=env, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    wall = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
+    """Median wall and CPU times (s) of the variants, run interleaved ``rounds`` times."""
+    cmd = _command()
+    variants = {
+        "python -c pass": [sys.executable, "-c", "pass"],
+        "dryfriction --help": [*cmd, "--help"],
+        "simulate --no-figure": [*cmd, "simulate", str(PROTOCOL), "--out", "nofig",
+                                 "--no-figure", "--json"],
+        "simulate (figure)": [*cmd, "simulate", str(PROTOCOL), "--out", "fig", "--json"],
+    }
+    times: dict[str, list[tuple[float, float]]] = {k: [] for k in variants}
+    with tempfile.TemporaryDirectory() as tmp:
+        for args in variants.values():  # warm the file cache and the kernels' cache
+            _run(args, tmp)
+        for _ in range(rounds):
+            for name, args in variants.items():
+                times[name].append(_run(args, tmp))
+    return {k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v))
+            for k, v in times.items()}
+
+
+def first_run_after_install() -> dict[str, tuple[float, float]]:
+    """Wall and CPU times (s) on a fresh copy of the package: the warm-up, the first run, the
+    second."""
+    import dryfriction
+
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "src"
+        shutil.copytree(Path(dryfriction.__file__).resolve().parent, src / "dryfriction",
+                        ignore=shutil.ignore_patterns("__pycache__"))
+        env = {**os.environ, "PYTHONPATH": str(src)}
+        run = [sys.executable, "-m", "dryfriction.cli", "simulate", str(PROTOCOL), "--json",
+               "--no-figure", "--out"]
+        warm = _run([sys.executable, "-m", "dryfriction.warm"], tmp, env)
+        first = _run([*run, "first"], tmp, env)
+        second = _run([*run, "second"], tmp, env)
+    return {"warm-up (make)": warm, "first run": first, "second run": second}
+
+
+def main(first_run: bool = False) -> None:
+    load = os.getloadavg()[0]
+    med = whole_process()
+    print(f"whole process, warm cache, median of 9 interleaved runs "
+          f"(load average {load:.2f} -> {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores):")
+    print(f"  {'':22s} {'wall':>7s} {'CPU':>7s}")
+    for name, (wall, cpu) in med.items():
+        print(f"  {name:22s} {wall:6.3f}s {cpu:6.3f}s")
+    fig, nofig = med["simulate (figure)"][0], med["simulate --no-figure"][0]
+    for ref, t in REFERENCE.items():
+        print(f"  {ref} (issue's figure, {t} s): with figure x{t / fig:.2f}, without "
+              f"x{t / nofig:.2f} (wall; > 1: dryfriction faster)")
+    if first_run:
+        print("first run after install (fresh copy, no Numba cache):")
+        for name, (wall, cpu) in first_run_after_install().items():
+            print(f"  {name:22s} {wall:6.3f}s {cpu:6.3f}s")
+
+
+if __name__ == "__main__":
+    main(first_run="--first-run" in sys.argv)

@@ -1,0 +1,78 @@
+"""Compile the Numba kernels once, at install time: ``python -m dryfriction.warm``.
+
+The kernels are compiled with ``cache=True``: the machine code is written next to the sources
+(``__pycache__/*.nbi``, ``*.nbc``) and later processes load it instead of compiling (about 12 s
+of CPU otherwise, paid by the first real run). ``make`` runs this module after installing,
+so no user meets that pause. Numba keys its cache on the source file's path and timestamp: a
+changed source is recompiled on its next use (and by the next ``make``, which reinstalls when
+``pyproject.toml`` changes; run this module again after editing a kernel by hand).
+
+Each run below is tiny and goes through the same public path as a command (the protocol
+parser), so that every specialisation a command compiles is the one compiled here: the
+trap-model kernel for each creep law and each kind of drive, and the rate-and-state solver
+for each state law, one and two state variables, kinematic and spring machines, sampled and
+every-step output, and its linear stability.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from typing import Any
+
+__all__ = ["WARM_PROTOCOLS", "main", "warm"]
+
+_TRAP_MODEL = {"alpha": 0.13, "eps": 0.04}
+_TRAP_ENSEMBLE = {"traps_per_a0": 20, "initial": "rest"}
+_RSF_MODEL = {"law": "rsf", "a": 0.005, "b": 0.01, "dc": 1e-5, "mu0": 0.6, "v0": 1e-6}
+_STEP = [{"velocity": 1e-6, "duration": 1.0}, {"velocity": 1e-5, "duration": 1.0}]
+
+WARM_PROTOCOLS: tuple[Mapping[str, Any], ...] = (
+    # the trap model: each creep law (the log law has a closed form, the others a table) and
+    # each drive
+    {"model": _TRAP_MODEL, "ensemble": _TRAP_ENSEMBLE,
+     "drive": {"kind": "velocity", "segments": [{"velocity": 1.0, "slip": 0.5}]},
+     "output": {"every_slip": 0.1}},
+    {"model": {**_TRAP_MODEL, "creep": "eyring-nabarro"}, "ensemble": _TRAP_ENSEMBLE,
+     "drive": {"kind": "velocity", "segments": [{"velocity": 1.0, "slip": 0.5}]},
+     "output": {"every": 0.1}},
+    {"model": _TRAP_MODEL, "ensemble": {**_TRAP_ENSEMBLE, "initial": "steady",
+                                        "initial_velocity": 0.1},
+     "drive": {"kind": "spring", "stiffness": 0.05, "mass": 1.0, "damping": 0.02,
+               "segments": [{"velocity": 0.1, "slip": 0.5}]},
+     "output": {"every": 1.0}},
+    {"model": _TRAP_MODEL, "ensemble": _TRAP_ENSEMBLE,
+     "drive": {"kind": "force", "rate": 0.5, "max_force": 0.3}, "output": {"every": 0.1}},
+    # rate-and-state: both laws, a second state variable, the regularised law, both machines,
+    # sampled and every-step output
+    {"model": _RSF_MODEL, "drive": {"kind": "velocity", "segments": _STEP}},
+    {"model": {**_RSF_MODEL, "state_law": "slip", "b2": 0.002, "dc2": 1e-4},
+     "drive": {"kind": "spring", "stiffness": 1e3, "segments": _STEP},
+     "output": {"every": 0.1}},
+    {"model": {**_RSF_MODEL, "regularized": True},
+     "drive": {"kind": "spring", "stiffness": 250.0, "damping": 0.5, "mass": 1e-3,
+               "segments": _STEP}},
+)
+
+
+def warm() -> float:
+    """Run every protocol of :data:`WARM_PROTOCOLS` (compiling what is not cached yet) and the
+    rate-and-state linear stability; return the wall time in seconds."""
+    from .io.protocol import protocol_from_dict
+    from .rsf.driving import linear_stability
+    from .rsf.law import RateState
+
+    start = time.perf_counter()
+    for i, doc in enumerate(WARM_PROTOCOLS):
+        protocol_from_dict(doc, f"warm-up protocol {i}").run()
+    linear_stability(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6), 1e-6, 1e3)
+    return time.perf_counter() - start
+
+
+def main() -> None:
+    """``python -m dryfriction.warm``: compile (or check) the cached kernels, say how long."""
+    print(f"dryfriction: compiled kernels ready ({warm():.1f} s)")
+
+
+if __name__ == "__main__":
+    main()
