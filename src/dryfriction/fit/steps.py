@@ -15,10 +15,13 @@ the change). The first window starts from the data-driven guesses; each later on
 the previous window's optimum (a warm start; the guesses are tried too only when that fit
 fails), which is what keeps a many-step record cheap.
 
-Noise (ours): the robust standard deviation of the first differences of the friction over the
-last third of the window (the steady part after the transient), divided by ``sqrt 2``: the
-first difference is a high-pass filter that removes the slow trend and the fitted curve, so
-this is the white-noise level of one sample, independent of the fit. Peak residual (ours): the
+Noise (ours, :func:`steady_noise`): the standard deviation of the friction about a straight
+line in time over the last third of the window (the steady part after the transient, where
+the model is a line: steady friction plus the trend): the high-pass residual of the steady
+part, independent of the fit. It holds the white noise and whatever slower fluctuation the
+apparatus adds (on the shared sepiolite record a machine oscillation of a few 1e-3, far above
+the sample-to-sample noise); :func:`white_noise` (first differences) gives the white part
+alone. Peak residual (ours): the
 peak is the extreme of the data (the maximum after an increase of velocity, the minimum after
 a decrease; data smoothed by a running mean of ``PEAK_SAMPLES`` samples) between the change
 and the window's end; the peak residual is the mean residual (data minus model) over those
@@ -42,7 +45,7 @@ from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
 
 __all__ = ["StepsResult", "SeriesWindow", "fit_steps", "series_windows", "write_steps_csv",
-           "STEP_COLUMNS", "PEAK_SAMPLES", "noise_level_diff"]
+           "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise"]
 
 PEAK_SAMPLES = 11
 """Samples averaged at the peak (module docstring)."""
@@ -51,7 +54,7 @@ STEP_COLUMNS: tuple[str, ...] = (
     "index", "kind", "t_change", "v_before", "v_after", "a", "b", "a_minus_b", "dc",
     "stiffness", "trend", "mu0", "sigma_a", "sigma_b", "sigma_a_minus_b", "sigma_dc",
     "sigma_stiffness", "sigma_trend", "a_lo", "a_hi", "b_lo", "b_hi", "dc_lo", "dc_hi",
-    "rms", "noise", "peak_residual", "n", "success",
+    "rms", "noise", "white_noise", "peak_residual", "n", "success",
 )
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
 1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one)."""
@@ -90,7 +93,17 @@ def series_windows(data: SeriesData) -> tuple[SeriesWindow, ...]:
     return tuple(out)
 
 
-def noise_level_diff(mu: Array) -> float:
+def steady_noise(t: Array, mu: Array) -> float:
+    """Standard deviation of ``mu`` about its least-squares line in ``t`` (two dof removed)."""
+    t, mu = np.asarray(t, float), np.asarray(mu, float)
+    if mu.size < 4:
+        return math.nan
+    coef = np.polyfit(t - t[0], mu, 1)
+    r = mu - np.polyval(coef, t - t[0])
+    return float(math.sqrt(r @ r / (mu.size - 2)))
+
+
+def white_noise(mu: Array) -> float:
     """White-noise standard deviation of one sample from the first differences (robust:
     1.4826 x median absolute deviation, over ``sqrt 2``)."""
     d = np.diff(np.asarray(mu, float))
@@ -165,7 +178,7 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel) -> dict[str, Any]
     mu_model = rsf_series(fitted, values, d)
     resid = d.mu - mu_model
     peak, _ = _peak_residual(d, mu_model)
-    steady = d.mu[len(d) * 2 // 3:]
+    tail = slice(len(d) * 2 // 3, len(d))
     amb = r.derived.get("a_minus_b", {})
     k = val("stiffness", float(fitted.stiffness) if not isinstance(fitted.stiffness, str)
             else math.nan)
@@ -182,7 +195,8 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel) -> dict[str, Any]
     }
     for name in ("a", "b", "dc"):
         row[f"{name}_lo"], row[f"{name}_hi"] = iv(name)
-    row.update(rms=float(np.sqrt(np.mean(resid**2))), noise=noise_level_diff(steady),
+    row.update(rms=float(np.sqrt(np.mean(resid**2))), noise=steady_noise(d.t[tail], d.mu[tail]),
+               white_noise=white_noise(d.mu[tail]),
                peak_residual=peak, n=len(d), success=bool(r.success))
     return row
 
