@@ -44,7 +44,8 @@ from .engine import fit
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
 
-__all__ = ["StepsResult", "SeriesWindow", "fit_steps", "series_windows", "write_steps_csv",
+__all__ = ["StepsResult", "SeriesWindow", "fit_steps", "series_windows", "step_data",
+           "write_steps_csv",
            "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise"]
 
 PEAK_SAMPLES = 11
@@ -136,6 +137,13 @@ def _window_data(data: SeriesData, w: Any) -> SeriesData:
     sl = slice(i0, i1)
     return SeriesData(data.t[sl], data.v_load[sl], data.mu[sl],
                       source=f"{data.source} [step {getattr(w, 'index', '?')}]")
+
+
+def step_data(record: Any, windows: Sequence[Any], segments: Sequence[Any] | None = None
+              ) -> list[SeriesData]:
+    """Each window's data as a SeriesData (a record's load velocity from ``segments``)."""
+    data = _as_series(record, segments)
+    return [_window_data(data, w) for w in windows]
 
 
 def _peak_residual(d: SeriesData, model_mu: Array) -> tuple[float, int]:

@@ -48,7 +48,7 @@ def plot_step(result: StepsResult, i: int, path: Any = None) -> Figure:
                  f"{row['v_after'] * 1e6:.3g} µm/s;  a-b = {row['a_minus_b']:.4g}, "
                  f"Dc = {row['dc'] * 1e6:.3g} µm, k = {row['stiffness']:.4g} /m, "
                  f"rms = {row['rms']:.2g}", fontsize=9)
-    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.1, top=0.92, hspace=0.08, wspace=0.25)
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.1, top=0.92, hspace=0.08, wspace=0.25)
     if path is not None:
         save_png(fig, path)
     return fig
