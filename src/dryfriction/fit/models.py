@@ -400,10 +400,10 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     The slider starts in steady sliding at ``v_load[0]``; the program is the data's
     piecewise-constant ``v_load`` (:meth:`SeriesData.segments`); the returned friction is the
     spring force per unit normal force (what a load cell measures), at the data's times,
-    from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's (or the fitted,
-    ``values["stiffness"]``) stiffness, damping and state law, plus the linear trend
+    from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's stiffness
+    (``values["stiffness"]`` where it is fitted), damping and state law, plus the linear trend
     ``values["trend"] * x_lp`` in the load-point displacement ``x_lp`` from the first sample
-    (:func:`load_point_displacement`) where the model has one. A program with a hold
+    (:func:`load_point_displacement`) where the model has one (``trend=True``). A program with a hold
     (``v_load = 0``) uses the regularised law. Integration tolerance ``rtol = 1e-9``.
     """
     assert model.v0 is not None
@@ -413,11 +413,11 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
                        regularized=model.regularized or bool(np.any(vel <= 0.0)))
     prog = [Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)]
     te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
-    k = values.get("stiffness", model.stiffness)
+    k = values["stiffness"] if model.stiffness == "fit" else model.stiffness
     res = simulate_rsf(params, SpringSlider(prog, k, model.damping),
                        output=RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
     mu = np.asarray(res.stress, float)
-    if "trend" in values:
+    if model.trend:
         mu = mu + values["trend"] * load_point_displacement(data)
     return mu
 
