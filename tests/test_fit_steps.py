@@ -227,14 +227,16 @@ def test_command_bad_stiffness_and_record_options(tmp_path: Path):
 @pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.io.lab)")
 def test_command_record_bad_input(tmp_path: Path):
     out = tmp_path / "out"
+    rows = [f"{i}\t{i * 1.0}\t0.6\n" for i in range(50)]
+    late = rows[:20] + ["19\t20.5\t0.6\n"] + rows[21:]  # time goes back on line 22
     cases = {
-        "no_step.txt": ("Time(s)\tDispl(microns)\tFriction\n"
-                        + "".join(f"{i}\t{i * 1.0}\t0.6\n" for i in range(50)), ()),
-        "bad_time.txt": ("Time(s)\tDispl(microns)\tFriction\n0\t0\t0.6\n2\t1\t0.6\n1\t2\t0.6\n",
-                         ("line", "Time")),
-        "unit.txt": ("Time(fortnights)\tDispl(microns)\tFriction\n0\t0\t0.6\n1\t1\t0.6\n",
+        "no_step.txt": ("Time(s)\tDispl(microns)\tFriction\n" + "".join(rows), ()),
+        "bad_time.txt": ("Time(s)\tDispl(microns)\tFriction\n" + "".join(late),
+                         ("line 22", "Time")),
+        "unit.txt": ("Time(fortnights)\tDispl(microns)\tFriction\n" + "".join(rows),
                      ("fortnights",)),
-        "missing.txt": ("Time(s)\tFriction\n0\t0.6\n1\t0.6\n", ()),
+        "missing.txt": ("Time(s)\tFriction\n" + "".join(f"{i}\t0.6\n" for i in range(50)),
+                        ()),
     }
     for name, (text, words) in cases.items():
         p = tmp_path / name
