@@ -403,8 +403,8 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's stiffness
     (``values["stiffness"]`` where it is fitted), damping and state law, plus the linear trend
     ``values["trend"] * x_lp`` in the load-point displacement ``x_lp`` from the first sample
-    (:func:`load_point_displacement`) where the model has one (``trend=True``). A program with a hold
-    (``v_load = 0``) uses the regularised law. Integration tolerance ``rtol = 1e-9``.
+    (:func:`load_point_displacement`) where the model has one (``trend=True``). A program
+    with a hold (``v_load = 0``) uses the regularised law. Integration tolerance ``rtol = 1e-9``.
     """
     assert model.v0 is not None
     dur, vel = data.segments()
