@@ -268,3 +268,25 @@ def test_command_record_writes_steps(tmp_path: Path):
     assert rep["steps"][1]["dc"] == pytest.approx(float(rows[1]["dc"]), rel=1e-12)
     assert (out / "step_0.png").exists() and (out / "steps_summary.png").exists()
     assert "would take about" in rep["comparison"]["not_run"]
+
+
+def test_quick_profile_matches_the_engine_profile():
+    """The few-fit profile limits of a, b, dc agree with the engine's full profile walk
+    (catches a wrong threshold, noise variance or secant)."""
+    from dryfriction.fit import fit
+    from dryfriction.fit.steps import quick_profile
+
+    tr = Truth(noise=1e-3, trend=0.0)
+    d = small(tr, 5, [1e-6, 3e-6])
+    # four free parameters, so that the engine's profile walk stays quick
+    res = fit_steps(d, windows=[series_windows(d)[0]], stiffness=tr.stiffness, trend=False)
+    r = res.fits[0]
+    quick = quick_profile(r, res.data[0])
+    full = fit(res.data[0], r.fitted_model, start={p.name: p.value for p in r.parameters},
+               multistart=False, profile=True)
+    for p in full.parameters:
+        if p.name in quick:
+            lo, hi = p.profile_95
+            width = hi - lo
+            assert abs(quick[p.name][0] - lo) < 0.05 * width, p.name
+            assert abs(quick[p.name][1] - hi) < 0.05 * width, p.name

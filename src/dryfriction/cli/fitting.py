@@ -57,8 +57,8 @@ def fit_command(
                                        "density of the simulated ensemble (accuracy about its "
                                        "inverse; cost grows with it)."),
     profile: bool = typer.Option(None, "--profile/--no-profile", help="Profile-likelihood "
-                                 "intervals and identifiability (default: on for CSV, off for "
-                                 "a record, where it costs about ten times the fit)."),
+                                 "intervals and identifiability (for a record: of a, b, Dc "
+                                 "per step)."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -80,7 +80,8 @@ def fit_command(
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
                    stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
-                   profile=bool(profile), run_cv=run_cv, alpha=alpha, creep=creep,
+                   profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
+                   creep=creep,
                    json_out=json_out, force=force)
         return
     for flag, given in (("--columns", columns), ("--segments", segments),
