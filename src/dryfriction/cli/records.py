@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from rich.console import Console
 from rich.progress import Progress
 from rich.table import Table
 
@@ -142,8 +143,15 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
-        out.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"),
-                  width=max(out.width, 150))
+        # one row per step in full: a console's width would squash twelve number columns
+        Console(width=max(out.width, 150)).print(
+            _steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        if res.joint is not None:
+            est = {p.name: p for p in res.joint.parameters}
+            out.print("joint fit (all steps): " + ", ".join(
+                f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
+                                               else f" +- {est[n].stderr:.2g}")
+                for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:

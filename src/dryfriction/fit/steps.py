@@ -429,7 +429,8 @@ def fit_steps(
     joint : bool
         Also fit all windows together with one ``a, b, dc`` and one stiffness (the same
         gouge, the same machine); ``mu0`` and the trend stay per window (the level and the
-        drift change along a record).
+        drift change along a record); Wald intervals. With ``stiffness="slope"`` the first
+        window's slope holds for all.
     profile : bool
         Profile-likelihood 95 % intervals of ``a``, ``b``, ``dc`` in the table
         (:func:`quick_profile`, a few times the fit's cost); default Wald intervals from the
@@ -468,12 +469,12 @@ def fit_steps(
         prev = r
         if progress is not None:
             progress(i + 1, len(wins))
-    joint_fit = _fit_joint(pieces, fits, law, stiffness, trend, profile) if joint else None
+    joint_fit = _fit_joint(pieces, fits, law, stiffness, trend) if joint else None
     return StepsResult(rows, fits, pieces, joint_fit, notes)
 
 
 def _fit_joint(pieces: list[SeriesData], fits: list[FitResult], law: str,
-               stiffness: float | str, trend: bool, profile: bool) -> FitResult:
+               stiffness: float | str, trend: bool) -> FitResult:
     """All windows with one ``a, b, dc`` (and stiffness), from the per-step fits' medians."""
     if isinstance(stiffness, str) and stiffness == "slope":
         # one machine: the stiffness from the first window's slope holds for all
@@ -489,7 +490,9 @@ def _fit_joint(pieces: list[SeriesData], fits: list[FitResult], law: str,
         if trend:
             start[f"trend_{i}"] = v.get("trend", 0.0)
     jm = JointStepsModel(tuple(pieces), base, start)
-    return fit(list(pieces), jm, start=start, multistart=False, profile=profile,
+    # Wald intervals: the engine's profile walk over 3 + 2 n parameters would cost far more
+    # than all the per-step fits
+    return fit(list(pieces), jm, start=start, multistart=False, profile=False,
                consistency=False)
 
 
