@@ -71,7 +71,7 @@ def plot_steps_summary(result: StepsResult, path: Any = None) -> Figure:
     for ax in (ax1, ax2):
         ax.set_xscale("log")
         ax.set_xlabel(VELOCITY_SI.replace("$V$", r"$V_{after}$"))
-    fig.subplots_adjust(left=0.1, right=0.98, bottom=0.16, top=0.94, wspace=0.3)
+    fig.subplots_adjust(left=0.13, right=0.98, bottom=0.16, top=0.94, wspace=0.35)
     if path is not None:
         save_png(fig, path)
     return fig
