@@ -18,7 +18,7 @@ from rich.table import Table
 from ..io.files import to_jsonable
 from .common import err, out, say
 
-__all__ = ["is_project_csv", "parse_stiffness", "fit_record", "CV_CALLS_PER_STEP"]
+__all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CALLS_PER_STEP"]
 
 _PROJECT_COLUMNS = ({"t_w", "mu_s"}, {"v", "mu_d"}, {"t", "v_load", "mu"})
 
@@ -58,18 +58,22 @@ def parse_stiffness(text: str) -> float | str:
     return k
 
 
-def _cv_cost(piece: Any, alpha: float, creep: str) -> float:
-    """Seconds a trap-model fit of one step would take: one forward run at the data-driven
-    start, timed, times :data:`CV_CALLS_PER_STEP`."""
+def cv_cost(pieces: list[Any], alpha: float, creep: str) -> float:
+    """Seconds a trap-model fit of the steps would take: one forward run of the first window
+    at its data-driven start, timed, scaled to all windows by their durations and times
+    :data:`CV_CALLS_PER_STEP` a window (so the estimate costs one run, not a fit)."""
     from ..fit.models import CVModel, cv_series
 
-    guess = CVModel(alpha, creep).guesses([piece])[0]
+    first = pieces[0]
+    guess = CVModel(alpha, creep).guesses([first])[0]
     t0 = time.perf_counter()
     try:
-        cv_series(guess, piece, alpha, creep)
+        cv_series(guess, first, alpha, creep)
     except ValueError:  # the start is too long to simulate: the fit would be longer still
         return math.inf
-    return (time.perf_counter() - t0) * CV_CALLS_PER_STEP
+    span = sum(float(p.t[-1] - p.t[0]) for p in pieces) / max(float(first.t[-1] - first.t[0]),
+                                                             1e-300)
+    return (time.perf_counter() - t0) * span * CV_CALLS_PER_STEP
 
 
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
@@ -104,7 +108,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                          "constant velocity (give it with --segments if it is not)")
     out.print(lab.segments_table(segs), highlight=False, markup=False)
     pieces = step_data(rec, wins, segs)
-    cost = sum(_cv_cost(d, alpha, creep) for d in pieces)
+    cost = cv_cost(pieces, alpha, creep)
     if model == "cv" and not run_cv:  # the trap model is not run unasked (issue 10)
         raise ValueError(f"{path}: the trap model (cv) on this record would take about "
                          f"{cost:.3g} s for {len(wins)} step(s), against seconds for rsf: "
