@@ -23,9 +23,9 @@ __all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CAL
 _PROJECT_COLUMNS = ({"t_w", "mu_s"}, {"v", "mu_d"}, {"t", "v_load", "mu"})
 
 CV_CALLS_PER_STEP = 300
-"""Forward runs a trap-model fit of one step takes, for the cost estimate: three data-driven
-starts of about 20 trust-region iterations, each a Jacobian of 4 parameters plus one
-evaluation (counted on the synthetic series of the test suite: 150 to 400)."""
+"""Forward runs assumed for a trap-model fit of one step, for the cost estimate: three
+data-driven starts of about 20 trust-region iterations, each a Jacobian of 4 parameters plus
+one evaluation. An assumption, not a count on records: the estimate is an order of magnitude."""
 
 
 def is_project_csv(path: Path) -> bool:
