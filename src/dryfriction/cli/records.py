@@ -130,7 +130,9 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         for i, d in enumerate(res.data):
             try:
                 alt = fit(d, CVModel(alpha, creep), profile=False)
-                comp.append({"step": i, **compare_models([res.fits[i], alt])})
+                comp.append({"step": i, **compare_models([res.fits[i], alt]),
+                             "note": "cv runs on a kinematic machine without a trend (its "
+                                     "series model has neither), rsf with both"})
             except (ValueError, NotImplementedError) as exc:
                 comp.append({"step": i, "not_run": f"cv: {exc}"})
         report["comparison"] = comp
