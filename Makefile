@@ -3,8 +3,9 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+DOCS_STAMP := $(VENV)/.installed-docs
 
-.PHONY: demo test lint bench mutants clean venv
+.PHONY: demo test lint bench mutants clean venv docs
 
 venv: $(STAMP)
 
@@ -28,6 +29,18 @@ test: $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
 
+# the documentation site (API reference, gallery run from examples/gallery), offline, into
+# docs/_build/html: open docs/_build/html/index.html
+$(DOCS_STAMP): $(STAMP)
+	$(BIN)/python -m pip install -q -e '.[test,docs]'
+	touch $(DOCS_STAMP)
+
+docs: $(DOCS_STAMP)
+	rm -rf docs/_build docs/generated docs/auto_examples
+	MPLBACKEND=Agg $(BIN)/python -m sphinx -q -W --keep-going -b html -d docs/_build/doctrees \
+		docs docs/_build/html
+	@echo "Open docs/_build/html/index.html in a browser."
+
 bench: $(STAMP)
 	$(BIN)/python -m benchmarks
 
@@ -36,4 +49,4 @@ mutants: $(STAMP)
 	$(BIN)/python -m tests.mutants
 
 clean:
-	rm -rf $(VENV) results build src/*.egg-info
+	rm -rf $(VENV) results build src/*.egg-info docs/_build docs/generated docs/auto_examples

@@ -53,6 +53,7 @@ def _m(name: str, file: str, original: str, replacement: str, *tests: str) -> Mu
 
 _DRV = "tests/test_driving.py"
 _RSF = "tests/test_rsf.py"
+_LAB = "tests/test_lab.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -174,6 +175,25 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("slope stiffness: velocity ratio left out", "fit/models.py",
        "k = slope / (1.0 - vb / va)", "k = slope",
        "tests/test_fit_steps.py", "-k", "slope_stiffness"),
+    # --- laboratory records ---------------------------------------------------------------
+    _m("lab: microns read as millimetres", "io/lab.py",
+       '"micron": 1e-6, "microns": 1e-6}', '"micron": 1e-6, "microns": 1e-3}',
+       _LAB, "-k", "units_convert or shared_record_reads"),
+    _m("lab: friction as normal over shear", "io/lab.py",
+       'friction = vals["shear"] / vals["normal"]', 'friction = vals["normal"] / vals["shear"]',
+       _LAB, "-k", "comma_dialect or spaces_units_row"),
+    _m("lab: error line numbers off by one", "io/lab.py",
+       "return lambda i: first + i", "return lambda i: first + i + 1",
+       _LAB, "-k", "every_refusal"),
+    _m("lab: hold below 1 % of the fastest velocity", "io/labsteps.py",
+       "max(e, 1e-4 * vmax)", "max(e, 1e-2 * vmax)",
+       _LAB, "-k", "wide_range"),
+    _m("lab: no common plateau value", "io/labsteps.py",
+       "            plateau[j] = v\n", "            plateau[j] = vel[j]\n",
+       _LAB, "-k", "detects_velocity_steps"),
+    _m("lab: step window lead as slip times velocity", "io/labsteps.py",
+       "pre_slip / abs(prev.velocity)", "pre_slip * abs(prev.velocity)",
+       _LAB, "-k", "slices_slide_hold_slide"),
 )
 
 

@@ -32,9 +32,8 @@ sys.path.insert(0, str(Path(__file__).parent))
 from lab_synth import Truth, synth_record  # noqa: E402
 
 HAVE_LAB = importlib.util.find_spec("dryfriction.io.lab") is not None
-RECORD = Path("/work/shared/data/lab/sepiolite_velstep_0.2-2um_s.txt")
-if not RECORD.exists():
-    RECORD = Path(__file__).resolve().parents[1] / "shared/data/lab" / RECORD.name
+RECORD = (Path(__file__).resolve().parents[1] / "examples/data/lab"
+          / "sepiolite_velstep_0.2-2um_s.txt")  # the shipped copy of the shared record
 runner = CliRunner()
 
 # small records: 1 -> 3 -> 1 um/s, 300 um of load-point slip each, a sample every 0.25 s

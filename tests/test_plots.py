@@ -27,10 +27,36 @@ K_KEY, V_KEY = "drive.stiffness", "drive.segments.0.velocity"
 # Stand-ins with the attributes the figures read: drawing is what is tested, not the models.
 
 
+PARAMS = {"model": {"alpha": 0.13, "eps": 0.04, "creep": "log", "mu_el": 1.0},
+          "track": {"traps_per_a0": 400.0}, "initial": {"kind": "steady", "velocity": 0.1},
+          "drive": {"kind": "velocity", "segments": [{"velocity": 0.1, "slip": 0.5},
+                                                     {"velocity": 0.0, "duration": 100.0},
+                                                     {"velocity": 0.1, "slip": 0.5}]}}
+
+
 def trap_run(partial: bool = False) -> SimpleNamespace:
-    t = np.linspace(0.0, 10.0, 200)
-    return SimpleNamespace(t=t, x=0.1 * t + 0.5, mu=1 + 0.05 * np.sin(t),
-                           n_active=100 + 5 * np.cos(t), partial=partial)
+    # slide 5 t0 at u = 0.1, a hold of 100 t0 sampled once (its two ends), slide 5 t0 again
+    t = np.concatenate([np.linspace(0.0, 5.0, 100), 105.0 + np.linspace(0.0, 5.0, 100)])
+    v = np.full(t.size, 0.1)
+    v[100] = 0.0  # the velocity of the step ending at the first sample after the hold
+    x = 0.5 + np.concatenate([0.1 * t[:100], 0.5 + 0.1 * (t[100:] - 105.0)])
+    mu = 1 + 0.05 * np.sin(t)
+    return SimpleNamespace(t=t, x=x, v=v, mu=mu, n_active=100 + 5 * np.cos(t),
+                           x_pull=np.full(t.size, np.nan), partial=partial,
+                           info={"parameters": PARAMS})
+
+
+def threshold_run() -> SimpleNamespace:
+    # force control: a wait of 100 t0 at zero force, then a ramp to the threshold 1.2
+    t = np.concatenate([[0.0], 100.0 + np.linspace(0.0, 1e-4, 50)])
+    mu = np.concatenate([[0.0], np.linspace(0.0, 1.2, 50)])
+    x = np.concatenate([[0.0], np.linspace(0.0, 1.5, 50)])
+    params = {**PARAMS, "initial": {"kind": "rest"},
+              "drive": {"kind": "force", "rate": 1e4, "hold": 100.0}}
+    return SimpleNamespace(t=t, x=x, v=np.gradient(x, t), mu=mu, n_active=0 * t,
+                           x_pull=np.full(t.size, np.nan), partial=False,
+                           info={"parameters": params, "threshold_mu": 1.2,
+                                 "threshold_t": 100.0 + 1e-4})
 
 
 def rsf_run(damping: float = 0.0) -> SimpleNamespace:
@@ -77,9 +103,11 @@ def run_figures() -> dict[str, tuple[Figure, object]]:
 # (x unit, y unit) of each panel, top to bottom: reduced units for the trap model (t0, a0,
 # F_el), SI for rate-and-state; None where a shared axis carries no label
 UNITS = {
-    "timeseries": [("[$t_0$]", "F_{el}"), ("[$a_0$]", "F_{el}"), ("[$t_0$]", "[count]")],
-    "rsf_timeseries": [("[s]", r"\mu"), ("[m]", r"\mu"), ("[s]", "[m/s]")],
-    "rsf": [(None, r"\mu"), ("[s]", "[m/s]")],
+    "timeseries": [("[$t_0$]", "F_{el}"), ("[$a_0$]", "F_{el}"), ("[$t_0$]", "[$a_0/t_0$]"),
+                   ("[$t_0$]", "[$a_0$]")],
+    "rsf_timeseries": [("[s]", r"\mu"), ("[m]", r"\mu"), ("[s]", "[m/s]"),
+                       ("[m/s]", r"\mu")],
+    "rsf": [("[s]", r"\mu"), ("[s]", "[m/s]"), ("[m/s]", r"\mu")],
     "compare": [("[$t_0$]", "F_{el}"), ("[$a_0$]", "F_{el}"), ("[$a_0$]", "F_{el}")],
     "phase_diagram": [("[$a_0/t_0$]", "[$F_{el}/a_0$]")],
 }
@@ -107,6 +135,7 @@ def test_run_figures_label_their_axes_with_units(figures, name):
 def test_slip_axes_start_at_zero_and_velocities_on_a_log_scale(figures):
     _, axes = figures["timeseries"]
     assert axes[1].lines[0].get_xdata()[0] == 0.0  # slip, not the slider position
+    assert axes[3].lines[0].get_ydata()[0] == 0.0
     _, axes = figures["rsf_timeseries"]
     assert axes[1].lines[0].get_xdata()[0] == 0.0
     for ax in (axes[2], figures["rsf"][1][1]):
@@ -126,6 +155,36 @@ def test_phase_diagram_marks_each_class_and_the_failed_points(figures):
     fig, ax = figures["phase_diagram"]
     labels = {t.get_text() for t in ax.get_legend().get_texts()}
     assert labels == {"steady", "periodic", "failed", "linear $K_c(u)$"}
+
+
+def test_timeseries_does_not_draw_a_line_across_an_unsampled_hold_and_shades_it(figures):
+    # the hold of 100 t0 is sampled at its two ends only: a straight line between them would
+    # invent the friction's path; the slides are drawn whole
+    fig, axes = figures["timeseries"]
+    t, mu = (np.asarray(a, float) for a in (axes[0].lines[0].get_xdata(),
+                                          axes[0].lines[0].get_ydata()))
+    gap = np.flatnonzero(np.isnan(mu))
+    assert gap.size == 1 and t[gap[0] - 1] == 5.0 and t[gap[0] + 1] == 105.0
+    assert np.isfinite(mu[:gap[0]]).all() and np.isfinite(mu[gap[0] + 1:]).all()
+    spans = [p for p in axes[0].patches if p.get_label() == "hold"]
+    assert len(spans) == 1
+    box = spans[0].get_bbox()  # x in data units
+    assert (box.x0, box.x1) == (5.0, 105.0)
+    assert "hold 100 $t_0$" in [tx.get_text() for tx in axes[1].texts]
+    title = fig.get_suptitle()
+    assert "0.04" in title and "0.13" in title and "400 traps" in title and "1 hold" in title
+
+
+def test_timeseries_marks_a_static_threshold_with_its_value():
+    fig, axes = runs.timeseries_figure(threshold_run())
+    for ax in axes[:2]:
+        stars = [ln for ln in ax.lines if ln.get_marker() == "*"]
+        assert len(stars) == 1 and stars[0].get_ydata()[0] == 1.2
+        assert any("static threshold 1.2" in tx.get_text() for tx in ax.texts)
+    # the ramp on its own clock: the wait of 100 t0 would squeeze it into a spike
+    t = axes[0].lines[0].get_xdata()
+    assert t[0] == 0.0 and t[-1] == pytest.approx(1e-4)
+    _assert_laid_out(fig, "threshold")
 
 
 def test_interrupted_run_says_so():
@@ -179,6 +238,7 @@ def _fig2() -> Figure:
 
 PAPER = {
     "fig1": lambda: paper.fig1_trap_hysteresis()[0],
+    "fig1b": lambda: paper.fig1b_population_at_rest()[0],
     "fig2": _fig2,
     "fig3": lambda: paper.fig3_static_friction(n=41)[0],
     "fig4": lambda: paper.fig4_steady_pinning_curve()[0],
@@ -221,6 +281,51 @@ def test_paper_figures_fit_their_fixed_layout(name):
 @pytest.mark.parametrize("name", sorted(UNITS))
 def test_run_figures_fit_their_fixed_layout(figures, name):
     _assert_laid_out(figures[name][0], name)
+
+
+def test_fig1b_population_at_rest_cancels_and_spans_one_a0_each_side():
+    # eq. 25: (+) on -a0 < p < 0, (-) on 0 < p < a0, forces cancel (the Maxwell plateau)
+    _, ax = paper.fig1b_population_at_rest()
+    occ = {ln.get_label(): ln for ln in ax.lines if ln.get_label().startswith("occupied")}
+    assert len(occ) == 2
+    (plus,) = [ln for k, ln in occ.items() if "(+)" in k]
+    (minus,) = [ln for k, ln in occ.items() if "(−)" in k]
+    pp, fp = plus.get_xdata(), plus.get_ydata()
+    pm, fm = minus.get_xdata(), minus.get_ydata()
+    assert (pp.min(), pp.max()) == (-1.0, 0.0) and (pm.min(), pm.max()) == (0.0, 1.0)
+    assert (fp >= 0).all() and (fm <= 0).all()
+    om = np.argsort(pm)  # the (-) branch is drawn right to left
+    total = np.trapezoid(fp, pp) + np.trapezoid(fm[om], pm[om])
+    assert abs(total) < 1e-9 * np.trapezoid(fp, pp)
+
+
+def test_fig3_shows_the_first_order_lines_over_the_curves():
+    # they lie within 6e-4 of the full curves: under them they were invisible, yet in the legend
+    _, ax = paper.fig3_static_friction(n=41)
+    curves = [ln for ln in ax.lines if ln.get_label().startswith("(")]
+    first = [ln for ln in ax.lines if ln.get_color() == "k" and len(ln.get_xdata())]
+    assert len(curves) == len(first) == 5
+    assert all(f.get_zorder() > c.get_zorder() for f in first for c in curves)
+    assert all(f.get_linestyle() != "-" for f in first)
+    assert any("eq. 28" in t.get_text() for t in ax.get_legend().get_texts())
+
+
+def test_fig6_names_every_c_in_the_legend_and_writes_nothing_on_the_curves():
+    _, ax = paper.fig6_dieterich(n=41)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    for C in (1, 2, 3, 4):
+        assert any(lb.endswith(f"$C$ = {C}") for lb in labels), labels
+    assert not ax.texts  # a label on a curve is struck through by its neighbours
+
+
+def test_trap_forces_share_one_unit_across_figures():
+    units = set()
+    for fn in (paper.fig1_trap_hysteresis, paper.fig1b_population_at_rest,
+               paper.fig2a_aged_pinning_curve, paper.fig2b_population_at_threshold,
+               paper.fig4_steady_pinning_curve):
+        label = fn()[1].get_ylabel()
+        units.add(label[label.index("["):])
+    assert units == {r"[$\Phi_{00}/a_0$]"}
 
 
 def test_layout_check_catches_a_clipped_label():

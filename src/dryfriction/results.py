@@ -38,13 +38,14 @@ Both :class:`dryfriction.ensemble.driving.SimulationResult` and
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["COMMON_COLUMNS", "COMMON_SUMMARY_KEYS", "summarize"]
+__all__ = ["COMMON_COLUMNS", "COMMON_SUMMARY_KEYS", "dataset_records", "records", "records_dict",
+           "summarize", "to_dataframe"]
 
 COMMON_COLUMNS: tuple[str, ...] = ("t", "x", "v", "mu")
 
@@ -111,3 +112,99 @@ def summarize(
             raise ValueError(f"summary key {key!r} is common to every result: rename the extra")
         out[key] = value
     return out
+
+
+def records(columns: Mapping[str, ArrayLike] | Sequence[Mapping[str, Any]]) -> np.ndarray:
+    """A NumPy structured array from ``{name: column}`` or from a sequence of rows.
+
+    Parameters
+    ----------
+    columns : mapping or sequence of mappings
+        Equal-length 1-D columns by name, or rows (``{name: scalar}``, every row with the same
+        names in the same order). Floats become ``float64``, integers and booleans keep their
+        kind, ``None`` among numbers becomes NaN, text is a fixed-width unicode field.
+
+    Returns
+    -------
+    numpy.ndarray
+        One record per sample (or row), fields in the order given.
+
+    Raises
+    ------
+    ValueError
+        When the columns differ in length or the rows in their names.
+    """
+    if not isinstance(columns, Mapping):
+        rows = list(columns)
+        names = list(rows[0]) if rows else []
+        for i, row in enumerate(rows):
+            if list(row) != names:
+                raise ValueError(f"row {i} has fields {list(row)}, row 0 {names}")
+        columns = {k: [row[k] for row in rows] for k in names}
+    arrays = {k: _column(k, v) for k, v in columns.items()}
+    lengths = {k: len(a) for k, a in arrays.items()}
+    if len(set(lengths.values())) > 1:
+        raise ValueError(f"columns differ in length: {lengths}")
+    n = next(iter(lengths.values()), 0)
+    out = np.empty(n, dtype=[(k, a.dtype) for k, a in arrays.items()])
+    for k, a in arrays.items():
+        out[k] = a
+    return out
+
+
+def _column(name: str, values: ArrayLike) -> np.ndarray:
+    """One column as a 1-D array of a kind a structured array holds (``None`` -> NaN)."""
+    raw = np.asarray(values)
+    if raw.dtype == object:
+        items = list(raw.ravel())
+        if all(v is None or isinstance(v, int | float | np.number) for v in items):
+            raw = np.array([np.nan if v is None else v for v in items], float)
+        else:
+            raw = np.array(["" if v is None else str(v) for v in items])
+    if raw.ndim != 1:
+        raise ValueError(f"column {name!r} has shape {raw.shape}: a record field must be 1-D")
+    return raw.astype(np.float64) if raw.dtype.kind == "f" else raw
+
+
+def to_dataframe(columns: Mapping[str, ArrayLike] | np.ndarray) -> Any:
+    """A ``pandas.DataFrame`` of ``{name: column}`` or of a structured array.
+
+    pandas is optional (not a dependency of dryfriction).
+
+    Raises
+    ------
+    ImportError
+        When pandas is not installed, with a message naming the alternatives.
+    """
+    try:
+        import pandas as pd
+    except ImportError as exc:
+        raise ImportError("to_dataframe() needs pandas (pip install pandas); to_records() "
+                          "gives the same table as a NumPy structured array") from exc
+    return pd.DataFrame(columns if isinstance(columns, Mapping) else records_dict(columns))
+
+
+def records_dict(rec: np.ndarray) -> dict[str, np.ndarray]:
+    """``{field: column}`` of a structured array (columns are views, not copies)."""
+    return {k: rec[k] for k in rec.dtype.names or ()}
+
+
+def dataset_records(ds: Any) -> np.ndarray:
+    """An :class:`xarray.Dataset` on a grid (a sweep's ``sweep.nc``) as one record per point.
+
+    The coordinates of every dimension come first (the swept values), then every data variable
+    that spans exactly the dataset's dimensions, in C order over the grid. Works without
+    importing xarray here: any object with ``dims``, ``coords`` and ``data_vars`` of that shape.
+
+    Returns
+    -------
+    numpy.ndarray
+        Structured array of ``prod(shape)`` records.
+    """
+    dims = list(ds.dims)
+    grids = np.meshgrid(*(np.asarray(ds.coords[d].values) for d in dims), indexing="ij")
+    cols: dict[str, Any] = {d: g.ravel() for d, g in zip(dims, grids, strict=True)}
+    for name, var in ds.data_vars.items():
+        if list(var.dims) == dims:
+            cols[str(name)] = np.asarray(var.values).ravel()
+    return records(cols)

@@ -6,6 +6,7 @@ allowed range, before any work starts. The CLI turns these into one line and exi
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import re
@@ -19,12 +20,17 @@ __all__ = [
     "check_range",
     "check_scalar",
     "check_choice",
+    "check_figure_format",
+    "FIGURE_FORMATS",
+    "DPI_RANGE",
     "check_broadcast",
     "check_finite_result",
     "check_memory",
     "format_bytes",
     "memory_limit",
     "parse_bytes",
+    "require_extra",
+    "MissingExtraError",
     "MEMORY_ENV",
     "ALPHA_MIN",
     "EPS_MAX",
@@ -131,6 +137,27 @@ def check_choice(name: str, value: str, choices: tuple[str, ...]) -> str:
     if value not in choices:
         raise ValueError(f"{name} = {value!r} is not allowed: choose one of {', '.join(choices)}")
     return value
+
+
+FIGURE_FORMATS: tuple[str, ...] = ("png", "pdf", "svg")
+"""File formats of the figures (``--format``); pdf and svg are vector graphics."""
+DPI_RANGE: tuple[int, int] = (50, 1200)
+"""Resolutions a figure may be rendered at (``--dpi``): about 110 on screen, 300-600 in print."""
+
+
+def check_figure_format(fmt: str, dpi: float | None = None) -> tuple[str, int | None]:
+    """``(fmt, dpi)`` checked, before any figure is drawn (no matplotlib needed): ``fmt`` one
+    of :data:`FIGURE_FORMATS`, ``dpi`` a whole number in :data:`DPI_RANGE` or ``None`` (the
+    figure style's default)."""
+    if fmt not in FIGURE_FORMATS:
+        raise ValueError(f"--format {fmt!r} is not allowed: choose one of "
+                         f"{', '.join(FIGURE_FORMATS)}")
+    if dpi is None:
+        return fmt, None
+    lo, hi = DPI_RANGE
+    if not (lo <= dpi <= hi and float(dpi).is_integer()):
+        raise ValueError(f"--dpi {dpi:g} is out of range: allowed a whole number in [{lo}, {hi}]")
+    return fmt, int(dpi)
 
 
 def check_broadcast(**arrays: ArrayLike) -> tuple[int, ...]:
@@ -258,3 +285,37 @@ def check_memory(what: str, need: float, hint: str) -> None:
     if not need <= limit:  # NaN (an estimate that overflowed) is refused too
         raise ValueError(f"{what} ({format_bytes(need)}), more than the limit "
                          f"{format_bytes(limit)}: {hint} or set {MEMORY_ENV}")
+
+
+class MissingExtraError(ImportError, ValueError):
+    """An optional dependency group (``pip install 'dryfriction[NAME]'``) is not installed.
+
+    Also a :class:`ValueError`, so the CLI reports it in one line (exit code 2) like bad input.
+    """
+
+
+def require_extra(extra: str, modules: tuple[str, ...], purpose: str) -> None:
+    """Raise :class:`MissingExtraError` naming the extra to install when any of ``modules``
+    (top-level import names) is missing. Looks the modules up without importing them.
+
+    Parameters
+    ----------
+    extra : str
+        Name of the optional dependency group in ``pyproject.toml`` (e.g. ``"sweep"``).
+    modules : tuple of str
+        Top-level modules the feature imports.
+    purpose : str
+        What needs them, for the message ("a sweep").
+    """
+    missing = []
+    for name in modules:
+        try:
+            found = importlib.util.find_spec(name) is not None
+        except (ImportError, ValueError):  # a broken or half-removed install counts as missing
+            found = False
+        if not found:
+            missing.append(name)
+    if missing:
+        raise MissingExtraError(
+            f"{purpose} needs the optional packages {', '.join(missing)}: "
+            f"pip install 'dryfriction[{extra}]'")

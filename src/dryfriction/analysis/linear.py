@@ -13,7 +13,17 @@ from typing import Any
 from ..io.protocol import pulling_velocity, spring_point
 from ..theory.stability import critical_stiffness, rightmost_root, steady_response
 
-__all__ = ["linear_summary"]
+__all__ = ["linear_summary", "SWEEP_VARIABLES"]
+
+SWEEP_VARIABLES: dict[str, dict[str, str]] = {
+    "K_c": {"long_name": "critical spring stiffness of steady sliding", "units": "F_el/a0"},
+    "omega_c": {"long_name": "angular frequency at the onset of instability", "units": "1/t0"},
+    "growth_rate": {"long_name": "growth rate Re(lambda) of the rightmost linear mode "
+                    "(NaN: no root found)", "units": "1/t0"},
+    "linearly_stable": {"long_name": "steady sliding linearly stable (1) or not (0)",
+                        "units": "1"},
+}
+"""CF attributes of :func:`linear_summary`'s results in ``sweep.nc`` (:mod:`dryfriction.io.cf`)."""
 
 
 def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:

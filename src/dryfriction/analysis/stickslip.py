@@ -72,6 +72,7 @@ from ..validation import Array, check_scalar
 
 __all__ = [
     "CLASSES",
+    "SWEEP_VARIABLES",
     "StickSlipStats",
     "analyse",
     "granular_floor",
@@ -93,6 +94,27 @@ CLASSES: dict[int, str] = {
     4: "oscillation",
 }
 """Class codes (a sweep stores numbers) and their names."""
+
+_MU = "1"  # friction mu_el F/F_el: a friction coefficient
+SWEEP_VARIABLES: dict[str, dict[str, Any]] = {
+    "class": {"long_name": "stick-slip class", "units": "1",
+              "flag_values": list(CLASSES), "flag_meanings": " ".join(CLASSES.values())},
+    "amplitude": {"long_name": "mean friction drop per slip event", "units": _MU},
+    "range": {"long_name": "friction range (max - min) after the transient", "units": _MU},
+    "period": {"long_name": "mean time between slip events", "units": "t0"},
+    "period_cv": {"long_name": "coefficient of variation of the periods", "units": "1"},
+    "amplitude_cv": {"long_name": "coefficient of variation of the drops", "units": "1"},
+    "slip_per_event": {"long_name": "mean slip per event", "units": "a0"},
+    "stick_time": {"long_name": "time per period with the slider stuck", "units": "t0"},
+    "stick_fraction": {"long_name": "fraction of the time with the slider stuck", "units": "1"},
+    "events": {"long_name": "number of slip events", "units": "1"},
+    "mean_force": {"long_name": "time-averaged friction", "units": _MU},
+    "threshold": {"long_name": "smallest friction drop counted as an event", "units": _MU},
+    "u": {"long_name": "pulling velocity", "units": "a0/t0"},
+    "stiffness": {"long_name": "spring stiffness", "units": "F_el/a0"},
+}
+"""CF attributes of :func:`stick_slip_summary`'s results in ``sweep.nc``
+(:mod:`dryfriction.io.cf`)."""
 
 
 @dataclass(frozen=True)

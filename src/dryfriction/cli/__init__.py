@@ -3,7 +3,7 @@
 Bad input (any ``ValueError`` from the library's checks, a bad path) becomes one line on
 standard error and exit code 2.
 
-One module per command group (:mod:`.model`, :mod:`.runs`, :mod:`.fitting`,
+One module per command group (:mod:`.model`, :mod:`.runs`, :mod:`.fitting`, :mod:`.record`,
 :mod:`.sweeps`); :mod:`.common` holds the app and the one-line error handling.
 """
 
@@ -11,7 +11,7 @@ from typing import Any
 
 import typer
 
-from . import fitting, model, runs, sweeps  # noqa: F401  (registers the commands)
+from . import examples, fitting, model, record, runs, sweeps  # noqa: F401  (registers the commands)
 from .common import app, error_line
 
 __all__ = ["app", "main"]

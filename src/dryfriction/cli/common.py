@@ -11,11 +11,16 @@ import typer
 import typer.core
 from rich.console import Console
 from rich.table import Table
+from rich.text import Text
 
 from ..io.files import to_jsonable
 
+# Plain Click help (no Rich markup): Rich would take the bracketed words of the help texts
+# (``[sweep]``, ``V[um/s]``, the units ``[a0/t0]``) as markup and drop them, and it labels every
+# flag ``<bool>`` as if it took a value.
 app = typer.Typer(
     add_completion=False,
+    rich_markup_mode=None,
     no_args_is_help=True,
     context_settings={"help_option_names": ["-h", "--help"]},
     help="The Caroli-Velicky elasto-plastic model of dry friction (reduced units: a0, t0, F_el).",
@@ -65,6 +70,10 @@ def cli_errors(fn: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
+FORMAT_HELP = "Figure file format: png, pdf or svg (vector)."
+DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 110; 300 for print)."
+
+
 FORCE_HELP = ("Write into a folder that holds other files too: they are kept (one whose name "
                "collides with a result is renamed NAME.~1~); nothing is deleted.")
 
@@ -79,10 +88,20 @@ def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
     if as_json:
         print(json.dumps(to_jsonable(result), indent=2))
         return
-    table = Table(title=title, show_header=False)
+    table = Table(title=Text(title), show_header=False)
     for k, v in result.items():
-        table.add_row(k, f"{v:.10g}" if isinstance(v, float) else str(v))
-    out.print(table)
+        table.add_row(Text(k), Text(f"{v:.10g}" if isinstance(v, float) else str(v)))
+    print_whole(table)
+
+
+def print_whole(table: Table) -> None:
+    """Print ``table`` at its natural width, never cut to the console's (80 columns when the
+    output is a pipe or a file): a number cut to ``0.072482…`` is no number."""
+    natural = out.measure(table, options=out.options.update_width(100_000)).maximum
+    if natural <= out.width:
+        out.print(table)
+    else:  # ``print(width=...)`` cannot go beyond the console's width: a wider console can
+        Console(width=natural).print(table, crop=False)
 
 
 def write_summary(path: Any, result: Any, context: dict[str, Any]) -> dict[str, Any]:
@@ -145,11 +164,29 @@ def many(*flags: str) -> type[_ManyValues]:
     return type("ManyValues", (_ManyValues,), {"many": flags})
 
 
-def columns(title: str, params: dict[str, Any], cols: dict[str, Any]) -> None:
-    out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()), highlight=False)
+def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
+            units: dict[str, str] | None = None) -> None:
+    """Print ``params`` on one line, then ``cols`` as a table of numbers, whole.
+
+    Parameters
+    ----------
+    title : str
+        What the table is.
+    params : dict
+        The inputs common to every row.
+    cols : dict
+        Column name -> values (equal lengths).
+    units : dict, optional
+        Column name -> unit, shown in the header as ``name [unit]``.
+    """
+    units = units or {}
+    out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()),
+              markup=False, highlight=False, soft_wrap=True)
     table = Table()
     for name in cols:
-        table.add_column(name, justify="right")
+        header = f"{name} [{units[name]}]" if name in units else name
+        # a Text header: ``[a0/t0]`` is a unit, not Rich markup
+        table.add_column(Text(header), justify="right", no_wrap=True)
     for row in zip(*cols.values(), strict=True):
         table.add_row(*(f"{float(v):.10g}" for v in row))
-    out.print(table)
+    print_whole(table)

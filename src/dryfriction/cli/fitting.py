@@ -9,9 +9,20 @@ from typing import Annotated, Any
 import typer
 import typer.core
 from rich.table import Table
+from rich.text import Text
 
 from ..io.files import to_jsonable
-from .common import FORCE_HELP, app, cli_errors, err, out, say
+from .common import (
+    DPI_HELP,
+    FORCE_HELP,
+    FORMAT_HELP,
+    app,
+    cli_errors,
+    err,
+    out,
+    print_whole,
+    say,
+)
 from .model import CREEP_HELP
 from .records import is_project_csv, parse_stiffness
 
@@ -62,6 +73,8 @@ def fit_command(
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """Fit the trap model (cv) or rate-and-state (rsf) to measured friction; writes fit.json
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
@@ -70,9 +83,11 @@ def fit_command(
     from ..io.data import read_csv
     from ..io.files import check_output_dir, output_directory, write_json
     from ..plots.fits import plot_fit
-    from ..validation import check_choice
+    from ..plots.style import save_figure
+    from ..validation import check_choice, check_figure_format
 
     check_choice("model", model, ("cv", "rsf"))
+    fmt, dpi = check_figure_format(fmt, dpi)
     check_output_dir(out_dir, force=force)
     if len(data) == 1 and not is_project_csv(data[0]):
         from .records import fit_record
@@ -121,7 +136,8 @@ def fit_command(
     with output_directory(out_dir, command="fit", force=force, inputs=data,
                           report=say) as tmp:
         write_json(tmp / "fit.json", report)
-        plot_fit(result, datasets, tmp / "fit.png")
+        fig, _ = plot_fit(result, datasets)
+        save_figure(fig, tmp / f"fit.{fmt}", fmt, dpi)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
@@ -132,14 +148,15 @@ def fit_command(
             iv = p.profile_95 or p.interval_95
             ivs = "" if iv is None else ("[" + ", ".join("open" if x is None else f"{x:.4g}"
                                                           for x in iv) + "]")
-            table.add_row(f"{p.name} ({p.unit})" if p.unit else p.name, f"{p.value:.6g}",
-                          "" if p.stderr is None else f"{p.stderr:.2g}", ivs, p.identifiability)
-        out.print(table)
+            cells = (f"{p.name} [{p.unit}]" if p.unit else p.name, f"{p.value:.6g}",
+                     "" if p.stderr is None else f"{p.stderr:.2g}", ivs, p.identifiability)
+            table.add_row(*(Text(c) for c in cells))  # "[open, 0.2]" is no Rich markup
+        print_whole(table)
         for note in result.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if "comparison" in report and "verdict" in report["comparison"]:
             out.print(f"comparison: {report['comparison']['verdict']}", highlight=False)
-        out.print(f"wrote {out_dir}/fit.json, fit.png", highlight=False)
+        out.print(f"wrote {out_dir}/fit.json, fit.{fmt}", highlight=False)
     if not result.success:
         err.print(f"[bold red]fit did not converge:[/] {result.message}", highlight=False,
                   soft_wrap=True)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
 import numpy as np
 import typer
@@ -26,51 +26,132 @@ def trap(
 CREEP_HELP = "Creep law: log (eq. 17) or eyring-nabarro (exact, eqs. 15-16)."
 
 
-@app.command(cls=many("--T"))
+_SI_HELP = {
+    "t0": "Creep time t0 [s], > 0: with it, times are in seconds (theory.units.PhysicalScales).",
+    "a0": "Contact radius a0 [m], > 0: with it and --t0, velocities are in m/s.",
+    "mu_el": "Elastic friction level F_el/W, > 0: with it, friction is the coefficient F/W "
+             "(default: friction in F_el).",
+}
+
+
+def _scales(si_values: str, a0: float | None, t0: float | None, mu_el: float | None,
+            need_a0: bool) -> Any:
+    """The SI scales of ``--t0``/``--a0``/``--mu-el`` (None when none is given), each checked
+    against the reduced or SI values that were given (``si_values``: the SI option, or "")."""
+    from ..theory.units import PhysicalScales
+
+    given = [f"--{n}" for n, v in (("a0", a0), ("t0", t0)) if v is not None]
+    if not si_values:
+        if given:
+            raise ValueError(f"{' and '.join(given)} convert(s) SI inputs: give the values in "
+                             "SI units (see --help) or drop it")
+        return None
+    missing = [f"--{n}" for n, v in (("t0", t0), ("a0", a0 if need_a0 else 0.0)) if v is None]
+    if missing:
+        raise ValueError(f"{si_values} is in SI units: give {' and '.join(missing)} "
+                         "(the model's scales) too")
+    if a0 is not None and not need_a0:
+        raise ValueError("--a0 is not used here (times only need --t0): drop it")
+    return PhysicalScales(a0=1.0 if a0 is None else a0, t0=float(t0),  # type: ignore[arg-type]
+                          mu_el=1.0 if mu_el is None else mu_el)
+
+
+def _one_of(reduced: list[float] | None, si: list[float] | None, names: str) -> None:
+    """Exactly one of the reduced and the SI values (``names``: "--T or --t-w")."""
+    if (reduced is None) == (si is None):
+        raise ValueError(f"give one of {names}: " + ("both were given" if reduced is not None
+                                                      else "neither was given"))
+
+
+def _friction_unit(mu_el: float | None) -> str:
+    return "F_el" if mu_el is None else "F/W"
+
+
+@app.command(cls=many("--T", "--t-w"))
 @cli_errors
 def static(
     eps: Annotated[float, typer.Option("--eps", help="Creep parameter S/Y, >= 0.")],
-    T: Annotated[list[float], typer.Option(
-        "--T", help="Waiting times t_w/t0, >= 0: --T 1 10 100 (or --T 1 --T 10)."
-    )],
+    T: Annotated[list[float] | None, typer.Option(
+        "--T", help="Waiting times T = t_w/t0 [t0], >= 0: --T 1 10 100 (or --T 1 --T 10)."
+    )] = None,
+    t_w: Annotated[list[float] | None, typer.Option(
+        "--t-w", help="Waiting times t_w [s], >= 0, instead of --T; needs --t0."
+    )] = None,
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
     load: float = typer.Option(
-        0.0, "--load", help="Tangential force during the wait, units F_el, 0 <= f_w < 1."
+        0.0, "--load", help="Tangential force during the wait [F_el], 0 <= f_w < 1."
     ),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
+    t0: float = typer.Option(None, "--t0", help=_SI_HELP["t0"]),
+    mu_el: float = typer.Option(None, "--mu-el", help=_SI_HELP["mu_el"]),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
-    """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading)."""
+    """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading); with
+    --t-w and --t0 (and --mu-el) in SI units: t_w in seconds, mu_s = F_s/W."""
     from ..theory.static import static_friction
+    from ..theory.units import static_friction_si
 
-    mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
-    params = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
-    if json_out:
-        emit({**params, "T": list(T), "mu_s": mu}, True, "static")
+    _one_of(T, t_w, "--T or --t-w")
+    scales = _scales("--t-w" if t_w is not None else "", None, t0, mu_el, need_a0=False)
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
+    if scales is None:
+        if mu_el is not None:
+            raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "
+                             "or drop it")
+        mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
+        cols: dict[str, Any] = {"T": list(T or []), "mu_s": mu}
     else:
-        columns("static friction", params, {"T": T, "mu_s": mu})
+        mu = static_friction_si(np.asarray(t_w, float), eps, scales, alpha, creep, load)
+        params.update(t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
+        cols = {"t_w": list(t_w or []), "mu_s": mu}
+    if json_out:
+        emit({**params, **cols}, True, "static")
+    else:
+        units = {"T": "t0", "t_w": "s", "mu_s": _friction_unit(mu_el)}
+        columns("static friction", params, cols, units)
 
 
-@app.command(cls=many("--u"))
+@app.command(cls=many("--u", "--V"))
 @cli_errors
 def steady(
     eps: Annotated[float, typer.Option("--eps", help="Creep parameter S/Y, >= 0.")],
-    u: Annotated[list[float], typer.Option(
-        "--u", help="Reduced velocities V t0/a0, > 0: --u 0.1 1 10 (or --u 0.1 --u 1)."
-    )],
+    u: Annotated[list[float] | None, typer.Option(
+        "--u", help="Reduced velocities u = V t0/a0 [a0/t0], > 0: --u 0.1 1 10 (or --u 0.1 "
+        "--u 1)."
+    )] = None,
+    V: Annotated[list[float] | None, typer.Option(
+        "--V", help="Sliding velocities V [m/s], > 0, instead of --u; needs --a0 and --t0."
+    )] = None,
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
+    a0: float = typer.Option(None, "--a0", help=_SI_HELP["a0"]),
+    t0: float = typer.Option(None, "--t0", help=_SI_HELP["t0"]),
+    mu_el: float = typer.Option(None, "--mu-el", help=_SI_HELP["mu_el"]),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
-    """Steady dynamic friction mu_d = F_d/F_el at reduced velocity u = V/V* (eq. 34)."""
+    """Steady dynamic friction mu_d = F_d/F_el at reduced velocity u = V/V* (eq. 34); with
+    --V, --a0 and --t0 (and --mu-el) in SI units: V in m/s, mu_d = F_d/W."""
     from ..theory.steady import steady_friction
+    from ..theory.units import steady_friction_si
 
-    mu = steady_friction(np.asarray(u, float), eps, alpha, creep)
-    params = {"eps": eps, "alpha": alpha, "creep": creep}
-    if json_out:
-        emit({**params, "u": list(u), "mu_d": mu}, True, "steady")
+    _one_of(u, V, "--u or --V")
+    scales = _scales("--V" if V is not None else "", a0, t0, mu_el, need_a0=True)
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "creep": creep}
+    if scales is None:
+        if mu_el is not None:
+            raise ValueError("--mu-el converts the friction of SI inputs: give --V, --a0 and "
+                             "--t0, or drop it")
+        mu = steady_friction(np.asarray(u, float), eps, alpha, creep)
+        cols: dict[str, Any] = {"u": list(u or []), "mu_d": mu}
     else:
-        columns("steady friction", params, {"u": u, "mu_d": mu})
+        mu = steady_friction_si(np.asarray(V, float), eps, scales, alpha, creep)
+        params.update(a0=scales.a0, t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
+        cols = {"V": list(V or []), "mu_d": mu}
+    if json_out:
+        emit({**params, **cols}, True, "steady")
+    else:
+        units = {"u": "a0/t0", "V": "m/s", "mu_d": _friction_unit(mu_el)}
+        columns("steady friction", params, cols, units)
 
 
 LOAD_MAX = 1e12
@@ -86,8 +167,10 @@ def stability(
         "--u", help="Reduced velocities V t0/a0, > 0: --u 0.1 1 10 (or --u 0.1 --u 1)."
     )],
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
-    mass: float = typer.Option(0.0, "--mass", help="Slider mass M, F_el t0^2/a0, >= 0."),
-    damping: float = typer.Option(0.0, "--damping", help="Viscous damping eta, F_el t0/a0."),
+    mass: float = typer.Option(0.0, "--mass", help="Slider mass M [F_el t0^2/a0], >= 0; "
+                               "needs --damping > 0 (ill posed without)."),
+    damping: float = typer.Option(0.0, "--damping", help="Viscous damping eta [F_el t0/a0], "
+                                  ">= 0."),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
@@ -100,6 +183,11 @@ def stability(
     check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
     check_scalar("mass", mass, 0.0, LOAD_MAX)
     check_scalar("damping", damping, 0.0, LOAD_MAX)
+    if mass > 0 and damping == 0:
+        raise ValueError(
+            f"--mass {mass:g} without --damping is ill posed: with inertia and no damping the "
+            "delay at the spinodal edge makes K_c grow with the highest frequency considered, "
+            "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or drop --mass")
     res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
     twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping) for v in u]
              if eps > 0 else [])
@@ -117,4 +205,7 @@ def stability(
     if json_out:
         emit({**params, **cols}, True, "stability")
     else:
-        columns("linear stability of steady sliding", params, cols)
+        units = {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "1/t0",
+                 "forward_stiffness": "F_el/a0", "backward_stiffness": "F_el/a0",
+                 "dmu_d_du": "F_el t0/a0", "K_c_rsf": "F_el/a0"}
+        columns("linear stability of steady sliding", params, cols, units)

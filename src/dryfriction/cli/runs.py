@@ -9,7 +9,19 @@ from typing import Annotated, Any
 import typer
 import typer.core
 
-from .common import FORCE_HELP, app, cli_errors, emit, err, many, out, say, write_summary
+from .common import (
+    DPI_HELP,
+    FORCE_HELP,
+    FORMAT_HELP,
+    app,
+    cli_errors,
+    emit,
+    err,
+    many,
+    out,
+    say,
+    write_summary,
+)
 from .model import LOAD_MAX
 
 
@@ -19,13 +31,17 @@ def reproduce(
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: new, empty, or one "
                                           "this program wrote before.")],
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """The paper's six figures, the data behind them, summary.json and report.html."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     from ..io.files import check_output_dir
     from ..plots.report import reproduce as run
+    from ..validation import check_figure_format
 
+    fmt, dpi = check_figure_format(fmt, dpi)
     check_output_dir(out_dir, force=force)  # fail on a bad --out before importing matplotlib
     with Progress(
         TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
@@ -36,9 +52,9 @@ def reproduce(
         def progress(done: int, total: int, what: str) -> None:
             bar.update(task, completed=done, total=total, description=what)
 
-        summary = run(out_dir, progress, force=force, report=say)
+        summary = run(out_dir, progress, force=force, report=say, fmt=fmt, dpi=dpi)
     out.print(
-        f"wrote {out_dir}/: fig1-6.png, static_friction.csv, steady_friction.csv, "
+        f"wrote {out_dir}/: fig1-6.{fmt}, static_friction.csv, steady_friction.csv, "
         f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
         f"C_LS = {summary['dieterich_C_least_squares']:.4f})",
         highlight=False, soft_wrap=True,
@@ -66,7 +82,9 @@ def rsf(
     v1: float = typer.Option(1e-6, help="Load velocity of the first segment, m/s."),
     v2: float = typer.Option(1e-5, help="Load velocity after the step (case step), m/s."),
     t1: float = typer.Option(10.0, help="Duration of the first segment, s."),
-    t2: float = typer.Option(30.0, help="Duration of the last segment, s."),
+    t2: float = typer.Option(None, help="Duration of the last segment, s (default: 30 for "
+                             "step; for shs long enough to pass the reload peak and slide "
+                             "10 Dc beyond)."),
     hold: float = typer.Option(100.0, help="Hold time (case shs), s."),
     v_init: float = typer.Option(None, help="Initial slip velocity, m/s, with the state at "
                                  "steady state for v_init (default v1; 1.01 v1 for "
@@ -77,6 +95,8 @@ def rsf(
                                 "written by this program before)."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """Rate-and-state friction (SI units) through a velocity step, slide-hold-slide or
     stick-slip, on a spring with optional radiation damping and inertia."""
@@ -86,9 +106,12 @@ def rsf(
     from ..program import Segment
     from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate_rsf
     from ..rsf.law import RateState
-    from ..validation import check_choice, check_scalar
+    from ..validation import check_choice, check_figure_format, check_scalar
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
+    fmt, dpi = check_figure_format(fmt, dpi)
+    if t2 is None:
+        t2 = _reload_time(a, b, dc, v1, hold, stiffness) if case == "shs" else 30.0
     from ..rsf.law import V_MAX
 
     # durations and velocities a run can reach in floating point (a 1e308 s first segment
@@ -127,15 +150,44 @@ def rsf(
     summary = {**res.summary(), **context}
     if out_dir is not None:
         from ..plots.runs import rsf_figure
-        from ..plots.style import save_png
+        from ..plots.style import save_figure
 
         with output_directory(out_dir, command="rsf", force=force, report=say) as tmp:
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
             fig, _ = rsf_figure(res, f"{case}, {state_law} law")
-            save_png(fig, tmp / "rsf.png")
+            save_figure(fig, tmp / f"rsf.{fmt}", fmt, dpi)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
+    if case == "shs" and _peak_at_end(res, t1 + hold):
+        say(f"note: the reload had not reached its peak when the run ended (t2 = {t2:g} s): "
+            "raise --t2")
+
+
+def _reload_time(a: float, b: float, dc: float, v: float, hold: float,
+                 stiffness: float) -> float:
+    """Duration (s) of the reload of a slide-hold-slide at load velocity ``v`` that passes the
+    peak: the spring takes up the friction the contact healed during the hold (about
+    ``b ln(1 + hold v/dc)`` plus the direct effect ``a``, over ``stiffness``), then the slider
+    slides ``10 dc`` (the evolution back to steady state). At least 30 s."""
+    import math
+
+    if not (a > 0 and dc > 0 and v != 0 and math.isfinite(a + b + dc + v + hold)):
+        return 30.0  # the law's own checks reject these, with their own message
+    speed = abs(v)
+    heal = max(b, 0.0) * math.log1p(hold * speed / dc) + 2.0 * a
+    load = heal / (stiffness * speed) if math.isfinite(stiffness) and stiffness > 0 else 0.0
+    return max(30.0, min(load + 10.0 * dc / speed, LOAD_MAX))
+
+
+def _peak_at_end(res: Any, reload_start: float) -> bool:
+    """Whether the friction of the reload (after ``reload_start``) is still at its maximum at
+    the last sample: the run ended before the peak."""
+    import numpy as np
+
+    sel = np.asarray(res.t) >= reload_start
+    mu = np.asarray(res.mu)[sel]
+    return bool(mu.size > 1 and int(np.argmax(mu)) == mu.size - 1)
 
 
 @app.command()
@@ -146,6 +198,8 @@ def simulate(
                             "new, empty, or written by this program before)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """Run a protocol (trap ensemble, docs/model.md §6, or rate-and-state with
     ``model.law = "rsf"``):
@@ -160,11 +214,13 @@ def simulate(
 
     from ..io.files import check_output_dir, output_directory, write_csv
     from ..io.protocol import RSFProtocol, load_protocol
+    from ..validation import check_figure_format
 
+    fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out, force=force)
     if isinstance(proto, RSFProtocol):
-        _simulate_rsf_protocol(proto, protocol, out, json_out, force)
+        _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi)
         return
 
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -188,7 +244,7 @@ def simulate(
         if bar:
             bar["p"].stop()
     from ..plots.runs import timeseries_figure
-    from ..plots.style import save_png
+    from ..plots.style import save_figure
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
@@ -196,7 +252,7 @@ def simulate(
         summary = write_summary(tmp / "summary.json", result,
                                 {"protocol": str(Path(protocol))})
         fig, _ = timeseries_figure(result)
-        save_png(fig, tmp / "timeseries.png")
+        save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
         for i, snap in enumerate(result.snapshots):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
@@ -218,6 +274,8 @@ def compare(
                                   "slip."),
     json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
 
@@ -229,10 +287,11 @@ def compare(
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.protocol import load_protocol
     from ..plots.runs import comparison_figure
-    from ..plots.style import save_png
-    from ..validation import check_choice
+    from ..plots.style import save_figure
+    from ..validation import check_choice, check_figure_format
 
     check_choice("state_law", state_law, ("ageing", "slip"))
+    fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)
     check_output_dir(out, force=force)
     c = compare_protocol(proto, state_law)
@@ -242,14 +301,14 @@ def compare(
                           report=say) as tmp:
         write_json(tmp / "compare.json", report)
         fig, _ = comparison_figure(c, Path(protocol).name)
-        save_png(fig, tmp / "compare.png")
+        save_figure(fig, tmp / f"compare.{fmt}", fmt, dpi)
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
 
 
 def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
-                           force: bool) -> None:
+                           force: bool, fmt: str = "png", dpi: int | None = None) -> None:
     """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
     import time
     from pathlib import Path
@@ -261,14 +320,14 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
     context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
 
     from ..plots.runs import rsf_timeseries_figure
-    from ..plots.style import save_png
+    from ..plots.style import save_figure
 
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", res.columns())
         summary = write_summary(tmp / "summary.json", res, context)
         fig, _ = rsf_timeseries_figure(res)
-        save_png(fig, tmp / "timeseries.png")
+        save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")

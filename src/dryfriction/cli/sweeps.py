@@ -8,7 +8,7 @@ from typing import Any
 import typer
 import typer.core
 
-from .common import app, cli_errors, err, error_line, out
+from .common import DPI_HELP, FORMAT_HELP, app, cli_errors, err, error_line, out
 
 
 def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | None,
@@ -21,8 +21,10 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
 
     from ..io.files import check_writable_dir
     from ..io.protocol import spring_point
-    from ..io.sweep import MAX_POINTS, parse_sweep
+    from ..io.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
+    from ..validation import require_extra
 
+    require_extra("sweep", SWEEP_MODULES, "a sweep")  # before any work, like bad input
     path = Path(protocol)
     try:
         text = path.read_bytes().decode("utf-8")
@@ -78,7 +80,8 @@ def _resume_command(command: str, protocol: str, out_dir: str, scheduler: str | 
 
 def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                   workers: int | None, confirm: bool, *, source: str = "",
-                  protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "") -> Any:
+                  protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "",
+                  variables: Any = None) -> Any:
     """:func:`~dryfriction.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
     are stored and the command that resumes, and exits with 130."""
     from rich.progress import (
@@ -102,7 +105,8 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
 
             return run_sweep(spec, runner, out_dir, scheduler=scheduler, n_workers=workers,
                              confirm=confirm, progress=progress, source=source,
-                             protocol_text=protocol_text, connect_timeout=connect_timeout)
+                             protocol_text=protocol_text, connect_timeout=connect_timeout,
+                             variables=variables)
     except SweepInterrupted as exc:
         err.print(f"[bold yellow]interrupted:[/] {exc.stored} of {exc.total} points stored in "
                   f"{out_dir}; resume with: {resume}", highlight=False, soft_wrap=True)
@@ -150,17 +154,19 @@ def sweep(
     """Run a parameter grid on Dask: stick-slip summaries (default) or linear stability,
     written to OUT/sweep.nc. Re-running the same command resumes; exit code 1 if any point
     failed, 130 on Ctrl-C."""
-    from ..analysis.linear import linear_summary
-    from ..analysis.stickslip import stick_slip_summary
+    from ..analysis import linear as linear_analysis
+    from ..analysis import stickslip
 
     spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, linear,
                                 connect_timeout)
-    runner = linear_summary if linear else stick_slip_summary
+    runner, variables = (
+        (linear_analysis.linear_summary, linear_analysis.SWEEP_VARIABLES) if linear
+        else (stickslip.stick_slip_summary, stickslip.SWEEP_VARIABLES))
     resume = _resume_command("sweep", protocol, out_dir, scheduler, workers, yes, linear,
                              connect_timeout)
     ds = _run_with_bar(spec, runner, out_dir, scheduler, workers, yes,
                        source=protocol, protocol_text=_text_of(protocol),
-                       connect_timeout=connect_timeout, resume=resume)
+                       connect_timeout=connect_timeout, resume=resume, variables=variables)
     out.print(f"wrote {out_dir}/sweep.nc: {spec.size} points, {ds.attrs['n_failed']} failed; "
               f"variables {', '.join(v for v in ds.data_vars if v != 'error')}",
               highlight=False, soft_wrap=True)
@@ -178,16 +184,20 @@ def phase_diagram(
     workers: int = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
     yes: bool = typer.Option(False, "--yes", help="Allow grids larger than the stated limit."),
     connect_timeout: float = typer.Option(10.0, "--connect-timeout", help=_TIMEOUT_HELP),
+    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line.
     Exit code 1 if any point failed, 130 on Ctrl-C (re-run to resume)."""
     import io as _io
 
-    from ..analysis.stickslip import CLASSES, phase_axes, stick_slip_summary
+    from ..analysis.stickslip import CLASSES, SWEEP_VARIABLES, phase_axes, stick_slip_summary
     from ..io.files import atomic_write_bytes
     from ..plots.runs import phase_diagram_figure
-    from ..plots.style import save_png
+    from ..plots.style import save_figure
+    from ..validation import check_figure_format
 
+    fmt, dpi = check_figure_format(fmt, dpi)
     spec = _prepare_sweep(protocol, out_dir, yes, workers, scheduler, False,
                                 connect_timeout)
     k_key, v_key = phase_axes(spec)  # before any worker starts
@@ -195,17 +205,18 @@ def phase_diagram(
                              False, connect_timeout)
     ds = _run_with_bar(spec, stick_slip_summary, out_dir, scheduler, workers, yes,
                        source=protocol, protocol_text=_text_of(protocol),
-                       connect_timeout=connect_timeout, resume=resume)
+                       connect_timeout=connect_timeout, resume=resume,
+                       variables=SWEEP_VARIABLES)
     fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
     buf = _io.BytesIO()
-    save_png(fig, buf)
-    atomic_write_bytes(Path(out_dir) / "phase_diagram.png", buf.getvalue())
+    save_figure(fig, buf, fmt, dpi)
+    atomic_write_bytes(Path(out_dir) / f"phase_diagram.{fmt}", buf.getvalue())
     counts = {}
     for c, name in CLASSES.items():
         n = int((ds["class"].values == c).sum()) if "class" in ds else 0
         if n:
             counts[name] = n
-    out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.png: "
+    out.print(f"wrote {out_dir}/sweep.nc, phase_diagram.{fmt}: "
               + ", ".join(f"{k} {v}" for k, v in counts.items())
               + f", failed {ds.attrs['n_failed']}", highlight=False, soft_wrap=True)
     _fail_if_points_failed(ds, out_dir)

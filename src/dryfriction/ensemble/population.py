@@ -4,7 +4,7 @@ Reduced units: lengths in ``a0``, times in ``t0``, forces per trap in ``Phi00/a0
 friction force in ``F_el`` (eq. 12).
 
 Model (docs/model.md §6; every choice below is ours unless an equation is cited)
---------------------------------------------------------------------------
+--------------------------------------------------------------------------------
 * Asperity pairs sit at fixed track positions ``c_i`` with density ``lambda`` per ``a0``
   (``traps_per_a0``), either on a regular lattice ``c_k = (k + 1/2)/lambda`` (the half offset keeps
   a pair off the Maxwell point ``p = 0`` of the rest state) or uniformly at random, ``1024`` pairs

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..program import VelocityProgram
-from ..results import summarize
+from ..results import records, summarize, to_dataframe
 from ..validation import Array, check_range, check_scalar
 from .population import Ensemble, Observables
 
@@ -115,20 +115,12 @@ class SimulationResult:
         return self.columns()
 
     def to_records(self) -> np.ndarray:
-        """The time series as a NumPy structured array."""
-        d = self.to_dict()
-        rec = np.empty(len(self.t), dtype=[(k, float) for k in d])
-        for k, v in d.items():
-            rec[k] = v
-        return rec
+        """The time series as a NumPy structured array (one record per sample)."""
+        return records(self.columns())
 
     def to_dataframe(self) -> Any:
         """A ``pandas.DataFrame`` of the time series (needs pandas, not a dependency)."""
-        try:
-            import pandas as pd
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError("to_dataframe needs pandas; use to_dict() or to_records()") from exc
-        return pd.DataFrame(self.to_dict())
+        return to_dataframe(self.columns())
 
     def columns(self) -> dict[str, Array]:
         """The time series as ``{column: array}`` (the shared names of

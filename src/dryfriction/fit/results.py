@@ -7,7 +7,10 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from ..io.data import Dataset
+from ..results import records, to_dataframe
 from ..validation import Array
 from .models import Model
 
@@ -57,6 +60,18 @@ class ParameterEstimate:
     def to_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)
 
+    def row(self) -> dict[str, Any]:
+        """One flat row of the parameter table (intervals split into ``_lo``/``_hi``; a bound
+        the data do not give, or a missing error, is ``None``)."""
+        wald = self.interval_95 or (None, None)
+        prof = self.profile_95 or (None, None)
+        return {
+            "name": self.name, "unit": self.unit, "value": self.value, "fixed": self.fixed,
+            "stderr": self.stderr, "interval_95_lo": wald[0], "interval_95_hi": wald[1],
+            "profile_95_lo": prof[0], "profile_95_hi": prof[1],
+            "identifiability": self.identifiability,
+        }
+
 
 @dataclass(frozen=True)
 class FitResult:
@@ -100,6 +115,19 @@ class FitResult:
     def predict(self, data: Dataset, x: Array | None = None) -> Array:
         """The fitted model at the data's abscissae (or at ``x``, not for time series)."""
         return self.fitted_model.predict(self.values, data, x)
+
+    def to_records(self) -> np.ndarray:
+        """The parameter table as a NumPy structured array, one record per parameter.
+
+        Fields: ``name, unit, value, fixed, stderr, interval_95_lo, interval_95_hi,
+        profile_95_lo, profile_95_hi, identifiability``; a missing error or interval bound is NaN.
+        """
+        return records([p.row() for p in self.parameters])
+
+    def to_dataframe(self) -> Any:
+        """The parameter table of :meth:`to_records` as a ``pandas.DataFrame`` indexed by
+        ``name`` (needs pandas, not a dependency)."""
+        return to_dataframe(self.to_records()).set_index("name")
 
     def to_dict(self) -> dict[str, Any]:
         return {

@@ -149,11 +149,11 @@ class RSFProtocol:
     ----------
     params : RateState
         Friction law and parameters.
-    drive : SpringSlider
+    drive : dryfriction.rsf.spring.SpringSlider
         Load-point program and machine (``stiffness = inf``: kinematic).
-    initial : RSFInitial
+    initial : dryfriction.rsf.spring.RSFInitial
         Initial slip velocity (state at steady state for it).
-    output : RSFOutput
+    output : dryfriction.rsf.spring.RSFOutput
         Sampling interval and solver tolerance.
     """
 

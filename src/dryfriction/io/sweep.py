@@ -41,7 +41,8 @@ from typing import Any
 
 import numpy as np
 
-from ..validation import check_scalar
+from ..validation import check_scalar, require_extra
+from .cf import describe
 from .files import atomic_write_bytes, check_writable_dir, write_json
 
 __all__ = [
@@ -61,6 +62,7 @@ __all__ = [
 
 MAX_POINTS = 2000
 """Largest grid run without ``confirm=True`` (``--yes`` on the command line)."""
+SWEEP_MODULES = ("dask", "distributed", "xarray")  # the optional extra dryfriction[sweep]
 
 Runner = Callable[[dict[str, Any]], Mapping[str, float]]
 
@@ -456,6 +458,7 @@ def run_sweep(
     source: str | None = None,
     protocol_text: str | None = None,
     connect_timeout: float = _CONNECT_TIMEOUT,
+    variables: Mapping[str, Any] | None = None,
 ) -> Any:
     """Run every grid point not already stored under ``out`` and return the Dataset.
 
@@ -488,6 +491,8 @@ def run_sweep(
         protocol as JSON).
     connect_timeout : float
         Seconds to wait for ``scheduler`` to answer, ``> 0``.
+    variables : mapping, optional
+        CF attributes of the runner's results (:func:`dryfriction.io.cf.describe`).
 
     Raises
     ------
@@ -497,6 +502,7 @@ def run_sweep(
     SweepInterrupted
         On Ctrl-C, after the cluster is closed; the finished points are stored.
     """
+    require_extra("sweep", SWEEP_MODULES, "a sweep")
     if spec.size > MAX_POINTS and not confirm:
         raise ValueError(
             f"the grid has {spec.size} points, more than {MAX_POINTS}: confirm with --yes"
@@ -520,8 +526,12 @@ def run_sweep(
         _probe_scheduler(scheduler, connect_timeout)
     lock = _claim_folder(out, marker)
     try:
-        return _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
-                           connect_timeout)
+        ds = _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
+                         connect_timeout)
+        describe(ds, variables, protocol=marker["protocol"], source=source or "",
+                 analysis=analysis)
+        _write_netcdf(ds, out / "sweep.nc")
+        return ds
     finally:
         os.close(lock)  # releases the flock
 
@@ -570,9 +580,7 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
             _close(client, scheduler, list(futures))
             raise SweepInterrupted(done, spec.size, out) from None
         _close(client, scheduler, list(futures))
-    ds = assemble(spec, points_dir, keys)
-    _write_netcdf(ds, out / "sweep.nc")
-    return ds
+    return assemble(spec, points_dir, keys)
 
 
 def _close(client: Any, scheduler: str | None, futures: list[Any]) -> None:

@@ -8,9 +8,10 @@ library's functions on grids: forces come from :mod:`dryfriction.trap`, friction
 :mod:`dryfriction.static` and :mod:`dryfriction.steady`, Dieterich constants from
 :mod:`dryfriction.dieterich`.
 
-Units are the reduced ones of the core: lengths in ``a0`` (``a`` for a single trap), times in
-``t0``, velocities in ``V* = a0/t0``, trap forces in ``Phi0/a`` (``Phi00/a0`` for aged traps),
-friction in ``F_el`` (eq. 12).
+Units are the reduced ones of the core: lengths in ``a0``, times in ``t0``, velocities in
+``V* = a0/t0``, friction in ``F_el`` (eq. 12), and every trap force, in every figure, in
+``Phi00/a0`` (the force scale of a fresh trap of radius ``a0``; Fig. 1's trap is a fresh one, so
+its ``Phi0/a`` is ``Phi00/a0``, and aged traps scale as ``a_r^2`` in it, eq. 23).
 """
 
 from __future__ import annotations
@@ -52,6 +53,7 @@ __all__ = [
     "EPS_FIGURES",
     "population_at_shift",
     "fig1_trap_hysteresis",
+    "fig1b_population_at_rest",
     "fig2a_aged_pinning_curve",
     "fig2b_population_at_threshold",
     "fig3_static_friction",
@@ -93,7 +95,8 @@ def _label_curves(ax: Axes, x: Array, ys: Sequence[Array], where: float) -> None
 
 
 def fig1_trap_hysteresis(alpha: float = 0.13, ax: Axes | None = None) -> tuple[Figure, Axes]:
-    """Fig. 1a: pinning force ``f(y)`` of one elastic trap, ``alpha = 0.13``.
+    """Fig. 1a: pinning force ``f(y)`` of one fresh elastic trap (radius ``a0``, so ``y = p/a0``
+    and the force is in ``Phi00/a0``), ``alpha = 0.13``.
 
     Stable branches (+) and (-), the unstable middle branch (dashed), the free states
     (``f = 0`` for ``|y| > 1``), the spinodals ``C, C' = +-y_c``, the Maxwell plateau ``y_M = 0``
@@ -136,11 +139,47 @@ def fig1_trap_hysteresis(alpha: float = 0.13, ax: Axes | None = None) -> tuple[F
     ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
     ax.margins(y=0.1)
     ax.set_xlim(-span, span)
-    ax.set_xlabel(r"configuration coordinate $y = p/a$")
-    ax.set_ylabel(r"pinning force $f$  [$\Phi_0/a$]")
-    ax.set_title(rf"Fig. 1 — elastic trap, $\alpha$ = {alpha:g} ({trap.regime.value})",
+    ax.set_xlabel(r"configuration coordinate $p/a_0$")
+    ax.set_ylabel(r"pinning force $f$  [$\Phi_{00}/a_0$]")
+    ax.set_title(rf"Fig. 1a — elastic trap, $\alpha$ = {alpha:g} ({trap.regime.value})",
                  fontsize=TITLE_SIZE)
     ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
+    return fig, ax
+
+
+def fig1b_population_at_rest(alpha: float = 0.13, ax: Axes | None = None
+                             ) -> tuple[Figure, Axes]:
+    """Fig. 1b: the asperity distribution at rest, just after contact under zero tangential
+    load (docs/model.md §3, eq. 25).
+
+    Pairs are spread uniformly in ``p`` with density ``1/(2 a0)``; those with ``-a0 < p < 0``
+    sit on the (+) branch, those with ``0 < p < a0`` on the (−) branch (the edge of the
+    distribution on the Maxwell plateau ``y_M = 0``). Their forces cancel: the net tangential
+    force is zero. All have age zero.
+    """
+    trap = Trap(alpha)
+    if not trap.pinned:
+        raise ValueError(f"alpha = {alpha:g} is out of range: Fig. 1b needs 0 < alpha < 1")
+    fig, ax = _axes(ax)
+    yc = trap.y_c
+    yp = np.linspace(-1.0, yc, 500)
+    ax.plot(yp, force_plus(yp, alpha), color="0.55", ls="--", lw=1.0,
+            label="branches of Fig. 1a (empty states)")
+    ax.plot(-yp, force_minus(-yp, alpha), color="0.55", ls="--", lw=1.0)
+    p_plus = np.linspace(-1.0, 0.0, 400)
+    f_plus = force_plus(p_plus, alpha)
+    ax.plot(p_plus, f_plus, color="C0", lw=2.2, label=r"occupied (+), $-a_0 < p < 0$")
+    ax.fill_between(p_plus, 0.0, f_plus, color="C0", alpha=0.15)
+    ax.plot(-p_plus, -f_plus, color="C3", lw=2.2, label=r"occupied (−), $0 < p < a_0$")
+    ax.fill_between(-p_plus, 0.0, -f_plus, color="C3", alpha=0.15)
+    # the density of pairs, uniform on [-a0, a0]: a band along the axis
+    ax.plot([-1.0, 1.0], [0.0, 0.0], color="k", lw=4.0, solid_capstyle="butt",
+            label=r"pairs in contact, density $1/(2a_0)$")
+    ax.axvline(0.0, color="C2", lw=1.0, ls=":")
+    ax.text(0.03, 0.04, "Maxwell plateau $y_M = 0$:\nforces cancel, net force 0",
+            transform=ax.transAxes, fontsize=8, color="0.25")
+    _per_trap_axes(ax, rf"Fig. 1b — asperities at rest after contact, $\alpha$ = {alpha:g}")
+    ax.set_xlim(-(max(yc, 1.0) + 0.6), max(yc, 1.0) + 0.6)
     return fig, ax
 
 
@@ -267,17 +306,23 @@ def fig3_static_friction(
 ) -> tuple[Figure, Axes]:
     """Fig. 3: ``mu_s`` against ``T = t_w/t0`` (log scale) for ``eps`` = 0.01 ... 0.05 (1-5).
 
-    Thin grey dotted lines: the first-order expansion (eq. 28).
+    Black dashes on top of each curve: the first-order expansion (eq. 28). It lies within
+    ``6e-4`` of the full curves over the figure's range, so it is drawn over them, where it
+    can be seen, and the legend says how close it is.
     """
     fig, ax = _axes(ax)
     T = np.logspace(np.log10(T_range[0]), np.log10(T_range[1]), n)
     ys = []
+    gap = 0.0
     for k, e in enumerate(eps_values):
         mu = static_friction(T, e, alpha, creep)
         ys.append(mu)
         ax.plot(T, mu, color=_COLORS[k % 5], lw=1.8, label=rf"({k + 1}) $\varepsilon$ = {e:g}")
-        ax.plot(T, static_friction_first_order(T, e, alpha), color="0.5", lw=0.8, ls=":",
-                label="first order, eq. 28" if k == 0 else None)
+        first = static_friction_first_order(T, e, alpha)
+        gap = max(gap, float(np.max(np.abs(first - mu))))
+        ax.plot(T, first, color="k", lw=0.8, ls=(0, (2.5, 2.5)), zorder=3)
+    ax.plot([], [], color="k", lw=0.8, ls=(0, (2.5, 2.5)),
+            label=f"first order, eq. 28 (within {gap:.1g})")
     _label_curves(ax, T, ys, 30.0)
     ax.set_xscale("log")
     ax.set_xlim(T[0], T[-1])
@@ -368,18 +413,12 @@ def fig6_dieterich(
     u = np.logspace(np.log10(u_range[0]), np.log10(u_range[1]), n)
     ax.plot(u, steady_friction(u, eps, alpha, creep), color="k", lw=2.2,
             label=r"$\mu_d(u)$")
-    dotted = [C for C in C_values if C != 1.0]
-    for C in C_values:
-        if C == 1.0:
-            ls, label = "-.", r"$\mu_s(C/u)$, $C$ = 1"
-        else:
-            ls = ":"
-            label = (r"$\mu_s(C/u)$, $C$ = " + ", ".join(f"{c:g}" for c in dotted)
-                     if C == dotted[0] else None)
-        line, = ax.plot(u, static_friction(C / u, eps, alpha, creep), color="0.35", lw=1.2,
-                        ls=ls, label=label)
-        ax.annotate(f"C={C:g}", (u[0], line.get_ydata()[0]), textcoords="offset points",
-                    xytext=(3, 2), fontsize=7, color="0.3")
+    # one legend entry per C, each its own colour: labels written on the curves were struck
+    # through by the neighbouring ones, which lie a few points apart
+    shades = ("#8c510a", "#d8b365", "#5ab4ac", "#01665e")
+    for k, C in enumerate(C_values):
+        ax.plot(u, static_friction(C / u, eps, alpha, creep), color=shades[k % len(shades)],
+                lw=1.3, ls="-." if k == 0 else ":", label=rf"$\mu_s(C/u)$, $C$ = {C:g}")
     ax.plot(u, static_friction(C_paper / u, eps, alpha, creep), color="0.35", lw=1.4,
             ls="--", label=rf"$C$ = {C_paper:g} (paper)")
     c_inf = dieterich_constant_asymptotic(alpha)

@@ -18,12 +18,14 @@ from __future__ import annotations
 
 import base64
 import html
+import io
 import math
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..io.files import atomic_write_text, output_directory, to_jsonable, write_csv, write_json
 from ..theory.creep import creep_law_difference, radius
@@ -45,10 +47,12 @@ from ..theory.steady import (
     steady_friction,
 )
 from ..theory.trap import Trap
+from ..validation import check_figure_format
 from . import paper as plotting
-from .style import PANEL, new_figure, save_png
+from .style import PANEL, new_figure, save_figure
 
-__all__ = ["reproduce", "FIGURE_FILES", "EXTRA_FILES", "DATA_FILES", "GRID"]
+__all__ = ["reproduce", "report_html", "build_info", "FIGURE_FILES", "EXTRA_FILES", "DATA_FILES",
+           "GRID"]
 
 ALPHA = 0.13
 EPS = plotting.EPS_FIGURES
@@ -68,25 +72,32 @@ DATA_FILES = ("static_friction.csv", "steady_friction.csv", "summary.json", "rep
 Progress = Callable[[int, int, str], None]
 
 
-def _fig2(path: Path) -> None:
+def _fig1() -> Figure:
+    fig, (ax_a, ax_b) = new_figure((2 * PANEL[0], PANEL[1]), 1, 2)
+    plotting.fig1_trap_hysteresis(ALPHA, ax=ax_a)
+    plotting.fig1b_population_at_rest(ALPHA, ax=ax_b)
+    return fig
+
+
+def _fig2() -> Figure:
     fig, (ax_a, ax_b) = new_figure((2 * PANEL[0], PANEL[1]), 1, 2)
     plotting.fig2a_aged_pinning_curve(T_FIG2, EPS_FIG2, ALPHA, ax=ax_a)
     plotting.fig2b_population_at_threshold(T_FIG2, EPS_FIG2, ALPHA, ax=ax_b)
-    save_png(fig, path)
+    return fig
 
 
-def _single(fn: Callable[..., Any], **kw: Any) -> Callable[[Path], None]:
-    def draw(path: Path) -> None:
+def _single(fn: Callable[..., Any], **kw: Any) -> Callable[[], Figure]:
+    def draw() -> Figure:
         fig, _ = fn(**kw)
-        save_png(fig, path)
+        return fig  # type: ignore[no-any-return]
 
     return draw
 
 
-def _plots() -> list[tuple[str, Callable[[Path], None]]]:
+def _plots() -> list[tuple[str, Callable[[], Figure]]]:
     # looked up at call time so that tests can replace a plotting function
     return [
-        ("fig1.png", _single(plotting.fig1_trap_hysteresis, alpha=ALPHA)),
+        ("fig1.png", _fig1),
         ("fig2.png", _fig2),
         ("fig3.png", _single(plotting.fig3_static_friction, alpha=ALPHA)),
         ("fig4.png", _single(plotting.fig4_steady_pinning_curve, u=U_FIG4, eps=EPS_FIG4,
@@ -191,23 +202,67 @@ def compute_summary() -> dict[str, Any]:
 # report.html
 # --------------------------------------------------------------------------------------------
 
+# Tables sit in a scrolling container and wrap their text: at 800 px the key table fits the
+# window, and a narrower one scrolls the table, not the page.
 _CSS = """
+*{box-sizing:border-box}
 body{font-family:system-ui,sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;
 color:#222;line-height:1.4}
 h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ddd}
-table{border-collapse:collapse;font-size:.92em;margin:.6em 0}
-td,th{border:1px solid #ccc;padding:.25em .6em;vertical-align:top}
-th{background:#f3f3f3;text-align:left}td.num{font-family:ui-monospace,monospace;
-white-space:nowrap}
-figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}
+.table-wrap{overflow-x:auto;max-width:100%;margin:.6em 0}
+table{border-collapse:collapse;font-size:.92em;width:100%}
+td,th{border:1px solid #ccc;padding:.25em .6em;vertical-align:top;overflow-wrap:anywhere}
+th{background:#f3f3f3;text-align:left}
+td.num{font-family:ui-monospace,monospace;overflow-wrap:normal}
+figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #eee}
 figcaption{font-size:.9em;color:#444}.note{color:#555;font-size:.92em}
-.diff{color:#a40}
+.diff{color:#a40}.build{color:#666;font-size:.85em}
+math[display=block]{margin:.5em 0;padding:.2em 0;overflow-x:auto;overflow-y:hidden}
+@media (max-width:900px){body{margin:.8em auto;padding:0 .5em}table{font-size:.84em}
+td,th{padding:.2em .35em}}
 """
 
+# eq. 27 as MathML Core (browsers draw it natively: nothing is fetched)
+_EQ27 = (
+    '<math display="block"><mrow><msub><mi>μ</mi><mi>s</mi></msub><mo>=</mo><mfrac><mrow>'
+    "<msubsup><mo>∫</mo><mrow><mo>−</mo><mn>1</mn></mrow><mrow><mo>−</mo><mn>1</mn><mo>+</mo>"
+    "<mi>r</mi><msub><mi>y</mi><mi>c</mi></msub></mrow></msubsup><msub><mi>f</mi><mo>+</mo>"
+    "</msub><mspace width=\"0.2em\"></mspace><mi>d</mi><mi>y</mi><mo>+</mo><msup><mi>r</mi>"
+    "<mn>3</mn></msup><msubsup><mo>∫</mo><mrow><msub><mi>y</mi><mi>c</mi></msub><mo>−</mo>"
+    "<mn>1</mn><mo>/</mo><mi>r</mi></mrow><msub><mi>y</mi><mi>c</mi></msub></msubsup><msub>"
+    "<mi>f</mi><mo>+</mo></msub><mspace width=\"0.2em\"></mspace><mi>d</mi><mi>y</mi></mrow>"
+    "<msub><mi>H</mi><mn>0</mn></msub></mfrac><mo>,</mo><mspace width=\"1em\"></mspace>"
+    "<mi>r</mi><mo>=</mo><msub><mi>a</mi><mi>r</mi></msub><mo>(</mo><msub><mi>t</mi><mi>w</mi>"
+    "</msub><mo>)</mo></mrow></math>"
+)
 
-def _img(folder: Path, name: str) -> str:
-    data = base64.b64encode((folder / name).read_bytes()).decode("ascii")
-    return f'<img alt="{html.escape(name)}" src="data:image/png;base64,{data}">'
+
+def build_info() -> dict[str, str]:
+    """The package version, the git commit of its source when it runs from a checkout
+    (``""`` otherwise, or when git is missing), and the date (UTC, ISO 8601)."""
+    import datetime
+    import subprocess
+
+    from .. import __version__
+
+    commit = ""
+    try:
+        r = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=12"],
+                           cwd=Path(__file__).parent, capture_output=True, text=True, timeout=5)
+        if r.returncode == 0:
+            commit = r.stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        pass
+    now = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return {"version": __version__, "commit": commit, "date": now}
+
+
+_MIME = {"png": "image/png", "svg": "image/svg+xml"}
+
+
+def _img(name: str, mime: str, raw: bytes) -> str:
+    data = base64.b64encode(raw).decode("ascii")
+    return f'<img alt="{html.escape(name)}" src="data:{mime};base64,{data}">'
 
 
 def _fmt(x: Any, digits: int = 6) -> str:
@@ -216,8 +271,25 @@ def _fmt(x: Any, digits: int = 6) -> str:
     return html.escape(str(x))
 
 
-def _report_html(folder: Path, s: dict[str, Any]) -> str:
+def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = None,
+                images: dict[str, tuple[str, str, bytes]] | None = None) -> str:
+    """The text of ``report.html``: key numbers beside the paper's, claims checked, readings,
+    the loaded protocol and every figure of ``folder`` embedded (nothing fetched).
+
+    Parameters
+    ----------
+    folder : Path
+        Where the figures (:data:`FIGURE_FILES`, :data:`EXTRA_FILES`) are.
+    s : dict
+        The summary (:func:`compute_summary`).
+    build : dict, optional
+        ``version``, ``commit`` and ``date`` shown on the page (default :func:`build_info`).
+    images : dict, optional
+        PNG name (``"fig1.png"``) -> ``(file name, MIME type, bytes)`` of the image to embed;
+        default: the PNGs in ``folder``.
+    """
     e = html.escape
+    b = build or build_info()
     rows = [
         ("alpha (trap stiffness)", _fmt(s["alpha"]), "0.13", "the paper's value, used everywhere"),
         ("regime", e(s["regime"]), "very strong pinning (y_c > 1)",
@@ -242,7 +314,7 @@ def _report_html(folder: Path, s: dict[str, Any]) -> str:
          _fmt(s["dieterich_C_least_squares"], 6), "no global fit possible",
          f'max |μ_d − μ_s(C/u)| = {s["dieterich_max_residual"]["C_least_squares"]:.4f}'),
         ("local C(u), ε = 0.04", ", ".join(
-            f"u={k}: {v:.3f}" for k, v in s["dieterich_C_local"].items()), "—",
+            f"u={k}:&nbsp;{v:.3f}" for k, v in s["dieterich_C_local"].items()), "—",
          "the C that makes the curves meet at u: not constant"),
         ("μ_d(u = 100)", ", ".join(f"{v:.5f}" for v in s["mu_d_at_u_100"]), "→ 1",
          "saturation at high velocity (ε = 0.01…0.05)"),
@@ -263,14 +335,18 @@ def _report_html(folder: Path, s: dict[str, Any]) -> str:
         f"<tr><td>{q}</td><td class=num>{o}</td><td>{p}</td><td class=note>{n}</td></tr>"
         for q, o, p, n in rows
     )
+    commit = f", commit <code>{e(b['commit'])}</code>" if b.get("commit") else ""
     figs = [
-        ("fig1.png", "Fig. 1 — pinning force of one elastic trap, α = 0.13: stable branches (+) "
-         "and (−), unstable branch dashed, spinodals C, C′, Maxwell plateau with its force jump, "
-         "jumps out of contact at the spinodals, hysteresis area H0."),
+        ("fig1.png", "Fig. 1 — (a) pinning force of one elastic trap, α = 0.13: stable branches "
+         "(+) and (−), unstable branch dashed, spinodals C, C′, Maxwell plateau with its force "
+         "jump, jumps out of contact at the spinodals, hysteresis area H0; (b) the asperities at "
+         "rest after contact: (+) for −a0 < p < 0, (−) for 0 < p < a0, forces cancel (eq. 25). "
+         "Trap forces in every figure in Φ00/a0."),
         ("fig2.png", "Fig. 2 — (a) pinning curve aged at rest under zero tangential load, "
          "t_w = 25 t0, ε = 0.04 (eq. 23); (b) the shifted population at the static threshold: "
          "fresh traps and aged (+) traps (eq. 27 [reading])."),
-        ("fig3.png", "Fig. 3 — μ_s(T) for ε = 0.01 … 0.05 (1–5); dotted: first order (eq. 28)."),
+        ("fig3.png", "Fig. 3 — μ_s(T) for ε = 0.01 … 0.05 (1–5); black dashes: first order "
+         "(eq. 28), within 6e-4 of the full curves."),
         ("fig4.png", "Fig. 4 — pinning curve in steady motion, u = 0.1, ε = 0.04 (eq. 31), "
          "with the death point p_d (eq. 32)."),
         ("fig5.png", "Fig. 5 — μ_d(u) for ε = 0.01 … 0.05 (1–5); dotted: eq. 35 with its "
@@ -284,15 +360,19 @@ def _report_html(folder: Path, s: dict[str, Any]) -> str:
         ("extra_creep.png", "Extra (ours) — logarithmic creep law (eq. 17) against the exact "
          "Eyring–Nabarro law (eqs. 15–16)."),
     ]
+    if images is None:
+        images = {n: (n, "image/png", (folder / n).read_bytes()) for n, _ in figs}
     fig_html = "".join(
-        f"<figure>{_img(folder, n)}<figcaption>{e(c)}</figcaption></figure>" for n, c in figs
+        f"<figure>{_img(*images[n])}<figcaption>{e(c)}</figcaption></figure>" for n, c in figs
     )
     ratio = s["static_slope_per_eps"] / abs(s["dynamic_slope_per_eps"])
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <title>dryfriction — reproduction of Caroli &amp; Velický (1997)</title>
+<meta name="viewport" content="width=device-width, initial-scale=1">
 <style>{_CSS}</style></head><body>
 <h1>Dry friction as an elasto-plastic response — reproduction</h1>
+<p class=build>dryfriction {e(b["version"])}{commit}; written {e(b["date"])}</p>
 <p>C. Caroli and B. Velický, J. Phys. I France 7 (1997) 1391–1416, sections 3–6, computed by
 the <code>dryfriction</code> package with the paper's parameters (α = 0.13, ε = 0.01…0.05,
 logarithmic creep unless stated). Reduced units: lengths in a0, times in t0, velocities in
@@ -302,8 +382,9 @@ V* = a0/t0, friction in F_el (eq. 12). Data beside this page:
 <a href="summary.json">summary.json</a>.</p>
 
 <h2>Key numbers</h2>
-<table><tr><th>quantity</th><th>this package</th><th>paper</th><th>note</th></tr>
-{table}</table>
+<div class="table-wrap"><table>
+<tr><th>quantity</th><th>this package</th><th>paper</th><th>note</th></tr>
+{table}</table></div>
 
 <h2>The paper's claims, checked</h2>
 <ul>
@@ -331,8 +412,8 @@ not tuned. In Fig. 6 the μ_s curves for 2.45 and C_∞ differ by at most
 
 <h2>Our readings and what is ours</h2>
 <ul class=note>
-<li><b>[reading] eq. 27</b>: μ_s = {{∫_{{−1}}^{{−1+r y_c}} f₊ + r³ ∫_{{y_c−1/r}}^{{y_c}} f₊}} / H0,
-r = a_r(t_w): sliding starts when the aged (+) edge reaches the aged spinodal. The library
+<li><b>[reading] eq. 27</b>: {_EQ27}
+sliding starts when the aged (+) edge reaches the aged spinodal. The library
 returns the larger of this and the only other candidate maximum of the force over the pull
 (fresh edge at its own spinodal); over the whole range of Fig. 3 the reading is the maximum:
 {e(str(s["eq27_reading_is_the_maximum_over_figure_range"]).lower())}.</li>
@@ -346,8 +427,9 @@ the first-order expansion at any u are ours.</li>
 <p class=note>The paper says that ageing under a finite tangential force f_w gives a larger
 μ_s and a larger slope, without computing it. ε = 0.04; slope = secant of μ_s against
 ln(1+T) between T = 1 and 100, divided by ε.</p>
-<table><tr><th>f_w [F_el]</th><th>edge d_w [a0]</th><th>μ_s(T=1)</th><th>μ_s(T=100)</th>
-<th>slope/ε</th></tr>{loaded}</table>
+<div class="table-wrap"><table>
+<tr><th>f_w [F_el]</th><th>edge d_w [a0]</th><th>μ_s(T=1)</th><th>μ_s(T=100)</th>
+<th>slope/ε</th></tr>{loaded}</table></div>
 
 <h2>Figures</h2>
 {fig_html}
@@ -359,7 +441,8 @@ ln(1+T) between T = 1 and 100, divided by ε.</p>
 
 
 def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool = False,
-              report: Callable[[str], None] | None = None) -> dict[str, Any]:
+              report: Callable[[str], None] | None = None, fmt: str = "png",
+              dpi: int | None = None) -> dict[str, Any]:
     """Write the paper's figures, data, summary and report into ``out`` (whole or not at all).
 
     Parameters
@@ -374,12 +457,18 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         Write beside other files in ``out`` (kept; see :func:`dryfriction.io.output_directory`).
     report : callable, optional
         ``report(line)`` for what was done to files already in ``out``.
+    fmt : str
+        Format of the figures: png, pdf or svg (``fig1.svg``, ...). report.html embeds them
+        (a PDF as a PNG rendered beside it, since browsers show no PDF in a page).
+    dpi : int, optional
+        Resolution of PNG figures (default :data:`.style.DPI`).
 
     Returns
     -------
     dict
         The summary written to ``summary.json``.
     """
+    fmt, dpi = check_figure_format(fmt, dpi)
     plots = _plots()
     total = len(plots) + 4
 
@@ -399,11 +488,20 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         write_json(tmp / "summary.json", summary)
         done += 1
         tick(done, "summary.json")
+        images: dict[str, tuple[str, str, bytes]] = {}
         for name, draw in plots:
-            draw(tmp / name)
+            fig = draw()
+            target = tmp / name.replace(".png", f".{fmt}")
+            save_figure(fig, target, fmt, dpi)
+            if fmt in _MIME:
+                images[name] = (target.name, _MIME[fmt], target.read_bytes())
+            else:
+                buf = io.BytesIO()
+                save_figure(fig, buf, "png")
+                images[name] = (target.name, "image/png", buf.getvalue())
             done += 1
-            tick(done, name)
-        atomic_write_text(tmp / "report.html", _report_html(tmp, summary))
+            tick(done, target.name)
+        atomic_write_text(tmp / "report.html", report_html(tmp, summary, images=images))
         done += 1
         tick(done, "report.html")
     return summary

@@ -13,9 +13,11 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
+from ..validation import check_figure_format
+
 __all__ = [
     "DPI", "LINE", "THIN", "TITLE_SIZE", "LEGEND_SIZE", "PANEL", "RUN_WIDTH", "ROW_HEIGHT",
-    "new_figure", "save_png",
+    "new_figure", "save_png", "save_figure",
     "TIME_T0", "SLIP_A0", "FRICTION_EL", "CONTACTS", "VELOCITY_U", "STIFFNESS_K",
     "TIME_S", "SLIP_M", "VELOCITY_SI", "FRICTION_SI",
 ]
@@ -89,3 +91,18 @@ def new_figure(size: tuple[float, float] = PANEL, nrows: int = 1, ncols: int = 1
 def save_png(fig: Figure, path: Any, dpi: int = DPI) -> None:
     """Render ``fig`` to a PNG file (or binary file object) with the Agg canvas."""
     fig.savefig(path, format="png", dpi=dpi)
+
+
+
+def save_figure(fig: Figure, path: Any, fmt: str = "png", dpi: int | None = None) -> None:
+    """Render ``fig`` to ``path`` (a file name or a binary file object) as ``fmt`` (one of
+    :data:`dryfriction.validation.FIGURE_FORMATS`: png, pdf, svg). ``dpi`` (default
+    :data:`DPI`) sets a PNG's resolution, and that of any raster part of a vector file; the
+    size in inches is the figure's own."""
+    fmt, dpi = check_figure_format(fmt, dpi)
+    from matplotlib import rc_context
+
+    # no date in vector files and fixed SVG ids: the same figure gives the same bytes
+    metadata: dict[str, Any] = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}.get(fmt, {})
+    with rc_context({"svg.hashsalt": "dryfriction"}):
+        fig.savefig(path, format=fmt, dpi=DPI if dpi is None else dpi, metadata=metadata)

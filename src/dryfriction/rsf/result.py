@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..program import VelocityProgram
-from ..results import summarize
+from ..results import records, summarize, to_dataframe
 from ..validation import Array
 from .law import RateState
 
@@ -83,6 +83,14 @@ class RSFResult:
             cols["theta2"] = self.theta2
         cols.update(stress=self.stress, x_load=self.load, v_load=self.load_velocity)
         return cols
+
+    def to_records(self) -> np.ndarray:
+        """The time series (:meth:`columns`) as a NumPy structured array, one record per sample."""
+        return records(self.columns())
+
+    def to_dataframe(self) -> Any:
+        """A ``pandas.DataFrame`` of :meth:`columns` (needs pandas, not a dependency)."""
+        return to_dataframe(self.columns())
 
     def critical_stiffness(self) -> float | None:
         """``k_c`` (1/m) at the final load velocity (the initial slip velocity if that is 0)

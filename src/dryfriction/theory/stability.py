@@ -303,22 +303,29 @@ def rightmost_root(
     seeds = [s * scale * np.exp(1j * p) for s in np.geomspace(0.05, 50.0, n_seeds // 4)
              for p in (-1.2, -0.4, 0.4, 1.2)]
     best = complex(-np.inf, 0.0)
-    for z in seeds:
-        for _ in range(60):
-            h = 1e-7 * max(abs(z), scale)
-            f = complex(characteristic(z, resp, stiffness, mass, damping))
-            df = (complex(characteristic(z + h, resp, stiffness, mass, damping)) - f) / h
-            if df == 0 or not (np.isfinite(df) and np.isfinite(f)):
-                break
-            step = f / df
-            z = z - step
-            if abs(step) < 1e-13 * max(abs(z), scale):
-                break
-        else:
-            continue
-        if abs(complex(characteristic(z, resp, stiffness, mass, damping))) < 1e-8 and \
-                z.real > best.real:
-            best = z
+    # a Newton run may wander off to |lambda| ~ 1e200, where chi overflows: that seed is
+    # dropped (no warning, no OverflowError), the others still find the root
+    with np.errstate(all="ignore"):
+        for z in seeds:
+            for _ in range(60):
+                h = 1e-7 * max(abs(z), scale)
+                f = complex(characteristic(z, resp, stiffness, mass, damping))
+                df = (complex(characteristic(z + h, resp, stiffness, mass, damping)) - f) / h
+                if df == 0 or not (np.isfinite(df) and np.isfinite(f)):
+                    break
+                step = f / df
+                z = z - step
+                if not np.isfinite(z):
+                    break
+                if abs(step) < 1e-13 * max(abs(z), scale):
+                    break
+            else:
+                continue
+            if not np.isfinite(z):
+                continue
+            residual = np.abs(np.complex128(characteristic(z, resp, stiffness, mass, damping)))
+            if residual < 1e-8 and z.real > best.real:
+                best = z
     return best
 
 

@@ -1,0 +1,235 @@
+"""Change points of a noisy piecewise-linear signal: where a load-point displacement changes slope.
+
+The model is a continuous broken line ``x(t)`` plus white noise. Binary segmentation splits a
+stretch at the *hinge* (two lines meeting at a sample time) that lowers the residual sum of
+squares most, and keeps the split when the gain beats a penalty of ``penalty * sigma**2 *
+ln(n)`` (a BIC-like criterion: two more parameters, the kink and its place); each boundary is
+then moved to the best hinge between its neighbours. Everything is done with cumulative sums in
+the time variable, so the cost is ``O(n log k)`` and a change of sampling rate changes nothing.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..validation import Array
+
+__all__ = ["noise_level", "line_fit", "rss", "hinge_segments", "refine", "prune"]
+
+
+def noise_level(x: Array) -> float:
+    """Standard deviation of the white noise on a smooth signal, from its second differences.
+
+    The larger of a robust (MAD) and a trimmed-RMS estimate, so that a quantised signal (most
+    second differences zero, a few one quantum) is not taken as noise-free.
+    """
+    d2 = np.diff(np.asarray(x, float), 2)
+    if d2.size == 0:
+        return 0.0
+    mad = 1.4826 * float(np.median(np.abs(d2 - np.median(d2))))
+    a = np.abs(d2)
+    trimmed = a[a <= np.quantile(a, 0.99)]
+    rms = float(np.sqrt(np.mean(trimmed**2))) if trimmed.size else 0.0
+    return max(mad, rms) / np.sqrt(6.0)  # var(x[i+1] - 2x[i] + x[i-1]) = 6 sigma^2
+
+
+def line_fit(t: Array, x: Array) -> tuple[float, float, float]:
+    """Least-squares line through ``(t, x)``.
+
+    Returns
+    -------
+    slope : float
+    intercept : float
+        Value at ``t = mean(t)``.
+    sxx : float
+        ``sum((t - mean t)**2)``: the slope's standard error is ``sigma / sqrt(sxx)``.
+    """
+    tc = t - t.mean()
+    xm = x.mean()
+    # sums, not ``@``: a BLAS call per short stretch costs more than it saves
+    sxx = float(np.sum(tc * tc))
+    slope = float(np.sum(tc * (x - xm)) / sxx) if sxx > 0 else 0.0
+    return slope, float(xm), sxx
+
+
+def _best_hinge(t: Array, x: Array, m: int, min_dur: float) -> tuple[int, float]:
+    """Best hinge sample ``k`` (``m <= k <= n - m``) and the RSS it saves over one line."""
+    n = len(t)
+    if n < 2 * m + 1:
+        return -1, 0.0
+    half = 0.5 * (t[-1] - t[0])
+    tt = (t - 0.5 * (t[-1] + t[0])) / half  # in [-1, 1]: the sums stay well conditioned
+    slope, mean, _ = line_fit(tt, x)
+    r = x - mean - slope * (tt - tt.mean())  # the hinge's space holds every line: RSS unchanged
+    cs = [np.concatenate([[0.0], np.cumsum(q)]) for q in (tt, r, tt * tt, tt * r)]
+    k = np.arange(m, n - m + 1)
+    keep = ((t[k] - t[0]) >= min_dur) & ((t[-1] - t[k]) >= min_dur)
+    k = k[keep]
+    if k.size == 0:
+        return -1, 0.0
+    tk = tt[k]
+    st, sr, stt, str_ = (c[k] for c in cs)
+    st_r, sr_r, stt_r, str_r = (c[-1] - c[k] for c in cs)
+    n_l, n_r = k.astype(float), (n - k).astype(float)
+    su_l, su_r = st - n_l * tk, st_r - n_r * tk
+    suu_l = stt - 2 * tk * st + n_l * tk**2
+    suu_r = stt_r - 2 * tk * st_r + n_r * tk**2
+    sux_l, sux_r = str_ - tk * sr, str_r - tk * sr_r
+    # normal equations of x = c + v1 min(t - tk, 0) + v2 max(t - tk, 0): the slopes' rows
+    # give v1, v2 in terms of c, which the first row then fixes (no batched 3x3 solve)
+    sx = cs[1][-1]
+    gain = np.full(k.size, -np.inf)
+    ok = (suu_l > 0) & (suu_r > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        den = n - su_l**2 / suu_l - su_r**2 / suu_r
+        c = (sx - su_l * sux_l / suu_l - su_r * sux_r / suu_r) / den
+        v1 = (sux_l - su_l * c) / suu_l
+        v2 = (sux_r - su_r * c) / suu_r
+        g = c * sx + v1 * sux_l + v2 * sux_r  # RSS(line) - RSS(hinge)
+    ok &= np.isfinite(g) & (den > 0)
+    gain[ok] = g[ok]
+    best = int(np.argmax(gain))
+    return int(k[best]), float(gain[best])
+
+
+def hinge_segments(
+    t: Array,
+    x: Array,
+    sigma: float,
+    *,
+    min_samples: int = 10,
+    min_duration: float = 0.0,
+    penalty: float = 10.0,
+    max_segments: int = 10_000,
+    max_points: int = 5_000,
+) -> list[int]:
+    """Sample indices of the slope changes of ``x(t)``, with ``0`` and ``len(t)`` at the ends.
+
+    A long record (more than ``max_points`` samples) is searched on the means of blocks of
+    ``len(t) // max_points`` samples (time averaged too, so the sampling may vary), and each
+    change found is then placed on the samples within two blocks of it: the cost stays
+    about linear in the length. A stretch is then at least three blocks long.
+
+    Parameters
+    ----------
+    t, x : Array
+        Times (strictly increasing) and the signal.
+    sigma : float
+        Noise level of ``x`` (:func:`noise_level`), ``> 0``.
+    min_samples, min_duration : int, float
+        Shortest stretch, in samples and in time.
+    penalty : float
+        A split is kept when it lowers the residual sum of squares by more than
+        ``penalty * sigma**2 * ln(n)``.
+    max_segments : int
+        Stop splitting beyond this many stretches.
+    max_points : int
+        Longest signal searched sample by sample.
+    """
+    n = len(t)
+    xs = (np.asarray(x, float) - x[0]) / sigma
+    block = max(1, n // max_points)
+    if block == 1:
+        return _segment(t, xs, penalty * np.log(max(n, 2)), min_samples, min_duration,
+                        max_segments)
+    nb = n // block
+    tb = t[: nb * block].reshape(nb, block).mean(axis=1)
+    xb = xs[: nb * block].reshape(nb, block).mean(axis=1)
+    # white noise averages down by sqrt(block); slow wander (a motor's wobble) does not
+    sb = max(1.0 / np.sqrt(block), noise_level(xb))
+    coarse = _segment(tb, xb / sb, penalty * np.log(nb), max(3, -(-min_samples // block)),
+                      min_duration, max_segments)
+    out = [0]
+    for j in range(1, len(coarse) - 1):
+        k = coarse[j] * block
+        a = max(out[-1], k - 2 * block)
+        b = min(coarse[j + 1] * block, k + 2 * block)
+        kk, _ = _best_hinge(t[a:b], xs[a:b], min(min_samples, (b - a) // 3), 0.0)
+        out.append(a + kk if kk > 0 else k)
+    # a block that straddles a kink lies off both lines: it may have left a short stretch
+    return prune(t, xs, out + [n], penalty * np.log(n), min_samples, 0.0, window=4 * block)
+
+
+def _segment(t: Array, xs: Array, threshold: float, m: int, min_dur: float,
+             max_segments: int) -> list[int]:
+    """Binary segmentation, then each boundary refined and the stretches pruned."""
+    n = len(t)
+    bounds = [0, n]
+    todo = [(0, n)]
+    while todo and len(bounds) - 1 < max_segments:
+        a, b = todo.pop()
+        k, gain = _best_hinge(t[a:b], xs[a:b], m, min_dur)
+        if k > 0 and gain > threshold:
+            bounds.append(a + k)
+            todo += [(a, a + k), (a + k, b)]
+    bounds.sort()
+    bounds = refine(t, xs, bounds, m, min_dur)
+    return prune(t, xs, bounds, threshold, m, min_dur)
+
+
+def rss(t: Array, xs: Array, bounds: list[int]) -> float:
+    """Residual sum of squares of a line fitted to each stretch."""
+    total = 0.0
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        slope, mean, _ = line_fit(t[a:b], xs[a:b])
+        r = xs[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
+        total += float(np.sum(r * r))
+    return total
+
+
+def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
+          min_dur: float, window: int | None = None) -> list[int]:
+    """Drop the stretches that do not earn their place, shortest first.
+
+    Binary segmentation can leave a short stretch across a kink (two splits where one
+    would do): a stretch is dropped when one hinge between its neighbours fits within
+    ``threshold`` (in RSS) of the three stretches. With ``window``, only stretches shorter
+    than ``2 * window`` samples are tried, each on its neighbours' samples within
+    ``window`` of it (the cost stays local).
+    """
+    out = list(bounds)
+    kept: set[tuple[int, ...]] = set()  # the outcome depends only on these boundaries
+    changed = True
+    while changed and len(out) > 2:
+        changed = False
+        order = sorted(range(len(out) - 1), key=lambda j: out[j + 1] - out[j])
+        for j in order:
+            if window is not None and out[j + 1] - out[j] >= 2 * window:
+                break
+            lo, hi = max(j - 1, 0), min(j + 2, len(out) - 1)
+            sub = list(out[lo:hi + 1])
+            if window is not None:
+                sub[0], sub[-1] = max(sub[0], out[j] - window), min(sub[-1], out[j + 1] + window)
+            if tuple(sub) in kept:
+                continue
+            a, b = sub[0], sub[-1]
+            now = rss(t, xs, sub)
+            if len(sub) == 4:
+                k, _ = _best_hinge(t[a:b], xs[a:b], min(m, (b - a) // 3), 0.0)
+                if k <= 0:
+                    kept.add(tuple(sub))
+                    continue
+                alt, new = [a, a + k, b], [a + k]
+            else:
+                alt, new = [a, b], []
+            if rss(t, xs, alt) - now < threshold:
+                out[lo + 1:hi] = new
+                changed = True
+                break
+            kept.add(tuple(sub))
+    return out
+
+
+def refine(t: Array, xs: Array, bounds: list[int], m: int, min_dur: float,
+           only: set[int] | None = None) -> list[int]:
+    """Move each inner boundary (or those whose sample index is in ``only``) to the best hinge
+    between its two neighbours (one pass)."""
+    out = list(bounds)
+    for j in range(1, len(out) - 1):
+        if only is not None and out[j] not in only:
+            continue
+        a, b = out[j - 1], out[j + 1]
+        k, _ = _best_hinge(t[a:b], xs[a:b], m, min_dur)
+        if k > 0:
+            out[j] = a + k
+    return out

@@ -1,0 +1,163 @@
+"""The documentation site: it builds (``-W``: a docstring warning fails), it is offline, every
+gallery script ran and drew its figure, and its pages render in headless Chromium (screenshots
+not blank, every gallery image loaded).
+
+The build copies ``docs/``, ``examples/gallery/`` and the README into a temporary folder, so
+the source tree is not written to (the package is imported from ``src/``). Without Sphinx (the
+``docs`` extra) or Chromium the test skips with the reason, except under ``CI`` where both are
+installed by ``.ci/run`` and a missing one fails. ``DRYFRICTION_DOCS_HTML=docs/_build/html``
+checks a site built by ``make docs`` instead of building again (``.ci/run`` does so).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from matplotlib.image import imread
+
+ROOT = Path(__file__).resolve().parents[1]
+GALLERY = sorted((ROOT / "examples" / "gallery").glob("plot_*.py"))
+CHROMIUM_FLAGS = [
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--hide-scrollbars",
+]
+# a tag that makes the browser fetch something: a page that needs the network (a CDN script,
+# a web font, MathJax) breaks offline
+FETCHING = re.compile(
+    r"<(?:script|img|iframe|source|link)\b[^>]*\b(?:src|href)\s*=\s*[\"']?(?:https?:)?//",
+    re.IGNORECASE)
+
+
+def _missing(what: str) -> None:
+    if os.environ.get("CI"):
+        pytest.fail(f"{what} is missing under CI (.ci/run installs it)")
+    pytest.skip(f"{what} is not installed (CI installs it)")
+
+
+def _chromium() -> str:
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        path = shutil.which(name)
+        if path:
+            return path
+    _missing("chromium (apt-get install -y chromium)")
+    raise AssertionError  # unreachable: _missing skips or fails
+
+
+def test_docs_configuration_is_offline() -> None:
+    conf = (ROOT / "docs" / "conf.py").read_text()
+    extensions = re.search(r"^extensions = \[(.*?)\]", conf, re.S | re.M).group(1)
+    assert "plainmath" in extensions
+    assert "intersphinx" not in extensions and "mathjax" not in extensions
+    assert 'html_math_renderer = "plainmath"' in conf
+    assert GALLERY, "no gallery scripts"
+    for script in GALLERY:  # sphinx-gallery needs a title in the docstring of each
+        text = script.read_text()
+        assert text.startswith('"""\n') and "\n===" in text.split('"""')[1], script.name
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    prebuilt = os.environ.get("DRYFRICTION_DOCS_HTML")
+    if prebuilt:  # a copy: the probe page below must not land in the user's site
+        assert (Path(prebuilt) / "index.html").is_file(), f"{prebuilt} holds no built site"
+        dest = tmp_path_factory.mktemp("prebuilt") / "html"
+        shutil.copytree(prebuilt, dest)
+        return dest
+    try:
+        import myst_parser  # noqa: F401
+        import sphinx  # noqa: F401
+        import sphinx_gallery  # noqa: F401
+    except ImportError as exc:
+        _missing(f"the docs extra ({exc.name}; pip install -e '.[docs]')")
+    tmp = tmp_path_factory.mktemp("site")
+    shutil.copytree(ROOT / "docs", tmp / "docs",
+                    ignore=shutil.ignore_patterns("_build", "generated", "auto_examples",
+                                                  "__pycache__"))
+    shutil.copytree(ROOT / "examples" / "gallery", tmp / "examples" / "gallery",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "README.md", tmp / "README.md")
+    # document the code under test, from where it is (Numba's cache is kept per source path)
+    path = os.pathsep.join(filter(None, [str(ROOT / "src"), os.environ.get("PYTHONPATH")]))
+    env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": path}
+    r = subprocess.run(
+        [sys.executable, "-m", "sphinx", "-q", "-W", "--keep-going", "-b", "html",
+         "-d", str(tmp / "doctrees"), str(tmp / "docs"), str(tmp / "html")],
+        capture_output=True, text=True, timeout=600, env=env)
+    assert r.returncode == 0, f"the site does not build:\n{r.stdout[-3000:]}{r.stderr[-3000:]}"
+    return tmp / "html"
+
+
+def _pngs_of(page: Path) -> list[Path]:
+    html = page.read_text()
+    return [(page.parent / src).resolve()
+            for src in re.findall(r"<img\b[^>]*\bsrc=\"([^\"]+)\"", html)]
+
+
+@pytest.mark.slow
+def test_site_builds_offline_with_every_gallery_figure(site: Path) -> None:
+    pages = list(site.rglob("*.html"))
+    assert {"index.html", "api.html", "guide.html", "model.html"} <= {p.name for p in pages}
+    for page in pages:
+        hit = FETCHING.search(page.read_text())
+        assert hit is None, f"{page.relative_to(site)} fetches {hit.group(0)!r}"
+    # the API reference is generated from the docstrings, down to the functions
+    static = (site / "generated" / "dryfriction.theory.static.html").read_text()
+    assert 'id="dryfriction.theory.static.static_friction"' in static
+    assert "eq. 27" in static
+    # the spec and the README are part of the site, not links out of it
+    assert "Very strong pinning" in (site / "model.html").read_text()
+    assert "Simulating any history" in (site / "guide.html").read_text()
+    for script in GALLERY:
+        page = site / "auto_examples" / f"{script.stem}.html"
+        images = [p for p in _pngs_of(page) if "sphx_glr" in p.name]
+        assert images, f"{script.name} drew no figure"
+        for png in images:
+            img = imread(png)  # raises on a file that is not a PNG
+            assert img.shape[0] > 200 and np.std(img[..., :3]) > 0.02, png.name
+
+
+def _screenshot(browser: str, page: Path, out: Path, profile: Path) -> np.ndarray:
+    subprocess.run(
+        [browser, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", f"--screenshot={out}",
+         "--window-size=1200,900", page.as_uri()],
+        capture_output=True, timeout=120, check=False)
+    assert out.is_file(), f"chromium wrote no screenshot of {page.name}"
+    return imread(out)[..., :3]
+
+
+@pytest.mark.slow
+def test_index_and_gallery_render_in_chromium(site: Path, tmp_path: Path) -> None:
+    browser = _chromium()
+    for name, page in (("index", site / "index.html"),
+                       ("gallery", site / "auto_examples" / "index.html")):
+        shot = _screenshot(browser, page, tmp_path / f"{name}.png", tmp_path / "profile")
+        assert shot.shape[:2] == (900, 1200)
+        # a blank or error page is one or two colours; text and figures give many
+        assert np.std(shot) > 0.05, f"{name} screenshot is blank"
+        colours = np.unique((shot * 255).astype(np.uint8).reshape(-1, 3), axis=0)
+        assert len(colours) > 50, f"{name} screenshot has {len(colours)} colours"
+    # every image of the gallery page loaded in the browser (naturalWidth > 0), counted after
+    # the load event by a script added to a copy of the page beside it
+    gallery = site / "auto_examples" / "index.html"
+    probe = gallery.with_name("_probe.html")
+    script = ("<script>window.addEventListener('load',function(){var im=document.images,ok=0;"
+              "for(var i=0;i<im.length;i++){if(im[i].complete&&im[i].naturalWidth>0)ok++;}"
+              "document.body.setAttribute('data-images',im.length+'/'+ok);});</script>")
+    probe.write_text(gallery.read_text().replace("</body>", script + "</body>"))
+    r = subprocess.run(
+        [browser, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}",
+         "--virtual-time-budget=10000", "--dump-dom", probe.as_uri()],
+        capture_output=True, text=True, timeout=120, check=False)
+    found = re.search(r'data-images="(\d+)/(\d+)"', r.stdout)
+    assert found, f"the probe did not run: {r.stderr[-500:]}"
+    total, loaded = map(int, found.groups())
+    assert total >= len(GALLERY) and loaded == total, f"{loaded} of {total} images loaded"
+    probe.unlink()
