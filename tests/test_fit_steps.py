@@ -265,7 +265,7 @@ def test_command_record_writes_steps(tmp_path: Path):
     assert len(rep["steps"]) == 2
     assert rep["steps"][1]["dc"] == pytest.approx(float(rows[1]["dc"]), rel=1e-12)
     assert (out / "step_0.png").exists() and (out / "steps_summary.png").exists()
-    assert "would take about" in rep["comparison"]["not_run"]
+    assert "--run-cv" in rep["comparison"]["not_run"]
 
 
 def test_quick_profile_matches_the_engine_profile():
