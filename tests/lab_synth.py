@@ -36,8 +36,8 @@ def synth_record(truth: Truth, velocities: list[float], duration_slip: float = 6
                  dt_per_um: float = 0.1, seed: int = 0) -> tuple[np.ndarray, np.ndarray,
                                                                  np.ndarray, np.ndarray]:
     """``(t, v_load, mu, x_lp)`` for load velocities ``velocities`` (m/s), each held for
-    ``duration_slip`` m of load-point slip, sampled every ``dt_per_um`` um of slip at the
-    slowest velocity... (a fixed time step: the first velocity's)."""
+    ``duration_slip`` m of load-point slip, at one fixed time step for the whole record:
+    ``dt_per_um / 2`` um of slip at the slowest velocity. ``seed`` seeds the noise."""
     rng = np.random.default_rng(seed)
     tr = truth
     v0 = velocities[0]
