@@ -163,6 +163,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "return _digest({\"format\": SWEEP_FORMAT, \"version\": RESULT_VERSION,\n"
        "                    \"protocol\": protocol})[:32]",
        "tests/test_sweep.py", "-k", "point_key"),
+    # --- lab records: the machine and the trend in the RSF fit (issue 10) -------------------
+    _m("rsf series: trend applied with the wrong sign", "fit/models.py",
+       "mu = mu + values[\"trend\"] * load_point_displacement(data)",
+       "mu = mu - values[\"trend\"] * load_point_displacement(data)",
+       "tests/test_fit_steps.py", "-k", "forward_model or trend_recovered"),
+    _m("rsf series: fitted stiffness unused (kinematic)", "fit/models.py",
+       "k = values[\"stiffness\"] if model.stiffness == \"fit\" else model.stiffness",
+       "k = math.inf",
+       "tests/test_fit_steps.py", "-k", "forward_model or kinematic_machine"),
+    _m("slope stiffness: velocity ratio left out", "fit/models.py",
+       "k = slope / (1.0 - vb / va)", "k = slope",
+       "tests/test_fit_steps.py", "-k", "slope_stiffness"),
     # --- laboratory records ---------------------------------------------------------------
     _m("lab: microns read as millimetres", "io/lab.py",
        '"micron": 1e-6, "microns": 1e-6}', '"micron": 1e-6, "microns": 1e-3}',

@@ -25,6 +25,7 @@ from .common import (
     say,
 )
 from .model import CREEP_HELP
+from .records import is_project_csv, parse_stiffness
 
 
 @app.command("fit")
@@ -32,7 +33,9 @@ from .model import CREEP_HELP
 def fit_command(
     data: Annotated[list[Path], typer.Argument(help="CSV files: t_w,mu_s (static), V,mu_d "
                                                "(steady) or t,v_load,mu (time series); units "
-                                               "in the header, e.g. V[um/s].")],
+                                               "in the header, e.g. V[um/s]. One file in "
+                                               "another format is read as a laboratory "
+                                               "record (velocity steps, rsf).")],
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: fit.json, fit.png "
                                           "(written whole or not at all; new, empty, or "
                                           "written by this program before).")],
@@ -44,14 +47,30 @@ def fit_command(
     v0: float = typer.Option(None, "--v0", help="rsf: reference velocity V0, m/s (for static "
                              "data: the hold tests' sliding velocity; required then)."),
     state_law: str = typer.Option("ageing", "--state-law", help="rsf: ageing or slip."),
-    stiffness: float = typer.Option(float("inf"), "--stiffness", help="rsf time series: "
-                                    "machine stiffness per unit normal force, 1/m; inf: "
-                                    "kinematic."),
+    stiffness: str = typer.Option(None, "--stiffness", help="rsf time series: machine "
+                                  "stiffness per unit normal force: a number (1/m; inf: "
+                                  "kinematic, the default for CSV), fit (a free parameter, "
+                                  "the default for a record) or slope (fixed from the loading "
+                                  "slope after the change)."),
+    trend: bool = typer.Option(None, "--trend/--no-trend", help="rsf time series: a linear "
+                               "trend in load-point displacement (default: on for a record, "
+                               "off for CSV)."),
+    columns: str = typer.Option(None, "--columns", help="Record: column map, e.g. "
+                                "time=Time,disp=LP_disp,friction=Mu."),
+    segments: str = typer.Option(None, "--segments", help="Record: the load program instead "
+                                 "of the detected one (see the README)."),
+    joint: bool = typer.Option(False, "--joint", help="Record: also fit all steps with one "
+                               "a, b, Dc and one stiffness."),
+    run_cv: bool = typer.Option(False, "--run-cv", help="Record: also fit the trap model "
+                                "(cv) to each step and compare (costly: its estimate is "
+                                "printed without this flag)."),
     regularized: bool = typer.Option(False, help="rsf: regularised law (holds, kinematic)."),
     traps_per_a0: float = typer.Option(1000.0, "--traps-per-a0", help="cv time series: "
                                        "density of the simulated ensemble (accuracy about its "
                                        "inverse; cost grows with it)."),
-    profile: bool = typer.Option(True, help="Profile-likelihood intervals and identifiability."),
+    profile: bool = typer.Option(None, "--profile/--no-profile", help="Profile-likelihood "
+                                 "intervals and identifiability (for a record: of a, b, Dc "
+                                 "per step)."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -70,6 +89,21 @@ def fit_command(
     check_choice("model", model, ("cv", "rsf"))
     fmt, dpi = check_figure_format(fmt, dpi)
     check_output_dir(out_dir, force=force)
+    if len(data) == 1 and not is_project_csv(data[0]):
+        from .records import fit_record
+
+        fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
+                   stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
+                   trend=True if trend is None else trend, law=state_law, joint=joint,
+                   profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
+                   creep=creep,
+                   json_out=json_out, force=force)
+        return
+    for flag, given in (("--columns", columns), ("--segments", segments),
+                        ("--joint", joint or None), ("--run-cv", run_cv or None)):
+        if given is not None:
+            raise ValueError(f"{flag} is for a laboratory record, not the project's CSV files")
+    profile = True if profile is None else profile
     fixed: dict[str, float] = {}
     for item in fix or []:
         name, sep, value = item.partition("=")
@@ -81,7 +115,9 @@ def fit_command(
             raise ValueError(f"--fix {item!r}: {value!r} is not a number") from None
     datasets = [read_csv(p) for p in data]
     opts: dict[str, Any] = dict(alpha=alpha, creep=creep, v0=v0, state_law=state_law,
-                                stiffness=stiffness, regularized=regularized)
+                                stiffness=parse_stiffness("inf" if stiffness is None
+                                                          else stiffness),
+                                regularized=regularized, trend=bool(trend))
     from ..fit import CVModel
 
     chosen: Any = CVModel(alpha, creep, traps_per_a0=traps_per_a0) if model == "cv" else model

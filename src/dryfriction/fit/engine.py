@@ -61,8 +61,8 @@ class _Optimum:
 
 
 def _prepare(datasets: Dataset | Iterable[Dataset], model: str | Model, alpha: float,
-             creep: str, v0: float | None, state_law: str, stiffness: float,
-             regularized: bool) -> tuple[list[Dataset], Model]:
+             creep: str, v0: float | None, state_law: str, stiffness: float | str,
+             regularized: bool, trend: bool = False) -> tuple[list[Dataset], Model]:
     """The data sets as a list and the model as an object (checked)."""
     if isinstance(datasets, (StaticData, SteadyData, SeriesData)):
         datasets = [datasets]
@@ -75,7 +75,8 @@ def _prepare(datasets: Dataset | Iterable[Dataset], model: str | Model, alpha: f
     if isinstance(model, str):
         check_choice("model", model, ("cv", "rsf"))
         m: Model = (CVModel(alpha, creep) if model == "cv"
-                    else RSFModel(v0, state_law, stiffness, regularized=regularized))
+                    else RSFModel(v0, state_law, stiffness, regularized=regularized,
+                                 trend=trend))
     else:
         m = model
     if isinstance(m, RSFModel):
@@ -352,8 +353,9 @@ def fit(
     creep: str = "log",
     v0: float | None = None,
     state_law: str = "ageing",
-    stiffness: float = math.inf,
+    stiffness: float | str = math.inf,
     regularized: bool = False,
+    trend: bool = False,
     fix: Mapping[str, float] | None = None,
     start: Mapping[str, float] | None = None,
     multistart: bool = True,
@@ -373,10 +375,14 @@ def fit(
         from a name and are ignored for a model object.
     alpha, creep : float, str
         Trap model: fixed trap stiffness and creep law.
-    v0, state_law, stiffness, regularized : float, str, float, bool
+    v0, state_law, stiffness, regularized : float, str, float or str, bool
         Rate-and-state: reference velocity (m/s; for static data the hold tests' sliding
-        velocity), state law, machine stiffness (1/m, ``inf`` kinematic) and regularised law
-        for time series.
+        velocity), state law, machine stiffness (1/m, ``inf`` kinematic; ``"fit"`` a free
+        parameter, ``"slope"`` fixed from the loading slope: :class:`RSFModel`) and
+        regularised law for time series.
+    trend : bool
+        Rate-and-state time series: a free linear trend in load-point displacement
+        (:class:`RSFModel`).
     fix : mapping, optional
         Parameters held fixed, by name (units of the parameter: ``t0`` in s, ``a0`` in m, ...).
     start : mapping, optional
@@ -400,7 +406,8 @@ def fit(
         Bad input: unknown parameter names, too few points for the free parameters, data
         kinds the model cannot use, uncertainties in some files but not all.
     """
-    ds, m = _prepare(datasets, model, alpha, creep, v0, state_law, stiffness, regularized)
+    ds, m = _prepare(datasets, model, alpha, creep, v0, state_law, stiffness, regularized,
+                     trend)
     kinds = data_kinds(ds)
     specs_all = m.parameters(kinds)
     prob = _problem(ds, m, specs_all, fix, start)

@@ -38,6 +38,8 @@ __all__ = [
     "SeriesModel",
     "rsf_series",
     "cv_series",
+    "load_point_displacement",
+    "loading_slope_stiffness",
     "data_kinds",
 ]
 
@@ -339,25 +341,85 @@ class CVModel:
                 for f in (1.0, 0.1, 10.0)]
 
 
+def load_point_displacement(data: SeriesData) -> Array:
+    """Load-point displacement (m) at ``data.t``, from ``data.t[0]``: the integral of the
+    piecewise-constant load program (:meth:`SeriesData.segments`)."""
+    dur, vel = data.segments()
+    edges = np.concatenate([[0.0], np.cumsum(dur)])
+    x_edges = np.concatenate([[0.0], np.cumsum(dur * vel)])
+    return np.interp(data.t - data.t[0], edges, x_edges)
+
+
+def loading_slope_stiffness(data: SeriesData, fraction: float = 1.0 / 3.0) -> float:
+    """Machine stiffness (1/m) from the elastic loading slope just after a velocity change.
+
+    The first change of ``v_load`` to a sliding velocity ``v_after > 0`` is used (a hold's
+    start is skipped: unloading at rest says nothing about the load point). Just after it the
+    slider still moves at about ``v_before``, so ``dmu/dt = k (v_after - v_before)``, i.e.
+    ``dmu/dx_lp = k (1 - v_before/v_after)`` against load-point displacement ``x_lp``. The
+    slope is the least-squares line of ``mu`` against ``x_lp`` over the samples from the change
+    until ``mu`` has covered ``fraction`` of its way from the level before the change (mean of
+    the last 10 samples) to the extreme after it (the maximum for an increase, the minimum
+    for a decrease); at least 5 samples. The slider accelerates during that stretch, so the
+    estimate is low by a few per cent to tens of per cent (smaller ``fraction``: less bias,
+    more noise); ``stiffness="fit"`` has no such bias.
+    """
+    v = data.v_load
+    change = np.flatnonzero((np.diff(v) != 0.0) & (v[1:] > 0.0)) + 1
+    if change.size == 0:
+        raise ValueError(f"{data.source}: stiffness = 'slope' needs a change of load velocity "
+                         "to a sliding velocity in the record: there is none")
+    i0 = int(change[0])
+    vb, va = float(v[i0 - 1]), float(v[i0])
+    end = int(np.flatnonzero(np.diff(v[i0:]) != 0.0)[0]) + i0 + 1 \
+        if np.any(np.diff(v[i0:]) != 0.0) else len(v)
+    x = load_point_displacement(data)
+    mu = data.mu
+    base = float(np.mean(mu[max(0, i0 - 10):i0])) if i0 > 0 else float(mu[0])
+    after = mu[i0:end]
+    ext = float(after.max() if va > vb else after.min())
+    far = np.abs(after - base) >= fraction * abs(ext - base)
+    n = max(5, int(np.argmax(far)) + 1 if np.any(far) else len(after))
+    n = min(n, len(after))
+    if n < 3:
+        raise ValueError(f"{data.source}: stiffness = 'slope' needs at least 3 samples after "
+                         f"the change at t = {data.t[i0]:g} s")
+    slope = float(np.polyfit(x[i0:i0 + n], mu[i0:i0 + n], 1)[0])
+    k = slope / (1.0 - vb / va)
+    if not (math.isfinite(k) and k > 0.0):
+        raise ValueError(f"{data.source}: stiffness = 'slope' found a loading slope of "
+                         f"{slope:.3g} /m after the change at t = {data.t[i0]:g} s ({vb:g} -> "
+                         f"{va:g} m/s): not a positive stiffness; use stiffness = 'fit' or a "
+                         "number (1/m)")
+    return k
+
+
 def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -> Array:
     """Rate-and-state friction along a measured load program (the RSF time-series model).
 
     The slider starts in steady sliding at ``v_load[0]``; the program is the data's
     piecewise-constant ``v_load`` (:meth:`SeriesData.segments`); the returned friction is the
     spring force per unit normal force (what a load cell measures), at the data's times,
-    from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's stiffness, damping and
-    state law. Integration tolerance ``rtol = 1e-9``.
+    from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's stiffness
+    (``values["stiffness"]`` where it is fitted), damping and state law, plus the linear trend
+    ``values["trend"] * x_lp`` in the load-point displacement ``x_lp`` from the first sample
+    (:func:`load_point_displacement`) where the model has one (``trend=True``). A program
+    with a hold (``v_load = 0``) uses the regularised law. Integration tolerance ``rtol = 1e-9``.
     """
     assert model.v0 is not None
+    dur, vel = data.segments()
     params = RateState(values["a"], values["b"], values["dc"], values["mu0"], model.v0,
                        state_law=model.state_law,  # type: ignore[arg-type]
-                       regularized=model.regularized)
-    dur, vel = data.segments()
+                       regularized=model.regularized or bool(np.any(vel <= 0.0)))
     prog = [Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)]
     te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
-    res = simulate_rsf(params, SpringSlider(prog, model.stiffness, model.damping),
+    k = values["stiffness"] if model.stiffness == "fit" else model.stiffness
+    res = simulate_rsf(params, SpringSlider(prog, k, model.damping),
                        output=RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
-    return np.asarray(res.stress, float)
+    mu = np.asarray(res.stress, float)
+    if model.trend:
+        mu = mu + values["trend"] * load_point_displacement(data)
+    return mu
 
 
 @dataclass(frozen=True)
@@ -373,8 +435,15 @@ class RSFModel:
     state_law : {"ageing", "slip"}
         State evolution law (static data need the ageing law: the slip law does not heal at
         rest).
-    stiffness : float
-        Machine stiffness per unit normal force for time series, 1/m; ``inf``: kinematic.
+    stiffness : float or {"fit", "slope"}
+        Machine stiffness per unit normal force for time series, 1/m; ``inf``: kinematic;
+        ``"fit"``: a free parameter ``stiffness`` (fitted in ``ln k``); ``"slope"``: fixed from
+        the elastic loading slope of the data (:func:`loading_slope_stiffness`, in
+        :meth:`resolve`).
+    trend : bool
+        Time series: add a free linear trend ``mu += trend * x_lp`` (``trend`` in 1/m, per m
+        of load-point displacement ``x_lp`` from the first sample; the usual detrending of
+        velocity-step analysis, done inside the fit so that its uncertainty is counted).
     damping : float
         Radiation damping ``eta/sigma`` for time series, s/m.
     regularized : bool
@@ -385,23 +454,32 @@ class RSFModel:
 
     v0: float | None = None
     state_law: str = "ageing"
-    stiffness: float = math.inf
+    stiffness: float | str = math.inf
     damping: float = 0.0
     regularized: bool = False
     series: Callable[[RSFModel, Mapping[str, float], SeriesData], Array] = rsf_series
+    trend: bool = False
     name: str = field(default="rsf", init=False)
 
     def __post_init__(self) -> None:
         if self.v0 is not None:
             object.__setattr__(self, "v0", check_scalar("v0", self.v0, 0.0, lo_open=True))
         check_choice("state_law", self.state_law, STATE_LAWS)
-        k, eta, _ = check_spring(self.stiffness, self.damping)
-        object.__setattr__(self, "stiffness", k)
+        if isinstance(self.stiffness, str):
+            check_choice("stiffness", self.stiffness, ("fit", "slope"))
+            # a fitted spring is finite: the damping check needs a finite stiffness
+            _, eta, _ = check_spring(1.0, self.damping)
+        else:
+            k, eta, _ = check_spring(self.stiffness, self.damping)
+            object.__setattr__(self, "stiffness", k)
         object.__setattr__(self, "damping", eta)
+        if not isinstance(self.trend, (bool, np.bool_)):
+            raise ValueError(f"trend = {self.trend!r} is not allowed: true or false")
 
     def options(self) -> dict[str, Any]:
         return {"v0": self.v0, "state_law": self.state_law, "stiffness": self.stiffness,
-                "damping": self.damping, "regularized": self.regularized}
+                "damping": self.damping, "regularized": self.regularized,
+                "trend": bool(self.trend)}
 
     def resolve(self, datasets: Sequence[Dataset]) -> RSFModel:
         """Fill in ``v0`` from the data where it may be (see the class docstring)."""
@@ -409,12 +487,18 @@ class RSFModel:
         if "static" in kinds and self.state_law != "ageing":
             raise ValueError("static (healing) data need the ageing law: with the slip law "
                              "the state does not evolve at rest and mu_s does not grow")
+        series = [d for d in datasets if isinstance(d, SeriesData)]
+        if self.stiffness == "slope":
+            if not series:
+                raise ValueError("stiffness = 'slope' needs a time series (the loading slope "
+                                 "after a velocity change)")
+            return dataclasses.replace(self, stiffness=loading_slope_stiffness(series[0]))\
+                .resolve(datasets)
         if self.v0 is not None:
             return self
         if "static" in kinds:
             raise ValueError("rate-and-state static (healing) data need v0 (--v0): the "
                              "sliding and reloading velocity of the hold tests, m/s")
-        series = [d for d in datasets if isinstance(d, SeriesData)]
         if series:
             v0 = float(series[0].v_load[0])
         else:
@@ -430,7 +514,12 @@ class RSFModel:
             return mu0, ParamSpec("a_minus_b", "", False, -1.0, 1.0)
         if kinds == {"static"}:
             return mu0, b, dc
-        return mu0, a, b, dc
+        extra: tuple[ParamSpec, ...] = ()
+        if "series" in kinds and self.stiffness == "fit":
+            extra += (ParamSpec("stiffness", "1/m", True, 1.0, 1e10),)
+        if "series" in kinds and self.trend:
+            extra += (ParamSpec("trend", "1/m", False, -1e6, 1e6),)
+        return (mu0, a, b, dc, *extra)
 
     def notes(self, kinds: frozenset[str]) -> list[str]:
         n = [f"v0 = {self.v0:g} m/s fixed (reference velocity)"]
@@ -441,8 +530,11 @@ class RSFModel:
             n.append("static (healing) data determine mu0, b and Dc (mu_s = mu0 + b ln(1 + "
                      "t_w V0/Dc), ageing law, infinitely stiff reload at V0) but not a")
         if "series" in kinds:
-            mach = "kinematic" if math.isinf(self.stiffness) else f"k = {self.stiffness:g} 1/m"
-            n.append(f"time series simulated with {self.state_law} law, {mach} machine")
+            k = self.stiffness
+            mach = ("fitted stiffness" if k == "fit" else "kinematic"
+                    if math.isinf(float(k)) else f"k = {float(k):g} 1/m")
+            n.append(f"time series simulated with {self.state_law} law, {mach} machine"
+                     + (", linear trend in load-point displacement" if self.trend else ""))
         return n
 
     def _params(self, v: Mapping[str, float]) -> RateState:
@@ -515,9 +607,18 @@ class RSFModel:
             mu0 = float(d0.mu[0]) - amb * math.log(float(d0.v_load[0]) / v0) if not sd else mu0
             if not st:
                 dcs = list(np.geomspace(slip / 300.0, slip / 10.0, 3))
+        extra: dict[str, float] = {}
+        if se and self.stiffness == "fit":
+            try:
+                extra["stiffness"] = loading_slope_stiffness(se[0])
+            except ValueError:  # no usable loading slope: a stiff start
+                extra["stiffness"] = 1e4 / max(float(np.mean(se[0].mu)), 1e-3)
+        if se and self.trend:
+            extra["trend"] = 0.0
         for dc in dcs:
             for a in ((0.005, 0.02) if se and not st else (max(b + amb, 1e-4),)):
-                out.append({"mu0": mu0, "a": a, "b": max(a - amb, 1e-4), "dc": float(dc)})
+                out.append({"mu0": mu0, "a": a, "b": max(a - amb, 1e-4), "dc": float(dc),
+                            **extra})
         return out
 
 

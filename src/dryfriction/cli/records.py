@@ -1,0 +1,171 @@
+"""``dryfriction fit RECORD.txt``: a laboratory record (issue 10) read as it comes, its load
+program detected, cut into steps and each step fitted with rate-and-state friction on an
+elastic machine with a trend (:func:`dryfriction.fit.steps.fit_steps`)."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import time
+from pathlib import Path
+from typing import Any
+
+from rich.console import Console
+from rich.progress import Progress
+from rich.table import Table
+
+from ..io.files import to_jsonable
+from .common import err, out, say
+
+__all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CALLS_PER_STEP"]
+
+_PROJECT_COLUMNS = ({"t_w", "mu_s"}, {"v", "mu_d"}, {"t", "v_load", "mu"})
+
+CV_CALLS_PER_STEP = 300
+"""Forward runs assumed for a trap-model fit of one step, for the cost estimate: three
+data-driven starts of about 20 trust-region iterations, each a Jacobian of 4 parameters plus
+one evaluation. An assumption, not a count on records: the estimate is an order of magnitude."""
+
+
+def is_project_csv(path: Path) -> bool:
+    """Whether ``path`` is in the project's own CSV format (:mod:`dryfriction.io.data`): its
+    first line that is not a comment or blank is a comma-separated header holding the columns
+    of one data kind. Anything else is read as a laboratory record."""
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        for line in fh:
+            s = line.strip()
+            if not s or s.startswith("#"):
+                continue
+            names = {re.sub(r"\[.*?\]", "", c).strip().lower() for c in s.split(",")}
+            return any(cols <= names for cols in _PROJECT_COLUMNS)
+    return False
+
+
+def parse_stiffness(text: str) -> float | str:
+    """``--stiffness``: ``fit``, ``slope`` or a number (1/m, ``> 0``; ``inf`` kinematic)."""
+    t = text.strip().lower()
+    if t in ("fit", "slope"):
+        return t
+    try:
+        k = float(t)
+    except ValueError:
+        raise ValueError(f"--stiffness {text!r} is not allowed: fit, slope or a number (1/m, "
+                         "> 0; inf for the kinematic machine)") from None
+    if not k > 0:
+        raise ValueError(f"--stiffness {text!r} is out of range: allowed > 0 (1/m), fit or "
+                         "slope")
+    return k
+
+
+def cv_cost(pieces: list[Any], alpha: float, creep: str) -> float:
+    """Seconds a trap-model fit of the steps would take: one forward run of the first window
+    at its data-driven start, timed, scaled to all windows by their durations and times
+    :data:`CV_CALLS_PER_STEP` a window (so the estimate costs one run, not a fit)."""
+    from ..fit.models import CVModel, cv_series
+
+    first = pieces[0]
+    guess = CVModel(alpha, creep).guesses([first])[0]
+    t0 = time.perf_counter()
+    try:
+        cv_series(guess, first, alpha, creep)
+    except ValueError:  # the start is too long to simulate: the fit would be longer still
+        return math.inf
+    span = sum(float(p.t[-1] - p.t[0]) for p in pieces) / max(float(first.t[-1] - first.t[0]),
+                                                             1e-300)
+    return (time.perf_counter() - t0) * span * CV_CALLS_PER_STEP
+
+
+def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
+    table = Table(title=title)
+    cols = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
+            "rms", "noise", "peak_residual")
+    for c in cols:
+        table.add_column(c, justify="right")
+    for r in rows:
+        table.add_row(*(f"{r[c]:.4g}" if isinstance(r[c], float) else str(r[c]) for c in cols))
+    return table
+
+
+def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
+               segments: str | None, stiffness: float | str, trend: bool, law: str,
+               joint: bool, profile: bool, run_cv: bool, alpha: float, creep: str,
+               json_out: bool, force: bool) -> None:
+    """Read, slice, fit, print and write one laboratory record (module docstring)."""
+    import typer
+
+    from ..fit import CVModel, compare_models, fit
+    from ..fit.steps import fit_steps, step_data, write_steps_csv
+    from ..io import lab
+    from ..io.files import output_directory, write_json
+    from ..plots.steps import plot_step, plot_steps_summary
+
+    rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
+    segs = lab.parse_segments(segments, rec) if segments else lab.detect_segments(rec)
+    wins = lab.slice_steps(rec, segs)
+    if not wins:
+        raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
+                         "constant velocity (give it with --segments if it is not)")
+    out.print(lab.segments_table(segs), highlight=False, markup=False)
+    if model == "cv" and not run_cv:  # the trap model is not run unasked (issue 10)
+        # the estimate is one trap-model run: made only when the trap model was asked for
+        # (on the shared record it costs several times the whole rsf fit)
+        cost = cv_cost(step_data(rec, wins, segs), alpha, creep)
+        raise ValueError(f"{path}: the trap model (cv) on this record would take about "
+                         f"{cost:.3g} s for {len(wins)} step(s), against seconds for rsf: "
+                         "run --model rsf --run-cv to fit both and compare")
+    with Progress(console=err, transient=True, disable=len(wins) < 2) as bar:
+        task = bar.add_task("fitting steps", total=len(wins))
+        res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
+                        joint=joint, profile=profile,
+                        progress=lambda done, _n: bar.update(task, completed=done))
+    report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
+                              "segments": [vars(s) if hasattr(s, "__dict__") else s
+                                           for s in segs],
+                              "model": "rsf", "options": {"stiffness": stiffness,
+                                                          "trend": trend, "law": law,
+                                                          "profile": profile},
+                              **res.to_dict()}
+    if run_cv:
+        comp = []
+        for i, d in enumerate(res.data):
+            try:
+                alt = fit(d, CVModel(alpha, creep), profile=False)
+                comp.append({"step": i, **compare_models([res.fits[i], alt]),
+                             "note": "cv runs on a kinematic machine without a trend (its "
+                                     "series model has neither), rsf with both"})
+            except (ValueError, NotImplementedError) as exc:
+                comp.append({"step": i, "not_run": f"cv: {exc}"})
+        report["comparison"] = comp
+    else:
+        report["comparison"] = {"not_run": "the trap model (cv) was not fitted: it costs "
+                                           "minutes to hours a step; --model cv prints the "
+                                           "estimate for this record, --run-cv fits it"}
+    with output_directory(out_dir, command="fit", force=force, inputs=[path],
+                          report=say) as tmp:
+        write_json(tmp / "fit.json", report)
+        write_steps_csv(tmp / "steps.csv", res.rows)
+        for i in range(len(res.rows)):
+            plot_step(res, i, tmp / f"step_{i}.png")
+        plot_steps_summary(res, tmp / "steps_summary.png")
+    if json_out:
+        print(json.dumps(to_jsonable(report), indent=2))
+    else:
+        # one row per step in full: a console's width would squash twelve number columns
+        Console(width=max(out.width, 150)).print(
+            _steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        if res.joint is not None:
+            est = {p.name: p for p in res.joint.parameters}
+            out.print("joint fit (all steps): " + ", ".join(
+                f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
+                                               else f" +- {est[n].stderr:.2g}")
+                for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
+        for note in res.notes:
+            out.print(f"- {note}", highlight=False, soft_wrap=True)
+        if not run_cv:
+            out.print(f"- {report['comparison']['not_run']}", highlight=False, soft_wrap=True)
+        out.print(f"wrote {out_dir}/fit.json, steps.csv, step_*.png, steps_summary.png",
+                  highlight=False)
+    if not res.success:
+        err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)
+        raise typer.Exit(1)

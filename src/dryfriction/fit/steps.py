@@ -1,0 +1,501 @@
+"""Per-step fitting of a multi-step laboratory record (issue 10): each velocity step (or
+slide-hold-slide cycle) fitted on its own with rate-and-state friction on an elastic machine
+with a linear slip trend, optionally all steps together with one ``(a, b, Dc)``.
+
+The record is a :class:`~dryfriction.io.data.SeriesData` (time, load velocity, friction) or a
+laboratory record (anything with ``time``, ``friction`` and ``source``, such as
+``io.lab``'s ``LabRecord``), whose load velocity then comes from the detected ``segments``
+(objects with ``velocity``, ``i_start``, ``i_end``: samples ``[i_start, i_end)``). A window
+is any object with ``i_start``, ``i_end`` (samples ``[i_start, i_end)``), such as
+``io.lab``'s ``StepWindow``; :func:`series_windows` makes them from a SeriesData alone.
+
+Each window is fitted by :func:`.engine.fit` with :class:`.models.RSFModel` (reference
+velocity ``v0`` = the window's first load velocity, so ``mu0`` is the steady friction before
+the change). The first window starts from the data-driven guess with the lowest cost (one
+forward run each, not one fit each); each later one from the previous window's optimum (a
+warm start); only when that fit fails are all the guesses tried, which is what keeps a
+many-step record cheap.
+
+Noise (ours, :func:`steady_noise`): the standard deviation of the friction about a straight
+line in time over the last third of the window (the steady part after the transient, where
+the model is a line: steady friction plus the trend): the high-pass residual of the steady
+part, independent of the fit. It holds the white noise and whatever slower fluctuation the
+apparatus adds (on the shared sepiolite record a machine oscillation of a few 1e-3, far above
+the sample-to-sample noise); :func:`white_noise` (first differences) gives the white part
+alone. Peak residual (ours): the
+peak is the extreme of the data (the maximum after an increase of velocity, the minimum after
+a decrease; data smoothed by a running mean of ``PEAK_SAMPLES`` samples) between the change
+and the window's end; the peak residual is the mean residual (data minus model) over those
+``PEAK_SAMPLES`` samples.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..io.data import SeriesData
+from ..io.files import write_csv
+from ..rsf.driving import SolverError
+from ..validation import Array, check_choice
+from .engine import fit
+from .models import ParamSpec, RSFModel, rsf_series
+from .results import FitResult
+
+__all__ = ["StepsResult", "SeriesWindow", "fit_steps", "series_windows", "step_data",
+           "write_steps_csv",
+           "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise", "quick_profile",
+           "PROFILED"]
+
+PEAK_SAMPLES = 11
+"""Samples averaged at the peak (module docstring)."""
+
+STEP_COLUMNS: tuple[str, ...] = (
+    "index", "kind", "t_change", "v_before", "v_after", "a", "b", "a_minus_b", "dc",
+    "stiffness", "trend", "mu0", "sigma_a", "sigma_b", "sigma_a_minus_b", "sigma_dc",
+    "sigma_stiffness", "sigma_trend", "a_lo", "a_hi", "b_lo", "b_hi", "dc_lo", "dc_hi",
+    "rms", "noise", "white_noise", "peak_residual", "n", "success",
+)
+"""Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
+1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one)."""
+
+
+@dataclass(frozen=True)
+class SeriesWindow:
+    """A window of a SeriesData around one change of load velocity (samples
+    ``[i_start, i_end)``); the fields of ``io.lab``'s ``StepWindow`` that the fit uses."""
+
+    index: int
+    kind: str
+    i_start: int
+    i_end: int
+    t_change: float
+    v_before: float
+    v_after: float
+
+
+def series_windows(data: SeriesData) -> tuple[SeriesWindow, ...]:
+    """One window per change of ``v_load`` to a sliding velocity: from halfway through the
+    previous stretch to the end of the stretch after the change (a hold and the reload after
+    it make one "shs" window)."""
+    v = data.v_load
+    change = [0, *(np.flatnonzero(np.diff(v) != 0.0) + 1).tolist(), len(v)]
+    out: list[SeriesWindow] = []
+    k = 1
+    while k < len(change) - 1:
+        i0 = (change[k - 1] + change[k]) // 2
+        kind, j = "step", k
+        if v[change[k]] == 0.0 and k + 1 < len(change) - 1:
+            kind, j = "shs", k + 1
+        out.append(SeriesWindow(len(out), kind, i0, change[j + 1], float(data.t[change[k]]),
+                                float(v[change[k] - 1]), float(v[change[j]])))
+        k = j + 1
+    return tuple(out)
+
+
+def steady_noise(t: Array, mu: Array) -> float:
+    """Standard deviation of ``mu`` about its least-squares line in ``t`` (two dof removed)."""
+    t, mu = np.asarray(t, float), np.asarray(mu, float)
+    if mu.size < 4:
+        return math.nan
+    coef = np.polyfit(t - t[0], mu, 1)
+    r = mu - np.polyval(coef, t - t[0])
+    return float(math.sqrt(r @ r / (mu.size - 2)))
+
+
+def white_noise(mu: Array) -> float:
+    """White-noise standard deviation of one sample from the first differences (robust:
+    1.4826 x median absolute deviation, over ``sqrt 2``)."""
+    d = np.diff(np.asarray(mu, float))
+    if d.size < 2:
+        return math.nan
+    return float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(2.0))
+
+
+def _as_series(record: Any, segments: Sequence[Any] | None) -> SeriesData:
+    if isinstance(record, SeriesData):
+        return record
+    if not segments:
+        raise ValueError(f"{getattr(record, 'source', record)!r}: a laboratory record needs "
+                         "its segments (the load program) to be fitted")
+    t = np.asarray(record.time, float)
+    v = np.full(len(t), np.nan)
+    for s in segments:
+        v[s.i_start:s.i_end] = s.velocity
+    if np.any(np.isnan(v)):
+        i = int(np.flatnonzero(np.isnan(v))[0])
+        raise ValueError(f"{record.source}: sample {i} (t = {t[i]:g} s) is in no segment")
+    return SeriesData(t, v, np.asarray(record.friction, float), source=str(record.source))
+
+
+def _window_data(data: SeriesData, w: Any) -> SeriesData:
+    i0, i1 = int(w.i_start), int(w.i_end)
+    if not 0 <= i0 < i1 <= len(data):
+        raise ValueError(f"{data.source}: window {getattr(w, 'index', '?')} covers samples "
+                         f"[{i0}, {i1}), out of range: allowed within [0, {len(data)})")
+    sl = slice(i0, i1)
+    return SeriesData(data.t[sl], data.v_load[sl], data.mu[sl],
+                      source=f"{data.source} [step {getattr(w, 'index', '?')}]")
+
+
+def step_data(record: Any, windows: Sequence[Any], segments: Sequence[Any] | None = None
+              ) -> list[SeriesData]:
+    """Each window's data as a SeriesData (a record's load velocity from ``segments``)."""
+    data = _as_series(record, segments)
+    return [_window_data(data, w) for w in windows]
+
+
+def _peak_residual(d: SeriesData, model_mu: Array) -> tuple[float, int]:
+    """Mean residual over :data:`PEAK_SAMPLES` samples at the data's peak after the change
+    (module docstring) and the peak's index in the window."""
+    v = d.v_load
+    ch = np.flatnonzero((np.diff(v) != 0.0) & (v[1:] > 0.0))
+    i0 = int(ch[-1]) + 1 if ch.size else 0
+    m = PEAK_SAMPLES
+    if len(d) - i0 < m:
+        return math.nan, i0
+    smooth = np.convolve(d.mu[i0:], np.ones(m) / m, mode="valid")
+    up = v[i0] > v[max(i0 - 1, 0)] or v[max(i0 - 1, 0)] == 0.0
+    j = int(np.argmax(smooth) if up else np.argmin(smooth))
+    r = d.mu[i0 + j:i0 + j + m] - model_mu[i0 + j:i0 + j + m]
+    return float(np.mean(r)), i0 + j + m // 2
+
+
+PROFILED = ("a", "b", "dc")
+"""The parameters :func:`quick_profile` bounds (the others keep their Wald intervals)."""
+
+
+def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED
+                  ) -> dict[str, tuple[float, float]]:
+    """95 % profile-likelihood intervals of ``names`` from a few constrained fits (ours).
+
+    The profile ``D(psi) = 2 (cost(psi) - cost_min)/s^2`` is found where it crosses
+    ``t_{0.975, n-p}^2`` on each side: the first trial is the Wald limit, the other
+    parameters started from their conditional mean there (covariance); the next trials are
+    secant steps on the signed root ``sqrt D``, which is linear in the parameter for a
+    quadratic profile, until a trial is within 2 % of the quantile (at most four fits a
+    side); the limit is the secant's last step from there.
+    The engine's :func:`.engine.fit` profiles walk the whole curve instead (identifiability:
+    open sides, flat directions); in a step window ``a``, ``b`` and ``Dc`` are identified, and
+    this finds the same limits for a fraction of the cost. A side where a lower optimum turns
+    up or the root does not grow keeps its Wald limit.
+    """
+    from .problem import Problem
+    from .statistics import covariance, quantile_95
+
+    m = r.fitted_model
+    assert isinstance(m, RSFModel)
+    specs = list(m.parameters(frozenset({"series"})))
+    prob = Problem(m, [d], specs, {})
+    val = {p.name: p.value for p in r.parameters}
+    theta = np.array([s.to_internal(val[s.name]) for s in specs])
+    cost = float(r.goodness["cost"])
+    dof = prob.n - prob.p
+    s2 = 2.0 * cost / dof
+    cov = covariance(prob.jacobian(theta), s2)
+    z = quantile_95(False, dof)
+    out: dict[str, tuple[float, float]] = {}
+    for name in names:
+        j = [s.name for s in specs].index(name)
+        free = np.ones(prob.p, bool)
+        free[j] = False
+        se = float(cov.stderr[j])
+        if not (math.isfinite(se) and se > 0):
+            continue
+        lims = []
+        for sign in (-1.0, 1.0):
+            wald = theta[j] + sign * z * se
+            pts: list[tuple[float, float]] = [(float(theta[j]), 0.0)]
+            psi = wald
+            for _ in range(4):
+                t0 = theta + cov.matrix[:, j] / cov.matrix[j, j] * (psi - theta[j])
+                t0[j] = psi
+                _, c, _ = prob.solve(t0, free)
+                root = math.sqrt(max(2.0 * (c - cost) / s2, 0.0))
+                if root <= pts[-1][1]:  # a lower optimum or a flat profile: keep Wald
+                    psi = wald
+                    break
+                pts.append((psi, root))
+                (p0, r0), (p1, r1) = pts[-2], pts[-1]
+                psi = p1 + (z - r1) * (p1 - p0) / (r1 - r0)
+                if abs(root - z) < 0.02 * z:  # the last secant step is then tiny
+                    break
+            lims.append(specs[j].from_internal(psi))
+        out[name] = (min(lims), max(lims))
+    return out
+
+
+def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel,
+         profiles: Mapping[str, tuple[float, float]] | None = None) -> dict[str, Any]:
+    est = {p.name: p for p in r.parameters}
+
+    def val(name: str, default: float = math.nan) -> float:
+        return float(est[name].value) if name in est else default
+
+    def se(name: str) -> float:
+        p = est.get(name)
+        return math.nan if p is None or p.stderr is None else float(p.stderr)
+
+    def iv(name: str) -> tuple[float, float]:
+        p = est.get(name)
+        if profiles and name in profiles:
+            return profiles[name]
+        if p is None:
+            return math.nan, math.nan
+        if p.profile_95 is not None:
+            lo, hi = p.profile_95
+            return (math.nan if lo is None else lo), (math.nan if hi is None else hi)
+        return p.interval_95 if p.interval_95 is not None else (math.nan, math.nan)
+
+    values = {p.name: p.value for p in r.parameters}
+    fitted = r.fitted_model if isinstance(r.fitted_model, RSFModel) else model
+    mu_model = rsf_series(fitted, values, d)
+    resid = d.mu - mu_model
+    peak, _ = _peak_residual(d, mu_model)
+    tail = slice(len(d) * 2 // 3, len(d))
+    amb = r.derived.get("a_minus_b", {})
+    k = val("stiffness", float(fitted.stiffness) if not isinstance(fitted.stiffness, str)
+            else math.nan)
+    row: dict[str, Any] = {
+        "index": int(getattr(w, "index", 0)), "kind": str(getattr(w, "kind", "step")),
+        "t_change": float(getattr(w, "t_change", math.nan)),
+        "v_before": float(getattr(w, "v_before", d.v_load[0])),
+        "v_after": float(getattr(w, "v_after", d.v_load[-1])),
+        "a": val("a"), "b": val("b"), "a_minus_b": val("a") - val("b"), "dc": val("dc"),
+        "stiffness": k, "trend": val("trend", 0.0), "mu0": val("mu0"),
+        "sigma_a": se("a"), "sigma_b": se("b"),
+        "sigma_a_minus_b": math.nan if amb.get("stderr") is None else float(amb["stderr"]),
+        "sigma_dc": se("dc"), "sigma_stiffness": se("stiffness"), "sigma_trend": se("trend"),
+    }
+    for name in ("a", "b", "dc"):
+        row[f"{name}_lo"], row[f"{name}_hi"] = iv(name)
+    row.update(rms=float(np.sqrt(np.mean(resid**2))), noise=steady_noise(d.t[tail], d.mu[tail]),
+               white_noise=white_noise(d.mu[tail]),
+               peak_residual=peak, n=len(d), success=bool(r.success))
+    return row
+
+
+@dataclass
+class StepsResult:
+    """What :func:`fit_steps` returns.
+
+    Attributes
+    ----------
+    rows : list of dict
+        One row per fitted window, columns :data:`STEP_COLUMNS`.
+    fits : list of FitResult
+        The fit of each window.
+    data : list of SeriesData
+        Each window's data (times, load velocity, friction).
+    joint : FitResult or None
+        The joint fit (``joint=True``): one ``a, b, dc`` and one stiffness, ``mu0`` and trend
+        per window (``mu0_<i>``, ``trend_<i>``).
+    notes : list of str
+    """
+
+    rows: list[dict[str, Any]]
+    fits: list[FitResult]
+    data: list[SeriesData]
+    joint: FitResult | None = None
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def success(self) -> bool:
+        return all(r.success for r in self.fits) and (self.joint is None or self.joint.success)
+
+    def model_curve(self, i: int) -> Array:
+        """The fitted friction of window ``i`` at its samples."""
+        r = self.fits[i]
+        m = r.fitted_model
+        assert isinstance(m, RSFModel)
+        return rsf_series(m, {p.name: p.value for p in r.parameters}, self.data[i])
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"steps": self.rows, "success": self.success,
+                               "notes": list(self.notes)}
+        if self.joint is not None:
+            out["joint"] = self.joint.to_dict()
+        return out
+
+
+@dataclass(frozen=True)
+class JointStepsModel:
+    """Rate-and-state on several windows at once with one ``a, b, dc`` (and one stiffness:
+    the same machine), and per window its own ``mu0_<i>`` (reference velocity: the window's
+    first load velocity) and ``trend_<i>``. The :func:`.engine.fit` model protocol."""
+
+    windows: tuple[SeriesData, ...]
+    base: RSFModel
+    start: Mapping[str, float] = field(default_factory=dict)
+    name: str = "rsf-joint"
+
+    def _index(self, d: SeriesData) -> int:
+        for i, w in enumerate(self.windows):
+            if w is d:
+                return i
+        raise ValueError(f"{d.source} is not one of the joint fit's windows")
+
+    def options(self) -> dict[str, Any]:
+        return {**self.base.options(), "joint_windows": len(self.windows)}
+
+    def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
+        own = self.base.parameters(frozenset({"series"}))
+        shared = tuple(s for s in own if s.name in ("a", "b", "dc", "stiffness"))
+        per: list[ParamSpec] = []
+        for i in range(len(self.windows)):
+            for s in own:
+                if s.name in ("mu0", "trend"):
+                    per.append(ParamSpec(f"{s.name}_{i}", s.unit, s.log, s.lo, s.hi))
+        return (*shared, *per)
+
+    def notes(self, kinds: frozenset[str]) -> list[str]:
+        return [f"joint fit of {len(self.windows)} windows: one a, b, dc and stiffness; "
+                "mu0 and trend per window"]
+
+    def predict(self, v: Mapping[str, float], d: Any, x: Array | None = None) -> Array:
+        i = self._index(d)
+        vals = {k: v[k] for k in ("a", "b", "dc", "stiffness") if k in v}
+        vals["mu0"] = v[f"mu0_{i}"]
+        if f"trend_{i}" in v:
+            vals["trend"] = v[f"trend_{i}"]
+        m = RSFModel(float(d.v_load[0]), self.base.state_law, self.base.stiffness,
+                     self.base.damping, self.base.regularized, trend=self.base.trend)
+        return rsf_series(m, vals, d)
+
+    def data_window(self, name: str, datasets: Sequence[Any]) -> tuple[float, float] | None:
+        return self.base.data_window(name, datasets)
+
+    def derived(self, v: Mapping[str, float]) -> dict[str, tuple[float, str]]:
+        return {"a_minus_b": (v["a"] - v["b"], "")}
+
+    def guesses(self, datasets: Sequence[Any]) -> list[dict[str, float]]:
+        """The start from the per-step fits (:func:`fit_steps`)."""
+        return [dict(self.start)]
+
+
+def _start(prev: FitResult | None, model: RSFModel, d: SeriesData) -> dict[str, float]:
+    """The previous window's optimum (but its own ``mu0``), or else the data-driven guess with
+    the lowest cost: one forward run per guess instead of one fit per guess."""
+    if prev is not None and prev.success:
+        return {p.name: p.value for p in prev.parameters if p.name != "mu0" and not p.fixed}
+    m = model.resolve([d])
+    best: tuple[float, dict[str, float]] | None = None
+    for g in m.guesses([d]):
+        try:
+            r = d.mu - rsf_series(m, g, d)
+        except (SolverError, ValueError):  # a guess the simulator cannot run: skip it
+            continue
+        c = float(r @ r)
+        if math.isfinite(c) and (best is None or c < best[0]):
+            best = (c, g)
+    return {} if best is None else best[1]
+
+
+def fit_steps(
+    record: Any,
+    windows: Sequence[Any] | None = None,
+    segments: Sequence[Any] | None = None,
+    *,
+    stiffness: float | str = "fit",
+    trend: bool = True,
+    law: str = "ageing",
+    joint: bool = False,
+    profile: bool = False,
+    progress: Callable[[int, int], None] | None = None,
+) -> StepsResult:
+    """Fit rate-and-state friction to each step window of a record (module docstring).
+
+    Parameters
+    ----------
+    record : SeriesData or laboratory record
+        The whole record (SI).
+    windows : sequence, optional
+        Step windows (``i_start``, ``i_end``, and for the table ``index``, ``kind``,
+        ``t_change``, ``v_before``, ``v_after``); default :func:`series_windows` of the
+        record's load velocity.
+    segments : sequence, optional
+        The load program (``velocity``, ``i_start``, ``i_end``) of a laboratory record.
+    stiffness : float or {"fit", "slope"}
+        Machine stiffness per unit normal force (1/m), fitted per window or fixed
+        (:class:`.models.RSFModel`).
+    trend : bool
+        Fit a linear trend in load-point displacement per window.
+    law : {"ageing", "slip"}
+        State law.
+    joint : bool
+        Also fit all windows together with one ``a, b, dc`` and one stiffness (the same
+        gouge, the same machine); ``mu0`` and the trend stay per window (the level and the
+        drift change along a record); Wald intervals. With ``stiffness="slope"`` the first
+        window's slope holds for all.
+    profile : bool
+        Profile-likelihood 95 % intervals of ``a``, ``b``, ``dc`` in the table
+        (:func:`quick_profile`, a few times the fit's cost); default Wald intervals from the
+        covariance.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each window.
+
+    Returns
+    -------
+    StepsResult
+    """
+    check_choice("law", law, ("ageing", "slip"))
+    data = _as_series(record, segments)
+    wins = list(series_windows(data) if windows is None else windows)
+    if not wins:
+        raise ValueError(f"{data.source}: no velocity step to fit (the load velocity never "
+                         "changes)")
+    RSFModel(1.0, law, stiffness, trend=trend)  # check the options before any work
+    pieces = [_window_data(data, w) for w in wins]
+    fits: list[FitResult] = []
+    rows: list[dict[str, Any]] = []
+    notes: list[str] = []
+    prev: FitResult | None = None
+    for i, (w, d) in enumerate(zip(wins, pieces, strict=True)):
+        model = RSFModel(float(d.v_load[0]), law, stiffness, trend=trend)
+        start = _start(prev, model, d)
+        r = fit(d, model, start=start, multistart=False, profile=False)
+        if not r.success:  # from every data-driven guess
+            r2 = fit(d, model, profile=False)
+            r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
+        fits.append(r)
+        prof = quick_profile(r, d) if profile and r.success else None
+        rows.append(_row(w, d, r, model, prof))
+        if not r.success:
+            notes.append(f"step {rows[-1]['index']}: the fit did not succeed ({r.message})")
+        prev = r
+        if progress is not None:
+            progress(i + 1, len(wins))
+    joint_fit = _fit_joint(pieces, fits, law, stiffness, trend) if joint else None
+    return StepsResult(rows, fits, pieces, joint_fit, notes)
+
+
+def _fit_joint(pieces: list[SeriesData], fits: list[FitResult], law: str,
+               stiffness: float | str, trend: bool) -> FitResult:
+    """All windows with one ``a, b, dc`` (and stiffness), from the per-step fits' medians."""
+    if isinstance(stiffness, str) and stiffness == "slope":
+        # one machine: the stiffness from the first window's slope holds for all
+        stiffness = float(RSFModel(1.0, law, "slope").resolve([pieces[0]]).stiffness)
+    base = RSFModel(1.0, law, stiffness, trend=trend)
+    vals = [{p.name: p.value for p in r.parameters} for r in fits]
+    start: dict[str, float] = {}
+    for name in ("a", "b", "dc", "stiffness"):
+        if name in vals[0]:
+            start[name] = float(np.exp(np.median(np.log([v[name] for v in vals]))))
+    for i, v in enumerate(vals):
+        start[f"mu0_{i}"] = v["mu0"]
+        if trend:
+            start[f"trend_{i}"] = v.get("trend", 0.0)
+    jm = JointStepsModel(tuple(pieces), base, start)
+    # Wald intervals: the engine's profile walk over 3 + 2 n parameters would cost far more
+    # than all the per-step fits
+    return fit(list(pieces), jm, start=start, multistart=False, profile=False,
+               consistency=False)
+
+
+def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:
+    """Write the per-step table (:data:`STEP_COLUMNS`) atomically as CSV."""
+    write_csv(path, {c: [r[c] for r in rows] for c in STEP_COLUMNS})
