@@ -97,7 +97,7 @@ def fit_command(
                    trend=True if trend is None else trend, law=state_law, joint=joint,
                    profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
                    creep=creep,
-                   json_out=json_out, force=force)
+                   json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)
         return
     for flag, given in (("--columns", columns), ("--segments", segments),
                         ("--joint", joint or None), ("--run-cv", run_cv or None)):

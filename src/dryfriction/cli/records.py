@@ -90,7 +90,8 @@ def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
 def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                segments: str | None, stiffness: float | str, trend: bool, law: str,
                joint: bool, profile: bool, run_cv: bool, alpha: float, creep: str,
-               json_out: bool, force: bool) -> None:
+               json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
+               figure: bool = True) -> None:
     """Read, slice, fit, print and write one laboratory record (module docstring)."""
     import typer
 
@@ -98,7 +99,6 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     from ..fit.steps import fit_steps, step_data, write_steps_csv
     from ..io import lab
     from ..io.files import output_directory, write_json
-    from ..plots.steps import plot_step, plot_steps_summary
 
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     segs = lab.parse_segments(segments, rec) if segments else lab.detect_segments(rec)
@@ -145,9 +145,13 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                           report=say) as tmp:
         write_json(tmp / "fit.json", report)
         write_steps_csv(tmp / "steps.csv", res.rows)
-        for i in range(len(res.rows)):
-            plot_step(res, i, tmp / f"step_{i}.png")
-        plot_steps_summary(res, tmp / "steps_summary.png")
+        if figure:
+            from ..plots.steps import plot_step, plot_steps_summary
+            from ..plots.style import save_figure
+
+            for i in range(len(res.rows)):
+                save_figure(plot_step(res, i)[0], tmp / f"step_{i}.{fmt}", fmt, dpi)
+            save_figure(plot_steps_summary(res)[0], tmp / f"steps_summary.{fmt}", fmt, dpi)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
@@ -164,8 +168,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:
             out.print(f"- {report['comparison']['not_run']}", highlight=False, soft_wrap=True)
-        out.print(f"wrote {out_dir}/fit.json, steps.csv, step_*.png, steps_summary.png",
-                  highlight=False)
+        out.print(f"wrote {out_dir}/fit.json, steps.csv"
+                  + (f", step_*.{fmt}, steps_summary.{fmt}" if figure else ""), highlight=False)
     if not res.success:
         err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)
         raise typer.Exit(1)

@@ -21,7 +21,7 @@ _DATA = {"s": 2.0, "color": "0.6", "alpha": 0.5, "linewidths": 0, "rasterized": 
 _MODEL = {"color": "C3", "lw": 1.4, "zorder": 3}
 
 
-def plot_step(result: StepsResult, i: int, path: Any = None) -> Figure:
+def plot_step(result: StepsResult, i: int, path: Any = None) -> tuple[Figure, Any]:
     """Window ``i``: data (small light points) and the fitted model (line, drawn on top)
     against load-point displacement (left) and time (right), residuals below."""
     from ..fit.models import load_point_displacement
@@ -51,10 +51,10 @@ def plot_step(result: StepsResult, i: int, path: Any = None) -> Figure:
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.1, top=0.92, hspace=0.08, wspace=0.25)
     if path is not None:
         save_png(fig, path)
-    return fig
+    return fig, axes
 
 
-def plot_steps_summary(result: StepsResult, path: Any = None) -> Figure:
+def plot_steps_summary(result: StepsResult, path: Any = None) -> tuple[Figure, Any]:
     """``a - b`` and ``Dc`` of every step against the velocity after the change (error bars:
     one standard error)."""
     rows = result.rows
@@ -74,4 +74,4 @@ def plot_steps_summary(result: StepsResult, path: Any = None) -> Figure:
     fig.subplots_adjust(left=0.13, right=0.98, bottom=0.16, top=0.94, wspace=0.35)
     if path is not None:
         save_png(fig, path)
-    return fig
+    return fig, (ax1, ax2)
