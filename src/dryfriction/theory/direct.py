@@ -42,12 +42,14 @@ Reduced units: velocities in ``a0/t0`` (``v_ref`` too); the SI forms live in :mo
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..validation import Array, check_direct
 
-__all__ = ["junction_strength", "junction_log_slope", "instantaneous_jump"]
+__all__ = ["junction_strength", "junction_log_slope", "instantaneous_jump", "strength_ratio"]
 
 
 def _log_x(v: Array, direct: float, v_ref: float) -> Array:
@@ -85,6 +87,19 @@ def junction_strength(v: ArrayLike, direct: float, v_ref: float = 1.0) -> Array:
     g_big = direct * (lb + np.log1p(np.sqrt(1.0 + np.exp(-2.0 * lb))))
     g_small = direct * np.arcsinh(np.exp(np.minimum(lx, 0.0)))
     return np.sign(v) * np.where(big, g_big, g_small)
+
+
+def strength_ratio(v: float, direct: float, v_ref: float) -> float:
+    """:func:`junction_strength` for one checked ``direct > 0`` and ``v_ref``, without the
+    checks or arrays: the ensemble's force-balance solvers call it at every iteration."""
+    if v == 0.0:
+        return 0.0
+    lx = math.log(abs(v) / (2.0 * v_ref)) + 1.0 / direct
+    if lx > 0.0:
+        g = direct * (lx + math.log1p(math.sqrt(1.0 + math.exp(-2.0 * lx))))
+    else:
+        g = direct * math.asinh(math.exp(lx))
+    return math.copysign(g, v)
 
 
 def junction_log_slope(v: ArrayLike, direct: float, v_ref: float = 1.0) -> Array:
