@@ -176,7 +176,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "_velocity_scale(ens, float(t1) - t_before))",
        "(lambda x, m=ens.model, v=float(prog.velocities[0]): strength_ratio(v, m.direct, "
        "m.v_ref)) if ens.model.direct else None)",
-       _DIR, "-k", "load_point or kinematic_limit"),
+       _DIR, "-k", "load_point"),
     _m("direct: the velocity drive forgets the junction strength", "ensemble/driving.py",
        "rec.add(ens, _direct(ens, o, v), v, events=_events(o))",
        "rec.add(ens, o, v, events=_events(o))",
