@@ -172,8 +172,9 @@ def test_effective_rsf_a_is_A_times_the_friction_level() -> None:
 
 def test_velocity_step_jumps_by_a_ln_ratio_then_relaxes() -> None:
     """Kinematic step 1 -> 10: the force jumps at once by A mu1 ln 10 (within the largest change
-    between two samples of the sawtooth before the step), then, once every trap born before the step has died (slip
-    1 + p_d(u2), ~ 1 + y_c), equals sample by sample a run started steady at u2."""
+    between two samples of the sawtooth before the step), then, once every trap born before the
+    step has died (slip 1 + p_d(u2), ~ 1 + y_c), equals sample by sample a run started steady
+    at u2."""
     A, lam, m, u1, u2, s0 = 0.02, 500.0, 8, 1.0, 10.0, 0.5
     d = 1 / (m * lam)
     model = TrapModel(eps=EPS, direct=A)
@@ -292,3 +293,65 @@ def test_critical_stiffness_is_finite_without_mass_and_matches_simulation() -> N
         assert np.sign(s) == np.sign(lam.real)
         assert s == pytest.approx(lam.real, rel=0.5)
         assert w == pytest.approx(abs(lam.imag), rel=0.05)
+
+
+# ---------------------------------------------------------------- CLI and protocol files
+
+
+def test_cli_direct_options() -> None:
+    import json
+
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    run = CliRunner()
+    r = run.invoke(app, ["steady", "--eps", "0.04", "--u", "0.1", "10", "--direct", "0.02",
+                         "--v-ref", "0.5", "--json"])
+    assert r.exit_code == 0, r.output
+    np.testing.assert_allclose(json.loads(r.stdout)["mu_d"], steady_friction(
+        np.array([0.1, 10.0]), EPS, direct=0.02, v_ref=0.5), rtol=1e-12)
+    plain = run.invoke(app, ["steady", "--eps", "0.04", "--u", "1", "--json"])
+    assert "direct" not in json.loads(plain.stdout)  # the athermal output is unchanged
+    r = run.invoke(app, ["static", "--eps", "0.04", "--T", "10", "--direct", "0.02",
+                         "--pull-velocity", "3", "--json"])
+    assert json.loads(r.stdout)["mu_s"][0] == pytest.approx(
+        float(static_friction(10.0, EPS, direct=0.02, pull_velocity=3.0)), rel=1e-12)
+    r = run.invoke(app, ["stability", "--eps", "0.04", "--u", "0.1", "--direct", "0.02",
+                         "--json"])
+    assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
+        critical_stiffness_direct(0.1, EPS, direct=0.02).critical_stiffness, rel=1e-9)
+    for args, word in ((["steady", "--eps", "0.04", "--u", "1", "--direct", "2"], "direct"),
+                       (["static", "--eps", "0.04", "--T", "1", "--direct", "0.1"],
+                        "pull_velocity"),
+                       (["steady", "--eps", "0.04", "--u", "1", "--direct", "0.1", "--v-ref",
+                         "0"], "v_ref")):
+        r = run.invoke(app, args)
+        assert r.exit_code == 2 and word in r.output and len(r.output.strip().splitlines()) == 1
+
+
+def test_protocol_model_keys() -> None:
+    from dryfriction.io.protocol import parse_protocol
+
+    base = """
+[model]
+eps = 0.04
+{extra}
+[ensemble]
+traps_per_a0 = 100
+initial = "rest"
+[drive]
+kind = "spring"
+stiffness = 1.0
+mass = {mass}
+segments = [{{velocity = 1.0, slip = 1.0}}]
+[output]
+every_slip = 0.05
+"""
+    p = parse_protocol(base.format(extra="direct = 0.02\nv_ref = 0.5", mass=0.0))
+    assert (p.model.direct, p.model.v_ref) == (0.02, 0.5)
+    assert parse_protocol(base.format(extra="", mass=0.0)).model.direct == 0.0
+    with pytest.raises(ValueError, match="model.*direct"):
+        parse_protocol(base.format(extra="direct = -0.1", mass=0.0))
+    with pytest.raises(ValueError, match="drive.mass"):
+        parse_protocol(base.format(extra="direct = 0.02", mass=1.0))

@@ -24,6 +24,14 @@ def trap(
 
 
 CREEP_HELP = "Creep law: log (eq. 17) or eyring-nabarro (exact, eqs. 15-16)."
+DIRECT_HELP = ("Direct effect A = kT/(sigma_s0 v*), 0 <= A <= 1: junction strength "
+               "1 + A ln(V/V_ref) (Eyring, asinh-regularised); 0: the athermal model.")
+V_REF_HELP = "Reference velocity V_ref of the direct effect, reduced a0/t0, > 0."
+
+
+def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
+    # printed only with the direct effect, so the athermal output is unchanged
+    return {"direct": direct, "v_ref": v_ref} if direct else {}
 
 
 @app.command(cls=many("--T"))
@@ -38,13 +46,21 @@ def static(
         0.0, "--load", help="Tangential force during the wait, units F_el, 0 <= f_w < 1."
     ),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
+    direct: float = typer.Option(0.0, "--direct", help=DIRECT_HELP),
+    v_ref: float = typer.Option(1.0, "--v-ref", help=V_REF_HELP),
+    pull_velocity: float = typer.Option(None, "--pull-velocity", help="Slip rate of the pull, "
+                                        "a0/t0, > 0; required with --direct > 0."),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading)."""
     from ..theory.static import static_friction
 
-    mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
-    params = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
+    mu = static_friction(np.asarray(T, float), eps, alpha, creep, load, direct, v_ref,
+                         pull_velocity)
+    params = {"eps": eps, "alpha": alpha, "load": load, "creep": creep,
+              **_direct_params(direct, v_ref)}
+    if direct:
+        params["pull_velocity"] = pull_velocity
     if json_out:
         emit({**params, "T": list(T), "mu_s": mu}, True, "static")
     else:
@@ -60,13 +76,15 @@ def steady(
     )],
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
+    direct: float = typer.Option(0.0, "--direct", help=DIRECT_HELP),
+    v_ref: float = typer.Option(1.0, "--v-ref", help=V_REF_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Steady dynamic friction mu_d = F_d/F_el at reduced velocity u = V/V* (eq. 34)."""
     from ..theory.steady import steady_friction
 
-    mu = steady_friction(np.asarray(u, float), eps, alpha, creep)
-    params = {"eps": eps, "alpha": alpha, "creep": creep}
+    mu = steady_friction(np.asarray(u, float), eps, alpha, creep, direct, v_ref)
+    params = {"eps": eps, "alpha": alpha, "creep": creep, **_direct_params(direct, v_ref)}
     if json_out:
         emit({**params, "u": list(u), "mu_d": mu}, True, "steady")
     else:
@@ -89,21 +107,30 @@ def stability(
     mass: float = typer.Option(0.0, "--mass", help="Slider mass M, F_el t0^2/a0, >= 0."),
     damping: float = typer.Option(0.0, "--damping", help="Viscous damping eta, F_el t0/a0."),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
+    direct: float = typer.Option(0.0, "--direct", help=DIRECT_HELP),
+    v_ref: float = typer.Option(1.0, "--v-ref", help=V_REF_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
     from ..analysis.rsf_stability import rsf_stability_prediction
+    from ..theory.direct_stability import critical_stiffness_direct
     from ..theory.stability import critical_stiffness
     from ..theory.steady import check_steady_inputs
-    from ..validation import check_scalar
+    from ..validation import check_direct, check_scalar
 
     check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
     check_scalar("mass", mass, 0.0, LOAD_MAX)
     check_scalar("damping", damping, 0.0, LOAD_MAX)
-    res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
-    twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping) for v in u]
-             if eps > 0 else [])
-    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep}
+    check_direct(direct, v_ref)
+    if direct:
+        res = [critical_stiffness_direct(v, eps, alpha, creep, mass, damping, direct, v_ref)
+               for v in u]
+    else:
+        res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
+    twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping, direct, v_ref)
+              for v in u] if eps > 0 else [])
+    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep,
+              **_direct_params(direct, v_ref)}
     cols = {
         "u": list(u),
         "K_c": [r.critical_stiffness for r in res],
