@@ -117,11 +117,19 @@ def static_friction_si(
 
 
 def steady_friction_si(
-    V: ArrayLike, eps: float, scales: PhysicalScales, alpha: float = 0.13, creep: str = "log"
+    V: ArrayLike, eps: float, scales: PhysicalScales, alpha: float = 0.13, creep: str = "log",
+    direct: float = 0.0, v_ref: float = 1e-6,
 ) -> Array:
-    """Steady dynamic friction coefficient ``F_d/W`` at sliding velocity ``V`` in m/s (eq. 34)."""
+    """Steady dynamic friction coefficient ``F_d/W`` at sliding velocity ``V`` in m/s (eq. 34).
+
+    ``direct`` is the direct-effect coefficient ``A`` (dimensionless, :mod:`.direct`) and
+    ``v_ref`` its reference velocity in m/s (``> 0``; it enters only when ``direct > 0``).
+    """
     check_broadcast(V=V, eps=eps)
     u = scales.reduced_velocity(V)
+    u_ref = 1.0
+    if direct:
+        u_ref = float(scales.reduced_velocity(check_scalar("v_ref", v_ref, 0.0, lo_open=True)))
     with _in_reduced_units(f"u = V/V*, V* = a0/t0 = {scales.velocity_scale:g} m/s"):
-        mu = steady_friction(u, eps, alpha, creep)
+        mu = steady_friction(u, eps, alpha, creep, direct, u_ref)
     return scales.friction_coefficient(mu)
