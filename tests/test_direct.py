@@ -355,3 +355,63 @@ every_slip = 0.05
         parse_protocol(base.format(extra="direct = -0.1", mass=0.0))
     with pytest.raises(ValueError, match="drive.mass"):
         parse_protocol(base.format(extra="direct = 0.02", mass=1.0))
+
+
+# ---------------------------------------------------------------- fitting
+
+
+def _direct_series(seed: int) -> tuple:
+    """Ensemble-made steps u = 1 -> 10 -> 0.1 (V* = 1e-4 m/s) with A = 0.02, noise 2e-3."""
+    from dryfriction.fit import CVModel
+    from dryfriction.io.data import SeriesData
+
+    true = {"eps": 0.03, "t0": 0.01, "a0": 1e-6, "mu_el": 0.5, "direct": 0.02}
+    vs = true["a0"] / true["t0"]
+    t: list[float] = []
+    v: list[float] = []
+    now = 0.0
+    for u, slip in ((1.0, 0.3), (10.0, 3.0), (0.1, 3.0)):
+        dur = slip / u * true["t0"]
+        n = max(3, round(slip / 0.1))
+        t.extend(now + np.linspace(0.0, dur, n + 1)[:-1])
+        v.extend([u * vs] * n)
+        now += dur
+    t.append(now)
+    v.append(0.1 * vs)
+    ta, va = np.array(t), np.array(v)
+    model = CVModel(traps_per_a0=300, direct=0.01, v_ref=vs)
+    clean = model.predict(true, SeriesData(ta, va, np.ones_like(ta)))
+    rng = np.random.default_rng(seed)
+    return SeriesData(ta, va, clean + rng.normal(0.0, 2e-3, ta.size),
+                      np.full(ta.size, 2e-3)), true, model
+
+
+@pytest.mark.slow
+def test_fit_recovers_the_direct_effect_from_steps() -> None:
+    """With eps and a0 held at their true values, the fit with A free finds A = 0.02 (and
+    mu_el) inside its 95 % interval and fits the noise level; the athermal model cannot (chi2
+    far above n). About 80 s."""
+    from dryfriction.fit import CVModel, fit
+
+    d, true, model = _direct_series(0)
+    fix = {"eps": true["eps"], "a0": true["a0"]}
+    r = fit(d, model, fix=fix, profile=False, consistency=False)
+    assert r.success, r.message
+    for k in ("mu_el", "direct"):
+        lo, hi = r[k].interval_95
+        assert lo <= true[k] <= hi, (k, r[k].value, (lo, hi))
+    # t0 comes out ~18 % high with an interval that misses the truth: the finite-density
+    # ensemble's staircase in t0 (CVModel.diff_step), not a property of A
+    assert r["t0"].value == pytest.approx(true["t0"], rel=0.25)
+    assert r.goodness["reduced_chi2"] < 1.5
+    r0 = fit(d, CVModel(traps_per_a0=300), fix=fix, profile=False, consistency=False)
+    assert r0.goodness["reduced_chi2"] > 5.0
+
+
+def test_direct_fit_refuses_static_data() -> None:
+    from dryfriction.fit import CVModel, fit
+    from dryfriction.io.data import StaticData
+
+    d = StaticData(np.array([1.0, 10.0, 100.0, 1000.0]), np.array([0.5, 0.51, 0.52, 0.53]))
+    with pytest.raises(ValueError, match="static"):
+        fit(d, CVModel(direct=0.01), profile=False)
