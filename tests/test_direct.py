@@ -415,3 +415,19 @@ def test_direct_fit_refuses_static_data() -> None:
     d = StaticData(np.array([1.0, 10.0, 100.0, 1000.0]), np.array([0.5, 0.51, 0.52, 0.53]))
     with pytest.raises(ValueError, match="static"):
         fit(d, CVModel(direct=0.01), profile=False)
+
+
+def test_si_forms_convert_v_ref_and_the_pull_velocity() -> None:
+    """SI: V/V_ref and V_pull/V_ref are ratios of m/s, independent of V* = a0/t0."""
+    from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
+
+    A = 0.02
+    for a0, t0 in ((1e-6, 0.01), (3e-6, 5.0)):
+        s = PhysicalScales(a0=a0, t0=t0, mu_el=0.5)
+        vs = a0 / t0
+        mu = steady_friction_si(1e-3, EPS, s, direct=A, v_ref=1e-5)
+        assert float(mu) == pytest.approx(
+            0.5 * (1 + A * math.log(100)) * float(steady_friction(1e-3 / vs, EPS)), rel=1e-12)
+        ms = static_friction_si(10.0, EPS, s, direct=A, v_ref=1e-5, pull_velocity=1e-7)
+        assert float(ms) == pytest.approx(
+            0.5 * (1 + A * math.log(1e-2)) * float(static_friction(10.0 / t0, EPS)), rel=1e-12)
