@@ -47,7 +47,10 @@ unchanged) times the junction strength at the slider's present velocity ``V``.
   velocity, ages at ``t1``, like quasi-static rate-and-state). With ``g(0) = 0`` the left side
   decides the direction and the same stretch-by-stretch bracketing and Brent root as the jumps
   finds the first root. A root farther than the reach of the contacts (force drive) is still
-  reported as a runaway.
+  reported as a runaway. The spring drive takes several such steps per sample, each covering
+  at most a quarter of the trap spacing of load-point travel (:mod:`.thermal`): a coarser step
+  sees the population's sawtooth at one phase only and, on a regular track sampled at a
+  multiple of its spacing, locks onto it. The force drive takes one step per sample.
 * **Inertial slider**: refused (the explicit Verlet step cannot follow the stiff ``g'(V)`` near
   ``V = 0``, where it is ``A e^{1/A}/(2 V_ref)``).
 
@@ -60,18 +63,24 @@ from __future__ import annotations
 import math
 import time as _time
 from collections.abc import Callable, Iterator
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
 
 from ..program import VelocityProgram
-from ..theory.direct import strength_ratio
 from ..validation import check_choice, check_scalar
 from .population import Ensemble, Initial, Observables, Track, TrapModel
 from .resources import check_run
 from .result import COLUMNS, Output, Recorder, SimulationResult, segment_grid
+from .thermal import (
+    check_direct_mass,
+    creep_substeps,
+    initial_velocity,
+    velocity_scale,
+    with_strength,
+)
 
 __all__ = [
     "VelocityDrive",
@@ -215,16 +224,6 @@ def _add_events(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, 
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
 
 
-def _velocity_scale(ens: Ensemble, dt: float) -> Callable[[float], float] | None:
-    """``X -> g((X - X0)/dt)`` for the step that starts at the present ``X0`` (direct effect);
-    None without it, so that the athermal jumps run their unchanged code."""
-    m = ens.model
-    if m.direct == 0.0:
-        return None
-    x0 = ens.x
-    return lambda x: strength_ratio((x - x0) / dt, m.direct, m.v_ref)
-
-
 def _equilibrate(
     ens: Ensemble, A: float, K: float, max_slip: float,
     scale: Callable[[float], float] | None = None,
@@ -291,35 +290,6 @@ def _equilibrate(
         ev = _add_events(ev, _events(ens.advance(xe + d * _TINY, ens.t)))
 
 
-def _direct(ens: Ensemble, o: Observables, v: float) -> Observables:
-    """The observables with the junction strength at velocity ``v`` applied (direct effect):
-    force and stiffness times ``g(v)``; ``o`` itself without it."""
-    m = ens.model
-    if m.direct == 0.0:
-        return o
-    g = strength_ratio(v, m.direct, m.v_ref)
-    return replace(o, force=g * o.force, stiffness=g * o.stiffness)
-
-
-def _check_direct_drive(model: TrapModel, drive: Drive) -> None:
-    if model.direct > 0.0 and isinstance(drive, SpringDrive) and drive.mass > 0.0:
-        raise ValueError(f"mass = {drive.mass:g} is not allowed with direct = {model.direct:g}: "
-                         "the inertial slider is not implemented with the direct effect; "
-                         "allowed mass = 0 (quasi-static slider)")
-
-
-def _initial_velocity(model: TrapModel, initial: Initial, drive: Drive) -> float:
-    """Slider velocity recorded in the first sample: 0 without the direct effect (unchanged);
-    with it, the velocity the first force is taken at (first segment, or the steady state)."""
-    if model.direct == 0.0:
-        return 0.0
-    if isinstance(drive, VelocityDrive):
-        return float(drive.program.velocities[0])
-    if initial.kind == "steady" and initial.velocity is not None:
-        return float(initial.velocity)
-    return 0.0
-
-
 # ---------------------------------------------------------------- the drivers
 
 
@@ -336,7 +306,7 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Reco
         # velocity of the segment that contains the step
         k = int(np.searchsorted(bounds, 0.5 * (t_prev + t1), side="right")) - 1
         v = float(prog.velocities[min(max(k, 0), len(prog.segments) - 1)])
-        rec.add(ens, _direct(ens, o, v), v, events=_events(o))
+        rec.add(ens, with_strength(ens, o, v), v, events=_events(o))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -371,14 +341,14 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
         ev = _events(ens.advance(ens.x, t1))
         max_slip = _max_reach(ens) + max(1.0, ens.y_c) + 1.0 + 2.0 * ens.track.spacing
         extreme, runaway, jump_ev = _equilibrate(ens, f_app, 0.0, max_slip,
-                                                 _velocity_scale(ens, t1 - t_before))
+                                                 velocity_scale(ens, t1 - t_before))
         threshold = max(threshold, extreme)
         if runaway:
             t_threshold = t1
             break
         o = ens.observe()
         v = (ens.x - x_before) / (t1 - t_before)
-        rec.add(ens, _direct(ens, o, v), v, f_applied=f_app, events=_add_events(ev, jump_ev))
+        rec.add(ens, with_strength(ens, o, v), v, f_applied=f_app, events=_add_events(ev, jump_ev))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -412,16 +382,22 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
     snaps = list(output.snapshots)
     jumps: list[float] = []
     if drive.mass == 0.0:
+        xp_prev = float(xp[0])
         for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
             x_before, t_before = ens.x, ens.t
-            ev = _events(ens.advance(ens.x, float(t1)))
-            _, _, jump_ev = _equilibrate(ens, K * float(xp1), K, 1e9,
-                                         _velocity_scale(ens, float(t1) - t_before))
+            n, ev = creep_substeps(ens, float(xp1) - xp_prev), (0, 0, 0)
+            for j in range(1, n + 1):  # n = 1 (one jump) without the direct effect
+                tj = float(t1) if j == n else t_before + (float(t1) - t_before) * j / n
+                xj = float(xp1) if j == n else xp_prev + (float(xp1) - xp_prev) * j / n
+                x_sub, t_sub = ens.x, ens.t
+                ev = _add_events(ev, _events(ens.advance(ens.x, tj)))
+                _, _, jump_ev = _equilibrate(ens, K * xj, K, 1e9, velocity_scale(ens, tj - t_sub))
+                ev = _add_events(ev, jump_ev)
+            xp_prev = float(xp1)
             jumps.append(ens.x - x_before)
             o = ens.observe()
-            v = (ens.x - x_before) / (t1 - t_before)
-            rec.add(ens, _direct(ens, o, v), v, x_pull=float(xp1),
-                    events=_add_events(ev, jump_ev))
+            v = (ens.x - x_sub) / (tj - t_sub)  # the last step's: the velocity g is taken at
+            rec.add(ens, with_strength(ens, o, v), v, x_pull=float(xp1), events=ev)
             while snaps and snaps[0] <= t1 - t_start + 1e-12:
                 snaps.pop(0)
                 rec.snap(ens)
@@ -540,12 +516,13 @@ def simulate(
     else:
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
-    _check_direct_drive(model, drive)
+    check_direct_mass(model, getattr(drive, "mass", 0.0))
     check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
-    v0 = _initial_velocity(model, initial, drive)
-    o = _direct(ens, ens.observe(), v0)
+    v0 = initial_velocity(model, initial, float(drive.program.velocities[0])
+                          if isinstance(drive, VelocityDrive) else None)
+    o = with_strength(ens, ens.observe(), v0)
     x_pull0 = ens.x + o.force / drive.stiffness if isinstance(drive, SpringDrive) else math.nan
     f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
     rec.add(ens, o, v0, x_pull=x_pull0, f_applied=f_app0)
@@ -621,7 +598,7 @@ def continue_spring(
                          "quasi-static slider has no velocity state; allowed 0")
     if spring_force is not None:
         spring_force = check_scalar("spring_force", spring_force)
-    _check_direct_drive(ensemble.model, drive)
+    check_direct_mass(ensemble.model, drive.mass)
     check_run(ensemble.model, ensemble.track, ensemble.initial, drive, output)
     rec = Recorder(ensemble.model.mu_el)
     o = ensemble.observe()
