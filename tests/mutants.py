@@ -173,12 +173,12 @@ MUTANTS: tuple[Mutant, ...] = (
        "lx = -math.log(abs(v) / (2.0 * v_ref)) + 1.0 / direct",
        _DIR, "-k", "velocity_step"),
     _m("direct: g at the load point's velocity, not the slider's", "ensemble/driving.py",
-       "_velocity_scale(ens, float(t1) - t_before))",
-       "(lambda x, m=ens.model, v=float(prog.velocities[0]): strength_ratio(v, m.direct, "
-       "m.v_ref)) if ens.model.direct else None)",
+       "velocity_scale(ens, tj - t_sub))",
+       "(lambda x, s=velocity_scale(ens, tj - t_sub), x0=ens.x: "
+       "s(x0 + (float(xp1) - xp_prev) / n)) if ens.model.direct else None)",
        _DIR, "-k", "load_point"),
     _m("direct: the velocity drive forgets the junction strength", "ensemble/driving.py",
-       "rec.add(ens, _direct(ens, o, v), v, events=_events(o))",
+       "rec.add(ens, with_strength(ens, o, v), v, events=_events(o))",
        "rec.add(ens, o, v, events=_events(o))",
        _DIR, "-k", "velocity_step"),
     _m("direct: static threshold ignores the pull velocity", "theory/static.py",

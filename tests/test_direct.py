@@ -263,9 +263,10 @@ def test_inertial_slider_is_refused_with_direct() -> None:
 
 def test_critical_stiffness_is_finite_without_mass_and_matches_simulation() -> None:
     """M = eta = 0, A = 0.02, u = 0.1: K_c is finite (the direct term damps high frequencies).
-    Direct simulation (quasi-static spring, implicit creep steps, 100 traps/a0) grows at 0.8 K_c and decays at
-    1.2 K_c, with the rightmost root's frequency; growth rates within 50 % (granular noise and
-    the backward-Euler step). The fit is of the spring force, which the slider integrates."""
+    Direct simulation (quasi-static spring, implicit creep steps, 100 traps/a0) grows at 0.8
+    K_c and decays at 1.2 K_c, with the rightmost root's frequency; growth rates within 50 %
+    (granular noise and the backward-Euler step). The fit is of the spring force, which the
+    slider integrates."""
     u, A = 0.1, 0.02
     res = critical_stiffness_direct(u, EPS, direct=A)
     assert not res.supremum_at_infinity and 0 < res.critical_stiffness < 1.0
