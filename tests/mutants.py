@@ -54,6 +54,7 @@ def _m(name: str, file: str, original: str, replacement: str, *tests: str) -> Mu
 _DRV = "tests/test_driving.py"
 _RSF = "tests/test_rsf.py"
 _LAB = "tests/test_lab.py"
+_DIR = "tests/test_direct.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -194,6 +195,33 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("lab: step window lead as slip times velocity", "io/labsteps.py",
        "pre_slip / abs(prev.velocity)", "pre_slip * abs(prev.velocity)",
        _LAB, "-k", "slices_slide_hold_slide"),
+    # --- the direct effect (issue 11) --------------------------------------------------------
+    _m("direct: sign of the rate term flipped (theory)", "theory/direct.py",
+       "return np.log(np.abs(v) / (2.0 * v_ref)) + 1.0 / direct",
+       "return -np.log(np.abs(v) / (2.0 * v_ref)) + 1.0 / direct",
+       _DIR, "-k", "regularisation or aged_population"),
+    _m("direct: sign of the rate term flipped (ensemble)", "theory/direct.py",
+       "lx = math.log(abs(v) / (2.0 * v_ref)) + 1.0 / direct",
+       "lx = -math.log(abs(v) / (2.0 * v_ref)) + 1.0 / direct",
+       _DIR, "-k", "velocity_step"),
+    _m("direct: g at the load point's velocity, not the slider's", "ensemble/driving.py",
+       "velocity_scale(ens, tj - t_sub))",
+       "(lambda x, s=velocity_scale(ens, tj - t_sub), x0=ens.x: "
+       "s(x0 + (float(xp1) - xp_prev) / n)) if ens.model.direct else None)",
+       _DIR, "-k", "load_point"),
+    _m("direct: the velocity drive forgets the junction strength", "ensemble/driving.py",
+       "rec.add(ens, with_strength(ens, o, v), v, events=_events(o))",
+       "rec.add(ens, o, v, events=_events(o))",
+       _DIR, "-k", "velocity_step"),
+    _m("direct: static threshold ignores the pull velocity", "theory/static.py",
+       "mu = mu * junction_strength(pull_velocity, direct, v_ref)",
+       "mu = mu * junction_strength(1.0, direct, v_ref)",
+       _DIR, "-k", "pull_velocity"),
+    _m("direct: the instantaneous term enters the response with the wrong sign",
+       "theory/direct_stability.py",
+       "return self.g * self.base.Z(lam) + (self.a_direct / self.base.u) * lam",
+       "return self.g * self.base.Z(lam) - (self.a_direct / self.base.u) * lam",
+       _DIR, "-k", "critical_stiffness"),
 )
 
 

@@ -37,6 +37,8 @@ __all__ = [
     "U_MIN",
     "U_MAX",
     "T_MAX",
+    "DIRECT_MAX",
+    "check_direct",
 ]
 
 Array = NDArray[np.float64]
@@ -200,6 +202,19 @@ def check_alpha(alpha: float) -> float:
     """Reduced trap stiffness of a pinning trap, ``ALPHA_MIN <= alpha < 1`` (``alpha >= 1``:
     no pinning, no friction)."""
     return check_scalar("alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
+
+
+DIRECT_MAX: float = 1.0
+"""Largest direct-effect coefficient ``A = kT/(sigma_s0 v*)`` accepted: measured values are of
+order 0.01; ``A = 1`` already doubles the junction strength per e-fold of velocity, far beyond
+the thermally activated (Eyring) regime the rheology describes."""
+
+
+def check_direct(direct: float, v_ref: float) -> tuple[float, float]:
+    """Direct-effect coefficient ``0 <= direct <= DIRECT_MAX`` and reference velocity
+    ``U_MIN <= v_ref <= U_MAX`` (reduced ``a0/t0``), as floats."""
+    return (check_scalar("direct", direct, 0.0, DIRECT_MAX),
+            check_scalar("v_ref", v_ref, U_MIN, U_MAX))
 
 
 # ---------------------------------------------------------------- memory budget

@@ -8,6 +8,7 @@ It sits above both the theory (:mod:`dryfriction.theory.stability`) and the rate
 from __future__ import annotations
 
 from ..rsf.law import RateState
+from ..theory.direct_stability import effective_rsf_direct
 from ..theory.stability import effective_rsf
 
 __all__ = ["rsf_stability_prediction"]
@@ -20,6 +21,8 @@ def rsf_stability_prediction(
     creep: str = "log",
     mass: float = 0.0,
     damping: float = 0.0,
+    direct: float = 0.0,
+    v_ref: float = 1.0,
 ) -> dict[str, float]:
     """Critical stiffness that rate-and-state predicts with the model's effective ``a, b, Dc``.
 
@@ -29,9 +32,11 @@ def rsf_stability_prediction(
     (``K`` in ``F_el/a0``). Compare with
     :func:`~dryfriction.theory.stability.critical_stiffness`: the twin matches the slow response
     only, so the two differ wherever the model's fast response (negative forward stiffness,
-    delay at the spinodal edge) matters.
+    delay at the spinodal edge) matters. With the direct effect (``direct > 0``) the twin's
+    ``a`` includes the direct part ``A_u mu_d`` (:func:`.direct_stability.effective_rsf_direct`).
     """
-    p = effective_rsf(u, eps, alpha, creep)
+    p = (effective_rsf_direct(u, eps, alpha, creep, direct, v_ref) if direct
+         else effective_rsf(u, eps, alpha, creep))
     twin = RateState(a=p["a"], b=p["b"], dc=p["dc"], mu0=1.0, v0=u)
     out = {**p, "K_c": twin.critical_stiffness(u, damping, mass)}
     try:

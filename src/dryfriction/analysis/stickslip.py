@@ -65,6 +65,8 @@ from ..ensemble.driving import Output, SimulationResult, SpringDrive, continue_s
 from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..io.protocol import pulling_velocity, spring_point
 from ..program import Segment, VelocityProgram
+from ..theory.direct import junction_strength
+from ..theory.direct_stability import critical_stiffness_direct
 from ..theory.stability import critical_stiffness, rightmost_root, steady_response
 from ..validation import Array, check_scalar
 
@@ -491,6 +493,8 @@ def bifurcation_scan(
     kick: float = 0.03,
     force_kick: float = 1e-3,
     samples_per_a0: float = 50.0,
+    direct: float = 0.0,
+    v_ref: float = 1.0,
 ) -> dict[str, Any]:
     """Continuation in ``K``: stick-slip amplitude and period down then up (module doc).
 
@@ -515,6 +519,10 @@ def bifurcation_scan(
     samples_per_a0 : float
         Output samples per ``a0`` of load-point travel (and at least 20 per period of the
         mass on the spring when ``M > 0``).
+    direct, v_ref : float
+        Direct effect ``A`` and its reference velocity (``a0/t0``); ``A > 0`` needs ``M = 0``
+        and takes ``K_c`` from :func:`~dryfriction.theory.direct_stability.
+        critical_stiffness_direct`; the force kick is added to the friction ``g(u) F``.
 
     Returns
     -------
@@ -527,13 +535,19 @@ def bifurcation_scan(
         raise ValueError("stiffnesses is empty")
     if transient >= travel:
         raise ValueError(f"transient = {transient:g} must be less than travel = {travel:g}")
-    lin = critical_stiffness(u, eps, alpha, mass=mass, damping=damping)
-    model = TrapModel(alpha, eps)
+    if direct:
+        lin = critical_stiffness_direct(u, eps, alpha, mass=mass, damping=damping,
+                                        direct=direct, v_ref=v_ref)
+    else:
+        lin = critical_stiffness(u, eps, alpha, mass=mass, damping=damping)
+    model = TrapModel(alpha, eps, direct=direct, v_ref=v_ref)
     track = Track(traps_per_a0)
     floor = granular_floor(traps_per_a0, u, eps, alpha)
     ens = Ensemble(model, track, Initial("steady", velocity=u),
                    age_horizon=4 * len(ks) * travel / u)
     f0 = ens.observe().force
+    if direct:
+        f0 *= float(junction_strength(u, direct, v_ref))
     velocity = (1 + kick) * u if mass > 0 else 0.0
     force: float | None = None if mass > 0 else f0 + force_kick
     out: dict[str, Any] = {"K_c": lin.critical_stiffness, "omega_c": lin.omega, "u": u,

@@ -68,6 +68,11 @@ def fit_command(
     traps_per_a0: float = typer.Option(1000.0, "--traps-per-a0", help="cv time series: "
                                        "density of the simulated ensemble (accuracy about its "
                                        "inverse; cost grows with it)."),
+    direct: float = typer.Option(0.0, "--direct", help="cv: fit the direct effect A "
+                                 "(0 <= A <= 1), started from this value; 0: the athermal "
+                                 "model. Hold it with --fix direct=A."),
+    v_ref: float = typer.Option(1e-6, "--v-ref", help="cv with --direct: reference velocity "
+                                "of the direct effect, m/s, fixed."),
     profile: bool = typer.Option(None, "--profile/--no-profile", help="Profile-likelihood "
                                  "intervals and identifiability (for a record: of a, b, Dc "
                                  "per step)."),
@@ -120,7 +125,8 @@ def fit_command(
                                 regularized=regularized, trend=bool(trend))
     from ..fit import CVModel
 
-    chosen: Any = CVModel(alpha, creep, traps_per_a0=traps_per_a0) if model == "cv" else model
+    chosen: Any = (CVModel(alpha, creep, traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref)
+                   if model == "cv" else model)
     try:
         result = fit(datasets, chosen, fix=fixed, profile=profile, **opts)
     except NotImplementedError as exc:

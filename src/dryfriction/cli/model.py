@@ -24,6 +24,14 @@ def trap(
 
 
 CREEP_HELP = "Creep law: log (eq. 17) or eyring-nabarro (exact, eqs. 15-16)."
+DIRECT_HELP = ("Direct effect A = kT/(sigma_s0 v*), 0 <= A <= 1: junction strength "
+               "1 + A ln(V/V_ref) (Eyring, asinh-regularised); 0: the athermal model.")
+V_REF_HELP = "Reference velocity V_ref of the direct effect, reduced a0/t0, > 0."
+
+
+def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
+    # printed only with the direct effect, so the athermal output is unchanged
+    return {"direct": direct, "v_ref": v_ref} if direct else {}
 
 
 _SI_HELP = {
@@ -84,6 +92,10 @@ def static(
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
     t0: float = typer.Option(None, "--t0", help=_SI_HELP["t0"]),
     mu_el: float = typer.Option(None, "--mu-el", help=_SI_HELP["mu_el"]),
+    direct: float = typer.Option(0.0, "--direct", help=DIRECT_HELP),
+    v_ref: float = typer.Option(1.0, "--v-ref", help=V_REF_HELP),
+    pull_velocity: float = typer.Option(None, "--pull-velocity", help="Slip rate of the pull, "
+                                        "a0/t0, > 0; required with --direct > 0."),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading); with
@@ -93,13 +105,20 @@ def static(
 
     _one_of(T, t_w, "--T or --t-w")
     scales = _scales("--t-w" if t_w is not None else "", None, t0, mu_el, need_a0=False)
-    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "load": load, "creep": creep,
+                              **_direct_params(direct, v_ref)}
+    if direct:
+        params["pull_velocity"] = pull_velocity
     if scales is None:
         if mu_el is not None:
             raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "
                              "or drop it")
-        mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
+        mu = static_friction(np.asarray(T, float), eps, alpha, creep, load, direct, v_ref,
+                             pull_velocity)
         cols: dict[str, Any] = {"T": list(T or []), "mu_s": mu}
+    elif direct:
+        raise ValueError("--direct takes reduced inputs (--T, --v-ref and --pull-velocity in "
+                         "a0/t0); in SI use dryfriction.theory.units.static_friction_si")
     else:
         mu = static_friction_si(np.asarray(t_w, float), eps, scales, alpha, creep, load)
         params.update(t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
@@ -127,6 +146,8 @@ def steady(
     a0: float = typer.Option(None, "--a0", help=_SI_HELP["a0"]),
     t0: float = typer.Option(None, "--t0", help=_SI_HELP["t0"]),
     mu_el: float = typer.Option(None, "--mu-el", help=_SI_HELP["mu_el"]),
+    direct: float = typer.Option(0.0, "--direct", help=DIRECT_HELP),
+    v_ref: float = typer.Option(1.0, "--v-ref", help=V_REF_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Steady dynamic friction mu_d = F_d/F_el at reduced velocity u = V/V* (eq. 34); with
@@ -136,13 +157,17 @@ def steady(
 
     _one_of(u, V, "--u or --V")
     scales = _scales("--V" if V is not None else "", a0, t0, mu_el, need_a0=True)
-    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "creep": creep}
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "creep": creep,
+                              **_direct_params(direct, v_ref)}
     if scales is None:
         if mu_el is not None:
             raise ValueError("--mu-el converts the friction of SI inputs: give --V, --a0 and "
                              "--t0, or drop it")
-        mu = steady_friction(np.asarray(u, float), eps, alpha, creep)
+        mu = steady_friction(np.asarray(u, float), eps, alpha, creep, direct, v_ref)
         cols: dict[str, Any] = {"u": list(u or []), "mu_d": mu}
+    elif direct:
+        raise ValueError("--direct takes reduced inputs (--u and --v-ref in a0/t0); in SI use "
+                         "dryfriction.theory.units.steady_friction_si")
     else:
         mu = steady_friction_si(np.asarray(V, float), eps, scales, alpha, creep)
         params.update(a0=scales.a0, t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
@@ -172,13 +197,16 @@ def stability(
     damping: float = typer.Option(0.0, "--damping", help="Viscous damping eta [F_el t0/a0], "
                                   ">= 0."),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
+    direct: float = typer.Option(0.0, "--direct", help=DIRECT_HELP),
+    v_ref: float = typer.Option(1.0, "--v-ref", help=V_REF_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
     from ..analysis.rsf_stability import rsf_stability_prediction
+    from ..theory.direct_stability import critical_stiffness_direct
     from ..theory.stability import critical_stiffness
     from ..theory.steady import check_steady_inputs
-    from ..validation import check_scalar
+    from ..validation import check_direct, check_scalar
 
     check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
     check_scalar("mass", mass, 0.0, LOAD_MAX)
@@ -188,10 +216,16 @@ def stability(
             f"--mass {mass:g} without --damping is ill posed: with inertia and no damping the "
             "delay at the spinodal edge makes K_c grow with the highest frequency considered, "
             "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or drop --mass")
-    res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
-    twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping) for v in u]
-             if eps > 0 else [])
-    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep}
+    check_direct(direct, v_ref)
+    if direct:
+        res = [critical_stiffness_direct(v, eps, alpha, creep, mass, damping, direct, v_ref)
+               for v in u]
+    else:
+        res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
+    twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping, direct, v_ref)
+              for v in u] if eps > 0 else [])
+    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep,
+              **_direct_params(direct, v_ref)}
     cols = {
         "u": list(u),
         "K_c": [r.critical_stiffness for r in res],

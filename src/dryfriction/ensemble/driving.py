@@ -33,6 +33,27 @@ Integrators (ours)
   fresh contact stiffness, eqs. 13-14) and a slip per step ``<= 1/(4 lambda)`` so each trap
   death is resolved.
 
+Direct effect (``model.direct = A > 0``, :mod:`dryfriction.theory.direct`; ours)
+--------------------------------------------------------------------------
+The friction force is ``g(V) F(X, ages)``: the population's force (the compiled kernel,
+unchanged) times the junction strength at the slider's present velocity ``V``.
+
+* **Prescribed motion**: ``V`` is the velocity of the segment that ends at the sample (holds:
+  ``g(0) = 0``, the regularised form); a velocity step multiplies the force at once by
+  ``g(V2)/g(V1)``. The first sample uses the first segment's velocity.
+* **Quasi-static slider** (force drive, spring drive with ``mass = 0``): the force now depends
+  on the velocity, so there are no jumps: within a step ``[t0, t1]`` the slider moves from
+  ``X0`` to the ``X`` where ``A - K X = g((X - X0)/(t1 - t0)) F(X)`` (backward Euler in the
+  velocity, ages at ``t1``, like quasi-static rate-and-state). With ``g(0) = 0`` the left side
+  decides the direction and the same stretch-by-stretch bracketing and Brent root as the jumps
+  finds the first root. A root farther than the reach of the contacts (force drive) is still
+  reported as a runaway. The spring drive takes several such steps per sample, each covering
+  at most a quarter of the trap spacing of load-point travel (:mod:`.thermal`): a coarser step
+  sees the population's sawtooth at one phase only and, on a regular track sampled at a
+  multiple of its spacing, locks onto it. The force drive takes one step per sample.
+* **Inertial slider**: refused (the explicit Verlet step cannot follow the stiff ``g'(V)`` near
+  ``V = 0``, where it is ``A e^{1/A}/(2 V_ref)``).
+
 Interruption: with ``on_interrupt="partial"`` a Ctrl-C (``KeyboardInterrupt``) ends the run at
 the last completed step and the result is marked ``partial``.
 """
@@ -52,6 +73,13 @@ from ..validation import check_choice, check_scalar
 from .population import Ensemble, Initial, Observables, Track, TrapModel
 from .resources import check_run
 from .result import COLUMNS, Output, Recorder, SimulationResult, segment_grid
+from .thermal import (
+    check_direct_mass,
+    creep_substeps,
+    initial_velocity,
+    velocity_scale,
+    with_strength,
+)
 
 __all__ = [
     "VelocityDrive",
@@ -196,9 +224,13 @@ def _add_events(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, 
 
 
 def _equilibrate(
-    ens: Ensemble, A: float, K: float, max_slip: float
+    ens: Ensemble, A: float, K: float, max_slip: float,
+    scale: Callable[[float], float] | None = None,
 ) -> tuple[float, bool, tuple[int, int, int]]:
     """Jump, ages frozen, to the next stable root of ``A - K X - F(X) = 0``.
+
+    With ``scale`` (direct effect) the force is ``scale(X) F(X)``: the root is then the end of
+    a creep step rather than of a jump (module docstring).
 
     Returns
     -------
@@ -211,14 +243,17 @@ def _equilibrate(
     events : tuple of int
         (births, spinodal, exits) during the jump.
     """
+    def eff(f: float, x: float) -> float:
+        return f if scale is None else scale(x) * f
+
     o = ens.observe(1)
-    G0 = A - K * ens.x - o.force
+    G0 = A - K * ens.x - eff(o.force, ens.x)
     tol = 1e-13 * max(1.0, abs(A))
     if abs(G0) <= tol:
-        return o.force, False, (0, 0, 0)
+        return eff(o.force, ens.x), False, (0, 0, 0)
     d = 1 if G0 > 0 else -1
     start = ens.x
-    extreme = o.force
+    extreme = eff(o.force, ens.x)
     ev = (0, 0, 0)
     while True:
         o = ens.observe(d)
@@ -230,7 +265,8 @@ def _equilibrate(
         if (xb - ens.x) * d <= 0.0:  # the event is within rounding of here: step past it
             xb = ens.x
         pb = ens.probe(xb, d)
-        Gb = A - K * xb - pb.force
+        fb = eff(pb.force, xb)
+        Gb = A - K * xb - fb
         if Gb * d <= 0.0:
             xa = ens.x
             if xb == xa:
@@ -239,15 +275,16 @@ def _equilibrate(
                 from scipy.optimize import brentq  # only force-controlled runs need it
 
                 def g(x: float) -> float:
-                    return A - K * x - ens.probe(x, d).force
+                    return A - K * x - eff(ens.probe(x, d).force, x)
 
                 root = brentq(g, xa, xb, xtol=1e-13, rtol=4 * np.finfo(float).eps) \
                     if g(xa) * d > 0 else xa
             ob = ens.advance(root, ens.t)
-            extreme = max(extreme, ob.force) if d > 0 else min(extreme, ob.force)
+            fr = eff(ob.force, root)
+            extreme = max(extreme, fr) if d > 0 else min(extreme, fr)
             return extreme, False, _add_events(ev, _events(ob))
         # the slider passes this stretch: its end (the spinodal's left limit) is a local extreme
-        extreme = max(extreme, pb.force) if d > 0 else min(extreme, pb.force)
+        extreme = max(extreme, fb) if d > 0 else min(extreme, fb)
         if capped:
             ob = ens.advance(xb, ens.t)
             return extreme, True, _add_events(ev, _events(ob))
@@ -270,7 +307,7 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Reco
         # velocity of the segment that contains the step
         k = int(np.searchsorted(bounds, 0.5 * (t_prev + t1), side="right")) - 1
         v = float(prog.velocities[min(max(k, 0), len(prog.segments) - 1)])
-        rec.add(ens, o, v, events=_events(o))
+        rec.add(ens, with_strength(ens, o, v), v, events=_events(o))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -304,14 +341,15 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
         x_before, t_before = ens.x, ens.t
         ev = _events(ens.advance(ens.x, t1))
         max_slip = _max_reach(ens) + max(1.0, ens.y_c) + 1.0 + 2.0 * ens.track.spacing
-        extreme, runaway, jump_ev = _equilibrate(ens, f_app, 0.0, max_slip)
+        extreme, runaway, jump_ev = _equilibrate(ens, f_app, 0.0, max_slip,
+                                                 velocity_scale(ens, t1 - t_before))
         threshold = max(threshold, extreme)
         if runaway:
             t_threshold = t1
             break
         o = ens.observe()
-        rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), f_applied=f_app,
-                events=_add_events(ev, jump_ev))
+        v = (ens.x - x_before) / (t1 - t_before)
+        rec.add(ens, with_strength(ens, o, v), v, f_applied=f_app, events=_add_events(ev, jump_ev))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -345,14 +383,22 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
     snaps = list(output.snapshots)
     jumps: list[float] = []
     if drive.mass == 0.0:
+        xp_prev = float(xp[0])
         for t1, xp1 in zip(grid[1:], xp[1:], strict=True):
             x_before, t_before = ens.x, ens.t
-            ev = _events(ens.advance(ens.x, float(t1)))
-            _, _, jump_ev = _equilibrate(ens, K * float(xp1), K, 1e9)
+            n, ev = creep_substeps(ens, float(xp1) - xp_prev), (0, 0, 0)
+            for j in range(1, n + 1):  # n = 1 (one jump) without the direct effect
+                tj = float(t1) if j == n else t_before + (float(t1) - t_before) * j / n
+                xj = float(xp1) if j == n else xp_prev + (float(xp1) - xp_prev) * j / n
+                x_sub, t_sub = ens.x, ens.t
+                ev = _add_events(ev, _events(ens.advance(ens.x, tj)))
+                _, _, jump_ev = _equilibrate(ens, K * xj, K, 1e9, velocity_scale(ens, tj - t_sub))
+                ev = _add_events(ev, jump_ev)
+            xp_prev = float(xp1)
             jumps.append(ens.x - x_before)
             o = ens.observe()
-            rec.add(ens, o, (ens.x - x_before) / (t1 - t_before), x_pull=float(xp1),
-                    events=_add_events(ev, jump_ev))
+            v = (ens.x - x_sub) / (tj - t_sub)  # the last step's: the velocity g is taken at
+            rec.add(ens, with_strength(ens, o, v), v, x_pull=float(xp1), events=ev)
             while snaps and snaps[0] <= t1 - t_start + 1e-12:
                 snaps.pop(0)
                 rec.snap(ens)
@@ -471,13 +517,18 @@ def simulate(
     else:
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
+    check_direct_mass(model, getattr(drive, "mass", 0.0))
     check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
-    o = ens.observe()
+    v0 = initial_velocity(model, initial, float(drive.program.velocities[0])
+                          if isinstance(drive, VelocityDrive) else None)
+    o = with_strength(ens, ens.observe(), v0)
     x_pull0 = ens.x + o.force / drive.stiffness if isinstance(drive, SpringDrive) else math.nan
     f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
-    rec.add(ens, o, 0.0, x_pull=x_pull0, f_applied=f_app0)
+    rec.add(ens, o, v0, x_pull=x_pull0, f_applied=f_app0)
+    # with the direct effect the spring starts balancing the friction at v0, not the population
+    extra = {"spring_force": o.force} if model.direct and isinstance(drive, SpringDrive) else {}
     if output.snapshots and output.snapshots[0] == 0.0:
         rec.snap(ens)
         output = Output(output.every, output.every_slip, output.snapshots[1:])
@@ -485,7 +536,7 @@ def simulate(
     tick = _progress_caller(progress, total)
     runner = {VelocityDrive: _run_velocity, ForceDrive: _run_force, SpringDrive: _run_spring}
     try:
-        runner[type(drive)](ens, drive, output, rec, tick, info)  # type: ignore[operator]
+        runner[type(drive)](ens, drive, output, rec, tick, info, **extra)  # type: ignore
     except KeyboardInterrupt:
         if on_interrupt == "raise":
             raise
@@ -493,8 +544,11 @@ def simulate(
     if progress is not None:
         progress(1.0)
     res = rec.result(info)
+    model_d = asdict(model)
+    if model.direct == 0.0:  # the athermal model's record, as before the direct effect
+        del model_d["direct"], model_d["v_ref"]
     info["parameters"] = {
-        "model": asdict(model),
+        "model": model_d,
         "track": asdict(track),
         "initial": asdict(initial),
         "drive": _describe(drive),
@@ -545,6 +599,7 @@ def continue_spring(
                          "quasi-static slider has no velocity state; allowed 0")
     if spring_force is not None:
         spring_force = check_scalar("spring_force", spring_force)
+    check_direct_mass(ensemble.model, drive.mass)
     check_run(ensemble.model, ensemble.track, ensemble.initial, drive, output)
     rec = Recorder(ensemble.model.mu_el)
     o = ensemble.observe()

@@ -52,7 +52,16 @@ import numpy as np
 from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
 from ..theory.static import loaded_edge
 from ..theory.trap import Regime, Trap
-from ..validation import ALPHA_MIN, EPS_MAX, U_MAX, U_MIN, Array, check_choice, check_scalar
+from ..validation import (
+    ALPHA_MIN,
+    EPS_MAX,
+    U_MAX,
+    U_MIN,
+    Array,
+    check_choice,
+    check_direct,
+    check_scalar,
+)
 from .kernel import FREE_FAR, FREE_NEAR, MINUS, OUT_SIZE, PLUS, advance_window, radius_table
 
 __all__ = [
@@ -92,12 +101,20 @@ class TrapModel:
     mu_el : float
         Friction coefficient of the purely elastic model, ``F_el / N``: the reported
         ``mu = mu_el F/F_el``. ``> 0``, default 1.
+    direct : float
+        Direct-effect coefficient ``A``, ``0 <= A <= 1`` (:mod:`dryfriction.theory.direct`):
+        the friction force is ``g(V) x`` the population's force, ``V`` the slider's present
+        velocity (ours: the trap dynamics are unchanged). 0: the athermal model.
+    v_ref : float
+        Reference velocity of the junction rheology, ``a0/t0``, ``> 0``.
     """
 
     alpha: float = 0.13
     eps: float = 0.0
     creep: str = "log"
     mu_el: float = 1.0
+    direct: float = 0.0
+    v_ref: float = 1.0
 
     def __post_init__(self) -> None:
         a = check_scalar("alpha", self.alpha, ALPHA_MIN, 1.0, hi_open=True)
@@ -105,6 +122,9 @@ class TrapModel:
         object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0, EPS_MAX))
         check_choice("creep", self.creep, CREEP_LAWS)
         object.__setattr__(self, "mu_el", check_scalar("mu_el", self.mu_el, 0.0, lo_open=True))
+        direct, v_ref = check_direct(self.direct, self.v_ref)
+        object.__setattr__(self, "direct", direct)
+        object.__setattr__(self, "v_ref", v_ref)
 
     @property
     def trap(self) -> Trap:

@@ -28,7 +28,7 @@ from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
-from ..validation import Array, check_choice, check_scalar
+from ..validation import DIRECT_MAX, Array, check_choice, check_scalar
 
 __all__ = [
     "ParamSpec",
@@ -100,7 +100,8 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
     Parameters
     ----------
     values : mapping
-        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless).
+        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless); optionally
+        ``direct`` (``A``, dimensionless) and ``v_ref`` (m/s), the direct effect.
     data : SeriesData
         Times (s) and load velocities (m/s).
     alpha : float
@@ -141,7 +142,9 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
         raise ValueError(f"{data.source}: the trap-model series would need {n:.3g} samples "
                          f"(> {max_samples}) for t0 = {values['t0']:.3g} s, a0 = "
                          f"{values['a0']:.3g} m")
-    model = TrapModel(alpha, values["eps"], creep, values["mu_el"])
+    direct = values.get("direct", 0.0)
+    v_ref = float(sc.reduced_velocity(values.get("v_ref", 1e-6))) if direct else 1.0
+    model = TrapModel(alpha, values["eps"], creep, values["mu_el"], direct, v_ref)
     res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
                    VelocityDrive(prog), output)
     return np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
@@ -190,6 +193,15 @@ class CVModel:
         with this ``alpha``, ``creep`` and ``traps_per_a0``.
     traps_per_a0 : float
         Track density of the ensemble for time series.
+    direct : float
+        ``0`` (default): the athermal model, as before. ``> 0``: the direct-effect coefficient
+        ``A`` (parameter ``direct``, dimensionless, ``0 <= A <= 1``;
+        :mod:`dryfriction.theory.direct`) is fitted, started from this value (hold it with
+        ``fix={"direct": ...}``); steady and time-series data only (static data carry no pull
+        velocity).
+    v_ref : float
+        Reference velocity of the direct effect, m/s, fixed (``> 0``): with ``A`` free it is
+        degenerate with ``mu_el`` (``mu_el (1 + A ln(V/V_ref))``), so it cannot be fitted.
     diff_step : float
         Relative step (in ``ln`` of the parameters) of the finite-difference Jacobian for time
         series: the ensemble's friction is a staircase in the parameters, one step per trap
@@ -204,24 +216,35 @@ class CVModel:
     series: SeriesModel | None = None
     traps_per_a0: float = 1000.0
     diff_step: float = 0.03
+    direct: float = 0.0
+    v_ref: float = 1e-6
     name: str = field(default="cv", init=False)
 
     def __post_init__(self) -> None:
         check_scalar("alpha", self.alpha, 0.0, 1.0, lo_open=True, hi_open=True)
         check_choice("creep", self.creep, ("log", "eyring-nabarro"))
+        check_scalar("v_ref", self.v_ref, 0.0, lo_open=True)
+        check_scalar("direct", self.direct, 0.0, DIRECT_MAX)
 
     def options(self) -> dict[str, Any]:
+        if self.direct:  # the athermal options unchanged, as fit.json always wrote them
+            return {"alpha": self.alpha, "creep": self.creep, "v_ref": self.v_ref}
         return {"alpha": self.alpha, "creep": self.creep}
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
         eps = ParamSpec("eps", "", True, 1e-6, 1.0)
         mu_el = ParamSpec("mu_el", "", True, 1e-3, 10.0)
         t0 = ParamSpec("t0", "s", True, 1e-12, 1e9)
+        if self.direct and "static" in kinds:
+            raise ValueError("the direct effect (direct) cannot be fitted to static data: the "
+                             "threshold depends on the pull velocity, which a t_w,mu_s file "
+                             "does not give; fit steady or time-series data")
+        extra = (ParamSpec("direct", "", False, 0.0, DIRECT_MAX),) if self.direct else ()
         if kinds == {"static"}:
             return eps, t0, mu_el
         if kinds == {"steady"}:
-            return eps, ParamSpec("vstar", "m/s", True, 1e-15, 1e6), mu_el
-        return eps, t0, ParamSpec("a0", "m", True, 1e-15, 1.0), mu_el
+            return eps, ParamSpec("vstar", "m/s", True, 1e-15, 1e6), mu_el, *extra
+        return eps, t0, ParamSpec("a0", "m", True, 1e-15, 1.0), mu_el, *extra
 
     def notes(self, kinds: frozenset[str]) -> list[str]:
         n = [f"alpha = {self.alpha:g} fixed; creep law {self.creep}"]
@@ -230,6 +253,9 @@ class CVModel:
                      "vstar is fitted, a0 and t0 are not determined separately")
         if kinds == {"static"}:
             n.append("static data do not depend on a0 (eq. 27): a0 is not determined")
+        if self.direct:
+            n.append(f"direct effect A fitted, v_ref = {self.v_ref:g} m/s fixed (degenerate "
+                     "with mu_el)")
         return n
 
     def _scales(self, v: Mapping[str, float]) -> PhysicalScales:
@@ -244,10 +270,13 @@ class CVModel:
         if d.kind == "static":
             return static_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep)
         if d.kind == "steady":
-            return steady_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep)
+            return steady_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep,
+                                      v.get("direct", 0.0), self.v_ref)
         assert isinstance(d, SeriesData)
         if self.series is not None:
             return self.series(v, d)
+        if self.direct:
+            v = {**v, "v_ref": self.v_ref}
         return cv_series(v, d, self.alpha, self.creep, self.traps_per_a0)
 
     def data_window(self, name: str, datasets: Sequence[Dataset]) -> tuple[float, float] | None:
@@ -282,6 +311,12 @@ class CVModel:
                             - 1.0, grid)
 
     def guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
+        out = self._athermal_guesses(datasets)
+        if not self.direct:
+            return out
+        return [{**g, "direct": self.direct} for g in out]
+
+    def _athermal_guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
         def ok(A: float, B: float) -> tuple[float, float]:
             A = A if A > 0 else float(np.mean(np.concatenate([d.y for d in datasets])))
             return A, min(max(B / A, 1e-4), 0.5)

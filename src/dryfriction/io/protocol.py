@@ -7,6 +7,8 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     eps = 0.04                   # required, >= 0
     creep = "log"                # optional: "log" | "eyring-nabarro"
     mu_el = 1.0                  # optional, > 0
+    direct = 0.0                 # optional, 0 <= A <= 1: direct effect (issue 11)
+    v_ref = 1.0                  # optional, a0/t0, > 0: its reference velocity
 
     [ensemble]                   # Track and Initial
     traps_per_a0 = 1000          # required, > 0
@@ -308,13 +310,15 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
             raise ValueError(f"{source}: table '{t}' is missing")
 
     m = _Table(source, "model", doc["model"])
-    m.allow(("law", "alpha", "eps", "creep", "mu_el"))
+    m.allow(("law", "alpha", "eps", "creep", "mu_el", "direct", "v_ref"))
     model = m.build(
         TrapModel,
         alpha=m.number("alpha", 0.13),
         eps=m.number("eps", required=True),
         creep=m.string("creep", "log"),
         mu_el=m.number("mu_el", 1.0),
+        direct=m.number("direct", 0.0),
+        v_ref=m.number("v_ref", 1.0),
     )
 
     e = _Table(source, "ensemble", doc["ensemble"])
@@ -352,6 +356,10 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
     else:
         drive = d.build(SpringDrive, stiffness=d.number("stiffness"), mass=d.number("mass"),
                         damping=d.number("damping", 0.0), program=_segments(d))
+        if model.direct > 0.0 and drive.mass > 0.0:
+            d.fail(f"{d.where('mass')} = {drive.mass:g} is not allowed with model.direct = "
+                   f"{model.direct:g}: the inertial slider has no direct effect yet; allowed "
+                   "mass = 0")
 
     o = _Table(source, "output", doc["output"])
     o.allow(("every", "every_slip", "snapshots"))

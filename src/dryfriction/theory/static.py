@@ -29,6 +29,12 @@ force after a shift ``d`` is (ours; eq. 27 is its value at ``d*``)::
 The threshold returned by :func:`static_friction` is the maximum of ``mu(d)`` over the pull
 (:func:`static_friction_at_radius` lists the candidates). It equals the eq. 27 reading for
 all of the paper's parameters.
+
+**Direct effect (ours, :mod:`.direct`).** With ``direct = A > 0`` the threshold depends on how
+fast it is pulled: a pull at the constant slip rate ``pull_velocity`` (reduced ``a0/t0``) scales
+every trap force by the junction strength ``g(pull_velocity)``, so ``mu_s = g mu_s(A = 0)`` --
+``d mu_s/d ln V_pull = A_V mu_s``, ``A_V = V g'(V)``. The pull is still fast against ageing (no
+ageing during it, as in §4); a force-controlled pull is the ensemble's :class:`ForceDrive`.
 """
 
 from __future__ import annotations
@@ -41,15 +47,19 @@ from numpy.typing import ArrayLike
 from ..validation import (
     EPS_MAX,
     T_MAX,
+    U_MAX,
+    U_MIN,
     Array,
     check_alpha,
     check_broadcast,
     check_choice,
+    check_direct,
     check_finite_result,
     check_range,
     check_scalar,
 )
 from .creep import CREEP_LAWS, check_age, per_eps
+from .direct import junction_strength
 from .trap import Trap, force_forward, work_forward, work_minus
 
 __all__ = [
@@ -186,6 +196,9 @@ def static_friction(
     alpha: float = 0.13,
     creep: str = "log",
     load: float = 0.0,
+    direct: float = 0.0,
+    v_ref: float = 1.0,
+    pull_velocity: float | None = None,
 ) -> Array:
     """Static friction ``mu_s = F_s/F_el`` after a wait ``T = t_w/t0`` (eq. 27, our reading).
 
@@ -202,6 +215,11 @@ def static_friction(
     load : float
         Tangential force during the wait, units ``F_el``, ``0 <= load < 1``. 0 is the paper's
         protocol; ``load > 0`` the loaded protocol (ours, module docstring).
+    direct, v_ref : float
+        Direct-effect coefficient ``0 <= A <= 1`` and its reference velocity (reduced, ``> 0``).
+    pull_velocity : float, optional
+        Slip rate of the pull, reduced ``a0/t0``, ``> 0``; required when ``direct > 0`` (the
+        threshold then scales with ``g(pull_velocity)``), ignored otherwise.
 
     Returns
     -------
@@ -210,6 +228,13 @@ def static_friction(
     """
     alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
+    direct, v_ref = check_direct(direct, v_ref)
+    if direct > 0.0:
+        if pull_velocity is None:
+            raise ValueError("pull_velocity is required when direct > 0 (the threshold depends "
+                             "on how fast it is pulled): "
+                             f"allowed {U_MIN:g} <= pull_velocity <= {U_MAX:g} (a0/t0)")
+        pull_velocity = check_scalar("pull_velocity", pull_velocity, U_MIN, U_MAX)
     T = check_range("T", T, 0.0, T_MAX)
     eps = check_range("eps", eps, 0.0, EPS_MAX)
     check_broadcast(T=T, eps=eps)
@@ -219,6 +244,8 @@ def static_friction(
     # point) would otherwise be held for the whole array at once
     mu = per_eps(lambda law, t: static_friction_at_radius(law.radius(t), alpha, d_w), creep,
                  eps, T)
+    if direct > 0.0:
+        mu = mu * junction_strength(pull_velocity, direct, v_ref)
     return check_finite_result("mu_s", mu, T=T, eps=eps)
 
 

@@ -31,11 +31,13 @@ from ..validation import (
     check_alpha,
     check_broadcast,
     check_choice,
+    check_direct,
     check_finite_result,
     check_range,
     check_scalar,
 )
 from .creep import CREEP_LAWS, CreepLaw, EyringNabarroCreep, per_eps
+from .direct import junction_log_slope, junction_strength
 from .trap import Trap, force_forward, force_minus, force_plus
 
 __all__ = [
@@ -47,6 +49,8 @@ __all__ = [
     "steady_profile",
     "steady_friction_first_order",
     "steady_friction_low_velocity",
+    "steady_log_slope",
+    "steady_log_slope_low_velocity",
     "low_velocity_constant",
     "DYNAMIC_SLOPE_PER_EPS",
 ]
@@ -209,9 +213,13 @@ def _steady_one_law(law: CreepLaw, u: Array, alpha: float) -> Array:
 
 
 def steady_friction(
-    u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log"
+    u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log",
+    direct: float = 0.0, v_ref: float = 1.0,
 ) -> Array:
     """Steady dynamic friction ``mu_d = F_d/F_el`` at reduced velocity ``u = V t0/a0`` (eq. 34).
+
+    With the direct effect (``direct = A > 0``, :mod:`.direct`, ours) the junction strength at
+    the sliding velocity multiplies the aged population's force: ``mu = g(u) mu_d(u)``.
 
     Parameters
     ----------
@@ -223,12 +231,18 @@ def steady_friction(
         Reduced trap stiffness, ``0 < alpha < 1`` (0.13 in the paper).
     creep : {"log", "eyring-nabarro"}
         Ageing law (eq. 17 or eqs. 15-16).
+    direct : float
+        Direct-effect coefficient ``A``, ``0 <= A <= 1`` (0: the athermal model, same code path).
+    v_ref : float
+        Reference velocity of the junction rheology, reduced ``a0/t0``, ``> 0``.
 
     Returns
     -------
     ndarray
-        ``mu_d``; tends to 1 for ``u -> inf`` and grows like ``-(3/2) eps ln u`` for ``u -> 0``.
+        ``mu_d``; tends to 1 for ``u -> inf`` and grows like ``-(3/2) eps ln u`` for ``u -> 0``
+        (times ``g(u)`` when ``direct > 0``).
     """
+    direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
     mu = per_eps(
         lambda law, x: _steady_one_law(law, np.atleast_1d(x), alpha).reshape(x.shape),
@@ -236,7 +250,31 @@ def steady_friction(
         eps,
         u,
     )
+    if direct != 0.0:
+        mu = mu * junction_strength(u, direct, v_ref)
     return check_finite_result("mu_d", mu, u=u, eps=eps)
+
+
+def steady_log_slope(
+    u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log",
+    direct: float = 0.0, v_ref: float = 1.0,
+) -> Array:
+    """``d mu / d ln u`` of :func:`steady_friction` (ours).
+
+    ``u g'(u) mu_d + g(u) d mu_d/d ln u``: the direct term (``-> A mu_d`` above the rheology's
+    crossover) plus the ageing term (``-> -(3/2) eps`` for ``u << 1``, eq. 35). The ageing
+    slope is a central difference in ``ln u`` (step 1e-4; the quadrature is smooth in ``u``).
+    """
+    direct, v_ref = check_direct(direct, v_ref)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
+    h = 1e-4
+    up = steady_friction(u * np.exp(h), eps, alpha, creep)
+    dn = steady_friction(u * np.exp(-h), eps, alpha, creep)
+    slope = (up - dn) / (2.0 * h)
+    if direct == 0.0:
+        return slope
+    mu = steady_friction(u, eps, alpha, creep)
+    return junction_log_slope(u, direct, v_ref) * mu + junction_strength(u, direct, v_ref) * slope
 
 
 def steady_death_point(
@@ -327,8 +365,27 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
     return val / trap.H0
 
 
-def steady_friction_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
+def steady_friction_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
+                                 direct: float = 0.0, v_ref: float = 1.0) -> Array:
     """Low-velocity expansion of eq. 34 (eq. 35 with its constant):
-    ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for ``u << 1`` and ``eps << 1``."""
+    ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for ``u << 1`` and ``eps << 1``; times
+    ``g(u)`` with the direct effect."""
+    direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
-    return 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    return mu if direct == 0.0 else mu * junction_strength(u, direct, v_ref)
+
+
+def steady_log_slope_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
+                                  direct: float = 0.0, v_ref: float = 1.0) -> Array:
+    """``d mu/d ln u`` of :func:`steady_friction_low_velocity` (ours, derived):
+    ``A_u mu_d - (3/2) eps g(u)``, ``A_u = u g'(u)``; ``-> A mu_d - 3 eps/2`` when
+    ``u >> v_ref e^{-1/A}`` and ``A ln(u/v_ref) << 1``. Velocity strengthening at low ``u``
+    exactly when ``A mu_d > 3 eps g/2``."""
+    direct, v_ref = check_direct(direct, v_ref)
+    alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
+    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    if direct == 0.0:
+        return -1.5 * eps * np.ones_like(mu)
+    return (junction_log_slope(u, direct, v_ref) * mu
+            - 1.5 * eps * junction_strength(u, direct, v_ref))

@@ -104,24 +104,43 @@ def static_friction_si(
     alpha: float = 0.13,
     creep: str = "log",
     load: float = 0.0,
+    direct: float = 0.0,
+    v_ref: float = 1e-6,
+    pull_velocity: float | None = None,
 ) -> Array:
     """Static friction coefficient ``F_s/W`` after waiting ``t_w`` seconds (eq. 27).
 
     ``load`` is the tangential force during the wait as a fraction of ``F_el`` (``[0, 1)``).
+    With the direct effect (``direct = A > 0``) the threshold depends on the pull's slip rate
+    ``pull_velocity`` (m/s, required then); ``v_ref`` is the reference velocity in m/s.
     """
     check_broadcast(t_w=t_w, eps=eps)
     T = scales.reduced_time(t_w)
+    u_ref, u_pull = 1.0, None
+    if direct:
+        u_ref = float(scales.reduced_velocity(check_scalar("v_ref", v_ref, 0.0, lo_open=True)))
+        if pull_velocity is not None:
+            u_pull = float(scales.reduced_velocity(
+                check_scalar("pull_velocity", pull_velocity, 0.0, lo_open=True)))
     with _in_reduced_units(f"T = t_w/t0, t0 = {scales.t0:g} s"):
-        mu = static_friction(T, eps, alpha, creep, load)
+        mu = static_friction(T, eps, alpha, creep, load, direct, u_ref, u_pull)
     return scales.friction_coefficient(mu)
 
 
 def steady_friction_si(
-    V: ArrayLike, eps: float, scales: PhysicalScales, alpha: float = 0.13, creep: str = "log"
+    V: ArrayLike, eps: float, scales: PhysicalScales, alpha: float = 0.13, creep: str = "log",
+    direct: float = 0.0, v_ref: float = 1e-6,
 ) -> Array:
-    """Steady dynamic friction coefficient ``F_d/W`` at sliding velocity ``V`` in m/s (eq. 34)."""
+    """Steady dynamic friction coefficient ``F_d/W`` at sliding velocity ``V`` in m/s (eq. 34).
+
+    ``direct`` is the direct-effect coefficient ``A`` (dimensionless, :mod:`.direct`) and
+    ``v_ref`` its reference velocity in m/s (``> 0``; it enters only when ``direct > 0``).
+    """
     check_broadcast(V=V, eps=eps)
     u = scales.reduced_velocity(V)
+    u_ref = 1.0
+    if direct:
+        u_ref = float(scales.reduced_velocity(check_scalar("v_ref", v_ref, 0.0, lo_open=True)))
     with _in_reduced_units(f"u = V/V*, V* = a0/t0 = {scales.velocity_scale:g} m/s"):
-        mu = steady_friction(u, eps, alpha, creep)
+        mu = steady_friction(u, eps, alpha, creep, direct, u_ref)
     return scales.friction_coefficient(mu)
