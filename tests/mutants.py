@@ -173,7 +173,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "k = values[\"stiffness\"] if model.stiffness == \"fit\" else model.stiffness",
        "k = math.inf",
        "tests/test_fit_steps.py", "-k", "forward_model or kinematic_machine"),
-    _m("slope stiffness: velocity ratio left out", "fit/models.py",
+    _m("slope stiffness: velocity ratio left out", "fit/machine.py",
        "k = slope / (1.0 - vb / va)", "k = slope",
        "tests/test_fit_steps.py", "-k", "slope_stiffness"),
     # --- laboratory records ---------------------------------------------------------------
