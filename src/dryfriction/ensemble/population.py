@@ -198,7 +198,7 @@ class Initial:
         if self.kind == "loaded":
             if self.force is None:
                 raise ValueError("initial_force is required for initial = 'loaded'")
-            f = check_scalar("initial_force", self.force, 0.0, 1.0, hi_open=True)
+            f = check_scalar("initial_force", self.force, -1.0, 1.0, lo_open=True, hi_open=True)
             object.__setattr__(self, "force", f)
         elif self.force is not None:
             raise ValueError(f"initial_force applies only to initial = 'loaded', "
