@@ -35,7 +35,11 @@ def static(
     )],
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
     load: float = typer.Option(
-        0.0, "--load", help="Tangential force during the wait, units F_el, 0 <= f_w < 1."
+        0.0, "--load", help="Tangential force during the wait, units F_el, -1 < f_w < 1."
+    ),
+    hold: str = typer.Option(
+        "position", "--hold", help="Loaded wait: 'position' (slider held) or 'force' (force "
+        "held, the slider creeps)."
     ),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
@@ -43,8 +47,8 @@ def static(
     """Static friction mu_s = F_s/F_el after waiting T = t_w/t0 (eq. 27, our reading)."""
     from ..theory.static import static_friction
 
-    mu = static_friction(np.asarray(T, float), eps, alpha, creep, load)
-    params = {"eps": eps, "alpha": alpha, "load": load, "creep": creep}
+    mu = static_friction(np.asarray(T, float), eps, alpha, creep, load, hold)
+    params = {"eps": eps, "alpha": alpha, "load": load, "hold": hold, "creep": creep}
     if json_out:
         emit({**params, "T": list(T), "mu_s": mu}, True, "static")
     else:
