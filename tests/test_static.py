@@ -203,3 +203,19 @@ def test_reversed_load_and_the_two_holds():
         down = static_friction(T, 0.04, load=-0.5, hold=hold)
         assert np.all(down < rest) and np.all(rest < up)
         assert up[1] - up[0] > rest[1] - rest[0] > down[1] - down[0] > 0
+    # under a reversed force hold the slider creeps forward and the pairs it meets age during
+    # the wait (the ensemble agrees: test_driving, slow): stronger than the position hold
+    gap = static_friction(100.0, 0.04, load=-0.5, hold="force") - static_friction(
+        100.0, 0.04, load=-0.5, hold="position")
+    assert 0.01 < gap < 0.013
+
+
+def test_force_hold_rear_exits_lower_the_loaded_threshold():
+    # at f_w = 0.5 the slider creeps back 0.12 a0 by T = 100, pushing the rearmost aged traps
+    # past w = -1: they leave and come back fresh in the pull. The ensemble's force-controlled
+    # run (examples/static_threshold_loaded.toml, 1000 pairs/a0, about 3e-4 density error)
+    # gives 1.2474; the position hold's closed form is 1.2490
+    force = float(static_friction(100.0, 0.04, load=0.5, hold="force"))
+    position = float(static_friction(100.0, 0.04, load=0.5, hold="position"))
+    assert force == pytest.approx(1.2474, abs=4e-4)
+    assert position - force > 1e-3
