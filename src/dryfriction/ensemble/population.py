@@ -69,6 +69,8 @@ __all__ = [
 
 
 LAYOUTS: tuple[str, ...] = ("regular", "random")
+TRAPS_PER_A0_MIN = 1e-6
+"""Sparsest track accepted (pairs per ``a0``)."""
 INITIAL_KINDS: tuple[str, ...] = ("rest", "loaded", "steady")
 _BLOCK = 1024  # pairs per random block
 
@@ -118,7 +120,8 @@ class Track:
     Parameters
     ----------
     traps_per_a0 : float
-        Density ``lambda`` of pairs per ``a0`` of track, ``> 0``.
+        Density ``lambda`` of pairs per ``a0`` of track, ``>= 1e-6`` (a sparser track has no
+        pair within any run's reach, and its spacing overflows the index arithmetic).
     layout : {"regular", "random"}
         ``c_k = (k + 1/2)/lambda``, or seeded uniform positions, 1024 per block of length
         ``1024/lambda`` (sorted within a block).
@@ -131,7 +134,7 @@ class Track:
     seed: int | None = None
 
     def __post_init__(self) -> None:
-        lam = check_scalar("traps_per_a0", self.traps_per_a0, 0.0, lo_open=True)
+        lam = check_scalar("traps_per_a0", self.traps_per_a0, TRAPS_PER_A0_MIN)
         object.__setattr__(self, "traps_per_a0", lam)
         check_choice("layout", self.layout, LAYOUTS)
         if self.layout == "random":
