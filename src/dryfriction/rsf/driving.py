@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
 from ..validation import Array, check_scalar
+from .growth import growth_limit, unstable_start, warn_unstable
 from .law import RateState
 from .resources import check_rsf_run
 from .result import RSFResult, build_result, hermite
@@ -82,8 +83,6 @@ _RC[5, :5] = [8.083246795921522, -7.981132988064893, -31.52159432874371, 16.3193
 _RM = np.array([*_RA[4, :4], 1.0, 1.0])
 
 _ASINH_LARGE = 20.0
-# most e-folding times of an unstable mode one step may span (the growth-rate step limit)
-_EFOLD = 1.0
 
 
 class SolverError(RuntimeError):
@@ -285,69 +284,12 @@ def _record(T, Y, F, S, n, cap, t, y, f, s):  # type: ignore[no-untyped-def]
 
 
 @nb.njit(cache=True)
-def _below(jac, s: float, sq) -> bool:
-    """Every eigenvalue of ``jac`` has real part ``< s`` (Routh-Hurwitz, ours).
-
-    The characteristic polynomial of ``M = jac - s I`` from the power sums ``tr M^k``
-    (Newton's identities); for the 1-4 unknowns of the driver Hurwitz's conditions are
-    explicit. No eigenvalue solver and no allocation (``sq`` is scratch for ``M^2``): this
-    runs at every large step and must cost a few dozen flops.
-    """
-    n = jac.shape[0]
-    p1 = 0.0
-    for i in range(n):
-        p1 += jac[i, i] - s
-    for i in range(n):
-        for j in range(n):
-            acc = 0.0
-            for q in range(n):
-                acc += (jac[i, q] - (s if i == q else 0.0)) * (jac[q, j] - (s if q == j else 0.0))
-            sq[i, j] = acc
-    p2 = p3 = p4 = 0.0
-    for i in range(n):
-        p2 += sq[i, i]
-        for j in range(n):
-            p3 += sq[i, j] * (jac[j, i] - (s if i == j else 0.0))
-            p4 += sq[i, j] * sq[j, i]
-    e1 = p1
-    e2 = (e1 * p1 - p2) / 2.0
-    e3 = (e2 * p1 - e1 * p2 + p3) / 3.0
-    e4 = (e3 * p1 - e2 * p2 + e1 * p3 - p4) / 4.0
-    a1, a2, a3, a4 = -e1, e2, -e3, e4
-    if n == 1:
-        return a1 > 0.0
-    if n == 2:
-        return a1 > 0.0 and a2 > 0.0
-    if n == 3:
-        return a1 > 0.0 and a3 > 0.0 and a1 * a2 > a3
-    return a1 > 0.0 and a3 > 0.0 and a4 > 0.0 and a1 * a2 * a3 > a3 * a3 + a1 * a1 * a4
-
-
-@nb.njit(cache=True)
-def _growth_limit(jac, h: float, sq) -> float:
-    """``h`` reduced (halved) until no eigenvalue of ``jac`` grows by more than
-    ``_EFOLD`` e-foldings in one step: an L-stable method would otherwise damp an unstable
-    mode it steps over (a run started beside an unstable steady state stayed there)."""
-    n = jac.shape[0]
-    norm = 0.0
-    for i in range(n):
-        row = 0.0
-        for q in range(n):
-            row += abs(jac[i, q])
-        norm = max(norm, row)
-    # |Re lambda| <= ||J||: steps that short need no test
-    while h * norm > _EFOLD and not _below(jac, _EFOLD / h, sq):
-        h *= 0.5
-    return h
-
-
-@nb.njit(cache=True)
 def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
     """RODAS4 over every segment. Returns (T, Y, F, SEG, stats, status, t_fail, y_fail).
 
-    Besides the error control, a step never spans more than ``_EFOLD`` e-folding times of a
-    growing mode of the Jacobian (:func:`_growth_limit`; not on the kinematic machine, whose
-    state laws are stable).
+    Besides the error control, a step never spans more than ``EFOLD`` e-folding times of a
+    growing mode of the Jacobian (:func:`dryfriction.rsf.growth.growth_limit`; not on the
+    kinematic machine, whose state laws are stable).
 
     ``status``: 0 done, 1 step-size underflow, 2 too many steps.
     """
@@ -395,7 +337,7 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
         if fmax > 0.0:
             h = min(span, 0.01 * tol**0.25 / fmax)
         if limit_growth:
-            h = _growth_limit(jac, h, dummy)
+            h = growth_limit(jac, h, dummy)
         hmin = 1e-13 * max(abs(t), abs(tend))
         rejected = False
         while t < tend:
@@ -464,7 +406,7 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
                     fac = min(fac, 1.0)
                 h *= fac
                 if limit_growth:
-                    h = _growth_limit(jac, h, dummy)
+                    h = growth_limit(jac, h, dummy)
                 rejected = False
             else:
                 nrej += 1
@@ -567,9 +509,9 @@ def simulate_rsf(
         y0 = np.array([math.log(v_init), *lnth, stress0])
         w = np.array([1.0] * (ns + 1) + [model.a])
     p = _param_vector(model, stiffness, damping, mass, mode)
-    unstable = _unstable_start(model, drive, v_init, theta_init, theta2_init)
+    unstable = unstable_start(model, drive, v_init, theta_init, theta2_init)
     if unstable is not None:
-        _warn_unstable(unstable)
+        warn_unstable(unstable)
 
     try:
         T, Y, F, SEG, stats, status, t_fail, y_fail = _integrate(
@@ -593,43 +535,6 @@ def simulate_rsf(
     if unstable is not None:
         res.meta["unstable_start"] = unstable
     return res
-
-
-# a start within this relative distance (in V and theta) of the first segment's steady state
-# is "at" it: the linear theory, not the start, decides what happens
-_NEAR_STEADY = 1e-3
-
-
-def _unstable_start(model: RateState, drive: SpringSlider, v: float, theta: float,
-                    theta2: float | None) -> dict[str, float] | None:
-    """The growth rate (1/s) when the run starts at, or beside, a linearly unstable steady
-    state of its first segment; ``None`` otherwise (kinematic machine, a start away from the
-    steady state, a stable one)."""
-    vl = float(drive.program.velocities[0])
-    if drive.kinematic or not vl > 0.0:
-        return None
-    off = [abs(math.log(v / vl)), abs(math.log(theta * vl / model.dc))]
-    if theta2 is not None and model.dc2 is not None:
-        off.append(abs(math.log(theta2 * vl / model.dc2)))
-    if max(off) > _NEAR_STEADY:
-        return None
-    growth = float(np.max(linear_stability(model, vl, drive.stiffness, drive.damping,
-                                           drive.mass).real))
-    if not growth > 0.0:
-        return None
-    return {"growth_rate_per_s": growth, "load_velocity": vl, "perturbation": v / vl - 1.0}
-
-
-def _warn_unstable(info: dict[str, float]) -> None:
-    g, vl, dv = info["growth_rate_per_s"], info["load_velocity"], info["perturbation"]
-    what = ("exactly there: only rounding errors seed the instability, so when it sets in "
-            "is arbitrary" if dv == 0.0 else
-            f"with the relative velocity perturbation {dv:.3g}, which grows as e^(t/"
-            f"{1.0 / g:.3g} s)")
-    warnings.warn(
-        f"the run starts at steady sliding at V = {vl:g} m/s, which is linearly unstable on "
-        f"this spring (growth rate {g:.3g} 1/s): it starts {what}; seed the stick-slip with "
-        "v_init = V (1 + perturbation), e.g. 1.01 V", RuntimeWarning, stacklevel=3)
 
 
 def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]

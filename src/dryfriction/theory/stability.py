@@ -129,7 +129,7 @@ class SteadyResponse:
     law: CreepLaw | None = field(default=None, repr=False, compare=False)
     branches: tuple[_Branch, ...] = field(default=(), repr=False, compare=False)
     tail: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
-    _nodes: dict[int, tuple[Array, Array]] = field(default_factory=dict, repr=False,
+    node_cache: dict[int, tuple[Array, Array]] = field(default_factory=dict, repr=False,
                                                    compare=False)
 
     def derivative_at_zero(self, n: int) -> float:
@@ -149,7 +149,7 @@ class SteadyResponse:
 
     def nodes(self, level: int) -> tuple[Array, Array]:
         """Ages and weights with ``_MIN_PANELS * 2**level`` panels per branch (cached)."""
-        if level not in self._nodes:
+        if level not in self.node_cache:
             assert self.law is not None
             Ts, bs = [], []
             for br in self.branches:
@@ -157,8 +157,8 @@ class SteadyResponse:
                                         _MIN_PANELS * 2**level)
                 Ts.append(T)
                 bs.append(b)
-            self._nodes[level] = (np.concatenate(Ts), np.concatenate(bs))
-        return self._nodes[level]
+            self.node_cache[level] = (np.concatenate(Ts), np.concatenate(bs))
+        return self.node_cache[level]
 
     def memory(self, lam: ArrayLike) -> CArray:
         """``int g_theta e^{-lambda tau} dtau`` (units ``F_el``, times ``H0``) at each ``lam``."""
@@ -306,7 +306,7 @@ def _pieces(law: CreepLaw, u: float, alpha: float) -> SteadyResponse:
     resp = SteadyResponse(u=u, eps=law.eps, alpha=alpha, H0=trap.H0, A=A, T=T0, b=b0,
                           tau_d=tau_d, edge=edge, edge_delay=yc * rp_d / u, law=law,
                           branches=tuple(branches), tail=_tail(law, u, alpha, tau_d, tau_e))
-    resp._nodes[0] = (T0, b0)
+    resp.node_cache[0] = (T0, b0)
     return resp
 
 
