@@ -75,7 +75,7 @@ CArray = NDArray[np.complex128]
 _GX, _GW = np.polynomial.legendre.leggauss(16)
 _GX, _GW = 0.5 * (_GX + 1.0), 0.5 * _GW
 _MIN_PANELS = 6
-_PHASE = 6.0
+_PHASE = 10.0
 # above |lambda| min(tau_d, 1) = _ASYMPTOTE the memory integral is its endpoint expansion
 # (module doc); the first neglected terms, O(|lambda|^{-4}) at the young end and
 # O((|lambda| tau_d)^{-5/2}) at the spinodal, are below ~1e-7 there
