@@ -18,10 +18,16 @@ import numpy as np
 from .law import RateState
 from .spring import SpringSlider
 
-__all__ = ["EFOLD", "NEAR_STEADY", "below", "growth_limit", "unstable_start", "warn_unstable"]
+__all__ = ["EFOLD", "NEAR_STEADY", "UnstableStartWarning", "below", "growth_limit",
+           "unstable_start", "warn_unstable"]
 
 EFOLD = 1.0
 """Most e-folding times of an unstable mode one step may span."""
+
+
+class UnstableStartWarning(RuntimeWarning):
+    """The run starts at, or beside, a linearly unstable steady state (the summary's
+    ``unstable_start`` says the same; the command line reports it there only)."""
 
 
 @nb.njit(cache=True)
@@ -117,4 +123,4 @@ def warn_unstable(info: dict[str, float]) -> None:
     warnings.warn(
         f"the run starts at steady sliding at V = {vl:g} m/s, which is linearly unstable on "
         f"this spring (growth rate {g:.3g} 1/s): it starts {what}; seed the stick-slip with "
-        "v_init = V (1 + perturbation), e.g. 1.01 V", RuntimeWarning, stacklevel=3)
+        "v_init = V (1 + perturbation), e.g. 1.01 V", UnstableStartWarning, stacklevel=3)
