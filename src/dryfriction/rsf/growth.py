@@ -107,8 +107,11 @@ def unstable_start(model: RateState, drive: SpringSlider, v: float, theta: float
         return None
     from .driving import linear_stability  # driving imports this module
 
-    growth = float(np.max(linear_stability(model, vl, drive.stiffness, drive.damping,
-                                           drive.mass).real))
+    try:
+        growth = float(np.max(linear_stability(model, vl, drive.stiffness, drive.damping,
+                                               drive.mass).real))
+    except (ValueError, np.linalg.LinAlgError):  # a Jacobian out of floating point (a ~ 1e-308)
+        return None
     if not growth > 0.0:
         return None
     return {"growth_rate_per_s": growth, "load_velocity": vl, "perturbation": v / vl - 1.0}

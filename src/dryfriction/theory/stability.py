@@ -80,6 +80,7 @@ _PHASE = 10.0
 # (module doc); the first neglected terms, O(|lambda|^{-4}) at the young end and
 # O((|lambda| tau_d)^{-5/2}) at the spinodal, are below ~1e-7 there
 _ASYMPTOTE = 200.0
+_MAX_LEVEL = 12
 # largest node x frequency block evaluated at once (memory of the e^{-lambda T} matrix)
 _BLOCK = 2_000_000
 
@@ -176,7 +177,13 @@ class SteadyResponse:
             out[far] = self._memory_far(flat[far])
         slope = max(br.slope for br in self.branches)
         need = np.maximum(size * slope / (_PHASE * _MIN_PANELS), 1.0)
-        level = np.ceil(np.log2(need)).astype(int)
+        # past _MAX_LEVEL (6 * 4096 panels) the expansion is used even if not yet that exact:
+        # a very old population (tiny u) would otherwise need millions of nodes
+        big = ~far & ~(need <= 2.0**_MAX_LEVEL)
+        if np.any(big):
+            out[big] = self._memory_far(flat[big])
+            far = far | big
+        level = np.ceil(np.log2(np.where(far, 1.0, need))).astype(int)
         for lv in np.unique(level[~far]):
             idx = np.flatnonzero((level == lv) & ~far)
             T, b = self.nodes(int(lv))
