@@ -25,8 +25,11 @@ demo: $(STAMP)
 	@echo "  $(BIN)/dryfriction simulate examples/velocity_step.toml --out run/"
 	@echo "  $(BIN)/dryfriction --help"
 
+# the suite, then the selected slow tests (each over ~20 s; all of them: pytest --runslow)
+SLOW_SUBSET := ageing_under_load or huge_run_sizes
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q --runslow -m slow -k "$(SLOW_SUBSET)"
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks

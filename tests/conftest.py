@@ -1,8 +1,9 @@
 """Shared test options: ``--runslow`` runs the larger variant of the convergence and coverage
-studies.
+studies, and the tests marked ``slow`` (each over ~20 s).
 
-Nothing is skipped without it: the parametrised studies always run a smaller but meaningful
-version.
+Without it the parametrised studies run a smaller but meaningful version and the ``slow`` tests
+are skipped; ``make test`` then runs a selected ``slow`` subset with ``--runslow -m slow``
+(see the Makefile), so CI exercises them too.
 """
 
 from __future__ import annotations
@@ -19,3 +20,13 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 def runslow(request: pytest.FixtureRequest) -> bool:
     """True when the larger parameter sets were asked for (``--runslow``)."""
     return bool(request.config.getoption("--runslow"))
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Skip the ``slow`` tests unless ``--runslow`` is given."""
+    if config.getoption("--runslow"):
+        return
+    skip = pytest.mark.skip(reason="slow (over ~20 s): run with --runslow")
+    for item in items:
+        if "slow" in item.keywords:
+            item.add_marker(skip)

@@ -47,7 +47,9 @@ def test_simulate_writes_the_results(tmp_path: Path) -> None:
     assert any(n.startswith("snapshot_000") for n in names)
     rows = list(csv.DictReader((out / "timeseries.csv").open()))
     assert {"t", "x", "v", "mu", "n_active", "mean_age"} <= set(rows[0])
-    assert len(rows) == 1 + 1 + 1 + 200  # t=0, hold split by the snapshot, 2 a0 every 0.01
+    # t=0, hold split by the snapshot, 2 a0 every 0.01: 200 steps of exactly one lattice
+    # spacing (1/100) would alias the lattice, so the slide gets one more (issue 14)
+    assert len(rows) == 1 + 1 + 1 + 201
     s = json.loads((out / "summary.json").read_text())
     assert s["partial"] is False and s["peak_mu"] > 1.0
     assert s["slip"] == pytest.approx(2.0)

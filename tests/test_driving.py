@@ -19,6 +19,7 @@ from dryfriction.ensemble.driving import (
     SimulationResult,
     SpringDrive,
     VelocityDrive,
+    continue_spring,
     simulate,
 )
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
@@ -500,3 +501,62 @@ def test_strong_pinning_velocity_step_memory_length() -> None:
     diff = np.abs(step.mu - ref.mu)
     memory_exact = float(step.x[np.flatnonzero(diff > 1e-9)[-1] + 1] - s0)
     assert memory_exact == pytest.approx(1.0 + p_1, abs=2.0 / lam)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("f_w", [0.5, -0.5])
+def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
+    """Issue 14: ``static_friction(..., load, hold=...)`` against each hold's ensemble protocol.
+
+    Position hold: the slider stays put (velocity 0), then a fast pull. Force hold: a spring so
+    soft (1e-6 F_el/a0) that the force stays ``f_w`` while the slider creeps, stepped on a log
+    grid of the wait (60 holds, one step each), then a fast pull through a stiff spring. The
+    creep must match ``force_hold_shift`` (back for f_w > 0, forward for f_w < 0), and the
+    thresholds their closed forms to the density error at 500 pairs/a0. At f_w = -0.5 the pairs
+    met while creeping forward age during the hold: the two holds differ by 0.012.
+    """
+    from dryfriction.theory.static import force_hold_shift
+
+    lam, T = 500.0, 100.0
+    ini = Initial("loaded", force=f_w)
+    pos = _velocity([{"velocity": 0.0, "duration": T}, {"velocity": 1e6, "slip": 3.0}], lam,
+                    initial=ini, every_slip=2e-4).summary()["peak_mu"]
+    ens = Ensemble(TrapModel(eps=EPS), Track(lam), ini, age_horizon=2 * T)
+    ends = np.geomspace(1e-4, T, 60)
+    holds = [{"velocity": 0.0, "duration": float(d)} for d in np.diff(np.r_[0.0, ends])]
+    h = continue_spring(ens, SpringDrive(1e-6, 0.0, VelocityProgram(holds)),
+                        Output(every_slip=0.01))
+    pull = continue_spring(ens, SpringDrive(5.0, 0.0, VelocityProgram([{"velocity": 1e6,
+                                                                         "slip": 3.0}])),
+                           Output(every_slip=5e-4))
+    creep = h.x[-1] - h.x[0]
+    assert creep == pytest.approx(force_hold_shift(T, EPS, load=f_w), abs=1e-3)
+    assert np.sign(creep) == -np.sign(f_w)
+    closed_pos = float(static_friction(T, EPS, load=f_w, hold="position"))
+    closed_force = float(static_friction(T, EPS, load=f_w, hold="force"))
+    assert pos == pytest.approx(closed_pos, abs=1e-3)
+    assert float(pull.mu.max()) == pytest.approx(closed_force, abs=1.2e-3)
+    if f_w < 0:
+        assert closed_force - closed_pos > 0.01
+
+
+def test_damped_inertial_oscillation_decays_at_the_linear_rate() -> None:
+    """Issue 13: the inertial slider's damping checked quantitatively, in seconds. A kicked,
+    damped slider (u = 1, K = 2, M = 1, eta = 0.4: far above K_c, the slider keeps moving
+    forward) rings down at the rate and frequency of the rightmost root of
+    ``M lambda^2 + eta lambda + K + Z(lambda)`` (about -eta/2M = -0.2, with the model's own
+    response shifting it by 0.003): a flipped or halved damping fails at once."""
+    from dryfriction.analysis.stickslip import fit_growth
+    from dryfriction.program import Segment
+    from dryfriction.theory.stability import rightmost_root, steady_response
+
+    u, K, M, eta = 1.0, 2.0, 1.0, 0.4
+    ens = Ensemble(TrapModel(eps=EPS), Track(100.0), Initial("steady", velocity=u),
+                   age_horizon=40.0)
+    r = continue_spring(ens, SpringDrive(K, M, VelocityProgram([Segment(u, duration=12.0)]),
+                                         eta), Output(every=0.02), velocity=1.5 * u)
+    assert np.min(r.v) > 0  # the linear (forward-sliding) regime throughout
+    sigma, omega = fit_growth(r.t[10:], r.v[10:] - u)
+    root = rightmost_root(steady_response(u, EPS), K, M, eta)
+    assert sigma == pytest.approx(root.real, rel=0.01)
+    assert omega == pytest.approx(abs(root.imag), rel=0.01)

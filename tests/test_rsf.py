@@ -7,6 +7,7 @@ Parameters follow the classic laboratory case (rsfmodel's README example; Marone
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -548,3 +549,45 @@ def test_spring_outputs_are_consistent_with_the_velocity() -> None:
     assert span > 4e-4  # the slider moved forward about the load point's slip
     # trapezoid error on this grid is far below 1e-6 of the slip
     np.testing.assert_allclose(r.x - r.x[0], dx, rtol=0, atol=1e-6 * span)
+
+
+def _lsoda_events(a, b, dc, k, eta, vl, total, v_init):
+    """Stick-slip events (upward crossings of V = 10 V_load) of the quasi-static damped spring
+    slider with the ageing law, integrated by SciPy's LSODA at rtol 1e-10 in (ln V, ln theta):
+    ``d ln V/dt = [k (V_l - V) - b d ln theta/dt] / (a + eta V)``."""
+    from scipy.integrate import solve_ivp
+
+    def rhs(t, y):
+        v, th = math.exp(y[0]), math.exp(y[1])
+        dth = 1.0 / th - v / dc
+        return [(k * (vl - v) - b * dth) / (a + eta * v), dth]
+
+    sol = solve_ivp(rhs, (0.0, total), [math.log(v_init), math.log(dc / vl)], method="LSODA",
+                    rtol=1e-10, atol=1e-12, max_step=1.0)
+    u = sol.y[0] - math.log(10 * vl)
+    return int(np.sum((u[:-1] < 0) & (u[1:] >= 0)))
+
+
+def test_start_beside_an_unstable_steady_state_grows_like_the_reference() -> None:
+    # issue 14: started 1e-9 off an unstable steady state (growth +0.249 1/s) the L-stable
+    # solver took one 1000 s step and reported steady sliding; the step limit tied to the
+    # growth rate lets the perturbation grow into the same events as an independent solver
+    a, b, dc, k, eta, vl, total = 0.005, 0.01, 1e-5, 250.0, 0.5, 1e-5, 1000.0
+    p = RateState(a=a, b=b, dc=dc, mu0=0.6, v0=1e-6)
+    drive = SpringSlider([Segment(vl, total)], stiffness=k, damping=eta)
+    v_init = vl * (1 + 1e-9)
+    with pytest.warns(RuntimeWarning, match="linearly unstable.*growth rate 0.249"):
+        r = simulate_rsf(p, drive, RSFInitial(v=v_init), RSFOutput(rtol=1e-9))
+    u = np.log(r.v) - math.log(10 * vl)
+    events = int(np.sum((u[:-1] < 0) & (u[1:] >= 0)))
+    assert events == _lsoda_events(a, b, dc, k, eta, vl, total, v_init)
+    assert events > 30
+    info = r.summary()["unstable_start"]
+    assert info["growth_rate_per_s"] == pytest.approx(0.2493, rel=1e-3)
+    assert info["perturbation"] == pytest.approx(1e-9, rel=1e-6)
+    # a start away from the steady state is no news; a stable spring neither
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        simulate_rsf(p, drive, RSFInitial(v=1.01 * vl), RSFOutput(rtol=1e-6))
+        stiff = SpringSlider([Segment(vl, 10.0)], stiffness=2e3, damping=eta)
+        assert "unstable_start" not in simulate_rsf(p, stiff).summary()

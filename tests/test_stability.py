@@ -176,3 +176,102 @@ def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
     if damping > 0:
         model = critical_stiffness(u, 0.04, mass=mass, damping=damping).critical_stiffness
         assert model < p["K_c"]
+
+
+def _independent_Z(u: float, eps: float, alpha: float, omega: float) -> complex:
+    """``Z(i omega)`` linearised afresh from MODEL.md §1 and §4 (log creep, very strong
+    pinning), in the form the package does not use: a trap born at ``t - tau`` where the slider
+    was at ``X(t - tau)`` has ``y = X(t) - X(t - tau) - 1``, the density of births is
+    ``X'(t - tau)``, so for ``X = u t + xi``, ``xi = e^{i omega t}``:
+    ``H0 Z = int u g_y (1 - e^{-i w tau}) + i w int g e^{-i w tau} - u dg (1 - e^{-i w tau_d})
+    / (u - y_c r'_d)``. Integrated by QUADPACK's oscillatory (QAWO) and algebraic-endpoint
+    (QAWS) rules, not by the package's Gauss-Legendre panels or its endpoint expansion."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq as root
+
+    yc = (1 - alpha) ** 2 / (4 * alpha)
+    H0 = 6 * alpha * ((yc**2 - 1) / 2 + (1 - alpha) * (yc + 1) / 2
+                      + (1 + alpha) ** 3 / (12 * alpha))
+
+    def r(t):
+        return np.sqrt(1 + eps * np.log1p(t))
+
+    def fp(w):
+        disc = max((1 - alpha) ** 2 - 4 * alpha * w, 0.0)
+        return 6 * alpha * (w + ((1 - alpha) + np.sqrt(disc)) / 2)
+
+    def dfp(w):
+        return 6 * alpha * (1 - alpha / np.sqrt((1 - alpha) ** 2 - 4 * alpha * w))
+
+    tau_d = root(lambda t: (-1 + u * t) / r(t) - yc, 0.0, 10 * (yc + 2) / u, xtol=1e-14,
+                 rtol=1e-15)
+
+    def w(t):
+        return min((-1 + u * t) / r(t), yc)
+
+    def g(t):
+        return r(t) ** 2 * fp(w(t))
+
+    def gy_root(t):  # u g_y times sqrt(tau_d - t): smooth up to the spinodal
+        return u * r(t) * dfp(w(t)) * np.sqrt(tau_d - t) if t < tau_d else 0.0
+
+    def gy(t):
+        return u * r(t) * dfp(w(t))
+
+    delta = min(0.1 * tau_d, 1.0 / omega)
+    cut = tau_d - delta
+    kw = dict(limit=5000, epsabs=1e-13, epsrel=1e-12)
+    static = quad(gy, 0, cut, **kw)[0] + quad(gy_root, cut, tau_d, weight="alg",
+                                                   wvar=(0, -0.5), **kw)[0]
+
+    def osc(fun, trig):  # int fun(t) trig(omega t) dt over [0, cut] (QAWO)
+        return quad(fun, 0, cut, weight=trig, wvar=omega, **kw)[0]
+
+    def tail(fun, trig):
+        return quad(lambda t: fun(t) * trig(omega * t), cut, tau_d, weight="alg",
+                    wvar=(0, -0.5), **kw)[0]
+
+    gy_e = (osc(gy, "cos") + tail(gy_root, np.cos)) - 1j * (osc(gy, "sin") + tail(gy_root, np.sin))
+    g_e = (quad(g, 0, tau_d, weight="cos", wvar=omega, **kw)[0]
+           - 1j * quad(g, 0, tau_d, weight="sin", wvar=omega, **kw)[0])
+    rd = r(tau_d)
+    rp = eps / (2 * rd * (1 + tau_d))
+    dg = rd**2 * fp(yc)
+    edge = -u * dg * (1 - np.exp(-1j * omega * tau_d)) / (u - yc * rp)
+    return complex((static - gy_e + 1j * omega * g_e + edge) / H0)
+
+
+@pytest.mark.parametrize("u", [0.01, 0.1])
+@pytest.mark.parametrize("x", [0.3, 30.0, 200.0, 1e3, 1e4])
+def test_response_against_independent_linearisation_at_every_frequency(u, x):
+    # issue 14: the 96-node quadrature was 9 % off at omega tau_d = 200; the exact response
+    # must hold up to omega tau_d = 1e4 (the panels, and the endpoint expansion beyond)
+    resp = steady_response(u, 0.04)
+    omega = x / resp.tau_d
+    ref = _independent_Z(u, 0.04, 0.13, omega)
+    assert abs(complex(resp.Z(1j * omega)) - ref) < 1e-7 * max(1.0, abs(ref))
+
+
+def test_critical_stiffness_is_the_supremum_of_the_delay_circles():
+    # issue 14, independent values (eps = 0.04, alpha = 0.13, M = eta = 0): at u = 0.01 the
+    # supremum is only approached as omega -> inf, at u = 0.1 it is a finite crossing
+    low = critical_stiffness(0.01, 0.04)
+    assert 0.0750 <= low.critical_stiffness <= 0.0752
+    assert low.supremum_at_infinity and low.omega == np.inf
+    resp = steady_response(0.01, 0.04)
+    assert low.critical_stiffness == pytest.approx(-resp.Z_inf + resp.delay_amplitude, rel=1e-12)
+    mid = critical_stiffness(0.1, 0.04)
+    assert mid.critical_stiffness == pytest.approx(0.05565, abs=1e-5)
+    assert not mid.supremum_at_infinity and np.isfinite(mid.omega)
+    # the issue's wider range no longer finds a spurious crossing (it gave 0.0849)
+    wide = critical_stiffness(0.01, 0.04, omega_max=2000 / resp.tau_d, n_omega=40000)
+    assert wide.critical_stiffness == pytest.approx(low.critical_stiffness, rel=1e-9)
+
+
+def test_critical_stiffness_is_continuous_as_damping_vanishes():
+    # with damping the crossings stop at a finite frequency; as eta -> 0 they reach further up
+    # the delay circles and K_c(eta) rises to the undamped supremum (it stalled for eta <= 0.01)
+    k0 = critical_stiffness(0.01, 0.04).critical_stiffness
+    ks = [critical_stiffness(0.01, 0.04, damping=e).critical_stiffness for e in (0.03, 0.01, 0.003)]
+    assert ks[0] < ks[1] < ks[2] < k0
+    assert k0 - ks[2] < 0.5 * (k0 - ks[1]) and k0 - ks[2] < 0.02 * k0

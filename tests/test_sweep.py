@@ -391,8 +391,9 @@ def test_some_or_all_points_failed_exit_1_with_one_line(tmp_path):
 
     from dryfriction.cli import app
 
-    # transient 29.5 of 30 a0 leaves one sample (every 0.5 a0): fails at run time
-    p = _cli_proto(tmp_path, '"stickslip.transient" = [10.0, 29.5]\n')
+    # transient 29.6 of 30 a0 leaves one sample (every 0.5 a0, which is 25 trap spacings, so
+    # the grid gets one sample more: 61 steps of 0.49 a0): fails at run time
+    p = _cli_proto(tmp_path, '"stickslip.transient" = [10.0, 29.6]\n')
     r = CliRunner().invoke(app, ["sweep", str(p), "--out", str(tmp_path / "o"),
                                  "--workers", "1"])
     assert r.exit_code == 1, r.output
@@ -400,7 +401,7 @@ def test_some_or_all_points_failed_exit_1_with_one_line(tmp_path):
     ds = load_sweep(tmp_path / "o" / "sweep.nc")  # written, the failure recorded
     assert ds.attrs["n_failed"] == 1 and np.isfinite(ds["class"].values[0])
     assert "only 1 samples" in str(ds["error"].values[1])
-    p = _cli_proto(tmp_path, '"stickslip.transient" = [29.5]\n', name="q.toml")
+    p = _cli_proto(tmp_path, '"stickslip.transient" = [29.6]\n', name="q.toml")
     r = CliRunner().invoke(app, ["sweep", str(p), "--out", str(tmp_path / "q"),
                                  "--workers", "1"])
     assert r.exit_code == 1 and "all 1 points failed" in r.output, r.output

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import json
+import warnings
 from collections.abc import Callable
 from typing import Any, TypeVar
 
@@ -59,8 +60,14 @@ def cli_errors(fn: F) -> F:
 
     @functools.wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
+        from ..rsf.growth import UnstableStartWarning
+
         try:
-            return fn(*args, **kwargs)
+            with warnings.catch_warnings():
+                # said in the run's summary (unstable_start); a printed warning would be a
+                # second line beside a refusal's one
+                warnings.simplefilter("ignore", UnstableStartWarning)
+                return fn(*args, **kwargs)
         except BrokenPipeError:
             raise  # the reader went away (``| head``): not an error of the input
         except (ValueError, OSError) as exc:

@@ -87,7 +87,11 @@ def static(
     )] = None,
     alpha: float = typer.Option(0.13, "--alpha", help="Trap stiffness, 0 < alpha < 1."),
     load: float = typer.Option(
-        0.0, "--load", help="Tangential force during the wait [F_el], 0 <= f_w < 1."
+        0.0, "--load", help="Tangential force during the wait [F_el], -1 < f_w < 1."
+    ),
+    hold: str = typer.Option(
+        "position", "--hold", help="Loaded wait: 'position' (slider held) or 'force' (force "
+        "held, the slider creeps)."
     ),
     creep: str = typer.Option("log", "--creep", help=CREEP_HELP),
     t0: float = typer.Option(None, "--t0", help=_SI_HELP["t0"]),
@@ -105,8 +109,8 @@ def static(
 
     _one_of(T, t_w, "--T or --t-w")
     scales = _scales("--t-w" if t_w is not None else "", None, t0, mu_el, need_a0=False)
-    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "load": load, "creep": creep,
-                              **_direct_params(direct, v_ref)}
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "load": load, "hold": hold,
+                              "creep": creep, **_direct_params(direct, v_ref)}
     if direct:
         params["pull_velocity"] = pull_velocity
     if scales is None:
@@ -114,7 +118,7 @@ def static(
             raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "
                              "or drop it")
         mu = static_friction(np.asarray(T, float), eps, alpha, creep, load, direct, v_ref,
-                             pull_velocity)
+                             pull_velocity, hold)
         cols: dict[str, Any] = {"T": list(T or []), "mu_s": mu}
     elif direct:
         raise ValueError("--direct takes reduced inputs (--T, --v-ref and --pull-velocity in "

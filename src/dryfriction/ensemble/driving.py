@@ -209,6 +209,11 @@ def _progress_caller(progress: Progress | None, total: float) -> Callable[[float
     return call
 
 
+def _lattice(ens: Ensemble) -> float | None:
+    """The trap spacing (``a0``) of a regular track, which the sampling must not alias."""
+    return ens.track.spacing if ens.track.layout == "regular" else None
+
+
 def _max_reach(ens: Ensemble) -> float:
     """Slip (``a0``) after which every trap now in contact has surely left it, frozen ages."""
     age = ens.t - ens.oldest_birth
@@ -297,7 +302,7 @@ def _equilibrate(
 def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Recorder,
                   tick: Callable[[float], None], info: dict[str, Any]) -> None:
     prog = drive.program
-    grid = segment_grid(prog, output)
+    grid = segment_grid(prog, output, _lattice(ens))
     xs = prog.position(grid)
     snaps = list(output.snapshots)
     bounds = prog.times
@@ -377,7 +382,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
     o = ens.observe()
     t_start = ens.t
     x_pull0 = ens.x + (o.force if spring_force is None else spring_force) / K
-    grid = segment_grid(prog, output)
+    grid = segment_grid(prog, output, _lattice(ens))
     xp = x_pull0 + (prog.position(grid) - prog.x0)
     grid = grid + t_start
     snaps = list(output.snapshots)

@@ -78,6 +78,8 @@ __all__ = [
 
 
 LAYOUTS: tuple[str, ...] = ("regular", "random")
+TRAPS_PER_A0_MIN = 1e-6
+"""Sparsest track accepted (pairs per ``a0``)."""
 INITIAL_KINDS: tuple[str, ...] = ("rest", "loaded", "steady")
 _BLOCK = 1024  # pairs per random block
 _CHUNK = 1 << 16
@@ -142,7 +144,8 @@ class Track:
     Parameters
     ----------
     traps_per_a0 : float
-        Density ``lambda`` of pairs per ``a0`` of track, ``> 0``.
+        Density ``lambda`` of pairs per ``a0`` of track, ``>= 1e-6`` (a sparser track has no
+        pair within any run's reach, and its spacing overflows the index arithmetic).
     layout : {"regular", "random"}
         ``c_k = (k + 1/2)/lambda``, or seeded uniform positions, 1024 per block of length
         ``1024/lambda`` (sorted within a block).
@@ -155,7 +158,7 @@ class Track:
     seed: int | None = None
 
     def __post_init__(self) -> None:
-        lam = check_scalar("traps_per_a0", self.traps_per_a0, 0.0, lo_open=True)
+        lam = check_scalar("traps_per_a0", self.traps_per_a0, TRAPS_PER_A0_MIN)
         object.__setattr__(self, "traps_per_a0", lam)
         check_choice("layout", self.layout, LAYOUTS)
         if self.layout == "random":
@@ -225,7 +228,7 @@ class Initial:
         if self.kind == "loaded":
             if self.force is None:
                 raise ValueError("initial_force is required for initial = 'loaded'")
-            f = check_scalar("initial_force", self.force, 0.0, 1.0, hi_open=True)
+            f = check_scalar("initial_force", self.force, -1.0, 1.0, lo_open=True, hi_open=True)
             object.__setattr__(self, "force", f)
         elif self.force is not None:
             raise ValueError(f"initial_force applies only to initial = 'loaded', "

@@ -151,6 +151,17 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
         One line with the estimate, the limit and the key to change; the key named is that of
         the largest part of the estimate.
     """
+    from .driving import ForceDrive  # driving imports this module
+
+    if isinstance(drive, ForceDrive) and output.every_slip is not None:
+        # the ramp's time step; below the rounding of the run's clock the ramp cannot advance
+        dt = float(output.every_slip) * model.trap.contact_stiffness / drive.rate
+        if not dt > 1e-12 * max(1.0, drive.hold):
+            key = ("drive." if qualified else "") + "rate"
+            raise ValueError(
+                f"{key} = {drive.rate:g} is out of range with every_slip = "
+                f"{output.every_slip:g}: the force step of one sample takes {dt:.1e} t0, below "
+                f"the clock's rounding at t = {drive.hold:g}; lower {key} or raise every_slip")
     est = estimate_run(model, track, initial, drive, output)
     out = "output." if qualified else ""
     lam_key = ("ensemble." if qualified else "") + "traps_per_a0"

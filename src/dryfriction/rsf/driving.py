@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
 from ..validation import Array, check_scalar
+from .growth import growth_limit, unstable_start, warn_unstable
 from .law import RateState
 from .resources import check_rsf_run
 from .result import RSFResult, build_result, hermite
@@ -286,6 +287,10 @@ def _record(T, Y, F, S, n, cap, t, y, f, s):  # type: ignore[no-untyped-def]
 def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
     """RODAS4 over every segment. Returns (T, Y, F, SEG, stats, status, t_fail, y_fail).
 
+    Besides the error control, a step never spans more than ``EFOLD`` e-folding times of a
+    growing mode of the Jacobian (:func:`dryfriction.rsf.growth.growth_limit`; not on the
+    kinematic machine, whose state laws are stable).
+
     ``status``: 0 done, 1 step-size underflow, 2 too many steps.
     """
     ny = y0.shape[0]
@@ -313,6 +318,7 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
     status = 0
     t = seg_t[0]
     h = 0.0
+    limit_growth = p[_MODE] != _KINEMATIC
     for s in range(nseg):
         p[_VL] = seg_v[s]
         t = seg_t[s]
@@ -330,6 +336,8 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
         h = span
         if fmax > 0.0:
             h = min(span, 0.01 * tol**0.25 / fmax)
+        if limit_growth:
+            h = growth_limit(jac, h, dummy)
         hmin = 1e-13 * max(abs(t), abs(tend))
         rejected = False
         while t < tend:
@@ -397,6 +405,8 @@ def _integrate(y0, p, seg_t, seg_v, tol, w, max_steps, ra, rc, rm):
                 if rejected:
                     fac = min(fac, 1.0)
                 h *= fac
+                if limit_growth:
+                    h = growth_limit(jac, h, dummy)
                 rejected = False
             else:
                 nrej += 1
@@ -499,6 +509,9 @@ def simulate_rsf(
         y0 = np.array([math.log(v_init), *lnth, stress0])
         w = np.array([1.0] * (ns + 1) + [model.a])
     p = _param_vector(model, stiffness, damping, mass, mode)
+    unstable = unstable_start(model, drive, v_init, theta_init, theta2_init)
+    if unstable is not None:
+        warn_unstable(unstable)
 
     try:
         T, Y, F, SEG, stats, status, t_fail, y_fail = _integrate(
@@ -516,9 +529,12 @@ def simulate_rsf(
     if te is not None:
         Y, SEG = hermite(T, Y, F, te), np.asarray(prog.segment_index(te))
         T = te.copy()
-    return build_result(T, Y, SEG, prog, model, kinematic=mode == _KINEMATIC,
-                        inertial=mode == _INERTIAL, stiffness=stiffness, damping=damping,
-                        mass=mass, rtol=output.rtol, stress0=stress0, stats=stats)
+    res = build_result(T, Y, SEG, prog, model, kinematic=mode == _KINEMATIC,
+                       inertial=mode == _INERTIAL, stiffness=stiffness, damping=damping,
+                       mass=mass, rtol=output.rtol, stress0=stress0, stats=stats)
+    if unstable is not None:
+        res.meta["unstable_start"] = unstable
+    return res
 
 
 def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]

@@ -118,6 +118,8 @@ class RSFResult:
         k_c = self.critical_stiffness()
         if k_c is not None:
             extra["critical_stiffness_per_m"] = k_c
+        if "unstable_start" in self.meta:  # set by simulate_rsf: started beside an unstable
+            extra["unstable_start"] = dict(self.meta["unstable_start"])  # steady state
         extra["params"] = self.params.to_dict()
         return summarize("rsf", self.t, self.x, self.v, self.mu,
                          {k: UNITS[k] for k in cols}, extra=extra)

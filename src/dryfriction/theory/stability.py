@@ -43,10 +43,12 @@ arrives from infinity once ``K < -Z(inf)``.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.special import gamma
 
 from ..validation import Array, check_choice, check_scalar
 from .creep import CREEP_LAWS, CreepLaw, creep_law
@@ -67,9 +69,19 @@ __all__ = [
 
 CArray = NDArray[np.complex128]
 
-_S, _SW = np.polynomial.legendre.leggauss(96)
-_S = 0.5 * (_S + 1.0)
-_SW = 0.5 * _SW
+# composite Gauss-Legendre: panels of 16 nodes, at least 6 of them; a panel spans a phase
+# change of at most _PHASE radians of e^{-lambda T}, so Z stays exact as |lambda| grows
+_GX, _GW = np.polynomial.legendre.leggauss(16)
+_GX, _GW = 0.5 * (_GX + 1.0), 0.5 * _GW
+_MIN_PANELS = 6
+_PHASE = 10.0
+# above |lambda| min(tau_d, 1) = _ASYMPTOTE the memory integral is its endpoint expansion
+# (module doc); the first neglected terms, O(|lambda|^{-4}) at the young end and
+# O((|lambda| tau_d)^{-5/2}) at the spinodal, are below ~1e-7 there
+_ASYMPTOTE = 200.0
+_MAX_LEVEL = 12
+# largest node x frequency block evaluated at once (memory of the e^{-lambda T} matrix)
+_BLOCK = 2_000_000
 
 
 def _dforce_plus(w: Array, alpha: float) -> Array:
@@ -84,12 +96,24 @@ def _dforce_minus(w: Array, alpha: float) -> Array:
 
 
 @dataclass(frozen=True)
+class _Branch:
+    """One branch of the steady population: clock range ``c = c0 + (c1 - c0) m(s)``."""
+
+    c0: float
+    c1: float
+    plus: bool
+    slope: float  # max |dT/ds| over the branch: sets the panels needed at a given |lambda|
+
+
+@dataclass(frozen=True)
 class SteadyResponse:
     """Quadrature nodes of the steady population at one ``(u, eps, alpha)``, ready for ``Z``.
 
     Attributes are arrays over the nodes (ages ``T`` in ``t0``): the static part ``A`` of
     ``H0 Z`` (``int u g_y dtau``), the weights ``b`` of ``e^{-lambda T}`` in ``H0 Z``, and the
-    spinodal-edge terms.
+    spinodal-edge terms. ``T``, ``b`` are the coarsest nodes; :meth:`Z` refines them with
+    ``|lambda|`` and uses the endpoint expansion of the memory integral at large ``|lambda|``
+    (``tail``: its coefficients, module doc).
     """
 
     u: float
@@ -102,21 +126,158 @@ class SteadyResponse:
     tau_d: float
     edge: float
     edge_delay: float
+    law: CreepLaw | None = field(default=None, repr=False, compare=False)
+    branches: tuple[_Branch, ...] = field(default=(), repr=False, compare=False)
+    tail: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    node_cache: dict[int, tuple[Array, Array]] = field(default_factory=dict, repr=False,
+                                                   compare=False)
 
     def derivative_at_zero(self, n: int) -> float:
         """``d^n Z / d lambda^n`` at ``lambda = 0``: moments of the age distribution (ours)."""
         edge = -self.edge * self.edge_delay * (-self.tau_d) ** n
         return float((np.sum(self.b * (-self.T) ** n) + edge) / self.H0)
 
+    @property
+    def Z_inf(self) -> float:
+        """``lim Z`` without the delay term: ``(A + edge) / H0`` (:func:`shift_stiffness`)."""
+        return (self.A + self.edge) / self.H0
+
+    @property
+    def delay_amplitude(self) -> float:
+        """``|edge * edge_delay| / H0``: radius of the Nyquist circles at high frequency."""
+        return abs(self.edge * self.edge_delay) / self.H0
+
+    def nodes(self, level: int) -> tuple[Array, Array]:
+        """Ages and weights with ``_MIN_PANELS * 2**level`` panels per branch (cached)."""
+        if level not in self.node_cache:
+            assert self.law is not None
+            Ts, bs = [], []
+            for br in self.branches:
+                T, b, _ = _branch_nodes(self.law, self.u, self.alpha, br,
+                                        _MIN_PANELS * 2**level)
+                Ts.append(T)
+                bs.append(b)
+            self.node_cache[level] = (np.concatenate(Ts), np.concatenate(bs))
+        return self.node_cache[level]
+
+    def memory(self, lam: ArrayLike) -> CArray:
+        """``int g_theta e^{-lambda tau} dtau`` (units ``F_el``, times ``H0``) at each ``lam``."""
+        lam = np.asarray(lam, dtype=complex)
+        flat = lam.ravel()
+        out = np.zeros(flat.size, complex)
+        if not self.branches:  # a response built by hand: its fixed nodes only
+            with np.errstate(over="ignore", invalid="ignore"):
+                return (np.exp(-lam[..., None] * self.T) @ self.b).astype(complex)
+        size = np.abs(flat)
+        # the expansion needs |lambda| large on both scales of the integrand: tau_d at the
+        # spinodal, and the clock's unit scale (t0) at the young end
+        far = size * min(self.tau_d, 1.0) > _ASYMPTOTE
+        if np.any(far):
+            out[far] = self._memory_far(flat[far])
+        slope = max(br.slope for br in self.branches)
+        need = np.maximum(size * slope / (_PHASE * _MIN_PANELS), 1.0)
+        # past _MAX_LEVEL (6 * 4096 panels) the expansion is used even if not yet that exact:
+        # a very old population (tiny u) would otherwise need millions of nodes
+        big = ~far & ~(need <= 2.0**_MAX_LEVEL)
+        if np.any(big):
+            out[big] = self._memory_far(flat[big])
+            far = far | big
+        level = np.ceil(np.log2(np.where(far, 1.0, need))).astype(int)
+        for lv in np.unique(level[~far]):
+            idx = np.flatnonzero((level == lv) & ~far)
+            T, b = self.nodes(int(lv))
+            step = max(1, _BLOCK // T.size)
+            for k in range(0, idx.size, step):
+                sel = idx[k:k + step]
+                # far in the left half-plane e^{-lambda T} overflows: the value is then
+                # inf/nan, which the root search discards
+                with np.errstate(over="ignore", invalid="ignore"):
+                    out[sel] = np.exp(-flat[sel, None] * T) @ b
+        return out.reshape(lam.shape)
+
+    def _memory_far(self, lam: CArray) -> CArray:
+        """Endpoint expansion of the memory integral (module doc), ``|lambda| tau_d >> 1``."""
+        t = self.tail
+        with np.errstate(over="ignore", invalid="ignore"):
+            out = t["h0"][0] / lam + t["h0"][1] / lam**2 + t["h0"][2] / lam**3
+            log_m = np.log(-lam)
+            sing = sum(g * gamma(0.5 * (k + 1)) * np.exp(-0.5 * (k + 1) * log_m)
+                       for k, g in enumerate(t["spinodal"]))
+            out = out + np.exp(-lam * self.tau_d) * sing
+            for tau, hs, sign in t["ends"]:
+                out = out + sign * np.exp(-lam * tau) * (
+                    hs[0] / lam + hs[1] / lam**2 + hs[2] / lam**3)
+        return out
+
     def Z(self, lam: ArrayLike) -> CArray:
         """``Z(lambda)``: friction change (units ``F_el``) per unit slip perturbation (``a0``)."""
         lam = np.asarray(lam, dtype=complex)
-        # far in the left half-plane e^{-lambda T} overflows: the value is then inf/nan,
-        # which the root search discards
         with np.errstate(over="ignore", invalid="ignore"):
-            memory = np.exp(-lam[..., None] * self.T) @ self.b
             edge = self.edge * (1.0 - self.edge_delay * np.exp(-lam * self.tau_d))
-        return (self.A + memory + edge) / self.H0
+        return (self.A + self.memory(lam) + edge) / self.H0
+
+
+def _g_theta(law: CreepLaw, u: float, alpha: float, c: Array, plus: bool) -> Array:
+    """``g_theta`` per unit clock ``c``: ``(R'(c)/2) [2 f - w f']`` at the steady age."""
+    R = law.radius_sq(c)
+    w = np.clip((-1.0 + u * law.age(c)) / np.sqrt(R), -1.0, Trap(alpha).y_c if plus else 1.0)
+    f, df = (force_plus, _dforce_plus) if plus else (force_minus, _dforce_minus)
+    return 0.5 * law.dradius_sq(c) * (2.0 * f(w, alpha) - w * df(w, alpha))
+
+
+def _branch_nodes(
+    law: CreepLaw, u: float, alpha: float, br: _Branch, panels: int
+) -> tuple[Array, Array, float]:
+    """Ages, ``e^{-lambda T}`` weights and static part ``int u g_y dtau`` of one branch."""
+    s = ((np.arange(panels)[:, None] + _GX) / panels).ravel()
+    ws = np.tile(_GW, panels) / panels
+    dc = br.c1 - br.c0
+    if br.plus:  # c = c_d (1 - s^2) removes the 1/sqrt of f_+' at the spinodal
+        c, wts = br.c1 - dc * s**2, 2.0 * dc * s * ws
+    else:
+        c, wts = br.c0 + dc * s, dc * ws
+    R = law.radius_sq(c)
+    r = np.sqrt(R)
+    T = law.age(c)
+    w = np.clip((-1.0 + u * T) / r, -1.0, Trap(alpha).y_c if br.plus else 1.0)
+    df = _dforce_plus if br.plus else _dforce_minus
+    # u g_y dtau = u r f'(w) T'(c) dc ;  g_theta dtau = (R'(c)/2) [2 f - w f'] dc
+    A = float(np.sum(u * r * df(w, alpha) * law.dage(c) * wts))
+    return T, _g_theta(law, u, alpha, c, br.plus) * wts, A
+
+
+def _per_age(law: CreepLaw, u: float, alpha: float, T: Array, plus: bool) -> Array:
+    """``g_theta`` per unit age ``T`` (the integrand of the memory term)."""
+    c = law.clock(T)
+    return _g_theta(law, u, alpha, c, plus) / law.dage(c)
+
+
+def _end_derivatives(h: Callable[[Array], Array], T0: float, step: float) -> list[float]:
+    """``h``, ``h'``, ``h''`` at ``T0`` from one-sided differences (``step`` signed)."""
+    v = h(T0 + step * np.arange(4.0))
+    d1 = (-11 * v[0] + 18 * v[1] - 9 * v[2] + 2 * v[3]) / (6 * step)
+    d2 = (2 * v[0] - 5 * v[1] + 4 * v[2] - v[3]) / step**2
+    return [float(v[0]), float(d1), float(d2)]
+
+
+def _tail(law: CreepLaw, u: float, alpha: float, tau_d: float, tau_e: float | None
+          ) -> dict[str, Any]:
+    """Coefficients of the memory integral's expansion at large ``|lambda|`` (module doc)."""
+    plus = lambda T: _per_age(law, u, alpha, np.asarray(T, float), True)  # noqa: E731
+    # near the spinodal h(tau_d - q^2) q is smooth in q: a cubic through q = 1..4 dq gives
+    # h = sum_k g_k v^{(k-1)/2}, v = tau_d - T (Watson's lemma, k = 0..3)
+    dq = 2e-3 * np.sqrt(tau_d)
+    q = dq * np.arange(1.0, 5.0)
+    S = plus(tau_d - q**2) * q
+    g = np.linalg.solve(np.vander(q, 4, increasing=True), S)
+    ends = []
+    if tau_e is not None:
+        minus = lambda T: _per_age(law, u, alpha, np.asarray(T, float), False)  # noqa: E731
+        step = 1e-4 * (tau_e - tau_d)
+        ends = [(tau_d, _end_derivatives(minus, tau_d, step), 1.0),
+                (tau_e, _end_derivatives(minus, tau_e, -step), -1.0)]
+    return {"h0": _end_derivatives(plus, 0.0, 1e-3 * min(1.0, tau_d)),
+            "spinodal": [float(x) for x in g], "ends": ends}
 
 
 def _pieces(law: CreepLaw, u: float, alpha: float) -> SteadyResponse:
@@ -124,25 +285,21 @@ def _pieces(law: CreepLaw, u: float, alpha: float) -> SteadyResponse:
     yc = trap.y_c
     uu = np.array([u])
     c_d = float(death_clock(law, uu, yc)[0])
-    # (+) branch: c = c_d (1 - s^2) removes the 1/sqrt of f_+' at the spinodal
-    c = c_d * (1.0 - _S**2)
-    wts = 2.0 * c_d * _S * _SW
-    branches = [(c, wts, force_plus, _dforce_plus)]
+    fine = np.linspace(0.0, 1.0, 2001)
+    branches = [_Branch(0.0, c_d, True,
+                        float(np.max(law.dage(c_d * (1 - fine**2)) * 2 * c_d * fine)))]
+    tau_e = None
     if yc < 1.0:  # strong pinning: (-) branch up to w = 1
         c_e = float(death_clock(law, uu, 1.0)[0])
-        branches.append((c_d + (c_e - c_d) * _S, (c_e - c_d) * _SW, force_minus, _dforce_minus))
+        branches.append(_Branch(c_d, c_e, False, float(law.dage(c_e)) * (c_e - c_d)))
+        tau_e = float(law.age(c_e))
     A = 0.0
     Ts, bs = [], []
-    for cc, ww, f, df in branches:
-        R = law.radius_sq(cc)
-        r = np.sqrt(R)
-        T = law.age(cc)
-        w = np.clip((-1.0 + u * T) / r, -1.0, yc if f is force_plus else 1.0)
-        fv, dfv = f(w, alpha), df(w, alpha)
-        # u g_y dtau = u r f'(w) T'(c) dc ;  g_theta dtau = (R'(c)/2) [2 f - w f'] dc
-        A += float(np.sum(u * r * dfv * law.dage(cc) * ww))
+    for br in branches:
+        T, b, a = _branch_nodes(law, u, alpha, br, _MIN_PANELS)
+        A += a
         Ts.append(T)
-        bs.append(0.5 * law.dradius_sq(cc) * (2.0 * fv - w * dfv) * ww)
+        bs.append(b)
     R_d = float(law.radius_sq(c_d))
     r_d = np.sqrt(R_d)
     tau_d = float(law.age(c_d))
@@ -151,9 +308,12 @@ def _pieces(law: CreepLaw, u: float, alpha: float) -> SteadyResponse:
     jump = trap.f_c - (float(force_minus(yc, alpha)) if yc < 1.0 else 0.0)
     dg = R_d * jump
     edge = -u * dg / (u - yc * rp_d)
-    return SteadyResponse(u=u, eps=law.eps, alpha=alpha, H0=trap.H0, A=A,
-                          T=np.concatenate(Ts), b=np.concatenate(bs), tau_d=tau_d, edge=edge,
-                          edge_delay=yc * rp_d / u)
+    T0, b0 = np.concatenate(Ts), np.concatenate(bs)
+    resp = SteadyResponse(u=u, eps=law.eps, alpha=alpha, H0=trap.H0, A=A, T=T0, b=b0,
+                          tau_d=tau_d, edge=edge, edge_delay=yc * rp_d / u, law=law,
+                          branches=tuple(branches), tail=_tail(law, u, alpha, tau_d, tau_e))
+    resp.node_cache[0] = (T0, b0)
+    return resp
 
 
 def steady_response(
@@ -221,6 +381,38 @@ class StabilityResult:
         return dict(self.__dict__)
 
 
+def _grid_crossings(
+    Z: Callable[[ArrayLike], CArray], mass: float, damping: float, om: Array,
+    candidates: int = 24,
+) -> tuple[float, float]:
+    """Largest ``K`` among the zeros of ``eta omega + Im Z(i omega)`` bracketed on ``om``.
+
+    Every bracket gets a linear estimate of its ``K``; only the ``candidates`` largest are
+    refined (brentq), since at high frequency there are thousands of crossings.
+    """
+    z = Z(1j * om)
+    vals = damping * om + z.imag
+    idx = np.flatnonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)
+    if idx.size == 0:
+        return -np.inf, np.nan
+    frac = vals[idx] / (vals[idx] - vals[idx + 1])
+    k_lin = mass * om[idx] ** 2 - (z.real[idx] + frac * (z.real[idx + 1] - z.real[idx]))
+    keep = idx[np.argsort(k_lin)[::-1][:candidates]]
+
+    def im(o: float) -> float:
+        return float(damping * o + Z(np.array([1j * o]))[0].imag)
+
+    from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
+
+    best_K, best_om = -np.inf, np.nan
+    for i in keep:
+        o = brentq(im, om[i], om[i + 1], xtol=1e-14 * om[i], maxiter=200)
+        K = mass * o**2 - float(Z(np.array([1j * o]))[0].real)
+        if K > best_K:
+            best_K, best_om = K, o
+    return best_K, best_om
+
+
 def nyquist_crossings(
     Z: Callable[[ArrayLike], CArray],
     mass: float,
@@ -237,19 +429,43 @@ def nyquist_crossings(
     """
     omega_max = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
     om = np.geomspace(omega_max * 1e-7, omega_max, int(n_omega))
+    return _grid_crossings(Z, mass, damping, om)
 
-    def im(o: float) -> float:
-        return float(damping * o + Z(1j * o).imag)
 
-    vals = damping * om + Z(1j * om).imag
+# the scan: a log grid up to _LOG_TOP / tau_d, then a linear one resolving the delay term's
+# period 2 pi / tau (8 points a period) up to _FREE_TOP / tau_d when M = eta = 0, where the
+# crossings have settled on circles about -Z(inf) (module doc)
+_LOG_TOP = 20.0
+_FREE_TOP = 2000.0
+_MAX_POINTS = 400_000
+
+
+def _high_scan(
+    resp: SteadyResponse, mass: float, damping: float, lo: float, hi: float,
+) -> tuple[float, float]:
+    """Crossings on a linear grid over ``[lo, hi]``, in doubling chunks; with damping and no
+    mass, stops once no later crossing can beat the best one found (module doc)."""
+    tau = resp.tau_d if len(resp.branches) < 2 else float(np.max(resp.T))
+    d_om = np.pi / (4.0 * tau)
     best_K, best_om = -np.inf, np.nan
-    from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
-
-    for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-        o = brentq(im, om[i], om[i + 1], xtol=1e-14 * om[i], maxiter=200)
-        K = mass * o**2 - float(Z(1j * o).real)
+    used = 0
+    a = lo
+    while a < hi and used < _MAX_POINTS:
+        b = min(hi, max(2.0 * a, a + 64 * d_om))
+        om = np.arange(a, b + d_om, d_om)
+        used += om.size
+        K, o = _grid_crossings(resp.Z, mass, damping, om)
         if K > best_K:
             best_K, best_om = K, o
+        if damping > 0 and mass == 0.0:
+            # beyond b: |Im H0 Z| <= |E| + |memory|, and the damping must be balanced by it
+            mem = float(np.max(np.abs(resp.memory(1j * om[-8:])))) * 1.5 / resp.H0
+            amp = resp.delay_amplitude + mem
+            lean = max(0.0, damping * b - mem)
+            bound = -resp.Z_inf + np.sqrt(max(0.0, amp**2 - lean**2)) + mem
+            if bound < best_K:
+                break
+        a = b
     return best_K, best_om
 
 
@@ -265,22 +481,42 @@ def critical_stiffness(
 ) -> StabilityResult:
     """Critical stiffness ``K_c(u; eps, alpha, M, eta)`` and the frequency at onset.
 
-    Scans ``omega`` on a log grid up to ``omega_max`` (default ``200/tau_d``, ``tau_d`` the
-    age at which traps die), finds the zeros of ``eta omega + Im Z(i omega)`` by bracketing,
-    and returns the largest ``K = M omega^2 - Re Z(i omega)`` among them. When ``M = eta = 0``
-    the crossings never stop (module doc): the largest value found up to ``omega_max`` is
-    returned with ``supremum_at_infinity = True``.
+    Finds the zeros of ``eta omega + Im Z(i omega)`` by bracketing and returns the largest
+    ``K = M omega^2 - Re Z(i omega)`` among them. The grid is logarithmic (``n_omega``
+    points) up to ``20/tau_d`` (``tau_d`` the age at which traps die), then linear, resolving
+    the delay term's period, up to: ``omega_max`` if given; else, with damping, the frequency
+    beyond which ``eta omega`` exceeds every ``|Im Z|`` (or no later crossing can beat the
+    best: module doc); with ``M = eta = 0``, ``2000/tau_d``, after which the crossings
+    circle about ``-Z(inf)`` with radius ``delay_amplitude``. Then the supremum
+    ``K_inf = -Z(inf) + delay_amplitude`` is compared with the best crossing found: if it
+    is larger, it is returned with ``omega = inf`` and ``supremum_at_infinity = True`` (it
+    is approached only as ``omega -> inf``). With mass and no damping the crossings never
+    stop and their ``K`` grows as ``M omega^2``: the value up to ``omega_max`` (default
+    ``200/tau_d``) is returned.
     """
     mass = check_scalar("mass", mass, 0.0)
     damping = check_scalar("damping", damping, 0.0)
     resp = steady_response(u, eps, alpha, creep)
-    if omega_max is None:
-        omega_max = 200.0 / resp.tau_d
-    best_K, best_om = nyquist_crossings(resp.Z, mass, damping, omega_max, n_omega)
-    fwd, bwd = (resp.A + resp.edge) / resp.H0, resp.A / resp.H0
+    top_log = _LOG_TOP / resp.tau_d
+    if omega_max is not None:
+        top = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
+    elif damping > 0:
+        reach = resp.delay_amplitude + float(np.sum(np.abs(resp.b))) / resp.H0
+        top = 1.05 * reach / damping
+    elif mass > 0:
+        top = 200.0 / resp.tau_d
+    else:
+        top = _FREE_TOP / resp.tau_d
+    best_K, best_om = nyquist_crossings(resp.Z, mass, damping, min(top, top_log), n_omega)
+    if top > top_log:
+        K, o = _high_scan(resp, mass, damping, top_log, top)
+        if K > best_K:
+            best_K, best_om = K, o
+    fwd, bwd = resp.Z_inf, resp.A / resp.H0
     at_inf = False
-    if mass == 0.0 and damping == 0.0 and -fwd > best_K:
-        best_K, best_om, at_inf = -fwd, np.inf, True
+    k_inf = -fwd + resp.delay_amplitude
+    if mass == 0.0 and damping == 0.0 and k_inf > best_K:
+        best_K, best_om, at_inf = k_inf, np.inf, True
     h = 1e-6 * max(1.0, 1.0 / resp.tau_d)
     slope = float((resp.Z(h) - resp.Z(-h)).real / (2 * h))
     return StabilityResult(u=resp.u, eps=resp.eps, alpha=resp.alpha, mass=mass, damping=damping,

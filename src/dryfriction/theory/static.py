@@ -40,6 +40,7 @@ ageing during it, as in §4); a force-controlled pull is the ensemble's :class:`
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -58,7 +59,7 @@ from ..validation import (
     check_range,
     check_scalar,
 )
-from .creep import CREEP_LAWS, check_age, per_eps
+from .creep import CREEP_LAWS, check_age, per_eps, radius
 from .direct import junction_strength
 from .trap import Trap, force_forward, work_forward, work_minus
 
@@ -68,6 +69,8 @@ __all__ = [
     "pull_force",
     "threshold_shift",
     "static_friction",
+    "force_hold_shift",
+    "HOLDS",
     "static_friction_at_radius",
     "static_friction_first_order",
     "static_slope_per_eps",
@@ -94,14 +97,17 @@ def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
     Parameters
     ----------
     f_w : float
-        Tangential force during the wait, units ``F_el``, ``0 <= f_w < 1``.
+        Tangential force during the wait, units ``F_el``, ``-1 < f_w < 1``; a negative (reversed)
+        load gives the mirror image, ``d_w(-f) = -d_w(f)``.
     alpha : float
         Reduced trap stiffness, ``0 < alpha < 1``.
     """
-    f_w = check_scalar("load", f_w, 0.0, 1.0, hi_open=True)
+    f_w = check_scalar("load", f_w, -1.0, 1.0, lo_open=True, hi_open=True)
     alpha = check_alpha(alpha)
     if f_w == 0.0:
         return 0.0
+    if f_w < 0.0:  # mirror symmetry p -> -p of the rest population
+        return -loaded_edge(-f_w, alpha)
     yc = Trap(alpha).y_c
     from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
 
@@ -127,7 +133,7 @@ def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
     trap = Trap(alpha)
     d = check_range("d", d, 0.0)
     r = check_range("r", r, 1.0)
-    d_w = check_scalar("d_w", d_w, 0.0, trap.y_c, hi_open=True)
+    d_w = check_scalar("d_w", d_w, -min(1.0, trap.y_c), trap.y_c, lo_open=True, hi_open=True)
     fresh = work_forward(-1.0 + d, alpha)
     aged_plus = work_forward((d_w + d) / r, alpha) - work_forward((d - 1.0) / r, alpha)
     lo = np.minimum((d_w + d) / r, 1.0)
@@ -199,6 +205,7 @@ def static_friction(
     direct: float = 0.0,
     v_ref: float = 1.0,
     pull_velocity: float | None = None,
+    hold: str = "position",
 ) -> Array:
     """Static friction ``mu_s = F_s/F_el`` after a wait ``T = t_w/t0`` (eq. 27, our reading).
 
@@ -213,8 +220,14 @@ def static_friction(
     creep : {"log", "eyring-nabarro"}
         Ageing law: eq. 17 or the exact eqs. 15-16.
     load : float
-        Tangential force during the wait, units ``F_el``, ``0 <= load < 1``. 0 is the paper's
-        protocol; ``load > 0`` the loaded protocol (ours, module docstring).
+        Tangential force at contact formation, units ``F_el``, ``-1 < load < 1``. 0 is the
+        paper's protocol; ``load != 0`` the loaded protocol (ours, module docstring).
+    hold : {"position", "force"}
+        How the loaded contact is held during the wait (no difference at ``load = 0``):
+        ``"position"``, the slider stays where the load put it and the force grows as the
+        contacts age (the population does not move, as in §4); ``"force"``, the tangential
+        force stays ``load`` and the slider creeps (back, for ``load > 0``) as the contacts
+        age (module docstring). Experiments use both; a constant-force hold is the common one.
     direct, v_ref : float
         Direct-effect coefficient ``0 <= A <= 1`` and its reference velocity (reduced, ``> 0``).
     pull_velocity : float, optional
@@ -239,14 +252,164 @@ def static_friction(
     eps = check_range("eps", eps, 0.0, EPS_MAX)
     check_broadcast(T=T, eps=eps)
     check_age(T, eps, creep)
+    check_choice("hold", hold, HOLDS)
     d_w = loaded_edge(load, alpha)
-    # radius and threshold together, chunk by chunk: the threshold's temporaries (~80 bytes a
-    # point) would otherwise be held for the whole array at once
-    mu = per_eps(lambda law, t: static_friction_at_radius(law.radius(t), alpha, d_w), creep,
-                 eps, T)
+    if hold == "force" and load != 0.0:
+        Tb, eb = np.broadcast_arrays(T, eps)
+        mu = np.array([_force_hold(float(t), float(e), alpha, creep, float(load))[0]
+                       for t, e in zip(Tb.ravel(), eb.ravel(), strict=True)]).reshape(Tb.shape)
+    else:
+        # radius and threshold together, chunk by chunk: the threshold's temporaries (~80
+        # bytes a point) would otherwise be held for the whole array at once
+        mu = per_eps(lambda law, t: static_friction_at_radius(law.radius(t), alpha, d_w),
+                     creep, eps, T)
     if direct > 0.0:
         mu = mu * junction_strength(pull_velocity, direct, v_ref)
     return check_finite_result("mu_s", mu, T=T, eps=eps)
+
+
+# ---------------------------------------------------------------- the constant-force hold
+HOLDS: tuple[str, ...] = ("position", "force")
+_HOLD_STEPS = 120  # log-spaced steps of the hold (the slabs of new contacts)
+_PULL_GRID = 401
+
+
+@dataclass
+class _Slabs:
+    """Pairs that entered contact during the hold: original positions ``[lo, hi]``, branch
+    (True: entered at ``-1`` moving forward, on (+)), entry time."""
+
+    lo: list[float]
+    hi: list[float]
+    plus: list[bool]
+    t: list[float]
+
+    def add(self, lo: float, hi: float, plus: bool, t: float) -> None:
+        self.lo.append(lo)
+        self.hi.append(hi)
+        self.plus.append(plus)
+        self.t.append(t)
+
+    def arrays(self) -> tuple[Array, Array, Array, Array]:
+        return (np.array(self.lo), np.array(self.hi), np.array(self.plus, bool),
+                np.array(self.t))
+
+
+def _population(s: Array, r: float, alpha: float, d_w: float,
+                slabs: tuple[Array, Array, Array, Array], radii: Array, top: float,
+                rear: float = -1.0) -> Array:
+    """``mu H0`` of the held population after total shifts ``s`` (any sign) from the
+    contact position: the aged initial population (radius ``r``) from its rear ``rear``
+    (``> -1`` once the hold pushed the rearmost aged traps out of contact, ``w < -1``), the
+    slabs of pairs that entered during the hold (radius ``radii``), and fresh pairs entering
+    at ``-1``: those behind the rearmost pair ever met, ``-1 - top`` (``top``: the largest
+    forward shift of the hold), or the aged pairs that left at the rear."""
+    yc = Trap(alpha).y_c
+    s = np.asarray(s, float)[..., None]
+    fresh_edge = rear if rear > -1.0 else -1.0 - top
+    fresh = work_forward(fresh_edge + s[..., 0], alpha)
+    plus = work_forward((d_w + s[..., 0]) / r, alpha) - work_forward((s[..., 0] + rear) / r, alpha)
+    lo = np.clip((d_w + s[..., 0]) / r, -yc, 1.0)
+    hi = np.clip((1.0 + s[..., 0]) / r, -yc, 1.0)
+    total = fresh + r**3 * (plus + np.where(lo < hi, work_minus(lo, np.maximum(lo, hi), alpha),
+                                            0.0))
+    sl_lo, sl_hi, sl_plus, _ = slabs
+    if sl_lo.size:
+        a, b = (sl_lo + s) / radii, (sl_hi + s) / radii
+        fwd = work_forward(b, alpha) - work_forward(a, alpha)
+        am, bm = np.clip(a, -yc, 1.0), np.clip(b, -yc, 1.0)
+        back = np.where(am < bm, work_minus(am, np.maximum(am, bm), alpha), 0.0)
+        total = total + np.sum(radii**3 * np.where(sl_plus, fwd, back), axis=-1)
+    return total
+
+
+def _force_hold(T: float, eps: float, alpha: float, creep: str, f_w: float
+                ) -> tuple[float, float]:
+    """Static threshold and final slider shift after a hold at constant force ``f_w``.
+
+    The hold is followed on a log grid of ages: at each, the shift that balances ``f_w``;
+    pairs met for the first time enter fresh (at ``-1`` moving forward, at ``+1`` moving
+    back, as in the ensemble) and age from then on. Then the pull from the held position.
+    """
+    from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
+
+    trap = Trap(alpha)
+    H0, yc = trap.H0, trap.y_c
+    d_w = loaded_edge(f_w, alpha)
+    slabs = _Slabs([], [], [], [])
+    s, low, top, rear = 0.0, 0.0, 0.0, -1.0
+    times = np.geomspace(min(1e-6, T), T, _HOLD_STEPS) if T > 0 else np.zeros(0)
+    t_prev = 0.0
+    for t in times:
+        r = float(radius(t, eps, creep))
+        # pairs met during this step entered, on average, half-way through it (in ln t)
+        t_in, t_prev = math.sqrt(t_prev * t) if t_prev > 0 else 0.5 * t, t
+        lo_, hi_, pl_, tt = slabs.arrays()
+        radii = radius(t - tt, eps, creep) if tt.size else np.zeros(0)
+
+        def balance(x: float, r: float = r, radii: Array = radii,
+                    base: tuple[Array, Array, Array, Array] = (lo_, hi_, pl_, tt),
+                    low: float = low, top: float = top, rear: float = rear) -> float:
+            lo, hi, pl, rr = list(base[0]), list(base[1]), list(base[2]), list(radii)
+            if x < low:  # the pairs this step's motion brings into contact (fresh)
+                lo, hi, pl, rr = lo + [1.0 - low], hi + [1.0 - x], pl + [False], rr + [1.0]
+            if x > top:
+                lo, hi, pl, rr = lo + [-1.0 - x], hi + [-1.0 - top], pl + [True], rr + [1.0]
+            sl = (np.array(lo), np.array(hi), np.array(pl, bool), np.zeros(len(lo)))
+            back = max(rear, -r - x)  # aged (+) traps pushed past w = -1 have left
+            return float(_population(x, r, alpha, d_w, sl, np.array(rr), max(top, x),
+                                     back)) / H0 - f_w
+
+        s = float(brentq(balance, s - 0.5, s + 0.5, xtol=1e-14, maxiter=200))
+        if s < low:
+            slabs.add(1.0 - low, 1.0 - s, False, t_in)
+            low = s
+        if s > top:
+            slabs.add(-1.0 - s, -1.0 - top, True, t_in)
+            top = s
+        rear = max(rear, -r - s)
+    r = float(radius(T, eps, creep))
+    final = slabs.arrays()
+    radii = radius(T - final[3], eps, creep) if final[3].size else np.zeros(0)
+
+    def pull(d: ArrayLike) -> Array:
+        return _population(s + np.asarray(d, float), r, alpha, d_w, final, radii, top,
+                           rear) / H0
+
+    # the threshold: the aged edge at its spinodal (eq. 26 from the held position), the
+    # fresh edge at its own, then a grid and a golden-section refinement of the best node
+    reach = max(r * yc - d_w - s, 0.0) + 1.0 + yc + abs(s)
+    cand = [float(pull(max(r * yc - d_w - s, 0.0))), float(pull(1.0 + yc + top - s)), 1.0]
+    grid = np.linspace(0.0, reach, _PULL_GRID)
+    vals = pull(grid)
+    k = int(np.argmax(vals))
+    lo, hi = float(grid[max(k - 1, 0)]), float(grid[min(k + 1, grid.size - 1)])
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    for _ in range(60):
+        x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+        if float(pull(x1)) >= float(pull(x2)):
+            hi = x2
+        else:
+            lo = x1
+    cand += [float(vals[k]), float(pull(0.5 * (lo + hi)))]
+    return max(cand), s
+
+
+def force_hold_shift(T: float, eps: float, alpha: float = 0.13, creep: str = "log",
+                     load: float = 0.0) -> float:
+    """Slider displacement (``a0``) during a hold at constant tangential force ``load``.
+
+    Negative: under a positive load the slider creeps back as the contacts age (their force
+    at fixed position grows, so the force balance moves them back); positive for a reversed
+    load. See :func:`static_friction` (``hold = "force"``).
+    """
+    T = check_scalar("T", T, 0.0, T_MAX)
+    eps = check_scalar("eps", eps, 0.0, EPS_MAX)
+    alpha = check_alpha(alpha)
+    check_choice("creep", creep, CREEP_LAWS)
+    check_age(np.asarray(T), np.asarray(eps), creep)
+    loaded_edge(load, alpha)
+    return _force_hold(T, eps, alpha, creep, float(load))[1]
 
 
 def static_slope_per_eps(alpha: float = 0.13) -> float:
