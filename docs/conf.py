@@ -43,6 +43,10 @@ autosummary_generate = True
 autodoc_default_options = {"members": True, "show-inheritance": False}
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
+# a type hint imported only for type checking is a bare name that both the defining module
+# and its re-export match (Output, SimulationResult, RSFResult): Sphinx links the first and
+# warns, which -W would turn into a failure
+suppress_warnings = ["ref.python"]
 # the docstrings are NumPy style
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True

@@ -34,7 +34,7 @@ Integrators (ours)
   death is resolved.
 
 Direct effect (``model.direct = A > 0``, :mod:`dryfriction.theory.direct`; ours)
---------------------------------------------------------------------------
+---------------------------------------------------------------------------------
 The friction force is ``g(V) F(X, ages)``: the population's force (the compiled kernel,
 unchanged) times the junction strength at the slider's present velocity ``V``.
 
