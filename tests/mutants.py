@@ -227,7 +227,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "return (K * (xpl - x) - f - eta * v) / M", "return (K * (xpl - x) - f + eta * v) / M",
        _DRV, "-k", "damped_inertial"),
     _m("stability: memory quadrature never refined with |lambda|", "theory/stability.py",
-       "level = np.ceil(np.log2(need)).astype(int)",
+       "level = np.ceil(np.log2(np.where(far, 1.0, need))).astype(int)",
        "level = np.zeros(need.shape, int)",
        "tests/test_stability.py", "-k", "independent"),
     _m("stability: spinodal tail of the endpoint expansion dropped", "theory/stability.py",
