@@ -93,6 +93,16 @@ def say(line: str) -> None:
     err.print(line, markup=False, highlight=False, soft_wrap=True)
 
 
+def compile_notice() -> None:
+    """One line on standard error when this run will compile the solvers first (a fresh
+    install that skipped ``make``'s warm-up, or edited kernels), so a pause is not silent."""
+    from ..warm import missing_kernel_caches
+
+    if missing_kernel_caches():
+        say("note: first run after installing: compiling the solvers once (about 15 s; "
+            "`python -m dryfriction.warm` does it ahead of time)")
+
+
 def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
     """Print ``result`` as JSON (``--json``) or as a table."""
     if as_json:

@@ -19,6 +19,7 @@ from .common import (
     FORMAT_HELP,
     app,
     cli_errors,
+    compile_notice,
     err,
     out,
     print_whole,
@@ -94,6 +95,7 @@ def fit_command(
     check_choice("model", model, ("cv", "rsf"))
     fmt, dpi = check_figure_format(fmt, dpi)
     check_output_dir(out_dir, force=force)
+    compile_notice()
     if len(data) == 1 and not is_project_csv(data[0]):
         from .records import fit_record
 

@@ -16,6 +16,7 @@ from .common import (
     FORMAT_HELP,
     app,
     cli_errors,
+    compile_notice,
     emit,
     err,
     many,
@@ -143,6 +144,7 @@ def rsf(
     init.resolve(params, drive)
     if out_dir is not None:
         check_output_dir(out_dir, force=force)
+    compile_notice()
     start = time.perf_counter()
     try:
         res = simulate_rsf(params, drive, init, output)
@@ -223,6 +225,7 @@ def simulate(
     fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out, force=force)
+    compile_notice()
     if isinstance(proto, RSFProtocol):
         _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi, figure)
         return
@@ -298,6 +301,7 @@ def compare(
     fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)
     check_output_dir(out, force=force)
+    compile_notice()
     c = compare_protocol(proto, state_law)
     report = {"protocol": protocol, **c.to_dict()}
 

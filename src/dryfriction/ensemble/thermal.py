@@ -1,10 +1,11 @@
 """The direct effect in the ensemble drivers (issue 11; :mod:`dryfriction.theory.direct`).
 
-The trap population (:mod:`dryfriction.ensemble.population`, :mod:`dryfriction.ensemble.kernel`) is the athermal one; the friction force
-is ``g(V)`` times its force, ``V`` the slider's present velocity (ours, the prefactor reading
-of :mod:`dryfriction.theory.direct`). These helpers are what :mod:`dryfriction.ensemble.driving` needs for that;
-each is the identity (or 1, or None) when ``model.direct == 0``, so the athermal drivers run
-their unchanged code.
+The trap population (:mod:`dryfriction.ensemble.population`,
+:mod:`dryfriction.ensemble.kernel`) is the athermal one; the friction force is ``g(V)`` times
+its force, ``V`` the slider's present velocity (ours, the prefactor reading of
+:mod:`dryfriction.theory.direct`). These helpers are what :mod:`dryfriction.ensemble.driving`
+needs for that; each is the identity (or 1, or None) when ``model.direct == 0``, so the
+athermal drivers run their unchanged code.
 """
 
 from __future__ import annotations
