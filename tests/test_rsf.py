@@ -591,3 +591,14 @@ def test_start_beside_an_unstable_steady_state_grows_like_the_reference() -> Non
         simulate_rsf(p, drive, RSFInitial(v=1.01 * vl), RSFOutput(rtol=1e-6))
         stiff = SpringSlider([Segment(vl, 10.0)], stiffness=2e3, damping=eta)
         assert "unstable_start" not in simulate_rsf(p, stiff).summary()
+
+
+@pytest.mark.parametrize("name", ["a", "b", "b2"])
+def test_rate_and_state_parameters_bounded_above(name: str) -> None:
+    # a = 1e308 used to run and report friction of 4e292: refused, naming the parameter
+    from dryfriction.rsf.law import MU_MAX, RateState
+
+    kw = {"a": 0.005, "b": 0.01, "dc": 1e-5, "mu0": 0.6, "v0": 1e-6, "b2": 0.0, "dc2": 1e-4}
+    kw[name] = 1e308
+    with pytest.raises(ValueError, match=rf"^{name} = .*<= {MU_MAX:g}"):
+        RateState(**kw)

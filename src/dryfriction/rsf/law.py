@@ -57,8 +57,9 @@ StateLaw = Literal["ageing", "slip"]
 STATE_LAWS: tuple[str, ...] = ("ageing", "slip")
 
 MU_MAX: float = 1e3
-"""Largest ``|mu0|`` accepted: friction coefficients are of order 1; beyond this the friction
-times the stiffness overflows long before a run could mean anything."""
+"""Largest ``|mu0|`` and largest ``a``, ``b``, ``b2`` accepted: friction coefficients and their
+rate and state parameters are of order 1 (``a, b ~ 0.01``); beyond this the friction times the
+stiffness overflows long before a run could mean anything (``a = 1e308`` ran to garbage)."""
 
 # Above this ln z, asinh(z) = ln(2z) + 1/(4 z^2) to double precision (next term ~ z^-4).
 _ASINH_LARGE = 20.0
@@ -114,13 +115,13 @@ class RateState:
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
-        set_(self, "a", check_scalar("a", self.a, 0.0, lo_open=True))
-        set_(self, "b", check_scalar("b", self.b, 0.0))
+        set_(self, "a", check_scalar("a", self.a, 0.0, MU_MAX, lo_open=True))
+        set_(self, "b", check_scalar("b", self.b, 0.0, MU_MAX))
         set_(self, "dc", check_scalar("dc", self.dc, 0.0, lo_open=True))
         set_(self, "mu0", check_scalar("mu0", self.mu0, -MU_MAX, MU_MAX))
         set_(self, "v0", check_scalar("v0", self.v0, 0.0, V_MAX, lo_open=True))
         check_choice("state_law", self.state_law, STATE_LAWS)
-        set_(self, "b2", check_scalar("b2", self.b2, 0.0))
+        set_(self, "b2", check_scalar("b2", self.b2, 0.0, MU_MAX))
         if self.dc2 is None:
             if self.b2 != 0.0:
                 raise ValueError(f"b2 = {self.b2:g} needs dc2 (a second state variable)")
