@@ -40,13 +40,14 @@ import numpy as np
 
 from ..io.data import SeriesData
 from ..io.files import write_csv
+from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
 
-__all__ = ["StepsResult", "SeriesWindow", "fit_steps", "series_windows", "step_data",
+__all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
            "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise", "quick_profile",
            "PROFILED"]
@@ -64,35 +65,23 @@ STEP_COLUMNS: tuple[str, ...] = (
 1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one)."""
 
 
-@dataclass(frozen=True)
-class SeriesWindow:
-    """A window of a SeriesData around one change of load velocity (samples
-    ``[i_start, i_end)``); the fields of ``io.lab``'s ``StepWindow`` that the fit uses."""
-
-    index: int
-    kind: str
-    i_start: int
-    i_end: int
-    t_change: float
-    v_before: float
-    v_after: float
-
-
-def series_windows(data: SeriesData) -> tuple[SeriesWindow, ...]:
+def series_windows(data: SeriesData) -> tuple[StepWindow, ...]:
     """One window per change of ``v_load`` to a sliding velocity: from halfway through the
     previous stretch to the end of the stretch after the change (a hold and the reload after
-    it make one "shs" window)."""
+    it make one "shs" window), as :class:`dryfriction.io.labsteps.StepWindow` (``t_change`` in
+    the series' time, s)."""
     v = data.v_load
     change = [0, *(np.flatnonzero(np.diff(v) != 0.0) + 1).tolist(), len(v)]
-    out: list[SeriesWindow] = []
+    out: list[StepWindow] = []
     k = 1
     while k < len(change) - 1:
         i0 = (change[k - 1] + change[k]) // 2
         kind, j = "step", k
         if v[change[k]] == 0.0 and k + 1 < len(change) - 1:
             kind, j = "shs", k + 1
-        out.append(SeriesWindow(len(out), kind, i0, change[j + 1], float(data.t[change[k]]),
-                                float(v[change[k] - 1]), float(v[change[j]])))
+        hold = float(data.t[change[j]] - data.t[change[k]])  # 0 for a plain step (j = k)
+        out.append(StepWindow(len(out), kind, i0, change[j + 1], float(data.t[change[k]]),
+                              float(v[change[k] - 1]), float(v[change[j]]), hold))
         k = j + 1
     return tuple(out)
 
@@ -142,7 +131,7 @@ def _window_data(data: SeriesData, w: Any) -> SeriesData:
                       source=f"{data.source} [step {getattr(w, 'index', '?')}]")
 
 
-def step_data(record: Any, windows: Sequence[Any], segments: Sequence[Any] | None = None
+def step_data(record: Any, windows: Sequence[StepWindow], segments: Sequence[Any] | None = None
               ) -> list[SeriesData]:
     """Each window's data as a SeriesData (a record's load velocity from ``segments``)."""
     data = _as_series(record, segments)
@@ -397,7 +386,7 @@ def _start(prev: FitResult | None, model: RSFModel, d: SeriesData) -> dict[str, 
 
 def fit_steps(
     record: Any,
-    windows: Sequence[Any] | None = None,
+    windows: Sequence[StepWindow] | None = None,
     segments: Sequence[Any] | None = None,
     *,
     stiffness: float | str = "fit",
