@@ -17,7 +17,7 @@ its ``Phi0/a`` is ``Phi00/a0``, and aged traps scale as ``a_r^2`` in it, eq. 23)
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.axes import Axes
@@ -300,6 +300,21 @@ def fig2b_population_at_threshold(
 # --------------------------------------------------------------------------------------------
 
 
+
+def _finish_log_panel(ax: Any, x: Any, xlabel: str, ylabel: str, title: str, *,
+                      loc: str = "upper right", legend_size: float = LEGEND_SIZE,
+                      ncol: int = 1) -> None:
+    """The common finish of a panel over a logarithmic axis spanning ``x``: limits, labels,
+    title, legend and a light major grid."""
+    ax.set_xscale("log")
+    ax.set_xlim(x[0], x[-1])
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=TITLE_SIZE)
+    ax.legend(fontsize=legend_size, loc=loc, ncol=ncol)
+    ax.grid(True, which="major", color="0.9")
+
+
 def fig3_static_friction(
     alpha: float = 0.13, eps_values: Sequence[float] = EPS_FIGURES, T_range=(0.01, 100.0),
     n: int = 201, creep: str = "log", ax: Axes | None = None,
@@ -324,13 +339,12 @@ def fig3_static_friction(
     ax.plot([], [], color="k", lw=0.8, ls=(0, (2.5, 2.5)),
             label=f"first order, eq. 28 (within {gap:.1g})")
     _label_curves(ax, T, ys, 30.0)
-    ax.set_xscale("log")
-    ax.set_xlim(T[0], T[-1])
-    ax.set_xlabel(r"reduced waiting time $T = t_w/t_0$")
-    ax.set_ylabel(r"static friction $\mu_s = F_s/F_{el}$")
-    ax.set_title(rf"Fig. 3 — static friction, $\alpha$ = {alpha:g}", fontsize=TITLE_SIZE)
-    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
-    ax.grid(True, which="major", color="0.9")
+    _finish_log_panel(
+        ax, T,
+        r"reduced waiting time $T = t_w/t_0$",
+        r"static friction $\mu_s = F_s/F_{el}$",
+        rf"Fig. 3 — static friction, $\alpha$ = {alpha:g}",
+        loc="upper left")
     return fig, ax
 
 
@@ -353,13 +367,11 @@ def fig5_steady_friction(
         ax.plot(u[low], steady_friction_low_velocity(u[low], e, alpha), color="0.5", lw=0.8,
                 ls=":", label="low-velocity expansion, eq. 35" if k == 0 else None)
     _label_curves(ax, u, ys, 0.03)
-    ax.set_xscale("log")
-    ax.set_xlim(u[0], u[-1])
-    ax.set_xlabel(r"reduced velocity $u = V/V^*$,  $V^* = a_0/t_0$")
-    ax.set_ylabel(r"dynamic friction $\mu_d = F_d/F_{el}$")
-    ax.set_title(rf"Fig. 5 — steady dynamic friction, $\alpha$ = {alpha:g}", fontsize=TITLE_SIZE)
-    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
-    ax.grid(True, which="major", color="0.9")
+    _finish_log_panel(
+        ax, u,
+        r"reduced velocity $u = V/V^*$,  $V^* = a_0/t_0$",
+        r"dynamic friction $\mu_d = F_d/F_{el}$",
+        rf"Fig. 5 — steady dynamic friction, $\alpha$ = {alpha:g}")
     return fig, ax
 
 
@@ -427,13 +439,11 @@ def fig6_dieterich(
             label=rf"$C_\infty$ = {c_inf:.4f} (ours, asymptotic)")
     ax.plot(u, static_friction(c_ls / u, eps, alpha, creep), color="C0", lw=1.4,
             label=rf"$C_{{LS}}$ = {c_ls:.4f} (ours, least squares)")
-    ax.set_xscale("log")
-    ax.set_xlim(u[0], u[-1])
-    ax.set_xlabel(r"reduced velocity $u = V/V^*$  (static curves at $T = C/u$)")
-    ax.set_ylabel(r"$\mu_d(u)$,  $\mu_s(T = C/u)$   [$F_{el}$]")
-    ax.set_title(rf"Fig. 6 — Dieterich comparison, $\varepsilon$ = {eps:g}", fontsize=TITLE_SIZE)
-    ax.legend(fontsize=LEGEND_SIZE, loc="upper right")
-    ax.grid(True, which="major", color="0.9")
+    _finish_log_panel(
+        ax, u,
+        r"reduced velocity $u = V/V^*$  (static curves at $T = C/u$)",
+        r"$\mu_d(u)$,  $\mu_s(T = C/u)$   [$F_{el}$]",
+        rf"Fig. 6 — Dieterich comparison, $\varepsilon$ = {eps:g}")
     return fig, ax
 
 
@@ -453,14 +463,12 @@ def extra_loaded_static(
     for k, f_w in enumerate(loads):
         ax.plot(T, static_friction(T, eps, alpha, load=f_w), color=_COLORS[k % 5], lw=1.8,
                 label=rf"$f_w$ = {f_w:g} $F_{{el}}$" + (" (at rest, paper)" if f_w == 0 else ""))
-    ax.set_xscale("log")
-    ax.set_xlim(T[0], T[-1])
-    ax.set_xlabel(r"reduced waiting time $T = t_w/t_0$")
-    ax.set_ylabel(r"static friction $\mu_s = F_s/F_{el}$")
-    ax.set_title(rf"Extra — ageing under a tangential load, $\varepsilon$ = {eps:g}",
-                 fontsize=TITLE_SIZE)
-    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
-    ax.grid(True, which="major", color="0.9")
+    _finish_log_panel(
+        ax, T,
+        r"reduced waiting time $T = t_w/t_0$",
+        r"static friction $\mu_s = F_s/F_{el}$",
+        rf"Extra — ageing under a tangential load, $\varepsilon$ = {eps:g}",
+        loc="upper left")
     return fig, ax
 
 
@@ -483,13 +491,14 @@ def extra_creep_laws(
                 alpha=0.55)
     ax.plot([], [], color="k", lw=1.4, label="log law (eq. 17)")
     ax.plot([], [], color="k", lw=1.4, ls="--", label="Eyring–Nabarro (eqs. 15–16)")
-    ax.set_xscale("log")
-    ax.set_xlim(x[0], x[-1])
-    ax.set_xlabel(r"$T = t_w/t_0$  (static)   or   $u = V/V^*$  (steady)")
-    ax.set_ylabel(r"$\mu_s$, $\mu_d$   [$F_{el}$]")
-    ax.set_title("Extra — logarithmic vs exact Eyring–Nabarro creep", fontsize=TITLE_SIZE)
-    ax.legend(fontsize=7, loc="upper center", ncol=2)
-    ax.grid(True, which="major", color="0.9")
+    _finish_log_panel(
+        ax, x,
+        r"$T = t_w/t_0$  (static)   or   $u = V/V^*$  (steady)",
+        r"$\mu_s$, $\mu_d$   [$F_{el}$]",
+        "Extra — logarithmic vs exact Eyring–Nabarro creep",
+        loc="upper center",
+        legend_size=7,
+        ncol=2)
     return fig, ax
 
 
