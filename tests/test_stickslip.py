@@ -14,6 +14,7 @@ from dryfriction.cli import app
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.io.sweep import MAX_POINTS, load_sweep
 from dryfriction.theory.stability import critical_stiffness
+from sweep_protocols import spring_sweep
 
 runner = CliRunner()
 
@@ -176,29 +177,7 @@ def test_continuation_in_K_inertial(runslow):
 # ---------------------------------------------------------------- commands
 
 
-PROTO = """
-[model]
-eps = 0.04
-
-[ensemble]
-traps_per_a0 = 50
-initial = "steady"
-initial_velocity = 0.1
-
-[drive]
-kind = "spring"
-stiffness = 0.05
-mass = 0.0
-segments = [{velocity = 0.1, slip = 30.0}]
-
-[output]
-every_slip = 0.05
-
-[stickslip]
-transient = 10.0
-
-[sweep]
-"""
+PROTO = spring_sweep(every_slip=0.05)
 
 
 def _write(tmp_path, sweep, name="p.toml"):

@@ -17,6 +17,7 @@ import sweep_runners
 from dryfriction.analysis.linear import linear_summary
 from dryfriction.io.sweep import MAX_POINTS, load_sweep, parse_sweep, point_key, run_sweep
 from dryfriction.theory.stability import critical_stiffness
+from sweep_protocols import spring_sweep
 
 cloudpickle.register_pickle_by_value(sweep_runners)
 
@@ -279,29 +280,7 @@ def test_scheduler_that_is_not_dask_fails_fast_and_a_real_one_works(tmp_path):
 
 # ------------------------------------------------------------------ the commands
 
-CLI_PROTO = """\
-[model]
-eps = 0.04
-
-[ensemble]
-traps_per_a0 = 50
-initial = "steady"
-initial_velocity = 0.1
-
-[drive]
-kind = "spring"
-stiffness = 0.05
-mass = 0.0
-segments = [{velocity = 0.1, slip = SLIP}]
-
-[output]
-every_slip = 0.5
-
-[stickslip]
-transient = 10.0
-
-[sweep]
-"""
+CLI_PROTO = spring_sweep(slip="SLIP")
 
 
 def _cli_proto(tmp_path, sweep, slip=30.0, name="p.toml", **replace):

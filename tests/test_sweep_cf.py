@@ -14,35 +14,13 @@ from typer.testing import CliRunner
 
 from dryfriction.cli import app
 from dryfriction.theory.stability import rightmost_root, steady_response
+from sweep_protocols import spring_sweep
 
 EXAMPLE = Path(__file__).parents[1] / "examples" / "phase_diagram.toml"
 
-STICK_SLIP = """\
-# two springs — one soft, one stiff
-[model]
-alpha = 0.13
-eps = 0.04
-
-[ensemble]
-traps_per_a0 = 50
-initial = "steady"
-initial_velocity = 0.1
-
-[drive]
-kind = "spring"
-stiffness = 0.05
-mass = 0.0
-segments = [{velocity = 0.1, slip = 16.0}]
-
-[output]
-every_slip = 0.05
-
-[stickslip]
-transient = 6.0
-
-[sweep]
-"drive.stiffness" = [0.02, 0.5]
-"""
+STICK_SLIP = spring_sweep('"drive.stiffness" = [0.02, 0.5]\n', slip=16.0, every_slip=0.05,
+                          transient=6.0, alpha=0.13,
+                          header="# two springs — one soft, one stiff\n")
 
 
 def _sweep(tmp_path: Path, protocol: Path, *extra: str) -> xr.Dataset:

@@ -13,32 +13,11 @@ from pathlib import Path
 
 import pytest
 
+from sweep_protocols import spring_sweep
+
 psutil = pytest.importorskip("psutil")
 
-PROTO = """\
-[model]
-eps = 0.04
-
-[ensemble]
-traps_per_a0 = 50
-initial = "steady"
-initial_velocity = 0.1
-
-[drive]
-kind = "spring"
-stiffness = 0.05
-mass = 0.0
-segments = [{velocity = 0.1, slip = 30.0}]
-
-[output]
-every_slip = 0.5
-
-[stickslip]
-transient = 10.0
-
-[sweep]
-"drive.stiffness" = [0.04, 0.05, 0.06, 0.07]
-"""
+PROTO = spring_sweep('"drive.stiffness" = [0.04, 0.05, 0.06, 0.07]\n')
 
 
 def _env(**extra: str) -> dict[str, str]:
