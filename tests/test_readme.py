@@ -4,7 +4,8 @@ Every ``dryfriction ...`` line of a ```bash, ```sh or ```console block of README
 fresh temporary folder holding a copy of ``examples/``, with the environment's ``bin`` first on
 the PATH (what the README's set-up lines, ``make demo`` and ``source .venv/bin/activate``,
 give), and must exit 0. Blocks fenced as ```text are synopses (``[--json]``, ``DIR``) and are
-not run. The few lines too long for the suite are listed in :data:`SKIPPED`, with why.
+not run. Lines that take long (:data:`SLOW`) are marked ``slow``: CI runs them in its
+``--runslow`` subset (Makefile ``SLOW_SUBSET``), all but the phase diagram; none is skipped.
 """
 
 from __future__ import annotations
@@ -25,7 +26,6 @@ SHELL_BLOCK = re.compile(r"^```(?:bash|sh|console|shell)[ \t]*\n(.*?)^```", re.M
 # the README's set-up lines: what the test environment already is
 SETUP = ("make", "source", ".", "cd")
 
-SKIPPED: dict[str, str] = {}
 # marked slow: CI runs all but the phase diagram (a 3 x 3 stick-slip grid on Dask, ~70 s) in
 # its --runslow subset (Makefile SLOW_SUBSET); `pytest --runslow` runs every one
 SLOW = ("dryfriction fit", "dryfriction compare", "dryfriction simulate", "dryfriction reproduce",
@@ -66,13 +66,9 @@ def test_readme_has_runnable_lines_and_only_known_setup() -> None:
     assert len(COMMANDS) >= 8
     others = [line for line in LINES if not line.startswith("dryfriction")]
     assert all(line.split()[0] in SETUP for line in others), others
-    assert set(SKIPPED) <= set(COMMANDS), "a skipped line is no longer in the README"
-    assert len(SKIPPED) <= 2
 
 
 def _marks(line: str) -> list[pytest.MarkDecorator]:
-    if line in SKIPPED:
-        return [pytest.mark.skip(reason=f"skipped by design: {SKIPPED[line]}")]
     return [pytest.mark.slow] if line.startswith(SLOW) else []
 
 
