@@ -30,6 +30,7 @@ class Truth:
     stiffness: float = 3000.0
     trend: float = -8.0
     noise: float = 3e-4
+    rho: float = 0.0  # lag-1 autocorrelation of the noise (AR(1), stationary std ``noise``)
 
 
 def synth_record(truth: Truth, velocities: list[float], duration_slip: float = 600e-6,
@@ -70,5 +71,10 @@ def synth_record(truth: Truth, velocities: list[float], duration_slip: float = 6
         t_now += n * dt
     t = np.concatenate(ts)
     x = np.concatenate(xs)
-    mu = np.concatenate(taus) + tr.trend * x + rng.normal(0.0, tr.noise, len(t))
+    e = rng.normal(0.0, tr.noise, len(t))
+    if tr.rho:  # AR(1) with the same stationary standard deviation
+        from scipy.signal import lfilter
+        s = math.sqrt(1.0 - tr.rho**2)
+        e[1:] = lfilter([s], [1.0, -tr.rho], e[1:], zi=[tr.rho * e[0]])[0]
+    mu = np.concatenate(taus) + tr.trend * x + e
     return t, np.concatenate(vs), mu, x

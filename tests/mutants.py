@@ -88,6 +88,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "return Z95 if sigma_given or dof <= 0 else float(stats.t.ppf(0.975, dof))",
        "return Z95",
        "tests/test_fit.py", "-k", "student_t"),
+    _m("HAC covariance: prewhitened scores not recoloured", "fit/statistics.py",
+       "    omega = color @ omega_e @ color.T\n", "    omega = omega_e\n",
+       "tests/test_fit_hac.py"),
+    _m("step intervals: robust inflation ignored", "fit/steps.py",
+       "        return self.white if self.robust is None else self.robust\n",
+       "        return self.white\n",
+       "tests/test_fit_steps.py", "-k", "correlated_noise"),
     # --- trap geometry (theory/trap.py) ----------------------------------------------------
     _m("spinodal y_c with 2 alpha", "theory/trap.py",
        "(1.0 - self.alpha) ** 2 / (4.0 * self.alpha) if self.pinned",

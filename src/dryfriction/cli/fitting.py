@@ -62,6 +62,9 @@ def fit_command(
                                  "of the detected one (see the README)."),
     joint: bool = typer.Option(False, "--joint", help="Record: also fit all steps with one "
                                "a, b, Dc and one stiffness."),
+    errors: str = typer.Option("hac", "--errors", help="Record: uncertainties that allow for "
+                               "autocorrelated residuals (hac, default) or that assume "
+                               "independent noise (white)."),
     run_cv: bool = typer.Option(False, "--run-cv", help="Record: also fit the trap model "
                                 "(cv) to each step and compare (costly: its estimate is "
                                 "printed without this flag)."),
@@ -103,11 +106,12 @@ def fit_command(
                    stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
                    profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
-                   creep=creep,
+                   creep=creep, errors=errors,
                    json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)
         return
     for flag, given in (("--columns", columns), ("--segments", segments),
-                        ("--joint", joint or None), ("--run-cv", run_cv or None)):
+                        ("--joint", joint or None), ("--run-cv", run_cv or None),
+                        ("--errors", None if errors == "hac" else errors)):
         if given is not None:
             raise ValueError(f"{flag} is for a laboratory record, not the project's CSV files")
     profile = True if profile is None else profile

@@ -91,15 +91,17 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                segments: str | None, stiffness: float | str, trend: bool, law: str,
                joint: bool, profile: bool, run_cv: bool, alpha: float, creep: str,
                json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
-               figure: bool = True) -> None:
+               figure: bool = True, errors: str = "hac") -> None:
     """Read, slice, fit, print and write one laboratory record (module docstring)."""
     import typer
 
     from ..fit import CVModel, compare_models, fit
-    from ..fit.steps import fit_steps, step_data, write_steps_csv
+    from ..fit.steps import ERRORS, fit_steps, step_data, write_steps_csv
     from ..io import lab
     from ..io.files import output_directory, write_json
+    from ..validation import check_choice
 
+    check_choice("errors", errors, ERRORS)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     segs = lab.parse_segments(segments, rec) if segments else lab.detect_segments(rec)
     wins = lab.slice_steps(rec, segs)
@@ -117,14 +119,15 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     with Progress(console=err, transient=True, disable=len(wins) < 2) as bar:
         task = bar.add_task("fitting steps", total=len(wins))
         res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                        joint=joint, profile=profile,
+                        joint=joint, profile=profile, errors=errors,
                         progress=lambda done, _n: bar.update(task, completed=done))
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
                               "model": "rsf", "options": {"stiffness": stiffness,
                                                           "trend": trend, "law": law,
-                                                          "profile": profile},
+                                                          "profile": profile,
+                                                          "errors": errors},
                               **res.to_dict()}
     if run_cv:
         comp = []

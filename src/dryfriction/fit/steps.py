@@ -50,7 +50,7 @@ from .results import FitResult
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
            "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise", "quick_profile",
-           "PROFILED"]
+           "PROFILED", "ERRORS", "StepCovariance", "step_covariance"]
 
 PEAK_SAMPLES = 11
 """Samples averaged at the peak (module docstring)."""
@@ -59,10 +59,17 @@ STEP_COLUMNS: tuple[str, ...] = (
     "index", "kind", "t_change", "v_before", "v_after", "a", "b", "a_minus_b", "dc",
     "stiffness", "trend", "mu0", "sigma_a", "sigma_b", "sigma_a_minus_b", "sigma_dc",
     "sigma_stiffness", "sigma_trend", "a_lo", "a_hi", "b_lo", "b_hi", "dc_lo", "dc_hi",
-    "rms", "noise", "white_noise", "peak_residual", "n", "success",
+    "rms", "noise", "white_noise", "peak_residual", "n", "success", "errors", "resid_rho1",
+    "hac_lags",
 )
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
-1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one)."""
+1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one; ``errors`` says how
+the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covariance`),
+``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used)."""
+
+ERRORS = ("hac", "white")
+"""How :func:`fit_steps` computes uncertainties: ``"hac"`` (default) allows for autocorrelated
+residuals (:func:`.statistics.hac_covariance`), ``"white"`` assumes independent noise."""
 
 
 def series_windows(data: SeriesData) -> tuple[StepWindow, ...]:
@@ -158,12 +165,97 @@ PROFILED = ("a", "b", "dc")
 """The parameters :func:`quick_profile` bounds (the others keep their Wald intervals)."""
 
 
-def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED
-                  ) -> dict[str, tuple[float, float]]:
+@dataclass(frozen=True)
+class StepCovariance:
+    """The covariance of one window's fit, in the fitted (internal) variables.
+
+    Attributes
+    ----------
+    specs : tuple of ParamSpec
+    theta : ndarray
+        The optimum (internal variables).
+    cost : float
+        Half the residual sum of squares there.
+    dof : int
+        Samples minus parameters.
+    white : Covariance
+        ``s^2 (J^T J)^-1``, independent noise (``s^2 = RSS/dof``).
+    robust : Covariance or None
+        The autocorrelation-robust sandwich (:func:`.statistics.hac_covariance`); ``None``
+        with ``errors="white"``.
+    rho1 : float
+        Lag-1 autocorrelation of the residuals.
+    lags : int
+        The robust estimate's Bartlett bandwidth (0 for ``"white"``).
+    """
+
+    specs: tuple[ParamSpec, ...]
+    theta: Array
+    cost: float
+    dof: int
+    white: Any
+    robust: Any
+    rho1: float
+    lags: int
+
+    @property
+    def used(self) -> Any:
+        """The covariance the intervals use: the robust one where there is one."""
+        return self.white if self.robust is None else self.robust
+
+    def inflation(self, j: int) -> float:
+        """Robust over white standard error of parameter ``j`` (1 for ``"white"``): the factor
+        by which correlated residuals widen its interval. Never below 1 (ours): residuals
+        that look anti-correlated are not taken to make a fit more precise than independent
+        noise would."""
+        if self.robust is None:
+            return 1.0
+        w, r = float(self.white.stderr[j]), float(self.robust.stderr[j])
+        return max(r / w, 1.0) if w > 0 and math.isfinite(r) else math.inf
+
+
+def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCovariance:
+    """The covariance of a window's rate-and-state fit ``r`` on data ``d`` (ours).
+
+    ``"white"``: ``s^2 (J^T J)^-1`` with ``s^2 = RSS/(n - p)``, as the engine gives.
+    ``"hac"``: also the autocorrelation-robust sandwich. A measured record's residuals are
+    correlated over many samples (apparatus fluctuations, slow drifts the model has no term
+    for; on the shared sepiolite record the lag-1 autocorrelation is near 1), so the white
+    intervals are far too narrow there; the robust ones count the correlated residuals as the
+    fewer independent samples they are.
+    """
+    from .problem import Problem
+    from .statistics import covariance, hac_bandwidth, hac_covariance
+
+    check_choice("errors", errors, ERRORS)
+    m = r.fitted_model
+    assert isinstance(m, RSFModel)
+    specs = tuple(m.parameters(frozenset({"series"})))
+    prob = Problem(m, [d], specs, {})
+    val = {p.name: p.value for p in r.parameters}
+    theta = np.array([s.to_internal(val[s.name]) for s in specs])
+    res = prob.residuals(theta)
+    cost = 0.5 * float(res @ res)
+    dof = prob.n - prob.p
+    J = prob.jacobian(theta)
+    white = covariance(J, 2.0 * cost / dof)
+    c = res - np.mean(res)
+    rho1 = float(c[1:] @ c[:-1] / (c @ c)) if c @ c > 0 else 0.0
+    if errors == "white":
+        return StepCovariance(specs, theta, cost, dof, white, None, rho1, 0)
+    robust = hac_covariance(J, res)
+    return StepCovariance(specs, theta, cost, dof, white, robust, rho1, hac_bandwidth(res))
+
+
+def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED,
+                  cov: StepCovariance | None = None) -> dict[str, tuple[float, float]]:
     """95 % profile-likelihood intervals of ``names`` from a few constrained fits (ours).
 
     The profile ``D(psi) = 2 (cost(psi) - cost_min)/s^2`` is found where it crosses
-    ``t_{0.975, n-p}^2`` on each side: the first trial is the Wald limit, the other
+    ``(c t_{0.975, n-p})^2`` on each side, ``c`` the robust inflation of that parameter
+    (:meth:`StepCovariance.inflation`; 1 with independent noise, the default when ``cov`` is
+    not given): with correlated residuals the cost rises ``c^2`` times faster than their
+    independent information warrants. The first trial is the Wald limit, the other
     parameters started from their conditional mean there (covariance); the next trials are
     secant steps on the signed root ``sqrt D``, which is linear in the parameter for a
     quadratic profile, until a trial is within 2 % of the quantile (at most four fits a
@@ -174,26 +266,21 @@ def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED
     up or the root does not grow keeps its Wald limit.
     """
     from .problem import Problem
-    from .statistics import covariance, quantile_95
+    from .statistics import quantile_95
 
-    m = r.fitted_model
-    assert isinstance(m, RSFModel)
-    specs = list(m.parameters(frozenset({"series"})))
-    prob = Problem(m, [d], specs, {})
-    val = {p.name: p.value for p in r.parameters}
-    theta = np.array([s.to_internal(val[s.name]) for s in specs])
-    cost = float(r.goodness["cost"])
-    dof = prob.n - prob.p
-    s2 = 2.0 * cost / dof
-    cov = covariance(prob.jacobian(theta), s2)
-    z = quantile_95(False, dof)
+    sc = step_covariance(r, d, "white") if cov is None else cov
+    specs, theta, cost = list(sc.specs), sc.theta, sc.cost
+    prob = Problem(r.fitted_model, [d], specs, {})
+    s2 = 2.0 * cost / sc.dof
+    cm = sc.white.matrix
     out: dict[str, tuple[float, float]] = {}
     for name in names:
         j = [s.name for s in specs].index(name)
         free = np.ones(prob.p, bool)
         free[j] = False
-        se = float(cov.stderr[j])
-        if not (math.isfinite(se) and se > 0):
+        z = quantile_95(False, sc.dof) * sc.inflation(j)
+        se = float(sc.white.stderr[j])
+        if not (math.isfinite(se) and se > 0 and math.isfinite(z)):
             continue
         lims = []
         for sign in (-1.0, 1.0):
@@ -201,7 +288,7 @@ def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED
             pts: list[tuple[float, float]] = [(float(theta[j]), 0.0)]
             psi = wald
             for _ in range(4):
-                t0 = theta + cov.matrix[:, j] / cov.matrix[j, j] * (psi - theta[j])
+                t0 = theta + cm[:, j] / cm[j, j] * (psi - theta[j])
                 t0[j] = psi
                 _, c, _ = prob.solve(t0, free)
                 root = math.sqrt(max(2.0 * (c - cost) / s2, 0.0))
@@ -218,27 +305,44 @@ def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED
     return out
 
 
-def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel,
+def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovariance,
          profiles: Mapping[str, tuple[float, float]] | None = None) -> dict[str, Any]:
+    """One row of the table: values, standard errors and 95 % intervals from ``sc`` (the
+    robust covariance where there is one; delta method for ``log`` parameters and ``a - b``),
+    the profile limits where ``profiles`` has them."""
+    from .statistics import quantile_95
+
     est = {p.name: p for p in r.parameters}
+    names = [s.name for s in sc.specs]
+    cov = sc.used
+    z = quantile_95(False, sc.dof)
 
     def val(name: str, default: float = math.nan) -> float:
         return float(est[name].value) if name in est else default
 
+    def grad(name: str) -> Array:  # d(value)/d(internal variables)
+        g = np.zeros(len(names))
+        if name in names:
+            j = names.index(name)
+            g[j] = val(name) if sc.specs[j].log else 1.0
+        return g
+
+    def se_of(g: Array) -> float:
+        v = float(g @ cov.matrix @ g) if np.any(g) and not cov.singular else math.nan
+        return math.sqrt(max(v, 0.0)) if math.isfinite(v) else math.nan
+
     def se(name: str) -> float:
-        p = est.get(name)
-        return math.nan if p is None or p.stderr is None else float(p.stderr)
+        return se_of(grad(name)) if name in names else math.nan
 
     def iv(name: str) -> tuple[float, float]:
-        p = est.get(name)
         if profiles and name in profiles:
             return profiles[name]
-        if p is None:
+        if name not in names or cov.singular:
             return math.nan, math.nan
-        if p.profile_95 is not None:
-            lo, hi = p.profile_95
-            return (math.nan if lo is None else lo), (math.nan if hi is None else hi)
-        return p.interval_95 if p.interval_95 is not None else (math.nan, math.nan)
+        j = names.index(name)
+        h = z * float(cov.stderr[j])
+        return (sc.specs[j].from_internal(sc.theta[j] - h),
+                sc.specs[j].from_internal(sc.theta[j] + h))
 
     values = {p.name: p.value for p in r.parameters}
     fitted = r.fitted_model if isinstance(r.fitted_model, RSFModel) else model
@@ -246,7 +350,6 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel,
     resid = d.mu - mu_model
     peak, _ = _peak_residual(d, mu_model)
     tail = slice(len(d) * 2 // 3, len(d))
-    amb = r.derived.get("a_minus_b", {})
     k = val("stiffness", float(fitted.stiffness) if not isinstance(fitted.stiffness, str)
             else math.nan)
     row: dict[str, Any] = {
@@ -257,14 +360,16 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel,
         "a": val("a"), "b": val("b"), "a_minus_b": val("a") - val("b"), "dc": val("dc"),
         "stiffness": k, "trend": val("trend", 0.0), "mu0": val("mu0"),
         "sigma_a": se("a"), "sigma_b": se("b"),
-        "sigma_a_minus_b": math.nan if amb.get("stderr") is None else float(amb["stderr"]),
+        "sigma_a_minus_b": se_of(grad("a") - grad("b")),
         "sigma_dc": se("dc"), "sigma_stiffness": se("stiffness"), "sigma_trend": se("trend"),
     }
     for name in ("a", "b", "dc"):
         row[f"{name}_lo"], row[f"{name}_hi"] = iv(name)
     row.update(rms=float(np.sqrt(np.mean(resid**2))), noise=steady_noise(d.t[tail], d.mu[tail]),
                white_noise=white_noise(d.mu[tail]),
-               peak_residual=peak, n=len(d), success=bool(r.success))
+               peak_residual=peak, n=len(d), success=bool(r.success),
+               errors="white" if sc.robust is None else "hac", resid_rho1=sc.rho1,
+               hac_lags=sc.lags)
     return row
 
 
@@ -395,6 +500,7 @@ def fit_steps(
     joint: bool = False,
     profile: bool = False,
     progress: Callable[[int, int], None] | None = None,
+    errors: str = "hac",
 ) -> StepsResult:
     """Fit rate-and-state friction to each step window of a record (module docstring).
 
@@ -426,12 +532,16 @@ def fit_steps(
         covariance.
     progress : callable, optional
         Called as ``progress(done, total)`` after each window.
+    errors : {"hac", "white"}
+        ``"hac"`` (default): standard errors and intervals allow for autocorrelated residuals
+        (:func:`step_covariance`); ``"white"``: independent noise assumed.
 
     Returns
     -------
     StepsResult
     """
     check_choice("law", law, ("ageing", "slip"))
+    check_choice("errors", errors, ERRORS)
     data = _as_series(record, segments)
     wins = list(series_windows(data) if windows is None else windows)
     if not wins:
@@ -451,8 +561,9 @@ def fit_steps(
             r2 = fit(d, model, profile=False)
             r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
         fits.append(r)
-        prof = quick_profile(r, d) if profile and r.success else None
-        rows.append(_row(w, d, r, model, prof))
+        sc = step_covariance(r, d, errors)
+        prof = quick_profile(r, d, cov=sc) if profile and r.success else None
+        rows.append(_row(w, d, r, model, sc, prof))
         if not r.success:
             notes.append(f"step {rows[-1]['index']}: the fit did not succeed ({r.message})")
         prev = r
