@@ -47,16 +47,17 @@ def start_fork_server(preload: Sequence[str] = ()) -> bool:
     this call started it (``False``: one was running already, or it could not start).
 
     Returns at once: the server imports in its own process, while the caller goes on. The
-    modules are the main module (which a worker would otherwise import again, the way
-    ``spawn`` does), ``distributed`` and ``preload`` (a module that fails to import is
-    skipped, by multiprocessing). A server already running (started by other code of this
-    process) is used as it is and left running.
+    modules are ``distributed`` and ``preload`` (a module that fails to import is skipped, by
+    multiprocessing). Not the main module: the server is never told its path (CPython 3.11),
+    and each worker runs a main script again as ``spawn`` does (cheap when what it imports
+    is preloaded; a ``-m`` package's ``__main__`` is not run again). A server already running
+    (started by other code of this process) is used as it is and left running.
     """
     from multiprocessing import forkserver
 
     if fork_server_running():
         return False
-    forkserver.set_forkserver_preload(["__main__", "distributed", *preload])
+    forkserver.set_forkserver_preload(["distributed", *preload])
     added = {k: v for k, v in WORKER_ENVIRON.items() if k not in os.environ}
     os.environ.update(added)  # the server inherits the environment when it starts
     try:
