@@ -105,6 +105,9 @@ def test_no_private_name_read_across_modules(module, path):
 
 # private names that are public API of the standard library or of NumPy
 _PUBLIC_UNDERSCORED = {"_replace", "_asdict", "_fields", "_make", "_getframe", "_exit"}
+# multiprocessing's fork server has no public way to say whether it runs or to stop it: the
+# sweep's cluster (io/cluster.py only) uses the names CPython's own tests use
+_FORK_SERVER_NAMES = {"_forkserver", "_forkserver_pid", "_stop"}
 
 
 @pytest.mark.parametrize("module, path", MODULES, ids=[m for m, _ in MODULES])
@@ -116,6 +119,7 @@ def test_no_private_attribute_of_another_object(module, path):
            for node in ast.walk(tree)
            if isinstance(node, ast.Attribute) and node.attr.startswith("_")
            and not node.attr.startswith("__") and node.attr not in _PUBLIC_UNDERSCORED
+           and not (module == "dryfriction.io.cluster" and node.attr in _FORK_SERVER_NAMES)
            and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))]
     assert not bad, "; ".join(bad)
 

@@ -217,10 +217,10 @@ def test_failed_points_are_computed_again_on_the_next_run(tmp_path):
 def test_no_http_server_and_no_process_left(tmp_path):
     import psutil
 
-    from dryfriction.io.sweep import _client
+    from dryfriction.io.cluster import close_client, start_client
 
     me = psutil.Process()
-    client = _client(None, 1)
+    client = start_client(None, 1)
     try:
         info = client.scheduler_info()
         assert "dashboard" not in info["services"]
@@ -235,8 +235,7 @@ def test_no_http_server_and_no_process_left(tmp_path):
                    if "resource_tracker" not in " ".join(p.cmdline())]
         assert workers
     finally:
-        client.close()
-        client.cluster.close()
+        close_client(client, None, [])
     gone, alive = psutil.wait_procs(workers, timeout=10)
     assert not alive
 

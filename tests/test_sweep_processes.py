@@ -131,3 +131,58 @@ def test_sweep_through_an_external_scheduler_and_worker(tmp_path: Path) -> None:
                 except subprocess.TimeoutExpired:
                     p.kill()
                     p.wait()
+
+
+def _worker_state(module: str) -> tuple[int, bool, str | None]:
+    return os.getppid(), module in sys.modules, os.environ.get("OPENBLAS_NUM_THREADS")
+
+
+def test_local_workers_are_forked_warm_and_the_fork_server_is_stopped() -> None:
+    """Workers start from the fork server with the runner's module already imported (a
+    spawned worker, or a server without the preload list, would not have it before its first
+    task), with one BLAS thread each, and closing stops the server: nothing of ours is left."""
+    from dryfriction.io.cluster import (
+        close_client,
+        fork_server_running,
+        start_client,
+        stop_fork_server,
+    )
+
+    # a module nothing else imports, standing for the runner's module
+    me = psutil.Process()
+    client = start_client(None, 2, preload=["colorsys"])
+    try:
+        assert fork_server_running()
+        states = list(client.run(_worker_state, "colorsys").values())
+        tree = {p: " ".join(p.cmdline()) for p in me.children(recursive=True)}
+    finally:
+        close_client(client, None, [])
+    assert len(states) == 2
+    assert all(ppid != os.getpid() for ppid, _, _ in states)  # not children of the sweep
+    assert all(warm for _, warm, _ in states), states
+    assert all(blas == "1" for _, _, blas in states), states
+    assert not fork_server_running()
+    stop_fork_server()  # a second stop does nothing
+    # the server and the two workers it forked (a fork keeps the command line)
+    assert sum("forkserver" in cmd for cmd in tree.values()) == 3
+    _, alive = psutil.wait_procs(list(tree), timeout=10)
+    left = [tree[p] for p in alive if "resource_tracker" not in tree[p]]
+    assert not left, left
+
+
+def test_forked_workers_give_the_serial_results(tmp_path: Path) -> None:
+    """The stick-slip summaries of a 2-worker sweep are those of the runner called here,
+    point by point, bit for bit: a worker forked from the warm server computes the same."""
+    import tomllib
+
+    from dryfriction.analysis.stickslip import stick_slip_summary
+    from dryfriction.io.sweep import parse_sweep, run_sweep
+
+    spec = parse_sweep(tomllib.loads(PROTO))
+    ds = run_sweep(spec, stick_slip_summary, tmp_path / "o", n_workers=2)
+    assert int(ds.attrs["n_failed"]) == 0
+    for idx, ov in spec.points():
+        ref = stick_slip_summary(spec.protocol(ov))
+        for name, value in ref.items():
+            got = float(ds[name].values[idx])
+            assert got == value or (got != got and value != value), (ov, name, got, value)

@@ -22,16 +22,12 @@ written to ``OUT/sweep.nc`` (NetCDF, whole or not at all).
 
 from __future__ import annotations
 
-import contextlib
 import copy
 import fcntl
 import hashlib
 import json
-import logging
 import math
 import os
-import signal
-import threading
 import traceback
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
@@ -43,6 +39,7 @@ import numpy as np
 
 from ..validation import check_scalar, require_extra
 from .cf import describe
+from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
 from .files import atomic_write_bytes, check_writable_dir, write_json
 
 __all__ = [
@@ -65,6 +62,11 @@ MAX_POINTS = 2000
 SWEEP_MODULES = ("dask", "distributed", "xarray")  # the optional extra dryfriction[sweep]
 
 Runner = Callable[[dict[str, Any]], Mapping[str, float]]
+
+WORKER_PRELOAD = ("scipy.optimize",)
+"""Imported once by the local cluster's fork server besides the runner's module: the package
+imports SciPy's root finders only when a point first needs them (a command's start-up does not
+pay for them), which costs each worker ~0.2 s of CPU on its first point otherwise."""
 
 
 def _split(key: str) -> list[str | int]:
@@ -188,9 +190,6 @@ SWEEP_FORMAT = "dryfriction-sweep"
 MARKER = "sweep.json"
 LOCK = ".sweep.lock"
 
-_CONNECT_TIMEOUT = 10.0
-
-
 class SweepInterrupted(KeyboardInterrupt):
     """Ctrl-C during :func:`run_sweep`; the finished points are stored, the cluster is closed.
 
@@ -307,135 +306,6 @@ def _claim_folder(out: Path, marker: Mapping[str, Any]) -> int:
     return fd
 
 
-def _probe_scheduler(address: str, timeout: float) -> None:
-    """Fail within ``timeout`` seconds unless a Dask scheduler answers at ``address``.
-
-    ``Client(address, timeout=...)`` waits forever when something else (an HTTP server, say)
-    accepts the connection and never completes Dask's handshake; this bounds the whole
-    exchange.
-    """
-    import asyncio
-
-    from distributed.comm import connect
-
-    async def identity() -> Any:
-        comm = await connect(address, timeout=timeout)
-        try:
-            await comm.write({"op": "identity", "reply": True})
-            return await comm.read()
-        finally:
-            comm.abort()
-
-    try:
-        reply = asyncio.run(asyncio.wait_for(identity(), timeout))
-    except TimeoutError:
-        raise ValueError(f"--scheduler {address}: cannot reach a Dask scheduler there within "
-                         f"{timeout:g} s (raise --connect-timeout if it is slow)") from None
-    except (OSError, ValueError, TypeError) as exc:
-        raise ValueError(f"--scheduler {address}: cannot reach a Dask scheduler there "
-                         f"({exc})") from None
-    if not (isinstance(reply, Mapping) and reply.get("type") == "Scheduler"):
-        raise ValueError(f"--scheduler {address}: cannot reach a Dask scheduler there (it "
-                         "answered, but not as a Dask scheduler)")
-
-
-_QUIET: dict[str, type] = {}
-
-
-def _quiet_class(name: str) -> type:
-    """A scheduler or worker class that serves no HTTP at all.
-
-    ``dashboard_address=None`` only hides the dashboard's pages: the scheduler still listens
-    on port 8787 (and each worker on a random port) for its health and metrics routes, and
-    reports that server as its ``dashboard`` service. A local sweep needs none of it. Built on
-    first use (importing distributed is slow) and reached as ``dryfriction.sweep.<name>``
-    (module ``__getattr__``), so that the worker processes can unpickle it.
-    """
-    if name not in _QUIET:
-        from distributed import Scheduler, Worker
-        from distributed.http.routing import RoutingApplication
-
-        def start_http_server(self: Any, routes: Any, *args: Any, **kwargs: Any) -> None:
-            self.http_application = RoutingApplication(routes)  # stopping the node reads it
-
-        base = Scheduler if name == "_QuietScheduler" else Worker
-        attrs: dict[str, Any] = {"start_http_server": start_http_server,
-                                 "__module__": __name__, "__qualname__": name}
-        if base is Worker:
-            def __init__(self: Any, *args: Any, **kwargs: Any) -> None:  # noqa: N807
-                # a terminal's Ctrl-C reaches every process of its group: the sweep process
-                # handles it and closes the cluster; a worker printing its own traceback
-                # would only bury the one line that says how to resume
-                if threading.current_thread() is threading.main_thread():
-                    signal.signal(signal.SIGINT, signal.SIG_IGN)
-                base.__init__(self, *args, **kwargs)
-
-            attrs["__init__"] = __init__
-        _QUIET[name] = type(name, (base,), attrs)
-    return _QUIET[name]
-
-
-def __getattr__(name: str) -> Any:
-    if name in ("_QuietScheduler", "_QuietWorker"):
-        return _quiet_class(name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def _client(scheduler: str | None, n_workers: int | None,
-            connect_timeout: float = _CONNECT_TIMEOUT) -> Any:
-    from dask.distributed import Client, Nanny, SpecCluster
-
-    if scheduler is not None:
-        _probe_scheduler(scheduler, connect_timeout)
-        try:
-            return Client(scheduler, timeout=f"{connect_timeout}s")
-        except (OSError, TimeoutError) as exc:
-            raise ValueError(f"--scheduler {scheduler}: cannot reach it ({exc})") from None
-    n = n_workers or os.cpu_count() or 1
-    quiet_scheduler, quiet_worker = _quiet_class("_QuietScheduler"), _quiet_class("_QuietWorker")
-    worker = {"cls": Nanny, "options": {"nthreads": 1, "host": "127.0.0.1",
-                                        "worker_class": quiet_worker, "dashboard": False,
-                                        "silence_logs": logging.ERROR}}
-    with _sigint_held() as caught:
-        cluster = SpecCluster(
-            scheduler={"cls": quiet_scheduler,
-                       "options": {"host": "127.0.0.1", "port": 0, "dashboard": False,
-                                   "dashboard_address": None}},
-            workers={i: worker for i in range(n)},
-            silence_logs=logging.ERROR,
-        )
-        try:
-            client = Client(cluster)
-        except BaseException:
-            cluster.close()
-            raise
-    if caught:  # Ctrl-C while starting: stop now, with nothing left behind
-        _close(client, None, [])
-        raise KeyboardInterrupt
-    return client
-
-
-@contextlib.contextmanager
-def _sigint_held() -> Iterator[list[int]]:
-    """Record a Ctrl-C that comes while the cluster starts; yield the list that records it.
-
-    The start must not be cut in the middle (a half-started cluster leaves processes behind),
-    and the interrupt must not be lost either: it is recorded here and acted on as soon as the
-    start is over (the caller closes the cluster and raises ``KeyboardInterrupt``). The
-    workers ignore SIGINT themselves (``_QuietWorker``), so they print no tracebacks. Only
-    possible in the main thread; elsewhere a no-op.
-    """
-    caught: list[int] = []
-    if threading.current_thread() is not threading.main_thread():
-        yield caught
-        return
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
-    try:
-        yield caught
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
 def _stored(path: Path, key: str) -> bool:
     """Whether ``path`` holds a successful result for ``key`` (failures are computed again)."""
     try:
@@ -457,7 +327,7 @@ def run_sweep(
     analysis: str | None = None,
     source: str | None = None,
     protocol_text: str | None = None,
-    connect_timeout: float = _CONNECT_TIMEOUT,
+    connect_timeout: float = CONNECT_TIMEOUT,
     variables: Mapping[str, Any] | None = None,
 ) -> Any:
     """Run every grid point not already stored under ``out`` and return the Dataset.
@@ -523,7 +393,7 @@ def run_sweep(
               "shape": list(spec.shape)}
     _check_folder(out, marker)
     if scheduler is not None:  # an unreachable scheduler is bad input: nothing written yet
-        _probe_scheduler(scheduler, connect_timeout)
+        probe_scheduler(scheduler, connect_timeout)
     lock = _claim_folder(out, marker)
     try:
         ds = _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
@@ -551,7 +421,9 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
         progress(done, spec.size)
     if todo:
         try:
-            client = _client(scheduler, n_workers, connect_timeout)
+            client = start_client(scheduler, n_workers, connect_timeout,
+                                  preload=[getattr(runner, "__module__", None) or "__main__",
+                                           *WORKER_PRELOAD])
         except KeyboardInterrupt:
             raise SweepInterrupted(done, spec.size, out) from None
         points_dir.mkdir(exist_ok=True)
@@ -577,34 +449,10 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
                 if progress:
                     progress(done, spec.size)
         except KeyboardInterrupt:
-            _close(client, scheduler, list(futures))
+            close_client(client, scheduler, list(futures))
             raise SweepInterrupted(done, spec.size, out) from None
-        _close(client, scheduler, list(futures))
+        close_client(client, scheduler, list(futures))
     return assemble(spec, points_dir, keys)
-
-
-def _close(client: Any, scheduler: str | None, futures: list[Any]) -> None:
-    """Cancel what is left, close the client and (local) cluster; a second Ctrl-C waits."""
-    with _sigint_ignored():
-        cluster = getattr(client, "cluster", None)
-        with contextlib.suppress(Exception):
-            client.cancel(futures)
-        with contextlib.suppress(Exception):
-            client.close(timeout=10)
-        if scheduler is None and cluster is not None:
-            cluster.close(timeout=20)
-
-
-@contextlib.contextmanager
-def _sigint_ignored() -> Iterator[None]:
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
 
 
 def assemble(spec: SweepSpec, points_dir: Path, keys: Mapping[tuple[int, ...], str]) -> Any:
