@@ -542,14 +542,16 @@ def simulate(
     v0 = initial_velocity(model, initial, float(drive.program.velocities[0])
                           if isinstance(drive, VelocityDrive) else None)
     o = with_strength(ens, ens.observe(), v0)
-    x_pull0 = ens.x + o.force / drive.stiffness if isinstance(drive, SpringDrive) else math.nan
+    spring = isinstance(drive, SpringDrive)  # it starts in steady sliding at v0 (damper too)
+    f_spring0 = o.force + drive.damping * v0 if spring else math.nan  # type: ignore[union-attr]
+    x_pull0 = ens.x + f_spring0 / drive.stiffness if spring else math.nan  # type: ignore
     f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
     rec.add(ens, o, v0, x_pull=x_pull0, f_applied=f_app0)
     # with the direct effect the spring starts balancing the friction at v0, not the population,
     # and an inertial slider starts at v0
     extra: dict[str, float] = {}
-    if model.direct and isinstance(drive, SpringDrive):
-        extra = {"spring_force": o.force, **({"velocity": v0} if drive.mass > 0.0 else {})}
+    if model.direct and spring:
+        extra = {"spring_force": f_spring0, **({"velocity": v0} if drive.mass > 0.0 else {})}
     if output.snapshots and output.snapshots[0] == 0.0:
         rec.snap(ens)
         output = Output(output.every, output.every_slip, output.snapshots[1:])
