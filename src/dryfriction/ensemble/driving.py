@@ -51,10 +51,8 @@ unchanged) times the junction strength at the slider's present velocity ``V``.
   at most a quarter of the trap spacing of load-point travel (:mod:`.thermal`): a coarser step
   sees the population's sawtooth at one phase only and, on a regular track sampled at a
   multiple of its spacing, locks onto it. The force drive takes one step per sample.
-* **Inertial slider**: ``M V' = K (X_pull - X) - eta V - g(V) F``; the position takes the
-  Verlet step, the velocity an implicit one (trapezoid, backward Euler where ``g'(V) F dt/M >
-  2``: near rest ``g'`` is ``A e^{1/A}/(2 V_ref)``; :func:`.thermal.inertial_velocity`). It
-  starts at ``v0`` (as recorded), the spring balancing ``g(v0) F``.
+* **Inertial slider**: ``M V' = K (X_pull - X) - eta V - g(V) F``, stiff near rest (``g'`` up
+  to ``A e^{1/A}/(2 V_ref)``): :func:`.thermal.inertial_velocity`, :func:`.thermal.drift`.
 
 Interruption: with ``on_interrupt="partial"`` a Ctrl-C (``KeyboardInterrupt``) ends the run at
 the last completed step and the result is marked ``partial``.
@@ -78,6 +76,7 @@ from .result import COLUMNS, Output, Recorder, SimulationResult, position_functi
 from .thermal import (
     apply_strength,
     creep_substeps,
+    drift,
     inertial_velocity,
     initial_velocity,
     velocity_scale,
@@ -417,7 +416,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
         dt_osc = 0.05 * 2.0 * math.pi * math.sqrt(M / (K + k_c))
         dx_max = 0.25 * ens.track.spacing
         V = float(velocity)
-        F = with_strength(ens, o, V).force
+        F, f_pop = with_strength(ens, o, V).force, o.force
         direct = ens.model.direct > 0.0
         position = position_function(prog)
 
@@ -437,13 +436,15 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
                     dt = min(dt, dx_max / abs(V))
                 if t1 - (ens.t + dt) < 1e-12 * max(1.0, t1):
                     dt = float(t1) - ens.t
-                x_new = ens.x + V * dt + 0.5 * a * dt * dt
+                w = drift(ens.model, V, dt, M, eta, f_pop) if direct else 0.5
+                x_new = ens.x + V * dt + w * a * dt * dt
                 t_new = float(t1) if dt == float(t1) - ens.t else ens.t + dt
                 ob = ens.advance(x_new, t_new)
                 ev = _add_events(ev, _events(ob))
                 if direct:  # implicit in V: the junction strength is stiff near rest
+                    f_pop = ob.force
                     V, g = inertial_velocity(ens.model, V, M * a, dt, M, eta,
-                                             K * (pull(t_new) - x_new), ob.force)
+                                             K * (pull(t_new) - x_new), f_pop)
                     ob = apply_strength(ob, g)
                     a = accel(x_new, V, ob.force, t_new)
                 else:
@@ -547,11 +548,9 @@ def simulate(
     x_pull0 = ens.x + f_spring0 / drive.stiffness if spring else math.nan  # type: ignore
     f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
     rec.add(ens, o, v0, x_pull=x_pull0, f_applied=f_app0)
-    # with the direct effect the spring starts balancing the friction at v0, not the population,
-    # and an inertial slider starts at v0
-    extra: dict[str, float] = {}
-    if model.direct and spring:
-        extra = {"spring_force": f_spring0, **({"velocity": v0} if drive.mass > 0.0 else {})}
+    # with the direct effect the spring balances the friction at v0, an inertial slider at v0
+    extra = {"spring_force": f_spring0, **({"velocity": v0} if drive.mass > 0.0 else {})
+             } if model.direct and spring else {}  # type: ignore[union-attr]
     if output.snapshots and output.snapshots[0] == 0.0:
         rec.snap(ens)
         output = Output(output.every, output.every_slip, output.snapshots[1:])

@@ -17,7 +17,7 @@ from ..theory.direct import strength_ratio
 from .population import Ensemble, Initial, Observables, TrapModel
 
 __all__ = ["velocity_scale", "with_strength", "apply_strength", "initial_velocity",
-           "creep_substeps", "inertial_velocity"]
+           "creep_substeps", "inertial_velocity", "drift"]
 
 SUBSTEP_SLIP: float = 0.25
 """Largest load-point travel per quasi-static creep step, in trap spacings (ours): the step must
@@ -84,6 +84,14 @@ def _inverse_strength(y: float, direct: float, v_ref: float) -> float:
     if z > 20.0:  # 2 sinh z = e^z to 4e-18
         return v_ref * math.exp(z - 1.0 / direct)
     return 2.0 * v_ref * math.exp(-1.0 / direct) * math.sinh(z)
+
+
+def _damping_rate(model: TrapModel, v: float, force: float) -> float:
+    """``d(g F)/dV = g'(V) F`` for ``F > 0`` (else 0), ``g' = A/sqrt(V^2 + V_c^2)``."""
+    if force <= 0.0:
+        return 0.0
+    vc = 2.0 * model.v_ref * math.exp(-1.0 / model.direct)
+    return force * model.direct / math.hypot(v, vc)
 
 
 def _implicit_velocity(model: TrapModel, c: float, m_eff: float, f_eff: float
@@ -164,10 +172,9 @@ def inertial_velocity(model: TrapModel, v: float, r: float, dt: float, mass: flo
         vp = v + r / mass * dt
         g = strength_ratio(vp, A, vr)
         return v + 0.5 * (r + spring - g * force - damping * vp) / mass * dt, g
-    vc = 2.0 * vr * math.exp(-1.0 / A)
 
     def stiff(u: float) -> bool:
-        return dt * (damping + force * A / math.hypot(u, vc)) > 2.0 * mass
+        return dt * (damping + _damping_rate(model, u, force)) > 2.0 * mass
 
     def solve(theta: float) -> tuple[float, float]:
         c = mass * v + dt * ((1.0 - theta) * r + theta * spring)
@@ -178,3 +185,20 @@ def inertial_velocity(model: TrapModel, v: float, r: float, dt: float, mass: flo
         if not stiff(v1):
             return v1, g1
     return solve(1.0)
+
+
+def drift(model: TrapModel, v: float, dt: float, mass: float, damping: float, force: float
+          ) -> float:
+    """Weight ``w`` of the acceleration in the position step ``dX = V dt + w a dt^2`` (ours).
+
+    Verlet's ``w = 1/2`` assumes the acceleration ``a`` lasts the step; with the direct effect
+    it relaxes at the rate ``c/M`` (:func:`inertial_velocity`), within a tiny fraction of the
+    step near rest. For ``a' = -(c/M) a`` the exact weight is ``phi2(z) = (e^{-z} - 1 + z)/z^2``,
+    ``z = c dt/M``: ``1/2 - z/6 + ...`` (the same order as Verlet where ``z`` is small) and
+    ``~ 1/z`` where it is large, so that a slider released out of balance (at rest, where
+    ``g(0) = 0``) moves by ``R dt/c``, what the slaved velocity carries, not by ``R dt^2/2M``.
+    """
+    z = (_damping_rate(model, v, force) + damping) * dt / mass
+    if z < 1e-3:
+        return 0.5 - z / 6.0 + z * z / 24.0
+    return (math.expm1(-z) + z) / (z * z) if math.isfinite(z) else 0.0
