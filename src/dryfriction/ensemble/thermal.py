@@ -90,8 +90,9 @@ def _damping_rate(model: TrapModel, v: float, force: float) -> float:
     """``d(g F)/dV = g'(V) F`` for ``F > 0`` (else 0), ``g' = A/sqrt(V^2 + V_c^2)``."""
     if force <= 0.0:
         return 0.0
-    vc = 2.0 * model.v_ref * math.exp(-1.0 / model.direct)
-    return force * model.direct / math.hypot(v, vc)
+    vc = 2.0 * model.v_ref * math.exp(-1.0 / model.direct)  # 0 for A < 1/745: g' is then
+    d = math.hypot(v, vc)  # infinite at rest
+    return force * model.direct / d if d > 0.0 else math.inf
 
 
 def _implicit_velocity(model: TrapModel, c: float, m_eff: float, f_eff: float
