@@ -221,6 +221,31 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
         assert abs(_chi(complex(0.0, res.omega), uu, 0.02, kc, m, 0.0)) < 1e-3 * kc
 
 
+def test_growth_below_and_decay_above_K_c_with_mass() -> None:
+    """u = 1, A = 0.02, M = 0.2, eta = 0 (K_c = 0.163 with mass): a slider kicked to 1.05 u
+    grows at 0.7 K_c and decays at 1.3 K_c with the rightmost root's sign, rate (within 30 %:
+    the rates are ~1e-2, the granular noise of 200 traps/a0 is not) and frequency (1 %)."""
+    u, A, M = 1.0, 0.02, 0.2
+    kc = critical_stiffness_direct(u, EPS, mass=M, direct=A).critical_stiffness
+    resp = direct_response(u, EPS, direct=A)
+    for f in (0.7, 1.3):
+        lam = rightmost_root(resp, f * kc, M, 0.0)  # type: ignore[arg-type]
+        assert abs(_root_near(complex(lam.real, abs(lam.imag)), u, A, f * kc, M, 0.0)
+                   - complex(lam.real, abs(lam.imag))) < 1e-6
+        period = 2 * math.pi / abs(lam.imag)
+        ens = Ensemble(TrapModel(eps=EPS, direct=A), Track(200.0),
+                       Initial("steady", velocity=u), age_horizon=200.0)
+        r = continue_spring(ens, SpringDrive(f * kc, M, VelocityProgram(
+            [Segment(u, duration=6 * period)])), Output(every=period / 100), velocity=1.05 * u)
+        assert np.max(np.abs(r.v - u)) < 0.5 * u  # still linear
+        s, w = fit_growth(r.t[5:], r.v[5:] - u)
+        print(f"REPORT inertial K = {f} K_c (M = {M}): linear {lam.real:+.5f} "
+              f"{abs(lam.imag):.4f}i, simulated {s:+.5f} {w:.4f}i")
+        assert np.sign(s) == np.sign(lam.real) == np.sign(1.0 - f)
+        assert s == pytest.approx(lam.real, rel=0.3)
+        assert w == pytest.approx(abs(lam.imag), rel=0.01)
+
+
 # ---------------------------------------------------------------- files and the CLI
 
 
