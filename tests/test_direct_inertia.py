@@ -300,3 +300,19 @@ def test_a_loaded_slider_at_rest_creeps_with_friction_balancing_the_spring(A: fl
     np.testing.assert_allclose(r.mu[1:], 1.0 * (r.x_pull - r.x)[1:], rtol=1e-9)
     np.testing.assert_allclose(r.mu[1:], s0, rtol=1e-6)
     assert np.all((r.v[1:] > 0) & (r.v[1:] < 1e-8))
+
+
+def test_stability_cli_takes_mass_without_damping_with_the_direct_effect() -> None:
+    """The direct term damps like eta = A mu_d/u, so --mass without --damping has a finite K_c
+    with --direct (still refused without it: tests/test_cli_words.py)."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    r = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "1", "--mass", "0.2",
+                                 "--direct", "0.02", "--json"])
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
+        critical_stiffness_direct(1.0, EPS, mass=0.2, direct=0.02).critical_stiffness, rel=1e-9)
