@@ -55,6 +55,7 @@ _DRV = "tests/test_driving.py"
 _RSF = "tests/test_rsf.py"
 _LAB = "tests/test_lab.py"
 _DIR = "tests/test_direct.py"
+_DIN = "tests/test_direct_inertia.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -229,6 +230,23 @@ MUTANTS: tuple[Mutant, ...] = (
        "return self.g * self.base.Z(lam) + (self.a_direct / self.base.u) * lam",
        "return self.g * self.base.Z(lam) - (self.a_direct / self.base.u) * lam",
        _DIR, "-k", "critical_stiffness"),
+    _m("direct inertial: g(V) dropped from the inertial force", "ensemble/driving.py",
+       "if direct:  # implicit in V: the junction strength is stiff near rest",
+       "if False:  # implicit in V: the junction strength is stiff near rest",
+       _DIN, "-k", "kinematic_limit or velocity_step or rings_down"),
+    _m("direct inertial: friction used without g(V), solved with it", "ensemble/driving.py",
+       "ob = apply_strength(ob, g)", "ob = apply_strength(ob, 1.0)",
+       _DIN, "-k", "work_of_the_spring"),
+    _m("direct inertial: trapezoid even where g'(V) is stiff", "ensemble/thermal.py",
+       "    return solve(1.0)\n", "    return solve(0.5)\n",
+       _DIN, "-k", "work_of_the_spring or creeps"),
+    _m("direct inertial: Verlet's position step where the acceleration relaxes at once",
+       "ensemble/driving.py", "w = drift(ens.model, V, dt, M, eta, f_pop) if direct else 0.5",
+       "w = 0.5", _DIN, "-k", "creeps"),
+    _m("direct inertial: the implicit solve stops at its first guess", "ensemble/thermal.py",
+       "        if h <= 0.0:\n            break\n",
+       "        if h <= 0.0 or True:\n            break\n",
+       _DIN, "-k", "work_of_the_spring or rings_down"),
     # --- the edges (issue 14) and the damping check (issue 13) -------------------------------
     _m("inertial slider: damping sign flipped", "ensemble/driving.py",
        "return (K * (xpl - x) - f - eta * v) / M", "return (K * (xpl - x) - f + eta * v) / M",

@@ -251,13 +251,6 @@ def test_junction_strength_follows_the_slider_not_the_load_point() -> None:
     assert np.all(np.abs(r.v[1:6] / u - 1.0) < 0.05)
 
 
-def test_inertial_slider_is_refused_with_direct() -> None:
-    with pytest.raises(ValueError, match="mass"):
-        simulate(TrapModel(eps=EPS, direct=0.01), Track(100.0), Initial("rest"),
-                 SpringDrive(1.0, 1.0, VelocityProgram([{"velocity": 1.0, "slip": 1.0}])),
-                 Output(every_slip=0.01))
-
-
 # ---------------------------------------------------------------- stability
 
 
@@ -358,8 +351,8 @@ every_slip = 0.05
     assert parse_protocol(base.format(extra="", mass=0.0)).model.direct == 0.0
     with pytest.raises(ValueError, match="model.*direct"):
         parse_protocol(base.format(extra="direct = -0.1", mass=0.0))
-    with pytest.raises(ValueError, match="drive.mass"):
-        parse_protocol(base.format(extra="direct = 0.02", mass=1.0))
+    # the inertial slider with the direct effect (tests/test_direct_inertia.py)
+    assert parse_protocol(base.format(extra="direct = 0.02", mass=1.0)).drive.mass == 1.0
 
 
 # ---------------------------------------------------------------- fitting

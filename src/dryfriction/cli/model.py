@@ -215,12 +215,13 @@ def stability(
     check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
     check_scalar("mass", mass, 0.0, LOAD_MAX)
     check_scalar("damping", damping, 0.0, LOAD_MAX)
-    if mass > 0 and damping == 0:
+    check_direct(direct, v_ref)
+    if mass > 0 and damping == 0 and not direct:  # the direct effect damps like eta (A mu/u)
         raise ValueError(
             f"--mass {mass:g} without --damping is ill posed: with inertia and no damping the "
             "delay at the spinodal edge makes K_c grow with the highest frequency considered, "
-            "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or drop --mass")
-    check_direct(direct, v_ref)
+            "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or --direct > 0, or "
+            "drop --mass")
     if direct:
         res = [critical_stiffness_direct(v, eps, alpha, creep, mass, damping, direct, v_ref)
                for v in u]

@@ -51,8 +51,8 @@ unchanged) times the junction strength at the slider's present velocity ``V``.
   at most a quarter of the trap spacing of load-point travel (:mod:`.thermal`): a coarser step
   sees the population's sawtooth at one phase only and, on a regular track sampled at a
   multiple of its spacing, locks onto it. The force drive takes one step per sample.
-* **Inertial slider**: refused (the explicit Verlet step cannot follow the stiff ``g'(V)`` near
-  ``V = 0``, where it is ``A e^{1/A}/(2 V_ref)``).
+* **Inertial slider**: ``M V' = K (X_pull - X) - eta V - g(V) F``, stiff near rest (``g'`` up
+  to ``A e^{1/A}/(2 V_ref)``): :func:`.thermal.inertial_velocity`, :func:`.thermal.drift`.
 
 Interruption: with ``on_interrupt="partial"`` a Ctrl-C (``KeyboardInterrupt``) ends the run at
 the last completed step and the result is marked ``partial``.
@@ -72,10 +72,12 @@ from ..program import VelocityProgram
 from ..validation import check_choice, check_scalar
 from .population import Ensemble, Initial, Observables, Track, TrapModel
 from .resources import check_run
-from .result import COLUMNS, Output, Recorder, SimulationResult, segment_grid
+from .result import COLUMNS, Output, Recorder, SimulationResult, position_function, segment_grid
 from .thermal import (
-    check_direct_mass,
+    apply_strength,
     creep_substeps,
+    drift,
+    inertial_velocity,
     initial_velocity,
     velocity_scale,
     with_strength,
@@ -414,10 +416,15 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
         dt_osc = 0.05 * 2.0 * math.pi * math.sqrt(M / (K + k_c))
         dx_max = 0.25 * ens.track.spacing
         V = float(velocity)
-        F = o.force
+        F, f_pop = with_strength(ens, o, V).force, o.force
+        direct = ens.model.direct > 0.0
+        position = position_function(prog)
+
+        def pull(t: float) -> float:
+            return x_pull0 + position(t - t_start) - prog.x0
 
         def accel(x: float, v: float, f: float, t: float) -> float:
-            xpl = x_pull0 + float(prog.position(t - t_start)) - prog.x0
+            xpl = pull(t)
             return (K * (xpl - x) - f - eta * v) / M
 
         a = accel(ens.x, V, F, t_start)
@@ -429,13 +436,21 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
                     dt = min(dt, dx_max / abs(V))
                 if t1 - (ens.t + dt) < 1e-12 * max(1.0, t1):
                     dt = float(t1) - ens.t
-                x_new = ens.x + V * dt + 0.5 * a * dt * dt
+                w = drift(ens.model, V, dt, M, eta, f_pop) if direct else 0.5
+                x_new = ens.x + V * dt + w * a * dt * dt
                 t_new = float(t1) if dt == float(t1) - ens.t else ens.t + dt
                 ob = ens.advance(x_new, t_new)
                 ev = _add_events(ev, _events(ob))
-                a_new = accel(x_new, V + a * dt, ob.force, t_new)
-                V = V + 0.5 * (a + a_new) * dt
-                a = a_new
+                if direct:  # implicit in V: the junction strength is stiff near rest
+                    f_pop = ob.force
+                    V, g = inertial_velocity(ens.model, V, M * a, dt, M, eta,
+                                             K * (pull(t_new) - x_new), f_pop)
+                    ob = apply_strength(ob, g)
+                    a = accel(x_new, V, ob.force, t_new)
+                else:
+                    a_new = accel(x_new, V + a * dt, ob.force, t_new)
+                    V = V + 0.5 * (a + a_new) * dt
+                    a = a_new
                 o = ob
             jumps.append(ens.x - x_before)
             rec.add(ens, o, V, x_pull=float(xp1), events=ev)
@@ -522,18 +537,20 @@ def simulate(
     else:
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
-    check_direct_mass(model, getattr(drive, "mass", 0.0))
     check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
     v0 = initial_velocity(model, initial, float(drive.program.velocities[0])
                           if isinstance(drive, VelocityDrive) else None)
     o = with_strength(ens, ens.observe(), v0)
-    x_pull0 = ens.x + o.force / drive.stiffness if isinstance(drive, SpringDrive) else math.nan
+    spring = isinstance(drive, SpringDrive)  # it starts in steady sliding at v0 (damper too)
+    f_spring0 = o.force + drive.damping * v0 if spring else math.nan  # type: ignore[union-attr]
+    x_pull0 = ens.x + f_spring0 / drive.stiffness if spring else math.nan  # type: ignore
     f_app0 = o.force if isinstance(drive, ForceDrive) else math.nan
     rec.add(ens, o, v0, x_pull=x_pull0, f_applied=f_app0)
-    # with the direct effect the spring starts balancing the friction at v0, not the population
-    extra = {"spring_force": o.force} if model.direct and isinstance(drive, SpringDrive) else {}
+    # with the direct effect the spring balances the friction at v0, an inertial slider at v0
+    extra = {"spring_force": f_spring0, **({"velocity": v0} if drive.mass > 0.0 else {})
+             } if model.direct and spring else {}  # type: ignore[union-attr]
     if output.snapshots and output.snapshots[0] == 0.0:
         rec.snap(ens)
         output = Output(output.every, output.every_slip, output.snapshots[1:])
@@ -604,15 +621,16 @@ def continue_spring(
                          "quasi-static slider has no velocity state; allowed 0")
     if spring_force is not None:
         spring_force = check_scalar("spring_force", spring_force)
-    check_direct_mass(ensemble.model, drive.mass)
     check_run(ensemble.model, ensemble.track, ensemble.initial, drive, output)
     rec = Recorder(ensemble.model.mu_el)
     o = ensemble.observe()
+    if drive.mass > 0.0:  # the friction at the starting velocity (direct effect)
+        o = with_strength(ensemble, o, velocity)
     f_spring = o.force if spring_force is None else spring_force
     rec.add(ensemble, o, velocity, x_pull=ensemble.x + f_spring / drive.stiffness)
     info: dict[str, Any] = {"partial": False, "regime": ensemble.model.trap.regime.value}
     _run_spring(ensemble, drive, output, rec, lambda _t: None, info, velocity=velocity,
-                spring_force=spring_force)
+                spring_force=f_spring)
     return rec.result(info)
 
 

@@ -6,7 +6,9 @@ Reduced units: lengths ``a0``, times ``t0``; friction ``mu = mu_el F/F_el``.
 
 from __future__ import annotations
 
+import bisect
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -18,6 +20,7 @@ from ..validation import Array, check_range, check_scalar
 from .population import Ensemble, Observables
 
 __all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "sample_interval",
+           "position_function",
            "segment_grid"]
 
 
@@ -224,3 +227,18 @@ def segment_grid(program: VelocityProgram, output: Output, spacing: float | None
     grid = np.asarray(times)
     snaps = [s for s in output.snapshots if s <= grid[-1]]
     return np.union1d(grid, snaps)
+
+
+def position_function(program: VelocityProgram) -> Callable[[float], float]:
+    """``t -> program.position(t)`` for one float, bit for bit the same value, without the
+    array work per call (the inertial slider asks for it at every step)."""
+    times = [float(v) for v in program.times]
+    pos = [float(v) for v in program.positions]
+    vel = [float(v) for v in program.velocities]
+    last = len(vel) - 1
+
+    def position(t: float) -> float:
+        i = min(max(bisect.bisect_right(times, t) - 1, 0), last)  # as segment_index
+        return pos[i] + vel[i] * (t - times[i])
+
+    return position

@@ -356,10 +356,6 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
     else:
         drive = d.build(SpringDrive, stiffness=d.number("stiffness"), mass=d.number("mass"),
                         damping=d.number("damping", 0.0), program=_segments(d))
-        if model.direct > 0.0 and drive.mass > 0.0:
-            d.fail(f"{d.where('mass')} = {drive.mass:g} is not allowed with model.direct = "
-                   f"{model.direct:g}: the inertial slider has no direct effect yet; allowed "
-                   "mass = 0")
 
     o = _Table(source, "output", doc["output"])
     o.allow(("every", "every_slip", "snapshots"))
