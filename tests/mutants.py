@@ -222,6 +222,11 @@ MUTANTS: tuple[Mutant, ...] = (
        "return self.g * self.base.Z(lam) + (self.a_direct / self.base.u) * lam",
        "return self.g * self.base.Z(lam) - (self.a_direct / self.base.u) * lam",
        _DIR, "-k", "critical_stiffness"),
+    _m("direct: the spring drive's rate term with the wrong sign (g -> 2 - g)",
+       "ensemble/thermal.py",
+       "return lambda x: strength_ratio((x - x0) / dt, m.direct, m.v_ref)",
+       "return lambda x: 2.0 - strength_ratio((x - x0) / dt, m.direct, m.v_ref)",
+       "tests/test_bifurcation.py", "-k", "linear_rate"),
     # --- the edges (issue 14) and the damping check (issue 13) -------------------------------
     _m("inertial slider: damping sign flipped", "ensemble/driving.py",
        "return (K * (xpl - x) - f - eta * v) / M", "return (K * (xpl - x) - f + eta * v) / M",

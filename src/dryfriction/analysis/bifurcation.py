@@ -36,6 +36,9 @@ periods ``2 pi / omega`` (``omega`` of the rightmost root, or the onset frequenc
 root is real or stable); the **amplitude** is the peak-to-peak spring force over its last
 ``measure`` periods. The **noise floor** is that amplitude in the first run, above ``K_c``,
 where the kick decays: what the lattice and the discretisation leave in steady sliding.
+The same capture keeps steady sliding alive on the way down well below ``K_c`` (to 0.7
+``K_c`` at ``eps = 0.04``, ``A = 0.02``, 100 traps/``a0``): the way down does not locate the
+onset, and the amplitude curve is read on the way up, where each run starts from a cycle.
 Classification (:func:`classify`): *subcritical* when on the way up a cycle of amplitude above
 ``5 x`` the floor survives at some ``K >= K_c`` (hysteresis); otherwise *supercritical* when
 the amplitude goes to the floor continuously: the fit ``amplitude = c d^beta`` over the
