@@ -40,9 +40,10 @@ The same capture keeps steady sliding alive on the way down well below ``K_c`` (
 ``K_c`` at ``eps = 0.04``, ``A = 0.02``, 100 traps/``a0``): the way down does not locate the
 onset, and the amplitude curve is read on the way up, where each run starts from a cycle.
 Classification (:func:`classify`): *subcritical* when on the way up a cycle of amplitude above
-``5 x`` the floor survives at some ``K >= K_c`` (hysteresis); otherwise *supercritical* when
-the amplitude goes to the floor continuously: the fit ``amplitude = c d^beta`` over the
-smallest distances gives ``beta`` (1/2 is the Hopf normal form, ``amplitude^2 ∝ K_c - K``).
+``5 x`` the floor survives, not decaying, at some ``K >= K_c`` (hysteresis); otherwise
+*supercritical* when the amplitude goes to the floor continuously: the fit
+``amplitude = c d^beta`` over the smallest distances gives ``beta`` (1/2 is the Hopf normal
+form, ``amplitude^2 ∝ K_c - K``).
 """
 
 from __future__ import annotations
@@ -161,7 +162,7 @@ def growth_check(
 def continuation(
     u: float, eps: float, distances: Sequence[float], *, direct: float, v_ref: float = 1.0,
     alpha: float = 0.13, traps_per_a0: float = 100.0, state_kick: float = 0.05,
-    periods: float = 15.0, measure: float = 4.0,
+    periods: float = 15.0, measure: float = 4.0, rekick: bool = False,
 ) -> dict[str, Any]:
     """Continuation in ``K = K_c (1 - d)`` down then up, the amplitude at each ``d`` (module
     docstring).
@@ -176,13 +177,21 @@ def continuation(
         the way up runs them in reverse from the end of the way down.
     periods, measure : float
         Run length per stiffness and the final stretch analysed, in linear periods.
+    rekick : bool
+        On the way down, a run whose predecessor ended in steady sliding (amplitude below
+        5x the floor) starts from a fresh state-kicked steady population instead, so that
+        the lattice capture of small perturbations does not hide the instability (the
+        previous end state *is* steady sliding then; the kick is the only change). The way
+        up is always a pure continuation.
 
     Returns
     -------
     dict
         ``K_c``, ``omega_c``, ``u``, ``floor`` and, for ``"down"`` and ``"up"``, lists of
-        ``{"d", "K", "amplitude", "mean_force", "v_min"}`` (``v_min`` the smallest sampled
-        slider velocity of the measured stretch, in units of ``u``: near 0 means stick-slip).
+        ``{"d", "K", "amplitude", "trend", "mean_force", "v_min"}`` (``trend`` the
+        peak-to-peak force of the second half of the measured stretch over the first's:
+        below 1 the oscillation is still decaying; ``v_min`` the smallest sampled slider
+        velocity of the measured stretch, in units of ``u``: near 0 means stick-slip).
     """
     direct, v_ref = _checked(u, eps, direct, v_ref, traps_per_a0, state_kick)
     ds = [check_scalar("distance", d, -1.0, 1.0, hi_open=True) for d in distances]
@@ -204,17 +213,25 @@ def continuation(
     ens, force = kicked_ensemble(u, eps, alpha, direct, v_ref, traps_per_a0, state_kick,
                                  2 * total)
     out: dict[str, Any] = {"K_c": Kc, "omega_c": lin.omega, "u": u, "direct": direct,
-                           "traps_per_a0": traps_per_a0, "down": [], "up": []}
+                           "traps_per_a0": traps_per_a0, "rekick": rekick, "down": [],
+                           "up": []}
     for leg, order in (("down", ds), ("up", ds[::-1][1:])):
         for d in order:
             K = Kc * (1 - d)
             p = period(K)
+            if rekick and leg == "down" and out["down"] and (
+                    out["down"][-1]["amplitude"] < 5.0 * out["down"][0]["amplitude"]):
+                ens, force = kicked_ensemble(u, eps, alpha, direct, v_ref, traps_per_a0,
+                                             state_kick, 2 * total)
             r = continue_spring(ens, SpringDrive(K, 0.0, VelocityProgram(
                 [Segment(u, duration=periods * p)])), Output(every=p / _SAMPLES),
                 spring_force=force)
             y = K * (r.x_pull - r.x)
             tail = r.t >= r.t[-1] - measure * p
+            late = r.t >= r.t[-1] - 0.5 * measure * p
+            early = tail & ~late
             out[leg].append({"d": d, "K": K, "amplitude": float(np.ptp(y[tail])),
+                             "trend": float(np.ptp(y[late]) / max(np.ptp(y[early]), 1e-300)),
                              "mean_force": float(np.mean(y[tail])),
                              "v_min": float(np.min(r.v[tail]) / u)})
             force = float(y[-1])
@@ -223,17 +240,21 @@ def continuation(
     return out
 
 
-def classify(scan: dict[str, Any], factor: float = 5.0, n_fit: int = 4) -> dict[str, Any]:
+def classify(scan: dict[str, Any], factor: float = 5.0, n_fit: int = 4,
+             decaying: float = 0.9) -> dict[str, Any]:
     """Bifurcation type of a :func:`continuation` result (module docstring).
 
     Returns ``{"type": "subcritical" | "supercritical" | "undetermined", "exponent": beta,
     "hysteresis_d": [...]}``: ``beta`` fitted (log-log least squares) over the ``n_fit``
     smallest positive distances of the way up whose amplitude exceeds ``factor x`` floor,
     NaN when fewer than two; ``hysteresis_d`` the distances ``<= 0`` (``K >= K_c``) where the
-    way up still oscillates above ``factor x`` floor.
+    way up still oscillates above ``factor x`` floor without decaying (``trend``, where
+    given, above ``decaying``: a linearly stable state close to ``K_c`` decays slowly, over
+    more periods than a run lasts).
     """
     thr = factor * scan["floor"]
-    hyst = [r["d"] for r in scan["up"] if r["d"] <= 0.0 and r["amplitude"] > thr]
+    hyst = [r["d"] for r in scan["up"] if r["d"] <= 0.0 and r["amplitude"] > thr
+            and r.get("trend", 1.0) > decaying]
     pts = sorted((r["d"], r["amplitude"]) for r in scan["up"]
                  if r["d"] > 0.0 and r["amplitude"] > thr)[:n_fit]
     beta = math.nan
