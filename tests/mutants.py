@@ -247,6 +247,11 @@ MUTANTS: tuple[Mutant, ...] = (
        "        if h <= 0.0:\n            break\n",
        "        if h <= 0.0 or True:\n            break\n",
        _DIN, "-k", "work_of_the_spring or rings_down"),
+    _m("direct: the spring drive's rate term with the wrong sign (g -> 2 - g)",
+       "ensemble/thermal.py",
+       "return lambda x: strength_ratio((x - x0) / dt, m.direct, m.v_ref)",
+       "return lambda x: 2.0 - strength_ratio((x - x0) / dt, m.direct, m.v_ref)",
+       "tests/test_bifurcation.py", "-k", "linear_rate"),
     # --- the edges (issue 14) and the damping check (issue 13) -------------------------------
     _m("inertial slider: damping sign flipped", "ensemble/driving.py",
        "return (K * (xpl - x) - f - eta * v) / M", "return (K * (xpl - x) - f + eta * v) / M",
