@@ -11,7 +11,8 @@ from typer.testing import CliRunner
 import dryfriction.warm as warm
 from dryfriction.cli import app
 
-KERNELS = ("ensemble/kernel.py", "rsf/driving.py")
+KERNELS = warm.KERNEL_MODULES
+RSF = "rsf/stepper.py"  # the rate-and-state kernels (compiled lazily, cached all the same)
 
 
 def _package(tmp_path: Path) -> Path:
@@ -30,28 +31,28 @@ def test_missing_fresh_and_stale_caches(tmp_path: Path, monkeypatch: pytest.Monk
     cache.parent.mkdir()
     cache.write_bytes(b"")
     os.utime(cache, (2000.0, 2000.0))
-    assert warm.missing_kernel_caches(root) == ["rsf/driving.py"]  # one cached, newer
+    assert warm.missing_kernel_caches(root) == [RSF]  # one cached, newer
     os.utime(root / "ensemble" / "kernel.py", (3000.0, 3000.0))
     assert warm.missing_kernel_caches(root) == list(KERNELS)  # source edited since: stale
     other = root / "rsf" / "__pycache__" / "law.x-1.py311.nbi"  # another module's cache
     other.parent.mkdir()
     other.write_bytes(b"")
     os.utime(other, (4000.0, 4000.0))
-    assert "rsf/driving.py" in warm.missing_kernel_caches(root)
+    assert RSF in warm.missing_kernel_caches(root)
 
 
 def test_numba_cache_dir_is_searched(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     root = _package(tmp_path / "pkg")
     where = tmp_path / "cache" / "deep" / "rsf"
     where.mkdir(parents=True)
-    for name in ("driving._rhs-140.py311.nbi", "kernel._advance-308.py311.nbi"):
+    for name in ("stepper._rhs-140.py311.nbi", "kernel._advance-308.py311.nbi"):
         (where / name).write_bytes(b"")
         os.utime(where / name, (2000.0, 2000.0))
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
     assert warm.missing_kernel_caches(root) == []
 
 
-@pytest.mark.parametrize("missing", [["rsf/driving.py"], []])
+@pytest.mark.parametrize("missing", [[RSF], []])
 def test_command_says_it_compiles_only_when_it_will(missing: list[str], tmp_path: Path,
                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(warm, "missing_kernel_caches", lambda *a: missing)
