@@ -10,6 +10,7 @@ from typer.testing import CliRunner
 
 import dryfriction.warm as warm
 from dryfriction.cli import app
+from dryfriction.rsf import stepper
 
 KERNELS = warm.KERNEL_MODULES
 RSF = "rsf/stepper.py"  # the rate-and-state kernels (compiled lazily, cached all the same)
@@ -55,10 +56,26 @@ def test_numba_cache_dir_is_searched(tmp_path: Path, monkeypatch: pytest.MonkeyP
 @pytest.mark.parametrize("missing", [[RSF], []])
 def test_command_says_it_compiles_only_when_it_will(missing: list[str], tmp_path: Path,
                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """A rate-and-state run large enough for the compiled solver, in a process that has not
+    loaded it yet: the notice comes when (and only when) its cache is missing."""
     monkeypatch.setattr(warm, "missing_kernel_caches", lambda *a: missing)
-    r = CliRunner().invoke(app, ["rsf", "--case", "step", "--t1", "1", "--t2", "1"])
+    monkeypatch.setattr(stepper, "_compiled", {})  # as in a fresh process
+    monkeypatch.setattr(stepper, "compile_hook", None)
+    with stepper.interpreted_steps(0):
+        r = CliRunner().invoke(app, ["rsf", "--case", "step", "--t1", "1", "--t2", "1"])
     assert r.exit_code == 0, r.output
     assert ("compiling the solvers once" in r.output) == bool(missing)
+
+
+def test_small_rsf_run_compiles_nothing_and_says_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(warm, "missing_kernel_caches", lambda *a: [RSF])
+    monkeypatch.setattr(stepper, "_compiled", {})
+    monkeypatch.setattr(stepper, "compile_hook", None)
+    with stepper.interpreted_steps(10**6):
+        r = CliRunner().invoke(app, ["rsf", "--case", "step", "--t1", "1", "--t2", "1"])
+    assert r.exit_code == 0, r.output
+    assert "compiling" not in r.output
+    assert stepper._compiled == {}  # interpreted throughout
 
 
 def test_installed_package_is_warm() -> None:

@@ -488,6 +488,10 @@ def _jit_namespace(module: types.ModuleType, funcs: tuple[Callable[..., Any], ..
 
 _compiled: dict[str, Any] = {}
 
+compile_hook: Callable[[], None] | None = None
+"""Called just before this process first loads (or compiles) the compiled kernels: the command
+line's one-line notice when their cache is missing, said only when a run does need them."""
+
 
 def compiled() -> dict[str, Any]:
     """The kernels compiled by Numba (loaded from its cache, or compiled and cached on first
@@ -495,6 +499,8 @@ def compiled() -> dict[str, Any]:
     if not _compiled:
         import sys
 
+        if compile_hook is not None:
+            compile_hook()
         import numba
 
         ns = _jit_namespace(sys.modules[__name__], _KERNELS, {"_zeros": np.zeros}, numba.njit)
