@@ -5,6 +5,10 @@ Goals on one core, in-process: a velocity step 1 -> 10 um/s over 40 s in <= 1 ms
 error against an independent reference integration (SciPy DOP853 at rtol 1e-12 in linear
 variables, ``tests/rsf_reference.py``).
 
+The solver runs compiled here (``interpreted_steps(0)``): a small job in a fresh process runs
+interpreted instead (no Numba to import, :mod:`dryfriction.rsf.stepper`), whose cost per step
+is printed last.
+
 Run: ``python -m benchmarks bench_rsf`` (or ``python benchmarks/bench_rsf.py``).
 Cases: ageing law, a = 0.005, b = 0.01, Dc = 10 um, mu0 = 0.6, V0 = 1 um/s (rsfmodel's
 README example). Velocity step: k = 1e3 /m = 2 k_c. Stick-slip: k = 0.8 k_c = 400 /m,
@@ -32,6 +36,7 @@ from dryfriction.rsf.driving import (  # noqa: E402
     simulate_rsf,
 )
 from dryfriction.rsf.law import RateState  # noqa: E402
+from dryfriction.rsf.stepper import interpreted_steps  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from rsf_reference import reference_run  # noqa: E402
@@ -91,9 +96,31 @@ def stick_slip(rtols: tuple[float, ...]) -> None:
           "within milliseconds)")
 
 
+def interpreted() -> None:
+    """The same velocity step and stick-slip (rtol 1e-7) on the interpreted route."""
+    p = RateState(A, B, DC, MU0, V0)
+    k = 0.8 * p.critical_stiffness()
+    cases = {
+        "velocity step, 40 s": (p, SpringSlider(VelocityProgram(
+            [Segment(1e-6, 10.0), Segment(1e-5, 30.0)]), stiffness=1e3), None, RSFOutput()),
+        "stick-slip, 100 s": (p, SpringSlider(VelocityProgram([Segment(1e-5, 100.0)]),
+                                              stiffness=k, damping=0.5),
+                              RSFInitial(v=1.01e-5), RSFOutput()),
+    }
+    print("interpreted route (no Numba; what a small job in a fresh process runs), rtol 1e-7")
+    for name, args in cases.items():
+        with interpreted_steps(10**9):
+            t = best_time(lambda args=args: simulate_rsf(*args), 3, 1)
+            r = simulate_rsf(*args)
+        steps = r.n_steps + r.n_rejected
+        print(f"  {name:20s} {t * 1e3:8.2f}ms {steps:6d} steps  {t / steps * 1e6:6.1f} us/step")
+
+
 def main() -> None:
-    velocity_step((1e-6, 1e-7, 1e-8, 1e-10))
-    stick_slip((1e-6, 1e-7, 1e-8, 1e-9))
+    with interpreted_steps(0):
+        velocity_step((1e-6, 1e-7, 1e-8, 1e-10))
+        stick_slip((1e-6, 1e-7, 1e-8, 1e-9))
+    interpreted()
 
 
 if __name__ == "__main__":

@@ -11,7 +11,9 @@ Each run below is tiny and goes through the same public path as a command (the p
 parser), so that every specialisation a command compiles is the one compiled here: the
 trap-model kernel for each creep law and each kind of drive, and the rate-and-state solver
 for each state law, one and two state variables, kinematic and spring machines, sampled and
-every-step output, and its linear stability.
+every-step output, and its linear stability. A small rate-and-state run is interpreted
+(:mod:`dryfriction.rsf.stepper`); here every one runs compiled, so that a large one finds the
+compiled kernels cached.
 """
 
 from __future__ import annotations
@@ -25,8 +27,9 @@ from typing import Any
 
 __all__ = ["KERNEL_MODULES", "WARM_PROTOCOLS", "main", "missing_kernel_caches", "warm"]
 
-KERNEL_MODULES: tuple[str, ...] = ("ensemble/kernel.py", "rsf/driving.py")
-"""The modules holding ``numba.njit(cache=True)`` functions, relative to the package."""
+KERNEL_MODULES: tuple[str, ...] = ("ensemble/kernel.py", "rsf/stepper.py")
+"""The modules holding functions Numba compiles with ``cache=True``, relative to the package
+(the rate-and-state kernels are compiled lazily, by :func:`dryfriction.rsf.stepper.compiled`)."""
 
 _TRAP_MODEL = {"alpha": 0.13, "eps": 0.04}
 _TRAP_ENSEMBLE = {"traps_per_a0": 20, "initial": "rest"}
@@ -67,14 +70,16 @@ def warm() -> float:
     from .io.protocol import protocol_from_dict
     from .rsf.driving import linear_stability
     from .rsf.law import RateState
+    from .rsf.stepper import interpreted_steps
 
     start = time.perf_counter()
     with warnings.catch_warnings():
         # the tiny stick-slip protocol starts at its (unstable) steady state on purpose: only
         # the compilation matters here, not the run's advice
         warnings.simplefilter("ignore", RuntimeWarning)
-        for i, doc in enumerate(WARM_PROTOCOLS):
-            protocol_from_dict(doc, f"warm-up protocol {i}").run()
+        with interpreted_steps(0):
+            for i, doc in enumerate(WARM_PROTOCOLS):
+                protocol_from_dict(doc, f"warm-up protocol {i}").run()
     linear_stability(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6), 1e-6, 1e3)
     return time.perf_counter() - start
 

@@ -37,6 +37,8 @@ def main(argv: list[str] | None = None) -> int:
     import signal
     import sys
 
+    # the figures import matplotlib without docstring tables nobody here reads (dryfriction.plots)
+    os.environ.setdefault("DRYFRICTION_LEAN_MATPLOTLIB", "1")
     interrupted: list[int] = []
 
     def on_sigint(signum: int, frame: Any) -> None:
@@ -65,6 +67,8 @@ def main(argv: list[str] | None = None) -> int:
         error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")
         code = 128 + last
     return code
+
+
 def _run(argv: list[str] | None) -> int:
     """The app without Click's standalone mode: usage errors become one line."""
     try:

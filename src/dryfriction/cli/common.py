@@ -93,14 +93,26 @@ def say(line: str) -> None:
     err.print(line, markup=False, highlight=False, soft_wrap=True)
 
 
-def compile_notice() -> None:
+def compile_notice(rsf: bool = False) -> None:
     """One line on standard error when this run will compile the solvers first (a fresh
-    install that skipped ``make``'s warm-up, or edited kernels), so a pause is not silent."""
+    install that skipped ``make``'s warm-up, or edited kernels), so a pause is not silent.
+
+    A rate-and-state run (``rsf``) compiles only if it is large enough to leave the
+    interpreted solver (:mod:`dryfriction.rsf.stepper`): its notice is said then, if at all."""
     from ..warm import missing_kernel_caches
 
-    if missing_kernel_caches():
-        say("note: first run after installing: compiling the solvers once (about 15 s; "
-            "`python -m dryfriction.warm` does it ahead of time)")
+    def notice(kernel: str | None = None) -> None:
+        missing = missing_kernel_caches()
+        if missing and (kernel is None or kernel in missing):
+            say("note: first run after installing: compiling the solvers once (about 15 s; "
+                "`python -m dryfriction.warm` does it ahead of time)")
+
+    if not rsf:
+        notice()
+        return
+    from ..rsf import stepper
+
+    stepper.compile_hook = lambda: notice("rsf/stepper.py")
 
 
 def emit(result: dict[str, Any], as_json: bool, title: str) -> None:

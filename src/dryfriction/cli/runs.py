@@ -144,7 +144,7 @@ def rsf(
     init.resolve(params, drive)
     if out_dir is not None:
         check_output_dir(out_dir, force=force)
-    compile_notice()
+    compile_notice(rsf=True)
     start = time.perf_counter()
     try:
         res = simulate_rsf(params, drive, init, output)
@@ -225,7 +225,7 @@ def simulate(
     fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)  # every check before any work
     check_output_dir(out, force=force)
-    compile_notice()
+    compile_notice(rsf=isinstance(proto, RSFProtocol))
     if isinstance(proto, RSFProtocol):
         _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi, figure)
         return

@@ -1,9 +1,10 @@
 """Rate-and-state friction in SI units: the laws (:mod:`.law`), what a run is asked to do
-(:mod:`.spring`: :class:`SpringSlider`, :class:`RSFInitial`, :class:`RSFOutput`), the compiled
+(:mod:`.spring`: :class:`SpringSlider`, :class:`RSFInitial`, :class:`RSFOutput`), the
 integrator (:mod:`.driving`: :func:`simulate_rsf`) and what it returns (:mod:`.result`).
 
-The compiled solver - the RODAS4 stepper and the right-hand side of the RSF equations in
-:mod:`.driving` - stays one module on purpose: splitting it was measured, and Numba 0.68
+The solver's kernels - the RODAS4 stepper, its growth-rate step limit and the right-hand side of
+the RSF equations, in :mod:`.stepper` (run interpreted for a small job, compiled by Numba for a
+large one) - stay one module on purpose: splitting it was measured, and Numba 0.68
 first-class functions (passing the equations to the stepper) were 5-17 % slower, while
 inlining compiled functions across files breaks Numba's cache invalidation (a changed
 equation in one file would not recompile the stepper cached from the other).

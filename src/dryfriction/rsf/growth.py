@@ -2,9 +2,11 @@
 
 An L-stable method (RODAS4) stepping over an unstable mode damps it: started 1e-9 off an unstable
 steady state it took one 1000 s step and reported steady sliding. :func:`growth_limit` keeps every
-step within ``EFOLD`` e-folding times of a growing mode of the Jacobian (compiled, called by the
-driver); :func:`unstable_start` and :func:`warn_unstable` tell the user when a run starts at, or
-beside, a linearly unstable steady state.
+step within ``EFOLD`` e-folding times of a growing mode of the Jacobian (it lives in
+:mod:`.stepper`, which runs it interpreted or compiled with its other kernels: one source file,
+so that an edit invalidates Numba's cache of the stepper that inlines it; re-exported here).
+:func:`unstable_start` and :func:`warn_unstable` tell the user when a run starts at, or beside,
+a linearly unstable steady state.
 """
 
 from __future__ import annotations
@@ -12,79 +14,19 @@ from __future__ import annotations
 import math
 import warnings
 
-import numba as nb
 import numpy as np
 
 from .law import RateState
 from .spring import SpringSlider
+from .stepper import EFOLD, below, growth_limit
 
 __all__ = ["EFOLD", "NEAR_STEADY", "UnstableStartWarning", "below", "growth_limit",
            "unstable_start", "warn_unstable"]
-
-EFOLD = 1.0
-"""Most e-folding times of an unstable mode one step may span."""
 
 
 class UnstableStartWarning(RuntimeWarning):
     """The run starts at, or beside, a linearly unstable steady state (the summary's
     ``unstable_start`` says the same; the command line reports it there only)."""
-
-
-@nb.njit(cache=True)
-def below(jac, s: float, sq) -> bool:
-    """Every eigenvalue of ``jac`` has real part ``< s`` (Routh-Hurwitz, ours).
-
-    The characteristic polynomial of ``M = jac - s I`` from the power sums ``tr M^k``
-    (Newton's identities); for the 1-4 unknowns of the driver Hurwitz's conditions are
-    explicit. No eigenvalue solver and no allocation (``sq`` is scratch for ``M^2``): this
-    runs at every large step and must cost a few dozen flops.
-    """
-    n = jac.shape[0]
-    p1 = 0.0
-    for i in range(n):
-        p1 += jac[i, i] - s
-    for i in range(n):
-        for j in range(n):
-            acc = 0.0
-            for q in range(n):
-                acc += (jac[i, q] - (s if i == q else 0.0)) * (jac[q, j] - (s if q == j else 0.0))
-            sq[i, j] = acc
-    p2 = p3 = p4 = 0.0
-    for i in range(n):
-        p2 += sq[i, i]
-        for j in range(n):
-            p3 += sq[i, j] * (jac[j, i] - (s if i == j else 0.0))
-            p4 += sq[i, j] * sq[j, i]
-    e1 = p1
-    e2 = (e1 * p1 - p2) / 2.0
-    e3 = (e2 * p1 - e1 * p2 + p3) / 3.0
-    e4 = (e3 * p1 - e2 * p2 + e1 * p3 - p4) / 4.0
-    a1, a2, a3, a4 = -e1, e2, -e3, e4
-    if n == 1:
-        return a1 > 0.0
-    if n == 2:
-        return a1 > 0.0 and a2 > 0.0
-    if n == 3:
-        return a1 > 0.0 and a3 > 0.0 and a1 * a2 > a3
-    return a1 > 0.0 and a3 > 0.0 and a4 > 0.0 and a1 * a2 * a3 > a3 * a3 + a1 * a1 * a4
-
-
-@nb.njit(cache=True)
-def growth_limit(jac, h: float, sq) -> float:
-    """``h`` reduced (halved) until no eigenvalue of ``jac`` grows by more than
-    ``EFOLD`` e-foldings in one step: an L-stable method would otherwise damp an unstable
-    mode it steps over (a run started beside an unstable steady state stayed there)."""
-    n = jac.shape[0]
-    norm = 0.0
-    for i in range(n):
-        row = 0.0
-        for q in range(n):
-            row += abs(jac[i, q])
-        norm = max(norm, row)
-    # |Re lambda| <= ||J||: steps that short need no test
-    while h * norm > EFOLD and not below(jac, EFOLD / h, sq):
-        h *= 0.5
-    return h
 
 
 # a start within this relative distance (in V and theta) of the first segment's steady state
