@@ -198,7 +198,7 @@ def simulate(
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
     figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
-    """Run a protocol (trap ensemble, docs/model.md §6, or rate-and-state with
+    """Run a protocol (trap ensemble, §6 of `dryfriction model`, or rate-and-state with
     ``model.law = "rsf"``):
     timeseries.csv, summary.json, timeseries.png.
 
