@@ -162,7 +162,7 @@ def progress_bar(label: str, total: float | None = None, unit: str = "",
         tot = state["total"]
         if err.is_terminal:
             if not bar:
-                if now - started < delay:
+                if now - started < delay or tot is None:  # no total: nothing to draw yet
                     return
                 p = Progress(TextColumn("{task.description}"), BarColumn(),
                              TextColumn(counts), TimeElapsedColumn(), TextColumn("left"),

@@ -356,7 +356,7 @@ def _consistency(prob: Problem, cost: float, track: EvaluationTracker) -> dict[s
         fx = {k: v for k, v in fix.items() if k in names}
         if len(d) <= len(specs):
             return {"test": "not run", "reason": f"{d.source} has too few points to fit alone"}
-        track.begin("consistency", f"{d.source} alone")
+        track.begin("consistency", f"{d.source.rsplit('/', 1)[-1]} alone")
         r = fit(d, m, fix=fx, profile=False, consistency=False, progress=track.tick)
         track.end()
         if not r.success:
