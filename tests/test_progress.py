@@ -56,6 +56,32 @@ def test_fit_progress_counts_every_evaluation_and_ends_at_its_estimate() -> None
     assert {f"profile of {k} ({i + 1} of 3)" for i, k in enumerate(r.free)} <= whats
 
 
+def test_fit_progress_counts_the_separate_fits_of_a_joint_fit() -> None:
+    """The consistency test fits each data set alone: their evaluations continue the count,
+    one each (a nested fit's final report is no evaluation), under the data set's name."""
+    from dryfriction.io.data import read_csv
+
+    calls = [0]
+
+    class Counting(CVModel):
+        def predict(self, values, data):  # type: ignore[no-untyped-def]
+            calls[0] += 1
+            return super().predict(values, data)
+
+    data = Path(__file__).parent.parent / "examples" / "data"
+    ds = [read_csv(data / "synthetic_static_paper.csv"),
+          read_csv(data / "synthetic_steady_paper.csv")]
+    seen: list[tuple[int, int, str]] = []
+    fit(ds, Counting(), profile=False, progress=lambda n, tot, w: seen.append((n, tot, w)))
+    done = [c[0] for c in seen]
+    # one prediction per data set and evaluation of the joint fit, one per separate one
+    assert done[:-1] == list(range(1, len(done)))
+    alone = sum(1 for _, _, w in seen[:-1] if w.endswith(" alone"))
+    assert calls[0] == 2 * (done[-1] - alone) + alone
+    assert {w for _, _, w in seen if w.endswith(" alone")} == {
+        "synthetic_static_paper.csv alone", "synthetic_steady_paper.csv alone"}
+
+
 def test_fit_progress_estimate_is_close_once_a_profile_has_run() -> None:
     """After the first profile walk the estimated total is within a factor 2 of the real one
     (the remaining profiles cost about as much): an estimate that ignored the profiles (the

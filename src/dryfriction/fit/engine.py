@@ -357,7 +357,7 @@ def _consistency(prob: Problem, cost: float, track: EvaluationTracker) -> dict[s
         if len(d) <= len(specs):
             return {"test": "not run", "reason": f"{d.source} has too few points to fit alone"}
         track.begin("consistency", f"{d.source.rsplit('/', 1)[-1]} alone")
-        r = fit(d, m, fix=fx, profile=False, consistency=False, progress=track.tick)
+        r = fit(d, m, fix=fx, profile=False, consistency=False, progress=track.nested())
         track.end()
         if not r.success:
             return {"test": "not run", "reason": f"the separate fit of {d.source} failed"}

@@ -90,8 +90,20 @@ class EvaluationTracker:
                 rest += per * n
         return self.done + round(rest)
 
-    def tick(self, *_: object) -> None:
-        """One evaluation done (also takes a nested fit's ``progress`` arguments)."""
+    def tick(self) -> None:
+        """One evaluation done."""
         self.done += 1
         if self.report is not None:
             self.report(self.done, self.total(), self.what)
+
+    def nested(self) -> FitProgress:
+        """A ``progress`` for a fit run inside this one (a data set fitted alone): each of its
+        evaluations is one here, its final report (no evaluation) none."""
+        seen = [0]
+
+        def report(done: int, total: int, what: str) -> None:
+            while seen[0] < done:
+                seen[0] += 1
+                self.tick()
+
+        return report
