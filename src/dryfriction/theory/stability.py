@@ -536,13 +536,22 @@ def delay_chain_limit(resp: SteadyResponse, stiffness: float, mass: float = 0.0,
     of ``chi`` approach them as ``k -> inf``, so the spectrum's supremum is at least this
     (not attained when the chain approaches it from below). ``+inf`` when ``K = -Z(inf)``
     (every frequency grows: ill posed); ``-inf`` with mass or damping, whose ``M lambda^2``
-    or ``eta lambda`` outgrows the delay term, or without a delay term.
+    or ``eta lambda`` outgrows the delay term, without a delay term, or for a response that
+    is not a :class:`SteadyResponse` (the direct effect's ``(a_d/u) lambda`` damps it).
     """
-    amp = resp.edge * resp.edge_delay / resp.H0
+    amp = _delay_weight(resp)
     if mass > 0 or damping > 0 or amp == 0:
         return -np.inf
     c = abs((stiffness + resp.Z_inf) / amp)
     return np.inf if c == 0 else float(-np.log(c) / resp.tau_d)
+
+
+def _delay_weight(resp: Any) -> float:
+    """``E = edge * edge_delay / H0``, the weight of ``e^{-lambda tau_d}`` in ``Z`` (0 for a
+    response without that form)."""
+    if not isinstance(resp, SteadyResponse):
+        return 0.0
+    return float(resp.edge * resp.edge_delay / resp.H0)
 
 
 def _seeds(resp: SteadyResponse, stiffness: float, mass: float, damping: float,
@@ -555,7 +564,7 @@ def _seeds(resp: SteadyResponse, stiffness: float, mass: float, damping: float,
     scale = 1.0 / resp.tau_d
     seeds = [s * scale * np.exp(1j * p) for s in np.geomspace(0.05, 50.0, n_seeds // 4)
              for p in (-1.2, -0.4, 0.4, 1.2)]
-    amp = resp.edge * resp.edge_delay / resp.H0
+    amp = _delay_weight(resp)
     if mass == 0 and damping == 0 and amp != 0 and stiffness + resp.Z_inf != 0:
         log_c = np.log(complex((stiffness + resp.Z_inf) / amp))
         seeds += [complex(-(log_c + 2j * np.pi * k) * scale)
