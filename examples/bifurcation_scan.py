@@ -17,8 +17,20 @@ factors = [float(a) for a in sys.argv[5].split(",")]
 travel = float(sys.argv[6]) if len(sys.argv) > 6 else 20.0
 Kc = critical_stiffness(u, 0.04, mass=M, damping=eta).critical_stiffness
 t = time.perf_counter()
+
+
+def progress(done: int, total: int) -> None:
+    """A line per stiffness on stderr (the scan takes minutes): elapsed and time left, the
+    runs being of equal load-point travel."""
+    elapsed = time.perf_counter() - t
+    print(f"bifurcation scan: run {done} of {total} done, {elapsed:.0f} s elapsed, about "
+          f"{elapsed * (total - done) / done:.0f} s left", file=sys.stderr, flush=True)
+
+
+print(f"bifurcation scan: K_c = {Kc:.5g}; {2 * len(factors) - 1} runs of {travel:g} a0 "
+      "(down, then up)", file=sys.stderr, flush=True)
 out = bifurcation_scan(u, 0.04, [f * Kc for f in factors], mass=M, damping=eta,
-                       traps_per_a0=n, travel=travel, transient=travel / 2)
+                       traps_per_a0=n, travel=travel, transient=travel / 2, progress=progress)
 print(f"u = {u:g}, M = {M:g}, eta = {eta:g}: K_c = {out['K_c']:.5g} "
       f"({time.perf_counter() - t:.1f} s)")
 for leg in ("down", "up"):

@@ -117,9 +117,41 @@ def test_wheel_ships_the_package_and_the_examples(tmp_path: Path) -> None:
     where, count = r.stdout.split()
     assert Path(where) == site / "dryfriction" / "examples"
     assert int(count) == len(example_files())
+    # the model's description, which the help and the docstrings cite, comes with the wheel
+    assert "dryfriction/docs/model.md" in names
+    r = subprocess.run([sys.executable, "-c", "import sys; from dryfriction.cli import main; "
+                        "sys.exit(main(['model', '--path']))"],
+                       capture_output=True, text=True, timeout=120, cwd=tmp_path,
+                       env={**os.environ, "PYTHONPATH": str(site)})
+    assert r.returncode == 0, r.stderr
+    assert Path(r.stdout.strip()) == site / "dryfriction" / "docs" / "model.md"
+    assert ((site / "dryfriction" / "docs" / "model.md").read_bytes()
+            == (SRC / "dryfriction" / "docs" / "model.md").read_bytes())
     meta = zipfile.ZipFile(wheel).read(
         next(n for n in names if n.endswith("METADATA"))).decode()
     requires = [line for line in meta.splitlines() if line.startswith("Requires-Dist:")]
     core = [line for line in requires if "extra ==" not in line]
     assert not any("dask" in line or "xarray" in line for line in core)
     assert any("xarray" in line and "extra == \"sweep\"" in line for line in requires)
+
+
+def test_model_command_prints_the_shipped_description() -> None:
+    """``dryfriction model`` prints the file the docs site includes (not a stale copy), and
+    the site's page includes that one file rather than keeping a second text."""
+    res = CliRunner().invoke(app, ["model"])
+    assert res.exit_code == 0, res.output
+    text = (SRC / "dryfriction" / "docs" / "model.md").read_text(encoding="utf-8")
+    assert res.stdout == text and "Very strong pinning" in text
+    page = (ROOT / "docs" / "model.md").read_text()
+    assert "{include} ../src/dryfriction/docs/model.md" in page
+
+
+def test_help_and_readme_cite_only_what_an_install_has() -> None:
+    """Every pointer to the model's description in --help and the README names something a
+    ``pip install`` has (``dryfriction model``, the package's docs/model.md), not a file of
+    the source checkout: the old help's "docs/model.md" existed only in a clone."""
+    runner = CliRunner()
+    helps = [runner.invoke(app, [cmd, "--help"]).stdout for cmd in ("trap", "simulate")]
+    assert all("dryfriction model" in h and "docs/model.md" not in h for h in helps)
+    readme = (ROOT / "README.md").read_text()
+    assert "dryfriction model" in readme

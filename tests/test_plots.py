@@ -175,6 +175,65 @@ def test_timeseries_does_not_draw_a_line_across_an_unsampled_hold_and_shades_it(
     assert "0.04" in title and "0.13" in title and "400 traps" in title and "1 hold" in title
 
 
+def hold_run(hold: float) -> SimpleNamespace:
+    # slide 5 t0 at u = 1, a hold sampled once (its two ends), slide 5 t0 again
+    t = np.concatenate([np.linspace(0.0, 5.0, 101), 5.0 + hold + np.linspace(0.0, 5.0, 101)])
+    x = np.concatenate([np.linspace(0.0, 5.0, 101), np.linspace(5.0, 10.0, 101)])
+    v = np.ones(t.size)
+    v[101] = 0.0
+    mu = 1 + 0.05 * np.sin(x)
+    mu[101:] += 0.1  # aged over the hold: the friction changed along an unrecorded path
+    params = {**PARAMS, "drive": {"kind": "velocity", "segments": [
+        {"velocity": 1.0, "slip": 5.0}, {"velocity": 0.0, "duration": hold},
+        {"velocity": 1.0, "slip": 5.0}]}}
+    return SimpleNamespace(t=t, x=x, v=v, mu=mu, n_active=100 + 0 * t,
+                           x_pull=np.full(t.size, np.nan), partial=False,
+                           info={"parameters": params})
+
+
+def _sliding_share(ax) -> float:
+    """The fraction of the axis's width not taken by the shaded holds (display units)."""
+    to_px = ax.transData.transform
+    x0, x1 = ax.get_xlim()
+    width = to_px((x1, 0))[0] - to_px((x0, 0))[0]
+    held = sum(to_px((p.get_bbox().x1, 0))[0] - to_px((p.get_bbox().x0, 0))[0]
+               for p in ax.patches if p.get_label() in ("hold", "_nolegend_", ""))
+    return 1.0 - held / width
+
+
+def test_timeseries_compresses_a_long_hold_so_the_sliding_is_readable():
+    # 10 t0 of sliding around a hold of 1000 t0: on a true time axis the sliding would get 1 %
+    # of the width; the hold becomes a band of fixed width, still shaded, still not bridged,
+    # its duration written in it
+    fig, axes = runs.timeseries_figure(hold_run(1000.0))
+    for ax in (axes[0], axes[2], axes[3]):
+        assert _sliding_share(ax) >= 0.75, ax.get_xlabel()
+        spans = [p for p in ax.patches if p.get_label() == "hold"]
+        assert len(spans) == 1
+        assert (spans[0].get_bbox().x0, spans[0].get_bbox().x1) == (5.0, 1005.0)  # real time
+        assert "hold 1000 $t_0$" in [tx.get_text() for tx in ax.texts]
+        assert "compressed" in ax.get_xlabel() and "[$t_0$]" in ax.get_xlabel()
+        ticks = ax.get_xticks()  # real times, on the sliding only
+        assert ticks.size >= 3 and not ((ticks > 5.0) & (ticks < 1005.0)).any()
+    t, mu = (np.asarray(a, float) for a in (axes[0].lines[0].get_xdata(),
+                                          axes[0].lines[0].get_ydata()))
+    gap = np.flatnonzero(np.isnan(mu))
+    assert gap.size == 1 and t[gap[0] - 1] == 5.0 and t[gap[0] + 1] == 1005.0
+    # both slides are drawn at the same scale: equal durations, equal widths
+    px = axes[0].transData.transform
+    first = px((5.0, 0))[0] - px((0.0, 0))[0]
+    second = px((1010.0, 0))[0] - px((1005.0, 0))[0]
+    assert first == pytest.approx(second, rel=1e-6)
+    _assert_laid_out(fig, "long hold")
+
+
+def test_timeseries_keeps_true_time_when_the_holds_are_short():
+    # a hold of 2 t0 beside 10 t0 of sliding squeezes nothing: the axis stays linear time
+    _, axes = runs.timeseries_figure(hold_run(2.0))
+    assert axes[0].get_xscale() == "linear"
+    assert "compressed" not in axes[0].get_xlabel()
+
+
 def test_timeseries_marks_a_static_threshold_with_its_value():
     fig, axes = runs.timeseries_figure(threshold_run())
     for ax in axes[:2]:

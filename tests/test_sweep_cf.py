@@ -66,6 +66,13 @@ def test_readme_linear_sweep_has_every_point_and_units(tmp_path, recwarn):
     assert (ds["K_c"].values == ds["K_c"].values[0]).all()
     assert ds["K_c"].attrs["units"] == "F_el/a0" and ds["omega_c"].attrs["units"] == "1/t0"
     assert ds["drive.segments.0.velocity"].attrs["units"] == "a0/t0"
+    # was: NaN at 3 of the 9 points (no root found from 24 starts); every point where the
+    # linear problem is defined (all of them here) has a growth rate, and says what it is
+    assert np.isfinite(ds["growth_rate"].values).all()
+    kinds = dict(zip(ds["growth_rate_kind"].attrs["flag_values"],
+                     ds["growth_rate_kind"].attrs["flag_meanings"].split(), strict=True))
+    assert {kinds[int(k)] for k in ds["growth_rate_kind"].values.ravel()} <= {
+        "rightmost_root", "delay_chain_limit"}
 
 
 @pytest.mark.parametrize(("u", "K"), [(1.0, 0.05), (0.1, 0.1)])
@@ -93,4 +100,66 @@ def test_every_runner_result_has_cf_attributes(name):
         fields = set(StickSlipStats.__dataclass_fields__) - {"code"} | {"class", "u", "stiffness"}
         assert set(mod.SWEEP_VARIABLES) == fields
     else:
-        assert set(mod.SWEEP_VARIABLES) == {"K_c", "omega_c", "growth_rate", "linearly_stable"}
+        assert set(mod.SWEEP_VARIABLES) == {"K_c", "omega_c", "growth_rate", "growth_rate_kind",
+                                            "linearly_stable"}
+
+
+def _chi_zeros_in(resp, K: float, re_lo: float, re_hi: float, im_hi: float) -> int:
+    """Zeros of ``chi = K + Z`` in the rectangle ``[re_lo, re_hi] x [-im_hi, im_hi]`` by the
+    argument principle (the winding of chi along its edge): a count that does not depend on
+    where a Newton search starts."""
+    n = 6000
+    edge = np.concatenate([
+        re_lo + 1j * np.linspace(im_hi, -im_hi, n, endpoint=False),
+        np.linspace(re_lo, re_hi, n, endpoint=False) - 1j * im_hi,
+        re_hi + 1j * np.linspace(-im_hi, im_hi, n, endpoint=False),
+        np.linspace(re_hi, re_lo, n, endpoint=False) + 1j * im_hi,
+    ])
+    chi = K + resp.Z(np.append(edge, edge[0]))
+    turn = np.diff(np.unwrap(np.angle(chi)))
+    assert np.abs(turn).max() < 1.0  # sampled finely enough for the count to hold
+    return round(turn.sum() / (2 * np.pi))  # the edge runs counter-clockwise
+
+
+def _chain_root(resp, K: float, k: int) -> complex:
+    """The ``k``-th root of the delay chain by the test's own Newton from its asymptotics
+    ``K + Z(inf) - E e^{-lambda tau_d} = 0``."""
+    amp = resp.edge * resp.edge_delay / resp.H0
+    z = complex(-(np.log(complex((K + resp.Z_inf) / amp)) + 2j * np.pi * k) / resp.tau_d)
+    for _ in range(40):
+        h = 1e-7 * abs(z)
+        f = complex(K + resp.Z(z))
+        z -= f * h / (complex(K + resp.Z(z + h)) - f)
+    assert abs(K + resp.Z(z)) < 1e-10
+    return z
+
+
+@pytest.mark.parametrize("u", [0.01, 0.1, 1.0])
+def test_readme_linear_sweep_growth_rates_are_the_spectrum_supremum(u):
+    """The 9 points of the README's ``sweep --linear``: each growth rate finite, of the sign of
+    ``K_c - K``; no zero of chi to its right (argument principle, up to |lambda| tau_d = 40),
+    the rightmost root a zero of chi that the same count sees; never below a root of the
+    chain far out (the supremum includes the chain), and equal to its limit where it says
+    so. Catches a search that misses the low-frequency rightmost root (the old 24 starts gave
+    -1.79/tau_d at u = 0.1, K = 0.1 where a root sits at -1.62/tau_d) or returns NaN where the
+    rightmost roots lie at |lambda| tau_d ~ 1000."""
+    from dryfriction.analysis.linear import GROWTH_KINDS, growth_rate
+    from dryfriction.theory.stability import critical_stiffness
+
+    resp = steady_response(u, 0.04)
+    k_c = critical_stiffness(u, 0.04).critical_stiffness
+    tau = resp.tau_d
+    for K in (0.025, 0.05, 0.1):
+        rate, code, root = growth_rate(resp, K)
+        kind = GROWTH_KINDS[code]
+        assert np.isfinite(rate) and kind in ("rightmost_root", "delay_chain_limit"), (K, kind)
+        assert np.sign(rate) == np.sign(k_c - K), (K, rate, k_c)
+        assert _chi_zeros_in(resp, K, rate + 0.05 / tau, 40.0 / tau, 40.0 / tau) == 0, K
+        far = _chain_root(resp, K, 20_000)
+        assert far.real <= rate + 1e-3 / tau, (K, far, rate)
+        if kind == "rightmost_root":
+            assert root.real == rate and abs(K + resp.Z(root)) < 1e-8
+            if abs(root.imag) < 39.0 / tau:  # the count sees it: it can tell a zero is there
+                assert _chi_zeros_in(resp, K, rate - 0.05 / tau, 40.0 / tau, 40.0 / tau) >= 1
+        else:
+            assert rate - far.real < 0.01 / tau, (K, far, rate)

@@ -54,7 +54,7 @@ was steady) means a subcritical bifurcation (bistability).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -495,6 +495,7 @@ def bifurcation_scan(
     samples_per_a0: float = 50.0,
     direct: float = 0.0,
     v_ref: float = 1.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> dict[str, Any]:
     """Continuation in ``K``: stick-slip amplitude and period down then up (module doc).
 
@@ -523,6 +524,9 @@ def bifurcation_scan(
         Direct effect ``A`` and its reference velocity (``a0/t0``); ``A > 0`` needs ``M = 0``
         and takes ``K_c`` from :func:`~dryfriction.theory.direct_stability.
         critical_stiffness_direct`; the force kick is added to the friction ``g(u) F``.
+    progress : callable, optional
+        ``progress(done, total)`` after each stiffness (``2 len(stiffnesses) - 1`` runs of
+        equal load-point travel).
 
     Returns
     -------
@@ -569,6 +573,8 @@ def bifurcation_scan(
                              "K_c_minus_K": lin.critical_stiffness - K})
             velocity = float(r.v[-1]) if mass > 0 else 0.0
             force = float(load[-1])
+            if progress is not None:
+                progress(len(out["down"]) + len(out["up"]), 2 * len(ks) - 1)
     return out
 
 

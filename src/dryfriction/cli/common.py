@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import functools
 import json
+import time
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import Any, TypeVar
 
 import typer
@@ -113,6 +115,94 @@ def compile_notice(rsf: bool = False) -> None:
     from ..rsf import stepper
 
     stepper.compile_hook = lambda: notice("rsf/stepper.py")
+
+
+PROGRESS_EVERY_S = 10.0
+"""Without a terminal (a log file, a pipe, CI): one progress line at most this often, the first
+after this long, so that a job of a few seconds prints nothing and a long one is not silent."""
+
+Update = Callable[..., None]
+"""``update(done, total=None, what=None)``: work done so far, the total (``None``: unchanged;
+an estimate may grow) and what is being done now."""
+
+
+@contextmanager
+def progress_bar(label: str, total: float | None = None, unit: str = "",
+                 delay: float = 1.0) -> Iterator[Update]:
+    """Progress with the elapsed time and an estimate of the time left, on standard error.
+
+    On a terminal: a Rich bar (removed when done) that appears after ``delay`` seconds, so
+    that a quick run draws none. Otherwise one plain line every :data:`PROGRESS_EVERY_S`
+    seconds (``label: what 12/40 unit (30 %), 25 s elapsed, about 58 s left``). Standard
+    output is never touched: a ``--json`` or table on it stays clean.
+
+    Parameters
+    ----------
+    label : str
+        What runs (``fit``, ``sweep``).
+    total : float, optional
+        Units of work in all (``None``: not known yet; no estimate of the time left).
+    unit : str
+        What is counted (``points``, ``evaluations``), shown after the counts.
+    delay : float
+        Seconds before the terminal bar appears.
+
+    Yields
+    ------
+    callable
+        ``update(done, total=None, what=None)``.
+    """
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    started = time.monotonic()
+    state: dict[str, Any] = {"total": total, "what": "", "last": started}
+    bar: dict[str, Any] = {}
+    counts = "{task.completed:.0f}/{task.total:.0f}" + (f" {unit}" if unit else "")
+
+    def update(done: float, new_total: float | None = None, what: str | None = None) -> None:
+        if new_total is not None:
+            state["total"] = new_total
+        if what is not None:
+            state["what"] = what
+        now = time.monotonic()
+        tot = state["total"]
+        if err.is_terminal:
+            if not bar:
+                if now - started < delay or tot is None:  # no total: nothing to draw yet
+                    return
+                p = Progress(TextColumn("{task.description}"), BarColumn(),
+                             TextColumn(counts), TimeElapsedColumn(), TextColumn("left"),
+                             TimeRemainingColumn(), console=err, transient=True)
+                p.start()
+                bar["p"], bar["task"] = p, p.add_task(label, total=tot)
+            desc = f"{label}: {state['what']}" if state["what"] else label
+            bar["p"].update(bar["task"], completed=done, total=tot, description=desc)
+            return
+        if now - state["last"] < PROGRESS_EVERY_S:
+            return
+        state["last"] = now
+        elapsed = now - started
+        line = f"{label}: " + (f"{state['what']} " if state["what"] else "")
+        if tot:
+            line += f"{done:.0f}/{tot:.0f}" + (f" {unit}" if unit else "")
+            line += f" ({100 * done / tot:.0f} %), {elapsed:.0f} s elapsed"
+            if done > 0:
+                line += f", about {elapsed * max(tot - done, 0) / done:.0f} s left"
+        else:
+            line += f"{done:.0f}" + (f" {unit}" if unit else "") + f", {elapsed:.0f} s elapsed"
+        say(line)
+
+    try:
+        yield update
+    finally:
+        if bar:
+            bar["p"].stop()
 
 
 def emit(result: dict[str, Any], as_json: bool, title: str) -> None:

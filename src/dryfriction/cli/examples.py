@@ -1,4 +1,5 @@
-"""``dryfriction examples``: where the shipped examples are, and a copy of them to edit."""
+"""``dryfriction examples``: where the shipped examples are, and a copy of them to edit;
+``dryfriction model``: the model's description, shipped with the package."""
 
 from __future__ import annotations
 
@@ -26,3 +27,19 @@ def examples(
     files = copy_examples(copy, force=force, report=say)
     say(f"copied {len(files)} example files into {copy}; try: "
         f"dryfriction simulate {copy.rstrip('/')}/velocity_step.toml --out run/")
+
+
+@app.command("model")
+@cli_errors
+def model_description(
+    path: bool = typer.Option(False, "--path", help="Print where the file is instead."),
+) -> None:
+    """Print the model's description (Markdown): the equations, the readings the code follows
+    and the units; docstrings cite its sections as docs/model.md §N."""
+    from ..io.examples import model_description as where
+
+    file = where()
+    if path:
+        print(file)
+        return
+    print(file.read_text(encoding="utf-8"), end="")

@@ -23,6 +23,7 @@ from .common import (
     err,
     out,
     print_whole,
+    progress_bar,
     say,
 )
 from .model import CREEP_HELP
@@ -133,18 +134,33 @@ def fit_command(
 
     chosen: Any = (CVModel(alpha, creep, traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref)
                    if model == "cv" else model)
-    try:
-        result = fit(datasets, chosen, fix=fixed, profile=profile, **opts)
-    except NotImplementedError as exc:
-        raise ValueError(str(exc)) from None
-    report = result.to_dict()
-    if compare:
-        other = "rsf" if model == "cv" else "cv"
+    with progress_bar("fit", unit="evaluations") as update:
+        done = [0]
+
+        def fit_progress(n: int, total: int, what: str) -> None:
+            done[0] = n
+            update(n, total, f"{model} {what}")
+
         try:
-            alt = fit(datasets, other, profile=False, consistency=False, **opts)
-            report["comparison"] = compare_models([result, alt])
-        except (ValueError, NotImplementedError) as exc:
-            report["comparison"] = {"not_run": f"{other}: {exc}"}
+            result = fit(datasets, chosen, fix=fixed, profile=profile, progress=fit_progress,
+                         **opts)
+        except NotImplementedError as exc:
+            raise ValueError(str(exc)) from None
+        report = result.to_dict()
+        if compare:
+            other = "rsf" if model == "cv" else "cv"
+            before = done[0]
+
+            def compare_progress(n: int, total: int, what: str) -> None:
+                # the count goes on; the total grows by the comparison's, unknown before
+                update(before + n, before + total, f"{other} comparison {what}")
+
+            try:
+                alt = fit(datasets, other, profile=False, consistency=False, **opts,
+                          progress=compare_progress)
+                report["comparison"] = compare_models([result, alt])
+            except (ValueError, NotImplementedError) as exc:
+                report["comparison"] = {"not_run": f"{other}: {exc}"}
     with output_directory(out_dir, command="fit", force=force, inputs=data,
                           report=say) as tmp:
         write_json(tmp / "fit.json", report)

@@ -17,7 +17,7 @@ def trap(
     alpha: float = typer.Option(0.13, help="Reduced trap stiffness kappa a^2/(6 Phi0), > 0."),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
-    """All single-trap constants and the pinning regime (docs/model.md §1)."""
+    """All single-trap constants and the pinning regime (`dryfriction model`, §1)."""
     from ..theory.trap import Trap
 
     emit(Trap(alpha).summary(), json_out, f"trap, alpha = {alpha:g}")

@@ -12,11 +12,10 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
-from rich.progress import Progress
 from rich.table import Table
 
 from ..io.files import to_jsonable
-from .common import err, out, say
+from .common import err, out, progress_bar, say
 
 __all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CALLS_PER_STEP"]
 
@@ -116,11 +115,9 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         raise ValueError(f"{path}: the trap model (cv) on this record would take about "
                          f"{cost:.3g} s for {len(wins)} step(s), against seconds for rsf: "
                          "run --model rsf --run-cv to fit both and compare")
-    with Progress(console=err, transient=True, disable=len(wins) < 2) as bar:
-        task = bar.add_task("fitting steps", total=len(wins))
+    with progress_bar("fitting steps", len(wins), unit="steps") as update:
         res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                        joint=joint, profile=profile, errors=errors,
-                        progress=lambda done, _n: bar.update(task, completed=done))
+                        joint=joint, profile=profile, errors=errors, progress=update)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
@@ -131,14 +128,19 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                               **res.to_dict()}
     if run_cv:
         comp = []
-        for i, d in enumerate(res.data):
-            try:
-                alt = fit(d, CVModel(alpha, creep), profile=False)
-                comp.append({"step": i, **compare_models([res.fits[i], alt]),
-                             "note": "cv runs on a kinematic machine without a trend (its "
-                                     "series model has neither), rsf with both"})
-            except (ValueError, NotImplementedError) as exc:
-                comp.append({"step": i, "not_run": f"cv: {exc}"})
+        with progress_bar("cv fits", len(res.data), unit="steps") as update:
+            for i, d in enumerate(res.data):
+                def step_progress(n: int, total: int, what: str, i: int = i) -> None:
+                    update(i + n / max(total, 1), what=f"step {i + 1}, {what}")
+
+                try:
+                    alt = fit(d, CVModel(alpha, creep), profile=False,
+                              progress=step_progress)
+                    comp.append({"step": i, **compare_models([res.fits[i], alt]),
+                                 "note": "cv runs on a kinematic machine without a trend "
+                                         "(its series model has neither), rsf with both"})
+                except (ValueError, NotImplementedError) as exc:
+                    comp.append({"step": i, "not_run": f"cv: {exc}"})
         report["comparison"] = comp
     else:
         report["comparison"] = {"not_run": "the trap model (cv) was not fitted: it costs "

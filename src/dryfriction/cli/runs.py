@@ -21,6 +21,7 @@ from .common import (
     err,
     many,
     out,
+    progress_bar,
     say,
     write_summary,
 )
@@ -37,24 +38,14 @@ def reproduce(
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
 ) -> None:
     """The paper's six figures, the data behind them, summary.json and report.html."""
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
     from ..io.files import check_output_dir
     from ..plots.report import reproduce as run
     from ..validation import check_figure_format
 
     fmt, dpi = check_figure_format(fmt, dpi)
     check_output_dir(out_dir, force=force)  # fail on a bad --out before importing matplotlib
-    with Progress(
-        TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
-        TimeElapsedColumn(), console=err, disable=not err.is_terminal, transient=True,
-    ) as bar:
-        task = bar.add_task("reproduce", total=None)
-
-        def progress(done: int, total: int, what: str) -> None:
-            bar.update(task, completed=done, total=total, description=what)
-
-        summary = run(out_dir, progress, force=force, report=say, fmt=fmt, dpi=dpi)
+    with progress_bar("reproduce", unit="steps") as update:
+        summary = run(out_dir, update, force=force, report=say, fmt=fmt, dpi=dpi)
     out.print(
         f"wrote {out_dir}/: fig1-6.{fmt}, static_friction.csv, steady_friction.csv, "
         f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
@@ -207,7 +198,7 @@ def simulate(
     dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
     figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
-    """Run a protocol (trap ensemble, docs/model.md §6, or rate-and-state with
+    """Run a protocol (trap ensemble, §6 of `dryfriction model`, or rate-and-state with
     ``model.law = "rsf"``):
     timeseries.csv, summary.json, timeseries.png.
 
@@ -215,7 +206,6 @@ def simulate(
     ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
     nothing.
     """
-    import time
     from pathlib import Path
 
     from ..io.files import check_output_dir, output_directory, write_csv
@@ -230,26 +220,9 @@ def simulate(
         _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi, figure)
         return
 
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-    started = time.monotonic()
-    bar: dict[str, Any] = {}
-
-    def progress(fraction: float) -> None:
-        if not err.is_terminal or time.monotonic() - started < 1.0:
-            return
-        if not bar:
-            p = Progress(TextColumn("simulate"), BarColumn(), TimeElapsedColumn(),
-                         console=err, transient=True)
-            p.start()
-            bar["p"], bar["task"] = p, p.add_task("simulate", total=1.0)
-        bar["p"].update(bar["task"], completed=fraction)
-
-    try:
-        result = proto.run(progress=progress, on_interrupt="partial")
-    finally:
-        if bar:
-            bar["p"].stop()
+    with progress_bar("simulate", 100.0, unit="%") as update:
+        result = proto.run(progress=lambda fraction: update(100.0 * fraction),
+                           on_interrupt="partial")
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=say) as tmp:
         write_csv(tmp / "timeseries.csv", result.columns())

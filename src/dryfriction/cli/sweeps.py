@@ -8,7 +8,16 @@ from typing import Any
 import typer
 import typer.core
 
-from .common import DPI_HELP, FORMAT_HELP, app, cli_errors, err, error_line, out
+from .common import (
+    DPI_HELP,
+    FORMAT_HELP,
+    app,
+    cli_errors,
+    err,
+    error_line,
+    out,
+    progress_bar,
+)
 
 
 def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | None,
@@ -84,27 +93,12 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                   variables: Any = None) -> Any:
     """:func:`~dryfriction.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
     are stored and the command that resumes, and exits with 130."""
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-    )
-
     from ..io.sweep import SweepInterrupted, run_sweep
 
     try:
-        with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
-                      TimeElapsedColumn(), console=err, disable=not err.is_terminal,
-                      transient=True) as bar:
-            task = bar.add_task("sweep", total=spec.size)
-
-            def progress(done: int, total: int) -> None:
-                bar.update(task, completed=done, total=total)
-
+        with progress_bar("sweep", spec.size, unit="points", delay=0.0) as update:
             return run_sweep(spec, runner, out_dir, scheduler=scheduler, n_workers=workers,
-                             confirm=confirm, progress=progress, source=source,
+                             confirm=confirm, progress=update, source=source,
                              protocol_text=protocol_text, connect_timeout=connect_timeout,
                              variables=variables)
     except SweepInterrupted as exc:

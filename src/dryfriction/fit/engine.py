@@ -23,6 +23,7 @@ from ..io.data import Dataset, SeriesData, StaticData, SteadyData
 from ..validation import Array, check_choice, check_scalar
 from .models import CVModel, Model, ParamSpec, RSFModel, data_kinds
 from .problem import Problem
+from .progress import EvaluationTracker, FitProgress
 from .results import FitResult, ParameterEstimate
 from .statistics import (
     Covariance,
@@ -118,9 +119,9 @@ def _problem(ds: list[Dataset], m: Model, specs_all: Sequence[ParamSpec],
     return Problem(m, ds, specs, fixed)
 
 
-def _best_of_starts(prob: Problem, guesses: list[dict[str, float]],
-                    start: Mapping[str, float] | None, multistart: bool) -> _Optimum:
-    """Minimise from the given start and/or the data-driven guesses; keep the lowest cost."""
+def _starts(guesses: list[dict[str, float]], start: Mapping[str, float] | None,
+            multistart: bool) -> list[tuple[str, dict[str, float]]]:
+    """The starting points, labelled: the given one and/or the data-driven guesses."""
     starts_in: list[tuple[str, dict[str, float]]] = []
     if start is not None:
         base = dict(guesses[0])
@@ -128,12 +129,20 @@ def _best_of_starts(prob: Problem, guesses: list[dict[str, float]],
         starts_in.append(("given", base))
     if multistart or start is None:
         starts_in += [(f"data guess {i + 1}", g) for i, g in enumerate(guesses)]
+    return starts_in
+
+
+def _best_of_starts(prob: Problem, starts_in: list[tuple[str, dict[str, float]]],
+                    track: EvaluationTracker) -> _Optimum:
+    """Minimise from each start; keep the lowest cost."""
     best: tuple[Array, float, Any] | None = None
     starts_out: list[dict[str, Any]] = []
-    for label, g in starts_in:
+    for i, (label, g) in enumerate(starts_in):
         th0 = np.array([s.to_internal(float(np.clip(g[s.name], s.lo, s.hi)))
                         for s in prob.specs])
+        track.begin("start", f"start {i + 1} of {len(starts_in)}")
         th, cost, sol = prob.solve(th0)
+        track.end()
         ok = sol is None or sol.status > 0
         starts_out.append({"start": label, "from": {s.name: g[s.name] for s in prob.specs},
                            "cost": cost, "converged": ok,
@@ -168,8 +177,8 @@ def _noise_variance(prob: Problem, cost: float) -> float:
     return 1.0 if prob.sigma_given else (2.0 * cost / dof if dof > 0 else math.nan)
 
 
-def _profiles(prob: Problem, opt: _Optimum, z: float, notes: list[str]
-              ) -> tuple[Profiles, Covariance | None]:
+def _profiles(prob: Problem, opt: _Optimum, z: float, notes: list[str],
+              track: EvaluationTracker) -> tuple[Profiles, Covariance | None]:
     """Profile every free parameter; a profile that finds a lower cost restarts the fit from
     there (at most three times).
 
@@ -182,18 +191,28 @@ def _profiles(prob: Problem, opt: _Optimum, z: float, notes: list[str]
         s2 = _noise_variance(prob, opt.cost)
         if not math.isfinite(s2):
             break
+        track.begin("jacobian", "Jacobian")
         cov = covariance(prob.jacobian(opt.theta), s2)
+        track.end()
         profiles, improved = {}, None
         for j in range(prob.p):
+            track.begin("profile", f"profile of {prob.specs[j].name} "
+                                   f"({j + 1} of {prob.p})")
             lo_c, hi_c, r_lo, r_hi, better = profile_interval(
                 prob, opt.theta, opt.cost, s2, j, float(cov.stderr[j]), z * z)
+            track.end()
             if better is not None:
                 improved = better
                 break
             profiles[j] = (lo_c, hi_c, r_lo, r_hi)
         if improved is None:
             break
+        # the profiles and the Jacobian run again from the better optimum
+        track.add("profile", len(profiles) + 1)
+        track.add("jacobian")
+        track.begin("start", "restart from a profile's better optimum")
         opt.theta, opt.cost, _ = prob.solve(improved[0])
+        track.end()
         cov = None
         notes.append("a profile found a better optimum than the starts did: the fit was "
                      "restarted from there")
@@ -327,7 +346,7 @@ def _goodness(prob: Problem, theta: Array, cost: float, s2: float, notes: list[s
     return goodness, per
 
 
-def _consistency(prob: Problem, cost: float) -> dict[str, Any]:
+def _consistency(prob: Problem, cost: float, track: EvaluationTracker) -> dict[str, Any]:
     """Fit each data set alone and test the joint fit against the separate fits."""
     m, fix = prob.model, prob.fixed
     sep_cost, sep_p = 0.0, 0
@@ -337,7 +356,9 @@ def _consistency(prob: Problem, cost: float) -> dict[str, Any]:
         fx = {k: v for k, v in fix.items() if k in names}
         if len(d) <= len(specs):
             return {"test": "not run", "reason": f"{d.source} has too few points to fit alone"}
-        r = fit(d, m, fix=fx, profile=False, consistency=False)
+        track.begin("consistency", f"{d.source.rsplit('/', 1)[-1]} alone")
+        r = fit(d, m, fix=fx, profile=False, consistency=False, progress=track.nested())
+        track.end()
         if not r.success:
             return {"test": "not run", "reason": f"the separate fit of {d.source} failed"}
         sep_cost += float(r.goodness["cost"])
@@ -361,6 +382,7 @@ def fit(
     multistart: bool = True,
     profile: bool = True,
     consistency: bool = True,
+    progress: FitProgress | None = None,
 ) -> FitResult:
     """Fit ``model`` to one or more data sets with one parameter set.
 
@@ -395,6 +417,10 @@ def fit(
     consistency : bool
         For several data sets, also fit each alone and test whether one parameter set explains
         all of them.
+    progress : callable, optional
+        ``progress(done, total, what)`` after every evaluation of the model: evaluations
+        done, an estimate of the total (from the stages left at the mean cost of finished
+        ones: :class:`~.progress.EvaluationTracker`) and the stage (``profile of t0``).
 
     Returns
     -------
@@ -411,7 +437,13 @@ def fit(
     kinds = data_kinds(ds)
     specs_all = m.parameters(kinds)
     prob = _problem(ds, m, specs_all, fix, start)
-    opt = _best_of_starts(prob, m.guesses(ds), start, multistart)
+    starts_in = _starts(m.guesses(ds), start, multistart)
+    will_profile = profile and prob.p > 0
+    track = EvaluationTracker(prob.p, {
+        "start": len(starts_in), "jacobian": 1, "profile": prob.p if will_profile else 0,
+        "consistency": len(ds) if consistency and len(ds) > 1 else 0}, progress)
+    prob.on_evaluation = track.tick
+    opt = _best_of_starts(prob, starts_in, track)
     notes: list[str] = list(m.notes(kinds))
     _check_optimum(prob, opt, notes)
 
@@ -419,10 +451,14 @@ def fit(
     profiles: Profiles = {}
     cov: Covariance | None = None
     if profile and opt.success and prob.p:
-        profiles, cov = _profiles(prob, opt, z, notes)
+        profiles, cov = _profiles(prob, opt, z, notes, track)
+    else:
+        track.left["profile"] = 0  # a fit that did not converge is not profiled
     s2 = _noise_variance(prob, opt.cost)
     if cov is None:  # not computed at this theta by the profiles (bounds need p > 0)
+        track.begin("jacobian", "Jacobian")
         cov = covariance(prob.jacobian(opt.theta) if prob.p else np.zeros((prob.n, 0)), s2)
+        track.end()
     if cov.singular:
         notes.append("the Jacobian is singular: some parameter combinations are not "
                      "determined by the data at all")
@@ -432,13 +468,15 @@ def fit(
     goodness, per = _goodness(prob, opt.theta, opt.cost, s2, notes)
     cons: dict[str, Any] | None = None
     if consistency and len(ds) > 1 and opt.success:
-        cons = _consistency(prob, opt.cost)
+        cons = _consistency(prob, opt.cost, track)
         if cons.get("p_value") is not None and cons["p_value"] < 0.01:
             notes.append(f"one parameter set does not explain all the data sets: the joint fit "
                          f"is worse than separate fits ({cons['test']}, p = "
                          f"{cons['p_value']:.2g})")
     if not opt.success and "did not converge" not in " ".join(notes):
         notes.append("the fit is not reliable (see the parameters on their bounds)")
+    if progress is not None:
+        progress(track.done, track.done, "done")
     return FitResult(
         model=m.name, options=m.options(), parameters=tuple(estimates),
         free=tuple(s.name for s in prob.specs), correlation=cov.correlation, derived=derived,

@@ -9,7 +9,7 @@ Jacobian (:meth:`Problem.jacobian`, for the covariance).
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -37,6 +37,9 @@ class Problem:
         self.n = sum(len(d) for d in datasets)
         self.p = len(specs)
         self.failures = 0
+        self.evaluations = 0
+        # called after every evaluation of the model (the fit's progress report)
+        self.on_evaluation: Callable[[], None] | None = None
 
     def values(self, theta: Array) -> dict[str, float]:
         v = dict(self.fixed)
@@ -55,6 +58,9 @@ class Problem:
                 self.failures += 1
                 f = d.y + 10.0 / w
             out.append((d.y - f) * w)
+        self.evaluations += 1
+        if self.on_evaluation is not None:
+            self.on_evaluation()
         return out
 
     def residuals(self, theta: Array) -> Array:

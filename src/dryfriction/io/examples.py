@@ -4,6 +4,9 @@ In a wheel they are the package data ``dryfriction/examples/``; in a source chec
 editable install) the repository's ``examples/`` folder. :func:`copy_examples` (the command
 ``dryfriction examples --copy DIR``) copies them into a folder of the user's, where the
 README's command lines run as written (``dryfriction simulate DIR/velocity_step.toml ...``).
+
+The model's description (the specification that docstrings cite as ``docs/model.md §N``) ships
+as the package data ``dryfriction/docs/model.md``: :func:`model_description`.
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ import shutil
 from collections.abc import Callable
 from pathlib import Path
 
-__all__ = ["copy_examples", "example_files", "examples_path"]
+__all__ = ["copy_examples", "example_files", "examples_path", "model_description"]
 
 _SKIP = ("__pycache__", ".pyc")
 
@@ -34,6 +37,22 @@ def examples_path() -> Path:
             return folder
     raise OSError("the examples are not installed with this copy of dryfriction "
                   "(expected the package data dryfriction/examples)")
+
+
+def model_description() -> Path:
+    """The model's description, ``dryfriction/docs/model.md`` (Markdown; the documentation
+    site's page "The model" includes it).
+
+    Raises
+    ------
+    OSError
+        When it is missing (a broken install).
+    """
+    path = Path(__file__).resolve().parents[1] / "docs" / "model.md"
+    if not path.is_file():
+        raise OSError(f"the model's description is not installed with this copy of "
+                      f"dryfriction (expected {path})")
+    return path
 
 
 def example_files() -> list[str]:

@@ -179,10 +179,11 @@ def parse_sweep(protocol: Mapping[str, Any], source: str = "protocol") -> SweepS
     return SweepSpec(base, tuple(axes))
 
 
-RESULT_VERSION = 2
+RESULT_VERSION = 3
 """Version of what a stored point means; part of every point's key and of the folder's
 fingerprint, so that results of an older format are never read as current ones. Bump it when a
-runner's output changes meaning (version 1: points keyed by their overrides only)."""
+runner's output changes meaning (version 1: points keyed by their overrides only; version 2:
+the linear growth rate from 24 Newton starts, NaN or not the rightmost root at some points)."""
 
 SWEEP_FORMAT = "dryfriction-sweep"
 """``format`` of the marker file ``sweep.json`` that says a folder holds one of our sweeps."""

@@ -86,6 +86,82 @@ def _broken(u: Any, y: Any, breaks: Any) -> tuple[Any, Any]:
     return np.insert(u, breaks + 1, np.nan), np.insert(y, breaks + 1, np.nan)
 
 
+HOLD_BAND = 0.08
+"""A long hold is drawn this fraction of the sliding time wide (less when there are many)."""
+
+
+class _HoldClock:
+    """Real time -> position on a time axis that draws long holds as bands of one width.
+
+    Used when the holds outlast the sliding (a slide-hold-slide with a hold of 1000 ``t0``
+    against seconds of sliding would squeeze the sliding into slivers): every hold longer
+    than the band width ``w = min(HOLD_BAND, 0.3 / n_holds) * sliding time`` is drawn ``w``
+    wide, the time inside it compressed linearly; everything else keeps its true length.
+    The data stay in real time (the map is the axis's scale), so the ticks are real times.
+    """
+
+    def __init__(self, t: Any, holds: list[tuple[float, float]]) -> None:
+        t = np.asarray(t, float)
+        span = float(t[-1] - t[0]) if t.size else 0.0
+        held = sum(b - a for a, b in holds)
+        self.bands: list[tuple[float, float]] = []  # the compressed holds (real time)
+        kt, ks = [float(t[0]) if t.size else 0.0], [float(t[0]) if t.size else 0.0]
+        if holds and 0.0 < span - held < held:
+            w = min(HOLD_BAND, 0.3 / len(holds)) * (span - held)
+            for a, b in holds:
+                if b - a > w:
+                    ks += [ks[-1] + a - kt[-1], ks[-1] + a - kt[-1] + w]
+                    kt += [a, b]
+                    self.bands.append((a, b))
+        self.kt, self.ks = np.array(kt), np.array(ks)
+
+    def forward(self, t: Any) -> Any:
+        return self._map(t, self.kt, self.ks)
+
+    def inverse(self, s: Any) -> Any:
+        return self._map(s, self.ks, self.kt)
+
+    @staticmethod
+    def _map(x: Any, xk: Any, yk: Any) -> Any:
+        x = np.asarray(x, float)
+        y = np.interp(x, xk, yk)
+        # beyond the knots the slope is 1 (sliding): the axis margins stay true
+        return np.where(x > xk[-1], yk[-1] + x - xk[-1], np.where(x < xk[0], yk[0] + x - xk[0],
+                                                                   y))
+
+    def apply(self, ax: Any, t: Any) -> None:
+        """Give ``ax`` this scale, real-time ticks on each stretch of sliding and the
+        duration written in each compressed hold."""
+        if not self.bands:
+            return
+        from matplotlib.ticker import FixedLocator, MaxNLocator
+
+        ax.set_xscale("function", functions=(self.forward, self.inverse))
+        edges = [float(t[0])] + [e for band in self.bands for e in band] + [float(t[-1])]
+        s0, s1 = float(self.forward(edges[0])), float(self.forward(edges[-1]))
+        total = s1 - s0
+        cuts = [float(self.forward(e)) for band in self.bands for e in band]
+        ticks: list[float] = []
+        for a, b in zip(edges[::2], edges[1::2], strict=True):
+            share = float(self.forward(b) - self.forward(a)) / total
+            for v in MaxNLocator(nbins=max(1, round(7 * share))).tick_values(a, b):
+                # on its stretch, and clear of the bands' edges: two labels either side of
+                # a narrow band would run into each other
+                pos = float(self.forward(v))
+                if (a - 1e-9 * (b - a) <= v <= b + 1e-9 * (b - a)
+                        and all(abs(pos - c) >= 0.04 * total for c in cuts)):
+                    ticks.append(float(v))
+        ax.xaxis.set_major_locator(FixedLocator(ticks))
+        ax.xaxis.set_minor_locator(FixedLocator([]))
+        ax.set_xlim(float(self.inverse(s0 - 0.03 * total)),
+                    float(self.inverse(s1 + 0.03 * total)))
+        for a, b in self.bands:
+            ax.annotate(f"hold {b - a:g} $t_0$", (float(self.inverse(
+                0.5 * (self.forward(a) + self.forward(b)))), 0.97), xycoords=("data",
+                "axes fraction"), fontsize=LEGEND_SIZE, rotation=90, ha="center", va="top",
+                color="0.35")
+
+
 def _shade(ax: Any, holds: list[tuple[float, float]]) -> None:
     for i, (a, b) in enumerate(holds):
         ax.axvspan(a, b, color="0.88", lw=0, zorder=0, label="hold" if i == 0 else None)
@@ -169,6 +245,9 @@ def timeseries_figure(result: Any) -> tuple[Figure, Any]:
         time_label = r"time since the ramp began $t - t_w$  [$t_0$]"
     holds = _holds(t, x) if t0_ramp == 0 else []
     cut = _unsampled(t, x, mu)
+    clock = _HoldClock(t, holds)
+    if clock.bands:
+        time_label = time_label.replace("[", "(long holds compressed)  [", 1)
     for ax in (ax_ft, ax_v, ax_x):
         _shade(ax, holds)
     ax_ft.plot(*_broken(t, mu, cut), lw=THIN)
@@ -219,6 +298,8 @@ def timeseries_figure(result: Any) -> tuple[Figure, Any]:
     for ax in (ax_ft, ax_x):
         if ax.get_legend_handles_labels()[1]:
             ax.legend(fontsize=LEGEND_SIZE, loc="lower right")
+    for ax in (ax_ft, ax_v, ax_x):
+        clock.apply(ax, t)
     return fig, grid.ravel()
 
 

@@ -63,6 +63,7 @@ __all__ = [
     "StabilityResult",
     "critical_stiffness",
     "rightmost_root",
+    "delay_chain_limit",
     "effective_rsf",
     "nyquist_crossings",
 ]
@@ -525,25 +526,71 @@ def critical_stiffness(
                            velocity_slope=slope, supremum_at_infinity=at_inf)
 
 
+def delay_chain_limit(resp: SteadyResponse, stiffness: float, mass: float = 0.0,
+                      damping: float = 0.0) -> float:
+    """Where the real parts of the delay term's chain of roots accumulate (ours).
+
+    With ``M = eta = 0``, at high frequency ``chi -> K + Z(inf) - E e^{-lambda tau_d}``
+    (``E = edge * edge_delay / H0``), whose roots ``lambda_k = -(Log c + 2 pi i k) / tau_d``,
+    ``c = (K + Z(inf)) / E``, have ``Re lambda_k = -ln|c| / tau_d`` for every ``k``: the roots
+    of ``chi`` approach them as ``k -> inf``, so the spectrum's supremum is at least this
+    (not attained when the chain approaches it from below). ``+inf`` when ``K = -Z(inf)``
+    (every frequency grows: ill posed); ``-inf`` with mass or damping, whose ``M lambda^2``
+    or ``eta lambda`` outgrows the delay term, without a delay term, or for a response that
+    is not a :class:`SteadyResponse` (the direct effect's ``(a_d/u) lambda`` damps it).
+    """
+    amp = _delay_weight(resp)
+    if mass > 0 or damping > 0 or amp == 0:
+        return -np.inf
+    c = abs((stiffness + resp.Z_inf) / amp)
+    return np.inf if c == 0 else float(-np.log(c) / resp.tau_d)
+
+
+def _delay_weight(resp: Any) -> float:
+    """``E = edge * edge_delay / H0``, the weight of ``e^{-lambda tau_d}`` in ``Z`` (0 for a
+    response without that form)."""
+    if not isinstance(resp, SteadyResponse):
+        return 0.0
+    return float(resp.edge * resp.edge_delay / resp.H0)
+
+
+def _seeds(resp: SteadyResponse, stiffness: float, mass: float, damping: float,
+           n_seeds: int) -> list[complex]:
+    """Newton starts: a polar grid in the right half-plane (``|lambda| tau_d`` 0.05-50) and,
+    with ``M = eta = 0``, the delay chain's asymptotic roots (:func:`delay_chain_limit`) up to
+    ``k = 10^4``: the rightmost roots there lie far beyond the polar grid (``|lambda| tau_d``
+    in the hundreds to thousands) and Newton from it does not reach them; from the chain's
+    own asymptotics it converges in a few steps."""
+    scale = 1.0 / resp.tau_d
+    seeds = [s * scale * np.exp(1j * p) for s in np.geomspace(0.05, 50.0, n_seeds // 4)
+             for p in (-1.2, -0.4, 0.4, 1.2)]
+    amp = _delay_weight(resp)
+    if mass == 0 and damping == 0 and amp != 0 and stiffness + resp.Z_inf != 0:
+        log_c = np.log(complex((stiffness + resp.Z_inf) / amp))
+        seeds += [complex(-(log_c + 2j * np.pi * k) * scale)
+                  for k in np.unique(np.r_[0:4, np.geomspace(4, 1e4, 18).round()])]
+    return seeds
+
+
 def rightmost_root(
     resp: SteadyResponse, stiffness: float, mass: float = 0.0, damping: float = 0.0,
     n_seeds: int = 24,
 ) -> complex:
     """Root of ``chi`` with the largest real part found by Newton from seeds (growth rate).
 
-    Seeds lie on ``lambda = s (cos phi + i sin phi) / tau_d`` over a grid of ``s`` and
-    ``phi in [-pi/2, pi/2]``; each Newton run uses the derivative of ``chi`` by complex-step
-    differences. A positive real part means an unstable mode growing as ``e^{Re lambda t}``.
+    Seeds (:func:`_seeds`): a polar grid ``lambda = s (cos phi + i sin phi) / tau_d`` and the
+    delay chain; each Newton run uses the derivative of ``chi`` by complex-step
+    differences. A positive real part means an unstable mode growing
+    as ``e^{Re lambda t}``. ``-inf`` when no seed converged. With ``M = eta = 0`` the
+    spectrum's supremum may be the chain's limit instead (:func:`delay_chain_limit`).
     """
     stiffness = check_scalar("stiffness", stiffness, 0.0, lo_open=True)
     scale = 1.0 / resp.tau_d
-    seeds = [s * scale * np.exp(1j * p) for s in np.geomspace(0.05, 50.0, n_seeds // 4)
-             for p in (-1.2, -0.4, 0.4, 1.2)]
     best = complex(-np.inf, 0.0)
     # a Newton run may wander off to |lambda| ~ 1e200, where chi overflows: that seed is
     # dropped (no warning, no OverflowError), the others still find the root
     with np.errstate(all="ignore"):
-        for z in seeds:
+        for z in _seeds(resp, stiffness, mass, damping, n_seeds):
             for _ in range(60):
                 h = 1e-7 * max(abs(z), scale)
                 f = complex(characteristic(z, resp, stiffness, mass, damping))
