@@ -251,6 +251,10 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if m < 1 or n < _ALIAS_MIN_SAMPLES or n * abs(step - m) >= 0.5:\n        return n",
        "    if True:\n        return n",
        "tests/test_ensemble.py", "-k", "alias"),
+    _m("force drive: a hold sampled in slip done in one step", "ensemble/driving.py",
+       "hold_grid = force_hold_grid(drive.hold)",
+       "hold_grid = force_hold_grid(drive.hold, math.log1p(drive.hold) + 1.0)",
+       _DRV, "-k", "force_hold_sampled"),
 )
 
 

@@ -26,7 +26,9 @@ Integrators (ours)
   each spinodal is the local peak, so the static threshold is exact up to the sampling of the
   applied force in time. Under force control, a jump longer than the reach of every trap in
   contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
-  left, and the run stops there.
+  left, and the run stops there. A force hold sampled in slip (``every_slip``) is stepped on a
+  geometric grid of the age (:func:`force_hold_grid`): the slider creeps against the load as
+  the contacts age, and the static threshold depends on following that creep (issue 14).
 * **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
   ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
   from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
@@ -319,23 +321,42 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Reco
         tick(t1)
 
 
+FORCE_HOLD_LOG_STEP: float = 0.05
+"""Step in ``ln(1 + t/t0)`` of a force hold sampled in slip (``every_slip``), ours. Under a
+constant force the slider creeps against the load as the contacts age (about ``0.03 a0`` per
+unit of ``ln(1 + t/t0)``, :func:`dryfriction.theory.static.force_hold_shift`), a slip an output
+spacing in slip never sees: the hold is stepped on this geometric grid of the age instead, so
+each step ages the contacts (and moves the slider) by about as much."""
+
+
+def force_hold_grid(hold: float, log_step: float = FORCE_HOLD_LOG_STEP) -> np.ndarray:
+    """Sampling times of a force hold of length ``hold`` (``t0``) on a geometric grid of the age,
+    ``ln(1 + t)`` uniform with at most ``log_step`` per step; ends at ``hold``; empty if 0."""
+    if hold <= 0.0:
+        return np.empty(0)
+    n = max(1, math.ceil(math.log1p(hold) / log_step - 1e-9))
+    grid = np.expm1(math.log1p(hold) * np.arange(1, n + 1) / n)
+    grid[-1] = hold  # the ramp starts at the hold's end exactly, not at expm1(log1p(hold))
+    return grid
+
+
 def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
                tick: Callable[[float], None], info: dict[str, Any]) -> None:
     f0 = ens.observe().force
     if output.every is not None:
-        dt_ramp = dt_hold = output.every
+        dt_ramp = output.every
+        h_n = max(1, math.ceil(drive.hold / output.every - 1e-9))
+        hold_grid = drive.hold * np.arange(1, h_n + 1) / h_n
     else:
         dt_ramp = float(output.every_slip) * ens.model.trap.contact_stiffness / drive.rate
-        dt_hold = math.inf
+        hold_grid = force_hold_grid(drive.hold)
     snaps = list(output.snapshots)
     threshold, t_threshold, runaway = f0, math.nan, False
 
     def times() -> Iterator[float]:
         h = drive.hold
         if h > 0:
-            n = max(1, math.ceil(h / dt_hold - 1e-9)) if math.isfinite(dt_hold) else 1
-            for j in range(1, n + 1):
-                yield h * j / n
+            yield from (float(t) for t in hold_grid)
         j = 1
         while True:
             yield h + j * dt_ramp

@@ -31,8 +31,10 @@ class Output:
         Sampling interval in time, ``> 0``.
     every_slip : float, optional
         Sampling interval in slip of the slider (velocity drive) or of the load point (spring),
-        ``> 0``. Holds are then a single step. Under force control the force step is
-        ``every_slip`` times the fresh contact stiffness.
+        ``> 0``. Holds of a velocity or spring program are then a single step; a force hold
+        (where the slider creeps) is stepped on a geometric grid of the age
+        (:func:`~dryfriction.ensemble.driving.force_hold_grid`). Under force control the force
+        step of the ramp is ``every_slip`` times the fresh contact stiffness.
     snapshots : tuple of float
         Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
         drives step exactly onto them; under force control (whose ramp ends at an unknown
