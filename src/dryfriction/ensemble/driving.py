@@ -27,8 +27,8 @@ Integrators (ours)
   applied force in time. Under force control, a jump longer than the reach of every trap in
   contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
   left, and the run stops there. A force hold sampled in slip (``every_slip``) is stepped on a
-  geometric grid of the age (:func:`force_hold_grid`): the slider creeps against the load as
-  the contacts age, and the static threshold depends on following that creep (issue 14).
+  geometric grid of the age (:func:`.result.force_hold_grid`): the slider creeps against the
+  load as the contacts age, and the static threshold depends on following that creep.
 * **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
   ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
   from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
@@ -74,7 +74,14 @@ from ..program import VelocityProgram
 from ..validation import check_choice, check_scalar
 from .population import Ensemble, Initial, Observables, Track, TrapModel
 from .resources import check_run
-from .result import COLUMNS, Output, Recorder, SimulationResult, segment_grid
+from .result import (
+    COLUMNS,
+    Output,
+    Recorder,
+    SimulationResult,
+    force_hold_grid,
+    segment_grid,
+)
 from .thermal import (
     check_direct_mass,
     creep_substeps,
@@ -319,25 +326,6 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Reco
             snaps.pop(0)
             rec.snap(ens)
         tick(t1)
-
-
-FORCE_HOLD_LOG_STEP: float = 0.05
-"""Step in ``ln(1 + t/t0)`` of a force hold sampled in slip (``every_slip``), ours. Under a
-constant force the slider creeps against the load as the contacts age (about ``0.03 a0`` per
-unit of ``ln(1 + t/t0)``, :func:`dryfriction.theory.static.force_hold_shift`), a slip an output
-spacing in slip never sees: the hold is stepped on this geometric grid of the age instead, so
-each step ages the contacts (and moves the slider) by about as much."""
-
-
-def force_hold_grid(hold: float, log_step: float = FORCE_HOLD_LOG_STEP) -> np.ndarray:
-    """Sampling times of a force hold of length ``hold`` (``t0``) on a geometric grid of the age,
-    ``ln(1 + t)`` uniform with at most ``log_step`` per step; ends at ``hold``; empty if 0."""
-    if hold <= 0.0:
-        return np.empty(0)
-    n = max(1, math.ceil(math.log1p(hold) / log_step - 1e-9))
-    grid = np.expm1(math.log1p(hold) * np.arange(1, n + 1) / n)
-    grid[-1] = hold  # the ramp starts at the hold's end exactly, not at expm1(log1p(hold))
-    return grid
 
 
 def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,

@@ -18,7 +18,7 @@ from ..validation import Array, check_range, check_scalar
 from .population import Ensemble, Observables
 
 __all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "sample_interval",
-           "segment_grid"]
+           "segment_grid", "force_hold_grid", "FORCE_HOLD_LOG_STEP"]
 
 
 @dataclass(frozen=True)
@@ -33,8 +33,8 @@ class Output:
         Sampling interval in slip of the slider (velocity drive) or of the load point (spring),
         ``> 0``. Holds of a velocity or spring program are then a single step; a force hold
         (where the slider creeps) is stepped on a geometric grid of the age
-        (:func:`~dryfriction.ensemble.driving.force_hold_grid`). Under force control the force
-        step of the ramp is ``every_slip`` times the fresh contact stiffness.
+        (:func:`force_hold_grid`). Under force control the force step of the ramp is
+        ``every_slip`` times the fresh contact stiffness.
     snapshots : tuple of float
         Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
         drives step exactly onto them; under force control (whose ramp ends at an unknown
@@ -180,6 +180,25 @@ def sample_interval(velocity: float, output: Output) -> float:
     if velocity != 0.0:
         return float(output.every_slip) / abs(velocity)
     return math.inf
+
+
+FORCE_HOLD_LOG_STEP: float = 0.05
+"""Step in ``ln(1 + t/t0)`` of a force hold sampled in slip (``every_slip``), ours. Under a
+constant force the slider creeps against the load as the contacts age (about ``0.03 a0`` per
+unit of ``ln(1 + t/t0)``, :func:`dryfriction.theory.static.force_hold_shift`), a slip an output
+spacing in slip never sees: the hold is stepped on this geometric grid of the age instead, so
+each step ages the contacts (and moves the slider) by about as much."""
+
+
+def force_hold_grid(hold: float, log_step: float = FORCE_HOLD_LOG_STEP) -> Array:
+    """Sampling times of a force hold of length ``hold`` (``t0``) on a geometric grid of the age,
+    ``ln(1 + t)`` uniform with at most ``log_step`` per step; ends at ``hold``; empty if 0."""
+    if hold <= 0.0:
+        return np.empty(0)
+    n = max(1, math.ceil(math.log1p(hold) / log_step - 1e-9))
+    grid = np.expm1(math.log1p(hold) * np.arange(1, n + 1) / n)
+    grid[-1] = hold  # the ramp starts at the hold's end exactly, not at expm1(log1p(hold))
+    return grid
 
 
 # segments with fewer samples keep their grid exactly (their mean is no statistic; a finer
