@@ -292,6 +292,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if m < 1 or n < _ALIAS_MIN_SAMPLES or n * abs(step - m) >= 0.5:\n        return n",
        "    if True:\n        return n",
        "tests/test_ensemble.py", "-k", "alias"),
+    _m("stability: delay circles' radius without the edge's delay factor", "theory/stability.py",
+       "return abs(self.edge * self.edge_delay) / self.H0", "return abs(self.edge) / self.H0",
+       "tests/test_stability.py", "-k", "against_direct_simulation"),
+    _m("force drive: a hold sampled in slip done in one step", "ensemble/result.py",
+       "return force_hold_grid(hold, self.every)",
+       "return force_hold_grid(hold, self.every, math.log1p(hold) + 1.0)",
+       _DRV, "-k", "force_hold_sampled"),
 )
 
 

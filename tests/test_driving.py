@@ -540,6 +540,31 @@ def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
         assert closed_force - closed_pos > 0.01
 
 
+@pytest.mark.parametrize("f_w", [-0.5, 0.5])
+def test_force_hold_sampled_in_slip_follows_the_creep(f_w: float) -> None:
+    """Issue 14: ``ForceDrive`` with ``every_slip`` did the whole hold in one step (the slip of
+    the hold is ~0, so a spacing in slip never triggers): the contacts aged at the loaded
+    position and the slider then jumped once, 1.1301 instead of 1.1414 at f_w = -0.5 (the
+    position hold's 1.1298). Sampled in slip, the hold now follows the creep: the same creep as
+    ``force_hold_shift``, the same threshold as a time spacing, and the closed form
+    ``static_friction(..., hold="force")`` to the density error at 500 pairs/a0 (+7e-4..9e-4)."""
+    from dryfriction.theory.static import force_hold_shift
+
+    lam, T = 500.0, 100.0
+    runs = {}
+    for name, out in (("slip", Output(every_slip=0.005)), ("time", Output(every=0.1))):
+        runs[name] = simulate(TrapModel(eps=EPS), Track(lam), Initial("loaded", force=f_w),
+                              ForceDrive(rate=1e4, hold=T), out)
+    slip = runs["slip"]
+    end_hold = int(np.flatnonzero(slip.t <= T * (1 + 1e-12))[-1])
+    assert slip.t[end_hold] == pytest.approx(T, rel=1e-12)
+    assert slip.x[end_hold] - slip.x[0] == pytest.approx(force_hold_shift(T, EPS, load=f_w),
+                                                         abs=1e-3)
+    thr = slip.info["threshold_mu"]
+    assert thr == pytest.approx(runs["time"].info["threshold_mu"], abs=3e-4)
+    assert thr == pytest.approx(float(static_friction(T, EPS, load=f_w, hold="force")), abs=1.5e-3)
+
+
 def test_damped_inertial_oscillation_decays_at_the_linear_rate() -> None:
     """Issue 13: the inertial slider's damping checked quantitatively, in seconds. A kicked,
     damped slider (u = 1, K = 2, M = 1, eta = 0.4: far above K_c, the slider keeps moving

@@ -214,7 +214,7 @@ def test_force_hold_rear_exits_lower_the_loaded_threshold():
     # at f_w = 0.5 the slider creeps back 0.12 a0 by T = 100, pushing the rearmost aged traps
     # past w = -1: they leave and come back fresh in the pull. The ensemble's force-controlled
     # run (examples/static_threshold_loaded.toml, 1000 pairs/a0, about 3e-4 density error)
-    # gives 1.2474; the position hold's closed form is 1.2490
+    # gives 1.2477; the position hold's closed form is 1.2490
     force = float(static_friction(100.0, 0.04, load=0.5, hold="force"))
     position = float(static_friction(100.0, 0.04, load=0.5, hold="position"))
     assert force == pytest.approx(1.2474, abs=4e-4)

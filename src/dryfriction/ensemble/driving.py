@@ -26,7 +26,8 @@ Integrators (ours)
   each spinodal is the local peak, so the static threshold is exact up to the sampling of the
   applied force in time. Under force control, a jump longer than the reach of every trap in
   contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
-  left, and the run stops there.
+  left, and the run stops there. A force hold sampled in slip is stepped on a geometric grid of
+  the age (:func:`.result.force_hold_grid`): the threshold depends on the creep back meanwhile.
 * **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
   ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
   from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
@@ -325,19 +326,17 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
                tick: Callable[[float], None], info: dict[str, Any]) -> None:
     f0 = ens.observe().force
     if output.every is not None:
-        dt_ramp = dt_hold = output.every
+        dt_ramp = output.every
     else:
         dt_ramp = float(output.every_slip) * ens.model.trap.contact_stiffness / drive.rate
-        dt_hold = math.inf
+    hold_grid = output.hold_times(drive.hold)
     snaps = list(output.snapshots)
     threshold, t_threshold, runaway = f0, math.nan, False
 
     def times() -> Iterator[float]:
         h = drive.hold
         if h > 0:
-            n = max(1, math.ceil(h / dt_hold - 1e-9)) if math.isfinite(dt_hold) else 1
-            for j in range(1, n + 1):
-                yield h * j / n
+            yield from (float(t) for t in hold_grid)
         j = 1
         while True:
             yield h + j * dt_ramp

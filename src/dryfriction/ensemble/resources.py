@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 from ..validation import check_memory
 from .population import Initial, Track, TrapModel
-from .result import Output, sample_interval
+from .result import FORCE_HOLD_LOG_STEP, Output, sample_interval
 
 __all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "RunEstimate", "check_run", "estimate_run"]
 
@@ -113,7 +113,9 @@ def estimate_run(model: TrapModel, track: Track, initial: Initial, drive: object
             samples = (drive.hold + drive.max_force / drive.rate) / output.every
         else:
             k_c = model.trap.contact_stiffness
-            samples = 1.0 + drive.max_force / (float(output.every_slip) * k_c)
+            # the hold on its geometric grid (result.force_hold_grid), then the ramp
+            samples = (2.0 + math.log1p(drive.hold) / FORCE_HOLD_LOG_STEP
+                       + drive.max_force / (float(output.every_slip) * k_c))
         step_slip = 2.0 * D + 2.0  # a jump stops within the reach (driving._max_reach)
     else:
         program = drive.program  # type: ignore[attr-defined]

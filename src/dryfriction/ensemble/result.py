@@ -21,7 +21,7 @@ from .population import Ensemble, Observables
 
 __all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "sample_interval",
            "position_function",
-           "segment_grid"]
+           "segment_grid", "force_hold_grid", "FORCE_HOLD_LOG_STEP"]
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,9 @@ class Output:
         Sampling interval in time, ``> 0``.
     every_slip : float, optional
         Sampling interval in slip of the slider (velocity drive) or of the load point (spring),
-        ``> 0``. Holds are then a single step. Under force control the force step is
+        ``> 0``. Holds of a velocity or spring program are then a single step; a force hold
+        (where the slider creeps) is stepped on a geometric grid of the age
+        (:func:`force_hold_grid`). Under force control the force step of the ramp is
         ``every_slip`` times the fresh contact stiffness.
     snapshots : tuple of float
         Times (``t0``, ``>= 0``) at which the population is recorded. Velocity and spring
@@ -45,6 +47,11 @@ class Output:
     every: float | None = None
     every_slip: float | None = None
     snapshots: tuple[float, ...] = ()
+
+    def hold_times(self, hold: float) -> Array:
+        """A force hold's sampling times (:func:`force_hold_grid`): every ``every``, or on the
+        geometric grid of the age when sampled in slip (the slip barely moves in a hold)."""
+        return force_hold_grid(hold, self.every)
 
     def __post_init__(self) -> None:
         if (self.every is None) == (self.every_slip is None):
@@ -181,6 +188,30 @@ def sample_interval(velocity: float, output: Output) -> float:
     if velocity != 0.0:
         return float(output.every_slip) / abs(velocity)
     return math.inf
+
+
+FORCE_HOLD_LOG_STEP: float = 0.05
+"""Step in ``ln(1 + t/t0)`` of a force hold sampled in slip (``every_slip``), ours. Under a
+constant force the slider creeps against the load as the contacts age (about ``0.03 a0`` per
+unit of ``ln(1 + t/t0)``, :func:`dryfriction.theory.static.force_hold_shift`), a slip an output
+spacing in slip never sees: the hold is stepped on this geometric grid of the age instead, so
+each step ages the contacts (and moves the slider) by about as much."""
+
+
+def force_hold_grid(hold: float, every: float | None = None,
+                    log_step: float = FORCE_HOLD_LOG_STEP) -> Array:
+    """Sampling times of a force hold of length ``hold`` (``t0``): uniform at most ``every``
+    apart when it is given, else on a geometric grid of the age, ``ln(1 + t)`` uniform with at
+    most ``log_step`` per step; ends at ``hold``; empty if 0."""
+    if hold <= 0.0:
+        return np.empty(0)
+    if every is not None:
+        n = max(1, math.ceil(hold / every - 1e-9))
+        return hold * np.arange(1, n + 1) / n
+    n = max(1, math.ceil(math.log1p(hold) / log_step - 1e-9))
+    grid = np.expm1(math.log1p(hold) * np.arange(1, n + 1) / n)
+    grid[-1] = hold  # the ramp starts at the hold's end exactly, not at expm1(log1p(hold))
+    return grid
 
 
 # segments with fewer samples keep their grid exactly (their mean is no statistic; a finer
