@@ -22,7 +22,7 @@ __all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CAL
 
 _PROJECT_COLUMNS = ({"t_w", "mu_s"}, {"v", "mu_d"}, {"t", "v_load", "mu"})
 
-CV_CALLS_PER_STEP = 100
+CV_CALLS_PER_STEP = 130
 """Forward runs of the trap model for one step of a record (:func:`dryfriction.fit.cvsteps.
 fit_cv_steps`: one start, the minimisation capped at
 :data:`~dryfriction.fit.cvsteps.RECORD_MAX_NFEV` evaluations, the trend's column of the
@@ -103,7 +103,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     import typer
 
     from ..fit import compare_models
-    from ..fit.cvsteps import RECORD_MAX_NFEV, RECORD_TRAPS_PER_A0, fit_cv_steps
+    from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
     from ..fit.steps import fit_steps, step_data, write_steps_csv
     from ..io import lab
     from ..io.files import output_directory, write_json
@@ -140,7 +140,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         tpa = RECORD_TRAPS_PER_A0 if traps_per_a0 is None else traps_per_a0
         with Progress(console=err, transient=True) as bar:
             task = bar.add_task("fitting the trap model (runs)",
-                                total=len(res.data) * (RECORD_MAX_NFEV + 20))
+                                total=len(res.data) * CV_CALLS_PER_STEP)
             for i, d in enumerate(res.data):
                 try:
                     alt = fit_cv_steps([d], [res.fits[i]], alpha, creep, direct, v_ref, tpa,
