@@ -143,8 +143,9 @@ def _fit_back(free: tuple[str, ...], max_nfev: int, traps: float
 
 def test_direct_effect_recovered_on_a_spring_with_a_trend() -> None:
     # the machine and A free, the trap parameters held at the truth (the CI version, about
-    # 60 runs, 10-20 s CPU; the slow test frees all seven): A within its 95 % interval,
-    # which excludes A = 0
+    # 60 runs, 15-20 s CPU on a loaded machine; a shorter step (2.5 + 3 a0) was cheaper but
+    # its 50-trap granularity biased A outside its interval; the slow test frees all seven):
+    # A within its 95 % interval, which excludes A = 0
     est, truth, rms = _fit_back(("direct", "stiffness", "trend"), 20, 50)
     lo, hi = est["direct"].interval_95
     assert lo <= truth["direct"] <= hi
