@@ -29,9 +29,11 @@ from .machine import load_point_displacement
 
 __all__ = ["cv_series", "cv_start_from_rsf"]
 
-_LAST: list[Any] = []
+_LAST: list[tuple[Any, SeriesData, Array]] = []
 """One-entry memory of the last series before its trend (ours): the trend is additive, so a
-change of the trend alone (its column of the Jacobian, a step along it) needs no new run."""
+change of the trend alone (its column of the Jacobian, a step along it) needs no new run.
+Reused only for the same data object (its arrays are read-only) and the same everything else;
+read and replaced as one tuple, so that threads never see a half-written entry."""
 
 
 def _key(values: Mapping[str, float], *options: Any) -> tuple[Any, ...]:
@@ -88,8 +90,9 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
 
     key = _key(values, alpha, creep, traps_per_a0, every_slip, max_samples, stiffness,
                sample_slip)
-    if _LAST and _LAST[0] == key and _LAST[1] is data:
-        mu = _LAST[2]
+    hit = _LAST[-1] if _LAST else None
+    if hit is not None and hit[0] == key and hit[1] is data:
+        mu = hit[2]
     else:
         sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
         dur, vel = data.segments()
@@ -123,10 +126,10 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
         res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
                        drive, output)
         mu = np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
-        _LAST[:] = [key, data, mu]
+        _LAST[:] = [(key, data, mu)]
     if "trend" in values:
         return mu + values["trend"] * load_point_displacement(data)
-    return mu
+    return mu.copy()  # the caller may change it; the memory must not
 
 
 def cv_start_from_rsf(rsf: Mapping[str, float], v0: float, alpha: float = 0.13,
