@@ -70,9 +70,10 @@ def fit_command(
                                 "(cv) to each step and compare (costly: its estimate is "
                                 "printed without this flag)."),
     regularized: bool = typer.Option(False, help="rsf: regularised law (holds, kinematic)."),
-    traps_per_a0: float = typer.Option(1000.0, "--traps-per-a0", help="cv time series: "
+    traps_per_a0: float | None = typer.Option(None, "--traps-per-a0", help="cv time series: "
                                        "density of the simulated ensemble (accuracy about its "
-                                       "inverse; cost grows with it)."),
+                                       "inverse; cost grows with it; default 1000, 100 for a "
+                                       "record)."),
     direct: float = typer.Option(0.0, "--direct", help="cv: fit the direct effect A "
                                  "(0 <= A <= 1), started from this value; 0: the athermal "
                                  "model. Hold it with --fix direct=A."),
@@ -107,7 +108,8 @@ def fit_command(
                    stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
                    profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
-                   creep=creep, errors=errors,
+                   creep=creep, errors=errors, direct=direct, v_ref=v_ref,
+                   traps_per_a0=traps_per_a0,
                    json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)
         return
     for flag, given in (("--columns", columns), ("--segments", segments),
@@ -132,8 +134,9 @@ def fit_command(
                                 regularized=regularized, trend=bool(trend))
     from ..fit import CVModel
 
-    chosen: Any = (CVModel(alpha, creep, traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref)
-                   if model == "cv" else model)
+    chosen: Any = (CVModel(alpha, creep, traps_per_a0=1000.0 if traps_per_a0 is None
+                           else traps_per_a0, direct=direct,
+                           v_ref=v_ref) if model == "cv" else model)
     with progress_bar("fit", unit="evaluations") as update:
         done = [0]
 

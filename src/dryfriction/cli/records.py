@@ -21,10 +21,12 @@ __all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CAL
 
 _PROJECT_COLUMNS = ({"t_w", "mu_s"}, {"v", "mu_d"}, {"t", "v_load", "mu"})
 
-CV_CALLS_PER_STEP = 300
-"""Forward runs assumed for a trap-model fit of one step, for the cost estimate: three
-data-driven starts of about 20 trust-region iterations, each a Jacobian of 4 parameters plus
-one evaluation. An assumption, not a count on records: the estimate is an order of magnitude."""
+CV_CALLS_PER_STEP = 130
+"""Forward runs of the trap model for one step of a record (:func:`dryfriction.fit.cvsteps.
+fit_cv_steps`: one start, the minimisation capped at
+:data:`~dryfriction.fit.cvsteps.RECORD_MAX_NFEV` evaluations, the trend's column of the
+Jacobian free, plus the covariance's central differences), for the cost estimate; counted on
+the shared sepiolite record (README, "The direct effect")."""
 
 
 def is_project_csv(path: Path) -> bool:
@@ -57,22 +59,26 @@ def parse_stiffness(text: str) -> float | str:
     return k
 
 
-def cv_cost(pieces: list[Any], alpha: float, creep: str) -> float:
+def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
+            v_ref: float = 1e-6, traps_per_a0: float | None = None) -> float:
     """Seconds a trap-model fit of the steps would take: one forward run of the first window
-    at its data-driven start, timed, scaled to all windows by their durations and times
-    :data:`CV_CALLS_PER_STEP` a window (so the estimate costs one run, not a fit)."""
-    from ..fit.models import CVModel, cv_series
+    at its data-driven start, as the record fit runs it
+    (:func:`dryfriction.fit.cvsteps.record_cv_model`), timed (CPU time: on a shared machine
+    the wall clock counts the others' work), scaled to all windows by their durations and
+    times :data:`CV_CALLS_PER_STEP` a window (so the estimate costs one run, not a fit)."""
+    from ..fit.cvsteps import RECORD_TRAPS_PER_A0, record_cv_model
 
     first = pieces[0]
-    guess = CVModel(alpha, creep).guesses([first])[0]
-    t0 = time.perf_counter()
+    m = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0 or RECORD_TRAPS_PER_A0)
+    guess = m.guesses([first])[0]
+    t0 = time.process_time()
     try:
-        cv_series(guess, first, alpha, creep)
+        m.predict(guess, first)
     except ValueError:  # the start is too long to simulate: the fit would be longer still
         return math.inf
     span = sum(float(p.t[-1] - p.t[0]) for p in pieces) / max(float(first.t[-1] - first.t[0]),
                                                              1e-300)
-    return (time.perf_counter() - t0) * span * CV_CALLS_PER_STEP
+    return (time.process_time() - t0) * span * CV_CALLS_PER_STEP
 
 
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
@@ -90,11 +96,13 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                segments: str | None, stiffness: float | str, trend: bool, law: str,
                joint: bool, profile: bool, run_cv: bool, alpha: float, creep: str,
                json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
-               figure: bool = True, errors: str = "hac") -> None:
+               figure: bool = True, errors: str = "hac", direct: float = 0.0,
+               v_ref: float = 1e-6, traps_per_a0: float | None = None) -> None:
     """Read, slice, fit, print and write one laboratory record (module docstring)."""
     import typer
 
-    from ..fit import CVModel, compare_models, fit
+    from ..fit import compare_models
+    from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
     from ..fit.steps import ERRORS, fit_steps, step_data, write_steps_csv
     from ..io import lab
     from ..io.files import output_directory, write_json
@@ -111,10 +119,10 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     if model == "cv" and not run_cv:  # the trap model is not run unasked (issue 10)
         # the estimate is one trap-model run: made only when the trap model was asked for
         # (on the shared record it costs several times the whole rsf fit)
-        cost = cv_cost(step_data(rec, wins, segs), alpha, creep)
+        cost = cv_cost(step_data(rec, wins, segs), alpha, creep, direct, v_ref, traps_per_a0)
         raise ValueError(f"{path}: the trap model (cv) on this record would take about "
-                         f"{cost:.3g} s for {len(wins)} step(s), against seconds for rsf: "
-                         "run --model rsf --run-cv to fit both and compare")
+                         f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
+                         "run --model rsf --run-cv [--direct A] to fit both and compare")
     with progress_bar("fitting steps", len(wins), unit="steps") as update:
         res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
                         joint=joint, profile=profile, errors=errors, progress=update)
@@ -127,21 +135,30 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                                                           "errors": errors},
                               **res.to_dict()}
     if run_cv:
-        comp = []
-        with progress_bar("cv fits", len(res.data), unit="steps") as update:
-            for i, d in enumerate(res.data):
-                def step_progress(n: int, total: int, what: str, i: int = i) -> None:
-                    update(i + n / max(total, 1), what=f"step {i + 1}, {what}")
+        comp: list[dict[str, Any]] = []
+        cv_fits = []
+        tpa = RECORD_TRAPS_PER_A0 if traps_per_a0 is None else traps_per_a0
+        total = len(res.data) * CV_CALLS_PER_STEP
+        with progress_bar("cv fits", total, unit="runs") as update:
+            runs = [0]
 
+            def run_done() -> None:
+                runs[0] += 1
+                update(runs[0], max(total, runs[0]))
+
+            for i, d in enumerate(res.data):
+                update(runs[0], what=f"step {i + 1} of {len(res.data)}")
                 try:
-                    alt = fit(d, CVModel(alpha, creep), profile=False,
-                              progress=step_progress)
+                    alt = fit_cv_steps([d], [res.fits[i]], alpha, creep, direct, v_ref, tpa,
+                                       progress=run_done)[0]
+                    cv_fits.append({"step": i, **alt.to_dict()})
                     comp.append({"step": i, **compare_models([res.fits[i], alt]),
-                                 "note": "cv runs on a kinematic machine without a trend "
-                                         "(its series model has neither), rsf with both"})
+                                 "note": "cv and rsf on the same machine: a fitted spring "
+                                         "and a linear trend in load-point displacement"})
                 except (ValueError, NotImplementedError) as exc:
                     comp.append({"step": i, "not_run": f"cv: {exc}"})
         report["comparison"] = comp
+        report["cv_fits"] = cv_fits
     else:
         report["comparison"] = {"not_run": "the trap model (cv) was not fitted: it costs "
                                            "minutes to hours a step; --model cv prints the "
@@ -173,6 +190,14 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:
             out.print(f"- {report['comparison']['not_run']}", highlight=False, soft_wrap=True)
+        verdicts = {c["step"]: c.get("verdict", c.get("not_run")) for c in report["comparison"]
+                    if isinstance(c, dict) and "step" in c}
+        for f in report.get("cv_fits", []):
+            out.print(f"step {f['step']} cv: " + ", ".join(
+                f"{n} = {p['value']:.4g}" + ("" if p.get("stderr") is None
+                                             else f" +- {p['stderr']:.2g}")
+                for n, p in f["parameters"].items()) + f"; {verdicts.get(f['step'])}",
+                highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"
                   + (f", step_*.{fmt}, steps_summary.{fmt}" if figure else ""), highlight=False)
     if not res.success:

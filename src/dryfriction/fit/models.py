@@ -29,6 +29,7 @@ from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
 from ..validation import DIRECT_MAX, Array, check_choice, check_scalar
+from .cvseries import cv_series
 from .machine import load_point_displacement, loading_slope_stiffness
 
 __all__ = [
@@ -39,6 +40,7 @@ __all__ = [
     "SeriesModel",
     "rsf_series",
     "cv_series",
+    "machine_stiffness",
     "load_point_displacement",
     "loading_slope_stiffness",
     "data_kinds",
@@ -84,73 +86,6 @@ class ParamSpec:
         return self.to_internal(self.lo), self.to_internal(self.hi)
 
 
-# ----------------------------------------------------------------------------- time series
-def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
-              creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
-              max_samples: int = 200_000) -> Array:
-    """The trap model's friction along a measured load program (the CV time-series model).
-
-    The ensemble starts in steady sliding at ``v_load[0]`` and the slider follows the data's
-    piecewise-constant ``v_load`` (:meth:`SeriesData.segments`) kinematically (the machine is
-    taken as infinitely stiff), in reduced units through
-    ``PhysicalScales(a0, t0, mu_el)``. It is sampled at least every ``every_slip`` a0 of slip
-    and at the data's own sampling interval (in slip without holds; in time, so that ageing
-    during a hold is followed, with holds), and read at the data's times by linear
-    interpolation.
-
-    Parameters
-    ----------
-    values : mapping
-        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless); optionally
-        ``direct`` (``A``, dimensionless) and ``v_ref`` (m/s), the direct effect.
-    data : SeriesData
-        Times (s) and load velocities (m/s).
-    alpha : float
-        Trap stiffness (fixed).
-    creep : {"log", "eyring-nabarro"}
-    traps_per_a0 : float
-        Density of the regular track (accuracy about ``1/traps_per_a0`` relative).
-    every_slip : float
-        Largest slip between samples, ``a0``.
-    max_samples : int
-        Budget: more samples than this is an error (a trial ``t0`` far too small makes the
-        program very long in ``t0``).
-
-    Returns
-    -------
-    ndarray
-        Friction coefficient ``F/W`` at ``data.t``.
-    """
-    from ..ensemble.driving import Output, VelocityDrive, simulate
-    from ..ensemble.population import Initial, Track, TrapModel
-
-    sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
-    dur, vel = data.segments()
-    u = vel / sc.velocity_scale
-    T = dur / sc.t0
-    prog = [Segment(float(ui), float(Ti)) for ui, Ti in zip(u, T, strict=True)]
-    dt_data = float(np.min(np.diff(data.t))) / sc.t0 if len(data.t) > 1 else float(np.sum(T))
-    u_max = float(np.max(u))
-    if np.all(u > 0):  # no holds: sample in slip (the state is exact at every sample)
-        ds_data = float(np.min(np.diff(data.t) * data.v_load[1:])) / sc.a0 \
-            if len(data.t) > 1 else every_slip
-        output = Output(every_slip=min(every_slip, max(ds_data, 1e-6)))
-        n = float(np.sum(u * T)) / output.every_slip  # type: ignore[operator]
-    else:  # holds: sample in time, so that ageing during the hold is followed
-        output = Output(every=min(dt_data, every_slip / u_max) if u_max > 0 else dt_data)
-        n = float(np.sum(T)) / output.every  # type: ignore[operator]
-    if n > max_samples:
-        raise ValueError(f"{data.source}: the trap-model series would need {n:.3g} samples "
-                         f"(> {max_samples}) for t0 = {values['t0']:.3g} s, a0 = "
-                         f"{values['a0']:.3g} m")
-    direct = values.get("direct", 0.0)
-    v_ref = float(sc.reduced_velocity(values.get("v_ref", 1e-6))) if direct else 1.0
-    model = TrapModel(alpha, values["eps"], creep, values["mu_el"], direct, v_ref)
-    res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
-                   VelocityDrive(prog), output)
-    return np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
-
-
 def data_kinds(datasets: Sequence[Dataset]) -> frozenset[str]:
     """The kinds of the data sets ("static", "steady", "series"): they choose the parameters."""
     return frozenset(d.kind for d in datasets)
@@ -179,6 +114,41 @@ def _weights(d: Dataset) -> Array:
     return np.ones(len(d)) if d.sigma is None else 1.0 / d.sigma
 
 
+# -- the testing machine of a time series, the same for both models (issue 10; issue 11)
+def machine_stiffness(setting: float | str, values: Mapping[str, float]) -> float:
+    """The machine stiffness (1/m) of a series model: fitted (``"fit"``) or fixed."""
+    return values["stiffness"] if setting == "fit" else float(setting)
+
+
+def _machine_specs(kinds: frozenset[str], stiffness: float | str, trend: bool
+                   ) -> tuple[ParamSpec, ...]:
+    extra: tuple[ParamSpec, ...] = ()
+    if "series" in kinds and stiffness == "fit":
+        extra += (ParamSpec("stiffness", "1/m", True, 1.0, 1e10),)
+    if "series" in kinds and trend:
+        extra += (ParamSpec("trend", "1/m", False, -1e6, 1e6),)
+    return extra
+
+
+def _machine_guess(series: Sequence[SeriesData], stiffness: float | str, trend: bool
+                   ) -> dict[str, float]:
+    extra: dict[str, float] = {}
+    if series and stiffness == "fit":
+        try:
+            extra["stiffness"] = loading_slope_stiffness(series[0])
+        except ValueError:  # no usable loading slope: a stiff start
+            extra["stiffness"] = 1e4 / max(float(np.mean(series[0].mu)), 1e-3)
+    if series and trend:
+        extra["trend"] = 0.0
+    return extra
+
+
+def _machine_note(stiffness: float | str, trend: bool) -> str:
+    mach = ("fitted stiffness" if stiffness == "fit" else "kinematic"
+            if math.isinf(float(stiffness)) else f"k = {float(stiffness):g} 1/m")
+    return f"{mach} machine" + (", linear trend in load-point displacement" if trend else "")
+
+
 @dataclass(frozen=True)
 class CVModel:
     """The Caroli–Velický trap model for fitting (SI; module docstring).
@@ -203,6 +173,20 @@ class CVModel:
     v_ref : float
         Reference velocity of the direct effect, m/s, fixed (``> 0``): with ``A`` free it is
         degenerate with ``mu_el`` (``mu_el (1 + A ln(V/V_ref))``), so it cannot be fitted.
+    stiffness : float or "fit"
+        Time series: machine stiffness per unit normal force, 1/m (``inf``, the default: the
+        kinematic machine, as before); ``"fit"``: a free parameter ``stiffness`` (``ln k``),
+        as :class:`RSFModel`. A finite one drives the ensemble's quasi-static slider
+        through a spring (:mod:`.cvseries`).
+    trend : bool
+        Time series: a free linear trend in load-point displacement, as :class:`RSFModel`.
+    sample_slip : float, optional
+        Time series: sample the ensemble every this many ``a0`` of slip, whatever the data's
+        sampling (:func:`cv_series`); ``None``: at the data's interval (as before).
+    max_nfev : int, optional
+        Cap on the model evaluations of one minimisation (default: scipy's ``100 p``).
+    progress : callable, optional
+        Called with no argument after each time-series run (a progress display).
     diff_step : float
         Relative step (in ``ln`` of the parameters) of the finite-difference Jacobian for time
         series: the ensemble's friction is a staircase in the parameters, one step per trap
@@ -219,6 +203,11 @@ class CVModel:
     diff_step: float = 0.03
     direct: float = 0.0
     v_ref: float = 1e-6
+    stiffness: float | str = math.inf
+    trend: bool = False
+    sample_slip: float | None = None
+    max_nfev: int | None = None
+    progress: Callable[[], None] | None = field(default=None, compare=False, repr=False)
     name: str = field(default="cv", init=False)
 
     def __post_init__(self) -> None:
@@ -226,11 +215,26 @@ class CVModel:
         check_choice("creep", self.creep, ("log", "eyring-nabarro"))
         check_scalar("v_ref", self.v_ref, 0.0, lo_open=True)
         check_scalar("direct", self.direct, 0.0, DIRECT_MAX)
+        if isinstance(self.stiffness, str):
+            check_choice("stiffness", self.stiffness, ("fit",))
+        else:
+            object.__setattr__(self, "stiffness", check_spring(self.stiffness)[0])
+        if not isinstance(self.trend, (bool, np.bool_)):
+            raise ValueError(f"trend = {self.trend!r} is not allowed: true or false")
+        if self.sample_slip is not None:
+            check_scalar("sample_slip", self.sample_slip, 0.0, 1.0, lo_open=True)
+        if self.max_nfev is not None and not (isinstance(self.max_nfev, int)
+                                              and self.max_nfev >= 1):
+            raise ValueError(f"max_nfev = {self.max_nfev!r} is not allowed: an integer >= 1")
 
     def options(self) -> dict[str, Any]:
+        opts: dict[str, Any] = {"alpha": self.alpha, "creep": self.creep}
         if self.direct:  # the athermal options unchanged, as fit.json always wrote them
-            return {"alpha": self.alpha, "creep": self.creep, "v_ref": self.v_ref}
-        return {"alpha": self.alpha, "creep": self.creep}
+            opts["v_ref"] = self.v_ref
+        if self.stiffness != math.inf or self.trend:  # likewise for the kinematic machine
+            opts.update(stiffness=self.stiffness, trend=bool(self.trend),
+                        sample_slip=self.sample_slip, traps_per_a0=self.traps_per_a0)
+        return opts
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
         eps = ParamSpec("eps", "", True, 1e-6, 1.0)
@@ -245,7 +249,8 @@ class CVModel:
             return eps, t0, mu_el
         if kinds == {"steady"}:
             return eps, ParamSpec("vstar", "m/s", True, 1e-15, 1e6), mu_el, *extra
-        return eps, t0, ParamSpec("a0", "m", True, 1e-15, 1.0), mu_el, *extra
+        return (eps, t0, ParamSpec("a0", "m", True, 1e-15, 1.0), mu_el, *extra,
+                *_machine_specs(kinds, self.stiffness, self.trend))
 
     def notes(self, kinds: frozenset[str]) -> list[str]:
         n = [f"alpha = {self.alpha:g} fixed; creep law {self.creep}"]
@@ -257,6 +262,8 @@ class CVModel:
         if self.direct:
             n.append(f"direct effect A fitted, v_ref = {self.v_ref:g} m/s fixed (degenerate "
                      "with mu_el)")
+        if "series" in kinds and (self.stiffness != math.inf or self.trend):
+            n.append(f"time series simulated on a {_machine_note(self.stiffness, self.trend)}")
         return n
 
     def _scales(self, v: Mapping[str, float]) -> PhysicalScales:
@@ -278,7 +285,15 @@ class CVModel:
             return self.series(v, d)
         if self.direct:
             v = {**v, "v_ref": self.v_ref}
-        return cv_series(v, d, self.alpha, self.creep, self.traps_per_a0)
+        if self.stiffness == math.inf and not self.trend and self.sample_slip is None:
+            mu = cv_series(v, d, self.alpha, self.creep, self.traps_per_a0)  # as before
+        else:
+            mu = cv_series(v, d, self.alpha, self.creep, self.traps_per_a0,
+                           stiffness=machine_stiffness(self.stiffness, v),
+                           sample_slip=self.sample_slip)
+        if self.progress is not None:
+            self.progress()
+        return mu
 
     def data_window(self, name: str, datasets: Sequence[Dataset]) -> tuple[float, float] | None:
         """Values of a time or velocity scale that the data probe directly (see
@@ -313,9 +328,11 @@ class CVModel:
 
     def guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
         out = self._athermal_guesses(datasets)
-        if not self.direct:
-            return out
-        return [{**g, "direct": self.direct} for g in out]
+        extra = _machine_guess([d for d in datasets if isinstance(d, SeriesData)],
+                               self.stiffness, self.trend)
+        if self.direct:
+            extra["direct"] = self.direct
+        return [{**g, **extra} for g in out]
 
     def _athermal_guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
         def ok(A: float, B: float) -> tuple[float, float]:
@@ -396,7 +413,7 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
                        regularized=model.regularized or bool(np.any(vel <= 0.0)))
     prog = [Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)]
     te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
-    k = values["stiffness"] if model.stiffness == "fit" else model.stiffness
+    k = machine_stiffness(model.stiffness, values)
     res = simulate_rsf(params, SpringSlider(prog, k, model.damping),
                        output=RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
     mu = np.asarray(res.stress, float)
@@ -497,12 +514,7 @@ class RSFModel:
             return mu0, ParamSpec("a_minus_b", "", False, -1.0, 1.0)
         if kinds == {"static"}:
             return mu0, b, dc
-        extra: tuple[ParamSpec, ...] = ()
-        if "series" in kinds and self.stiffness == "fit":
-            extra += (ParamSpec("stiffness", "1/m", True, 1.0, 1e10),)
-        if "series" in kinds and self.trend:
-            extra += (ParamSpec("trend", "1/m", False, -1e6, 1e6),)
-        return (mu0, a, b, dc, *extra)
+        return (mu0, a, b, dc, *_machine_specs(kinds, self.stiffness, self.trend))
 
     def notes(self, kinds: frozenset[str]) -> list[str]:
         n = [f"v0 = {self.v0:g} m/s fixed (reference velocity)"]
@@ -513,11 +525,8 @@ class RSFModel:
             n.append("static (healing) data determine mu0, b and Dc (mu_s = mu0 + b ln(1 + "
                      "t_w V0/Dc), ageing law, infinitely stiff reload at V0) but not a")
         if "series" in kinds:
-            k = self.stiffness
-            mach = ("fitted stiffness" if k == "fit" else "kinematic"
-                    if math.isinf(float(k)) else f"k = {float(k):g} 1/m")
-            n.append(f"time series simulated with {self.state_law} law, {mach} machine"
-                     + (", linear trend in load-point displacement" if self.trend else ""))
+            n.append(f"time series simulated with {self.state_law} law, "
+                     f"{_machine_note(self.stiffness, self.trend)}")
         return n
 
     def _params(self, v: Mapping[str, float]) -> RateState:
@@ -590,14 +599,7 @@ class RSFModel:
             mu0 = float(d0.mu[0]) - amb * math.log(float(d0.v_load[0]) / v0) if not sd else mu0
             if not st:
                 dcs = list(np.geomspace(slip / 300.0, slip / 10.0, 3))
-        extra: dict[str, float] = {}
-        if se and self.stiffness == "fit":
-            try:
-                extra["stiffness"] = loading_slope_stiffness(se[0])
-            except ValueError:  # no usable loading slope: a stiff start
-                extra["stiffness"] = 1e4 / max(float(np.mean(se[0].mu)), 1e-3)
-        if se and self.trend:
-            extra["trend"] = 0.0
+        extra = _machine_guess(se, self.stiffness, self.trend)
         for dc in dcs:
             for a in ((0.005, 0.02) if se and not st else (max(b + amb, 1e-4),)):
                 out.append({"mu0": mu0, "a": a, "b": max(a - amb, 1e-4), "dc": float(dc),

@@ -99,7 +99,8 @@ class Problem:
             sol = least_squares(res, x0, bounds=(lo[free], hi[free]), method="trf",
                                 x_scale="jac", ftol=tol, xtol=tol, gtol=1e-10,
                                 diff_step=self.diff_step(),
-                                max_nfev=max_nfev or 200 * (int(free.sum()) + 1))
+                                max_nfev=max_nfev or getattr(self.model, "max_nfev", None)
+                                or 200 * (int(free.sum()) + 1))
         out = theta0.copy()
         out[free] = sol.x
         return out, float(sol.cost), sol

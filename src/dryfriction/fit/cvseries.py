@@ -1,0 +1,172 @@
+"""The trap model's time series along a measured load program (:func:`cv_series`), on a
+kinematic or an elastic machine with a trend, and its start from a rate-and-state fit
+(:func:`cv_start_from_rsf`).
+
+The machine (issue 11, ours) is the one the rate-and-state record fit uses
+(:func:`.models.rsf_series`): a spring of stiffness ``k`` (per unit normal force, 1/m) between
+the load point, which follows the data's program, and the slider, which here is the trap
+ensemble's quasi-static slider (:class:`dryfriction.ensemble.driving.SpringDrive` with mass 0);
+plus the linear trend ``trend * x_lp`` in load-point displacement. In reduced units the spring
+is ``K = k a0 / mu_el`` (``F_el/a0``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ..io.data import SeriesData
+from ..program import Segment
+from ..theory.direct import junction_strength
+from ..theory.stability import effective_rsf
+from ..theory.steady import steady_friction
+from ..theory.units import PhysicalScales
+from ..validation import Array
+from .machine import load_point_displacement
+
+__all__ = ["cv_series", "cv_start_from_rsf"]
+
+_LAST: list[tuple[Any, SeriesData, Array]] = []
+"""One-entry memory of the last series before its trend (ours): the trend is additive, so a
+change of the trend alone (its column of the Jacobian, a step along it) needs no new run.
+Reused only for the same data object (its arrays are read-only) and the same everything else;
+read and replaced as one tuple, so that threads never see a half-written entry."""
+
+
+def _key(values: Mapping[str, float], *options: Any) -> tuple[Any, ...]:
+    return (tuple(sorted((k, float(v)) for k, v in values.items() if k != "trend")), options)
+
+
+def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
+              creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
+              max_samples: int = 200_000, stiffness: float = math.inf,
+              sample_slip: float | None = None) -> Array:
+    """The trap model's friction along a measured load program (the CV time-series model).
+
+    The ensemble starts in steady sliding at ``v_load[0]``; the data's piecewise-constant
+    ``v_load`` (:meth:`SeriesData.segments`) drives the slider kinematically
+    (``stiffness = inf``, the infinitely stiff machine) or drives the load point of a spring
+    ``stiffness`` (module docstring), in reduced units through
+    ``PhysicalScales(a0, t0, mu_el)``. It is sampled at least every ``every_slip`` a0 of slip
+    and at the data's own sampling interval (in slip without holds; in time, so that ageing
+    during a hold is followed, with holds), or, with ``sample_slip``, every ``sample_slip`` a0
+    whatever the data's sampling; read at the data's times by linear interpolation. Where
+    ``values`` has a ``trend`` (1/m), ``trend * x_lp`` is added (:func:`load_point_displacement`).
+
+    Parameters
+    ----------
+    values : mapping
+        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless); optionally
+        ``direct`` (``A``, dimensionless) and ``v_ref`` (m/s), the direct effect, and ``trend``.
+    data : SeriesData
+        Times (s) and load velocities (m/s).
+    alpha : float
+        Trap stiffness (fixed).
+    creep : {"log", "eyring-nabarro"}
+    traps_per_a0 : float
+        Density of the regular track (accuracy about ``1/traps_per_a0`` relative).
+    every_slip : float
+        Largest slip between samples, ``a0``.
+    max_samples : int
+        Budget: more samples than this is an error (a trial ``t0`` far too small makes the
+        program very long in ``t0``).
+    stiffness : float
+        Machine stiffness per unit normal force, 1/m; ``inf``: kinematic. A spring stiffer than
+        :data:`dryfriction.ensemble.driving.STIFFNESS_MAX` (reduced) is the kinematic limit.
+    sample_slip : float, optional
+        Sample every this many ``a0`` of (load-point) slip instead of at the data's interval:
+        the cost no longer grows with the data's sampling rate (the record fit).
+
+    Returns
+    -------
+    ndarray
+        Friction coefficient ``F/W`` at ``data.t``.
+    """
+    from ..ensemble.driving import STIFFNESS_MAX, Output, SpringDrive, VelocityDrive, simulate
+    from ..ensemble.population import Initial, Track, TrapModel
+
+    key = _key(values, alpha, creep, traps_per_a0, every_slip, max_samples, stiffness,
+               sample_slip)
+    hit = _LAST[-1] if _LAST else None
+    if hit is not None and hit[0] == key and hit[1] is data:
+        mu = hit[2]
+    else:
+        sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
+        dur, vel = data.segments()
+        u = vel / sc.velocity_scale
+        T = dur / sc.t0
+        prog = [Segment(float(ui), float(Ti)) for ui, Ti in zip(u, T, strict=True)]
+        dt_data = float(np.min(np.diff(data.t))) / sc.t0 if len(data.t) > 1 else float(np.sum(T))
+        u_max = float(np.max(u))
+        if sample_slip is not None:
+            dt_data, ds_data = math.inf, sample_slip
+            every_slip = sample_slip
+        else:
+            ds_data = float(np.min(np.diff(data.t) * data.v_load[1:])) / sc.a0 \
+                if len(data.t) > 1 else every_slip
+        if np.all(u > 0):  # no holds: sample in slip (the state is exact at every sample)
+            output = Output(every_slip=min(every_slip, max(ds_data, 1e-6)))
+            n = float(np.sum(u * T)) / output.every_slip  # type: ignore[operator]
+        else:  # holds: sample in time, so that ageing during the hold is followed
+            output = Output(every=min(dt_data, every_slip / u_max) if u_max > 0 else dt_data)
+            n = float(np.sum(T)) / output.every  # type: ignore[operator]
+        if n > max_samples:
+            raise ValueError(f"{data.source}: the trap-model series would need {n:.3g} samples "
+                             f"(> {max_samples}) for t0 = {values['t0']:.3g} s, a0 = "
+                             f"{values['a0']:.3g} m")
+        direct = values.get("direct", 0.0)
+        v_ref = float(sc.reduced_velocity(values.get("v_ref", 1e-6))) if direct else 1.0
+        model = TrapModel(alpha, values["eps"], creep, values["mu_el"], direct, v_ref)
+        k_red = stiffness * values["a0"] / values["mu_el"]
+        drive = (SpringDrive(k_red, 0.0, prog) if k_red <= STIFFNESS_MAX
+                 else VelocityDrive(prog))
+        res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
+                       drive, output)
+        mu = np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
+        _LAST[:] = [(key, data, mu)]
+    if "trend" in values:
+        return mu + values["trend"] * load_point_displacement(data)
+    return mu.copy()  # the caller may change it; the memory must not
+
+
+def cv_start_from_rsf(rsf: Mapping[str, float], v0: float, alpha: float = 0.13,
+                      creep: str = "log", direct: float = 0.0, v_ref: float = 1e-6,
+                      u: float = 1.0) -> dict[str, float]:
+    """A trap-model start from a rate-and-state fit at ``v0``, through the twin (ours).
+
+    The twin of steady sliding at reduced velocity ``u = v0 t0/a0``
+    (:func:`dryfriction.theory.direct_stability.effective_rsf_direct`: ``a = g a_0 + a_d``,
+    ``b = g b_0``, ``Dc`` unchanged, ``a_0, b_0`` in ``F_el``, ``Dc`` in ``a0``, ``g`` the
+    junction strength at ``u``, ``a_d ~ A mu_d``) is matched to the fitted ``b``, ``dc``,
+    ``mu0`` (and ``a`` with the direct effect): ``mu_el = mu0 / (g mu_d(u))``, ``eps`` scaled
+    until ``mu_el g b_0 = b``, ``A = (a/mu_el - g a_0) / mu_d``, ``a0 = dc / Dc``; four
+    passes. ``u`` is not fixed by one velocity's ``a, b, Dc`` (the
+    twin depends on it only through slow logarithms): it is an input, 1 by default (the
+    model's crossover velocity ``a0/t0`` at the first velocity). The machine parameters
+    (``stiffness``, ``trend``) are carried over unchanged.
+
+    Returns
+    -------
+    dict
+        ``eps``, ``t0``, ``a0``, ``mu_el`` (and ``direct`` when ``direct > 0``, clipped to
+        ``[1e-3, 0.5]``; ``stiffness``, ``trend`` where ``rsf`` has them).
+    """
+    eps, mu_el, A, g = 0.02, float(rsf["mu0"]), 0.0, 1.0
+    u_ref = v_ref * u / v0  # v_ref in units a0/t0 = v0/u
+    for _ in range(4):
+        tw = effective_rsf(u, eps, alpha, creep)
+        mu_d = float(steady_friction(u, eps, alpha, creep))
+        g = float(junction_strength(u, A, u_ref)) if A else 1.0
+        mu_el = float(rsf["mu0"]) / (g * mu_d)
+        eps = min(max(eps * float(rsf["b"]) / (mu_el * g * tw["b"]), 1e-5), 0.5)
+        if direct > 0.0:
+            A = min(max((float(rsf["a"]) / mu_el - g * tw["a"]) / mu_d, 1e-3), 0.5)
+    a0 = float(rsf["dc"]) / tw["dc"]
+    out = {"eps": eps, "t0": u * a0 / v0, "a0": a0, "mu_el": mu_el}
+    if direct > 0.0:
+        out["direct"] = A
+    out.update({k: float(rsf[k]) for k in ("stiffness", "trend") if k in rsf})
+    return out
