@@ -126,8 +126,9 @@ def _synthetic_step() -> tuple[SeriesData, dict[str, float]]:
                       source="synth"), truth
 
 
+@functools.cache
 def _fit_back(free: tuple[str, ...], max_nfev: int, traps: float
-              ) -> tuple[dict[str, Any], dict[str, float], float]:
+              ) -> tuple[dict[str, Any], dict[str, float], float, Any]:
     d, truth = _synthetic_step()
     model = CVModel(traps_per_a0=traps, direct=0.02, v_ref=1e-6, stiffness="fit", trend=True,
                     sample_slip=0.01, max_nfev=max_nfev)
@@ -137,8 +138,8 @@ def _fit_back(free: tuple[str, ...], max_nfev: int, traps: float
     r = fit(d, model, start={k: near[k] for k in free}, fix=fix, multistart=False,
             profile=False, consistency=False)
     assert r.success
-    return {p.name: p for p in r.parameters}, truth, math.sqrt(2 * r.goodness["cost"]
-                                                               / r.goodness["n"])
+    return ({p.name: p for p in r.parameters}, truth,
+            math.sqrt(2 * r.goodness["cost"] / r.goodness["n"]), r)
 
 
 def test_direct_effect_recovered_on_a_spring_with_a_trend() -> None:
@@ -146,7 +147,7 @@ def test_direct_effect_recovered_on_a_spring_with_a_trend() -> None:
     # 60 runs, 15-20 s CPU on a loaded machine; a shorter step (2.5 + 3 a0) was cheaper but
     # its 50-trap granularity biased A outside its interval; the slow test frees all seven):
     # A within its 95 % interval, which excludes A = 0
-    est, truth, rms = _fit_back(("direct", "stiffness", "trend"), 20, 50)
+    est, truth, rms, _ = _fit_back(("direct", "stiffness", "trend"), 20, 50)
     lo, hi = est["direct"].interval_95
     assert lo <= truth["direct"] <= hi
     assert lo > 0.0
@@ -155,10 +156,29 @@ def test_direct_effect_recovered_on_a_spring_with_a_trend() -> None:
     assert rms < 7e-4  # the noise, 5e-4, plus the fit's granularity
 
 
+def test_robust_errors_of_a_cv_fit() -> None:
+    """The record's cv fits get the autocorrelation-robust errors too (fit.steps
+    .step_covariance on a CVModel fit): the parameters held fixed stay out, and with white
+    noise the robust standard errors agree with the engine's white ones (measured within
+    20 %), so a robust estimate that inflated white noise, or mixed fixed parameters in, fails."""
+    from dryfriction.fit.steps import robust_estimates, step_covariance
+
+    free = ("direct", "stiffness", "trend")
+    est, truth, _, r = _fit_back(free, 20, 50)
+    d, _ = _synthetic_step()
+    sc = step_covariance(r, d)
+    assert [s.name for s in sc.specs] == list(free)
+    rob = robust_estimates(sc)
+    for n in free:
+        assert rob[n]["stderr"] == pytest.approx(est[n].stderr, rel=0.35), n
+        assert rob[n]["value"] == pytest.approx(est[n].value, rel=1e-12)
+    assert rob["direct"]["lo"] <= truth["direct"] <= rob["direct"]["hi"]
+
+
 @pytest.mark.slow
 def test_direct_effect_recovered_with_all_parameters_free() -> None:
     # measured: about 110 s CPU; A = 0.0198 +- 0.0002 (truth 0.02), rms 5.2e-4
-    est, truth, rms = _fit_back(("eps", "t0", "a0", "mu_el", "direct", "stiffness", "trend"),
+    est, truth, rms, _ = _fit_back(("eps", "t0", "a0", "mu_el", "direct", "stiffness", "trend"),
                                 60, 100)
     lo, hi = est["direct"].interval_95
     assert lo <= truth["direct"] <= hi

@@ -103,7 +103,14 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
 
     from ..fit import compare_models
     from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
-    from ..fit.steps import ERRORS, fit_steps, step_data, write_steps_csv
+    from ..fit.steps import (
+        ERRORS,
+        fit_steps,
+        robust_estimates,
+        step_covariance,
+        step_data,
+        write_steps_csv,
+    )
     from ..io import lab
     from ..io.files import output_directory, write_json
     from ..validation import check_choice
@@ -151,7 +158,12 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 try:
                     alt = fit_cv_steps([d], [res.fits[i]], alpha, creep, direct, v_ref, tpa,
                                        progress=run_done)[0]
-                    cv_fits.append({"step": i, **alt.to_dict()})
+                    entry = {"step": i, **alt.to_dict()}
+                    if errors == "hac":  # the record's residuals are correlated: as for rsf
+                        sc = step_covariance(alt, d, errors)
+                        entry["robust"] = {"parameters": robust_estimates(sc),
+                                           "resid_rho1": sc.rho1, "hac_lags": sc.lags}
+                    cv_fits.append(entry)
                     comp.append({"step": i, **compare_models([res.fits[i], alt]),
                                  "note": "cv and rsf on the same machine: a fitted spring "
                                          "and a linear trend in load-point displacement"})
@@ -193,9 +205,10 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         verdicts = {c["step"]: c.get("verdict", c.get("not_run")) for c in report["comparison"]
                     if isinstance(c, dict) and "step" in c}
         for f in report.get("cv_fits", []):
+            rob = f.get("robust", {}).get("parameters", {})  # robust errors where computed
             out.print(f"step {f['step']} cv: " + ", ".join(
-                f"{n} = {p['value']:.4g}" + ("" if p.get("stderr") is None
-                                             else f" +- {p['stderr']:.2g}")
+                f"{n} = {p['value']:.4g}" + ("" if rob.get(n, p).get("stderr") is None
+                                             else f" +- {rob.get(n, p)['stderr']:.2g}")
                 for n, p in f["parameters"].items()) + f"; {verdicts.get(f['step'])}",
                 highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"

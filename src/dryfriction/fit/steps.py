@@ -50,7 +50,7 @@ from .results import FitResult
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
            "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise", "quick_profile",
-           "PROFILED", "ERRORS", "StepCovariance", "step_covariance"]
+           "PROFILED", "ERRORS", "StepCovariance", "step_covariance", "robust_estimates"]
 
 PEAK_SAMPLES = 11
 """Samples averaged at the peak (module docstring)."""
@@ -205,17 +205,18 @@ class StepCovariance:
 
     def inflation(self, j: int) -> float:
         """Robust over white standard error of parameter ``j`` (1 for ``"white"``): the factor
-        by which correlated residuals widen its interval. Never below 1 (ours): residuals
-        that look anti-correlated are not taken to make a fit more precise than independent
-        noise would."""
+        by which correlated residuals widen its interval (about 1, either side, for white
+        noise: the robust estimate is not floored, so that intervals and standard errors come
+        from one covariance)."""
         if self.robust is None:
             return 1.0
         w, r = float(self.white.stderr[j]), float(self.robust.stderr[j])
-        return max(r / w, 1.0) if w > 0 and math.isfinite(r) else math.inf
+        return r / w if w > 0 and math.isfinite(r) else math.inf
 
 
 def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCovariance:
-    """The covariance of a window's rate-and-state fit ``r`` on data ``d`` (ours).
+    """The covariance of a window's fit ``r`` on data ``d`` (ours): rate-and-state, or the
+    trap model (:mod:`.cvsteps`), parameters held fixed in the fit held fixed here.
 
     ``"white"``: ``s^2 (J^T J)^-1`` with ``s^2 = RSS/(n - p)``, as the engine gives.
     ``"hac"``: also the autocorrelation-robust sandwich. A measured record's residuals are
@@ -229,10 +230,10 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
 
     check_choice("errors", errors, ERRORS)
     m = r.fitted_model
-    assert isinstance(m, RSFModel)
-    specs = tuple(m.parameters(frozenset({"series"})))
-    prob = Problem(m, [d], specs, {})
     val = {p.name: p.value for p in r.parameters}
+    fixed = {p.name: p.value for p in r.parameters if p.fixed}
+    specs = tuple(s for s in m.parameters(frozenset({"series"})) if s.name not in fixed)
+    prob = Problem(m, [d], specs, fixed)
     theta = np.array([s.to_internal(val[s.name]) for s in specs])
     res = prob.residuals(theta)
     cost = 0.5 * float(res @ res)
@@ -245,6 +246,24 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
         return StepCovariance(specs, theta, cost, dof, white, None, rho1, 0)
     robust = hac_covariance(J, res)
     return StepCovariance(specs, theta, cost, dof, white, robust, rho1, hac_bandwidth(res))
+
+
+def robust_estimates(sc: StepCovariance) -> dict[str, dict[str, float]]:
+    """Each free parameter's standard error and 95 % Wald interval from ``sc``'s robust
+    covariance (the white one for ``"white"``), in its own units (delta method for ``log``
+    parameters), and the inflation over the white standard error."""
+    from .statistics import quantile_95
+
+    z = quantile_95(False, sc.dof)
+    out: dict[str, dict[str, float]] = {}
+    for j, spec in enumerate(sc.specs):
+        se = float(sc.used.stderr[j])
+        val = spec.from_internal(sc.theta[j])
+        out[spec.name] = {"value": val, "stderr": val * se if spec.log else se,
+                          "lo": spec.from_internal(sc.theta[j] - z * se),
+                          "hi": spec.from_internal(sc.theta[j] + z * se),
+                          "inflation": sc.inflation(j)}
+    return out
 
 
 def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED,
