@@ -74,3 +74,17 @@ def test_a_failing_figure_in_the_pool_fails_the_command_whole(
         figures.reproduce(tmp_path / "out")
     assert not (tmp_path / "out").exists()
     assert multiprocessing.active_children() == []
+
+
+def test_main_restores_the_signal_handlers() -> None:
+    """main() in a process that goes on (a test, a notebook) leaves no handler behind: a test
+    that called it left SIGTERM -> SystemExit in the test process, and the figure pool's
+    workers forked later inherited it; CI then hung once in the pool's terminate (the workers
+    now also reset SIGTERM themselves: plots.report._figure_worker)."""
+    import signal
+
+    from dryfriction.cli import main
+
+    before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    assert main(["--version"]) == 0
+    assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before

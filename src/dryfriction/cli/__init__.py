@@ -49,8 +49,9 @@ def main(argv: list[str] | None = None) -> int:
         interrupted.append(signum)
         raise SystemExit(128 + signum)
 
-    signal.signal(signal.SIGINT, on_sigint)
-    signal.signal(signal.SIGTERM, on_sigterm)
+    # restored on the way out: main() called in a process that goes on (a test, a notebook)
+    # must not leave its handlers behind
+    previous = signal.signal(signal.SIGINT, on_sigint), signal.signal(signal.SIGTERM, on_sigterm)
     try:
         code = _run(argv)
     except BrokenPipeError:
@@ -62,6 +63,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         error_line("interrupted (Ctrl-C)")
         code = 130
+    finally:
+        signal.signal(signal.SIGINT, previous[0])
+        signal.signal(signal.SIGTERM, previous[1])
     last = interrupted[-1] if interrupted else None
     if last == signal.SIGTERM or (last == signal.SIGINT and code == 0):
         error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")

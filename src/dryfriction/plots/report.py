@@ -538,5 +538,18 @@ def _figure_map(n: int) -> Iterator[Callable[[Callable[..., Any], Iterable[Any]]
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
         yield map
         return
-    with multiprocessing.get_context("fork").Pool(workers) as pool:
+    with multiprocessing.get_context("fork").Pool(workers, initializer=_figure_worker) as pool:
         yield pool.imap
+
+
+def _figure_worker() -> None:
+    """A figure worker dies at once on the pool's SIGTERM and leaves Ctrl-C to the parent.
+
+    A forked worker inherits the parent's handlers; the command line's turns SIGTERM into
+    ``SystemExit``, and a worker exiting that way joins its result queue's feeder thread,
+    which, blocked on a full pipe that no one reads any more, never returns: the pool's
+    ``terminate`` (on an error in another figure) then waits for ever."""
+    import signal
+
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
