@@ -245,3 +245,22 @@ def test_continue_spring_refuses_what_the_machine_cannot_hold(
     with pytest.raises(ValueError, match="every_slip = 0.01 gives 1.0e\\+302 samples"):
         continue_spring(ens, drive, Output(every_slip=0.01))
     assert ens.t == 0.0 and ens.x == 0.0  # nothing was run
+
+
+def test_too_many_samples_refused_before_any_work() -> None:
+    """1e7 samples fit in memory at 5 traps/a0 but take minutes to record and a ~1 GB CSV: the
+    run is refused at once, naming the key (a fuzz case that ran for over two minutes)."""
+    from dryfriction.ensemble.driving import VelocityDrive, simulate
+    from dryfriction.ensemble.population import Initial, Track
+    from dryfriction.ensemble.resources import MAX_SAMPLES
+
+    drive = VelocityDrive(VelocityProgram([Segment(0.5, duration=1e6)]))
+    with pytest.raises(ValueError, match=r"every = 0.1 gives 1.0e\+07 samples, over the 2e\+06"):
+        simulate(TrapModel(eps=0.04), Track(5.0), Initial("steady", velocity=0.5), drive,
+                 Output(every=0.1))
+    # just under the cap it is not refused for its samples
+    ok = VelocityDrive(VelocityProgram([Segment(0.5, duration=0.5 * MAX_SAMPLES * 0.1)]))
+    from dryfriction.ensemble.resources import check_run
+    est = check_run(TrapModel(eps=0.04), Track(5.0), Initial("steady", velocity=0.5), ok,
+                    Output(every=0.1))
+    assert est.samples <= MAX_SAMPLES

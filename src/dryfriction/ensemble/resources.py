@@ -31,6 +31,10 @@ __all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "RunEstimate", "check_run", "es
 
 BYTES_PER_SAMPLE = 480.0
 """Peak bytes per recorded sample (measured 456)."""
+MAX_SAMPLES = 2e6
+"""Most samples one run records (ours): past this the run is refused before any work, however
+much memory there is, because recording and writing them is what takes the time (about 13 µs
+a sample on the development machine: 2e6 samples are half a minute and a CSV of ~200 MB)."""
 BYTES_PER_TRAP = 18.0
 """Peak bytes per estimated pair in the buffer (measured 15-16)."""
 BYTES_PER_SNAPSHOT_TRAP = 6 * 8.0
@@ -184,4 +188,11 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
                 "contact")
         hint = f"ask for fewer {out}snapshots or lower {lam_key}"
     check_memory(what, est.total_bytes, hint)
+    if est.samples > MAX_SAMPLES:
+        key = "every" if output.every is not None else "every_slip"
+        value = output.every if output.every is not None else output.every_slip
+        raise ValueError(f"{out}{key} = {value:g} gives {est.samples:.1e} samples, over the "
+                         f"{MAX_SAMPLES:.0e} one run records (minutes of recording and a CSV "
+                         f"of ~{est.samples * 100 / 1e9:.2g} GB); raise {out}{key} (or shorten "
+                         "the drive)")
     return est
