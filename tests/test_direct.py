@@ -360,28 +360,12 @@ every_slip = 0.05
 
 def _direct_series(seed: int) -> tuple:
     """Ensemble-made steps u = 1 -> 10 -> 0.1 (V* = 1e-4 m/s) with A = 0.02, noise 2e-3."""
+    from cv_steps import synthetic_steps
     from dryfriction.fit import CVModel
-    from dryfriction.io.data import SeriesData
 
     true = {"eps": 0.03, "t0": 0.01, "a0": 1e-6, "mu_el": 0.5, "direct": 0.02}
-    vs = true["a0"] / true["t0"]
-    t: list[float] = []
-    v: list[float] = []
-    now = 0.0
-    for u, slip in ((1.0, 0.3), (10.0, 3.0), (0.1, 3.0)):
-        dur = slip / u * true["t0"]
-        n = max(3, round(slip / 0.1))
-        t.extend(now + np.linspace(0.0, dur, n + 1)[:-1])
-        v.extend([u * vs] * n)
-        now += dur
-    t.append(now)
-    v.append(0.1 * vs)
-    ta, va = np.array(t), np.array(v)
-    model = CVModel(traps_per_a0=300, direct=0.01, v_ref=vs)
-    clean = model.predict(true, SeriesData(ta, va, np.ones_like(ta)))
-    rng = np.random.default_rng(seed)
-    return SeriesData(ta, va, clean + rng.normal(0.0, 2e-3, ta.size),
-                      np.full(ta.size, 2e-3)), true, model
+    model = CVModel(traps_per_a0=300, direct=0.01, v_ref=true["a0"] / true["t0"])
+    return synthetic_steps(true, model, seed), true, model
 
 
 @pytest.mark.slow

@@ -168,24 +168,10 @@ def test_rsf_time_series_spring_machine_recovers_parameters() -> None:
 
 def _cv_series_data(seed: int, sigma: float = 2e-3) -> tuple[SeriesData, dict[str, float]]:
     """Synthetic steps u = 1 -> 10 -> 0.1 (V* = 1e-4 m/s) from the ensemble itself, with noise."""
+    from cv_steps import synthetic_steps
+
     true = {"eps": 0.03, "t0": 0.01, "a0": 1e-6, "mu_el": 0.5}
-    vs = true["a0"] / true["t0"]
-    t: list[float] = []
-    v: list[float] = []
-    now = 0.0
-    for u, slip in ((1.0, 0.3), (10.0, 3.0), (0.1, 3.0)):
-        dur = slip / u * true["t0"]
-        n = max(3, round(slip / 0.1))
-        t.extend(now + np.linspace(0.0, dur, n + 1)[:-1])
-        v.extend([u * vs] * n)
-        now += dur
-    t.append(now)
-    v.append(0.1 * vs)
-    ta, va = np.array(t), np.array(v)
-    clean = CVModel(traps_per_a0=300).predict(true, SeriesData(ta, va, np.ones_like(ta)))
-    rng = np.random.default_rng(seed)
-    return SeriesData(ta, va, clean + rng.normal(0.0, sigma, ta.size),
-                      np.full(ta.size, sigma)), true
+    return synthetic_steps(true, CVModel(traps_per_a0=300), seed, sigma), true
 
 
 def test_cli_fits_the_trap_model_to_a_time_series(tmp_path: Path) -> None:
