@@ -26,6 +26,7 @@ __all__ = [
     "covariance",
     "hac_covariance",
     "hac_bandwidth",
+    "lag1_autocorrelation",
     "quantile_95",
     "runs_test",
     "information_criteria",
@@ -94,6 +95,16 @@ def covariance(J: Array, s2: float) -> Covariance:
     return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), singular)
 
 
+def lag1_autocorrelation(x: Array) -> Array:
+    """Lag-1 autocorrelation of a series in time order (of each column of an ``n x p`` array),
+    about its mean; 0 for a constant column."""
+    x = np.asarray(x, float).reshape(len(x), -1)
+    x = x - np.mean(x, axis=0)
+    den = np.einsum("ij,ij->j", x, x)
+    num = np.einsum("ij,ij->j", x[1:], x[:-1])
+    return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+
+
 def hac_bandwidth(x: Array) -> int:
     """Lags of the Bartlett kernel for :func:`hac_covariance`: Andrews' (1991) AR(1) plug-in.
 
@@ -102,20 +113,15 @@ def hac_bandwidth(x: Array) -> int:
     ``alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2)`` (Andrews, Econometrica 59, 817 (1991),
     eqs. 5.3 and 6.4), at least 1 and at most ``n/2``.
     """
-    x = np.asarray(x, float).reshape(len(x), -1)
     n = len(x)
     if n < 4:
         return 1
-    x = x - np.mean(x, axis=0)
-    den = np.einsum("ij,ij->j", x, x)
-    num = np.einsum("ij,ij->j", x[1:], x[:-1])
-    rho = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
-    rho = float(np.clip(np.max(np.abs(rho)), 0.0, 0.999))
+    rho = float(np.clip(np.max(np.abs(lag1_autocorrelation(x))), 0.0, 0.999))
     alpha = 4.0 * rho**2 / ((1.0 - rho) ** 2 * (1.0 + rho) ** 2)
     return int(min(max(math.ceil(1.1447 * (alpha * n) ** (1.0 / 3.0)), 1), n // 2))
 
 
-CAP = 0.99
+PREWHITEN_CAP = 0.99
 """Largest singular value of the prewhitening VAR(1) matrix (Andrews & Monahan use 0.97; ours:
 0.99, because apparatus fluctuations in friction records are correlated over hundreds of
 samples, where 0.97 leaves the estimate ~2x low; measured on AR(1) noise with rho = 0.99 in
@@ -131,21 +137,21 @@ def _bartlett(u: Array, lags: int) -> Array:
     return omega
 
 
-def hac_covariance(J: Array, r: Array, lags: int | None = None) -> Covariance:
+def hac_covariance(J: Array, r: Array, lags: int | None = None) -> tuple[Covariance, int]:
     """Covariance of least-squares estimates with autocorrelated residuals.
 
     The sandwich ``C = (J^T J)^-1 Omega (J^T J)^-1 n/(n - p)``, ``Omega`` the long-run
     covariance of the scores ``u_t = J_t r_t``, estimated with Andrews & Monahan's (Econometrica
     60, 953 (1992)) VAR(1) prewhitening: ``u_t = A u_{t-1} + e_t`` fitted by least squares
-    (``A`` shrunk so that its singular values stay <= :data:`CAP`), the Newey–West (Bartlett)
-    estimate ``Omega_e`` of the whitened ``e_t`` (bandwidth :func:`hac_bandwidth` of ``e``),
-    recoloured: ``Omega = (I - A)^-1 Omega_e (I - A)^-T``. Without prewhitening the Bartlett
-    estimate is biased low by ~``1/L`` of the correlation time; with it the bias is that of the
-    (much shorter) remaining correlation. With uncorrelated residuals it reduces to White's
-    heteroscedasticity-consistent form, close to :func:`covariance` with ``s2 = RSS/(n - p)``.
-    Where a measured record carries slow apparatus fluctuations (residuals correlated over many
-    samples) the white-noise covariance is too small by about ``(1 + rho)/(1 - rho)`` for
-    AR(1) residuals; this one is not.
+    (``A`` shrunk so that its singular values stay <= :data:`PREWHITEN_CAP`), the Newey–West
+    (Bartlett) estimate ``Omega_e`` of the whitened ``e_t`` (bandwidth :func:`hac_bandwidth` of
+    ``e``), recoloured: ``Omega = (I - A)^-1 Omega_e (I - A)^-T``. Without prewhitening the
+    Bartlett estimate is biased low by ~``1/L`` of the correlation time; with it the bias is
+    that of the (much shorter) remaining correlation. With uncorrelated residuals it reduces to
+    White's heteroscedasticity-consistent form, close to :func:`covariance` with
+    ``s2 = RSS/(n - p)``. Where a measured record carries slow apparatus fluctuations
+    (residuals correlated over many samples) the white-noise covariance is too small by about
+    ``(1 + rho)/(1 - rho)`` for AR(1) residuals; this one is not.
 
     Parameters
     ----------
@@ -155,18 +161,23 @@ def hac_covariance(J: Array, r: Array, lags: int | None = None) -> Covariance:
         The ``n`` residuals at the optimum, in the same order.
     lags : int, optional
         Bartlett bandwidth ``L`` for the whitened scores; default :func:`hac_bandwidth`.
+
+    Returns
+    -------
+    Covariance, int
+        The covariance and the bandwidth ``L`` used (0 where ``J`` is singular).
     """
     n, p = J.shape
     if p == 0:
-        return Covariance(np.zeros((0, 0)), np.zeros(0), False)
+        return Covariance(np.zeros((0, 0)), np.zeros(0), False), 0
     base = covariance(J, 1.0)
     if base.singular or n <= 2 * p + 2:
-        return Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True)
+        return Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True), 0
     u = J * r[:, None]
     # VAR(1) of the scores: u_t^T = u_{t-1}^T A^T + e_t^T
     At = np.linalg.lstsq(u[:-1], u[1:], rcond=None)[0]
     U, S, Vt = np.linalg.svd(At)
-    At = (U * np.minimum(S, CAP)) @ Vt
+    At = (U * np.minimum(S, PREWHITEN_CAP)) @ Vt
     e = u[1:] - u[:-1] @ At
     L = hac_bandwidth(e) if lags is None else int(lags)
     omega_e = _bartlett(e, L) * (n / (n - 1.0))
@@ -175,7 +186,7 @@ def hac_covariance(J: Array, r: Array, lags: int | None = None) -> Covariance:
     bread = base.matrix  # (J^T J)^-1
     cov = bread @ omega @ bread * (n / (n - p))
     cov = 0.5 * (cov + cov.T)
-    return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False)
+    return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), L
 
 
 def quantile_95(sigma_given: bool, dof: int) -> float:

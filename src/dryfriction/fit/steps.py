@@ -46,6 +46,7 @@ from ..validation import Array, check_choice
 from .engine import fit
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
+from .statistics import Covariance
 
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
@@ -186,20 +187,21 @@ class StepCovariance:
     rho1 : float
         Lag-1 autocorrelation of the residuals.
     lags : int
-        The robust estimate's Bartlett bandwidth (0 for ``"white"``).
+        The robust estimate's Bartlett bandwidth, on the prewhitened scores (0 for
+        ``"white"``).
     """
 
     specs: tuple[ParamSpec, ...]
     theta: Array
     cost: float
     dof: int
-    white: Any
-    robust: Any
+    white: Covariance
+    robust: Covariance | None
     rho1: float
     lags: int
 
     @property
-    def used(self) -> Any:
+    def used(self) -> Covariance:
         """The covariance the intervals use: the robust one where there is one."""
         return self.white if self.robust is None else self.robust
 
@@ -226,7 +228,7 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     fewer independent samples they are.
     """
     from .problem import Problem
-    from .statistics import covariance, hac_bandwidth, hac_covariance
+    from .statistics import covariance, hac_covariance, lag1_autocorrelation
 
     check_choice("errors", errors, ERRORS)
     m = r.fitted_model
@@ -240,12 +242,11 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     dof = prob.n - prob.p
     J = prob.jacobian(theta)
     white = covariance(J, 2.0 * cost / dof)
-    c = res - np.mean(res)
-    rho1 = float(c[1:] @ c[:-1] / (c @ c)) if c @ c > 0 else 0.0
+    rho1 = float(lag1_autocorrelation(res)[0])
     if errors == "white":
         return StepCovariance(specs, theta, cost, dof, white, None, rho1, 0)
-    robust = hac_covariance(J, res)
-    return StepCovariance(specs, theta, cost, dof, white, robust, rho1, hac_bandwidth(res))
+    robust, lags = hac_covariance(J, res)
+    return StepCovariance(specs, theta, cost, dof, white, robust, rho1, lags)
 
 
 def robust_estimates(sc: StepCovariance) -> dict[str, dict[str, float]]:
