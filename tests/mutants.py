@@ -310,6 +310,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "return force_hold_grid(hold, self.every)",
        "return force_hold_grid(hold, self.every, math.log1p(hold) + 1.0)",
        _DRV, "-k", "force_hold_sampled"),
+    _m("painter: a figure job drawn in the command's own process", "cli/painter.py",
+       "    if painter is not None:\n        payload", "    if False:\n        payload",
+       "tests/test_painter.py"),
+    _m("painter: left running when the command fails", "cli/painter.py",
+       "        if painter is not None:\n            stop()",
+       "        if painter is None:\n            stop()",
+       "tests/test_painter.py"),
 )
 
 

@@ -5,16 +5,24 @@ standard error and exit code 2.
 
 One module per command group (:mod:`.model`, :mod:`.runs`, :mod:`.fitting`, :mod:`.record`,
 :mod:`.sweeps`); :mod:`.common` holds the app and the one-line error handling.
+
+The package itself imports nothing heavy: the console script forks its painter (:mod:`.painter`)
+first, and ``app`` (Typer, Rich, every command) is imported on first use.
 """
 
+import sys
 from typing import Any
 
-import typer
-
-from . import examples, fitting, model, record, runs, sweeps  # noqa: F401  (registers the commands)
-from .common import app, error_line
-
 __all__ = ["app", "main"]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "app":
+        from .commands import app
+
+        globals()["app"] = app
+        return app
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -31,14 +39,23 @@ def main(argv: list[str] | None = None) -> int:
     Parameters
     ----------
     argv : list of str, optional
-        Arguments without the program name; default ``sys.argv[1:]``.
+        Arguments without the program name; default ``sys.argv[1:]``. Only without it (the
+        console script, ``python -m dryfriction.cli``) may a painter process be forked to draw
+        the figure (:mod:`.painter`).
     """
     import os
     import signal
-    import sys
+
+    from . import painter
 
     # the figures import matplotlib without docstring tables nobody here reads (dryfriction.plots)
     os.environ.setdefault("DRYFRICTION_LEAN_MATPLOTLIB", "1")
+    # one BLAS thread unless the user asks for more: the commands' linear algebra is small (fits
+    # of a few parameters), and an idle BLAS thread spins on a core that the painter, the
+    # figure pool or a sweep's workers need (issue 12); read when NumPy loads, so only set
+    # in a process that has not loaded it (not in a test or notebook calling main())
+    if "numpy" not in sys.modules:
+        os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     interrupted: list[int] = []
 
     def on_sigint(signum: int, frame: Any) -> None:
@@ -53,7 +70,8 @@ def main(argv: list[str] | None = None) -> int:
     # must not leave its handlers behind
     previous = signal.signal(signal.SIGINT, on_sigint), signal.signal(signal.SIGTERM, on_sigterm)
     try:
-        code = _run(argv)
+        with painter.painting(sys.argv[1:] if argv is None else None):
+            code = _run(argv)
     except BrokenPipeError:
         # the reader of our output went away (``| head``): stop quietly, as a pipe expects
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
@@ -61,20 +79,25 @@ def main(argv: list[str] | None = None) -> int:
     except SystemExit as exc:
         code = exc.code if isinstance(exc.code, int) else int(exc.code is not None)
     except KeyboardInterrupt:
-        error_line("interrupted (Ctrl-C)")
+        _error_line("interrupted (Ctrl-C)")
         code = 130
     finally:
         signal.signal(signal.SIGINT, previous[0])
         signal.signal(signal.SIGTERM, previous[1])
     last = interrupted[-1] if interrupted else None
     if last == signal.SIGTERM or (last == signal.SIGINT and code == 0):
-        error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")
+        _error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")
         code = 128 + last
     return code
 
 
 def _run(argv: list[str] | None) -> int:
     """The app without Click's standalone mode: usage errors become one line."""
+    import typer
+
+    from .common import error_line
+
+    app = sys.modules[__name__].app  # the module's attribute: loaded on first use, or a stand-in
     try:
         rv = app(args=argv, prog_name="dryfriction", standalone_mode=False)
     except typer.Abort:  # Ctrl-C, as Click reports it
@@ -92,3 +115,9 @@ def _run(argv: list[str] | None) -> int:
         return int(getattr(exc, "exit_code", 1))
     # without standalone mode a command's typer.Exit(code) comes back as its code
     return rv if isinstance(rv, int) else 0
+
+
+def _error_line(message: str) -> None:
+    from .common import error_line
+
+    error_line(message)

@@ -26,6 +26,7 @@ from .common import (
     write_summary,
 )
 from .model import LOAD_MAX
+from .painter import draw_figure
 
 
 @app.command(cls=many())
@@ -148,11 +149,9 @@ def rsf(
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
             if figure:
-                from ..plots.runs import rsf_figure
-                from ..plots.style import save_figure
-
-                fig, _ = rsf_figure(res, f"{case}, {state_law} law")
-                save_figure(fig, tmp / f"rsf.{fmt}", fmt, dpi)
+                draw_figure("dryfriction.plots.runs:rsf_figure", res,
+                            f"{case}, {state_law} law", path=tmp / f"rsf.{fmt}", fmt=fmt,
+                            dpi=dpi)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
     if case == "shs" and _peak_at_end(res, t1 + hold):
@@ -229,11 +228,8 @@ def simulate(
         summary = write_summary(tmp / "summary.json", result,
                                 {"protocol": str(Path(protocol))})
         if figure:
-            from ..plots.runs import timeseries_figure
-            from ..plots.style import save_figure
-
-            fig, _ = timeseries_figure(result)
-            save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
+            draw_figure("dryfriction.plots.runs:timeseries_figure", result,
+                        path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
         for i, snap in enumerate(result.snapshots):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
@@ -282,11 +278,8 @@ def compare(
                           report=say) as tmp:
         write_json(tmp / "compare.json", report)
         if figure:
-            from ..plots.runs import comparison_figure
-            from ..plots.style import save_figure
-
-            fig, _ = comparison_figure(c, Path(protocol).name)
-            save_figure(fig, tmp / f"compare.{fmt}", fmt, dpi)
+            draw_figure("dryfriction.plots.runs:comparison_figure", c, Path(protocol).name,
+                        path=tmp / f"compare.{fmt}", fmt=fmt, dpi=dpi)
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
@@ -310,11 +303,8 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
         write_csv(tmp / "timeseries.csv", res.columns())
         summary = write_summary(tmp / "summary.json", res, context)
         if figure:
-            from ..plots.runs import rsf_timeseries_figure
-            from ..plots.style import save_figure
-
-            fig, _ = rsf_timeseries_figure(res)
-            save_figure(fig, tmp / f"timeseries.{fmt}", fmt, dpi)
+            draw_figure("dryfriction.plots.runs:rsf_timeseries_figure", res,
+                        path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
          "(rate-and-state, SI: t s, x m, v m/s, theta s)")
