@@ -478,6 +478,9 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
     fmt, dpi = check_figure_format(fmt, dpi)
     plots = _plots()
     total = len(plots) + 4
+    # the slowest figures first, so that the pool's workers finish together
+    order = sorted(range(len(plots)), key=lambda i: _DRAW_ORDER.index(plots[i][0])
+                   if plots[i][0] in _DRAW_ORDER else len(_DRAW_ORDER))
 
     def tick(done: int, what: str) -> None:
         if progress is not None:
@@ -486,7 +489,7 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
     with (output_directory(out, command="reproduce", force=force, report=report) as tmp,
           _figure_map(len(plots)) as figure_map):
         # the figures first: in parallel they are drawn while the data below is computed
-        drawn = figure_map(_draw, [(i, tmp, fmt, dpi) for i in range(len(plots))])
+        drawn = figure_map(_draw, [(i, tmp, fmt, dpi) for i in order])
         done = 0
         write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"))
         done += 1
@@ -507,6 +510,16 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         done += 1
         tick(done, "report.html")
     return summary
+
+
+_DRAW_ORDER = ("extra_dieterich_C.png", "fig5.png", "extra_creep.png", "fig1.png", "fig6.png",
+               "fig2.png", "extra_loaded.png", "fig3.png", "fig4.png")
+"""The figures by decreasing time to draw (measured: 0.5 s down to 0.15 s): the order in which
+the pool takes them. Only the speed depends on it; a figure not named goes last."""
+
+_PRELOAD = ("scipy.optimize", "scipy.integrate")
+"""SciPy modules the figures use (root finding, ``quad``) and that are slow to import (0.2 s):
+imported once before the pool forks rather than in every worker."""
 
 
 def _draw(job: tuple[int, Path, str, int]) -> tuple[str, tuple[str, str, bytes]]:
@@ -538,6 +551,10 @@ def _figure_map(n: int) -> Iterator[Callable[[Callable[..., Any], Iterable[Any]]
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
         yield map
         return
+    import importlib
+
+    for name in _PRELOAD:
+        importlib.import_module(name)
     with multiprocessing.get_context("fork").Pool(workers, initializer=_figure_worker) as pool:
         yield pool.imap
 

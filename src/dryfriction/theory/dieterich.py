@@ -25,7 +25,7 @@ from ..validation import (
     check_range,
     check_scalar,
 )
-from .creep import CREEP_LAWS, per_eps
+from .creep import CREEP_LAWS, PER_EPS_CHUNK, per_eps
 from .static import static_friction, static_friction_at_radius, static_slope_per_eps
 from .steady import steady_friction
 from .trap import Trap, z_plus
@@ -117,20 +117,28 @@ def dieterich_constant_local(
     eps = check_range("eps", eps, 0.0, lo_open=True)
     check_broadcast(u=u, eps=eps)
 
-    def one(law, x):  # type: ignore[no-untyped-def]
-        tgt = np.atleast_1d(steady_friction(x, law.eps, alpha, creep))
-        lo = np.ones_like(tgt)
-        hi = np.full_like(tgt, 2.0)
-        while np.any(static_friction_at_radius(hi, alpha) < tgt):
-            hi = np.where(static_friction_at_radius(hi, alpha) < tgt, 2.0 * hi, hi)
-        for _ in range(80):
-            mid = 0.5 * (lo + hi)
-            below = static_friction_at_radius(mid, alpha) < tgt
-            lo = np.where(below, mid, lo)
-            hi = np.where(below, hi, mid)
-        r = 0.5 * (lo + hi)
-        T = law.age(law.clock_at_radius(r))
-        C = np.atleast_1d(x) * T
-        return np.where(tgt >= 1.0, C, np.nan).reshape(np.shape(x))
+    u_b, eps_b = np.broadcast_arrays(u, eps)
+    tgt = np.asarray(steady_friction(u_b, eps_b, alpha, creep), float)
+    # mu_s(r) does not depend on eps: one bisection for every point, in bounded chunks
+    flat = np.atleast_1d(tgt).ravel()
+    r = np.empty(flat.size)
+    for i0 in range(0, flat.size, PER_EPS_CHUNK):
+        r[i0:i0 + PER_EPS_CHUNK] = _radius_at_static_friction(flat[i0:i0 + PER_EPS_CHUNK], alpha)
+    T = per_eps(lambda law, rr: law.age(law.clock_at_radius(rr)), creep, eps_b,
+                r.reshape(tgt.shape))
+    return np.where(tgt >= 1.0, u_b * T, np.nan)[()]
 
-    return per_eps(one, creep, eps, u)
+
+def _radius_at_static_friction(tgt: Array, alpha: float) -> Array:
+    """Aged radius ratio ``r >= 1`` with ``mu_s(r) = tgt`` (bisection; ``mu_s`` increases
+    with ``r``); tends to 1 where ``tgt <= 1``."""
+    lo = np.ones_like(tgt)
+    hi = np.full_like(tgt, 2.0)
+    while np.any(static_friction_at_radius(hi, alpha) < tgt):
+        hi = np.where(static_friction_at_radius(hi, alpha) < tgt, 2.0 * hi, hi)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        below = static_friction_at_radius(mid, alpha) < tgt
+        lo = np.where(below, mid, lo)
+        hi = np.where(below, hi, mid)
+    return 0.5 * (lo + hi)
