@@ -5,8 +5,9 @@ no Numba: :mod:`dryfriction.rsf.stepper`) and the files, for
 ``dryfriction simulate examples/rsf_velocity_step.toml`` with the figure and with
 ``--no-figure``, ``dryfriction reproduce`` and ``dryfriction --help``. The variants run
 interleaved (round robin) so that a change in the machine's load hits them all alike; medians
-of wall and CPU time (user + system, children included: ``reproduce`` draws in a pool) are
-reported, with the load average, since the machine may be shared. Targets (issue 12):
+of wall and CPU time (user + system, children included: ``reproduce`` draws in a pool, and
+``simulate`` in its painter, :mod:`dryfriction.cli.painter`) are reported, with the load
+average, since the machine may be shared. Targets (issue 12):
 ``--help`` <= 0.3 s, ``--no-figure`` <= 0.5 s, with the figure <= 1.0 s, ``reproduce`` <= 3 s.
 
 ``--first-run`` also measures the pause of the first run after an install: a fresh copy of the
@@ -65,15 +66,18 @@ def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
         "simulate --no-figure": [*cmd, "simulate", str(PROTOCOL), "--out", "nofig",
                                  "--no-figure", "--json"],
         "simulate (figure)": [*cmd, "simulate", str(PROTOCOL), "--out", "fig", "--json"],
+        "  without painter": [*cmd, "simulate", str(PROTOCOL), "--out", "fig0", "--json"],
         "reproduce": [*cmd, "reproduce", "--out", "rep"],
     }
+    # the figure drawn in the command's own process: what the painter saves
+    environ = {"  without painter": {**os.environ, "DRYFRICTION_PAINTER": "0"}}
     times: dict[str, list[tuple[float, float]]] = {k: [] for k in variants}
     with tempfile.TemporaryDirectory() as tmp:
-        for args in variants.values():  # warm the file cache and the kernels' cache
-            _run(args, tmp)
+        for name, args in variants.items():  # warm the file cache and the kernels' cache
+            _run(args, tmp, environ.get(name))
         for _ in range(rounds):
             for name, args in variants.items():
-                times[name].append(_run(args, tmp))
+                times[name].append(_run(args, tmp, environ.get(name)))
     return {k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v))
             for k, v in times.items()}
 
