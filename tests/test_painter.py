@@ -81,6 +81,7 @@ def test_jobs_run_in_the_painter_errors_come_back_and_a_dead_one_is_replaced(
         "painter.MAX_PAYLOAD = 100\n"  # a larger job is run here, not sent
         "out['big_ran_in'] = painter.paint('__main__:whoami', b'x' * 1000)\n"
         "painter.MAX_PAYLOAD = 64 * 2**20\n"
+        "out['unpicklable_ran_in'] = painter.paint('__main__:whoami', lambda: None)\n"
         "out['still'] = painter.active() is not None\n"
         "os.kill(p.pid, signal.SIGKILL)\n"
         "out['after_death'] = painter.paint('os:getpid')\n"
@@ -97,6 +98,7 @@ def test_jobs_run_in_the_painter_errors_come_back_and_a_dead_one_is_replaced(
     assert got["error"] == ["ValueError", "math domain error"]
     assert got["small_ran_in"] == got["pid"]
     assert got["big_ran_in"] == got["me"] and got["still"]
+    assert got["unpicklable_ran_in"] == got["me"]
     assert got["after_death"] == got["me"]  # drawn here once the painter died
     assert not got["active_after"] and got["reaped"]
 

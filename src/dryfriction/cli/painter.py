@@ -134,13 +134,16 @@ def paint(target: str, *args: Any, **kwargs: Any) -> Any:
     """Call ``target`` (``"module:function"``) with the arguments, in the painter if one is
     running, else here; return what it returns, or raise what it raised.
 
-    The painter is used only for arguments whose pickle is at most :data:`MAX_PAYLOAD` bytes.
+    The painter is used only for arguments that pickle to at most :data:`MAX_PAYLOAD` bytes.
     If the painter has died, the call runs here (and the painter is reaped).
     """
     painter = active()
     if painter is not None:
-        payload = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
-        if len(payload) <= MAX_PAYLOAD:
+        try:
+            payload = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+        except (pickle.PicklingError, TypeError, AttributeError):
+            payload = None  # not picklable (a closure, say): drawn here
+        if payload is not None and len(payload) <= MAX_PAYLOAD:
             try:
                 _send(painter.jobs, payload)
                 ok, value = pickle.loads(_receive(painter.results))
