@@ -23,6 +23,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
+from dryfriction.fit.machine import hold_remnant
 from dryfriction.fit.models import RSFModel, rsf_series
 from dryfriction.fit.steps import PEAK_SAMPLES, StepsResult, fit_steps
 from dryfriction.io import lab
@@ -217,6 +218,33 @@ def test_peak_gain_vs_log_hold_time_matches_the_record():
     beta_d, beta_m = (float(np.polyfit(lnh, y, 1)[0]) for y in (data, model))
     assert beta_m == pytest.approx(beta_d, rel=0.02)
     assert abs(wrong - data[2]) > 2e-4
+
+
+def test_hold_remnant_by_hand():
+    """1 m/s for 10 s, a 5 s hold, then 1 m/s: at 4 s into the reslide (4 m of load travel)
+    b = 1, Dc = 2 leave ln(1 + 5/2) exp(-2); nothing before the first hold or in a hold."""
+    t = np.arange(25.0)
+    d = SeriesData(t, np.r_[np.ones(10), np.zeros(5), np.ones(10)], np.zeros(25))
+    rem, hold, slip = hold_remnant(d, 19, 1.0, 2.0)
+    assert (hold, slip) == (5.0, 4.0)
+    assert rem == pytest.approx(math.log(3.5) * math.exp(-2.0), rel=1e-12)
+    assert hold_remnant(d, 5, 1.0, 2.0)[0] == 0.0 and hold_remnant(d, 12, 1.0, 2.0)[0] == 0.0
+
+
+def test_short_reslides_are_flagged():
+    """Reslides of 100 um (5 Dc) instead of 200: the window of the 1000 s hold starts 50 um
+    into the reslide from the 100 s hold, where the noise-free friction is still 4.1e-3 above
+    steady sliding, so its fit (which starts in steady sliding) is biased: Dc 23.6 um
+    [21.6, 25.7] for a true 20 (measured), outside its interval. fit_steps says so in a
+    note for that window only, and says nothing for the 200 um record (before the note was
+    added there was none: a silent bias)."""
+    short, _ = fitted(slide=100e-6)
+    good, _ = fitted()
+    r = short.rows[2]
+    assert not r["dc_lo"] <= TRUTH.dc <= r["dc_hi"]  # the bias the note is about
+    flagged = [n for n in short.notes if "after the reslide" in n]
+    assert len(flagged) == 1 and flagged[0].startswith("step 2:"), short.notes
+    assert good.notes == []
 
 
 # ----------------------------------------------------------------------------- the CLI
