@@ -118,7 +118,8 @@ def test_detection_finds_the_holds(v: float, hold_dt: float | None, tmp_path: Pa
     """Holds of 10, 100, 1000 s at 1 and 10 um/s (displacement noise 0.05 um; sampled every
     0.5 s in the holds, or at the sliding rate throughout): seven segments, the holds where
     they are to within one sample of the hold (0.5 s; 0.1 s at one rate) at each end, so
-    their durations within two (measured: exact), the slides at v to 1 %."""
+    their durations within two (measured: exact with the 0.5 s hold sampling, within one
+    sample at one rate), the slides at v to 1 %."""
     path = lab_file(tmp_path / "r.txt", truth=Truth(x_noise=0.05e-6), v=v, slide=100e-6,
                     hold_dt=hold_dt)
     t, vl, _, _ = record(Truth(x_noise=0.05e-6), v, 100e-6, 1, hold_dt)
