@@ -320,6 +320,19 @@ MUTANTS: tuple[Mutant, ...] = (
        "        if painter is not None:\n            stop()",
        "        if painter is None:\n            stop()",
        "tests/test_painter.py"),
+    _m("SHS: a slide-hold-slide window cut at the hold's end (no reslide)", "io/labsteps.py",
+       'StepWindow(len(out), "shs", i0, after.i_end,', 'StepWindow(len(out), "shs", i0, cur.i_end,',
+       "tests/test_fit_shs.py", "-k", "slice_steps"),
+    _m("SHS: a hold taken for a slow slide (no hold threshold)", "io/labsteps.py",
+       "else max(e, 1e-4 * vmax))", "else 0.0)",
+       "tests/test_fit_shs.py", "-k", "detection"),
+    _m("SHS: the ageing law does not heal a slider nearly at rest", "rsf/stepper.py",
+       "        return e - v * invdc, -v * invdc, -e",
+       "        return (e if v > 1e-8 else 0.0) - v * invdc, -v * invdc, -e",
+       "tests/test_fit_shs.py", "-k", "forward_model"),
+    _m("SHS: an unfinished reslide before a window not noted", "fit/steps.py",
+       'if rem > 2.0 * rows[-1]["white_noise"]', 'if rem > 20.0 * rows[-1]["white_noise"]',
+       "tests/test_fit_shs.py", "-k", "short_reslides"),
 )
 
 

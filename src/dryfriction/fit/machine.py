@@ -1,6 +1,7 @@
 """The testing machine seen from a friction record (ours): the load-point displacement of a
-piecewise-constant load program, and the machine stiffness read off the elastic loading slope
-after a velocity change (standard in velocity-step analysis)."""
+piecewise-constant load program, the machine stiffness read off the elastic loading slope
+after a velocity change (standard in velocity-step analysis), and what an earlier hold leaves
+of its transient where a fitted window starts."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ import numpy as np
 from ..io.data import SeriesData
 from ..validation import Array
 
-__all__ = ["load_point_displacement", "loading_slope_stiffness"]
+__all__ = ["load_point_displacement", "loading_slope_stiffness", "hold_remnant"]
 
 
 def load_point_displacement(data: SeriesData) -> Array:
@@ -65,3 +66,31 @@ def loading_slope_stiffness(data: SeriesData, fraction: float = 1.0 / 3.0) -> fl
                          f"{va:g} m/s): not a positive stiffness; use stiffness = 'fit' or a "
                          "number (1/m)")
     return k
+
+
+def hold_remnant(data: SeriesData, i_start: int, b: float, dc: float
+                 ) -> tuple[float, float, float]:
+    """How far sample ``i_start`` still is from steady sliding after the last hold before it
+    (ours): ``(remnant, hold, slip)``.
+
+    A window's fit starts in steady sliding (:func:`.models.rsf_series`); in a slide-hold-slide
+    record the sliding before a hold is the reslide of the hold before, whose peak decays over
+    a few ``Dc`` of slip. ``remnant`` is that peak's excess on a stiff machine with the ageing
+    law, ``b ln(1 + t_h V/Dc)`` (``V`` the velocity before that hold), decayed as
+    ``exp(-s/Dc)`` over the load-point slip ``s`` from the reslide to ``i_start``: an order of
+    magnitude, low on a soft machine, whose transient decays more slowly (on the synthetic
+    record of ``tests/test_fit_shs.py`` with k = 3000 /m: 1.8e-3 for a true 4.1e-3).
+    ``(0, 0, inf)`` when no hold comes before ``i_start`` or the record is not sliding there.
+    """
+    v = data.v_load[: i_start + 1]
+    zero = np.flatnonzero(v == 0.0)
+    if zero.size == 0 or v[-1] == 0.0:
+        return 0.0, 0.0, math.inf
+    j1 = int(zero[-1]) + 1  # the reslide's first sample
+    moving = np.flatnonzero(v[:j1] != 0.0)
+    j0 = int(moving[-1]) + 1 if moving.size else 0  # the hold's first sample
+    hold = float(data.t[j1] - data.t[j0])
+    v_before = abs(float(v[j0 - 1])) if j0 > 0 else abs(float(v[-1]))
+    x = load_point_displacement(data)
+    slip = abs(float(x[i_start] - x[j1]))
+    return b * math.log1p(hold * v_before / dc) * math.exp(-slip / dc), hold, slip

@@ -44,6 +44,7 @@ from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
+from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
 from .statistics import Covariance
@@ -586,6 +587,12 @@ def fit_steps(
         rows.append(_row(w, d, r, model, sc, prof))
         if not r.success:
             notes.append(f"step {rows[-1]['index']}: the fit did not succeed ({r.message})")
+        rem, hold, slip = hold_remnant(data, int(w.i_start), rows[-1]["b"], rows[-1]["dc"])
+        if rem > 2.0 * rows[-1]["white_noise"]:  # the steady start the fit assumes is not there
+            notes.append(f"step {rows[-1]['index']}: starts {slip * 1e6:.3g} um after the "
+                         f"reslide from a {hold:.3g} s hold, where friction is still about "
+                         f"{rem:.2g} above steady sliding (> 2x the noise): a, b, Dc and the "
+                         "stiffness may be biased; slide longer between holds")
         prev = r
         if progress is not None:
             progress(i + 1, len(wins))
