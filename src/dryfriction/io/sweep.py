@@ -424,7 +424,8 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
         try:
             client = start_client(scheduler, n_workers, connect_timeout,
                                   preload=[getattr(runner, "__module__", None) or "__main__",
-                                           *WORKER_PRELOAD])
+                                           *WORKER_PRELOAD],
+                                  meanwhile=_warm_assemble)
         except KeyboardInterrupt:
             raise SweepInterrupted(done, spec.size, out) from None
         points_dir.mkdir(exist_ok=True)
@@ -454,6 +455,14 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
             raise SweepInterrupted(done, spec.size, out) from None
         close_client(client, scheduler, list(futures))
     return assemble(spec, points_dir, keys)
+
+
+def _warm_assemble() -> None:
+    """Import what :func:`assemble` needs: xarray, and the modules xarray imports when it
+    builds its first Dataset (``dask.array``, to tell Dask arrays apart)."""
+    import xarray as xr
+
+    xr.Dataset({"x": ("d", np.zeros(1))}, coords={"d": [0.0]})
 
 
 def assemble(spec: SweepSpec, points_dir: Path, keys: Mapping[tuple[int, ...], str]) -> Any:
