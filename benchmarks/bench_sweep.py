@@ -8,8 +8,8 @@ worker counts alternate (``--repeat`` rounds, median and best shown), and the CP
 run (its process and every worker) and the load average are printed: on a shared machine the
 wall times measure the other users too. The phases (medians) say where a sweep's time goes: to
 the first finished point (the cluster's start and one point), from the first to the last, and
-after the last (the cluster's stop, the Dataset and ``sweep.nc``). Run: ``python -m benchmarks bench_sweep``, or
-``python -m benchmarks.bench_sweep --repeat 5``.
+after the last (the cluster's stop, the Dataset and ``sweep.nc``). Run:
+``python -m benchmarks bench_sweep``, or ``python -m benchmarks.bench_sweep --repeat 5``.
 """
 
 from __future__ import annotations

@@ -28,16 +28,21 @@ def _callbacks(dask_worker: object = None, dask_scheduler: object = None) -> dic
 def test_every_process_of_a_local_cluster_runs_lean() -> None:
     """No profiler, a tick every second and a system monitor every 5 s in the workers (which
     get Dask's settings from their Nanny, in another process), the scheduler and the nannies;
-    and the sweep's own process keeps Dask's defaults once the cluster is up. A misspelt key
+    no glibc trim threshold in a worker's environment; and the sweep's own process keeps
+    Dask's defaults and its environment once the cluster is up. A misspelt key
     (``dask.config.set`` accepts any), settings applied after the cluster starts, or settings
     that do not reach the worker processes fail here."""
     import dask
 
     from dryfriction.io.cluster import close_client, start_client
 
+    trim = "MALLOC_TRIM_THRESHOLD_"
+    if trim in os.environ:
+        pytest.skip(f"{trim} is set in the environment of the tests")
     default_tick = dask.config.get("distributed.admin.tick.interval")
     client = start_client(None, 1)
     try:
+        envs = list(client.run(lambda: dict(os.environ)).values())
         workers = list(client.run(_callbacks).values())
         scheduler = client.run_on_scheduler(_callbacks)
         nannies = [_callbacks(n) for n in client.cluster.workers.values()]
@@ -50,6 +55,8 @@ def test_every_process_of_a_local_cluster_runs_lean() -> None:
         assert "profile" not in cbs and "profile-cycle" not in cbs, (where, sorted(cbs))
         assert cbs["tick"] == 1000.0, (where, cbs["tick"])
         assert cbs["monitor"] == 5000.0, (where, cbs["monitor"])
+    assert trim not in envs[0] and envs[0]["OPENBLAS_NUM_THREADS"] == "1"
+    assert trim not in os.environ  # the Nanny writes its variables here too
     assert dask.config.get("distributed.worker.profile.enabled") is True
     assert dask.config.get("distributed.admin.tick.interval") == default_tick
 

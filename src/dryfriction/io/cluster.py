@@ -24,23 +24,31 @@ __all__ = ["CONNECT_TIMEOUT", "close_client", "fork_server_running", "probe_sche
 CONNECT_TIMEOUT = 10.0
 """Default seconds to wait for an existing scheduler to answer."""
 
-WORKER_ENVIRON = {"MALLOC_TRIM_THRESHOLD_": "65536", "OMP_NUM_THREADS": "1",
-                  "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
-"""Set (unless already set) in the fork server's environment before it imports NumPy: Dask's
-``distributed.nanny.pre-spawn-environ`` defaults, which a Nanny sets only in the environment of
-the processes it spawns itself, and which single-threaded workers need (two workers that each
-start a BLAS thread per core would fight over the cores)."""
+WORKER_ENVIRON = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+"""Set (unless already set) in the fork server's environment before it imports NumPy, and the
+Nanny's ``distributed.nanny.pre-spawn-environ`` (for workers spawned when no fork server
+starts): single-threaded workers need them (two workers that each start a BLAS thread per core
+would fight over the cores).
 
-LOCAL_CONFIG = {"distributed.worker.profile.enabled": False,
+Not Dask's ``MALLOC_TRIM_THRESHOLD_=65536``: setting it stops glibc adapting its mmap
+threshold, so every array larger than 128 KiB is mapped afresh and unmapped when freed (and
+the heap is trimmed often), and a point faults its pages in again and again: on the
+benchmark's points a worker used 20 % more CPU with it (5.3-5.6 s against 4.3 s for 32
+points). Without it a worker keeps the memory it freed for its next point. (The Nanny would
+also write Dask's variables into this process's own environment, for good.)"""
+
+LOCAL_CONFIG = {"distributed.nanny.pre-spawn-environ": WORKER_ENVIRON,
+                "distributed.worker.profile.enabled": False,
                 "distributed.admin.tick.interval": "1s",
                 "distributed.admin.system-monitor.interval": "5s"}
 """Dask settings of a local cluster's scheduler, nannies and workers (a worker gets them from
-its Nanny). Each is a periodic callback that serves only the dashboard or diagnostics (the
-statistical profiler samples every worker's stack every 10 ms, the tick checks the event loop
-every 20 ms, the system monitor reads /proc every 0.5 s), and on a machine with as many workers
-as cores their CPU is taken from the points. Measured on the 32-point benchmark sweep (about
-6 s): a worker's event loop used 0.36-0.49 s of CPU with Dask's defaults and 0.14 s with these,
-the sweep process's own event loop (scheduler, nannies) 0.38 s and 0.20 s."""
+its Nanny). Besides the environment (:data:`WORKER_ENVIRON`), periodic callbacks that serve
+only the dashboard or diagnostics (the statistical profiler samples every worker's stack every
+10 ms, the tick checks the event loop every 20 ms, the system monitor reads /proc every 0.5 s):
+on a machine with as many workers as cores their CPU is taken from the points. Measured on the
+32-point benchmark sweep (about 6 s): a worker's event loop used 0.36-0.49 s of CPU with Dask's
+defaults and 0.14 s with these, the sweep process's own event loop (scheduler, nannies) 0.38 s
+and 0.20 s."""
 
 _FORK_SERVER = {"owned": False}
 
