@@ -6,8 +6,10 @@ fresh process, as a user's command does: the times include the cluster's start (
 imports) and its stop, and no run profits from modules an earlier one imported. The two
 worker counts alternate (``--repeat`` rounds, median and best shown), and the CPU time of each
 run (its process and every worker) and the load average are printed: on a shared machine the
-wall times measure the other users too. Run: ``python -m benchmarks bench_sweep``, or
-``python -m benchmarks.bench_sweep --repeat 5``.
+wall times measure the other users too. The phases (medians) say where a sweep's time goes: to
+the first finished point (the cluster's start and one point), from the first to the last, and
+after the last (the cluster's stop, the Dataset and ``sweep.nc``). Run:
+``python -m benchmarks bench_sweep``, or ``python -m benchmarks.bench_sweep --repeat 5``.
 """
 
 from __future__ import annotations
@@ -41,12 +43,22 @@ PROTO = {
 
 
 def one_sweep(n_workers: int) -> None:
-    """Run the sweep once in this process and print its wall time (the child's side)."""
+    """Run the sweep once in this process and print its wall time and its phases (the child's
+    side): seconds to the first finished point (the cluster's start, one point), from the
+    first to the last finished point, and after the last one (the cluster's stop, the
+    Dataset, ``sweep.nc``)."""
     spec = parse_sweep(PROTO)
+    finished: list[float] = []
+
+    def progress(done: int, total: int) -> None:
+        finished.append(time.perf_counter())  # the first call comes before any point runs
+
     with tempfile.TemporaryDirectory() as tmp:
         t = time.perf_counter()
-        run_sweep(spec, heavy_point, f"{tmp}/out", n_workers=n_workers)
-        print(f"{time.perf_counter() - t:.4f}")
+        run_sweep(spec, heavy_point, f"{tmp}/out", n_workers=n_workers, progress=progress)
+        end = time.perf_counter()
+    print(f"{finished[1] - t:.4f} {finished[-1] - finished[1]:.4f} {end - finished[-1]:.4f}")
+    print(f"{end - t:.4f}")
 
 
 def _cpu_of_children() -> float:
@@ -54,8 +66,9 @@ def _cpu_of_children() -> float:
     return r.ru_utime + r.ru_stime
 
 
-def timed_run(n_workers: int) -> tuple[float, float, float]:
-    """(sweep wall, whole process wall, CPU of the process and its workers) of one run."""
+def timed_run(n_workers: int) -> tuple[float, float, float, tuple[float, ...]]:
+    """(sweep wall, whole process wall, CPU of the process and its workers, phases of the
+    sweep as :func:`one_sweep` prints them) of one run."""
     cpu = _cpu_of_children()
     t = time.perf_counter()
     # heavy_point must live in an importable module (not __main__): the workers import it
@@ -63,29 +76,36 @@ def timed_run(n_workers: int) -> tuple[float, float, float]:
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                        check=True, cwd=Path(__file__).resolve().parents[1])
     whole = time.perf_counter() - t
-    return float(r.stdout.split()[-1]), whole, _cpu_of_children() - cpu
+    *phases, sweep = (float(x) for x in r.stdout.split()[-4:])
+    return sweep, whole, _cpu_of_children() - cpu, tuple(phases)
 
 
 def main(repeat: int = 3) -> None:
     spec = parse_sweep(PROTO)
     load = os.getloadavg()[0]
-    runs: dict[int, list[tuple[float, float, float]]] = {1: [], 2: []}
+    runs: dict[int, list[tuple[float, float, float, tuple[float, ...]]]] = {1: [], 2: []}
     for _ in range(repeat):
         for n in runs:
             runs[n].append(timed_run(n))
+    point = spec.protocol(next(spec.points())[1])
+    heavy_point(point)  # a first call pays for touching its arrays' memory the first time
     t = time.perf_counter()
-    heavy_point(spec.protocol(next(spec.points())[1]))
+    heavy_point(point)
     per_point = time.perf_counter() - t
     print(f"{spec.size}-point sweep, each run a fresh process, {repeat} rounds alternating "
-          f"(one point ~{per_point:.2f} s in-process; load average {load:.2f} -> "
+          f"(one point ~{per_point:.2f} s in this process, after a first; load average "
+          f"{load:.2f} -> "
           f"{os.getloadavg()[0]:.2f} on {os.cpu_count()} cores):")
     med = {}
     for n, rs in runs.items():
-        sweep, whole, cpu = (sorted(x) for x in zip(*rs, strict=True))
+        sweep, whole, cpu = (sorted(x) for x in list(zip(*rs, strict=True))[:3])
+        first, points, after = (statistics.median(x) for x in zip(*(r[3] for r in rs),
+                                                                     strict=True))
         med[n] = statistics.median(sweep)
         print(f"  {n} worker{'s' if n > 1 else ' '}: sweep median {med[n]:.2f} s "
               f"(best {sweep[0]:.2f}), whole process {statistics.median(whole):.2f} s, "
-              f"CPU {statistics.median(cpu):.2f} s")
+              f"CPU {statistics.median(cpu):.2f} s; to the first point {first:.2f} s, "
+              f"first to last {points:.2f} s, after the last {after:.2f} s")
     print(f"  speed-up (medians) {med[1] / med[2]:.2f}x, "
           f"best against best {min(r[0] for r in runs[1]) / min(r[0] for r in runs[2]):.2f}x")
 
