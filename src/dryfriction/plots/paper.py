@@ -510,9 +510,10 @@ def extra_local_dieterich_constant(
     not constant (no global fit), and tends to the asymptotic ``C_inf`` at high velocity."""
     fig, ax = _axes(ax)
     u = np.logspace(np.log10(u_range[0]), np.log10(u_range[1]), n)
-    for k, e in enumerate(eps_values):
-        ax.plot(u, dieterich_constant_local(u, e, alpha), color=_COLORS[k % 5], lw=1.6,
-                label=rf"({k + 1}) $\varepsilon$ = {e:g}")
+    # every eps in one call: one root search for all the curves
+    curves = dieterich_constant_local(u, np.asarray(eps_values, float)[:, None], alpha)
+    for k, (e, c) in enumerate(zip(eps_values, curves, strict=True)):
+        ax.plot(u, c, color=_COLORS[k % 5], lw=1.6, label=rf"({k + 1}) $\varepsilon$ = {e:g}")
     c_inf = dieterich_constant_asymptotic(alpha)
     ax.axhline(c_inf, color="C3", lw=1.0, ls="--", label=rf"$C_\infty$ = {c_inf:.4f} (ours)")
     ax.axhline(2.45, color="0.4", lw=1.0, ls=":", label=r"2.45 $\approx 1 + y_c$ (paper)")
