@@ -24,7 +24,7 @@ def peak_kb():
     except OSError:
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 
-, time
+import time
 import numpy as np
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import steady_friction
