@@ -251,3 +251,22 @@ def test_grouping_and_chunking_do_not_change_a_point(monkeypatch):
     alone = np.array([steady_friction(a, b) for a, b in zip(u, eps, strict=True)])
     assert together.shape == (37, 1)
     np.testing.assert_array_equal(together[:, 0], alone)
+
+
+# velocities at which Newton's iteration for the Eyring-Nabarro death point hopped for ever
+# between two floats either side of the root (found evaluating 1e6 log-spaced u in 1e-3..1e3)
+_HOPPING = [0.3121422052937961, 0.3177243515784647, 0.33085409906512553, 0.3320722013976712,
+            0.33624089008702995, 0.3514734674215111]
+
+
+def test_death_point_converges_where_newton_hops_between_two_floats():
+    from dryfriction.theory.creep import creep_law
+
+    u = np.array(_HOPPING)
+    law = creep_law("eyring-nabarro", 0.04)
+    pd = steady_death_point(u, 0.04, creep="eyring-nabarro")
+    r = np.sqrt(law.radius_sq(law.clock((pd + 1.0) / u)))
+    np.testing.assert_allclose(pd / r, Trap(0.13).y_c, rtol=1e-13)  # eq. 32
+    mu = steady_friction(u, 0.04, creep="eyring-nabarro")
+    near = steady_friction(u * (1 + 1e-9), 0.04, creep="eyring-nabarro")
+    np.testing.assert_allclose(mu, near, rtol=1e-9)  # a regular point of a smooth curve
