@@ -146,6 +146,7 @@ _GL_X = 0.5 * (_GL_X + 1.0)
 _GL_W = 0.5 * _GL_W
 # Beyond this exponent the integrand of T(Q) is below e^-40 relative: cut there.
 _EN_CUT = 40.0
+_EN_BLOCK = 4096  # clocks per block of EyringNabarroCreep.age: 2 MB a temporary
 
 
 @dataclass(frozen=True)
@@ -190,6 +191,16 @@ class EyringNabarroCreep:
         eps = self.eps
         if eps == 0.0:
             return np.expm1(Q)
+        flat = Q.ravel()
+        out = np.empty(flat.size)
+        # the rule's temporaries hold 64 values per point: in blocks, so that their memory is
+        # bounded whatever the size of c (the steady integral asks for 48 clocks per velocity)
+        for i0 in range(0, flat.size, _EN_BLOCK):
+            out[i0:i0 + _EN_BLOCK] = self._age_block(flat[i0:i0 + _EN_BLOCK])
+        return out.reshape(Q.shape)[()]
+
+    def _age_block(self, Q: Array) -> Array:
+        eps = self.eps
         b = 1.0 - eps * Q
         # upper limit: ln(1/b), cut where (b/eps)(e^t - 1) exceeds _EN_CUT
         t_hi = np.minimum(-np.log1p(-eps * Q), np.log1p(_EN_CUT * eps / b))
