@@ -242,8 +242,9 @@ def test_sweep_unknown_stickslip_key_and_unreachable_scheduler(tmp_path):
     r = runner.invoke(app, ["sweep", str(p), "--out", str(tmp_path / "o")])
     assert r.exit_code == 2 and "stickslip.bogus" in r.output
     p2 = _write(tmp_path, '"drive.stiffness" = [0.05]\n', "q.toml")
+    # nothing listens on port 1: Dask retries a refused connection until the timeout
     r = runner.invoke(app, ["sweep", str(p2), "--out", str(tmp_path / "o"), "--scheduler",
-                            "tcp://127.0.0.1:1"])
+                            "tcp://127.0.0.1:1", "--connect-timeout", "1"])
     assert r.exit_code == 2 and "cannot reach" in r.output
     assert not (tmp_path / "o").exists()
 
