@@ -16,7 +16,10 @@ then timed once, then again.
 
 rsfmodel and PyRSF are not on PyPI, so they are not run here; the reference figures are the
 issue's, measured the same way on a 2-core machine: rsfmodel 0.41 s (import-bound), PyRSF
-1.2 s.
+1.2 s. Since that machine's speed is not this one's, the benchmark also times, the same way and
+interleaved with the rest, what rsfmodel imports before it can solve anything (NumPy,
+``scipy.integrate``, ``matplotlib.pyplot`` and ``mpl_toolkits.mplot3d``, the imports at the top
+of its ``rsfmodel/rsf.py``): a floor under any rsfmodel run on this machine.
 
 Run: ``python -m benchmarks bench_cli`` (add ``--first-run`` when run directly).
 """
@@ -38,6 +41,7 @@ PROTOCOL = ROOT / "examples" / "rsf_velocity_step.toml"
 REFERENCE = {"rsfmodel": 0.41, "PyRSF": 1.2}  # s, issue 12 (not installable from PyPI)
 TARGETS = {"dryfriction --help": 0.3, "simulate --no-figure": 0.5, "simulate (figure)": 1.0,
            "reproduce": 3.0}  # s, issue 12
+RSFMODEL_FLOOR = "rsfmodel's imports"
 
 
 def _command() -> list[str]:
@@ -68,9 +72,12 @@ def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
         "simulate (figure)": [*cmd, "simulate", str(PROTOCOL), "--out", "fig", "--json"],
         "  without painter": [*cmd, "simulate", str(PROTOCOL), "--out", "fig0", "--json"],
         "reproduce": [*cmd, "reproduce", "--out", "rep"],
+        RSFMODEL_FLOOR: [sys.executable, "-c", "import numpy, scipy.integrate, "
+                         "matplotlib.pyplot, mpl_toolkits.mplot3d"],
     }
     # the figure drawn in the command's own process: what the painter saves
-    environ = {"  without painter": {**os.environ, "DRYFRICTION_PAINTER": "0"}}
+    environ = {"  without painter": {**os.environ, "DRYFRICTION_PAINTER": "0"},
+               RSFMODEL_FLOOR: {**os.environ, "MPLBACKEND": "Agg"}}
     times: dict[str, list[tuple[float, float]]] = {k: [] for k in variants}
     with tempfile.TemporaryDirectory() as tmp:
         for name, args in variants.items():  # warm the file cache and the kernels' cache
@@ -113,6 +120,9 @@ def main(first_run: bool = False) -> None:
     for ref, t in REFERENCE.items():
         print(f"  {ref} (issue's figure, {t} s): with figure x{t / fig:.2f}, without "
               f"x{t / nofig:.2f} (wall; > 1: dryfriction faster)")
+    floor = med[RSFMODEL_FLOOR][0]
+    print(f"  {RSFMODEL_FLOOR} on this machine ({floor:.3f} s, a floor under its run): with "
+          f"figure x{floor / fig:.2f}, without x{floor / nofig:.2f} (> 1: dryfriction faster)")
     if first_run:
         print("first run after install (fresh copy, no Numba cache):")
         for name, (wall, cpu) in first_run_after_install().items():
