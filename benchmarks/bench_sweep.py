@@ -1,7 +1,11 @@
 """Wall time of a 32-point sweep with 1 and with 2 Dask workers (goal: >= 1.6x, issue 12).
 
-Each point is a linear-stability analysis with a fine frequency scan (compute bound, ~0.2 s),
-so the measured speed-up is that of the scheduling, not of the work. Every sweep runs in a
+Two sweeps of 32 points. ``light``: each point is a linear-stability analysis with a fine
+frequency scan (compute bound, 0.1-0.2 s), so the cluster's start weighs as much as a fifth of
+a one-worker run and bounds the speed-up. ``stick-slip``: the points of the phase diagram
+(``examples/phase_diagram.toml``, the stick-slip simulation ``dryfriction sweep`` runs by
+default, 0.6-0.9 s a point) over 4 stiffnesses and 8 velocities: a sweep worth running on
+several workers. Every sweep runs in a
 fresh process, as a user's command does: the times include the cluster's start (the workers'
 imports) and its stop, and no run profits from modules an earlier one imported. The two
 worker counts alternate (``--repeat`` rounds, median and best shown), and the CPU time of each
@@ -9,7 +13,8 @@ run (its process and every worker) and the load average are printed: on a shared
 wall times measure the other users too. The phases (medians) say where a sweep's time goes: to
 the first finished point (the cluster's start and one point), from the first to the last, and
 after the last (the cluster's stop, the Dataset and ``sweep.nc``). Run:
-``python -m benchmarks bench_sweep``, or ``python -m benchmarks.bench_sweep --repeat 5``.
+``python -m benchmarks bench_sweep``, or ``python -m benchmarks.bench_sweep --repeat 5
+--case light``.
 """
 
 from __future__ import annotations
@@ -22,10 +27,15 @@ import subprocess
 import sys
 import tempfile
 import time
+import tomllib
 from pathlib import Path
+from typing import Any
 
+from dryfriction.analysis.stickslip import stick_slip_summary
 from dryfriction.io.sweep import parse_sweep, run_sweep
 from dryfriction.theory.stability import critical_stiffness
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def heavy_point(protocol: dict) -> dict[str, float]:  # type: ignore[type-arg]
@@ -42,12 +52,26 @@ PROTO = {
 }
 
 
-def one_sweep(n_workers: int) -> None:
+def _phase_protocol() -> dict[str, Any]:
+    """The phase-diagram example over a 4 x 8 grid of stiffness and pulling velocity."""
+    proto = tomllib.loads((ROOT / "examples" / "phase_diagram.toml").read_text())
+    proto["sweep"] = {"drive.stiffness": {"lin": [0.025, 0.1, 4]},
+                      "drive.segments.0.velocity": {"log": [0.01, 1.0, 8]}}
+    return proto
+
+
+CASES = {"light": (lambda: PROTO, heavy_point), "stick-slip": (_phase_protocol,
+                                                               stick_slip_summary)}
+"""name: (protocol, runner)"""
+
+
+def one_sweep(n_workers: int, case: str = "light") -> None:
     """Run the sweep once in this process and print its wall time and its phases (the child's
     side): seconds to the first finished point (the cluster's start, one point), from the
     first to the last finished point, and after the last one (the cluster's stop, the
     Dataset, ``sweep.nc``)."""
-    spec = parse_sweep(PROTO)
+    protocol, runner = CASES[case]
+    spec = parse_sweep(protocol())
     finished: list[float] = []
 
     def progress(done: int, total: int) -> None:
@@ -55,7 +79,7 @@ def one_sweep(n_workers: int) -> None:
 
     with tempfile.TemporaryDirectory() as tmp:
         t = time.perf_counter()
-        run_sweep(spec, heavy_point, f"{tmp}/out", n_workers=n_workers, progress=progress)
+        run_sweep(spec, runner, f"{tmp}/out", n_workers=n_workers, progress=progress)
         end = time.perf_counter()
     print(f"{finished[1] - t:.4f} {finished[-1] - finished[1]:.4f} {end - finished[-1]:.4f}")
     print(f"{end - t:.4f}")
@@ -66,33 +90,40 @@ def _cpu_of_children() -> float:
     return r.ru_utime + r.ru_stime
 
 
-def timed_run(n_workers: int) -> tuple[float, float, float, tuple[float, ...]]:
+def timed_run(n_workers: int, case: str = "light") -> tuple[float, float, float,
+                                                          tuple[float, ...]]:
     """(sweep wall, whole process wall, CPU of the process and its workers, phases of the
     sweep as :func:`one_sweep` prints them) of one run."""
     cpu = _cpu_of_children()
     t = time.perf_counter()
     # heavy_point must live in an importable module (not __main__): the workers import it
-    code = f"from benchmarks.bench_sweep import one_sweep; one_sweep({n_workers})"
+    code = f"from benchmarks.bench_sweep import one_sweep; one_sweep({n_workers}, {case!r})"
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                       check=True, cwd=Path(__file__).resolve().parents[1])
+                       check=True, cwd=ROOT)
     whole = time.perf_counter() - t
     *phases, sweep = (float(x) for x in r.stdout.split()[-4:])
     return sweep, whole, _cpu_of_children() - cpu, tuple(phases)
 
 
-def main(repeat: int = 3) -> None:
-    spec = parse_sweep(PROTO)
+def main(repeat: int = 3, cases: tuple[str, ...] = tuple(CASES)) -> None:
+    for case in cases:
+        one_case(case, repeat)
+
+
+def one_case(case: str, repeat: int) -> None:
+    protocol, runner = CASES[case]
+    spec = parse_sweep(protocol())
     load = os.getloadavg()[0]
     runs: dict[int, list[tuple[float, float, float, tuple[float, ...]]]] = {1: [], 2: []}
     for _ in range(repeat):
         for n in runs:
-            runs[n].append(timed_run(n))
+            runs[n].append(timed_run(n, case))
     point = spec.protocol(next(spec.points())[1])
-    heavy_point(point)  # a first call pays for touching its arrays' memory the first time
+    runner(point)  # a first call pays for touching its arrays' memory the first time
     t = time.perf_counter()
-    heavy_point(point)
+    runner(point)
     per_point = time.perf_counter() - t
-    print(f"{spec.size}-point sweep, each run a fresh process, {repeat} rounds alternating "
+    print(f"{case}: {spec.size}-point sweep, each run a fresh process, {repeat} rounds alternating "
           f"(one point ~{per_point:.2f} s in this process, after a first; load average "
           f"{load:.2f} -> "
           f"{os.getloadavg()[0]:.2f} on {os.cpu_count()} cores):")
@@ -113,5 +144,7 @@ def main(repeat: int = 3) -> None:
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3, help="rounds of (1, 2) workers")
+    parser.add_argument("--case", choices=sorted(CASES), action="append",
+                        help="the sweep(s) to time (default: all)")
     args = parser.parse_args()
-    main(args.repeat)
+    main(args.repeat, tuple(args.case or CASES))
