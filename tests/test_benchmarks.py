@@ -1,0 +1,61 @@
+"""The benchmarks stay runnable: they are not run here (they time things), but a benchmark that
+no longer imports, or whose probe no longer compiles, would print nothing but "failed" where
+the README quotes its figures (``bench_memory``'s probe once had a syntax error that hid two
+real faults for a whole session)."""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import pkgutil
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+NAMES = sorted(m.name for m in pkgutil.iter_modules([str(ROOT / "benchmarks")])
+               if m.name.startswith("bench_"))
+
+
+@pytest.fixture(autouse=True)
+def _root_on_path(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.syspath_prepend(str(ROOT))
+
+
+def test_every_benchmark_is_found() -> None:
+    assert {"bench_cli", "bench_memory", "bench_sweep", "bench_ensemble"} <= set(NAMES)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_benchmark_imports_and_has_a_main(name: str) -> None:
+    module = importlib.import_module(f"benchmarks.{name}")
+    assert callable(module.main)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_code_strings_a_benchmark_runs_in_a_child_compile(name: str) -> None:
+    """Every module-level string that a benchmark hands to ``python -c`` (a name ending in
+    ``_PROBE`` or ``_CODE``) is valid Python."""
+    tree = ast.parse((ROOT / "benchmarks" / f"{name}.py").read_text())
+    for node in tree.body:
+        if (isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant)
+                and isinstance(node.value.value, str)):
+            for target in node.targets:
+                if isinstance(target, ast.Name) and target.id.endswith(("_PROBE", "_CODE")):
+                    compile(node.value.value, f"{name}.{target.id}", "exec")
+
+
+def test_the_sweep_benchmarks_are_32_points_of_what_they_say() -> None:
+    from benchmarks.bench_sweep import CASES
+
+    from dryfriction.analysis.stickslip import stick_slip_summary
+    from dryfriction.io.sweep import parse_sweep
+
+    for case, (protocol, _runner) in CASES.items():
+        spec = parse_sweep(protocol())
+        assert spec.size == 32, case
+    phase = parse_sweep(CASES["stick-slip"][0]())
+    assert CASES["stick-slip"][1] is stick_slip_summary
+    assert {a.key for a in phase.axes} == {"drive.stiffness", "drive.segments.0.velocity"}
+    assert sys.modules["benchmarks.bench_sweep"].ROOT == ROOT
