@@ -413,3 +413,19 @@ def test_si_forms_convert_v_ref_and_the_pull_velocity() -> None:
         ms = static_friction_si(10.0, EPS, s, direct=A, v_ref=1e-5, pull_velocity=1e-7)
         assert float(ms) == pytest.approx(
             0.5 * (1 + A * math.log(1e-2)) * float(static_friction(10.0 / t0, EPS)), rel=1e-12)
+
+
+@pytest.mark.parametrize("direct", [0.005, 0.02, 0.1])
+def test_strength_slope_is_the_derivative_of_the_strength(direct: float) -> None:
+    """g'(V), which the quasi-static force balance's Newton steps use, against central
+    differences of g itself, both signs, from V << V_c (V_c = 2 V_ref e^{-1/A}: 9e-5 at
+    A = 0.1) to V >> V_c; at rest A/V_c, or inf where that overflows."""
+    from dryfriction.theory.direct import strength_ratio, strength_slope
+
+    for v in (-3.0, -1e-3, 1e-12, 1e-6, 9e-5, 1e-4, 0.3, 1.0, 50.0):
+        dv = 1e-6 * abs(v)
+        fd = (strength_ratio(v + dv, direct, 1.0) - strength_ratio(v - dv, direct, 1.0)) / (2 * dv)
+        assert strength_slope(v, direct, 1.0) == pytest.approx(fd, rel=1e-6), v
+    assert strength_slope(0.0, 0.1, 1.0) == pytest.approx(0.1 / (2.0 * math.exp(-10.0)))
+    assert strength_slope(0.0, 0.001, 1.0) == math.inf
+    assert strength_slope(1e-300, 0.1, 1.0) == pytest.approx(0.1 / (2.0 * math.exp(-10.0)))

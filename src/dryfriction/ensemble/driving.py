@@ -75,6 +75,7 @@ from .population import Ensemble, Initial, Observables, Track, TrapModel
 from .resources import check_run
 from .result import COLUMNS, Output, Recorder, SimulationResult, position_function, segment_grid
 from .thermal import (
+    VelocityScale,
     apply_strength,
     creep_substeps,
     drift,
@@ -98,6 +99,7 @@ __all__ = [
 Progress = Callable[[float], None]
 
 _TINY = 1e-10  # a0: how far past a spinodal the slider is moved to kill the trap (ours)
+_EPS = float(np.finfo(float).eps)
 
 
 @dataclass(frozen=True)
@@ -233,12 +235,13 @@ def _add_events(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, 
 
 def _equilibrate(
     ens: Ensemble, A: float, K: float, max_slip: float,
-    scale: Callable[[float], float] | None = None,
+    scale: VelocityScale | None = None,
 ) -> tuple[float, bool, tuple[int, int, int]]:
     """Jump, ages frozen, to the next stable root of ``A - K X - F(X) = 0``.
 
     With ``scale`` (direct effect) the force is ``scale(X) F(X)``: the root is then the end of
-    a creep step rather than of a jump (module docstring).
+    a creep step rather than of a jump (module docstring). Between two events the root is
+    polished by :func:`_root_in_bracket` with the slope ``dF/dX`` the kernel returns.
 
     Returns
     -------
@@ -254,7 +257,15 @@ def _equilibrate(
     def eff(f: float, x: float) -> float:
         return f if scale is None else scale(x) * f
 
-    o = ens.observe(1)
+    def balance(o: Observables, x: float) -> tuple[float, float]:
+        """``G(X) = A - K X - g F`` and ``dG/dX`` from the observables at ``X``."""
+        if scale is None:
+            return A - K * x - o.force, -K - o.stiffness
+        g = scale(x)
+        slope = scale.slope(x) * o.force if o.force != 0.0 else 0.0
+        return A - K * x - g * o.force, -K - g * o.stiffness - slope
+
+    o = ens.observe(1, stiffness=True)
     G0 = A - K * ens.x - eff(o.force, ens.x)
     tol = 1e-13 * max(1.0, abs(A))
     if abs(G0) <= tol:
@@ -263,8 +274,9 @@ def _equilibrate(
     start = ens.x
     extreme = eff(o.force, ens.x)
     ev = (0, 0, 0)
+    if d < 0:  # the next event backwards (the force is the same)
+        o = ens.observe(d, stiffness=True)
     while True:
-        o = ens.observe(d)
         xe = o.next_event
         capped = abs(xe - start) > max_slip
         if capped:
@@ -272,21 +284,18 @@ def _equilibrate(
         xb = xe - d * _TINY
         if (xb - ens.x) * d <= 0.0:  # the event is within rounding of here: step past it
             xb = ens.x
-        pb = ens.probe(xb, d)
+        pb = ens.probe(xb, d, stiffness=True)
         fb = eff(pb.force, xb)
         Gb = A - K * xb - fb
         if Gb * d <= 0.0:
             xa = ens.x
-            if xb == xa:
+            ga, sa = balance(o, xa)
+            if xb == xa or ga * d <= 0.0:
                 root = xa
             else:
-                from scipy.optimize import brentq  # only force-controlled runs need it
-
-                def g(x: float) -> float:
-                    return A - K * x - eff(ens.probe(x, d).force, x)
-
-                root = brentq(g, xa, xb, xtol=1e-13, rtol=4 * np.finfo(float).eps) \
-                    if g(xa) * d > 0 else xa
+                root = _root_in_bracket(
+                    lambda x: balance(ens.probe(x, d, stiffness=True), x),
+                    xa, (ga, sa), xb, balance(pb, xb), tol)
             ob = ens.advance(root, ens.t)
             fr = eff(ob.force, root)
             extreme = max(extreme, fr) if d > 0 else min(extreme, fr)
@@ -297,6 +306,63 @@ def _equilibrate(
             ob = ens.advance(xb, ens.t)
             return extreme, True, _add_events(ev, _events(ob))
         ev = _add_events(ev, _events(ens.advance(xe + d * _TINY, ens.t)))
+        o = ens.observe(d, stiffness=True)
+
+
+def _root_in_bracket(h: Callable[[float], tuple[float, float]], xa: float,
+                     ha: tuple[float, float], xb: float, hb: tuple[float, float],
+                     g_tol: float = 0.0) -> float:
+    """The root of ``G`` between ``xa`` and ``xb`` (``G(xa)``, ``G(xb)`` of opposite signs or
+    ``G(xb) = 0``), ``h(x) = (G(x), G'(x))``: Newton steps from the end nearer the root, each
+    kept inside the shrinking bracket, a bisection where a step would leave it or would not
+    halve the step before (ours; a safeguarded Newton iteration).
+
+    It ends when ``G`` changes sign across a step under ``tol = 1e-13`` absolute and 4 ulps
+    relative, the tolerance Brent's method was given before, in about a third of its
+    evaluations (each one is a pass of the kernel over the pairs in contact). A small step
+    alone proves nothing: at the start of a creep step the strength's slope ``g'(0)/dt`` is
+    huge, and the Newton step is tiny however far the root is; so a small step is confirmed by
+    one evaluation just past it, unless ``|G|`` is already within ``g_tol`` there.
+    """
+    (ga, sa), (gb, sb) = ha, hb
+    if gb == 0.0:
+        return xb
+    lo, hi = (xa, xb) if ga < 0.0 else (xb, xa)  # G(lo) < 0 < G(hi)
+    x, g, s = (xa, ga, sa) if abs(ga) < abs(gb) else (xb, gb, sb)
+    step_old = step = abs(xb - xa)
+    for _ in range(200):
+        if abs(hi - lo) <= 2e-13 + 8.0 * _EPS * abs(x):
+            return 0.5 * (lo + hi)
+        newton_ok = (math.isfinite(s) and s != 0.0
+                     and ((x - hi) * s - g) * ((x - lo) * s - g) < 0.0
+                     and abs(2.0 * g) <= abs(step_old * s))
+        step_old = step
+        if newton_ok:
+            step = g / s
+            x_new = x - step
+        else:
+            step = 0.5 * (hi - lo)
+            x_new = lo + step
+        tol = 1e-13 + 4.0 * _EPS * abs(x_new)
+        if newton_ok and abs(step) <= tol and abs(g) <= g_tol:
+            return x_new
+        if newton_ok and abs(step) <= tol:
+            # confirm: the root lies within tol of x_new if G changes sign just past it
+            beyond = x_new - math.copysign(tol, step)
+            gc, sc = h(beyond)
+            if gc == 0.0 or (gc < 0.0) != (g < 0.0):
+                return x_new
+            x, g, s = beyond, gc, sc  # not there yet: go on from the point just past
+        else:
+            x = x_new
+            g, s = h(x)
+            if g == 0.0:
+                return x
+        if g < 0.0:
+            lo = x
+        else:
+            hi = x
+    return x
 
 
 # ---------------------------------------------------------------- the drivers

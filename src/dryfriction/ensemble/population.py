@@ -321,7 +321,6 @@ class Ensemble:
         self.x = float(x0)
         self.t = 0.0
         self._out = np.zeros(OUT_SIZE)
-        self._want_k = False
         self._oldest_birth = 0.0
         self._margin = 8.0 + 2.0 * max(1.0, self._yc)
         self._place_initial()
@@ -446,13 +445,14 @@ class Ensemble:
             self._build_table(2.0 * (t - self._oldest_birth))
 
     # -- the two operations
-    def _call(self, x1: float, t1: float, direction: int, commit: bool) -> Observables:
+    def _call(self, x1: float, t1: float, direction: int, commit: bool,
+              stiffness: bool = False) -> Observables:
         self._ensure_cover(min(self.x, x1), max(self.x, x1))
         self._ensure_ages(t1)
         lo, hi = advance_window(
             self.c, self.state, self.birth, self.lo, self.hi, self.x, x1, self.t, t1,
             direction, self._alpha, self._yc, self._strong, self._h, self._s_tab,
-            self._ds_tab, commit, self._want_k, self._out,
+            self._ds_tab, commit, stiffness, self._out,
         )
         o = self._out
         if o[8] != 0.0:  # pragma: no cover - the cover margin makes this unreachable
@@ -492,15 +492,18 @@ class Ensemble:
         direction = 1 if x1 >= self.x else -1
         return self._call(float(x1), float(t1), direction, True)
 
-    def probe(self, x1: float, direction: int | None = None) -> Observables:
-        """Observables if the slider moved to ``x1`` at frozen ages, without changing anything."""
+    def probe(self, x1: float, direction: int | None = None, *,
+              stiffness: bool = False) -> Observables:
+        """Observables if the slider moved to ``x1`` at frozen ages, without changing anything;
+        with ``stiffness``, ``dF/dX`` too (else its field is 0)."""
         if direction is None:
             direction = 1 if x1 >= self.x else -1
-        return self._call(float(x1), self.t, direction, False)
+        return self._call(float(x1), self.t, direction, False, stiffness)
 
-    def observe(self, direction: int = 1) -> Observables:
-        """Observables of the present state (``next_event`` in ``direction``)."""
-        return self.probe(self.x, direction)
+    def observe(self, direction: int = 1, *, stiffness: bool = False) -> Observables:
+        """Observables of the present state (``next_event`` in ``direction``; ``dF/dX`` with
+        ``stiffness``)."""
+        return self.probe(self.x, direction, stiffness=stiffness)
 
     def snapshot(self) -> dict[str, Array]:
         """The pairs in contact: ``p`` (``a0``), ``branch`` (+1/-1), ``age`` (``t0``),

@@ -11,13 +11,13 @@ athermal drivers run their unchanged code.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from dataclasses import dataclass
 
-from ..theory.direct import strength_ratio
+from ..theory.direct import strength_ratio, strength_slope
 from .population import Ensemble, Initial, Observables, TrapModel
 
-__all__ = ["velocity_scale", "with_strength", "apply_strength", "initial_velocity",
-           "creep_substeps", "inertial_velocity", "drift"]
+__all__ = ["VelocityScale", "velocity_scale", "with_strength", "apply_strength",
+           "initial_velocity", "creep_substeps", "inertial_velocity", "drift"]
 
 SUBSTEP_SLIP: float = 0.25
 """Largest load-point travel per quasi-static creep step, in trap spacings (ours): the step must
@@ -25,14 +25,31 @@ resolve the sawtooth of the population force, or a regular track sampled at a mu
 spacing locks the slider onto one phase of it (a stroboscopic fixed point)."""
 
 
-def velocity_scale(ens: Ensemble, dt: float) -> Callable[[float], float] | None:
+@dataclass(frozen=True)
+class VelocityScale:
+    """``X -> g((X - X0)/dt)``, the junction strength of a step of length ``dt`` from ``X0``
+    to ``X`` (:func:`~dryfriction.theory.direct.strength_ratio`), and its slope in ``X``."""
+
+    x0: float
+    dt: float
+    direct: float
+    v_ref: float
+
+    def __call__(self, x: float) -> float:
+        return strength_ratio((x - self.x0) / self.dt, self.direct, self.v_ref)
+
+    def slope(self, x: float) -> float:
+        """``d g((X - X0)/dt) / dX = g'(V)/dt`` (``inf`` where ``g'`` overflows at ``V = 0``)."""
+        return strength_slope((x - self.x0) / self.dt, self.direct, self.v_ref) / self.dt
+
+
+def velocity_scale(ens: Ensemble, dt: float) -> VelocityScale | None:
     """``X -> g((X - X0)/dt)`` for the step of length ``dt`` that starts at the present ``X0``;
     None without the direct effect (the athermal jumps then run unchanged)."""
     m = ens.model
     if m.direct == 0.0:
         return None
-    x0 = ens.x
-    return lambda x: strength_ratio((x - x0) / dt, m.direct, m.v_ref)
+    return VelocityScale(ens.x, dt, m.direct, m.v_ref)
 
 
 def with_strength(ens: Ensemble, o: Observables, v: float) -> Observables:

@@ -102,6 +102,19 @@ def strength_ratio(v: float, direct: float, v_ref: float) -> float:
     return math.copysign(g, v)
 
 
+def strength_slope(v: float, direct: float, v_ref: float) -> float:
+    """``g'(V) = A / sqrt(V^2 + V_c^2)``, ``V_c = 2 V_ref e^{-1/A}``: the derivative of
+    :func:`strength_ratio` (ours; the same checks skipped), from logarithms where ``V_c``
+    underflows; ``inf`` at ``V = 0`` when ``A / V_c`` overflows."""
+    log_vc = math.log(2.0 * v_ref) - 1.0 / direct
+    if v == 0.0:
+        return direct * math.exp(-log_vc) if log_vc > -700.0 else math.inf
+    lx = math.log(abs(v)) - log_vc  # ln(|V| / V_c)
+    if lx < -350.0:  # V << V_c: g' = A / V_c
+        return direct * math.exp(-log_vc) if log_vc > -700.0 else math.inf
+    return direct / (abs(v) * math.sqrt(1.0 + math.exp(-2.0 * lx)))
+
+
 def junction_log_slope(v: ArrayLike, direct: float, v_ref: float = 1.0) -> Array:
     """``V g'(V) = A x / sqrt(1 + x^2)``: the direct coefficient at ``V`` (``-> A`` for
     ``x >> 1``, ``-> 0`` as ``V -> 0``)."""
