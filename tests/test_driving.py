@@ -604,11 +604,11 @@ def test_root_in_bracket_finds_a_smooth_root_in_a_few_newton_steps(xa: float, xb
     the tolerance Brent's method was given (1e-13), from either end, in at most 5 evaluations
     besides the two ends (quadratic convergence; Brent's method took about 9 on the ensemble's
     balances). A bisection alone would need about 45."""
-    from dryfriction.ensemble.driving import _root_in_bracket
+    from dryfriction.ensemble.balance import root_in_bracket
 
     root = next(r.real for r in np.roots([0.1, 0.0, 1.0, -2.0]) if abs(r.imag) < 1e-12)
     h, calls = _counted(lambda x: 2.0 - x - 0.1 * x**3, lambda x: -1.0 - 0.3 * x**2)
-    r = _root_in_bracket(h, xa, h(xa), xb, h(xb))
+    r = root_in_bracket(h, xa, h(xa), xb, h(xb))
     assert abs(r - root) <= 2e-13
     assert len(calls) - 2 <= 5, calls
 
@@ -620,22 +620,22 @@ def test_root_in_bracket_where_the_start_has_a_huge_slope(root: float) -> None:
     2e28) at the step's start, which is also the end nearer the root (``|G(0)| < |G(b)|``), so
     the first Newton step from there is tiny however far the root is. Taking that small step
     for convergence returned the start itself (friction 0 at the sample)."""
-    from dryfriction.ensemble.driving import _root_in_bracket
+    from dryfriction.ensemble.balance import root_in_bracket
 
     a, eps, k, b = 0.02, 1e-30, 1e4, 5e-3
     c = a * math.asinh(root / eps) + k * root
     h, _ = _counted(lambda x: c - a * math.asinh(x / eps) - k * x,
                     lambda x: -a / math.hypot(x, eps) - k)
     assert abs(h(0.0)[0]) < abs(h(b)[0])
-    r = _root_in_bracket(h, 0.0, h(0.0), b, h(b))
+    r = root_in_bracket(h, 0.0, h(0.0), b, h(b))
     assert abs(r - root) <= 1e-13 + 1e-15 * root
 
 
 def test_root_in_bracket_returns_an_end_that_is_a_root() -> None:
-    from dryfriction.ensemble.driving import _root_in_bracket
+    from dryfriction.ensemble.balance import root_in_bracket
 
     h, calls = _counted(lambda x: 1.0 - x, lambda x: -1.0)
-    assert _root_in_bracket(h, 0.0, h(0.0), 1.0, h(1.0)) == 1.0
+    assert root_in_bracket(h, 0.0, h(0.0), 1.0, h(1.0)) == 1.0
     assert len(calls) == 2
 
 
@@ -650,7 +650,7 @@ def test_quasi_static_slider_agrees_with_brents_roots(monkeypatch: pytest.Monkey
     sample."""
     from scipy.optimize import brentq
 
-    import dryfriction.ensemble.driving as drv
+    import dryfriction.ensemble.balance as balance
 
     prog = VelocityProgram([Segment(1.0, slip=1.5), Segment(0.0, duration=5.0),
                             Segment(0.1, slip=1.5)])
@@ -661,7 +661,7 @@ def test_quasi_static_slider_agrees_with_brents_roots(monkeypatch: pytest.Monkey
                         Output(every_slip=0.01)).mu
 
     ours = run()
-    monkeypatch.setattr(drv, "_root_in_bracket", lambda h, xa, ha, xb, hb, *_: brentq(
+    monkeypatch.setattr(balance, "root_in_bracket", lambda h, xa, ha, xb, hb, *_: brentq(
         lambda x: h(x)[0], xa, xb, xtol=1e-13, rtol=4 * np.finfo(float).eps))
     ref = run()
     assert ours.shape == ref.shape and ours.size > 100
@@ -675,10 +675,10 @@ def test_quasi_static_roots_take_a_few_kernel_passes(monkeypatch: pytest.MonkeyP
     per creep-step root with the direct effect, a few kernel passes on average (measured 6.2
     on the soft spring, 3.9 on the stiff one; Brent's method needed 9-11, and the iteration
     without the strength's slope 33 and 12)."""
-    import dryfriction.ensemble.driving as drv
+    import dryfriction.ensemble.balance as balance
 
     roots, passes = [0], [0]
-    polish = drv._root_in_bracket
+    polish = balance.root_in_bracket
 
     def counted(h, xa, ha, xb, hb, *rest):  # type: ignore[no-untyped-def]
         def hh(x: float) -> tuple[float, float]:
@@ -688,7 +688,7 @@ def test_quasi_static_roots_take_a_few_kernel_passes(monkeypatch: pytest.MonkeyP
         roots[0] += 1
         return polish(hh, xa, ha, xb, hb, *rest)
 
-    monkeypatch.setattr(drv, "_root_in_bracket", counted)
+    monkeypatch.setattr(balance, "root_in_bracket", counted)
     prog = VelocityProgram([Segment(1.0, slip=1.5), Segment(0.0, duration=5.0),
                             Segment(0.1, slip=1.5)])
     simulate(TrapModel(0.13, 0.04, direct=0.02), Track(300.0), Initial("steady", velocity=1.0),

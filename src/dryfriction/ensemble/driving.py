@@ -22,7 +22,7 @@ Integrators (ours)
   the next stable equilibrium of ``A - K X = F(X)`` (``K`` = spring stiffness, 0 under force
   control) in the direction of the unbalanced force. The jump goes event by event: between two
   spinodals ``F(X)`` is continuous (entries and zero-force exits are continuous), so each stretch
-  is checked at its end and the root found by Brent's method inside it. The force just before
+  is checked at its end and the root found inside it (:mod:`.balance`). The force just before
   each spinodal is the local peak, so the static threshold is exact up to the sampling of the
   applied force in time. Under force control, a jump longer than the reach of every trap in
   contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
@@ -46,7 +46,7 @@ unchanged) times the junction strength at the slider's present velocity ``V``.
   on the velocity, so there are no jumps: within a step ``[t0, t1]`` the slider moves from
   ``X0`` to the ``X`` where ``A - K X = g((X - X0)/(t1 - t0)) F(X)`` (backward Euler in the
   velocity, ages at ``t1``, like quasi-static rate-and-state). With ``g(0) = 0`` the left side
-  decides the direction and the same stretch-by-stretch bracketing and Brent root as the jumps
+  decides the direction and the same stretch-by-stretch bracketing and root as the jumps
   finds the first root. A root farther than the reach of the contacts (force drive) is still
   reported as a runaway. The spring drive takes several such steps per sample, each covering
   at most a quarter of the trap spacing of load-point travel (:mod:`.thermal`): a coarser step
@@ -71,11 +71,11 @@ import numpy as np
 
 from ..program import VelocityProgram
 from ..validation import check_choice, check_scalar
-from .population import Ensemble, Initial, Observables, Track, TrapModel
+from .balance import add_events, equilibrate, events
+from .population import Ensemble, Initial, Track, TrapModel
 from .resources import check_run
 from .result import COLUMNS, Output, Recorder, SimulationResult, position_function, segment_grid
 from .thermal import (
-    VelocityScale,
     apply_strength,
     creep_substeps,
     drift,
@@ -98,8 +98,6 @@ __all__ = [
 
 Progress = Callable[[float], None]
 
-_TINY = 1e-10  # a0: how far past a spinodal the slider is moved to kill the trap (ours)
-_EPS = float(np.finfo(float).eps)
 
 
 @dataclass(frozen=True)
@@ -225,146 +223,6 @@ def _max_reach(ens: Ensemble) -> float:
     return max(1.0, ens.y_c) * float(ens.radius(age)) + 1.0
 
 
-def _events(o: Observables) -> tuple[int, int, int]:
-    return (o.births, o.spinodal, o.exits)
-
-
-def _add_events(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, int]:
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
-
-
-def _equilibrate(
-    ens: Ensemble, A: float, K: float, max_slip: float,
-    scale: VelocityScale | None = None,
-) -> tuple[float, bool, tuple[int, int, int]]:
-    """Jump, ages frozen, to the next stable root of ``A - K X - F(X) = 0``.
-
-    With ``scale`` (direct effect) the force is ``scale(X) F(X)``: the root is then the end of
-    a creep step rather than of a jump (module docstring). Between two events the root is
-    polished by :func:`_root_in_bracket` with the slope ``dF/dX`` the kernel returns.
-
-    Returns
-    -------
-    extreme : float
-        The largest (forward jump) or smallest (backward) force met on the way: at the
-        spinodals passed (left limits) and at the end. The exact peak of a forward jump.
-    runaway : bool
-        True if no root lies within ``max_slip``; the slider is then left at the end of the
-        search.
-    events : tuple of int
-        (births, spinodal, exits) during the jump.
-    """
-    def eff(f: float, x: float) -> float:
-        return f if scale is None else scale(x) * f
-
-    def balance(o: Observables, x: float) -> tuple[float, float]:
-        """``G(X) = A - K X - g F`` and ``dG/dX`` from the observables at ``X``."""
-        if scale is None:
-            return A - K * x - o.force, -K - o.stiffness
-        g = scale(x)
-        slope = scale.slope(x) * o.force if o.force != 0.0 else 0.0
-        return A - K * x - g * o.force, -K - g * o.stiffness - slope
-
-    o = ens.observe(1, stiffness=True)
-    G0 = A - K * ens.x - eff(o.force, ens.x)
-    tol = 1e-13 * max(1.0, abs(A))
-    if abs(G0) <= tol:
-        return eff(o.force, ens.x), False, (0, 0, 0)
-    d = 1 if G0 > 0 else -1
-    start = ens.x
-    extreme = eff(o.force, ens.x)
-    ev = (0, 0, 0)
-    if d < 0:  # the next event backwards (the force is the same)
-        o = ens.observe(d, stiffness=True)
-    while True:
-        xe = o.next_event
-        capped = abs(xe - start) > max_slip
-        if capped:
-            xe = start + d * max_slip
-        xb = xe - d * _TINY
-        if (xb - ens.x) * d <= 0.0:  # the event is within rounding of here: step past it
-            xb = ens.x
-        pb = ens.probe(xb, d, stiffness=True)
-        fb = eff(pb.force, xb)
-        Gb = A - K * xb - fb
-        if Gb * d <= 0.0:
-            xa = ens.x
-            ga, sa = balance(o, xa)
-            if xb == xa or ga * d <= 0.0:
-                root = xa
-            else:
-                root = _root_in_bracket(
-                    lambda x: balance(ens.probe(x, d, stiffness=True), x),
-                    xa, (ga, sa), xb, balance(pb, xb), tol)
-            ob = ens.advance(root, ens.t)
-            fr = eff(ob.force, root)
-            extreme = max(extreme, fr) if d > 0 else min(extreme, fr)
-            return extreme, False, _add_events(ev, _events(ob))
-        # the slider passes this stretch: its end (the spinodal's left limit) is a local extreme
-        extreme = max(extreme, fb) if d > 0 else min(extreme, fb)
-        if capped:
-            ob = ens.advance(xb, ens.t)
-            return extreme, True, _add_events(ev, _events(ob))
-        ev = _add_events(ev, _events(ens.advance(xe + d * _TINY, ens.t)))
-        o = ens.observe(d, stiffness=True)
-
-
-def _root_in_bracket(h: Callable[[float], tuple[float, float]], xa: float,
-                     ha: tuple[float, float], xb: float, hb: tuple[float, float],
-                     g_tol: float = 0.0) -> float:
-    """The root of ``G`` between ``xa`` and ``xb`` (``G(xa)``, ``G(xb)`` of opposite signs or
-    ``G(xb) = 0``), ``h(x) = (G(x), G'(x))``: Newton steps from the end nearer the root, each
-    kept inside the shrinking bracket, a bisection where a step would leave it or would not
-    halve the step before (ours; a safeguarded Newton iteration).
-
-    It ends when ``G`` changes sign across a step under ``tol = 1e-13`` absolute and 4 ulps
-    relative, the tolerance Brent's method was given before, in about a third of its
-    evaluations (each one is a pass of the kernel over the pairs in contact). A small step
-    alone proves nothing: at the start of a creep step the strength's slope ``g'(0)/dt`` is
-    huge, and the Newton step is tiny however far the root is; so a small step is confirmed by
-    one evaluation just past it, unless ``|G|`` is already within ``g_tol`` there.
-    """
-    (ga, sa), (gb, sb) = ha, hb
-    if gb == 0.0:
-        return xb
-    lo, hi = (xa, xb) if ga < 0.0 else (xb, xa)  # G(lo) < 0 < G(hi)
-    x, g, s = (xa, ga, sa) if abs(ga) < abs(gb) else (xb, gb, sb)
-    step_old = step = abs(xb - xa)
-    for _ in range(200):
-        if abs(hi - lo) <= 2e-13 + 8.0 * _EPS * abs(x):
-            return 0.5 * (lo + hi)
-        newton_ok = (math.isfinite(s) and s != 0.0
-                     and ((x - hi) * s - g) * ((x - lo) * s - g) < 0.0
-                     and abs(2.0 * g) <= abs(step_old * s))
-        step_old = step
-        if newton_ok:
-            step = g / s
-            x_new = x - step
-        else:
-            step = 0.5 * (hi - lo)
-            x_new = lo + step
-        tol = 1e-13 + 4.0 * _EPS * abs(x_new)
-        if newton_ok and abs(step) <= tol and abs(g) <= g_tol:
-            return x_new
-        if newton_ok and abs(step) <= tol:
-            # confirm: the root lies within tol of x_new if G changes sign just past it
-            beyond = x_new - math.copysign(tol, step)
-            gc, sc = h(beyond)
-            if gc == 0.0 or (gc < 0.0) != (g < 0.0):
-                return x_new
-            x, g, s = beyond, gc, sc  # not there yet: go on from the point just past
-        else:
-            x = x_new
-            g, s = h(x)
-            if g == 0.0:
-                return x
-        if g < 0.0:
-            lo = x
-        else:
-            hi = x
-    return x
-
-
 # ---------------------------------------------------------------- the drivers
 
 
@@ -381,7 +239,7 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Reco
     vs = prog.velocities[np.clip(k, 0, len(prog.segments) - 1)].tolist()
     for t1, x1, v in zip(grid[1:], xs[1:].tolist(), vs, strict=True):
         o = ens.advance(x1, float(t1))
-        rec.add(ens, with_strength(ens, o, v), v, events=_events(o))
+        rec.add(ens, with_strength(ens, o, v), v, events=events(o))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -411,9 +269,9 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
     for t1 in times():
         f_app = f0 + drive.rate * max(0.0, t1 - drive.hold)
         x_before, t_before = ens.x, ens.t
-        ev = _events(ens.advance(ens.x, t1))
+        ev = events(ens.advance(ens.x, t1))
         max_slip = _max_reach(ens) + max(1.0, ens.y_c) + 1.0 + 2.0 * ens.track.spacing
-        extreme, runaway, jump_ev = _equilibrate(ens, f_app, 0.0, max_slip,
+        extreme, runaway, jump_ev = equilibrate(ens, f_app, 0.0, max_slip,
                                                  velocity_scale(ens, t1 - t_before))
         threshold = max(threshold, extreme)
         if runaway:
@@ -421,7 +279,7 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
             break
         o = ens.observe()
         v = (ens.x - x_before) / (t1 - t_before)
-        rec.add(ens, with_strength(ens, o, v), v, f_applied=f_app, events=_add_events(ev, jump_ev))
+        rec.add(ens, with_strength(ens, o, v), v, f_applied=f_app, events=add_events(ev, jump_ev))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)
             rec.snap(ens)
@@ -463,9 +321,9 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
                 tj = float(t1) if j == n else t_before + (float(t1) - t_before) * j / n
                 xj = float(xp1) if j == n else xp_prev + (float(xp1) - xp_prev) * j / n
                 x_sub, t_sub = ens.x, ens.t
-                ev = _add_events(ev, _events(ens.advance(ens.x, tj)))
-                _, _, jump_ev = _equilibrate(ens, K * xj, K, 1e9, velocity_scale(ens, tj - t_sub))
-                ev = _add_events(ev, jump_ev)
+                ev = add_events(ev, events(ens.advance(ens.x, tj)))
+                _, _, jump_ev = equilibrate(ens, K * xj, K, 1e9, velocity_scale(ens, tj - t_sub))
+                ev = add_events(ev, jump_ev)
             xp_prev = float(xp1)
             jumps.append(ens.x - x_before)
             o = ens.observe()
@@ -505,7 +363,7 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
                 x_new = ens.x + V * dt + w * a * dt * dt
                 t_new = float(t1) if dt == float(t1) - ens.t else ens.t + dt
                 ob = ens.advance(x_new, t_new)
-                ev = _add_events(ev, _events(ob))
+                ev = add_events(ev, events(ob))
                 if direct:  # implicit in V: the junction strength is stiff near rest
                     f_pop = ob.force
                     V, g = inertial_velocity(ens.model, V, M * a, dt, M, eta,
