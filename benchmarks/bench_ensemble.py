@@ -64,8 +64,9 @@ class _Counter:
             self.committed += o.n_active
             return o
 
-        def counted_probe(ens: Ensemble, x1: float, direction=None):  # type: ignore[no-untyped-def]
-            o = probe(ens, x1, direction)
+        def counted_probe(ens: Ensemble, x1: float, direction=None,  # type: ignore[no-untyped-def]
+                          **kwargs):
+            o = probe(ens, x1, direction, **kwargs)
             self.probed += o.n_active
             return o
 

@@ -59,3 +59,14 @@ def test_the_sweep_benchmarks_are_32_points_of_what_they_say() -> None:
     assert CASES["stick-slip"][1] is stick_slip_summary
     assert {a.key for a in phase.axes} == {"drive.stiffness", "drive.segments.0.velocity"}
     assert sys.modules["benchmarks.bench_sweep"].ROOT == ROOT
+
+
+def test_the_ensemble_benchmarks_counter_wraps_the_ensemble_as_it_is() -> None:
+    """``bench_ensemble`` counts kernel passes by wrapping :class:`Ensemble`'s ``advance`` and
+    ``probe``: a change of their signatures must not break it (it once did, silently until
+    the benchmark was next run). A tiny run of each drive, counted, with the direct effect."""
+    from benchmarks.bench_ensemble import drive_rate
+
+    for kind in ("velocity", "quasi-static", "inertial"):
+        committed, every, _ = drive_rate(kind, 0.01, lam=100.0, slip=0.02)
+        assert 0 < committed <= every, kind
