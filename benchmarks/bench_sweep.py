@@ -31,7 +31,6 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from dryfriction.analysis.stickslip import stick_slip_summary
 from dryfriction.io.sweep import parse_sweep, run_sweep
 from dryfriction.theory.stability import critical_stiffness
 
@@ -60,9 +59,17 @@ def _phase_protocol() -> dict[str, Any]:
     return proto
 
 
-CASES = {"light": (lambda: PROTO, heavy_point), "stick-slip": (_phase_protocol,
-                                                               stick_slip_summary)}
-"""name: (protocol, runner)"""
+def _stick_slip_case() -> tuple[dict[str, Any], Any]:
+    # imported here, not with this module: the fork server imports this module (the light
+    # sweep's runner lives here), and the stick-slip modules would lengthen its start
+    from dryfriction.analysis.stickslip import stick_slip_summary
+
+    return _phase_protocol(), stick_slip_summary
+
+
+CASES = {"light": lambda: (PROTO, heavy_point), "stick-slip": _stick_slip_case}
+"""name: () -> (protocol, runner); the stick-slip runner is the package's own (its module is
+what the fork server imports, as for ``dryfriction sweep``)."""
 
 
 def one_sweep(n_workers: int, case: str = "light") -> None:
@@ -70,8 +77,8 @@ def one_sweep(n_workers: int, case: str = "light") -> None:
     side): seconds to the first finished point (the cluster's start, one point), from the
     first to the last finished point, and after the last one (the cluster's stop, the
     Dataset, ``sweep.nc``)."""
-    protocol, runner = CASES[case]
-    spec = parse_sweep(protocol())
+    protocol, runner = CASES[case]()
+    spec = parse_sweep(protocol)
     finished: list[float] = []
 
     def progress(done: int, total: int) -> None:
@@ -111,8 +118,8 @@ def main(repeat: int = 3, cases: tuple[str, ...] = tuple(CASES)) -> None:
 
 
 def one_case(case: str, repeat: int) -> None:
-    protocol, runner = CASES[case]
-    spec = parse_sweep(protocol())
+    protocol, runner = CASES[case]()
+    spec = parse_sweep(protocol)
     load = os.getloadavg()[0]
     runs: dict[int, list[tuple[float, float, float, tuple[float, ...]]]] = {1: [], 2: []}
     for _ in range(repeat):

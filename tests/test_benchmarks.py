@@ -52,13 +52,25 @@ def test_the_sweep_benchmarks_are_32_points_of_what_they_say() -> None:
     from dryfriction.analysis.stickslip import stick_slip_summary
     from dryfriction.io.sweep import parse_sweep
 
-    for case, (protocol, _runner) in CASES.items():
-        spec = parse_sweep(protocol())
-        assert spec.size == 32, case
-    phase = parse_sweep(CASES["stick-slip"][0]())
-    assert CASES["stick-slip"][1] is stick_slip_summary
+    for case, make in CASES.items():
+        assert parse_sweep(make()[0]).size == 32, case
+    protocol, runner = CASES["stick-slip"]()
+    phase = parse_sweep(protocol)
+    assert runner is stick_slip_summary
     assert {a.key for a in phase.axes} == {"drive.stiffness", "drive.segments.0.velocity"}
     assert sys.modules["benchmarks.bench_sweep"].ROOT == ROOT
+
+
+def test_the_light_sweeps_runner_module_does_not_import_the_simulators() -> None:
+    """The fork server imports the light sweep's runner module before any worker starts: it
+    must stay light (importing the stick-slip modules with it added 0.2 s to every run)."""
+    import subprocess
+
+    code = ("import sys; import benchmarks.bench_sweep; "
+            "print('dryfriction.analysis.stickslip' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
+                         text=True, check=True).stdout.strip()
+    assert out == "False"
 
 
 def test_the_ensemble_benchmarks_counter_wraps_the_ensemble_as_it_is() -> None:
