@@ -252,7 +252,8 @@ class Observables:
     force : float
         Friction force ``F/F_el`` (without ``mu_el``).
     stiffness : float
-        ``dF/dX`` at frozen ages, units ``F_el/a0`` (diverges where a trap nears its spinodal).
+        ``dF/dX`` at frozen ages, units ``F_el/a0`` (diverges where a trap nears its spinodal);
+        computed only when asked (``probe(..., stiffness=True)``), else 0.
     n_active : int
         Traps in contact.
     mean_age : float
