@@ -42,7 +42,7 @@ def equilibrate(
 
     With ``scale`` (direct effect) the force is ``scale(X) F(X)``: the root is then the end of
     a creep step rather than of a jump (module docstring). Between two events the root is
-    polished by :func:`_root_in_bracket` with the slope ``dF/dX`` the kernel returns.
+    polished by :func:`root_in_bracket` with the slope ``dF/dX`` the kernel returns.
 
     Returns
     -------

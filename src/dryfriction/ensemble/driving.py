@@ -99,7 +99,6 @@ __all__ = [
 Progress = Callable[[float], None]
 
 
-
 @dataclass(frozen=True)
 class VelocityDrive:
     """Prescribed slider motion: the slider follows ``program`` (``a0/t0``, ``t0``, ``a0``)."""
@@ -237,8 +236,8 @@ def _run_velocity(ens: Ensemble, drive: VelocityDrive, output: Output, rec: Reco
     t_prev = np.concatenate(([ens.t], grid[1:-1]))
     k = np.searchsorted(prog.times, 0.5 * (t_prev + grid[1:]), side="right") - 1
     vs = prog.velocities[np.clip(k, 0, len(prog.segments) - 1)].tolist()
-    for t1, x1, v in zip(grid[1:], xs[1:].tolist(), vs, strict=True):
-        o = ens.advance(x1, float(t1))
+    for t1, x1, v in zip(grid[1:].tolist(), xs[1:].tolist(), vs, strict=True):
+        o = ens.advance(x1, t1)
         rec.add(ens, with_strength(ens, o, v), v, events=events(o))
         while snaps and snaps[0] <= t1 + 1e-12:
             snaps.pop(0)

@@ -104,12 +104,12 @@ def _inverse_strength(y: float, direct: float, v_ref: float) -> float:
 
 
 def _damping_rate(model: TrapModel, v: float, force: float) -> float:
-    """``d(g F)/dV = g'(V) F`` for ``F > 0`` (else 0), ``g' = A/sqrt(V^2 + V_c^2)``."""
+    """``d(g F)/dV = g'(V) F`` for ``F > 0`` (else 0), ``g'`` from
+    :func:`~dryfriction.theory.direct.strength_slope` (infinite at rest when ``A/V_c``
+    overflows)."""
     if force <= 0.0:
         return 0.0
-    vc = 2.0 * model.v_ref * math.exp(-1.0 / model.direct)  # 0 for A < 1/745: g' is then
-    d = math.hypot(v, vc)  # infinite at rest
-    return force * model.direct / d if d > 0.0 else math.inf
+    return force * strength_slope(v, model.direct, model.v_ref)
 
 
 def _implicit_velocity(model: TrapModel, c: float, m_eff: float, f_eff: float
