@@ -319,3 +319,42 @@ def test_quick_profile_matches_the_engine_profile():
             width = hi - lo
             assert abs(quick[p.name][0] - lo) < 0.05 * width, p.name
             assert abs(quick[p.name][1] - hi) < 0.05 * width, p.name
+
+
+@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.io.lab)")
+def test_command_run_cv_fits_the_trap_model_and_draws_it_beside_rsf(tmp_path: Path):
+    """``--run-cv`` (on a small synthetic record, a coarse track to keep it short): the trap
+    model's fit of each step is in fit.json with its comparison to rsf, and each step's figure
+    carries its curve beside the rsf fit (which the figure once left out: the user saw rsf
+    only)."""
+    import json
+
+    import matplotlib.figure
+
+    from dryfriction.plots import steps as step_plots
+
+    drawn: list[list[str]] = []
+    plot = step_plots.plot_step
+
+    def spy(*args, **kwargs):  # type: ignore[no-untyped-def]
+        fig, axes = plot(*args, **kwargs)
+        assert isinstance(fig, matplotlib.figure.Figure)
+        drawn.append([ln.get_label() for ln in axes[0, 0].get_lines()])
+        return fig, axes
+
+    rec = write_dialect(tmp_path / "rec.txt", small(Truth(), 7, VELS[:2]), 1)  # one step
+    out = tmp_path / "out"
+    mp = pytest.MonkeyPatch()
+    mp.setattr(step_plots, "plot_step", spy)
+    try:
+        r = runner.invoke(app, ["fit", str(rec), "--model", "rsf", "--run-cv", "--traps-per-a0",
+                                "20", "--out", str(out)])
+    finally:
+        mp.undo()
+    assert r.exit_code == 0, r.output
+    rep = json.loads((out / "fit.json").read_text())
+    fitted = {f["step"] for f in rep["cv_fits"]}
+    assert fitted == {0}
+    assert all("verdict" in c for c in rep["comparison"])
+    assert drawn == [["fit (rsf)", "trap model (cv)"]]
+    assert (out / "step_0.png").stat().st_size > 0

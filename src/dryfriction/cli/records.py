@@ -141,6 +141,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                                                           "profile": profile,
                                                           "errors": errors},
                               **res.to_dict()}
+    cv_results: dict[int, Any] = {}  # step -> the trap model's fit (--run-cv), for the figures
     if run_cv:
         comp: list[dict[str, Any]] = []
         cv_fits = []
@@ -158,6 +159,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 try:
                     alt = fit_cv_steps([d], [res.fits[i]], alpha, creep, direct, v_ref, tpa,
                                        progress=run_done)[0]
+                    cv_results[i] = alt
                     entry = {"step": i, **alt.to_dict()}
                     if errors == "hac":  # the record's residuals are correlated: as for rsf
                         sc = step_covariance(alt, d, errors)
@@ -184,7 +186,11 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             from ..plots.style import save_figure
 
             for i in range(len(res.rows)):
-                save_figure(plot_step(res, i)[0], tmp / f"step_{i}.{fmt}", fmt, dpi)
+                # the trap model beside rsf: one more forward run of its fit per step
+                others = ({"trap model (cv)": cv_results[i].predict(res.data[i])}
+                          if i in cv_results else None)
+                save_figure(plot_step(res, i, others=others)[0], tmp / f"step_{i}.{fmt}",
+                            fmt, dpi)
             save_figure(plot_steps_summary(res)[0], tmp / f"steps_summary.{fmt}", fmt, dpi)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))

@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -21,9 +22,12 @@ _DATA = {"s": 2.0, "color": "0.6", "alpha": 0.5, "linewidths": 0, "rasterized": 
 _MODEL = {"color": "C3", "lw": 1.4, "zorder": 3}
 
 
-def plot_step(result: StepsResult, i: int, path: Any = None) -> tuple[Figure, Any]:
+def plot_step(result: StepsResult, i: int, path: Any = None, *,
+              others: Mapping[str, np.ndarray] | None = None) -> tuple[Figure, Any]:
     """Window ``i``: data (small light points) and the fitted model (line, drawn on top)
-    against load-point displacement (left) and time (right), residuals below."""
+    against load-point displacement (left) and time (right), residuals below; ``others``
+    (label: friction at the window's samples, e.g. the trap model fitted to the same window)
+    are drawn as dashed lines beside the fit; the residuals are the fit's."""
     from ..fit.models import load_point_displacement
 
     d = result.data[i]
@@ -37,9 +41,12 @@ def plot_step(result: StepsResult, i: int, path: Any = None) -> tuple[Figure, An
                                        (t, TIME_S.replace("$t$", "$t - t_{start}$")))):
         top, bot = axes[0, col], axes[1, col]
         top.scatter(xv, d.mu, label="data", **_DATA)
-        top.plot(xv, model, label="fit", **_MODEL)
+        top.plot(xv, model, label="fit" if not others else "fit (rsf)", **_MODEL)
         bot.scatter(xv, d.mu - model, **_DATA)
         bot.axhline(0.0, **_MODEL)
+        for k, (name, curve) in enumerate((others or {}).items()):
+            style = {"color": f"C{k}", "lw": 1.2, "ls": "--", "zorder": 4}
+            top.plot(xv, curve, label=name, **style)
         bot.set_xlabel(label)
         top.set_ylabel(FRICTION_SI)
         bot.set_ylabel("residual")
