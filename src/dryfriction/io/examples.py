@@ -64,13 +64,18 @@ def example_files() -> list[str]:
 
 def copy_examples(dest: str | os.PathLike[str], *, force: bool = False,
                   report: Callable[[str], None] | None = None) -> list[str]:
-    """Copy the examples into ``dest`` (a results folder: whole or not at all, with a manifest).
+    """Copy the examples into ``dest``, whole or not at all, and hand them to the user.
+
+    The copy carries a manifest (``dryfriction.json``, format
+    :data:`dryfriction.io.files.EXAMPLES_FORMAT`) that records what was copied and says the
+    files are the user's: no later run (``simulate ... --out dest``, ``fit``, another copy)
+    replaces or removes them; it is refused, or with ``--force`` writes beside them.
 
     Parameters
     ----------
     dest : path
-        New or empty folder (or one a previous copy wrote); see
-        :func:`dryfriction.io.files.output_directory` for the rules.
+        New or empty folder; see :func:`dryfriction.io.files.output_directory` for the rules
+        (its messages name the option ``--copy``).
     force : bool
         Copy beside files already in ``dest`` (kept; a colliding one is renamed ``NAME.~1~``).
     report : callable, optional
@@ -85,7 +90,8 @@ def copy_examples(dest: str | os.PathLike[str], *, force: bool = False,
 
     root = examples_path()
     files = example_files()
-    with output_directory(dest, command="examples", force=force, report=report) as stage:
+    with output_directory(dest, command="examples", force=force, report=report,
+                          option="--copy", hand_over=True) as stage:
         for rel in files:
             target = stage / rel
             target.parent.mkdir(parents=True, exist_ok=True)
