@@ -156,7 +156,7 @@ spec = sw.parse_sweep({"model": {"eps": 0.04}, "sweep": {"model.eps": [0.02, 0.0
 keys = {idx: sw.point_key(spec.protocol(ov), "a") for idx, ov in spec.points()}
 out = sys.argv[1]
 for idx, ov in spec.points():
-    sw.write_json(f"{out}/{keys[idx]}.json", {"key": keys[idx], "result": {"x": 1.0}})
+    sw.write_json(f"{out}/{keys[idx]}.json", sw._seal({"key": keys[idx], "result": {"x": 1.0}}))
 import distributed  # the sweep's process has it (start_client), and xarray's writer uses it
 sw._warm_results()
 before = set(sys.modules)

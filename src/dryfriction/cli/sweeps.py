@@ -90,7 +90,7 @@ def _resume_command(command: str, protocol: str, out_dir: str, scheduler: str | 
 def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                   workers: int | None, confirm: bool, *, source: str = "",
                   protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "",
-                  variables: Any = None) -> Any:
+                  variables: Any = None, outputs: Any = None) -> Any:
     """:func:`~dryfriction.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
     are stored and the command that resumes, and exits with 130."""
     from ..io.sweep import SweepInterrupted, run_sweep
@@ -100,7 +100,7 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
             return run_sweep(spec, runner, out_dir, scheduler=scheduler, n_workers=workers,
                              confirm=confirm, progress=update, source=source,
                              protocol_text=protocol_text, connect_timeout=connect_timeout,
-                             variables=variables)
+                             variables=variables, outputs=outputs)
     except SweepInterrupted as exc:
         err.print(f"[bold yellow]interrupted:[/] {exc.stored} of {exc.total} points stored in "
                   f"{out_dir}; resume with: {resume}", highlight=False, soft_wrap=True)
@@ -186,7 +186,6 @@ def phase_diagram(
     import io as _io
 
     from ..analysis.stickslip import CLASSES, SWEEP_VARIABLES, phase_axes, stick_slip_summary
-    from ..io.files import atomic_write_bytes
     from ..plots.runs import phase_diagram_figure
     from ..plots.style import save_figure
     from ..validation import check_figure_format
@@ -197,14 +196,18 @@ def phase_diagram(
     k_key, v_key = phase_axes(spec)  # before any worker starts
     resume = _resume_command("phase-diagram", protocol, out_dir, scheduler, workers, yes,
                              False, connect_timeout)
+
+    def render(ds: Any) -> bytes:
+        fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
+        buf = _io.BytesIO()
+        save_figure(fig, buf, fmt, dpi)
+        return buf.getvalue()
+
+    # written by the sweep under its folder's rule (an edited figure is never overwritten)
     ds = _run_with_bar(spec, stick_slip_summary, out_dir, scheduler, workers, yes,
                        source=protocol, protocol_text=_text_of(protocol),
                        connect_timeout=connect_timeout, resume=resume,
-                       variables=SWEEP_VARIABLES)
-    fig, _ = phase_diagram_figure(ds, spec.base, k_key, v_key)
-    buf = _io.BytesIO()
-    save_figure(fig, buf, fmt, dpi)
-    atomic_write_bytes(Path(out_dir) / f"phase_diagram.{fmt}", buf.getvalue())
+                       variables=SWEEP_VARIABLES, outputs={f"phase_diagram.{fmt}": render})
     counts = {}
     for c, name in CLASSES.items():
         n = int((ds["class"].values == c).sum()) if "class" in ds else 0

@@ -57,6 +57,7 @@ __all__ = [
     "output_directory",
     "check_output_dir",
     "check_writable_dir",
+    "is_ours",
     "to_jsonable",
 ]
 
@@ -232,7 +233,7 @@ def _read_manifest(out: Path) -> dict[str, Any] | None:
     return m
 
 
-def _ours(out: Path, rel: str, digest: str | None) -> bool:
+def is_ours(out: Path, rel: str, digest: str | None) -> bool:
     """Whether ``out/rel`` is still the file we wrote: reached without a symbolic link (every
     folder on the way a real folder of ``out``), a regular file, with the SHA-256 ``digest``.
 
@@ -282,7 +283,7 @@ def _foreign_files(out: Path, manifest: dict[str, Any] | None, limit: int = 4) -
     for rel in _walk_files(out):
         if rel == MANIFEST and manifest is not None:
             continue
-        if not _ours(out, rel, ours.get(rel)):
+        if not is_ours(out, rel, ours.get(rel)):
             foreign.append(rel)
             if len(foreign) >= limit:
                 break
@@ -468,7 +469,7 @@ def _commit(stage: Path, out: Path, command: str, protected: set[Path], force: b
                              f"the result {rel} needs a folder; nothing was written (choose "
                              "another folder)")
         if os.path.lexists(dest):
-            if _ours(out, rel, old_files.get(rel)):
+            if is_ours(out, rel, old_files.get(rel)):
                 replaced.append(rel)
             elif force:
                 collide.append(dest)
@@ -485,7 +486,7 @@ def _commit(stage: Path, out: Path, command: str, protected: set[Path], force: b
         dest.parent.mkdir(parents=True, exist_ok=True)
         os.replace(stage / rel, dest)
     for rel, digest in old_files.items():
-        if rel in digests or not _ours(out, rel, digest):
+        if rel in digests or not is_ours(out, rel, digest):
             continue  # changed since (or never inside the folder): not ours
         path = out / rel
         if path.resolve() in protected:

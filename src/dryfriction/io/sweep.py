@@ -18,6 +18,12 @@ it finishes; re-running the same sweep reads those and computes only the rest. A
 raises is recorded with its error and does not stop the sweep. The result is an
 :class:`xarray.Dataset` with the swept keys as dimensions and the summary figures as variables,
 written to ``OUT/sweep.nc`` (NetCDF, whole or not at all).
+
+The folder follows the rule of results folders (:mod:`dryfriction.io.files`): only files this
+sweep wrote and that are unchanged are ever replaced. Every point's record carries the SHA-256 of
+its content, checked before it is reused or taken into ``sweep.nc``; the marker ``sweep.json``
+records the SHA-256 of ``sweep.nc`` and of the other outputs (``phase_diagram.png``). An edited
+point or output is refused before any work, never overwritten.
 """
 
 from __future__ import annotations
@@ -40,7 +46,7 @@ import numpy as np
 from ..validation import check_scalar, require_extra
 from .cf import describe
 from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
-from .files import atomic_write_bytes, check_writable_dir, write_json
+from .files import atomic_write_bytes, check_writable_dir, is_ours, to_jsonable, write_json
 
 __all__ = [
     "SweepAxis",
@@ -251,9 +257,24 @@ def _run_point(runner: Runner, protocol: dict[str, Any]) -> dict[str, Any]:
         return {"error": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}
 
 
-def _check_folder(out: Path, marker: Mapping[str, Any]) -> bool:
+def _recorded(marker: Mapping[str, Any], name: str) -> list[str]:
+    """The SHA-256 digests the marker accepts for the output ``name`` (two while it is being
+    replaced, so that a run killed between the rename and the marker finds it still ours)."""
+    outputs = marker.get("outputs")
+    got = outputs.get(name) if isinstance(outputs, Mapping) else None
+    return [d for d in got if isinstance(d, str)] if isinstance(got, list) else []
+
+
+def _foreign_output(out: Path, marker: Mapping[str, Any], name: str) -> bool:
+    """Whether ``out/name`` exists and is not an unchanged output of this sweep."""
+    return os.path.lexists(out / name) and not any(
+        is_ours(out, name, d) for d in _recorded(marker, name))
+
+
+def _check_folder(out: Path, marker: Mapping[str, Any], outputs: tuple[str, ...] = ()) -> bool:
     """Whether ``out`` already belongs to this sweep; ``ValueError`` if it belongs to another
-    one or holds anything else. Reads only."""
+    one, holds anything else, or holds ``sweep.nc`` or one of ``outputs`` changed since this
+    sweep wrote it. Reads only."""
     if not out.exists():
         return False
     path = out / MARKER
@@ -272,6 +293,16 @@ def _check_folder(out: Path, marker: Mapping[str, Any]) -> bool:
         raise ValueError(f"--out {out}: {path.name} is not a dryfriction sweep marker: use "
                          "another --out (nothing in it was changed)")
     if old.get("protocol_hash") == marker["protocol_hash"]:
+        if not isinstance(old.get("outputs"), dict):
+            raise ValueError(f"--out {out} holds a sweep written by an earlier dryfriction, "
+                             "which recorded no hashes of its files: use another --out "
+                             "(nothing in it was changed)")
+        for name in ("sweep.nc", *outputs):
+            if _foreign_output(out, old, name):
+                raise ValueError(f"--out {out}: {name} is not the file this sweep wrote "
+                                 "(edited since, or not ours: its SHA-256 is not the one in "
+                                 f"{MARKER}): move it away or use another --out (nothing in "
+                                 "it was changed)")
         return True
     if old.get("version") != marker["version"]:
         why = f"result format {old.get('version')} (this is {marker['version']})"
@@ -283,13 +314,13 @@ def _check_folder(out: Path, marker: Mapping[str, Any]) -> bool:
                      "remove that folder")
 
 
-def _claim_folder(out: Path, marker: Mapping[str, Any]) -> int:
+def _claim_folder(out: Path, marker: Mapping[str, Any], outputs: tuple[str, ...] = ()) -> int:
     """Lock ``out`` for this sweep and write its marker; return the lock's file descriptor.
 
     The lock is ``fcntl.flock`` on ``out/.sweep.lock``: the kernel releases it when the
     process ends, however it ends, so a killed sweep never leaves the folder locked.
     """
-    _check_folder(out, marker)  # before creating anything in a folder that is not ours
+    _check_folder(out, marker, outputs)  # before creating anything in a folder not ours
     out.mkdir(exist_ok=True)
     fd = os.open(out / LOCK, os.O_RDWR | os.O_CREAT, 0o666)
     try:
@@ -299,7 +330,7 @@ def _claim_folder(out: Path, marker: Mapping[str, Any]) -> int:
             raise ValueError(f"--out {out}: another sweep is running into this folder (it "
                              f"holds {out / LOCK}): wait for it or use another --out") from None
         # again under the lock: another run may have claimed the folder since the first look
-        if not _check_folder(out, marker):
+        if not _check_folder(out, marker, outputs):
             write_json(out / MARKER, marker)
     except BaseException:
         os.close(fd)
@@ -307,13 +338,59 @@ def _claim_folder(out: Path, marker: Mapping[str, Any]) -> int:
     return fd
 
 
-def _stored(path: Path, key: str) -> bool:
-    """Whether ``path`` holds a successful result for ``key`` (failures are computed again)."""
-    try:
-        rec = json.loads(path.read_text())
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError):
-        return False
-    return isinstance(rec, dict) and rec.get("key") == key and "result" in rec
+def _seal(record: Mapping[str, Any]) -> dict[str, Any]:
+    """The point's record as stored: with ``sha256``, the hash of the rest of it."""
+    plain = to_jsonable(record)
+    return {**plain, "sha256": _digest(plain)}
+
+
+def _load_point(path: Path, key: str) -> dict[str, Any] | None:
+    """The record stored at ``path`` for ``key``, checked against the hash recorded in it;
+    ``None`` if there is none.
+
+    Raises
+    ------
+    ValueError
+        When a file is there but not as this sweep wrote it (edited since, another key, not a
+        regular file): its numbers are never taken into ``sweep.nc`` and it is never
+        overwritten.
+    """
+    if not os.path.lexists(path):
+        return None
+    rec: Any = None
+    if not path.is_symlink():
+        try:
+            rec = json.loads(path.read_text())
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+            pass
+    if not (isinstance(rec, dict) and rec.get("key") == key and rec.get("sha256") == _digest(
+            {k: v for k, v in rec.items() if k != "sha256"})):
+        raise ValueError(f"--out {path.parent.parent}: points/{path.name} is not the record "
+                         "this sweep wrote (edited since: its content does not match the "
+                         "SHA-256 recorded in it): move it away and run the command again "
+                         "(that point is then computed again); nothing was changed")
+    return rec
+
+
+def _write_output(out: Path, name: str, data: bytes) -> None:
+    """Write ``out/name`` (the folder's lock held) unless a file there is not the one this
+    sweep wrote (``ValueError``, the file kept).
+
+    The marker accepts the old and the new SHA-256 while the file is replaced, then only the
+    new one: a run killed at any moment leaves a file the marker still calls ours."""
+    marker = json.loads((out / MARKER).read_text())
+    if _foreign_output(out, marker, name):
+        raise ValueError(f"--out {out}: {name} changed during the run and is not the file this "
+                         "sweep wrote: it was kept; the points are stored, so move it away and "
+                         "run the command again")
+    current = [d for d in _recorded(marker, name) if is_ours(out, name, d)]
+    new = hashlib.sha256(data).hexdigest()
+    outputs = marker.setdefault("outputs", {})
+    outputs[name] = [*current, new]
+    write_json(out / MARKER, marker)
+    atomic_write_bytes(out / name, data)
+    outputs[name] = [new]
+    write_json(out / MARKER, marker)
 
 
 def run_sweep(
@@ -330,6 +407,7 @@ def run_sweep(
     protocol_text: str | None = None,
     connect_timeout: float = CONNECT_TIMEOUT,
     variables: Mapping[str, Any] | None = None,
+    outputs: Mapping[str, Callable[[Any], bytes]] | None = None,
 ) -> Any:
     """Run every grid point not already stored under ``out`` and return the Dataset.
 
@@ -364,12 +442,16 @@ def run_sweep(
         Seconds to wait for ``scheduler`` to answer, ``> 0``.
     variables : mapping, optional
         CF attributes of the runner's results (:func:`dryfriction.io.cf.describe`).
+    outputs : mapping, optional
+        Further files of the folder, ``{name: dataset -> bytes}`` (``phase_diagram.png``),
+        written after ``sweep.nc`` under the same rule: an existing one this sweep did not
+        write, or that was edited since, refuses the run before any point.
 
     Raises
     ------
     ValueError
-        Bad arguments, a folder that is not this sweep's, a locked folder, an unreachable
-        scheduler; all before any point runs.
+        Bad arguments, a folder that is not this sweep's, an edited output or stored point, a
+        locked folder, an unreachable scheduler; all before any point runs.
     SweepInterrupted
         On Ctrl-C, after the cluster is closed; the finished points are stored.
     """
@@ -391,17 +473,20 @@ def run_sweep(
               "protocol_hash": sweep_fingerprint(spec, analysis), "source": source or "",
               "protocol": protocol_text or _canonical(
                   {**spec.base, "sweep": {a.key: list(a.values) for a in spec.axes}}),
-              "shape": list(spec.shape)}
-    _check_folder(out, marker)
+              "shape": list(spec.shape), "outputs": {}}
+    names = tuple(outputs or {})
+    _check_folder(out, marker, names)
     if scheduler is not None:  # an unreachable scheduler is bad input: nothing written yet
         probe_scheduler(scheduler, connect_timeout)
-    lock = _claim_folder(out, marker)
+    lock = _claim_folder(out, marker, names)
     try:
         ds = _run_locked(spec, runner, out, keys, scheduler, n_workers, progress,
                          connect_timeout)
         describe(ds, variables, protocol=marker["protocol"], source=source or "",
                  analysis=analysis)
-        _write_netcdf(ds, out / "sweep.nc")
+        _write_output(out, "sweep.nc", _netcdf_bytes(ds))
+        for name, render in (outputs or {}).items():
+            _write_output(out, name, render(ds))
         return ds
     finally:
         os.close(lock)  # releases the flock
@@ -413,8 +498,9 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
     points_dir = out / "points"
     todo = []
     done = 0
-    for idx, ov in spec.points():
-        if _stored(points_dir / f"{keys[idx]}.json", keys[idx]):
+    for idx, ov in spec.points():  # every stored point checked before any worker starts
+        rec = _load_point(points_dir / f"{keys[idx]}.json", keys[idx])
+        if rec is not None and "result" in rec:  # a failed one is computed again
             done += 1
         else:
             todo.append((idx, ov))
@@ -445,7 +531,7 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
                     outcome = {"error": f"{type(exc).__name__}: {exc}"}
                 record = {"key": keys[idx], "version": RESULT_VERSION, "index": list(idx),
                           "overrides": ov, "protocol": spec.protocol(ov), **outcome}
-                write_json(points_dir / f"{keys[idx]}.json", record)
+                write_json(points_dir / f"{keys[idx]}.json", _seal(record))
                 if "result" in outcome:
                     done += 1
                 if progress:
@@ -473,12 +559,17 @@ def assemble(spec: SweepSpec, points_dir: Path, keys: Mapping[tuple[int, ...], s
     """Build the Dataset from the stored points (NaN and an error message where one failed).
 
     ``attrs``: ``n_failed`` (points with an error) and ``points_dir`` (where each failed
-    point's record holds its error and traceback).
+    point's record holds its error and traceback). Every record is checked against the hash
+    recorded in it (``ValueError`` for an edited one, ``FileNotFoundError`` for a missing one).
     """
     import xarray as xr
 
-    records = {idx: json.loads((points_dir / f"{key}.json").read_text())
-               for idx, key in keys.items()}
+    records = {}
+    for idx, key in keys.items():
+        rec = _load_point(points_dir / f"{key}.json", key)
+        if rec is None:
+            raise FileNotFoundError(f"{points_dir / key}.json: the point's record is missing")
+        records[idx] = rec
     names = sorted({k for r in records.values() for k in r.get("result", {})})
     dims = [a.key for a in spec.axes]
     data = {n: np.full(spec.shape, np.nan) for n in names}
