@@ -369,6 +369,22 @@ def test_an_edited_sweep_output_is_never_overwritten(sweep_copy, name):
     assert (out / name).read_bytes() != b"edited by hand" and computed() == 0
 
 
+def test_an_output_edited_during_the_run_is_kept(sweep_copy):
+    # the mistake: checking the outputs only before the run (the user may edit one meanwhile)
+    out, markers, _ = sweep_copy
+    outputs = {"a.png": lambda ds: b"a", "b.png": lambda ds: b"b"}
+    run_sweep(parse_sweep(_proto(markers)), sweep_runners.counting_runner, out, n_workers=1,
+              outputs=outputs)
+
+    def a_while_b_is_edited(ds):
+        (out / "b.png").write_bytes(b"edited during the run")
+        return b"a"
+    with pytest.raises(ValueError, match="b.png changed during the run .* it was kept"):
+        run_sweep(parse_sweep(_proto(markers)), sweep_runners.counting_runner, out,
+                  n_workers=1, outputs={"a.png": a_while_b_is_edited, "b.png": outputs["b.png"]})
+    assert (out / "b.png").read_bytes() == b"edited during the run"
+
+
 def test_a_kill_between_the_rename_and_the_marker_leaves_the_output_ours(sweep_copy,
                                                                          monkeypatch):
     # the mistake: recording the new hash only after the rename (a kill in between would
