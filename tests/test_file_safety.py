@@ -211,6 +211,23 @@ def test_a_dangling_symbolic_link_out_is_refused_before_any_work(tmp_path, monke
     assert sorted(os.listdir(tmp_path)) == ["dang"]
 
 
+def test_a_dangling_link_made_during_the_run_is_one_line_without_a_temporary(tmp_path,
+                                                                              monkeypatch):
+    out = tmp_path / "res"
+    real = os.rename
+
+    def rename(src, dst, *args, **kwargs):
+        if Path(dst) == out:  # someone makes a link to nothing there meanwhile
+            os.symlink(tmp_path / "nowhere", out)
+        return real(src, dst, *args, **kwargs)
+    monkeypatch.setattr(dio.os, "rename", rename)
+    with pytest.raises(ValueError) as info, output_directory(out) as d:
+        (d / "a.csv").write_text("x")
+    assert str(info.value).startswith(f"--out {out} appeared during the run and is not a folder")
+    assert "dftmp" not in str(info.value)
+    assert sorted(os.listdir(tmp_path)) == ["res"] and out.is_symlink()
+
+
 def test_an_empty_out_is_refused_not_the_working_folder(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     Path("mine.txt").write_text("mine")

@@ -558,9 +558,11 @@ def output_directory(out: str | os.PathLike[str], *, command: str = "results",
                 os.chmod(stage, 0o777 & ~_umask())  # as mkdir would, not 0o700
                 try:
                     os.rename(stage, out)  # never replaces: a folder made meanwhile stays
-                except OSError:
-                    if not out.is_dir():
-                        raise
+                except OSError as exc:
+                    if not out.is_dir():  # a file or a link to nothing made meanwhile
+                        raise ValueError(f"{option} {out} appeared during the run and is not "
+                                         f"a folder ({exc.strerror}); nothing was written "
+                                         "there") from None
                     (stage / MANIFEST).unlink()
                     _commit(stage, out, command, protected, force, say, option, hand_over)
                     shutil.rmtree(stage, ignore_errors=True)
