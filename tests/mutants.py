@@ -176,6 +176,23 @@ MUTANTS: tuple[Mutant, ...] = (
        "if not isinstance(m, dict) or m.get(\"format\") != MANIFEST_FORMAT:",
        "if not isinstance(m, dict):",
        "tests/test_io.py", "-k", "manifest"),
+    _m("manifest paths not confined to the folder", "io/files.py",
+       'return rel != MANIFEST and all(p not in ("", ".", "..") for p in rel.split("/"))',
+       "return rel != MANIFEST",
+       "tests/test_file_safety.py", "-k", "manifest_entry_outside"),
+    _m("backup name chosen first, then renamed onto (concurrent runs clobber)", "io/files.py",
+       "                    os.link(path, backup, follow_symlinks=False)\n"
+       "                    return backup",
+       "                    if os.path.lexists(backup):\n"
+       "                        raise FileExistsError(backup)\n"
+       "                    os.replace(path, backup)\n"
+       "                    return backup",
+       "tests/test_file_safety.py", "-k", "concurrent"),
+    _m("stored sweep point reused without checking its hash", "io/sweep.py",
+       'rec.get("key") == key and rec.get("sha256") == _digest(\n'
+       '            {k: v for k, v in rec.items() if k != "sha256"})):',
+       'rec.get("key") == key):',
+       "tests/test_file_safety.py", "-k", "edited_point"),
     _m("sweep point key leaves out the analysis", "io/sweep.py",
        "return _digest({\"format\": SWEEP_FORMAT, \"version\": RESULT_VERSION, "
        "\"analysis\": analysis,\n                    \"protocol\": protocol})[:32]",
