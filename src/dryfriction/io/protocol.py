@@ -543,9 +543,14 @@ def spring_point(protocol: Mapping[str, Any], source: str = "sweep point",
                          "trap model)")
     ens = dict(doc.get("ensemble", {}))
     drive_tab = doc.get("drive", {})
+    segs = drive_tab.get("segments") if isinstance(drive_tab, Mapping) else None
+    last = segs[-1] if isinstance(segs, list) and segs else None
+    pull = last.get("velocity") if isinstance(last, Mapping) else None
+    # only a number is followed: anything else (a sweep that set the segments to [1, 2] or a
+    # velocity to [0.1]) is left to protocol_from_dict, which names the key and the type
     if opts.get("follow_velocity", True) and ens.get("initial") == "steady" and \
-            isinstance(drive_tab, Mapping) and drive_tab.get("segments"):
-        ens["initial_velocity"] = float(drive_tab["segments"][-1]["velocity"])
+            isinstance(pull, (int, float)) and not isinstance(pull, bool):
+        ens["initial_velocity"] = float(pull)
         doc["ensemble"] = ens
     proto = protocol_from_dict(doc, source)
     if isinstance(proto, RSFProtocol):  # unreachable after the check above; kept for types

@@ -47,7 +47,13 @@ from ..validation import Array, check_scalar
 from .growth import unstable_start, warn_unstable
 from .law import RateState
 from .resources import check_rsf_run
-from .result import RSFResult, build_result, hermite
+from .result import (
+    RSFResult,
+    build_result,
+    force_balance_is_ill_conditioned,
+    hermite,
+    slip_by_quadrature,
+)
 from .spring import RSFInitial, RSFOutput, SpringSlider, check_spring
 from .stepper import INERTIAL, KINEMATIC, QUASISTATIC, integrate, param_vector, rhs_at
 
@@ -160,12 +166,21 @@ def simulate_rsf(
         v_fail = math.nan if mode == KINEMATIC else math.exp(min(float(y_fail[0]), 709.0))
         raise SolverError(_failure_message(status, mode, t_fail, y_fail, model, stiffness,
                                            damping, output.max_steps), float(t_fail), v_fail)
+    x = None
+    travel = float(prog.positions[-1] - prog.positions[0])
+    if mode != KINEMATIC and force_balance_is_ill_conditioned(model, stiffness, output.rtol,
+                                                              stress0, travel):
+        # a soft spring: the position from int V dt, not from the force balance
+        x = slip_by_quadrature(T, Y, F, prog.x0)
+        if te is not None:
+            v_steps = np.exp(Y[:, :1])
+            x = hermite(T, x[:, None], v_steps, te)[:, 0]
     if te is not None:
         Y, SEG = hermite(T, Y, F, te), np.asarray(prog.segment_index(te))
         T = te.copy()
     res = build_result(T, Y, SEG, prog, model, kinematic=mode == KINEMATIC,
                        inertial=mode == INERTIAL, stiffness=stiffness, damping=damping,
-                       mass=mass, rtol=output.rtol, stress0=stress0, stats=stats)
+                       mass=mass, rtol=output.rtol, stress0=stress0, stats=stats, x=x)
     if unstable is not None:
         res.meta["unstable_start"] = unstable
     return res

@@ -27,6 +27,10 @@ from ..program import Segment, VelocityProgram
 from ..validation import Array, check_range, check_scalar
 from .law import V_MAX, RateState
 
+V_MIN: float = 1e-30
+"""Slowest moving load point accepted, m/s (0 is a hold): it covers a picometre in the age of
+the universe; the trap model's velocities start at the same number (``U_MIN``, a0/t0)."""
+
 K_MAX: float = 1e15
 """Stiffest finite machine accepted, 1/m per unit normal force: a spring so stiff that its
 elastic slip ``mu/k`` is below a femtometre is the kinematic machine (``inf``), which is
@@ -104,10 +108,7 @@ class SpringSlider:
         object.__setattr__(self, "damping", eta)
         object.__setattr__(self, "mass", m)
         vel = self.program.velocities
-        for i, vl in enumerate(vel):
-            if abs(vl) > V_MAX:
-                raise ValueError(f"segments[{i}].velocity = {vl:g} m/s is out of range: "
-                                 f"allowed |velocity| <= {V_MAX:g} m/s")
+        self.program.check_speeds(V_MIN, V_MAX, "m/s")
         if not self.kinematic:
             for i, vl in enumerate(vel):
                 if vl < 0.0:
