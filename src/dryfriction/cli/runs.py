@@ -235,6 +235,10 @@ def simulate(
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out}")
+    late = result.info.get("snapshots_not_reached")
+    if late:
+        say(f"note: the run ended at t = {float(result.t[-1]):g} t0 (runaway), before the "
+            f"snapshot time(s) {', '.join(f'{s:g}' for s in late)}: not written")
     if result.partial:
         err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
         raise typer.Exit(130)

@@ -94,6 +94,7 @@ __all__ = [
     "COLUMNS",
     "simulate",
     "continue_spring",
+    "check_snapshots",
 ]
 
 Progress = Callable[[float], None]
@@ -462,6 +463,35 @@ def _count_slips(rec: Recorder, thr: float) -> int:
 # ---------------------------------------------------------------- the orchestrating call
 
 
+def check_snapshots(drive: Drive, output: Output, *, qualified: bool = False) -> None:
+    """Refuse a snapshot time after the run's end (it would be dropped silently).
+
+    The end is the program's total time (velocity and spring drives) or, for a force ramp,
+    the time it reaches ``max_force`` (a runaway ends it earlier: :func:`simulate` then lists
+    the snapshots not reached in ``info["snapshots_not_reached"]``).
+
+    Raises
+    ------
+    ValueError
+        Naming ``snapshots`` (``output.snapshots`` when ``qualified``) and the run's end.
+    """
+    if not output.snapshots:
+        return
+    if isinstance(drive, ForceDrive):
+        end = drive.hold + drive.max_force / drive.rate
+        what = "the force ramp reaches max_force"
+    else:
+        end = drive.program.total_time
+        what = "the drive's program ends"
+    last = output.snapshots[-1]
+    if last > end * (1.0 + 1e-12):
+        key = ("output." if qualified else "") + "snapshots"
+        raise ValueError(f"{key}: the time {last:g} t0 is after the run's end: {what} at "
+                         f"t = {end:g} t0; allowed 0 <= snapshot <= {end:g}")
+
+
+
+
 def simulate(
     model: TrapModel,
     track: Track,
@@ -508,6 +538,7 @@ def simulate(
     else:
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
+    check_snapshots(drive, output)
     check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
@@ -536,6 +567,12 @@ def simulate(
         info["partial"] = True
     if progress is not None:
         progress(1.0)
+    if isinstance(drive, ForceDrive) and not info["partial"]:
+        # a ramp ends at its runaway, which no check can place before the run: say which
+        # snapshots it did not reach rather than drop them silently
+        late = [s for s in output.snapshots if s > ens.t + 1e-12]
+        if late:
+            info["snapshots_not_reached"] = late
     res = rec.result(info)
     model_d = asdict(model)
     if model.direct == 0.0:  # the athermal model's record, as before the direct effect

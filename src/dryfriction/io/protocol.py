@@ -297,7 +297,7 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
                          f"{', '.join(LAWS)}")
     if law == "rsf":
         return _rsf_protocol(doc, source)
-    from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive
+    from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive, check_snapshots
     from ..ensemble.population import Initial, Track, TrapModel
     from ..ensemble.resources import check_run
 
@@ -366,7 +366,8 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         o.fail(f"{o.where('snapshots')} = {snaps!r} has the wrong type: a list of times (t0)")
     output = o.build(Output, every=o.number("every"), every_slip=o.number("every_slip"),
                      snapshots=tuple(float(s) for s in snaps))
-    try:  # the memory a run would hold, before any work
+    try:  # snapshots within the run, and the memory it would hold, before any work
+        check_snapshots(drive, output, qualified=True)
         check_run(model, track, initial, drive, output, qualified=True)
     except ValueError as exc:
         raise ValueError(f"{source}: {exc}") from None

@@ -25,11 +25,7 @@ import numpy as np
 
 from ..program import Segment, VelocityProgram
 from ..validation import Array, check_range, check_scalar
-from .law import V_MAX, RateState
-
-V_MIN: float = 1e-30
-"""Slowest moving load point accepted, m/s (0 is a hold): it covers a picometre in the age of
-the universe; the trap model's velocities start at the same number (``U_MIN``, a0/t0)."""
+from .law import V_MAX, V_MIN, RateState
 
 K_MAX: float = 1e15
 """Stiffest finite machine accepted, 1/m per unit normal force: a spring so stiff that its
