@@ -33,6 +33,9 @@ def is_project_csv(path: Path) -> bool:
     """Whether ``path`` is in the project's own CSV format (:mod:`dryfriction.io.data`): its
     first line that is not a comment or blank is a comma-separated header holding the columns
     of one data kind. Anything else is read as a laboratory record."""
+    from ..io.textfile import check_text_file
+
+    check_text_file(path)  # a compressed or UTF-16 file is named here, whatever it holds
     with open(path, encoding="utf-8", errors="replace") as fh:
         for line in fh:
             s = line.strip()

@@ -74,7 +74,15 @@ from ..validation import U_MAX, U_MIN, check_choice, check_scalar
 from .balance import add_events, equilibrate, events
 from .population import Ensemble, Initial, Track, TrapModel
 from .resources import check_run
-from .result import COLUMNS, Output, Recorder, SimulationResult, position_function, segment_grid
+from .result import (
+    COLUMNS,
+    Output,
+    Recorder,
+    SimulationResult,
+    check_snapshots,
+    position_function,
+    segment_grid,
+)
 from .thermal import (
     apply_strength,
     creep_substeps,
@@ -94,7 +102,6 @@ __all__ = [
     "COLUMNS",
     "simulate",
     "continue_spring",
-    "check_snapshots",
 ]
 
 Progress = Callable[[float], None]
@@ -461,35 +468,6 @@ def _count_slips(rec: Recorder, thr: float) -> int:
 
 
 # ---------------------------------------------------------------- the orchestrating call
-
-
-def check_snapshots(drive: Drive, output: Output, *, qualified: bool = False) -> None:
-    """Refuse a snapshot time after the run's end (it would be dropped silently).
-
-    The end is the program's total time (velocity and spring drives) or, for a force ramp,
-    the time it reaches ``max_force`` (a runaway ends it earlier: :func:`simulate` then lists
-    the snapshots not reached in ``info["snapshots_not_reached"]``).
-
-    Raises
-    ------
-    ValueError
-        Naming ``snapshots`` (``output.snapshots`` when ``qualified``) and the run's end.
-    """
-    if not output.snapshots:
-        return
-    if isinstance(drive, ForceDrive):
-        end = drive.hold + drive.max_force / drive.rate
-        what = "the force ramp reaches max_force"
-    else:
-        end = drive.program.total_time
-        what = "the drive's program ends"
-    last = output.snapshots[-1]
-    if last > end * (1.0 + 1e-12):
-        key = ("output." if qualified else "") + "snapshots"
-        raise ValueError(f"{key}: the time {last:g} t0 is after the run's end: {what} at "
-                         f"t = {end:g} t0; allowed 0 <= snapshot <= {end:g}")
-
-
 
 
 def simulate(

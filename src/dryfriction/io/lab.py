@@ -51,6 +51,7 @@ from .labsteps import (
     segments_table,
     slice_steps,
 )
+from .textfile import HEAD_BYTES, check_text
 
 __all__ = [
     "LabRecord",
@@ -371,6 +372,7 @@ def read_record(
     size = path.stat().st_size
     with open(path, "rb") as fh:
         chunk = fh.read(1 << 20)
+    check_text(chunk[:HEAD_BYTES], src)  # gzip, UTF-16: named, not read as Latin-1
     head = _decode(chunk).splitlines()
     if len(chunk) == 1 << 20 and len(head) > 1:
         head.pop()  # may be cut short

@@ -76,6 +76,7 @@ from ..rsf.law import RateState
 from ..rsf.resources import check_rsf_run
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 from ..validation import check_scalar
+from .textfile import HEAD_BYTES, check_text
 
 if TYPE_CHECKING:
     # the trap model's classes import the compiled ensemble kernel (Numba) and SciPy, and the
@@ -297,9 +298,10 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
                          f"{', '.join(LAWS)}")
     if law == "rsf":
         return _rsf_protocol(doc, source)
-    from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive, check_snapshots
+    from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive
     from ..ensemble.population import Initial, Track, TrapModel
     from ..ensemble.resources import check_run
+    from ..ensemble.result import check_snapshots
 
     unknown = sorted(set(doc) - set(_TABLES))
     if unknown:
@@ -448,7 +450,9 @@ def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol:
     """Read and validate a protocol file (TOML). Errors name the file and the key."""
     p = Path(path)
     try:
-        text = p.read_bytes().decode("utf-8")
+        raw = p.read_bytes()
+        check_text(raw[:HEAD_BYTES], str(p))  # gzip, UTF-16: named, not "malformed TOML"
+        text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise ValueError(f"{p}: malformed TOML: not UTF-8 text") from None
     except OSError as exc:
