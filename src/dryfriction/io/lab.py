@@ -60,6 +60,8 @@ __all__ = [
     "ROLES",
     "MIN_ROWS",
     "read_record",
+    "apparatus_note",
+    "FRICTION_MAX",
     "parse_column_map",
     "detect_segments",
     "parse_segments",
@@ -69,6 +71,16 @@ __all__ = [
 ]
 
 MIN_ROWS = 10
+FRICTION_MAX = 10.0
+"""Largest ``|friction|`` a record may hold (ours): measured coefficients lie between 0 and
+about 1.5 (adhesive contacts a few); a cell of 1e300 is a typo, and read as friction it
+overflowed the fit (``rms = inf``)."""
+APPARATUS_V_MAX = 1e-2
+"""Load velocity (m/s) above which a record is flagged as implausible for a friction
+apparatus (ours: rotary shear reaches ~1 m/s, but a velocity-step record of 0.2 m/s is far
+more often micrometres read as metres)."""
+APPARATUS_X_MAX = 1.0
+"""Load-point displacement span (m) above which a record is flagged likewise."""
 """Fewest data rows a record may have (fewer cannot show a transient)."""
 
 ROLES: dict[str, str] = {
@@ -340,6 +352,32 @@ def _assign(
     return idx, forced
 
 
+def apparatus_note(record: LabRecord, velocities: Array) -> str | None:
+    """One line when the record's numbers imply an implausible friction apparatus: load
+    velocities above :data:`APPARATUS_V_MAX` or a displacement span above
+    :data:`APPARATUS_X_MAX` (most often a column without a unit, micrometres read as metres);
+    it names the column and the ``--columns`` entry that gives its unit. ``None`` otherwise.
+
+    Parameters
+    ----------
+    record : LabRecord
+    velocities : array
+        The load program's velocities, m/s (detected or given).
+    """
+    v = float(np.max(np.abs(velocities))) if len(velocities) else 0.0
+    x = record.load_point
+    span = float(np.ptp(x)) if x is not None and len(x) else 0.0
+    if not (v > APPARATUS_V_MAX or span > APPARATUS_X_MAX):
+        return None
+    role = "disp" if x is not None else "velocity"
+    header, unit = record.columns.get(role, role), record.units.get(role, "")
+    said = f"its unit {unit!r}" if unit else "no unit: read as SI (m, m/s)"
+    fix = "um" if role == "disp" else "um/s"
+    return (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
+            f"displacement are odd for a friction apparatus; column {header!r} has {said}: "
+            f"if it is in micrometres, give --columns {role}={header}:{fix}")
+
+
 def read_record(
     path: str | os.PathLike[str], columns: Mapping[str, str] | None = None
 ) -> LabRecord:
@@ -458,6 +496,13 @@ def read_record(
             raise ValueError(f"{src}, line {line_of(int(zero[0]))}, column {j + 1} "
                              f"({names[j].strip()}): normal stress 0: friction is undefined")
         friction = vals["shear"] / vals["normal"]
+    far = np.flatnonzero(~(np.abs(friction) <= FRICTION_MAX))
+    if far.size:
+        i = int(far[0])
+        j = idx["mu" if "mu" in vals else "shear"]
+        raise ValueError(f"{src}, line {line_of(i)}, column {j + 1} ({names[j].strip()}): "
+                         f"friction {friction[i]:g} is out of range: allowed |friction| <= "
+                         f"{FRICTION_MAX:g} (a friction coefficient)")
     normal = vals.get("normal")
     normal_unit = "" if normal is None else ("N" if kinds["normal"] == "force" else "Pa")
     for a in (t, friction, normal, vals.get("disp"), vals.get("velocity")):
