@@ -70,6 +70,7 @@ from typing import Any
 import numpy as np
 
 from ..program import VelocityProgram
+from ..results import check_physical
 from ..validation import U_MAX, U_MIN, check_choice, check_scalar
 from .balance import add_events, equilibrate, events
 from .population import Ensemble, Initial, Track, TrapModel
@@ -552,6 +553,8 @@ def simulate(
         if late:
             info["snapshots_not_reached"] = late
     res = rec.result(info)
+    # the one bounds check of both laws (results.check_physical): finite, time forward
+    check_physical("trap-model run", res.t, res.x, res.v, res.mu, unit="a0")
     model_d = asdict(model)
     if model.direct == 0.0:  # the athermal model's record, as before the direct effect
         del model_d["direct"], model_d["v_ref"]
