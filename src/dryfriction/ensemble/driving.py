@@ -312,8 +312,9 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
         # before the force is applied, and the threshold would grow with every_slip (issue 24)
         ramp = drive.rate * (t1 - max(t_before, drive.hold))
         n_sub = max(1, math.ceil(ramp / RAMP_FORCE_STEP)) if ramp > 0.0 else 1
-        # every substep must move the clock (check_run's rounding limit for one sample)
-        n_sub = min(n_sub, max(1, int((t1 - t_before) / (1e-12 * max(1.0, t1)))))
+        # every substep must move the clock (check_run's rounding limit, at the substeps'
+        # start: the runaway comes within ~threshold/RAMP_FORCE_STEP of them, long before t1)
+        n_sub = min(n_sub, max(1, int((t1 - t_before) / (1e-12 * max(1.0, t_before)))))
         ev, jump_ev = (0, 0, 0), (0, 0, 0)
         j = 0
         while True:
