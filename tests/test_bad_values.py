@@ -171,6 +171,9 @@ transient = 1.0
     ('"drive.segments.0.velocity" = [[0.1], [0.2]]', ("drive.segments[0].velocity = [0.1]",
                                                      "wrong type")),
     ('"drive.segments.0" = [1, 2]', ("drive.segments[0] must be a table",)),
+    # found by the fuzz (tests/test_fuzz.py): a KeyError traceback
+    ('"drive.segments" = [[{velocity = 0.1, slip = 4.0}]]\n"drive.segments.0.velocity" = [0.05]',
+     ("keys 'drive.segments' and 'drive.segments.0.velocity' overlap",)),
 ])
 def test_a_sweep_value_of_the_wrong_type_is_one_line(line: str, words: tuple[str, ...],
                                                      tmp_path: Path,

@@ -187,6 +187,10 @@ def parse_sweep(protocol: Mapping[str, Any], source: str = "protocol") -> SweepS
                 f"{source}: [sweep] key {key!r} is not in the protocol (dotted keys name "
                 "existing entries, e.g. 'drive.stiffness' or 'drive.segments.0.velocity')"
             ) from None
+        for other in table:  # "drive.segments" and "drive.segments.0.velocity": which wins?
+            if other != key and str(key).startswith(f"{other}."):
+                raise ValueError(f"{source}: [sweep] keys {other!r} and {key!r} overlap: the "
+                                 "first replaces what the second sets; sweep one of them")
         try:
             axes.append(SweepAxis(key, _axis_values(key, spec)))
         except ValueError as exc:
