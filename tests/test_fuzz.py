@@ -127,7 +127,7 @@ def trap_protocols(draw: st.DrawFn) -> dict[str, Any]:
     output: dict[str, Any] = (
         {"every": 0.1} if draw(st.booleans()) else {"every_slip": 0.05})
     if draw(st.booleans()):
-        output["snapshots"] = [0.1]
+        output["snapshots"] = [0.02]  # within the shortest run (0.04 t0)
     return {"model": model, "ensemble": ens, "drive": drive, "output": output}
 
 

@@ -23,8 +23,8 @@ Integrators (ours)
   control) in the direction of the unbalanced force. The jump goes event by event: between two
   spinodals ``F(X)`` is continuous (entries and zero-force exits are continuous), so each stretch
   is checked at its end and the root found inside it (:mod:`.balance`). The force just before
-  each spinodal is the local peak, so the static threshold is exact up to the sampling of the
-  applied force in time. Under force control, a jump longer than the reach of every trap in
+  each spinodal is the local peak, so the static threshold is exact up to the steps of the
+  applied force, at most ``RAMP_FORCE_STEP`` whatever the sampling. Under force control, a jump longer than the reach of every trap in
   contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
   left, and the run stops there. A force hold sampled in slip is stepped on a geometric grid of
   the age (:func:`.result.force_hold_grid`): the threshold depends on the creep back meanwhile.
