@@ -23,11 +23,12 @@ Integrators (ours)
   control) in the direction of the unbalanced force. The jump goes event by event: between two
   spinodals ``F(X)`` is continuous (entries and zero-force exits are continuous), so each stretch
   is checked at its end and the root found inside it (:mod:`.balance`). The force just before
-  each spinodal is the local peak, so the static threshold is exact up to the steps of the
-  applied force, at most ``RAMP_FORCE_STEP`` whatever the sampling. Under force control, a jump longer than the reach of every trap in
-  contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
-  left, and the run stops there. A force hold sampled in slip is stepped on a geometric grid of
-  the age (:func:`.result.force_hold_grid`): the threshold depends on the creep back meanwhile.
+  each spinodal is the local peak, so the static threshold is exact up to the steps of the applied
+  force, at most ``RAMP_FORCE_STEP`` whatever the sampling. Under force control, a jump longer
+  than the reach of every trap in contact plus one full fresh population (``1 + max(1, y_c)``) is
+  a runaway: no equilibrium is left, and the run stops there. A force hold sampled in slip is
+  stepped on a geometric grid of the age (:func:`.result.force_hold_grid`): the threshold depends
+  on the creep back meanwhile.
 * **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
   ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
   from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
