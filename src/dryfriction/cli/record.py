@@ -44,7 +44,7 @@ def record_command(
 
     rec = read_record(path, parse_column_map(columns) if columns else None)
     segs = parse_segments(segments, rec) if segments else detect_segments(rec)
-    note = apparatus_note(rec, [s.velocity for s in segs])
+    note = apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
     if note:
         print(note, file=sys.stderr)
     try:

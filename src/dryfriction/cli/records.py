@@ -121,7 +121,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     check_choice("errors", errors, ERRORS)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     segs = lab.parse_segments(segments, rec) if segments else lab.detect_segments(rec)
-    note = lab.apparatus_note(rec, [s.velocity for s in segs])
+    note = lab.apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
     if note:  # before the fit: a record of micrometres read as metres fits for minutes
         say(note)
     wins = lab.slice_steps(rec, segs)

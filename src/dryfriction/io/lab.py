@@ -352,7 +352,8 @@ def _assign(
     return idx, forced
 
 
-def apparatus_note(record: LabRecord, velocities: Array) -> str | None:
+def apparatus_note(record: LabRecord, velocities: Array | list[float],
+                   given: bool = False) -> str | None:
     """One line when the record's numbers imply an implausible friction apparatus: load
     velocities above :data:`APPARATUS_V_MAX` or a displacement span above
     :data:`APPARATUS_X_MAX` (most often a column without a unit, micrometres read as metres);
@@ -362,7 +363,9 @@ def apparatus_note(record: LabRecord, velocities: Array) -> str | None:
     ----------
     record : LabRecord
     velocities : array
-        The load program's velocities, m/s (detected or given).
+        The load program's velocities, m/s.
+    given : bool
+        The program was given (``--segments``, in m/s) rather than detected.
     """
     v = float(np.max(np.abs(velocities))) if len(velocities) else 0.0
     x = record.load_point
@@ -371,11 +374,15 @@ def apparatus_note(record: LabRecord, velocities: Array) -> str | None:
         return None
     role = "disp" if x is not None else "velocity"
     header, unit = record.columns.get(role, role), record.units.get(role, "")
-    said = f"its unit {unit!r}" if unit else "no unit: read as SI (m, m/s)"
-    fix = "um" if role == "disp" else "um/s"
-    return (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
-            f"displacement are odd for a friction apparatus; column {header!r} has {said}: "
-            f"if it is in micrometres, give --columns {role}={header}:{fix}")
+    head = (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
+            "displacement are odd for a friction apparatus; ")
+    if not unit:
+        fix = "um" if role == "disp" else "um/s"
+        return (head + f"column {header!r} has no unit, so it is read as SI (m, m/s): if it "
+                f"is in micrometres, give --columns {role}={header}:{fix}")
+    if given and span <= APPARATUS_X_MAX:
+        return head + "--segments takes velocities in m/s (2e-7 for 0.2 um/s)"
+    return head + f"column {header!r} has the unit {unit!r}: is it right?"
 
 
 def read_record(
