@@ -185,3 +185,16 @@ def test_a_sweep_value_of_the_wrong_type_is_one_line(line: str, words: tuple[str
     code, _, err = run(capsys, "sweep", str(proto), "--out", str(tmp_path / "sw"))
     one_error_line(code, err, str(proto), *words)
     assert not (tmp_path / "sw").exists()
+
+
+def test_a_ramp_that_starts_above_its_safety_stop_is_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # found by the fuzz: the run stopped at its first sample and its figure failed with
+    # "zero-size array to reduction operation fmax"
+    proto = tmp_path / "p.toml"
+    proto.write_text('[model]\neps = 0.03\n[ensemble]\ntraps_per_a0 = 7\ninitial = "loaded"\n'
+                     'initial_force = 0.8\n[drive]\nkind = "force"\nrate = 1.3\nhold = 1.0\n'
+                     'max_force = 0.55\n[output]\nevery_slip = 0.05\n')
+    code, _, err = run(capsys, "simulate", str(proto), "--out", str(tmp_path / "out"))
+    one_error_line(code, err, "drive.max_force = 0.55", "ensemble.initial_force = 0.8")
+    assert not (tmp_path / "out").exists()

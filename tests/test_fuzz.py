@@ -117,7 +117,7 @@ def trap_protocols(draw: st.DrawFn) -> dict[str, Any]:
         drive["rate"] = draw(st.sampled_from([1.0, 10.0]))
         if draw(st.booleans()):
             drive["hold"] = draw(st.sampled_from([0.0, 1.0]))
-        drive["max_force"] = draw(st.sampled_from([0.5, 2.0]))
+        drive["max_force"] = draw(st.sampled_from([1.0, 2.0]))  # above any initial_force
     else:
         drive["stiffness"] = draw(st.sampled_from([1.0, 10.0]))
         drive["mass"] = draw(st.sampled_from([0.0, 0.1]))

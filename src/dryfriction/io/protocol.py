@@ -359,6 +359,12 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         drive = d.build(SpringDrive, stiffness=d.number("stiffness"), mass=d.number("mass"),
                         damping=d.number("damping", 0.0), program=_segments(d))
 
+    if kind == "force" and initial.kind == "loaded" and \
+            drive.max_force <= float(initial.force or 0.0):
+        # the ramp would stop at its first sample, before any ramp (found by the fuzz: the
+        # figure of such a run failed with a NumPy error)
+        d.fail(f"drive.max_force = {drive.max_force:g} is out of range: allowed more than "
+               f"ensemble.initial_force = {initial.force:g} F_el, where the ramp starts")
     o = _Table(source, "output", doc["output"])
     o.allow(("every", "every_slip", "snapshots"))
     snaps = o.data.get("snapshots", [])
