@@ -195,8 +195,9 @@ def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None) ->
     ``(stress0 - min stress)/k``, and it equals ``int V dt`` (``slip_integral``, from the
     solver's steps); the tolerance is 100 times the solver's error in position (ours: ``rtol``
     of the path, whatever the spring)."""
-    if math.isinf(res.stiffness):
-        return  # the kinematic machine: x is the load point's, exactly
+    if math.isinf(res.stiffness):  # the kinematic machine: x is the load point's, exactly
+        check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m")
+        return
     path = float(np.sum(np.abs(np.diff(res.x))))
     tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc)
     give_back = (float(res.stress[0]) - float(np.min(res.stress))) / res.stiffness
