@@ -127,8 +127,11 @@ def test_a_ramp_beyond_the_checked_ages_is_refused(drive, key: str) -> None:
     assert "allowed" in str(exc.value)
 
 
-def test_a_ramp_at_the_edge_of_the_checked_ages_runs() -> None:
-    # hold 1e14 t0 then a ramp of 1e-6 F_el/t0: threshold above the one after 1e10 t0
+def test_ramps_run_up_to_the_checked_ages_and_are_refused_past_them() -> None:
+    # hold 1e14 t0 then a ramp of 1e-6 F_el/t0: threshold above the one after 1e10 t0; past
+    # 1e15 t0 the threshold fell with the hold (3.02 after 1e16 against 3.23 after 3e15)
+    with pytest.raises(ValueError, match="allowed rate >= 1.01e-14"):
+        ForceDrive(rate=1e-14, hold=1e2)
     long = simulate(MODEL, Track(100.0), Initial("rest"), ForceDrive(rate=1e-6, hold=1e14),
                     Output(every_slip=0.5))
     short = simulate(MODEL, Track(100.0), Initial("rest"), ForceDrive(rate=1e-6, hold=1e10),
