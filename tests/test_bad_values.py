@@ -198,3 +198,22 @@ def test_a_ramp_that_starts_above_its_safety_stop_is_refused(
     code, _, err = run(capsys, "simulate", str(proto), "--out", str(tmp_path / "out"))
     one_error_line(code, err, "drive.max_force = 0.55", "ensemble.initial_force = 0.8")
     assert not (tmp_path / "out").exists()
+
+
+def test_a_memory_refusal_inside_a_fit_names_the_fits_own_option(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # was: the simulator's hint, "raise every_slip ... lower traps_per_a0", keys fit does not
+    # have, in fit.json's notes
+    from dryfriction.fit.cvseries import cv_series
+    from dryfriction.io.data import SeriesData
+
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "1MiB")
+    t = np.linspace(0.0, 37.0, 60)
+    data = SeriesData(t, np.where(t < 20.0, 1.3e-6, 1.1e-5), np.full(t.size, 0.61),
+                      source="s.csv")
+    with pytest.raises(ValueError) as exc:
+        cv_series({"eps": 0.03, "t0": 0.7, "a0": 2.1e-6, "mu_el": 0.5}, data,
+                  traps_per_a0=3e4)
+    msg = str(exc.value)
+    assert msg.startswith("s.csv: a trap-model run") and "--traps-per-a0" in msg
+    assert "every_slip" not in msg and "traps_per_a0 " not in msg
