@@ -87,8 +87,12 @@ def test_check_physical_names_each_bound() -> None:
     with pytest.raises(ImpossibleResultError, match="not the integral of the velocity"):
         check_physical("run", t, np.array([0.0, 1.0, 2.0]), v, mu, unit="m",
                        slip_integral=2e-6, tol=1e-9)
+    with pytest.raises(ImpossibleResultError, match="friction -0.01 at t = 1 is below the "
+                                                    "model's bound 0"):
+        check_physical("run", t, np.zeros(3), v, np.array([0.6, -0.01, 0.6]), unit="m",
+                       mu_min=0.0)
     check_physical("run", t, np.array([0.0, 1.0, 2.0]), v, mu, unit="m", forward=True,
-                   slip_max=2.0, slip_integral=2.0)
+                   slip_max=2.0, slip_integral=2.0, mu_min=0.0)
 
 
 # ----------------------------------------------------------------- the static threshold

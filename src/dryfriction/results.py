@@ -122,7 +122,8 @@ class ImpossibleResultError(ValueError):
 
 def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: ArrayLike, *,
                    unit: str, forward: bool = False, tol: float = 0.0,
-                   slip_max: float | None = None, slip_integral: float | None = None) -> None:
+                   slip_max: float | None = None, slip_integral: float | None = None,
+                   mu_min: float | None = None) -> None:
     """Refuse a time series that breaks the bounds every run of either law obeys (issue 24).
 
     The one check of both simulators (:func:`dryfriction.ensemble.driving.simulate`,
@@ -135,7 +136,9 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
     * ``slip_max``: the slip is at most the load-point travel plus what the spring's stretch
       can give back (the caller's bound), within ``tol``;
     * ``slip_integral``: the slip equals the integral of the velocity (a second route to it),
-      within ``tol``.
+      within ``tol``;
+    * ``mu_min``: the friction never falls below the model's bound (0 for the regularised
+      rate-and-state law, ``a asinh(...)`` of a positive velocity).
 
     Parameters
     ----------
@@ -153,6 +156,8 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
         Largest slip the drive allows, in ``unit``.
     slip_integral : float, optional
         ``int V dt`` over the run, in ``unit``, computed independently of ``x``.
+    mu_min : float, optional
+        Smallest friction the model can give.
 
     Raises
     ------
@@ -180,6 +185,9 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
             i = int(np.argmin(back))
             fail(f"the slider moved backwards by {-back[i]:.3g} {unit} (at t = {t[i]:g}) though "
                  "its velocity is positive throughout")
+    if mu_min is not None and np.any(mu < mu_min):
+        i = int(np.nanargmin(mu))
+        fail(f"friction {mu[i]:.6g} at t = {t[i]:g} is below the model's bound {mu_min:g}")
     slip = float(x[-1] - x[0])
     if slip_max is not None and slip > slip_max + tol:
         fail(f"slip {slip:.6g} {unit} is more than the load-point travel plus the spring's "

@@ -202,7 +202,8 @@ def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None) ->
     tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc)
     give_back = (float(res.stress[0]) - float(np.min(res.stress))) / res.stiffness
     check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m", forward=True,
-                   tol=tol, slip_max=travel + give_back, slip_integral=slip_integral)
+                   tol=tol, slip_max=travel + give_back, slip_integral=slip_integral,
+                   mu_min=0.0 if res.params.regularized else None)
 
 
 def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]
