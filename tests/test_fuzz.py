@@ -117,7 +117,7 @@ def trap_protocols(draw: st.DrawFn) -> dict[str, Any]:
         drive["rate"] = draw(st.sampled_from([1.0, 10.0]))
         if draw(st.booleans()):
             drive["hold"] = draw(st.sampled_from([0.0, 1.0]))
-        drive["max_force"] = draw(st.sampled_from([0.5, 2.0]))
+        drive["max_force"] = draw(st.sampled_from([1.0, 2.0]))  # above any initial_force
     else:
         drive["stiffness"] = draw(st.sampled_from([1.0, 10.0]))
         drive["mass"] = draw(st.sampled_from([0.0, 0.1]))
@@ -127,7 +127,7 @@ def trap_protocols(draw: st.DrawFn) -> dict[str, Any]:
     output: dict[str, Any] = (
         {"every": 0.1} if draw(st.booleans()) else {"every_slip": 0.05})
     if draw(st.booleans()):
-        output["snapshots"] = [0.1]
+        output["snapshots"] = [0.02]  # within the shortest run (0.04 t0)
     return {"model": model, "ensemble": ens, "drive": drive, "output": output}
 
 
@@ -383,3 +383,147 @@ def test_huge_run_sizes_are_refused_in_one_line_or_completed(
         _check_outcome(code, err, out_dir)
 
     check()
+
+
+# ------------------------------------------------------------------- sweep tables (issue 24)
+SWEEP_KEYS = ["drive.stiffness", "drive.segments.0.velocity", "model.eps",
+              "ensemble.traps_per_a0", "stickslip.transient", "drive.segments",
+              "drive.segments.0", "model.bogus", "drive.segments.3.velocity", "output"]
+SWEEP_ATOMS: list[Any] = [0.05, 0.1, 1.0, 0, -1, math.nan, math.inf, 1e308, 1e-308, "a", "",
+                          True, False, [0.1], {"a": 1}, [], 3, 10**15]
+
+
+@st.composite
+def sweep_tables(draw: st.DrawFn) -> dict[str, Any]:
+    """A [sweep] table of 1-2 keys, each a list of values, a {lin|log = [a, b, n]} range (its
+    items of any type) or something else (a scalar, a two-key table, an empty list)."""
+    table: dict[str, Any] = {}
+    if draw(st.booleans()):  # a valid table, so that both outcomes are seen
+        table["drive.stiffness"] = draw(st.sampled_from([[0.03, 0.05], {"lin": [0.02, 0.06, 2]},
+                                                         {"log": [0.02, 0.2, 3]}]))
+        if draw(st.booleans()):
+            table["drive.segments.0.velocity"] = [0.07, 0.2]
+        return table
+    for key in draw(st.lists(st.sampled_from(SWEEP_KEYS), min_size=1, max_size=2, unique=True)):
+        form = draw(st.sampled_from(["list", "list", "range", "range", "other"]))
+        if form == "list":
+            table[key] = draw(st.lists(st.sampled_from(SWEEP_ATOMS), min_size=0, max_size=3))
+        elif form == "range":
+            kind = draw(st.sampled_from(["lin", "log"]))
+            args = [draw(st.sampled_from([0.02, 0.2, 0, -1, "a", True, math.nan])),
+                    draw(st.sampled_from([0.08, 2.0, "b", math.inf, None])),
+                    draw(st.sampled_from([2, 3, 0, -1, True, 2.5, "n", 10**12]))]
+            table[key] = {kind: [a for a in args if a is not None]}
+        else:
+            table[key] = draw(st.sampled_from([1.0, "x", {"lin": [1, 2, 3], "log": [1, 2, 3]},
+                                               {"geom": [1, 2, 3]}, []]))
+    return table
+
+
+SWEEP_DOC = {
+    "model": {"alpha": 0.13, "eps": 0.04},
+    "ensemble": {"traps_per_a0": 20, "initial": "steady", "initial_velocity": 0.1},
+    "drive": {"kind": "spring", "stiffness": 0.05, "mass": 0.0,
+              "segments": [{"velocity": 0.1, "slip": 4.0}]},
+    "output": {"every_slip": 0.05},
+    "stickslip": {"transient": 1.0},
+}
+
+
+class _Accepted(Exception):
+    """The grid passed every check made before a worker starts (running it is
+    tests/test_sweep.py's job: a cluster per example would take minutes)."""
+
+
+def test_sweep_tables_either_pass_the_checks_or_give_one_error_line(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str],
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    import dryfriction.cli.sweeps as sweeps_cli
+
+    def accepted(*args: Any, **kwargs: Any) -> None:
+        raise _Accepted
+
+    monkeypatch.setattr(sweeps_cli, "_run_with_bar", accepted)
+    counter = [0]
+    outcomes: set[str] = set()
+
+    @FUZZ
+    @given(table=sweep_tables())
+    def check(table: dict[str, Any]) -> None:
+        counter[0] += 1
+        case = tmp_path / f"sweep{counter[0]}"
+        case.mkdir()
+        proto = case / "s.toml"
+        # dotted keys quoted: bare, TOML would read them as nested tables
+        proto.write_text(to_toml(SWEEP_DOC) + "[sweep]\n" + "".join(
+            f'"{k}" = {_value(v)}\n' for k, v in table.items()))
+        capsys.readouterr()
+        try:
+            code = main(["sweep", str(proto), "--out", str(case / "out")])
+        except _Accepted:
+            outcomes.add("accepted")
+            return
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert code == 2, f"{table}: exit {code}, stderr: {err}"
+        assert len(lines) == 1 and lines[0].startswith("error:"), f"{table}: {err}"
+        assert not (case / "out").exists()
+        outcomes.add("refused")
+
+    check()
+    assert outcomes == {"accepted", "refused"}
+
+
+# -------------------------------------------------------------- --segments strings (issue 24)
+SEG_STARTS = ["0", "0", "10", "120", "239", "240", "-1", "1e300", "nan", "x", ""]
+SEG_VELOCITIES = ["0", "2e-7", "3e-6", "-2e-7", "1e300", "1e-300", "1e3", "nan", "inf", "abc",
+                  ""]
+
+
+@st.composite
+def segment_strings(draw: st.DrawFn) -> str:
+    """A --segments value: start:velocity items (well or badly formed), comma-separated."""
+    if draw(st.booleans()):  # well formed, increasing starts from 0: only the velocities vary
+        starts = ["0", *sorted(draw(st.sets(st.sampled_from(["10", "120", "239"]), max_size=2)),
+                               key=float)]
+        return ",".join(f"{s}:{draw(st.sampled_from(SEG_VELOCITIES))}" for s in starts)
+    items = []
+    for _ in range(draw(st.integers(1, 4))):
+        s, v = draw(st.sampled_from(SEG_STARTS)), draw(st.sampled_from(SEG_VELOCITIES))
+        items.append(draw(st.sampled_from([f"{s}:{v}", f"{s}:{v}", f"{s}{v}", f"{s}:{v}:1"])))
+    return draw(st.sampled_from([",", ", ", ",,"])).join(items)
+
+
+def test_segments_strings_either_read_or_give_one_error_line(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # record and fit share parse_segments: record (read-only, fast) stands for both
+    import numpy as np
+
+    t = np.linspace(0.0, 240.0, 300)
+    x = np.concatenate(([0.0], np.cumsum(np.diff(t) * np.where(t[1:] < 120.0, 0.37, 3.1))))
+    rec = tmp_path / "r.txt"
+    rec.write_text("Time(s)\tDispl(microns)\tFriction\n" + "".join(
+        f"{a:.4f}\t{b:.5f}\t0.61\n" for a, b in zip(t, x, strict=True)))
+    codes: set[int] = set()
+
+    @settings(FUZZ, max_examples=3 * FUZZ.max_examples)
+    @given(segments=segment_strings())
+    def check(segments: str) -> None:
+        capsys.readouterr()
+        code = main(["record", str(rec), "--segments", segments, "--json"])
+        out, err = capsys.readouterr()
+        codes.add(code)
+        if code == 0:
+            # nothing on standard error but the one-line apparatus note (1e3 m/s is allowed)
+            assert all(ln.startswith("note:") for ln in err.strip().splitlines()), err
+            # a program record accepts is one fit accepts: holds or 1e-30 .. 1e3 m/s
+            for seg in json.loads(out)["segments"]:
+                v = seg["velocity"]
+                assert v == 0.0 or 1e-30 <= v <= 1e3, f"{segments!r}: velocity {v}"
+        else:
+            lines = err.strip().splitlines()
+            assert code == 2, f"{segments!r}: exit {code}, stderr: {err}"
+            assert len(lines) == 1 and lines[0].startswith("error:"), f"{segments!r}: {err}"
+
+    check()
+    assert codes == {0, 2}

@@ -155,8 +155,11 @@ def test_unreadable_file(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="cannot read"):
         load_protocol(tmp_path / "nope.toml")
     bad = tmp_path / "bin.toml"
-    bad.write_bytes(b"\xff\xfe\x00")
+    bad.write_bytes(b"a = \x80\x81")
     with pytest.raises(ValueError, match="bin.toml: malformed TOML"):
+        load_protocol(bad)
+    bad.write_bytes(b"\xff\xfe\x00")  # a UTF-16 byte-order mark: said as such (issue 24)
+    with pytest.raises(ValueError, match="bin.toml is UTF-16 text: save it as UTF-8"):
         load_protocol(bad)
 
 
@@ -180,7 +183,8 @@ def test_protocol_from_dict_matches_text() -> None:
         (lambda: dict(drive=VelocityDrive(VelocityProgram([Segment(1.0, slip=1e300)]))),
          "every_slip = 0.01"),
         (lambda: dict(drive=ForceDrive(rate=1e-6), output=Output(every=1e-3)), "every = 0.001"),
-        (lambda: dict(output=Output(every_slip=0.01, snapshots=tuple(np.arange(1, 5001) * 1e-3)),
+        # within the run's 1 t0 (snapshots after its end are refused since issue 24)
+        (lambda: dict(output=Output(every_slip=0.01, snapshots=tuple(np.arange(1, 5001) * 2e-4)),
                       track=Track(1e5)), "snapshots"),
     ],
 )

@@ -130,6 +130,25 @@ class VelocityProgram:
     def total_time(self) -> float:
         return float(self.times[-1])
 
+    def check_speeds(self, lo: float, hi: float, unit: str) -> None:
+        """Refuse a moving segment slower than ``lo`` or faster than ``hi`` (in ``unit``).
+
+        A hold is velocity 0 exactly; a velocity of ``1e-300`` is no hold but below what the
+        drivers resolve (the theory's velocities start at ``U_MIN``), so it is refused rather
+        than run as a number that means nothing.
+
+        Raises
+        ------
+        ValueError
+            Naming ``segments[i].velocity`` and the allowed range.
+        """
+        for i, seg in enumerate(self.segments):
+            speed = abs(seg.velocity)
+            if speed != 0.0 and not lo <= speed <= hi:
+                raise ValueError(f"segments[{i}].velocity = {seg.velocity:g} {unit} is out of "
+                                 f"range: allowed 0 (a hold) or {lo:g} <= |velocity| <= "
+                                 f"{hi:g} {unit}")
+
     def segment_index(self, t: NDArray[np.float64]) -> NDArray[np.intp]:
         """Index of the segment that holds each time ``t`` (right-continuous at boundaries;
         times outside the program clip to the first or last segment)."""

@@ -44,8 +44,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["COMMON_COLUMNS", "COMMON_SUMMARY_KEYS", "dataset_records", "records", "records_dict",
-           "summarize", "to_dataframe"]
+__all__ = ["COMMON_COLUMNS", "COMMON_SUMMARY_KEYS", "ImpossibleResultError", "check_physical",
+           "dataset_records", "records", "records_dict", "summarize", "to_dataframe"]
 
 COMMON_COLUMNS: tuple[str, ...] = ("t", "x", "v", "mu")
 
@@ -112,6 +112,89 @@ def summarize(
             raise ValueError(f"summary key {key!r} is common to every result: rename the extra")
         out[key] = value
     return out
+
+
+class ImpossibleResultError(ValueError):
+    """A run's result is outside what its physics allows (:func:`check_physical`): a numerical
+    failure, never handed back as a result. A ``ValueError``, so the command line says it in
+    one line (exit code 2) and a fit treats it as a failed evaluation."""
+
+
+def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: ArrayLike, *,
+                   unit: str, forward: bool = False, tol: float = 0.0,
+                   slip_max: float | None = None, slip_integral: float | None = None,
+                   mu_min: float | None = None) -> None:
+    """Refuse a time series that breaks the bounds every run of either law obeys (issue 24).
+
+    The one check of both simulators (:func:`dryfriction.ensemble.driving.simulate`,
+    :func:`dryfriction.rsf.driving.simulate_rsf`), so every command that runs one (``rsf``,
+    ``simulate``, ``compare``, the fits' forward runs, sweeps) passes it before exit 0:
+
+    * time and position finite, time non-decreasing; velocity and friction never infinite;
+    * ``forward``: a slider whose velocity is positive by construction (the rate-and-state
+      spring integrates ``ln V``) never moves backwards by more than ``tol``;
+    * ``slip_max``: the slip is at most the load-point travel plus what the spring's stretch
+      can give back (the caller's bound), within ``tol``;
+    * ``slip_integral``: the slip equals the integral of the velocity (a second route to it),
+      within ``tol``;
+    * ``mu_min``: the friction never falls below the model's bound (0 for the regularised
+      rate-and-state law, ``a asinh(...)`` of a positive velocity).
+
+    Parameters
+    ----------
+    what : str
+        The run, for the message.
+    t, x, v, mu : array_like
+        The common columns.
+    unit : str
+        Unit of ``x`` (``m`` or ``a0``).
+    forward : bool
+        The slider's velocity is positive throughout.
+    tol : float
+        Absolute tolerance on positions, in ``unit``: the integration's error bound.
+    slip_max : float, optional
+        Largest slip the drive allows, in ``unit``.
+    slip_integral : float, optional
+        ``int V dt`` over the run, in ``unit``, computed independently of ``x``.
+    mu_min : float, optional
+        Smallest friction the model can give.
+
+    Raises
+    ------
+    ImpossibleResultError
+        One line naming the bound, the value and where it was broken.
+    """
+    t, x, v, mu = (np.asarray(a, float) for a in (t, x, v, mu))
+
+    def fail(msg: str) -> None:
+        raise ImpossibleResultError(f"{what}: impossible result, {msg}: a numerical failure "
+                                    "of these inputs (please report it)")
+
+    for name, arr, nan_ok in (("t", t, False), ("x", x, False), ("v", v, True),
+                              ("mu", mu, True)):
+        bad = np.isinf(arr) if nan_ok else ~np.isfinite(arr)
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            fail(f"{name} = {arr[i]:g} at sample {i}")
+    if t.size > 1 and np.any(np.diff(t) < 0.0):
+        i = int(np.argmax(np.diff(t) < 0.0)) + 1
+        fail(f"time runs backwards at sample {i} (t = {t[i]:g})")
+    if forward and x.size > 1:
+        back = x - np.maximum.accumulate(x)
+        if np.any(back < -tol):
+            i = int(np.argmin(back))
+            fail(f"the slider moved backwards by {-back[i]:.3g} {unit} (at t = {t[i]:g}) though "
+                 "its velocity is positive throughout")
+    if mu_min is not None and np.any(mu < mu_min):
+        i = int(np.nanargmin(mu))
+        fail(f"friction {mu[i]:.6g} at t = {t[i]:g} is below the model's bound {mu_min:g}")
+    slip = float(x[-1] - x[0])
+    if slip_max is not None and slip > slip_max + tol:
+        fail(f"slip {slip:.6g} {unit} is more than the load-point travel plus the spring's "
+             f"stretch, {slip_max:.6g} {unit}")
+    if slip_integral is not None and not abs(slip - slip_integral) <= tol:
+        fail(f"slip {slip:.6g} {unit} is not the integral of the velocity, "
+             f"{slip_integral:.6g} {unit}")
 
 
 def records(columns: Mapping[str, ArrayLike] | Sequence[Mapping[str, Any]]) -> np.ndarray:

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -32,6 +33,7 @@ def record_command(
     """Show how a laboratory record is read: its columns and units, the load program (detected
     from the load-point displacement, or --segments) and the steps it is cut into."""
     from ..io.lab import (
+        apparatus_note,
         detect_segments,
         parse_column_map,
         parse_segments,
@@ -42,6 +44,9 @@ def record_command(
 
     rec = read_record(path, parse_column_map(columns) if columns else None)
     segs = parse_segments(segments, rec) if segments else detect_segments(rec)
+    note = apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
+    if note:
+        print(note, file=sys.stderr)
     try:
         steps = slice_steps(rec, segs)
         no_steps = ""
@@ -61,6 +66,8 @@ def record_command(
     }
     if no_steps:
         report["no_steps"] = no_steps
+    if note:
+        report["apparatus_note"] = note.removeprefix("note: ")
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
         return

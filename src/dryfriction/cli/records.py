@@ -33,6 +33,9 @@ def is_project_csv(path: Path) -> bool:
     """Whether ``path`` is in the project's own CSV format (:mod:`dryfriction.io.data`): its
     first line that is not a comment or blank is a comma-separated header holding the columns
     of one data kind. Anything else is read as a laboratory record."""
+    from ..io.textfile import check_text_file
+
+    check_text_file(path)  # a compressed or UTF-16 file is named here, whatever it holds
     with open(path, encoding="utf-8", errors="replace") as fh:
         for line in fh:
             s = line.strip()
@@ -118,6 +121,9 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     check_choice("errors", errors, ERRORS)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     segs = lab.parse_segments(segments, rec) if segments else lab.detect_segments(rec)
+    note = lab.apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
+    if note:  # before the fit: a record of micrometres read as metres fits for minutes
+        say(note)
     wins = lab.slice_steps(rec, segs)
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
@@ -141,6 +147,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                                                           "profile": profile,
                                                           "errors": errors},
                               **res.to_dict()}
+    if note:
+        report["apparatus_note"] = note.removeprefix("note: ")
     cv_results: dict[int, Any] = {}  # step -> the trap model's fit (--run-cv), for the figures
     if run_cv:
         comp: list[dict[str, Any]] = []

@@ -107,7 +107,7 @@ def rsf(
     fmt, dpi = check_figure_format(fmt, dpi)
     if t2 is None:
         t2 = _reload_time(a, b, dc, v1, hold, stiffness) if case == "shs" else 30.0
-    from ..rsf.law import V_MAX
+    from ..rsf.law import V_MAX, V_MIN
 
     # durations and velocities a run can reach in floating point (a 1e308 s first segment
     # would leave the later ones at t = inf, silently dropped)
@@ -115,6 +115,9 @@ def rsf(
         check_scalar(name, value, 0.0, LOAD_MAX, lo_open=True)
     for name, value in (("--v1", v1), ("--v2", v2)):
         check_scalar(name, value, -V_MAX, V_MAX)
+        if value != 0.0 and abs(value) < V_MIN:  # named as typed, not as segments[0]
+            raise ValueError(f"{name} {value:g} is out of range: allowed 0 (a hold) or "
+                             f"{V_MIN:g} <= |{name[2:]}| <= {V_MAX:g} m/s")
     if v_init is not None:
         check_scalar("--v-init", v_init, 0.0, V_MAX, lo_open=True)
     check_scalar("--damping", damping, 0.0, LOAD_MAX)
@@ -235,6 +238,10 @@ def simulate(
             write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out}")
+    late = result.info.get("snapshots_not_reached")
+    if late:
+        say(f"note: the run ended at t = {float(result.t[-1]):g} t0 (runaway), before the "
+            f"snapshot time(s) {', '.join(f'{s:g}' for s in late)}: not written")
     if result.partial:
         err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
         raise typer.Exit(130)

@@ -31,12 +31,15 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
     from ..io.files import check_writable_dir
     from ..io.protocol import spring_point
     from ..io.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
+    from ..io.textfile import HEAD_BYTES, check_text
     from ..validation import require_extra
 
     require_extra("sweep", SWEEP_MODULES, "a sweep")  # before any work, like bad input
     path = Path(protocol)
     try:
-        text = path.read_bytes().decode("utf-8")
+        raw = path.read_bytes()
+        check_text(raw[:HEAD_BYTES], str(path))
+        text = raw.decode("utf-8")
         doc = tomllib.loads(text)
     except OSError as exc:
         raise ValueError(f"{path}: cannot read the protocol: {exc.strerror}") from None

@@ -23,11 +23,12 @@ Integrators (ours)
   control) in the direction of the unbalanced force. The jump goes event by event: between two
   spinodals ``F(X)`` is continuous (entries and zero-force exits are continuous), so each stretch
   is checked at its end and the root found inside it (:mod:`.balance`). The force just before
-  each spinodal is the local peak, so the static threshold is exact up to the sampling of the
-  applied force in time. Under force control, a jump longer than the reach of every trap in
-  contact plus one full fresh population (``1 + max(1, y_c)``) is a runaway: no equilibrium is
-  left, and the run stops there. A force hold sampled in slip is stepped on a geometric grid of
-  the age (:func:`.result.force_hold_grid`): the threshold depends on the creep back meanwhile.
+  each spinodal is the local peak, so the static threshold is exact up to the steps of the applied
+  force, at most ``RAMP_FORCE_STEP`` whatever the sampling. Under force control, a jump longer
+  than the reach of every trap in contact plus one full fresh population (``1 + max(1, y_c)``) is
+  a runaway: no equilibrium is left, and the run stops there. A force hold sampled in slip is
+  stepped on a geometric grid of the age (:func:`.result.force_hold_grid`): the threshold depends
+  on the creep back meanwhile.
 * **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
   ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
   from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
@@ -70,11 +71,20 @@ from typing import Any
 import numpy as np
 
 from ..program import VelocityProgram
-from ..validation import check_choice, check_scalar
+from ..results import check_physical
+from ..validation import U_MAX, U_MIN, check_choice, check_scalar
 from .balance import add_events, equilibrate, events
 from .population import Ensemble, Initial, Track, TrapModel
 from .resources import check_run
-from .result import COLUMNS, Output, Recorder, SimulationResult, position_function, segment_grid
+from .result import (
+    COLUMNS,
+    Output,
+    Recorder,
+    SimulationResult,
+    check_snapshots,
+    position_function,
+    segment_grid,
+)
 from .thermal import (
     apply_strength,
     creep_substeps,
@@ -108,6 +118,7 @@ class VelocityDrive:
     def __post_init__(self) -> None:
         if not isinstance(self.program, VelocityProgram):
             object.__setattr__(self, "program", VelocityProgram(self.program))
+        self.program.check_speeds(U_MIN, U_MAX, "a0/t0")
 
 
 @dataclass(frozen=True)
@@ -135,6 +146,34 @@ class ForceDrive:
         object.__setattr__(
             self, "max_force", check_scalar("max_force", self.max_force, 0.0, lo_open=True)
         )
+        # the contacts age through the hold and the ramp: past FORCE_RUN_MAX the thresholds
+        # stop growing with the age (and at rate = 1e-300 the clock overflowed, 8e-17)
+        if self.hold > FORCE_RUN_MAX:
+            raise ValueError(f"hold = {self.hold:g} is out of range: allowed <= "
+                             f"{FORCE_RUN_MAX:g} t0 (the contact ages a run is checked at)")
+        end = self.hold + self.max_force / self.rate
+        if not end <= FORCE_RUN_MAX:
+            lowest = self.max_force / (FORCE_RUN_MAX - self.hold)
+            lowest = float(f"{lowest * 1.01:.3g}")  # shown rounded up: it is allowed
+            raise ValueError(
+                f"rate = {self.rate:g} is out of range with max_force = {self.max_force:g} "
+                f"and hold = {self.hold:g}: the ramp could last until t = {end:.1e} t0, "
+                f"beyond the {FORCE_RUN_MAX:g} t0 of contact ages a run is checked at; "
+                f"allowed rate >= {lowest:g} F_el/t0 (or a lower max_force)")
+
+
+RAMP_FORCE_STEP: float = 0.005
+"""Largest increase of the applied force (``F_el``) between two equilibria of a force ramp
+(ours): a coarser sampling is stepped internally. The threshold then no longer depends on the
+sampling: with the static-threshold example it agrees to 3e-8 with the sampling's force step
+0.0035 F_el (every_slip = 0.005)."""
+
+
+FORCE_RUN_MAX: float = 1e15
+"""Longest force-controlled run (hold plus ramp up to ``max_force``), ``t0``: the static
+threshold after a hold grows with its length up to 3e15 t0 (3.23 F_el at eps = 0.04), then
+falls (3.02 F_el after 1e16 t0), which no ageing does: the ensemble's ages are not resolved
+there. 1e15 t0 is some 10^8 years at t0 ~ 1e-3 s."""
 
 
 STIFFNESS_MAX: float = 1e6
@@ -189,6 +228,7 @@ class SpringDrive:
             )
         if not isinstance(self.program, VelocityProgram):
             object.__setattr__(self, "program", VelocityProgram(self.program))
+        self.program.check_speeds(U_MIN, U_MAX, "a0/t0")
 
 
 Drive = VelocityDrive | ForceDrive | SpringDrive
@@ -268,14 +308,34 @@ def _run_force(ens: Ensemble, drive: ForceDrive, output: Output, rec: Recorder,
     for t1 in times():
         f_app = f0 + drive.rate * max(0.0, t1 - drive.hold)
         x_before, t_before = ens.x, ens.t
-        ev = events(ens.advance(ens.x, t1))
-        max_slip = _max_reach(ens) + max(1.0, ens.y_c) + 1.0 + 2.0 * ens.track.spacing
-        extreme, runaway, jump_ev = equilibrate(ens, f_app, 0.0, max_slip,
-                                                 velocity_scale(ens, t1 - t_before))
-        threshold = max(threshold, extreme)
+        # the ramp in steps of at most RAMP_FORCE_STEP, whatever the sampling: one coarse
+        # step would age the contacts at the last equilibrium for the whole sample interval
+        # before the force is applied, and the threshold would grow with every_slip (issue 24)
+        ramp = drive.rate * (t1 - max(t_before, drive.hold))
+        n_sub = max(1, math.ceil(ramp / RAMP_FORCE_STEP)) if ramp > 0.0 else 1
+        # every substep must move the clock (check_run's rounding limit, at the substeps'
+        # start: the runaway comes within ~threshold/RAMP_FORCE_STEP of them, long before t1)
+        n_sub = min(n_sub, max(1, int((t1 - t_before) / (1e-12 * max(1.0, t_before)))))
+        ev, jump_ev = (0, 0, 0), (0, 0, 0)
+        j = 0
+        while True:
+            j += 1
+            tj = t1 if j >= n_sub else t_before + (t1 - t_before) * (j / n_sub)
+            fj = f_app if j >= n_sub else f0 + drive.rate * max(0.0, tj - drive.hold)
+            t_sub = ens.t
+            ev = add_events(ev, events(ens.advance(ens.x, tj)))
+            max_slip = _max_reach(ens) + max(1.0, ens.y_c) + 1.0 + 2.0 * ens.track.spacing
+            extreme, runaway, sub_ev = equilibrate(ens, fj, 0.0, max_slip,
+                                                   velocity_scale(ens, tj - t_sub))
+            jump_ev = add_events(jump_ev, sub_ev)
+            threshold = max(threshold, extreme)
+            if runaway or j >= n_sub or fj >= drive.max_force:
+                break
         if runaway:
-            t_threshold = t1
+            t_threshold = tj
             break
+        if j < n_sub:  # the safety stop within the sample: it ends the run here
+            t1, f_app = tj, fj
         o = ens.observe()
         v = (ens.x - x_before) / (t1 - t_before)
         rec.add(ens, with_strength(ens, o, v), v, f_applied=f_app, events=add_events(ev, jump_ev))
@@ -459,6 +519,7 @@ def simulate(
     else:
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
+    check_snapshots(drive, output)
     check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
@@ -487,7 +548,15 @@ def simulate(
         info["partial"] = True
     if progress is not None:
         progress(1.0)
+    if isinstance(drive, ForceDrive) and not info["partial"]:
+        # a ramp ends at its runaway, which no check can place before the run: say which
+        # snapshots it did not reach rather than drop them silently
+        late = [s for s in output.snapshots if s > ens.t + 1e-12]
+        if late:
+            info["snapshots_not_reached"] = late
     res = rec.result(info)
+    # the one bounds check of both laws (results.check_physical): finite, time forward
+    check_physical("trap-model run", res.t, res.x, res.v, res.mu, unit="a0")
     model_d = asdict(model)
     if model.direct == 0.0:  # the athermal model's record, as before the direct effect
         del model_d["direct"], model_d["v_ref"]

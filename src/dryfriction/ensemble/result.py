@@ -65,6 +65,34 @@ class Output:
         object.__setattr__(self, "snapshots", tuple(sorted(float(s) for s in snaps)))
 
 
+def check_snapshots(drive: Any, output: Output, *, qualified: bool = False) -> None:
+    """Refuse a snapshot time after the run's end (it would be dropped silently).
+
+    The end is the program's total time (velocity and spring drives) or, for a force ramp,
+    the time it reaches ``max_force`` (a runaway ends it earlier: :func:`simulate` then lists
+    the snapshots not reached in ``info["snapshots_not_reached"]``).
+
+    Raises
+    ------
+    ValueError
+        Naming ``snapshots`` (``output.snapshots`` when ``qualified``) and the run's end.
+    """
+    if not output.snapshots:
+        return
+    program = getattr(drive, "program", None)
+    if program is None:  # a force drive (driving.ForceDrive)
+        end = drive.hold + drive.max_force / drive.rate
+        what = "the force ramp reaches max_force"
+    else:
+        end = program.total_time
+        what = "the drive's program ends"
+    last = output.snapshots[-1]
+    if last > end * (1.0 + 1e-12):
+        key = ("output." if qualified else "") + "snapshots"
+        raise ValueError(f"{key}: the time {last:g} t0 is after the run's end: {what} at "
+                         f"t = {end:g} t0; allowed 0 <= snapshot <= {end:g}")
+
+
 COLUMNS: tuple[str, ...] = (
     "t", "x", "v", "mu", "n_active", "mean_age", "x_pull", "f_applied", "births", "spinodal",
     "exits",

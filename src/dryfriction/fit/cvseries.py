@@ -123,8 +123,18 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
         k_red = stiffness * values["a0"] / values["mu_el"]
         drive = (SpringDrive(k_red, 0.0, prog) if k_red <= STIFFNESS_MAX
                  else VelocityDrive(prog))
-        res = simulate(model, Track(traps_per_a0), Initial("steady", velocity=float(u[0])),
-                       drive, output)
+        try:
+            res = simulate(model, Track(traps_per_a0), Initial("steady",
+                                                               velocity=float(u[0])),
+                           drive, output)
+        except ValueError as exc:
+            if "DRYFRICTION_MEMORY_LIMIT" not in str(exc):
+                raise
+            # the simulator's hint names its own keys (every_slip, traps_per_a0); a fit has
+            # --traps-per-a0 only (issue 24)
+            raise ValueError(f"{data.source}: a trap-model run at t0 = {values['t0']:.3g} s, "
+                             f"a0 = {values['a0']:.3g} m needs more memory than the limit: "
+                             "lower --traps-per-a0 or set DRYFRICTION_MEMORY_LIMIT") from None
         mu = np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
         _LAST[:] = [(key, data, mu)]
     if "trend" in values:

@@ -167,6 +167,8 @@ def _check_optimum(prob: Problem, opt: _Optimum, notes: list[str]) -> None:
         if prob.failures:
             opt.success = False
             opt.message = "the model could not be evaluated at the final parameters"
+            if prob.last_failure:  # say why, where the user reads it
+                opt.message += f" ({prob.last_failure})"
     if not opt.success:
         notes.append(f"the fit did not converge: {opt.message}")
 

@@ -37,6 +37,7 @@ class Problem:
         self.n = sum(len(d) for d in datasets)
         self.p = len(specs)
         self.failures = 0
+        self.last_failure = ""  # why the model could not be evaluated, the last time
         self.evaluations = 0
         # called after every evaluation of the model (the fit's progress report)
         self.on_evaluation: Callable[[], None] | None = None
@@ -52,10 +53,11 @@ class Problem:
         for d, w in zip(self.datasets, self.w, strict=True):
             try:
                 f = self.model.predict(v, d)
-            except (SolverError, ValueError):
+            except (SolverError, ValueError) as exc:
                 # the simulator or a range check failed for these trial parameters (ours):
                 # a large penalty makes the trust region step back
                 self.failures += 1
+                self.last_failure = str(exc)
                 f = d.y + 10.0 / w
             out.append((d.y - f) * w)
         self.evaluations += 1

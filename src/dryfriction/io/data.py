@@ -44,6 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..validation import Array
+from .textfile import check_text_file
 
 __all__ = [
     "StaticData",
@@ -364,6 +365,7 @@ def read_csv(path: str | os.PathLike[str]) -> Dataset:
     """
     path = Path(path)
     src = str(path)
+    check_text_file(path)  # gzip, UTF-16: named, not decoded
     try:
         text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:

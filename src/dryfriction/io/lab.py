@@ -51,6 +51,7 @@ from .labsteps import (
     segments_table,
     slice_steps,
 )
+from .textfile import HEAD_BYTES, check_text
 
 __all__ = [
     "LabRecord",
@@ -59,6 +60,8 @@ __all__ = [
     "ROLES",
     "MIN_ROWS",
     "read_record",
+    "apparatus_note",
+    "FRICTION_MAX",
     "parse_column_map",
     "detect_segments",
     "parse_segments",
@@ -68,6 +71,16 @@ __all__ = [
 ]
 
 MIN_ROWS = 10
+FRICTION_MAX = 10.0
+"""Largest ``|friction|`` a record may hold (ours): measured coefficients lie between 0 and
+about 1.5 (adhesive contacts a few); a cell of 1e300 is a typo, and read as friction it
+overflowed the fit (``rms = inf``)."""
+APPARATUS_V_MAX = 1e-2
+"""Load velocity (m/s) above which a record is flagged as implausible for a friction
+apparatus (ours: rotary shear reaches ~1 m/s, but a velocity-step record of 0.2 m/s is far
+more often micrometres read as metres)."""
+APPARATUS_X_MAX = 1.0
+"""Load-point displacement span (m) above which a record is flagged likewise."""
 """Fewest data rows a record may have (fewer cannot show a transient)."""
 
 ROLES: dict[str, str] = {
@@ -339,6 +352,39 @@ def _assign(
     return idx, forced
 
 
+def apparatus_note(record: LabRecord, velocities: Array | list[float],
+                   given: bool = False) -> str | None:
+    """One line when the record's numbers imply an implausible friction apparatus: load
+    velocities above :data:`APPARATUS_V_MAX` or a displacement span above
+    :data:`APPARATUS_X_MAX` (most often a column without a unit, micrometres read as metres);
+    it names the column and the ``--columns`` entry that gives its unit. ``None`` otherwise.
+
+    Parameters
+    ----------
+    record : LabRecord
+    velocities : array
+        The load program's velocities, m/s.
+    given : bool
+        The program was given (``--segments``, in m/s) rather than detected.
+    """
+    v = float(np.max(np.abs(velocities))) if len(velocities) else 0.0
+    x = record.load_point
+    span = float(np.ptp(x)) if x is not None and len(x) else 0.0
+    if not (v > APPARATUS_V_MAX or span > APPARATUS_X_MAX):
+        return None
+    role = "disp" if x is not None else "velocity"
+    header, unit = record.columns.get(role, role), record.units.get(role, "")
+    head = (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
+            "displacement are odd for a friction apparatus; ")
+    if not unit:
+        fix = "um" if role == "disp" else "um/s"
+        return (head + f"column {header!r} has no unit, so it is read as SI (m, m/s): if it "
+                f"is in micrometres, give --columns {role}={header}:{fix}")
+    if given and span <= APPARATUS_X_MAX:
+        return head + "--segments takes velocities in m/s (2e-7 for 0.2 um/s)"
+    return head + f"column {header!r} has the unit {unit!r}: is it right?"
+
+
 def read_record(
     path: str | os.PathLike[str], columns: Mapping[str, str] | None = None
 ) -> LabRecord:
@@ -371,6 +417,7 @@ def read_record(
     size = path.stat().st_size
     with open(path, "rb") as fh:
         chunk = fh.read(1 << 20)
+    check_text(chunk[:HEAD_BYTES], src)  # gzip, UTF-16: named, not read as Latin-1
     head = _decode(chunk).splitlines()
     if len(chunk) == 1 << 20 and len(head) > 1:
         head.pop()  # may be cut short
@@ -456,6 +503,13 @@ def read_record(
             raise ValueError(f"{src}, line {line_of(int(zero[0]))}, column {j + 1} "
                              f"({names[j].strip()}): normal stress 0: friction is undefined")
         friction = vals["shear"] / vals["normal"]
+    far = np.flatnonzero(~(np.abs(friction) <= FRICTION_MAX))
+    if far.size:
+        i = int(far[0])
+        j = idx["mu" if "mu" in vals else "shear"]
+        raise ValueError(f"{src}, line {line_of(i)}, column {j + 1} ({names[j].strip()}): "
+                         f"friction {friction[i]:g} is out of range: allowed |friction| <= "
+                         f"{FRICTION_MAX:g} (a friction coefficient)")
     normal = vals.get("normal")
     normal_unit = "" if normal is None else ("N" if kinds["normal"] == "force" else "Pa")
     for a in (t, friction, normal, vals.get("disp"), vals.get("velocity")):

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..rsf.law import V_MAX, V_MIN
 from ..validation import Array
 from .segmentation import hinge_segments, line_fit, noise_level, refine, rss
 
@@ -204,6 +205,12 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
         if not sep or not (np.isfinite(s) and np.isfinite(v)):
             raise ValueError(f"--segments {item!r}: expected start:velocity (s from the "
                              "record's start : m/s), e.g. 0:2e-7,1200:2e-6")
+        # the fits' own ranges (SeriesData: v_load >= 0; RateState: V0 <= V_MAX), here so
+        # that record shows what fit would refuse, before any work
+        if v != 0.0 and not V_MIN <= v <= V_MAX:
+            raise ValueError(f"--segments {item!r}: velocity {v:g} m/s is out of range: allowed "
+                             f"0 (a hold) or {V_MIN:g} to {V_MAX:g} m/s (the load point moves "
+                             "forward)")
         if not 0.0 <= s < dur:
             raise ValueError(f"--segments {item!r}: start {s:g} s is outside {src} (0 to "
                              f"{dur:g} s from its first sample)")

@@ -76,6 +76,7 @@ from ..rsf.law import RateState
 from ..rsf.resources import check_rsf_run
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 from ..validation import check_scalar
+from .textfile import HEAD_BYTES, check_text
 
 if TYPE_CHECKING:
     # the trap model's classes import the compiled ensemble kernel (Numba) and SciPy, and the
@@ -300,6 +301,7 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
     from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive
     from ..ensemble.population import Initial, Track, TrapModel
     from ..ensemble.resources import check_run
+    from ..ensemble.result import check_snapshots
 
     unknown = sorted(set(doc) - set(_TABLES))
     if unknown:
@@ -357,6 +359,12 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         drive = d.build(SpringDrive, stiffness=d.number("stiffness"), mass=d.number("mass"),
                         damping=d.number("damping", 0.0), program=_segments(d))
 
+    if kind == "force" and initial.kind == "loaded" and \
+            drive.max_force <= float(initial.force or 0.0):
+        # the ramp would stop at its first sample, before any ramp (found by the fuzz: the
+        # figure of such a run failed with a NumPy error)
+        d.fail(f"drive.max_force = {drive.max_force:g} is out of range: allowed more than "
+               f"ensemble.initial_force = {initial.force:g} F_el, where the ramp starts")
     o = _Table(source, "output", doc["output"])
     o.allow(("every", "every_slip", "snapshots"))
     snaps = o.data.get("snapshots", [])
@@ -366,7 +374,8 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         o.fail(f"{o.where('snapshots')} = {snaps!r} has the wrong type: a list of times (t0)")
     output = o.build(Output, every=o.number("every"), every_slip=o.number("every_slip"),
                      snapshots=tuple(float(s) for s in snaps))
-    try:  # the memory a run would hold, before any work
+    try:  # snapshots within the run, and the memory it would hold, before any work
+        check_snapshots(drive, output, qualified=True)
         check_run(model, track, initial, drive, output, qualified=True)
     except ValueError as exc:
         raise ValueError(f"{source}: {exc}") from None
@@ -447,7 +456,9 @@ def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol:
     """Read and validate a protocol file (TOML). Errors name the file and the key."""
     p = Path(path)
     try:
-        text = p.read_bytes().decode("utf-8")
+        raw = p.read_bytes()
+        check_text(raw[:HEAD_BYTES], str(p))  # gzip, UTF-16: named, not "malformed TOML"
+        text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise ValueError(f"{p}: malformed TOML: not UTF-8 text") from None
     except OSError as exc:
@@ -543,9 +554,14 @@ def spring_point(protocol: Mapping[str, Any], source: str = "sweep point",
                          "trap model)")
     ens = dict(doc.get("ensemble", {}))
     drive_tab = doc.get("drive", {})
+    segs = drive_tab.get("segments") if isinstance(drive_tab, Mapping) else None
+    last = segs[-1] if isinstance(segs, list) and segs else None
+    pull = last.get("velocity") if isinstance(last, Mapping) else None
+    # only a number is followed: anything else (a sweep that set the segments to [1, 2] or a
+    # velocity to [0.1]) is left to protocol_from_dict, which names the key and the type
     if opts.get("follow_velocity", True) and ens.get("initial") == "steady" and \
-            isinstance(drive_tab, Mapping) and drive_tab.get("segments"):
-        ens["initial_velocity"] = float(drive_tab["segments"][-1]["velocity"])
+            isinstance(pull, (int, float)) and not isinstance(pull, bool):
+        ens["initial_velocity"] = float(pull)
         doc["ensemble"] = ens
     proto = protocol_from_dict(doc, source)
     if isinstance(proto, RSFProtocol):  # unreachable after the check above; kept for types

@@ -56,6 +56,7 @@ __all__ = [
     "get_dotted",
     "run_sweep",
     "MAX_POINTS",
+    "MAX_AXIS",
     "load_sweep",
     "point_key",
     "sweep_fingerprint",
@@ -66,6 +67,10 @@ __all__ = [
 MAX_POINTS = 2000
 """Largest grid run without ``confirm=True`` (``--yes`` on the command line)."""
 SWEEP_MODULES = ("dask", "distributed", "xarray")  # the optional extra dryfriction[sweep]
+
+MAX_AXIS = 1_000_000
+"""Most values one ``{lin|log = [start, stop, n]}`` axis may have: the values are made before
+the grid's size is checked against :data:`MAX_POINTS`, so ``n`` itself is bounded."""
 
 Runner = Callable[[dict[str, Any]], Mapping[str, float]]
 
@@ -124,8 +129,15 @@ def _axis_values(key: str, spec: Any) -> tuple[Any, ...]:
         if not (isinstance(args, list) and len(args) == 3):
             raise ValueError(f"[sweep] {key!r}: {kind} needs [start, stop, n]")
         start, stop, n = args
-        if not (isinstance(n, int) and n >= 1):
-            raise ValueError(f"[sweep] {key!r}: n = {n!r} must be an integer >= 1")
+        # a TOML boolean is an int to Python: true is no count, and no bound either
+        if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= MAX_AXIS):
+            raise ValueError(f"[sweep] {key!r}: n = {n!r} must be an integer in [1, "
+                             f"{MAX_AXIS}]")
+        for name, value in (("start", start), ("stop", stop)):
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value):
+                raise ValueError(f"[sweep] {key!r}: {kind} {name} = {value!r} is not allowed: "
+                                 "a finite number")
         if kind == "log":
             if not (start > 0 and stop > 0):
                 raise ValueError(f"[sweep] {key!r}: log range needs start, stop > 0")
@@ -181,7 +193,14 @@ def parse_sweep(protocol: Mapping[str, Any], source: str = "protocol") -> SweepS
                 f"{source}: [sweep] key {key!r} is not in the protocol (dotted keys name "
                 "existing entries, e.g. 'drive.stiffness' or 'drive.segments.0.velocity')"
             ) from None
-        axes.append(SweepAxis(key, _axis_values(key, spec)))
+        for other in table:  # "drive.segments" and "drive.segments.0.velocity": which wins?
+            if other != key and str(key).startswith(f"{other}."):
+                raise ValueError(f"{source}: [sweep] keys {other!r} and {key!r} overlap: the "
+                                 "first replaces what the second sets; sweep one of them")
+        try:
+            axes.append(SweepAxis(key, _axis_values(key, spec)))
+        except ValueError as exc:
+            raise ValueError(f"{source}: {exc}") from None
     return SweepSpec(base, tuple(axes))
 
 

@@ -43,11 +43,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
+from ..results import check_physical
 from ..validation import Array, check_scalar
 from .growth import unstable_start, warn_unstable
 from .law import RateState
 from .resources import check_rsf_run
-from .result import RSFResult, build_result, hermite
+from .result import (
+    RSFResult,
+    build_result,
+    force_balance_is_ill_conditioned,
+    hermite,
+    slip_by_quadrature,
+)
 from .spring import RSFInitial, RSFOutput, SpringSlider, check_spring
 from .stepper import INERTIAL, KINEMATIC, QUASISTATIC, integrate, param_vector, rhs_at
 
@@ -160,15 +167,43 @@ def simulate_rsf(
         v_fail = math.nan if mode == KINEMATIC else math.exp(min(float(y_fail[0]), 709.0))
         raise SolverError(_failure_message(status, mode, t_fail, y_fail, model, stiffness,
                                            damping, output.max_steps), float(t_fail), v_fail)
+    x = x_quad = None
+    travel = float(prog.positions[-1] - prog.positions[0])
+    if mode != KINEMATIC:
+        # int V dt: the position of a soft spring, a check of the force balance's otherwise
+        x_quad = slip_by_quadrature(T, Y, F, prog.x0)
+        if te is not None:  # at the output times, as x is
+            x_quad = hermite(T, x_quad[:, None], np.exp(Y[:, :1]), te)[:, 0]
+        if force_balance_is_ill_conditioned(model, stiffness, output.rtol, stress0, travel):
+            x = x_quad
     if te is not None:
         Y, SEG = hermite(T, Y, F, te), np.asarray(prog.segment_index(te))
         T = te.copy()
     res = build_result(T, Y, SEG, prog, model, kinematic=mode == KINEMATIC,
                        inertial=mode == INERTIAL, stiffness=stiffness, damping=damping,
-                       mass=mass, rtol=output.rtol, stress0=stress0, stats=stats)
+                       mass=mass, rtol=output.rtol, stress0=stress0, stats=stats, x=x)
     if unstable is not None:
         res.meta["unstable_start"] = unstable
+    _check_bounds(res, travel, None if x_quad is None else float(x_quad[-1] - x_quad[0]))
     return res
+
+
+def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None) -> None:
+    """:func:`dryfriction.results.check_physical` for a rate-and-state run: on a spring the
+    slip velocity is ``exp(ln V) > 0``, so the slider never moves back, and the slip is at
+    most the load-point travel plus the stretch the spring can give back,
+    ``(stress0 - min stress)/k``, and it equals ``int V dt`` (``slip_integral``, from the
+    solver's steps); the tolerance is 100 times the solver's error in position (ours: ``rtol``
+    of the path, whatever the spring)."""
+    if math.isinf(res.stiffness):  # the kinematic machine: x is the load point's, exactly
+        check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m")
+        return
+    path = float(np.sum(np.abs(np.diff(res.x))))
+    tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc)
+    give_back = (float(res.stress[0]) - float(np.min(res.stress))) / res.stiffness
+    check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m", forward=True,
+                   tol=tol, slip_max=travel + give_back, slip_integral=slip_integral,
+                   mu_min=0.0 if res.params.regularized else None)
 
 
 def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]

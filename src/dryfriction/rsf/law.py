@@ -47,11 +47,15 @@ from numpy.typing import ArrayLike
 
 from ..validation import Array, check_choice, check_range, check_scalar
 
-__all__ = ["RateState", "STATE_LAWS", "V_MAX"]
+__all__ = ["RateState", "STATE_LAWS", "V_MAX", "V_MIN"]
 
 V_MAX: float = 1e3
 """Largest reference or load velocity accepted, m/s: far above seismic slip rates (~1 m/s);
 ``ln(V0 theta/Dc)`` and the integration stay finite below it."""
+
+V_MIN: float = 1e-30
+"""Slowest moving load point accepted, m/s (0 is a hold): it covers a picometre in the age of
+the universe; the trap model's velocities start at the same number (``U_MIN``, a0/t0)."""
 
 StateLaw = Literal["ageing", "slip"]
 STATE_LAWS: tuple[str, ...] = ("ageing", "slip")

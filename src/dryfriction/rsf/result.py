@@ -15,7 +15,8 @@ from ..results import records, summarize, to_dataframe
 from ..validation import Array
 from .law import RateState
 
-__all__ = ["RSFResult", "UNITS", "build_result", "hermite"]
+__all__ = ["RSFResult", "UNITS", "build_result", "force_balance_is_ill_conditioned", "hermite",
+           "slip_by_quadrature"]
 
 
 UNITS: dict[str, str] = {
@@ -159,15 +160,54 @@ def hermite(T: Array, Y: Array, F: Array, te: Array) -> Array:
     return out
 
 
+# Gauss-Legendre nodes and weights on [0, 1], 5 points (exact for polynomials of degree 9)
+_GL_X, _GL_W = (0.5 * (np.polynomial.legendre.leggauss(5)[0] + 1.0),
+                0.5 * np.polynomial.legendre.leggauss(5)[1])
+
+
+def slip_by_quadrature(T: Array, Y: Array, F: Array, x0: float) -> Array:
+    """Slider position (m) at the solver's steps ``T`` from ``x = x0 + int V dt`` (ours).
+
+    ``ln V`` is the cubic Hermite of the step values ``Y[:, 0]`` and slopes ``F[:, 0]`` (the
+    interpolant :func:`hermite` uses), and ``exp`` of it is integrated over each step by 5-point
+    Gauss-Legendre. Its error is the solver's own, a relative ``rtol`` of the slip, whatever
+    the spring; the force balance ``x = x_load - (stress - stress0)/k`` divides the error of the
+    stress (``rtol (a + b)``, and the rounding of ``mu0``) by ``k``: 1e-4 m at ``k = 1e-12``/m,
+    -1.2e285 m at ``k = 1e-300``/m (issue 24).
+    """
+    h = np.diff(T)
+    y0, y1 = Y[:-1, 0], Y[1:, 0]
+    f0, f1 = F[:-1, 0] * h, F[1:, 0] * h
+    s = _GL_X[None, :]
+    lnv = ((1 + 2 * s) * (1 - s) ** 2 * y0[:, None] + s * (1 - s) ** 2 * f0[:, None]
+           + s * s * (3 - 2 * s) * y1[:, None] + s * s * (s - 1) * f1[:, None])
+    dx = h * (np.exp(lnv) @ _GL_W)
+    return x0 + np.concatenate(([0.0], np.cumsum(dx)))
+
+
+def force_balance_is_ill_conditioned(params: RateState, stiffness: float, rtol: float,
+                                     stress: float, travel: float) -> bool:
+    """Whether ``x = x_load - (stress - stress0)/k`` loses more than the quadrature of ``V``
+    (:func:`slip_by_quadrature`) over a run of load-point travel ``travel`` (m): the force
+    route's error, ``(rtol (a + b + b2) + 4 eps |stress|)/k``, against ``rtol`` of the travel
+    plus one ``Dc`` (ours)."""
+    if math.isinf(stiffness):
+        return False
+    err_force = (rtol * (params.a + params.b + params.b2)
+                 + 4.0 * np.finfo(float).eps * abs(stress)) / stiffness
+    return bool(err_force > rtol * (abs(travel) + params.dc))
+
+
 def build_result(T: Array, Y: Array, SEG: NDArray[np.int64], prog: VelocityProgram,
                  params: RateState, *, kinematic: bool, inertial: bool, stiffness: float,
                  damping: float, mass: float, rtol: float, stress0: float,
-                 stats: tuple[int, int, int]) -> RSFResult:
+                 stats: tuple[int, int, int], x: Array | None = None) -> RSFResult:
     """:class:`RSFResult` from the solver's log variables ``Y`` at times ``T`` (segment ``SEG``).
 
     ``Y`` holds ``ln theta_i`` (kinematic), ``ln V, ln theta_i`` (quasi-static) or ``ln V,
-    ln theta_i, tau`` (inertial); the quasi-static slider's position follows from the force
-    balance, ``x = x_load - (stress - stress0)/k``.
+    ln theta_i, tau`` (inertial); the slider's position is ``x`` when given (a soft spring:
+    :func:`slip_by_quadrature`), else it follows from the force balance,
+    ``x = x_load - (stress - stress0)/k``.
     """
     ns = params.n_state
     vl = prog.velocities[SEG]
@@ -185,7 +225,12 @@ def build_result(T: Array, Y: Array, SEG: NDArray[np.int64], prog: VelocityProgr
         stress = Y[:, ns + 1].copy()
     else:
         stress = mu + damping * v
-    x = load.copy() if kinematic else load - (stress - stress0) / stiffness
+    if kinematic:
+        x = load.copy()
+    elif x is None:
+        x = load - (stress - stress0) / stiffness
+    else:
+        x = np.array(x, float)
     arrays = [T, x, v, theta, mu, stress, load, vl] + ([theta2] if theta2 is not None else [])
     for arr in arrays:
         arr.setflags(write=False)

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..program import Segment, VelocityProgram
 from ..validation import Array, check_range, check_scalar
-from .law import V_MAX, RateState
+from .law import V_MAX, V_MIN, RateState
 
 K_MAX: float = 1e15
 """Stiffest finite machine accepted, 1/m per unit normal force: a spring so stiff that its
@@ -104,10 +104,7 @@ class SpringSlider:
         object.__setattr__(self, "damping", eta)
         object.__setattr__(self, "mass", m)
         vel = self.program.velocities
-        for i, vl in enumerate(vel):
-            if abs(vl) > V_MAX:
-                raise ValueError(f"segments[{i}].velocity = {vl:g} m/s is out of range: "
-                                 f"allowed |velocity| <= {V_MAX:g} m/s")
+        self.program.check_speeds(V_MIN, V_MAX, "m/s")
         if not self.kinematic:
             for i, vl in enumerate(vel):
                 if vl < 0.0:
