@@ -18,11 +18,11 @@ from .common import (
     cli_errors,
     compile_notice,
     emit,
-    err,
     many,
     out,
     progress_bar,
     say,
+    say_interrupted,
     write_summary,
 )
 from .model import LOAD_MAX
@@ -236,7 +236,7 @@ def simulate(
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out}")
     if result.partial:
-        err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
+        say_interrupted("partial result written")
         raise typer.Exit(130)
 
 
