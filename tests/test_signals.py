@@ -138,8 +138,7 @@ def test_chunked_compiled_stepper_gives_the_one_call_result(monkeypatch) -> None
     """The compiled stepper runs in chunks (so that an interrupt is acted on between them):
     resumed at every chunk, it must give the single call's steps bit for bit (mistake: a
     resume that restarts the segment or forgets the rejected flag)."""
-    from dryfriction.rsf import RateState
-    from dryfriction.rsf import stepper
+    from dryfriction.rsf import RateState, stepper
     from dryfriction.rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
 
     model = RateState(a=0.005, b=0.01, dc=1e-5, mu0=0.6, v0=1e-6)
