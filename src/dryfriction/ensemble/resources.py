@@ -251,7 +251,6 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
                 f"{key} = {drive.rate:g} is out of range with every_slip = "
                 f"{output.every_slip:g}: the force step of one sample takes {dt:.1e} t0, below "
                 f"the clock's rounding at t = {drive.hold:g}; lower {key} or raise every_slip")
-    _check_clock(model, drive, qualified)
     est = estimate_run(model, track, initial, drive, output)
     out = "output." if qualified else ""
     lam_key = ("ensemble." if qualified else "") + "traps_per_a0"
@@ -279,6 +278,7 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
                          f"{MAX_SAMPLES:.0e} one run records (minutes of recording and a CSV "
                          f"of ~{est.samples * 100 / 1e9:.2g} GB); raise {out}{key} (or shorten "
                          "the drive)")
+    _check_clock(model, drive, qualified)
     calls, seconds, kind = estimate_work(model, track, drive, est)
     pair_bound = SECONDS_PER_PAIR * est.active > SECONDS_PER_CALL
     if kind == "steps":
