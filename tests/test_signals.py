@@ -179,6 +179,47 @@ def test_the_trap_kernel_returns_only_scalars() -> None:
 
 
 # ------------------------------------------------------------------ the compiled routes
+_DIRECT = r"""
+import os, signal, subprocess, sys
+from dryfriction.rsf import RateState, stepper
+from dryfriction.rsf.driving import RSFInitial, SpringSlider, simulate_rsf
+
+def handler(signum, frame):
+    raise KeyboardInterrupt
+
+signal.signal(signal.SIGINT, handler)
+model = RateState(a=0.005, b=0.01, dc=1e-5, mu0=0.6, v0=1e-6)
+
+def drive(T):
+    return SpringSlider([{"velocity": 1e-6, "duration": T}], stiffness=250.0, damping=0.5)
+
+with stepper.interpreted_steps(0):
+    simulate_rsf(model, drive(100.0), RSFInitial(v=1.01e-6))  # loads the kernels
+    # another process sends the signal: a thread could not (the compiled code holds the GIL)
+    killer = subprocess.Popen(["sh", "-c", f"sleep {sys.argv[1]}; kill -INT {os.getpid()}"])
+    try:
+        simulate_rsf(model, drive(300000.0), RSFInitial(v=1.01e-6))  # ~1 s compiled
+    except KeyboardInterrupt:
+        print("interrupted")
+        sys.exit(130)
+    finally:
+        killer.wait()
+print("finished")
+"""
+
+
+@pytest.mark.parametrize("delay", [0.2, 0.45])
+def test_a_signal_during_a_compiled_call_is_raised_after_it(delay: float) -> None:
+    """A raising handler (Python's own kind) and a signal that surely lands inside one long
+    compiled call. Before the fix: 5 of 5 trials exit 1 with ``SystemError: <function
+    _numba_unpickle ...> returned a result with an exception set`` (the handler ran inside
+    Numba's boxing of the returned arrays)."""
+    proc = subprocess.run([sys.executable, "-c", _DIRECT, str(delay)], capture_output=True,
+                          text=True, timeout=120, env=_env())
+    assert "Traceback" not in proc.stderr and "SystemError" not in proc.stderr, proc.stderr
+    assert proc.returncode == 130 and proc.stdout.strip() == "interrupted", proc.stdout
+
+
 def test_signals_into_the_compiled_rsf_stepper(tmp_path: Path) -> None:
     """Before the fix: 6 of 15 Ctrl-C trials exit -11 (segfault), the others 130 silently."""
     times, sigs = _seeded(5, 0.6, 1.3, seed=24)
