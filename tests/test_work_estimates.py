@@ -124,14 +124,21 @@ def test_the_time_limit_variable_is_checked(monkeypatch) -> None:
 
 
 @pytest.mark.parametrize("example", ["velocity_step.toml", "spring_stick_slip.toml",
-                                     "spring_inertial.toml", "slide_hold_slide.toml"])
-def test_the_work_estimate_is_a_lower_bound_of_the_kernel_calls(example: str, monkeypatch
-                                                                 ) -> None:
+                                     "spring_inertial.toml", "slide_hold_slide.toml",
+                                     "slow inertial"])
+def test_the_work_estimate_is_a_lower_bound_of_the_kernel_calls(example: str, monkeypatch,
+                                                                 tmp_path: Path) -> None:
     """The refusal must never hit a run for work it would not do: the estimated calls are at
-    most the calls made (mistake it guards: an inertial step or an event count too small by a
-    factor, which would refuse fast runs), and within a factor 4 of them (an estimate that
-    says nothing)."""
-    proto = load_protocol(EXAMPLES / example)
+    most the calls made (mistake it guards: an event count or an inertial step count too
+    large by a factor, which would refuse fast runs), and within a factor 4 of them (one too
+    small: an estimate that lets a run of hours through). "slow inertial" is a pull whose
+    time steps (duration over dt) outnumber the steps the slip needs."""
+    if example == "slow inertial":
+        path = _inertial(tmp_path, "1e-3")
+        path.write_text(path.read_text().replace("slip = 12.0", "slip = 2.0"))
+    else:
+        path = EXAMPLES / example
+    proto = load_protocol(path)
     est = resources.estimate_run(proto.model, proto.track, proto.initial, proto.drive,
                                  proto.output)
     calls, seconds, _ = resources.estimate_work(proto.model, proto.track, proto.drive, est)
