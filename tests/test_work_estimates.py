@@ -130,9 +130,11 @@ def test_the_work_estimate_is_a_lower_bound_of_the_kernel_calls(example: str, mo
                                                                  tmp_path: Path) -> None:
     """The refusal must never hit a run for work it would not do: the estimated calls are at
     most the calls made (mistake it guards: an event count or an inertial step count too
-    large by a factor, which would refuse fast runs), and within a factor 4 of them (one too
-    small: an estimate that lets a run of hours through). "slow inertial" is a pull whose
-    time steps (duration over dt) outnumber the steps the slip needs."""
+    large by a factor, which would refuse fast runs), and within a factor 2.5 of them (one
+    too small: an estimate that lets a run of hours through); 5 for the inertial stick-slip,
+    whose fast slips take steps no bound counts (measured ratios 1.0-2.4, and 4.0 there).
+    "slow inertial" is a pull whose time steps (duration over dt) outnumber those its slip
+    needs."""
     if example == "slow inertial":
         path = _inertial(tmp_path, "1e-3")
         path.write_text(path.read_text().replace("slip = 12.0", "slip = 2.0"))
@@ -151,7 +153,8 @@ def test_the_work_estimate_is_a_lower_bound_of_the_kernel_calls(example: str, mo
 
     monkeypatch.setattr(Ensemble, "_call", counted)
     proto.run()
-    assert calls <= made[0] <= 4.0 * calls, (calls, made[0])
+    factor = 5.0 if example == "spring_inertial.toml" else 2.5
+    assert calls <= made[0] <= factor * calls, (calls, made[0])
     assert 0.0 < seconds < 60.0
 
 
