@@ -168,8 +168,9 @@ def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimat
     event, every trap passed entering and leaving contact once (``2 lambda`` events per ``a0``
     of load-point travel); the inertial spring one per time step, at least the duration over
     the longest step ``0.05 * 2 pi sqrt(M/(K + k_c))``, and at least the travel over the
-    longest slip of a step, ``spacing/4`` (:mod:`.driving`). Each call costs :data:`SECONDS_PER_CALL` plus
-    :data:`SECONDS_PER_PAIR` per trap in contact (``est.active``). Floats throughout.
+    longest slip of a step, ``spacing/4`` (:mod:`.driving`). Each call costs
+    :data:`SECONDS_PER_CALL` plus :data:`SECONDS_PER_PAIR` per trap in contact
+    (``est.active``). Floats throughout.
     """
     from .driving import ForceDrive, SpringDrive  # driving imports this module
     from .thermal import SUBSTEP_SLIP
