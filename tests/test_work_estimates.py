@@ -172,3 +172,27 @@ def test_a_record_fit_reports_progress_within_a_window(monkeypatch) -> None:
     fit_steps(SeriesData(t, v, mu, source="synthetic"), progress=lambda d, n: calls.append((d, n)))
     assert calls[-1] == (1, 1)
     assert len(calls) > 10 and calls[0] == (0, 1), calls[:3]
+
+
+def test_a_jump_stops_at_a_force_that_is_not_a_number(monkeypatch) -> None:
+    """Whatever makes the kernel's force NaN (the clock past 2^53 t0 did), the quasi-static
+    jump must stop at once: before, with no root to bracket, it walked max_slip (1e9 a0 for
+    the spring) event by event, a hang without a line. Mistake it guards: the guard removed
+    (the probe count below then runs past its bound)."""
+    from dryfriction.ensemble.balance import equilibrate
+    from dryfriction.ensemble.population import Observables
+
+    ens = Ensemble(TrapModel(alpha=0.13, eps=0.04), Track(traps_per_a0=50),
+                   Initial(kind="steady", velocity=0.01), x0=0.0, age_horizon=10.0)
+    probes = [0]
+
+    def nan_probe(self, x, direction, stiffness=False):  # type: ignore[no-untyped-def]
+        probes[0] += 1
+        if probes[0] > 1000:
+            raise AssertionError("the jump went on past 1000 probes of a NaN force")
+        return Observables(math.nan, math.nan, 1, 0.0, 0, 0, 0, x + 0.01)
+
+    monkeypatch.setattr(Ensemble, "probe", nan_probe)
+    with pytest.raises(ValueError, match="not a number"):
+        equilibrate(ens, 10.0, 0.05, 1e9)
+    assert probes[0] <= 3  # the start, its direction, the first stretch
