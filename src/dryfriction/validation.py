@@ -26,12 +26,16 @@ __all__ = [
     "check_broadcast",
     "check_finite_result",
     "check_memory",
+    "check_time",
     "format_bytes",
     "memory_limit",
     "parse_bytes",
     "require_extra",
     "MissingExtraError",
     "MEMORY_ENV",
+    "TIME_ENV",
+    "TIME_LIMIT_S",
+    "time_limit",
     "ALPHA_MIN",
     "EPS_MAX",
     "U_MIN",
@@ -300,6 +304,55 @@ def check_memory(what: str, need: float, hint: str) -> None:
     if not need <= limit:  # NaN (an estimate that overflowed) is refused too
         raise ValueError(f"{what} ({format_bytes(need)}), more than the limit "
                          f"{format_bytes(limit)}: {hint} or set {MEMORY_ENV}")
+
+
+# ---------------------------------------------------------------- time budget (issue 24)
+
+TIME_ENV = "DRYFRICTION_TIME_LIMIT"
+"""Environment variable overriding the longest estimated run, in seconds (``"7200"``)."""
+
+TIME_LIMIT_S = 3600.0
+"""Default longest run, seconds of CPU on the development machine, estimated before any work
+(ours): past an hour a run is refused rather than left to look hung; a longer one is asked for
+with :data:`TIME_ENV`. The estimates are lower bounds (the work no run can avoid), so a run
+is never refused for a cost it would not have."""
+
+
+def time_limit() -> float:
+    """Seconds one run may plan to take: :data:`TIME_ENV` if set, else :data:`TIME_LIMIT_S`."""
+    text = os.environ.get(TIME_ENV, "").strip()
+    if not text:
+        return TIME_LIMIT_S
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not value > 0.0:
+        raise ValueError(f"{TIME_ENV} = {text!r} is not allowed: a positive number of seconds")
+    return value
+
+
+def _format_seconds(s: float) -> str:
+    if not math.isfinite(s):
+        return "longer than any machine runs"
+    if s >= 86400.0:
+        return f"{s / 86400.0:.2g} days"
+    if s >= 3600.0:
+        return f"{s / 3600.0:.2g} h"
+    return f"{s / 60.0:.2g} min" if s >= 60.0 else f"{s:.2g} s"
+
+
+def check_time(what: str, seconds: float, hint: str) -> None:
+    """Refuse a run whose estimated time ``seconds`` is over :func:`time_limit`.
+
+    The message reads ``{what}: about {time} of computing, more than the limit {limit}: {hint}
+    or set DRYFRICTION_TIME_LIMIT`` (one line); ``what`` names the key and what it gives.
+    """
+    limit = time_limit()
+    if not seconds <= limit:  # NaN (an estimate that overflowed) is refused too
+        raise ValueError(f"{what}: about {_format_seconds(seconds)} of computing, more than "
+                         f"the limit {_format_seconds(limit)}: {hint} or set {TIME_ENV} "
+                         "(seconds)")
 
 
 class MissingExtraError(ImportError, ValueError):

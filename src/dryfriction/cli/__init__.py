@@ -33,8 +33,12 @@ def main(argv: list[str] | None = None) -> int:
     would print a usage box). ``--help`` and a bare ``dryfriction`` still print the help.
 
     Ctrl-C and SIGTERM become exceptions, so every temporary file and folder is removed on the
-    way out (status 130 and 143). An interrupt is never swallowed: one that a library swallowed
-    (raised inside a finaliser, say) still turns a finished run's status 0 into 130.
+    way out; an interrupted command ends with status 130 (SIGINT) or 143 (SIGTERM) and one line
+    on standard error, whatever the command (its own ``interrupted: ...`` line where it kept
+    something, else ``error: interrupted (...)``). An interrupt is never swallowed: one that a
+    library swallowed (raised inside a finaliser, say) still turns a finished run's status 0
+    into 130. Within a compiled (Numba) call the handlers only record the signal, which is
+    acted on when the call returns (:mod:`dryfriction.interrupts`).
 
     Parameters
     ----------
@@ -78,15 +82,20 @@ def main(argv: list[str] | None = None) -> int:
         code = 141
     except SystemExit as exc:
         code = exc.code if isinstance(exc.code, int) else int(exc.code is not None)
-    except KeyboardInterrupt:
-        _error_line("interrupted (Ctrl-C)")
+    except KeyboardInterrupt:  # raised outside the app, or by a handler not ours
         code = 130
     finally:
         signal.signal(signal.SIGINT, previous[0])
         signal.signal(signal.SIGTERM, previous[1])
-    last = interrupted[-1] if interrupted else None
-    if last == signal.SIGTERM or (last == signal.SIGINT and code == 0):
-        _error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")
+    if code == 130 and not interrupted:  # Click's Abort, or Typer's Exit(130) on Ctrl-C
+        interrupted.append(signal.SIGINT)
+    if interrupted and code != 141:
+        # one line, unless the command said its own (what it kept); Typer turns Ctrl-C into a
+        # silent Exit(130), so this is the line of most interrupted commands
+        last = interrupted[-1]
+        said = _said_interrupted()
+        if not said:
+            _error_line(f"interrupted ({'Ctrl-C' if last == signal.SIGINT else 'SIGTERM'})")
         code = 128 + last
     if argv is None:
         # the process ends now: spare the interpreter's final full collection the objects
@@ -107,8 +116,7 @@ def _run(argv: list[str] | None) -> int:
     app = sys.modules[__name__].app  # the module's attribute: loaded on first use, or a stand-in
     try:
         rv = app(args=argv, prog_name="dryfriction", standalone_mode=False)
-    except typer.Abort:  # Ctrl-C, as Click reports it
-        error_line("interrupted (Ctrl-C)")
+    except typer.Abort:  # Ctrl-C, as Click reports it: main() says the one line
         return 130
     except typer.TyperException as exc:  # Click's exceptions (Typer vendors Click)
         ctx = getattr(exc, "ctx", None)
@@ -122,6 +130,16 @@ def _run(argv: list[str] | None) -> int:
         return int(getattr(exc, "exit_code", 1))
     # without standalone mode a command's typer.Exit(code) comes back as its code
     return rv if isinstance(rv, int) else 0
+
+
+def _said_interrupted() -> bool:
+    """Whether the command said its own interruption line (and forget it: main() may run
+    again in this process)."""
+    from .common import INTERRUPTION_SAID
+
+    said = bool(INTERRUPTION_SAID)
+    INTERRUPTION_SAID.clear()
+    return said
 
 
 def _error_line(message: str) -> None:

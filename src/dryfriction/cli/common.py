@@ -57,6 +57,18 @@ def error_line(message: str) -> None:
     err.print(message, markup=False, highlight=False, soft_wrap=True)
 
 
+INTERRUPTION_SAID: list[bool] = []
+"""Non-empty once this command has said, in its one line, that it was interrupted
+(:func:`say_interrupted`): :func:`dryfriction.cli.main` then adds no line of its own."""
+
+
+def say_interrupted(message: str) -> None:
+    """The command's one line on an interrupt (``interrupted: ...``, what was kept); the caller
+    then exits with 130. Without it, :func:`dryfriction.cli.main` says ``error: interrupted``."""
+    err.print(f"[bold yellow]interrupted:[/] {message}", highlight=False, soft_wrap=True)
+    INTERRUPTION_SAID.append(True)
+
+
 def cli_errors(fn: F) -> F:
     """Turn the library's ``ValueError``/``OSError`` into one line and exit code 2."""
 

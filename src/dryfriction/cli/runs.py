@@ -18,11 +18,11 @@ from .common import (
     cli_errors,
     compile_notice,
     emit,
-    err,
     many,
     out,
     progress_bar,
     say,
+    say_interrupted,
     write_summary,
 )
 from .model import LOAD_MAX
@@ -243,7 +243,7 @@ def simulate(
         say(f"note: the run ended at t = {float(result.t[-1]):g} t0 (runaway), before the "
             f"snapshot time(s) {', '.join(f'{s:g}' for s in late)}: not written")
     if result.partial:
-        err.print("[bold yellow]interrupted:[/] partial result written", highlight=False)
+        say_interrupted("partial result written")
         raise typer.Exit(130)
 
 

@@ -13,10 +13,10 @@ from .common import (
     FORMAT_HELP,
     app,
     cli_errors,
-    err,
     error_line,
     out,
     progress_bar,
+    say_interrupted,
 )
 
 
@@ -105,8 +105,8 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                              protocol_text=protocol_text, connect_timeout=connect_timeout,
                              variables=variables, outputs=outputs)
     except SweepInterrupted as exc:
-        err.print(f"[bold yellow]interrupted:[/] {exc.stored} of {exc.total} points stored in "
-                  f"{out_dir}; resume with: {resume}", highlight=False, soft_wrap=True)
+        say_interrupted(f"{exc.stored} of {exc.total} points stored in {out_dir}; resume "
+                        f"with: {resume}")
         raise typer.Exit(130) from None
 
 

@@ -88,6 +88,10 @@ def equilibrate(
         pb = ens.probe(xb, d, stiffness=True)
         fb = eff(pb.force, xb)
         Gb = A - K * xb - fb
+        if math.isnan(Gb):  # no root can be bracketed: the search would walk max_slip
+            # (1e9 a0 for the spring) event by event without a line (issue 24)
+            raise ValueError(f"the trap force is not a number at t = {ens.t:.6g} t0, x = "
+                             f"{xb:.6g} a0: the quasi-static jump cannot find its equilibrium")
         if Gb * d <= 0.0:
             xa = ens.x
             ga, sa = balance(o, xa)

@@ -49,6 +49,7 @@ from typing import Literal
 
 import numpy as np
 
+from ..interrupts import deferred
 from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
 from ..theory.static import loaded_edge
 from ..theory.trap import Regime, Trap
@@ -450,11 +451,14 @@ class Ensemble:
               stiffness: bool = False) -> Observables:
         self._ensure_cover(min(self.x, x1), max(self.x, x1))
         self._ensure_ages(t1)
-        lo, hi = advance_window(
-            self.c, self.state, self.birth, self.lo, self.hi, self.x, x1, self.t, t1,
-            direction, self._alpha, self._yc, self._strong, self._h, self._s_tab,
-            self._ds_tab, commit, stiffness, self._out,
-        )
+        args = (self.c, self.state, self.birth, self.lo, self.hi, self.x, x1, self.t, t1,
+                direction, self._alpha, self._yc, self._strong, self._h, self._s_tab,
+                self._ds_tab, commit, stiffness, self._out)
+        if advance_window.overloads:  # loaded; it returns two ints: no guard needed
+            lo, hi = advance_window(*args)
+        else:  # the first call loads (or compiles) it: signals held back meanwhile
+            with deferred():
+                lo, hi = advance_window(*args)
         o = self._out
         if o[8] != 0.0:  # pragma: no cover - the cover margin makes this unreachable
             raise RuntimeError("ensemble window reached the end of its buffer")

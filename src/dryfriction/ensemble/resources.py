@@ -23,11 +23,27 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..validation import check_memory
+from ..validation import check_memory, check_time
 from .population import Initial, Track, TrapModel
 from .result import FORCE_HOLD_LOG_STEP, Output, sample_interval
 
-__all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "RunEstimate", "check_run", "estimate_run"]
+__all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "CLOCK_MAX", "RunEstimate", "check_run",
+           "estimate_run", "estimate_work"]
+
+CLOCK_MAX = 2.0**46
+"""Longest run, ``t0`` (ours; issue 24). The kernel's times are floats: near ``t`` their
+spacing is ``t 2^-52``, and an age (a difference of two times, under the kernel's reassociating
+fast math) carries an error of a few spacings. At ``2^46 t0`` (7.0e13) that is ``1/64 t0``,
+far from the ``1 t0`` at which ``ln(1 + age)`` fails. Measured: a spring drive at ``1e-15
+a0/t0`` reached ``t = 9.0e15 t0 > 2^53 t0`` (spacing ``2 t0``), where the kernel's force turned
+NaN and the jump then searched ``1e9 a0`` for an equilibrium, event by event, for hours
+without a line."""
+
+SECONDS_PER_CALL = 15e-6
+"""Seconds of one call of the compiled kernel with the Python around it, without its pairs
+(measured 16-25 us on spring drives with ~750 traps in contact, less the pairs' share)."""
+SECONDS_PER_PAIR = 10e-9
+"""Seconds per trap in contact per kernel call (measured 13-18 ns)."""
 
 BYTES_PER_SAMPLE = 480.0
 """Peak bytes per recorded sample (measured 456)."""
@@ -141,9 +157,77 @@ def estimate_run(model: TrapModel, track: Track, initial: Initial, drive: object
     return RunEstimate(samples, traps, active, len(output.snapshots))
 
 
+def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimate
+                  ) -> tuple[float, float, str]:
+    """``(calls, seconds, kind)``: a lower bound of the kernel calls a run makes, their time,
+    and what sets it (``"samples"``, ``"events"`` or ``"steps"``).
+
+    The bound (ours): a velocity drive makes one call a sample; force control at least two
+    (the creep at fixed position, the jump); the quasi-static spring two per sample and creep
+    step (:data:`.thermal.SUBSTEP_SLIP` of the spacing with the direct effect) and one per
+    event, every trap passed entering and leaving contact once (``2 lambda`` events per ``a0``
+    of load-point travel); the inertial spring one per time step, at least the duration over
+    the longest step ``0.05 * 2 pi sqrt(M/(K + k_c))``, and at least the travel over the
+    longest slip of a step, ``spacing/4`` (:mod:`.driving`). Each call costs
+    :data:`SECONDS_PER_CALL` plus :data:`SECONDS_PER_PAIR` per trap in contact
+    (``est.active``). Floats throughout.
+    """
+    from .driving import ForceDrive, SpringDrive  # driving imports this module
+    from .thermal import SUBSTEP_SLIP
+
+    lam = track.traps_per_a0
+    # the sampling steps: the estimate's samples less its allowance for the first and last
+    # sample, the snapshots and a part step per segment
+    segments = 0 if isinstance(drive, ForceDrive) else len(drive.program.segments)  # type: ignore
+    steps = max(est.samples - 2.0 - est.snapshots - segments, 1.0)
+    calls, kind = steps, "samples"
+    if isinstance(drive, ForceDrive):
+        calls = 2.0 * steps
+    elif isinstance(drive, SpringDrive):
+        prog = drive.program
+        travel = float(sum(abs(s.velocity) * s.time for s in prog.segments))
+        if drive.mass == 0.0:
+            sub = travel * lam / SUBSTEP_SLIP if model.direct > 0.0 else 0.0
+            events = 2.0 * lam * travel
+            calls = 2.0 * (steps + sub) + events
+            kind = "events" if events > 2.0 * (steps + sub) else "samples"
+        else:
+            k_c = model.trap.contact_stiffness
+            dt = 0.05 * 2.0 * math.pi * math.sqrt(drive.mass / (drive.stiffness + k_c))
+            calls = max(prog.total_time / dt, travel * lam / 0.25)
+            kind = "steps"
+    return calls, calls * (SECONDS_PER_CALL + SECONDS_PER_PAIR * est.active), kind
+
+
+def _check_clock(model: TrapModel, drive: object, qualified: bool) -> None:
+    """Refuse a run longer than :data:`CLOCK_MAX`, naming the key that makes it so long."""
+    from .driving import ForceDrive  # driving imports this module
+
+    d = "drive." if qualified else ""
+    if isinstance(drive, ForceDrive):
+        ramp = drive.max_force / drive.rate
+        if not drive.hold + ramp > CLOCK_MAX:
+            return
+        key, value = (f"{d}hold", drive.hold) if drive.hold > ramp else (f"{d}rate", drive.rate)
+        raise ValueError(f"{key} = {value:g} makes the run last {drive.hold + ramp:.3g} t0, over "
+                         f"the {CLOCK_MAX:.3g} t0 (2^46) within which its clock resolves the "
+                         "traps' ages (to 1/64 t0); shorten the hold or raise the rate")
+    segs = drive.program.segments  # type: ignore[attr-defined]
+    total = float(sum(s.time for s in segs))
+    if not total > CLOCK_MAX:
+        return
+    i = max(range(len(segs)), key=lambda j: segs[j].time)
+    raise ValueError(f"{d}segments[{i}] (velocity {segs[i].velocity:g} a0/t0) makes the run last "
+                     f"{total:.3g} t0, over the {CLOCK_MAX:.3g} t0 (2^46) within which its "
+                     "clock resolves the traps' ages (to 1/64 t0); raise the velocity or "
+                     "shorten the segment")
+
+
 def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, output: Output,
               *, qualified: bool = False) -> RunEstimate:
-    """Refuse a run whose estimate is over :func:`dryfriction.validation.memory_limit`.
+    """Refuse a run whose estimate is over :func:`dryfriction.validation.memory_limit`, whose
+    duration is over :data:`CLOCK_MAX`, or whose work (:func:`estimate_work`) is over
+    :func:`dryfriction.validation.time_limit`.
 
     Parameters
     ----------
@@ -195,4 +279,24 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
                          f"{MAX_SAMPLES:.0e} one run records (minutes of recording and a CSV "
                          f"of ~{est.samples * 100 / 1e9:.2g} GB); raise {out}{key} (or shorten "
                          "the drive)")
+    _check_clock(model, drive, qualified)
+    calls, seconds, kind = estimate_work(model, track, drive, est)
+    pair_bound = SECONDS_PER_PAIR * est.active > SECONDS_PER_CALL
+    if kind == "steps":
+        what = (f"{('drive.' if qualified else '')}mass = {drive.mass:g} over "  # type: ignore
+                f"{drive.program.total_time:.3g} t0 of drive needs {calls:.1e} "  # type: ignore
+                f"time steps of {est.active:.0f} traps in contact")
+        d = "drive." if qualified else ""
+        hint = (f"shorten {d}segments (or raise their velocity), raise {d}mass"
+                + (f" or lower {lam_key}" if pair_bound else ""))
+    elif kind == "events" or pair_bound:
+        what = (f"{lam_key} = {track.traps_per_a0:g} gives {calls:.1e} kernel calls over "
+                f"{est.active:.0f} traps in contact")
+        hint = f"lower {lam_key} (or shorten the drive)"
+    else:
+        key = "every" if output.every is not None else "every_slip"
+        value = output.every if output.every is not None else output.every_slip
+        what = f"{out}{key} = {value:g} gives {calls:.1e} kernel calls"
+        hint = f"raise {out}{key} (or shorten the drive)"
+    check_time(what, seconds, hint)
     return est

@@ -552,7 +552,9 @@ def fit_steps(
         (:func:`quick_profile`, a few times the fit's cost); default Wald intervals from the
         covariance.
     progress : callable, optional
-        Called as ``progress(done, total)`` after each window.
+        Called as ``progress(done, total)`` after each window, and with the windows done so
+        far after each model evaluation within a window, so that a slow window (a record read
+        in the wrong units takes minutes) still shows progress.
     errors : {"hac", "white"}
         ``"hac"`` (default): standard errors and intervals allow for autocorrelated residuals
         (:func:`step_covariance`); ``"white"``: independent noise assumed.
@@ -577,9 +579,11 @@ def fit_steps(
     for i, (w, d) in enumerate(zip(wins, pieces, strict=True)):
         model = RSFModel(float(d.v_load[0]), law, stiffness, trend=trend)
         start = _start(prev, model, d)
-        r = fit(d, model, start=start, multistart=False, profile=False)
+        tick = None if progress is None else \
+            (lambda n, total, what, i=i: progress(i, len(wins)))  # type: ignore[misc]
+        r = fit(d, model, start=start, multistart=False, profile=False, progress=tick)
         if not r.success:  # from every data-driven guess
-            r2 = fit(d, model, profile=False)
+            r2 = fit(d, model, profile=False, progress=tick)
             r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
         fits.append(r)
         sc = step_covariance(r, d, errors)

@@ -36,10 +36,12 @@ from typing import Any
 
 import numpy as np
 
+from ..interrupts import deferred
 from .law import RateState
 
-__all__ = ["EFOLD", "INERTIAL", "INTERPRETED_STEPS", "KINEMATIC", "QUASISTATIC", "below",
-           "compiled", "growth_limit", "integrate", "interpreted_steps", "param_vector", "rhs_at"]
+__all__ = ["COMPILED_CHUNK", "EFOLD", "INERTIAL", "INTERPRETED_STEPS", "KINEMATIC", "QUASISTATIC",
+           "below", "compiled", "growth_limit", "integrate", "interpreted_steps", "param_vector",
+           "rhs_at"]
 
 # modes of the driver
 KINEMATIC, QUASISTATIC, INERTIAL = 0, 1, 2
@@ -76,6 +78,10 @@ INTERPRETED_STEPS = 3000
 """Steps (accepted and rejected) the process runs interpreted before it loads the compiled
 kernels: at ~50 us a step interpreted, about the 0.5-0.7 s Numba costs to import and load."""
 _interpreted_left = INTERPRETED_STEPS
+
+COMPILED_CHUNK = 100_000
+"""Steps (accepted and rejected) of one compiled call: about 0.1 s (a compiled step costs ~1 us),
+so that a Ctrl-C or SIGTERM, held back during the call, is acted on at once after it."""
 
 
 def _zeros(n: int) -> Any:
@@ -554,9 +560,18 @@ def integrate(y0: np.ndarray, p: np.ndarray, seg_t: np.ndarray, seg_v: np.ndarra
                        np.empty(cap, np.int64))
         _interpreted_left = max(0, _interpreted_left - int(st[_NACC] + st[_NREJ]))
     if status == 2 and st[_NACC] + st[_NREJ] < max_steps:
-        st, y = np.array(st), np.array(y)
-        *buffers, status = _run(compiled()["_integrate"], y, p.copy(), seg_t, seg_v, tol, w,
-                                max_steps, _TABLES, tuple(buffers), st)
+        st, y, kernel, q = np.array(st), np.array(y), compiled()["_integrate"], p.copy()
+        # in chunks of COMPILED_CHUNK steps, each with the signals deferred (a handler must not
+        # run while Numba boxes the returned arrays, nor in llvmlite's callbacks while the first
+        # call loads or compiles the kernels: dryfriction.interrupts); a chunk resumes where
+        # the last stopped, so the result is the one call's, bit for bit
+        while True:
+            limit = int(min(max_steps, st[_NACC] + st[_NREJ] + COMPILED_CHUNK))
+            with deferred():
+                *buffers, status = _run(kernel, y, q, seg_t, seg_v, tol, w, limit, _TABLES,
+                                        tuple(buffers), st)
+            if status != 2 or limit >= max_steps:  # done, failed, or out of max_steps
+                break
     n = int(st[_N])
     T, Y, F, S = buffers
     stats = (int(st[_NACC]), int(st[_NREJ]), int(st[_NFEV]))
@@ -572,7 +587,8 @@ def rhs_at(y: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         _rhs(y.tolist(), p.tolist(), f, jac, True)
     except (ArithmeticError, ValueError):
         f, jac = np.zeros(n), np.zeros(n * n)
-        compiled()["_rhs"](np.asarray(y, float), p, f, jac, True)
+        with deferred():  # its first call loads the kernels (dryfriction.interrupts)
+            compiled()["_rhs"](np.asarray(y, float), p, f, jac, True)
     return np.asarray(f, float), np.asarray(jac, float).reshape(n, n)
 
 
