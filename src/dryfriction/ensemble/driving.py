@@ -75,7 +75,7 @@ from ..results import check_physical
 from ..validation import U_MAX, U_MIN, check_choice, check_scalar
 from .balance import add_events, equilibrate, events
 from .population import Ensemble, Initial, Track, TrapModel
-from .resources import check_run
+from .resources import CLOCK_MAX, check_run
 from .result import (
     COLUMNS,
     Output,
@@ -146,20 +146,21 @@ class ForceDrive:
         object.__setattr__(
             self, "max_force", check_scalar("max_force", self.max_force, 0.0, lo_open=True)
         )
-        # the contacts age through the hold and the ramp: past FORCE_RUN_MAX the thresholds
-        # stop growing with the age (and at rate = 1e-300 the clock overflowed, 8e-17)
-        if self.hold > FORCE_RUN_MAX:
+        # the contacts age through the hold and the ramp: past CLOCK_MAX the clock no longer
+        # resolves their ages (at rate = 1e-300 it overflowed: a threshold of 8e-17)
+        if self.hold > CLOCK_MAX:
             raise ValueError(f"hold = {self.hold:g} is out of range: allowed <= "
-                             f"{FORCE_RUN_MAX:g} t0 (the contact ages a run is checked at)")
+                             f"{CLOCK_MAX:.3g} t0 (2^46, within which the clock resolves the "
+                             "contacts' ages)")
         end = self.hold + self.max_force / self.rate
-        if not end <= FORCE_RUN_MAX:
-            lowest = self.max_force / (FORCE_RUN_MAX - self.hold)
+        if not end <= CLOCK_MAX:
+            lowest = self.max_force / (CLOCK_MAX - self.hold)
             lowest = float(f"{lowest * 1.01:.3g}")  # shown rounded up: it is allowed
             raise ValueError(
                 f"rate = {self.rate:g} is out of range with max_force = {self.max_force:g} "
                 f"and hold = {self.hold:g}: the ramp could last until t = {end:.1e} t0, "
-                f"beyond the {FORCE_RUN_MAX:g} t0 of contact ages a run is checked at; "
-                f"allowed rate >= {lowest:g} F_el/t0 (or a lower max_force)")
+                f"beyond the {CLOCK_MAX:.3g} t0 (2^46) within which the clock resolves the "
+                f"contacts' ages; allowed rate >= {lowest:g} F_el/t0 (or a lower max_force)")
 
 
 RAMP_FORCE_STEP: float = 0.005
@@ -168,12 +169,6 @@ RAMP_FORCE_STEP: float = 0.005
 sampling: with the static-threshold example it agrees to 3e-8 with the sampling's force step
 0.0035 F_el (every_slip = 0.005)."""
 
-
-FORCE_RUN_MAX: float = 1e15
-"""Longest force-controlled run (hold plus ramp up to ``max_force``), ``t0``: the static
-threshold after a hold grows with its length up to 3e15 t0 (3.23 F_el at eps = 0.04), then
-falls (3.02 F_el after 1e16 t0), which no ageing does: the ensemble's ages are not resolved
-there. 1e15 t0 is some 10^8 years at t0 ~ 1e-3 s."""
 
 
 STIFFNESS_MAX: float = 1e6
