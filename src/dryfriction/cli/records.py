@@ -81,15 +81,48 @@ def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
     return (time.process_time() - t0) * span * CV_CALLS_PER_STEP
 
 
+def _cell(x: Any) -> str:
+    """A table cell: 4 significant digits; a value not reported (NaN) as a dash."""
+    if isinstance(x, float):
+        return "—" if math.isnan(x) else f"{x:.4g}"
+    return str(x)
+
+
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
     table = Table(title=title)
     cols = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
-            "rms", "noise", "peak_residual")
+            "rms", "noise", "peak_residual", "flags")
     for c in cols:
+        table.add_column(c, justify="left" if c == "flags" else "right")
+    for r in rows:
+        table.add_row(*(_cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
+    return table
+
+
+INTERVALS = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
+"""The 95 % intervals the terminal shows (columns ``<name>_lo``, ``<name>_hi`` of steps.csv)."""
+
+
+def _intervals_table(rows: list[dict[str, Any]]) -> Table:
+    table = Table(title="95 % intervals (— : not given by the data)")
+    table.add_column("index", justify="right")
+    for c in INTERVALS:
         table.add_column(c, justify="right")
     for r in rows:
-        table.add_row(*(f"{r[c]:.4g}" if isinstance(r[c], float) else str(r[c]) for c in cols))
+        table.add_row(str(r["index"]), *(f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]"
+                                         for c in INTERVALS))
     return table
+
+
+def flagged_line(rows: list[dict[str, Any]]) -> str:
+    """The last line of a record fit: how many steps carry flags."""
+    n = sum(bool(r["flags"]) for r in rows)
+    if n == 0:
+        return f"no step flagged ({len(rows)} step(s))"
+    if n == len(rows):
+        return (f"every step is flagged ({n} of {n}): read the flags and notes before using "
+                "any value")
+    return f"{n} of {len(rows)} steps flagged: read their flags and notes"
 
 
 def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
@@ -194,10 +227,15 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             save_figure(plot_steps_summary(res)[0], tmp / f"steps_summary.{fmt}", fmt, dpi)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
+        err.print(flagged_line(res.rows), highlight=False)  # stdout stays one JSON document
     else:
-        # one row per step in full: a console's width would squash twelve number columns
-        Console(width=max(out.width, 150)).print(
-            _steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        # one row per step in full, flags included: a console's width would squash them
+        wide = Console(width=max(out.width, 150 + max(len(r["flags"]) for r in res.rows)))
+        wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        wide.print(_intervals_table(res.rows))
+        for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
+            for note in row["notes"][len(f.notes):]:
+                out.print(f"- step {row['index']}: {note}", highlight=False, soft_wrap=True)
         if res.joint is not None:
             est = {p.name: p for p in res.joint.parameters}
             out.print("joint fit (all steps): " + ", ".join(
@@ -219,6 +257,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"
                   + (f", step_*.{fmt}, steps_summary.{fmt}" if figure else ""), highlight=False)
+        out.print(flagged_line(res.rows), highlight=False)
     if not res.success:
         err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)
         raise typer.Exit(1)

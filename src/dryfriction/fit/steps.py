@@ -44,10 +44,11 @@ from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
+from .identify import assess_step
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
-from .statistics import Covariance
+from .statistics import Covariance, quantile_95
 
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
@@ -62,12 +63,18 @@ STEP_COLUMNS: tuple[str, ...] = (
     "stiffness", "trend", "mu0", "sigma_a", "sigma_b", "sigma_a_minus_b", "sigma_dc",
     "sigma_stiffness", "sigma_trend", "a_lo", "a_hi", "b_lo", "b_hi", "dc_lo", "dc_hi",
     "rms", "noise", "white_noise", "peak_residual", "n", "success", "errors", "resid_rho1",
-    "hac_lags",
+    "hac_lags", "a_minus_b_lo", "a_minus_b_hi", "b_over_dc", "b_over_dc_lo", "b_over_dc_hi",
+    "stiffness_lo", "stiffness_hi", "slip_before", "slip_after", "flags",
 )
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
 1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one; ``errors`` says how
 the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covariance`),
-``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used)."""
+``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used;
+``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
+record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
+:data:`.identify.FLAG_WORDS` separated by ``;``). A parameter that is not identified
+(:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
+none."""
 
 ERRORS = ("hac", "white")
 """How :func:`fit_steps` computes uncertainties: ``"hac"`` (default) allows for autocorrelated
@@ -588,11 +595,18 @@ def fit_steps(
         if not r.success:
             notes.append(f"step {rows[-1]['index']}: the fit did not succeed ({r.message})")
         rem, hold, slip = hold_remnant(data, int(w.i_start), rows[-1]["b"], rows[-1]["dc"])
+        early: list[str] = []
         if rem > 2.0 * rows[-1]["white_noise"]:  # the steady start the fit assumes is not there
-            notes.append(f"step {rows[-1]['index']}: starts {slip * 1e6:.3g} um after the "
-                         f"reslide from a {hold:.3g} s hold, where friction is still about "
-                         f"{rem:.2g} above steady sliding (> 2x the noise): a, b, Dc and the "
-                         "stiffness may be biased; slide longer between holds")
+            early.append(f"starts {slip * 1e6:.3g} um after the reslide from a {hold:.3g} s "
+                         f"hold, where friction is still about {rem:.2g} above steady sliding "
+                         "(> 2x the noise): a, b, Dc and the stiffness may be biased; slide "
+                         "longer between holds")
+            notes.append(f"step {rows[-1]['index']}: {early[-1]}")
+        assess_step(rows[-1], r.notes, sc.specs, sc.theta, sc.used.matrix, sc.used.singular,
+                    quantile_95(False, sc.dof), d,
+                    rsf_series(r.fitted_model, {p.name: p.value for p in r.parameters}, d)
+                    if isinstance(r.fitted_model, RSFModel) else d.mu, data, int(w.i_start),
+                    PEAK_SAMPLES, early)
         prev = r
         if progress is not None:
             progress(i + 1, len(wins))

@@ -1,0 +1,276 @@
+"""Issue 30 (items 1, 2, 4) and issue 24 item 12: each step's fit says what the data identify,
+and its flags travel into steps.csv, fit.json, the terminal table and the figures.
+
+Synthetic records from the independent solver of ``tests/lab_synth.py`` (SciPy Radau on
+``(tau, theta)``) through ``tests/identify_synth.py``: identifiable ones, and ones built not
+to be (the window shorter than ``Dc``, ``Dc`` far beyond the window, ``a = b`` with the
+transient lost in the noise).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from dryfriction.cli import app
+from dryfriction.fit.identify import judge_step, split_flags
+from dryfriction.fit.models import ParamSpec
+from dryfriction.fit.steps import fit_steps
+from dryfriction.io.data import SeriesData
+
+sys.path.insert(0, str(Path(__file__).parent))
+from identify_synth import make_case  # noqa: E402
+from lab_synth import Truth, synth_program, write_lab_file  # noqa: E402
+
+RECORD = (Path(__file__).resolve().parents[1] / "examples/data/lab"
+          / "sepiolite_velstep_0.2-2um_s.txt")
+IDENTIFYING = ("not_identified", "at_bound", "short_window")
+
+
+def _classified(seed: int) -> tuple[bool, str, str]:
+    """(correct, kind, flags) for the synthetic record of ``seed``: an identifiable record
+    carries no flag at all; one built not to be carries a flag that says so."""
+    c = make_case(seed)
+    row = fit_steps(SeriesData(c.t, c.v_load, c.mu, source=f"seed {seed}")).rows[0]
+    words = split_flags(row["flags"])
+    said = any(w.startswith(IDENTIFYING) for w in words)
+    return (not words) if c.identifiable else said, c.kind, row["flags"]
+
+
+def test_flags_on_synthetic_records_subset():
+    """16 records, four of each kind (CI's subset of the 100 below): all classified right
+    (measured: 16 of 16). Catches a rule that never flags (the unidentifiable ones) and one
+    that flags everything, e.g. an interval criterion on the white covariance of a record
+    whose noise it mistakes, or Dc's range taken at the wrong velocity."""
+    got = [_classified(seed) for seed in range(16)]
+    assert sum(ok for ok, _, _ in got) >= 15, got
+
+
+@pytest.mark.slow
+def test_flags_on_synthetic_records_100(runslow: bool):
+    """Issue 30's acceptance: >= 95 % of 100 seeded records classified right."""
+    if not runslow:
+        pytest.skip("the 100-record study runs with --runslow")
+    got = [_classified(seed) for seed in range(100)]
+    assert sum(ok for ok, _, _ in got) >= 95, [g for g in got if not g[0]]
+
+
+def _judge(val: dict[str, float], se: dict[str, float], rho_bd: float = 0.0
+           ) -> tuple[dict, list[str]]:
+    """judge_step on a hand-made row: a, b, dc fitted in ln p with the given standard
+    errors (of ln p), ln b and ln dc correlated by ``rho_bd``; a window of 1 -> 3 um/s, 900 um
+    of slip after the change."""
+    specs = [ParamSpec("a", "", True, 1e-6, 1.0), ParamSpec("b", "", True, 1e-6, 1.0),
+             ParamSpec("dc", "m", True, 1e-12, 1.0)]
+    theta = np.array([math.log(val[s.name]) for s in specs])
+    cov = np.diag([se[s.name] ** 2 for s in specs])
+    cov[1, 2] = cov[2, 1] = rho_bd * se["b"] * se["dc"]
+    z = 1.96
+    row = {}
+    for s, th in zip(specs, theta, strict=True):
+        row[s.name] = val[s.name]
+        row[f"sigma_{s.name}"] = val[s.name] * se[s.name]
+        row[f"{s.name}_lo"] = math.exp(th - z * se[s.name])
+        row[f"{s.name}_hi"] = math.exp(th + z * se[s.name])
+    row["a_minus_b"], row["sigma_a_minus_b"] = val["a"] - val["b"], 0.0
+    t = np.arange(400.0)
+    v = np.where(t < 100, 1e-6, 3e-6)
+    d = SeriesData(t, v, np.zeros(400))
+    return row, judge_step(row, specs, theta, cov, False, z, d)
+
+
+def test_judge_by_hand():
+    """Identified within range and a decade; a wide interval, one leaving the window, and a
+    value on its search bound are not, with NaN values and the combinations that hold."""
+    row, words = _judge({"a": 0.006, "b": 0.009, "dc": 20e-6},
+                        {"a": 0.05, "b": 0.05, "dc": 0.1})
+    assert words == [] and row["dc"] == 20e-6
+    # dc's interval spans more than a decade: dc and only dc not identified; b/Dc fixed
+    row, words = _judge({"a": 0.006, "b": 0.009, "dc": 20e-6},
+                        {"a": 0.05, "b": 0.55, "dc": 0.7}, rho_bd=0.99)
+    assert words == ["not_identified:dc"] and math.isnan(row["dc"])
+    assert math.isnan(row["sigma_dc"]) and row["b"] == 0.009  # b spans 8.6
+    assert row["b_over_dc_lo"] < 0.009 / 20e-6 < row["b_over_dc_hi"]
+    assert any("b/Dc" in n for n in row["notes"])
+    # dc beyond the slip after the change (900 um here: 300 samples at 3 um/s): open above
+    row, words = _judge({"a": 0.006, "b": 0.009, "dc": 800e-6},
+                        {"a": 0.05, "b": 0.05, "dc": 0.2})
+    assert "not_identified:dc" in words and "short_window" in words
+    assert math.isnan(row["dc_hi"]) and row["dc_lo"] == pytest.approx(800e-6 * math.exp(-0.392))
+    # b on its search bound 1e-6: never reported as a fitted value (issue 24 item 12)
+    row, words = _judge({"a": 0.006, "b": 1e-6, "dc": 20e-6},
+                        {"a": 0.05, "b": 0.05, "dc": 0.1})
+    assert "at_bound:b" in words and "not_identified:b" in words and math.isnan(row["b"])
+
+
+def test_nan_sigma_never_beside_success_without_a_flag():
+    """Issue 24 item 12: a fit whose covariance is singular (a = b with the transient lost
+    in the noise: every sigma NaN) still succeeds, and then every missing error has its
+    flag, and the flags say which values are not reported."""
+    c = make_case(3)  # "flat"
+    assert c.kind == "flat"
+    res = fit_steps(SeriesData(c.t, c.v_load, c.mu, source="flat"))
+    row = res.rows[0]
+    words = split_flags(row["flags"])
+    for name in ("a", "b", "dc", "stiffness", "trend"):
+        if not math.isfinite(row[f"sigma_{name}"]):
+            assert f"not_identified:{name}" in words, (name, words)
+    for name in ("a", "b", "dc", "stiffness"):
+        if f"not_identified:{name}" in words:
+            assert math.isnan(row[name])
+    assert words and row["notes"]
+
+
+def _two_steps(tmp_path: Path) -> Path:
+    """1 -> 3 um/s (300 um after: identified), then 3 -> 1 um/s for only 25 um (Dc = 20 um:
+    the window is short)."""
+    tr = Truth()
+    t, _, mu, x = synth_program(tr, [(1e-6, 300.0), (3e-6, 100.0), (1e-6, 25.0)], 0.25,
+                                seed=11)
+    return write_lab_file(tmp_path / "rec.txt", t, x, mu)
+
+
+def _table_rows(text: str) -> list[list[str]]:
+    return [[c.strip() for c in ln.split("│")[1:-1]] for ln in text.splitlines()
+            if ln.startswith("│")]
+
+
+def _num(cell: str) -> float:
+    return math.nan if cell in ("—", "not identified") else float(cell)
+
+
+def test_csv_json_table_and_figures_agree(tmp_path: Path):
+    """steps.csv, fit.json, the terminal table and the figures carry the same values (to the
+    table's 4 digits), 95 % intervals and flags; the last line counts the flagged steps."""
+    from dryfriction.plots import steps as step_plots
+
+    titles: list[str] = []
+    bars: dict[str, tuple] = {}
+    plot, summary = step_plots.plot_step, step_plots.plot_steps_summary
+
+    def spy_step(*a, **k):  # type: ignore[no-untyped-def]
+        fig, axes = plot(*a, **k)
+        titles.append(fig._suptitle.get_text())
+        return fig, axes
+
+    def spy_summary(*a, **k):  # type: ignore[no-untyped-def]
+        fig, axes = summary(*a, **k)
+        for ax, name in zip(axes, ("a_minus_b", "dc"), strict=True):
+            cont = ax.containers[0]
+            xy = cont.lines[0].get_data()
+            segs = cont.lines[2][0].get_segments()
+            bars[name] = (np.asarray(xy[1]), [(s[0][1], s[1][1]) for s in segs])
+        return fig, axes
+
+    out = tmp_path / "out"
+    mp = pytest.MonkeyPatch()
+    mp.setattr(step_plots, "plot_step", spy_step)
+    mp.setattr(step_plots, "plot_steps_summary", spy_summary)
+    try:
+        r = CliRunner().invoke(app, ["fit", str(_two_steps(tmp_path)), "--model", "rsf",
+                                     "--out", str(out)])
+    finally:
+        mp.undo()
+    assert r.exit_code == 0, r.output
+    rows = list(csv.DictReader((out / "steps.csv").open()))
+    rep = json.loads((out / "fit.json").read_text())["steps"]
+    assert len(rows) == len(rep) == len(titles) == 2
+    table = _table_rows(r.stdout)
+    values, intervals = table[:2], table[2:4]
+    names = ("a", "b", "a_minus_b", "dc", "stiffness")
+    heads = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
+             "rms", "noise", "peak_residual", "flags")
+    iv_names = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
+    for i, (c, j) in enumerate(zip(rows, rep, strict=True)):
+        assert c["flags"] == j["flags"] == (values[i][heads.index("flags")].replace("—", ""))
+        for n in names:
+            x = float(c[n])
+            y = math.nan if j[n] is None else j[n]
+            assert (math.isnan(x) and math.isnan(y)) or x == pytest.approx(y, rel=1e-12), n
+            tab = _num(values[i][heads.index(n)])
+            assert (math.isnan(x) and math.isnan(tab)) or tab == pytest.approx(x, rel=5e-4), n
+        for k, n in enumerate(iv_names):
+            lo, hi = (_num(s) for s in intervals[i][k + 1].strip("[]").split(", "))
+            for got, key in ((lo, f"{n}_lo"), (hi, f"{n}_hi")):
+                want = float(c[key])
+                assert (math.isnan(got) and math.isnan(want)) \
+                    or got == pytest.approx(want, rel=5e-4), key
+                jv = math.nan if j[key] is None else j[key]
+                assert (math.isnan(jv) and math.isnan(want)) or jv == pytest.approx(want), key
+        # the figure's title: values and flags
+        title = titles[i]
+        for n, label, scale in (("a", "a = ", 1), ("b", "b = ", 1), ("a_minus_b", "a-b = ", 1),
+                                ("dc", "Dc = ", 1e-6), ("stiffness", "k = ", 1)):
+            cell = title.split(label, 1)[1].split(",")[0].split(" µm")[0].split(" /m")[0]
+            got = _num(cell) * scale
+            want = float(c[n])
+            assert (math.isnan(got) and math.isnan(want)) or got == pytest.approx(want, 5e-4)
+        assert all(w in title for w in split_flags(c["flags"]))
+        if "not_identified:dc" in c["flags"]:
+            assert "dc not identified" in title
+    # the summary figure: identified values with their 95 % intervals, the others left out
+    for name, scale in (("a_minus_b", 1.0), ("dc", 1e6)):
+        y, segs = bars[name]
+        shown = [c for c in rows if math.isfinite(float(c[name]))]
+        assert len(y) == len(shown)
+        for yy, (lo, hi), c in zip(y, segs, shown, strict=True):
+            assert yy == pytest.approx(float(c[name]) * scale)
+            assert lo == pytest.approx(float(c[f"{name}_lo"]) * scale)
+            assert hi == pytest.approx(float(c[f"{name}_hi"]) * scale)
+    # every note of each step is in fit.json, the flags' reasons among them
+    assert rows[0]["flags"] == "" and rows[1]["flags"] != ""
+    assert any("v0 =" in n for n in rep[1]["notes"]) and len(rep[1]["notes"]) > 2
+    last = [ln for ln in r.stdout.splitlines() if ln.strip()][-1]
+    assert last.startswith("1 of 2 steps flagged"), last
+
+
+def test_every_step_flagged_exits_0_and_says_so(tmp_path: Path):
+    c = make_case(2)  # "huge": Dc far beyond the window
+    x = np.concatenate([[0.0], np.cumsum(np.diff(c.t) * c.v_load[:-1])])
+    rec = write_lab_file(tmp_path / "huge.txt", c.t, x, c.mu)
+    r = CliRunner().invoke(app, ["fit", str(rec), "--model", "rsf", "--out",
+                                 str(tmp_path / "o"), "--no-figure"])
+    assert r.exit_code == 0, r.output
+    last = [ln for ln in r.stdout.splitlines() if ln.strip()][-1]
+    assert last.startswith("every step is flagged"), last
+
+
+def test_not_steady_before_and_misfit():
+    """1 -> 10 um/s for only 30 um (1.5 Dc), then -> 1 um/s: the second change comes inside
+    the first's transient and is flagged, the first is not. A kinematic machine fitted to
+    the soft one's record is a misfit; the soft fit is not."""
+    tr = Truth(noise=1e-4)
+    t, v, mu, _ = synth_program(tr, [(1e-6, 300.0), (1e-5, 3.0), (1e-6, 300.0)], 0.05,
+                                seed=5)
+    res = fit_steps(SeriesData(t, v, mu, source="unsteady"))
+    assert "not_steady_before" not in res.rows[0]["flags"], res.rows[0]["notes"]
+    assert "not_steady_before" in res.rows[1]["flags"], res.rows[1]["notes"]
+    assert res.rows[1]["slip_before"] == pytest.approx(30e-6, rel=0.02)
+    t, v, mu, _ = synth_program(Truth(), [(1e-6, 300.0), (3e-6, 100.0)], 0.25, seed=6)
+    d = SeriesData(t, v, mu, source="soft")
+    assert "misfit" not in fit_steps(d).rows[0]["flags"]
+    assert "misfit" in fit_steps(d, stiffness=math.inf).rows[0]["flags"]
+
+
+@pytest.mark.skipif(not RECORD.exists(), reason="needs the shared record")
+def test_shared_record_keeps_its_values_and_raises_no_flag():
+    """The shipped sepiolite step: a, b, Dc inside the intervals they had before issue 30
+    (steps.csv of commit 83acd23: a [0.01955, 0.02301], b [0.01192, 0.01762], Dc [98.87,
+    217.8] um) and no flag (measured: none; rms/noise 1.13, peak residual 2.5e-3 against an
+    allowance of 4.4e-3)."""
+    from dryfriction.io import lab
+
+    rec = lab.read_record(RECORD)
+    segs = lab.detect_segments(rec)
+    row = fit_steps(rec, lab.slice_steps(rec, segs), segs).rows[0]
+    assert 0.01955 <= row["a"] <= 0.02301
+    assert 0.01192 <= row["b"] <= 0.01762
+    assert 98.87e-6 <= row["dc"] <= 217.8e-6
+    assert row["flags"] == "", row["notes"]
