@@ -274,3 +274,31 @@ def test_shared_record_keeps_its_values_and_raises_no_flag():
     assert 0.01192 <= row["b"] <= 0.01762
     assert 98.87e-6 <= row["dc"] <= 217.8e-6
     assert row["flags"] == "", row["notes"]
+
+
+def test_record_stiffness_and_k_inconsistent():
+    """One machine: the steps' identified k combine into the record's (inverse-variance in
+    ln k); the step that disagrees with the others gets k_inconsistent, the others do not
+    (a one-pass leave-one-out comparison, this rule's first version, flagged the two good
+    steps as well: the outlier pulls the mean of "the others")."""
+    from dryfriction.fit.identify import record_stiffness
+
+    def row(k: float, rel: float) -> dict:
+        return {"stiffness": k, "stiffness_lo": k * math.exp(-1.96 * rel),
+                "stiffness_hi": k * math.exp(1.96 * rel), "flags": ""}
+
+    rows = [row(3000.0, 0.05), row(3100.0, 0.05), row(4500.0, 0.05), row(math.nan, 0.05)]
+    rec = record_stiffness(rows)
+    assert rec is not None
+    assert [r["flags"] for r in rows] == ["", "", "k_inconsistent", ""]
+    assert rec["lo"] < rec["value"] < rec["hi"]
+    assert rec["steps"] == [0, 1]  # the outlier left out of the record's k
+    assert rec["value"] == pytest.approx(math.exp(np.mean(np.log([3000, 3100]))))
+    assert record_stiffness([row(3000.0, 0.05)]) is None
+    # the same machine in every step of a synthetic record: no step is flagged
+    t, v, mu, _ = synth_program(Truth(), [(1e-6, 300.0), (3e-6, 100.0), (1e-6, 300.0)], 0.25,
+                                seed=12)
+    res = fit_steps(SeriesData(t, v, mu, source="one machine"))
+    assert res.stiffness is not None
+    assert res.stiffness["lo"] < Truth().stiffness < res.stiffness["hi"]
+    assert all("k_inconsistent" not in r["flags"] for r in res.rows), [r["flags"] for r in res.rows]

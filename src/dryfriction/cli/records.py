@@ -242,6 +242,10 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
+        if res.stiffness is not None:
+            k = res.stiffness
+            out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "
+                      f"(95 %, steps {', '.join(map(str, k['steps']))})", highlight=False)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:

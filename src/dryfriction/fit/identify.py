@@ -58,7 +58,7 @@ from .models import ParamSpec
 
 __all__ = ["FLAG_WORDS", "PHYSICAL", "MAX_SPAN", "MISFIT_RMS", "DRIFT_NOISE", "SHORT_DC",
            "JUDGED", "judge_step", "misfit_words", "steady_before", "change_index",
-           "join_flags", "split_flags"]
+           "join_flags", "split_flags", "assess_step", "record_stiffness"]
 
 FLAG_WORDS: dict[str, str] = {
     "not_identified:<name>": "the 95 % interval of <name> (a, b, dc, stiffness) is open, "
@@ -68,7 +68,8 @@ FLAG_WORDS: dict[str, str] = {
     "misfit": "rms residual, peak residual or residual runs beyond their allowance",
     "not_steady_before": "friction was not in steady sliding before the change",
     "short_window": "the window's slip after the change is under 3 Dc",
-    "k_inconsistent": "the step's fitted stiffness disagrees with the record's",
+    "k_inconsistent": "the step's fitted stiffness disagrees with the other steps' "
+                      "(record_stiffness)",
 }
 """The words of the ``flags`` column (separated by ``;``) and what each means."""
 
@@ -359,3 +360,58 @@ def assess_step(row: dict[str, Any], notes: Sequence[str], specs: Sequence[Param
                                          "not_steady_before", "short_window",
                                          "k_inconsistent"))}
     row["flags"] = join_flags(sorted(words, key=lambda w: order.get(w.split(":")[0], 99)))
+
+
+def record_stiffness(rows: list[dict[str, Any]], z: float = 1.96) -> dict[str, Any] | None:
+    """One machine (issue 30 item 3, in part; ours): the record's stiffness from the steps
+    whose ``k`` is identified, the inverse-variance weighted mean of ``ln k`` (standard
+    error of ``ln k_i`` from its 95 % interval: ``ln(hi/lo)/(2 z)``), with its 95 % interval.
+
+    The step whose ``ln k`` differs most from the weighted mean of the *other* steps, by more
+    than ``z`` times their combined standard error, gets ``k_inconsistent`` (flag and note, in
+    place) and is left out; repeated while more than two steps remain (with two that
+    disagree, both are flagged: nothing says which one is right). ``None`` with fewer than two
+    such steps.
+    """
+    est: dict[int, tuple[float, float]] = {}
+    for i, r in enumerate(rows):
+        k, lo, hi = (float(r.get(c, math.nan)) for c in ("stiffness", "stiffness_lo",
+                                                          "stiffness_hi"))
+        if all(math.isfinite(x) and x > 0 for x in (k, lo, hi)) and hi > lo:
+            est[i] = (math.log(k), math.log(hi / lo) / (2.0 * z))
+    if len(est) < 2:
+        return None
+
+    def mean(idx: list[int]) -> tuple[float, float]:
+        w = np.array([1.0 / est[i][1] ** 2 for i in idx])
+        return float(w @ np.array([est[i][0] for i in idx]) / w.sum()), \
+            float(1.0 / math.sqrt(w.sum()))
+
+    def flag(i: int, other: float, gap: float) -> None:
+        row = rows[i]
+        row["flags"] = join_flags([*split_flags(row["flags"]), "k_inconsistent"])
+        row.setdefault("notes", []).append(
+            f"k_inconsistent: k = {math.exp(est[i][0]):.4g} /m differs from the other steps' "
+            f"{math.exp(other):.4g} /m by {gap:.2g} combined standard errors (> {z:.3g}): one "
+            "machine cannot be both; k trades with Dc and b in this step")
+
+    keep = sorted(est)
+    while len(keep) >= 2:
+        gaps = []
+        for i in keep:
+            m, s = mean([j for j in keep if j != i])
+            gaps.append((abs(est[i][0] - m) / math.sqrt(est[i][1] ** 2 + s**2), i, m))
+        worst = max(gaps)
+        if worst[0] <= z:
+            break
+        if len(keep) == 2:
+            for g, i, m in gaps:
+                flag(i, m, g)
+            break
+        flag(worst[1], worst[2], worst[0])
+        keep.remove(worst[1])
+    m, s = mean(keep)
+    return {"value": math.exp(m), "lo": math.exp(m - z * s), "hi": math.exp(m + z * s),
+            "unit": "1/m", "steps": keep,
+            "method": "inverse-variance weighted mean of ln k over the steps where k is "
+                      "identified and consistent (fit.identify.record_stiffness)"}

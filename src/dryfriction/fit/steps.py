@@ -44,7 +44,7 @@ from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
-from .identify import assess_step
+from .identify import assess_step, record_stiffness
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
@@ -417,6 +417,8 @@ class StepsResult:
         The joint fit (``joint=True``): one ``a, b, dc`` and one stiffness, ``mu0`` and trend
         per window (``mu0_<i>``, ``trend_<i>``).
     notes : list of str
+    stiffness : dict or None
+        The record's one machine stiffness (:func:`.identify.record_stiffness`).
     """
 
     rows: list[dict[str, Any]]
@@ -424,6 +426,7 @@ class StepsResult:
     data: list[SeriesData]
     joint: FitResult | None = None
     notes: list[str] = field(default_factory=list)
+    stiffness: dict[str, Any] | None = None  # the record's k (fit.identify.record_stiffness)
 
     @property
     def success(self) -> bool:
@@ -438,7 +441,7 @@ class StepsResult:
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"steps": self.rows, "success": self.success,
-                               "notes": list(self.notes)}
+                               "notes": list(self.notes), "record_stiffness": self.stiffness}
         if self.joint is not None:
             out["joint"] = self.joint.to_dict()
         return out
@@ -611,7 +614,7 @@ def fit_steps(
         if progress is not None:
             progress(i + 1, len(wins))
     joint_fit = _fit_joint(pieces, fits, law, stiffness, trend) if joint else None
-    return StepsResult(rows, fits, pieces, joint_fit, notes)
+    return StepsResult(rows, fits, pieces, joint_fit, notes, record_stiffness(rows))
 
 
 def _fit_joint(pieces: list[SeriesData], fits: list[FitResult], law: str,
