@@ -11,7 +11,9 @@ identified when its 95 % interval (the row's: the autocorrelation-robust Wald in
 range (:data:`PHYSICAL`; for ``Dc`` the slips the window probes: from one sample's
 load-point slip at the velocity after the change to the slip after the change) and spans at most
 :data:`MAX_SPAN` (a factor of 10: an interval wider than a decade fixes only an order of
-magnitude), and the value is not on its search bound. Otherwise the value and its standard
+magnitude), the value is not on its search bound, and (for ``a``, ``b``, ``Dc``) the step
+shows a transient at all (:func:`transient_test`: a fit to noise alone can have narrow Wald
+intervals). Otherwise the value and its standard
 error are not reported (NaN), an interval end outside the range is dropped, and the step
 gets ``not_identified:<name>`` (and ``at_bound:<name>`` on a bound). The combinations the
 data then do fix are reported with their 95 % intervals: ``a - b`` (the steady-state rate
@@ -58,7 +60,8 @@ from .models import ParamSpec
 
 __all__ = ["FLAG_WORDS", "PHYSICAL", "MAX_SPAN", "MISFIT_RMS", "DRIFT_NOISE", "SHORT_DC",
            "JUDGED", "judge_step", "misfit_words", "steady_before", "change_index",
-           "join_flags", "split_flags", "assess_step", "record_stiffness"]
+           "join_flags", "split_flags", "assess_step", "record_stiffness",
+           "transient_test", "TRANSIENT_P"]
 
 FLAG_WORDS: dict[str, str] = {
     "not_identified:<name>": "the 95 % interval of <name> (a, b, dc, stiffness) is open, "
@@ -200,6 +203,39 @@ def steady_before(d: SeriesData, model_mu: Array, row: Mapping[str, Any], record
     return slip, out
 
 
+TRANSIENT_P = 0.01
+"""Largest p-value of :func:`transient_test` at which the data show a transient."""
+
+
+def transient_test(d: SeriesData, model_mu: Array, p: int, rho: float) -> str:
+    """Whether the step shows a transient beyond the noise (ours): the fit against the
+    model without one, a straight line in load-point displacement (``mu0 + trend x_lp``: no
+    direct effect, no evolution, no change of level), by an F test with the residuals'
+    correlation counted, ``F (1 - rho)/(1 + rho)`` on ``p - 2`` and ``n_eff - p`` degrees of
+    freedom, ``n_eff = n (1 - rho)/(1 + rho)`` (AR(1) residuals of lag-1 autocorrelation
+    ``rho``). Returns the reason when it does not (p-value above :data:`TRANSIENT_P`), else
+    ""."""
+    from scipy import stats
+
+    x = load_point_displacement(d)
+    X = np.column_stack([np.ones(len(d)), x - x[0]])
+    r0 = d.mu - X @ np.linalg.lstsq(X, d.mu, rcond=None)[0]
+    r1 = d.mu - model_mu
+    rss0, rss1 = float(r0 @ r0), float(r1 @ r1)
+    rho = min(max(rho, 0.0), 0.999) if math.isfinite(rho) else 0.0
+    shrink = (1.0 - rho) / (1.0 + rho)
+    n_eff = len(d) * shrink
+    df1, df2 = p - 2, n_eff - p
+    if df1 <= 0 or df2 <= 1 or rss1 <= 0:
+        return ""
+    F = (rss0 - rss1) / df1 / (rss1 / (len(d) - p)) * shrink
+    pv = float(stats.f.sf(F, df1, df2))
+    if pv <= TRANSIENT_P:
+        return ""
+    return (f"the fit is no better than a straight line in load-point displacement (F test, "
+            f"p = {pv:.2g}): no transient beyond the noise")
+
+
 def _interval(spec: ParamSpec, theta: float, se: float, z: float) -> tuple[float, float]:
     if not math.isfinite(se):
         return math.nan, math.nan
@@ -207,7 +243,7 @@ def _interval(spec: ParamSpec, theta: float, se: float, z: float) -> tuple[float
 
 
 def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, cov: Array,
-               singular: bool, z: float, d: SeriesData) -> list[str]:
+               singular: bool, z: float, d: SeriesData, no_transient: str = "") -> list[str]:
     """Decide identifiability for the row's ``a, b, dc, stiffness`` (module docstring);
     update the row in place (values, errors and interval ends not reported set to NaN; the
     combinations ``a_minus_b_lo/_hi``, ``b_over_dc(_lo/_hi)``, ``stiffness_lo/_hi``) and
@@ -215,6 +251,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
 
     ``specs``, ``theta``, ``cov``: the fitted variables, the optimum and their covariance
     (the row's: robust where it is); ``z`` the 95 % quantile used for the row's intervals.
+    ``no_transient``: why the data show no transient beyond the noise
+    (:func:`transient_test`); then ``a``, ``b``, ``dc`` are not identified whatever their
+    intervals say (a fit to noise can have narrow Wald intervals).
     """
     names = [s.name for s in specs]
     notes: list[str] = row.setdefault("notes", [])
@@ -253,10 +292,11 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
                     < _BOUND_REL)
         span_ok = math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi / lo <= MAX_SPAN
         inside = math.isfinite(lo) and math.isfinite(hi) and lo >= rlo and hi <= rhi
-        if span_ok and inside and not on_bound:
+        noise_only = bool(no_transient) and name in ("a", "b", "dc")
+        if span_ok and inside and not on_bound and not noise_only:
             continue
         unidentified.append(name)
-        why = []
+        why = [no_transient] if noise_only else []
         if on_bound:
             words.append(f"at_bound:{name}")
             why.append(f"it ended on its search bound [{spec.lo:g}, {spec.hi:g}]")
@@ -275,8 +315,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
                      f"identified: {'; '.join(why)}; not reported")
         row[name] = math.nan
         row[f"sigma_{name}"] = math.nan
-        row[f"{name}_lo"] = lo if math.isfinite(lo) and lo >= rlo else math.nan
-        row[f"{name}_hi"] = hi if math.isfinite(hi) and hi <= rhi else math.nan
+        keep = not noise_only  # a fit to noise: its interval means nothing either
+        row[f"{name}_lo"] = lo if keep and math.isfinite(lo) and lo >= rlo else math.nan
+        row[f"{name}_hi"] = hi if keep and math.isfinite(hi) and hi <= rhi else math.nan
     # the combinations, from the covariance in the fitted variables (delta method)
     g_amb = np.zeros(len(names))
     g_ratio = np.zeros(len(names))
@@ -335,11 +376,17 @@ def assess_step(row: dict[str, Any], notes: Sequence[str], specs: Sequence[Param
     reslide)."""
     b, dc = float(row["b"]), float(row["dc"])  # before judge_step blanks the unidentified
     row["notes"] = list(notes)
-    words = judge_step(row, specs, theta, cov, singular, z, d)
+    words = judge_step(row, specs, theta, cov, singular, z, d,
+                       transient_test(d, model_mu, len(specs), float(row["resid_rho1"])))
     bad_fit = misfit_words(d, model_mu, row, peak_samples)
     if bad_fit:
         words.append("misfit")
         row["notes"] += [f"misfit: {s}" for s in bad_fit]
+    elif any("runs test p" in n for n in notes):  # the engine's test assumes independent noise
+        row["notes"].append("not a misfit: the runs test above assumes independent noise; "
+                            "the residuals change sign about as often as the record's own "
+                            "steady fluctuations do, and rms and peak residual are within "
+                            "their allowances")
     ok = {s.name: math.isfinite(float(row.get(s.name, math.nan))) for s in specs}
     slip, unsteady = steady_before(d, model_mu, row, record, i_start,
                                    b if ok.get("b") else math.nan,
