@@ -295,13 +295,30 @@ def test_record_stiffness_and_k_inconsistent():
     assert rec["steps"] == [0, 1]  # the outlier left out of the record's k
     assert rec["value"] == pytest.approx(math.exp(np.mean(np.log([3000, 3100]))))
     assert record_stiffness([row(3000.0, 0.05)]) is None
-    # the same machine in every step of a synthetic record: no step is flagged
-    t, v, mu, _ = synth_program(Truth(), [(1e-6, 300.0), (3e-6, 100.0), (1e-6, 300.0)], 0.25,
+    # the same machine in every step of a synthetic record: no step is flagged, and with
+    # --stiffness record every step holds the record's k, its a, b, Dc near the truth
+    from dryfriction.fit.onemachine import fit_steps_one_machine
+
+    tr = Truth()
+    t, v, mu, _ = synth_program(tr, [(1e-6, 300.0), (3e-6, 100.0), (1e-6, 300.0)], 0.25,
                                 seed=12)
-    res = fit_steps(SeriesData(t, v, mu, source="one machine"))
-    assert res.stiffness is not None
-    assert res.stiffness["lo"] < Truth().stiffness < res.stiffness["hi"]
-    assert all("k_inconsistent" not in r["flags"] for r in res.rows), [r["flags"] for r in res.rows]
+    res = fit_steps_one_machine(SeriesData(t, v, mu, source="one machine"))
+    k = res.stiffness
+    assert k is not None and k["steps"] == [0, 1] and k["lo"] < tr.stiffness < k["hi"]
+    hits = 0
+    for r in res.rows:
+        assert r["stiffness"] == k["value"] and r["flags"] == "", r["notes"]
+        hits += sum(r[f"{p}_lo"] <= getattr(tr, p) <= r[f"{p}_hi"] for p in ("a", "b", "dc"))
+    assert hits >= 5, res.rows
+
+
+def test_stiffness_record_is_for_a_record(tmp_path: Path):
+    csv_file = tmp_path / "s.csv"
+    csv_file.write_text("t,v_load,mu\n0,1e-6,0.6\n1,1e-6,0.6\n2,2e-6,0.61\n")
+    r = CliRunner().invoke(app, ["fit", str(csv_file), "--model", "rsf", "--out",
+                                 str(tmp_path / "o"), "--stiffness", "record"])
+    assert r.exit_code == 2 and "--stiffness record" in r.stderr, r.output
+    assert not (tmp_path / "o").exists()
 
 
 def test_a_fit_to_noise_is_not_identified():
@@ -314,3 +331,14 @@ def test_a_fit_to_noise_is_not_identified():
     words = split_flags(row["flags"])
     assert {"not_identified:a", "not_identified:b", "not_identified:dc"} <= set(words)
     assert any("no transient" in n for n in row["notes"])
+
+
+def test_dc_range_at_the_velocity_after_the_change():
+    """Seed 16: a step down 1 -> 0.1 um/s with Dc = 4.2 um, sampled every 5 s (5 um a sample
+    before the change, 0.5 um after it): Dc is resolved after the change and identified (a
+    lower limit at the faster velocity before it flagged it)."""
+    c = make_case(16)
+    assert c.identifiable and c.v2 < c.v1
+    row = fit_steps(SeriesData(c.t, c.v_load, c.mu, source="down")).rows[0]
+    assert row["flags"] == "", row["notes"]
+    assert row["dc_lo"] <= c.truth.dc <= row["dc_hi"]

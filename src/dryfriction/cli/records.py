@@ -44,18 +44,19 @@ def is_project_csv(path: Path) -> bool:
 
 
 def parse_stiffness(text: str) -> float | str:
-    """``--stiffness``: ``fit``, ``slope`` or a number (1/m, ``> 0``; ``inf`` kinematic)."""
+    """``--stiffness``: ``fit``, ``slope``, ``record`` (a record's one machine) or a number
+    (1/m, ``> 0``; ``inf`` kinematic)."""
     t = text.strip().lower()
-    if t in ("fit", "slope"):
+    if t in ("fit", "slope", "record"):
         return t
     try:
         k = float(t)
     except ValueError:
-        raise ValueError(f"--stiffness {text!r} is not allowed: fit, slope or a number (1/m, "
-                         "> 0; inf for the kinematic machine)") from None
+        raise ValueError(f"--stiffness {text!r} is not allowed: fit, slope, record or a number "
+                         "(1/m, > 0; inf for the kinematic machine)") from None
     if not k > 0:
-        raise ValueError(f"--stiffness {text!r} is out of range: allowed > 0 (1/m), fit or "
-                         "slope")
+        raise ValueError(f"--stiffness {text!r} is out of range: allowed > 0 (1/m), fit, "
+                         "slope or record")
     return k
 
 
@@ -164,8 +165,14 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
                          "run --model rsf --run-cv [--direct A] to fit both and compare")
     with progress_bar("fitting steps", len(wins), unit="steps") as update:
-        res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                        joint=joint, profile=profile, errors=errors, progress=update)
+        if stiffness == "record":  # one machine: free fits, then the record's k held
+            from ..fit.onemachine import fit_steps_one_machine
+
+            res = fit_steps_one_machine(rec, wins, segs, trend=trend, law=law, joint=joint,
+                                        profile=profile, errors=errors, progress=update)
+        else:
+            res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
+                            joint=joint, profile=profile, errors=errors, progress=update)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
