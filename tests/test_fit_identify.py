@@ -342,3 +342,16 @@ def test_dc_range_at_the_velocity_after_the_change():
     row = fit_steps(SeriesData(c.t, c.v_load, c.mu, source="down")).rows[0]
     assert row["flags"] == "", row["notes"]
     assert row["dc_lo"] <= c.truth.dc <= row["dc_hi"]
+
+
+def test_red_noise_is_not_an_unsteady_start():
+    """Red noise (AR(1), rho = 0.98) drifts by 2-3 noise levels over a pre-step stretch by
+    chance; the drift allowance counts that (the first rule, 2x the noise alone, flagged 3 of
+    20 steady steps not_steady_before; seed 108 was one)."""
+    from lab_synth import synth_record
+
+    t, v, mu, _ = synth_record(Truth(rho=0.98), [1e-6, 3e-6, 1e-6], duration_slip=300e-6,
+                               dt_per_um=0.5, seed=108)
+    res = fit_steps(SeriesData(t, v, mu, source="red"))
+    assert all("not_steady_before" not in r["flags"] for r in res.rows), \
+        [r["notes"] for r in res.rows]

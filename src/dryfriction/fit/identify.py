@@ -32,8 +32,11 @@ every record with correlated apparatus noise, such as the shared one).
 
 **Not steady before the change** (:func:`steady_before`): the fit starts the window in
 steady sliding. The step is flagged when (i) the residuals before the change drift, against
-load-point displacement, by more than :data:`DRIFT_NOISE` times the noise over the pre-step
-samples (the pre-step slope of ``mu`` against slip beyond the fitted trend), or (ii) the
+load-point displacement, over the pre-step samples (the pre-step slope of ``mu`` against slip
+beyond the fitted trend) by more than :data:`DRIFT_NOISE` times the noise and more than three
+times the drift a line through that noise shows by chance (``sigma sqrt(12/n_eff)``,
+``n_eff = n (1 - rho)/(1 + rho)`` for AR(1) noise; on red noise a drift of 2-3 sigma is
+common), or (ii) the
 transient of the previous change is still above twice the white noise at the change: its
 amplitude on a stiff machine, ``b |ln(V_before/V_prev)|`` (or ``b ln(1 + t_h V/Dc)`` after a
 hold), decayed as ``exp(-s/Dc)`` over the load-point slip ``s`` since that change (an order
@@ -136,6 +139,20 @@ def _detrended(t: Array, y: Array) -> Array:
     return y - np.polyval(coef, t - t[0])
 
 
+def _calm(d: SeriesData) -> Array:
+    """The steady part (last third of the window) about its straight line in time."""
+    tail = slice(len(d) * 2 // 3, len(d))
+    return _detrended(d.t[tail], d.mu[tail])
+
+
+def _tail_rho(d: SeriesData) -> float:
+    """Lag-1 autocorrelation of the steady part's fluctuations (:func:`_calm`), in [0, 0.999]."""
+    calm = _calm(d)
+    if calm.size <= 3 or not np.std(calm) > 0:
+        return 0.0
+    return float(np.clip(np.corrcoef(calm[1:], calm[:-1])[0, 1], 0.0, 0.999))
+
+
 def misfit_words(d: SeriesData, model_mu: Array, row: Mapping[str, Any],
                  peak_samples: int) -> list[str]:
     """Why the step is a misfit (sentences; empty when it is not): module docstring."""
@@ -147,10 +164,8 @@ def misfit_words(d: SeriesData, model_mu: Array, row: Mapping[str, Any],
     if row["rms"] > MISFIT_RMS * noise:
         out.append(f"rms residual {row['rms']:.3g} is {row['rms'] / noise:.3g} times the noise "
                    f"{noise:.3g} (allowance {MISFIT_RMS:g})")
-    tail = slice(len(d) * 2 // 3, len(d))
-    calm = _detrended(d.t[tail], d.mu[tail])
-    rho = float(np.clip(np.corrcoef(calm[1:], calm[:-1])[0, 1], -0.999, 0.999)) \
-        if calm.size > 3 and np.std(calm) > 0 else 0.0
+    calm = _calm(d)
+    rho = _tail_rho(d)
     allow = 3.0 * noise * min(1.0, math.sqrt((1 + rho) / ((1 - rho) * peak_samples)))
     peak = float(row["peak_residual"])
     if math.isfinite(peak) and abs(peak) > allow:
@@ -182,7 +197,12 @@ def steady_before(d: SeriesData, model_mu: Array, row: Mapping[str, Any], record
         r = (d.mu - model_mu)[:i_ch]
         if np.ptp(xl) > 0:
             drift = float(np.polyfit(xl, r, 1)[0]) * float(np.ptp(xl))
-            if abs(drift) > DRIFT_NOISE * noise:
+            # the drift a line through n samples of AR(1) noise shows by chance: sigma
+            # sqrt(12/n_eff), n_eff = n (1 - rho)/(1 + rho) (rho: the steady part's)
+            rho = _tail_rho(d)
+            n_eff = max(i_ch * (1.0 - rho) / (1.0 + rho), 1.0)
+            chance = noise * math.sqrt(12.0 / n_eff)
+            if abs(drift) > max(DRIFT_NOISE * noise, 3.0 * chance):
                 out.append(f"the residuals drift by {drift:+.3g} over the {np.ptp(xl) * 1e6:.3g}"
                            f" um before the change ({abs(drift) / noise:.2g} times the noise): "
                            "friction was still evolving")
