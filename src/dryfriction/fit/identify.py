@@ -375,12 +375,13 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
                 fixed.append(f"{name} = {row[name]:.4g} [{row[name + '_lo']:.4g}, "
                              f"{row[name + '_hi']:.4g}]")
         notes.append("what the data fix (95 %): " + ("; ".join(fixed) if fixed else "nothing"))
-    dc_scale = float(row["dc"]) if math.isfinite(row["dc"]) else float(row.get("dc_lo",
-                                                                              math.nan))
+    known = math.isfinite(row["dc"])
+    dc_scale = float(row["dc"]) if known else float(row.get("dc_lo", math.nan))
     if math.isfinite(dc_scale) and slip_after < SHORT_DC * dc_scale:
         words.append("short_window")
         notes.append(f"the window holds {slip_after * 1e6:.3g} um of slip after the change, "
-                     f"under {SHORT_DC:g} Dc ({SHORT_DC * dc_scale * 1e6:.3g} um): the "
+                     f"under {SHORT_DC:g} Dc ({SHORT_DC * dc_scale * 1e6:.3g} um"
+                     f"{'' if known else ', from the lower end of its interval'}): the "
                      "transient has not decayed; a longer step would fix Dc")
     return words
 

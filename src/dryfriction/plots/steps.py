@@ -22,10 +22,10 @@ _DATA = {"s": 2.0, "color": "0.6", "alpha": 0.5, "linewidths": 0, "rasterized": 
 _MODEL = {"color": "C3", "lw": 1.4, "zorder": 3}
 
 
-def _g(x: float, scale: float = 1.0) -> str:
-    """4 significant digits, as the terminal table; "not identified" for a value not
-    reported (NaN)."""
-    return "not identified" if x != x else f"{x * scale:.4g}"
+def _g(x: float, scale: float = 1.0, unit: str = "") -> str:
+    """4 significant digits and the unit, as the terminal table; "not identified" for a
+    value not reported (NaN)."""
+    return "not identified" if x != x else f"{x * scale:.4g}{unit}"
 
 
 def step_title(row: Mapping[str, Any]) -> str:
@@ -35,8 +35,8 @@ def step_title(row: Mapping[str, Any]) -> str:
 
     head = (f"step {row['index']} ({row['kind']}): {row['v_before'] * 1e6:.3g} -> "
             f"{row['v_after'] * 1e6:.3g} µm/s;  a = {_g(row['a'])}, b = {_g(row['b'])}, "
-            f"a-b = {_g(row['a_minus_b'])}, Dc = {_g(row['dc'], 1e6)} µm, "
-            f"k = {_g(row['stiffness'])} /m, rms = {row['rms']:.2g}")
+            f"a-b = {_g(row['a_minus_b'])}, Dc = {_g(row['dc'], 1e6, ' µm')}, "
+            f"k = {_g(row['stiffness'], 1.0, ' /m')}, rms = {row['rms']:.2g}")
     words = split_flags(row.get("flags", ""))
     if not words:
         return head
@@ -89,7 +89,7 @@ def plot_steps_summary(result: StepsResult, path: Any = None) -> tuple[Figure, A
     rows = result.rows
     v = np.array([r["v_after"] for r in rows])
     fig = Figure(figsize=(8.0, 3.6))
-    ax1, ax2 = fig.subplots(1, 2)
+    ax1, ax2 = fig.subplots(1, 2, sharex=True)
     for ax, name, scale, label in ((ax1, "a_minus_b", 1.0, r"$a - b$"),
                                    (ax2, "dc", 1e6, r"$D_c$  [µm]")):
         y = np.array([r[name] for r in rows], float) * scale
