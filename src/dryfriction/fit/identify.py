@@ -64,7 +64,7 @@ from .models import ParamSpec
 __all__ = ["FLAG_WORDS", "PHYSICAL", "MAX_SPAN", "MISFIT_RMS", "DRIFT_NOISE", "SHORT_DC",
            "JUDGED", "judge_step", "misfit_words", "steady_before", "change_index",
            "join_flags", "split_flags", "assess_step", "record_stiffness",
-           "transient_test", "TRANSIENT_P"]
+           "transient_test", "TRANSIENT_P", "worse_than_noise"]
 
 FLAG_WORDS: dict[str, str] = {
     "not_identified:<name>": "the 95 % interval of <name> (a, b, dc, stiffness) is open, "
@@ -151,6 +151,13 @@ def _tail_rho(d: SeriesData) -> float:
     if calm.size <= 3 or not np.std(calm) > 0:
         return 0.0
     return float(np.clip(np.corrcoef(calm[1:], calm[:-1])[0, 1], 0.0, 0.999))
+
+
+def worse_than_noise(d: SeriesData, rms: float) -> bool:
+    """Whether an rms residual exceeds :data:`MISFIT_RMS` times the steady part's noise: a
+    single-start fit that did so is retried from every start (a local minimum)."""
+    calm = _calm(d)
+    return calm.size > 3 and rms > MISFIT_RMS * math.sqrt(float(calm @ calm) / (calm.size - 2))
 
 
 def misfit_words(d: SeriesData, model_mu: Array, row: Mapping[str, Any],

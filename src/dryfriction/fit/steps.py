@@ -44,7 +44,7 @@ from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
-from .identify import assess_step, record_stiffness
+from .identify import assess_step, record_stiffness, worse_than_noise
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
@@ -586,9 +586,13 @@ def fit_steps(
     prev: FitResult | None = None
     for i, (w, d) in enumerate(zip(wins, pieces, strict=True)):
         model = RSFModel(float(d.v_load[0]), law, stiffness, trend=trend)
-        start = _start(prev, model, d)
+        # a cold start with a free k can fall into a local minimum: retried if worse than noise
+        start, cold = _start(prev, model, d), stiffness == "fit" and (prev is None
+                                                                     or not prev.success)
         r = fit(d, model, start=start, multistart=False, profile=False)
-        if not r.success:  # from every data-driven guess
+        rms = r.goodness.get("rms_residual", 0.0)
+        if not r.success or (cold and worse_than_noise(d, rms)):
+            # from every data-driven guess (the cheapest one can lead to a local minimum)
             r2 = fit(d, model, profile=False)
             r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
         fits.append(r)
