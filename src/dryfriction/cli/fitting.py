@@ -30,6 +30,15 @@ from .model import CREEP_HELP
 from .records import is_project_csv, parse_stiffness
 
 
+def _csv_stiffness(text: str | None) -> float | str:
+    """``--stiffness`` for the project's CSV files (``record`` is for a laboratory record)."""
+    k = parse_stiffness("inf" if text is None else text)
+    if k == "record":
+        raise ValueError("--stiffness record is for a laboratory record (its steps' one "
+                         "machine), not the project's CSV files: fit, slope or a number (1/m)")
+    return k
+
+
 @app.command("fit")
 @cli_errors
 def fit_command(
@@ -52,8 +61,9 @@ def fit_command(
     stiffness: str = typer.Option(None, "--stiffness", help="rsf time series: machine "
                                   "stiffness per unit normal force: a number (1/m; inf: "
                                   "kinematic, the default for CSV), fit (a free parameter, "
-                                  "the default for a record) or slope (fixed from the loading "
-                                  "slope after the change)."),
+                                  "the default for a record), slope (fixed from the loading "
+                                  "slope after the change) or record (a record's one machine: "
+                                  "from the steps' free fits, then held in every step)."),
     trend: bool = typer.Option(None, "--trend/--no-trend", help="rsf time series: a linear "
                                "trend in load-point displacement (default: on for a record, "
                                "off for CSV)."),
@@ -131,8 +141,7 @@ def fit_command(
             raise ValueError(f"--fix {item!r}: {value!r} is not a number") from None
     datasets = [read_csv(p) for p in data]
     opts: dict[str, Any] = dict(alpha=alpha, creep=creep, v0=v0, state_law=state_law,
-                                stiffness=parse_stiffness("inf" if stiffness is None
-                                                          else stiffness),
+                                stiffness=_csv_stiffness(stiffness),
                                 regularized=regularized, trend=bool(trend))
     from ..fit import CVModel
 

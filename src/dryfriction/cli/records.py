@@ -47,18 +47,19 @@ def is_project_csv(path: Path) -> bool:
 
 
 def parse_stiffness(text: str) -> float | str:
-    """``--stiffness``: ``fit``, ``slope`` or a number (1/m, ``> 0``; ``inf`` kinematic)."""
+    """``--stiffness``: ``fit``, ``slope``, ``record`` (a record's one machine) or a number
+    (1/m, ``> 0``; ``inf`` kinematic)."""
     t = text.strip().lower()
-    if t in ("fit", "slope"):
+    if t in ("fit", "slope", "record"):
         return t
     try:
         k = float(t)
     except ValueError:
-        raise ValueError(f"--stiffness {text!r} is not allowed: fit, slope or a number (1/m, "
-                         "> 0; inf for the kinematic machine)") from None
+        raise ValueError(f"--stiffness {text!r} is not allowed: fit, slope, record or a number "
+                         "(1/m, > 0; inf for the kinematic machine)") from None
     if not k > 0:
-        raise ValueError(f"--stiffness {text!r} is out of range: allowed > 0 (1/m), fit or "
-                         "slope")
+        raise ValueError(f"--stiffness {text!r} is out of range: allowed > 0 (1/m), fit, "
+                         "slope or record")
     return k
 
 
@@ -84,15 +85,48 @@ def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
     return (time.process_time() - t0) * span * CV_CALLS_PER_STEP
 
 
+def _cell(x: Any) -> str:
+    """A table cell: 4 significant digits; a value not reported (NaN) as a dash."""
+    if isinstance(x, float):
+        return "—" if math.isnan(x) else f"{x:.4g}"
+    return str(x)
+
+
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
     table = Table(title=title)
     cols = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
-            "rms", "noise", "peak_residual")
+            "rms", "noise", "peak_residual", "flags")
     for c in cols:
+        table.add_column(c, justify="left" if c == "flags" else "right")
+    for r in rows:
+        table.add_row(*(_cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
+    return table
+
+
+INTERVALS = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
+"""The 95 % intervals the terminal shows (columns ``<name>_lo``, ``<name>_hi`` of steps.csv)."""
+
+
+def _intervals_table(rows: list[dict[str, Any]]) -> Table:
+    table = Table(title="95 % intervals (— : not given by the data)")
+    table.add_column("index", justify="right")
+    for c in INTERVALS:
         table.add_column(c, justify="right")
     for r in rows:
-        table.add_row(*(f"{r[c]:.4g}" if isinstance(r[c], float) else str(r[c]) for c in cols))
+        table.add_row(str(r["index"]), *(f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]"
+                                         for c in INTERVALS))
     return table
+
+
+def flagged_line(rows: list[dict[str, Any]]) -> str:
+    """The last line of a record fit: how many steps carry flags."""
+    n = sum(bool(r["flags"]) for r in rows)
+    if n == 0:
+        return f"no step flagged ({len(rows)} step(s))"
+    if n == len(rows):
+        return (f"every step is flagged ({n} of {n}): read the flags and notes before using "
+                "any value")
+    return f"{n} of {len(rows)} steps flagged: read their flags and notes"
 
 
 def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
@@ -137,8 +171,14 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
                          "run --model rsf --run-cv [--direct A] to fit both and compare")
     with progress_bar("fitting steps", len(wins), unit="steps") as update:
-        res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                        joint=joint, profile=profile, errors=errors, progress=update)
+        if stiffness == "record":  # one machine: free fits, then the record's k held
+            from ..fit.onemachine import fit_steps_one_machine
+
+            res = fit_steps_one_machine(rec, wins, segs, trend=trend, law=law, joint=joint,
+                                        profile=profile, errors=errors, progress=update)
+        else:
+            res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
+                            joint=joint, profile=profile, errors=errors, progress=update)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
@@ -202,16 +242,25 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             save_figure(plot_steps_summary(res)[0], tmp / f"steps_summary.{fmt}", fmt, dpi)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
+        err.print(flagged_line(res.rows), highlight=False)  # stdout stays one JSON document
     else:
-        # one row per step in full: a console's width would squash twelve number columns
-        Console(width=max(out.width, 150)).print(
-            _steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        # one row per step in full, flags included: a console's width would squash them
+        wide = Console(width=max(out.width, 150 + max(len(r["flags"]) for r in res.rows)))
+        wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        wide.print(_intervals_table(res.rows))
+        for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
+            for note in row["notes"][len(f.notes):]:
+                out.print(f"- step {row['index']}: {note}", highlight=False, soft_wrap=True)
         if res.joint is not None:
             est = {p.name: p for p in res.joint.parameters}
             out.print("joint fit (all steps): " + ", ".join(
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
+        if res.stiffness is not None:
+            k = res.stiffness
+            out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "
+                      f"(95 %, steps {', '.join(map(str, k['steps']))})", highlight=False)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:
@@ -227,6 +276,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"
                   + (f", step_*.{fmt}, steps_summary.{fmt}" if figure else ""), highlight=False)
+        out.print(flagged_line(res.rows), highlight=False)
     if not res.success:
         err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)
         raise typer.Exit(1)

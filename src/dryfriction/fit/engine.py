@@ -257,7 +257,9 @@ def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov
         elif not math.isfinite(sej) or (s.log and sej > 2.0):
             ident = "poorly determined (Jacobian; no profile)"
             note = (f"{s.name}: the Jacobian gives a relative error of {sej:.3g} in ln "
-                    f"{s.name}; run with the profile to see what the data bound")
+                    f"{s.name}; run with the profile to see what the data bound" if s.log else
+                    f"{s.name}: the Jacobian gives no finite standard error; run with the "
+                    "profile to see what the data bound")
         if ident.startswith(_UNBOUNDED):
             stderr, wald = None, None
             notes.append(note)

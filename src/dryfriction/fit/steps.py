@@ -44,10 +44,12 @@ from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
+from .identify import assess_step, record_stiffness, worse_than_noise
+from .joint import fit_joint
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
-from .statistics import Covariance
+from .statistics import Covariance, quantile_95
 
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
@@ -62,12 +64,18 @@ STEP_COLUMNS: tuple[str, ...] = (
     "stiffness", "trend", "mu0", "sigma_a", "sigma_b", "sigma_a_minus_b", "sigma_dc",
     "sigma_stiffness", "sigma_trend", "a_lo", "a_hi", "b_lo", "b_hi", "dc_lo", "dc_hi",
     "rms", "noise", "white_noise", "peak_residual", "n", "success", "errors", "resid_rho1",
-    "hac_lags",
+    "hac_lags", "a_minus_b_lo", "a_minus_b_hi", "b_over_dc", "b_over_dc_lo", "b_over_dc_hi",
+    "stiffness_lo", "stiffness_hi", "slip_before", "slip_after", "flags",
 )
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
 1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one; ``errors`` says how
 the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covariance`),
-``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used)."""
+``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used;
+``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
+record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
+:data:`.identify.FLAG_WORDS` separated by ``;``). A parameter that is not identified
+(:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
+none."""
 
 ERRORS = ("hac", "white")
 """How :func:`fit_steps` computes uncertainties: ``"hac"`` (default) allows for autocorrelated
@@ -410,6 +418,8 @@ class StepsResult:
         The joint fit (``joint=True``): one ``a, b, dc`` and one stiffness, ``mu0`` and trend
         per window (``mu0_<i>``, ``trend_<i>``).
     notes : list of str
+    stiffness : dict or None
+        The record's one machine stiffness (:func:`.identify.record_stiffness`).
     """
 
     rows: list[dict[str, Any]]
@@ -417,6 +427,7 @@ class StepsResult:
     data: list[SeriesData]
     joint: FitResult | None = None
     notes: list[str] = field(default_factory=list)
+    stiffness: dict[str, Any] | None = None  # the record's k (fit.identify.record_stiffness)
 
     @property
     def success(self) -> bool:
@@ -431,65 +442,10 @@ class StepsResult:
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"steps": self.rows, "success": self.success,
-                               "notes": list(self.notes)}
+                               "notes": list(self.notes), "record_stiffness": self.stiffness}
         if self.joint is not None:
             out["joint"] = self.joint.to_dict()
         return out
-
-
-@dataclass(frozen=True)
-class JointStepsModel:
-    """Rate-and-state on several windows at once with one ``a, b, dc`` (and one stiffness:
-    the same machine), and per window its own ``mu0_<i>`` (reference velocity: the window's
-    first load velocity) and ``trend_<i>``. The :func:`.engine.fit` model protocol."""
-
-    windows: tuple[SeriesData, ...]
-    base: RSFModel
-    start: Mapping[str, float] = field(default_factory=dict)
-    name: str = "rsf-joint"
-
-    def _index(self, d: SeriesData) -> int:
-        for i, w in enumerate(self.windows):
-            if w is d:
-                return i
-        raise ValueError(f"{d.source} is not one of the joint fit's windows")
-
-    def options(self) -> dict[str, Any]:
-        return {**self.base.options(), "joint_windows": len(self.windows)}
-
-    def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
-        own = self.base.parameters(frozenset({"series"}))
-        shared = tuple(s for s in own if s.name in ("a", "b", "dc", "stiffness"))
-        per: list[ParamSpec] = []
-        for i in range(len(self.windows)):
-            for s in own:
-                if s.name in ("mu0", "trend"):
-                    per.append(ParamSpec(f"{s.name}_{i}", s.unit, s.log, s.lo, s.hi))
-        return (*shared, *per)
-
-    def notes(self, kinds: frozenset[str]) -> list[str]:
-        return [f"joint fit of {len(self.windows)} windows: one a, b, dc and stiffness; "
-                "mu0 and trend per window"]
-
-    def predict(self, v: Mapping[str, float], d: Any, x: Array | None = None) -> Array:
-        i = self._index(d)
-        vals = {k: v[k] for k in ("a", "b", "dc", "stiffness") if k in v}
-        vals["mu0"] = v[f"mu0_{i}"]
-        if f"trend_{i}" in v:
-            vals["trend"] = v[f"trend_{i}"]
-        m = RSFModel(float(d.v_load[0]), self.base.state_law, self.base.stiffness,
-                     self.base.damping, self.base.regularized, trend=self.base.trend)
-        return rsf_series(m, vals, d)
-
-    def data_window(self, name: str, datasets: Sequence[Any]) -> tuple[float, float] | None:
-        return self.base.data_window(name, datasets)
-
-    def derived(self, v: Mapping[str, float]) -> dict[str, tuple[float, str]]:
-        return {"a_minus_b": (v["a"] - v["b"], "")}
-
-    def guesses(self, datasets: Sequence[Any]) -> list[dict[str, float]]:
-        """The start from the per-step fits (:func:`fit_steps`)."""
-        return [dict(self.start)]
 
 
 def _start(prev: FitResult | None, model: RSFModel, d: SeriesData) -> dict[str, float]:
@@ -578,11 +534,15 @@ def fit_steps(
     prev: FitResult | None = None
     for i, (w, d) in enumerate(zip(wins, pieces, strict=True)):
         model = RSFModel(float(d.v_load[0]), law, stiffness, trend=trend)
-        start = _start(prev, model, d)
+        # a cold start with a free k can fall into a local minimum: retried if worse than noise
+        start, cold = _start(prev, model, d), stiffness == "fit" and (prev is None
+                                                                     or not prev.success)
         tick = None if progress is None else \
             (lambda n, total, what, i=i: progress(i, len(wins)))  # type: ignore[misc]
         r = fit(d, model, start=start, multistart=False, profile=False, progress=tick)
-        if not r.success:  # from every data-driven guess
+        rms = r.goodness.get("rms_residual", 0.0)
+        if not r.success or (cold and worse_than_noise(d, rms)):
+            # from every data-driven guess (the cheapest one can lead to a local minimum)
             r2 = fit(d, model, profile=False, progress=tick)
             r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
         fits.append(r)
@@ -592,39 +552,23 @@ def fit_steps(
         if not r.success:
             notes.append(f"step {rows[-1]['index']}: the fit did not succeed ({r.message})")
         rem, hold, slip = hold_remnant(data, int(w.i_start), rows[-1]["b"], rows[-1]["dc"])
+        early: list[str] = []
         if rem > 2.0 * rows[-1]["white_noise"]:  # the steady start the fit assumes is not there
-            notes.append(f"step {rows[-1]['index']}: starts {slip * 1e6:.3g} um after the "
-                         f"reslide from a {hold:.3g} s hold, where friction is still about "
-                         f"{rem:.2g} above steady sliding (> 2x the noise): a, b, Dc and the "
-                         "stiffness may be biased; slide longer between holds")
+            early.append(f"starts {slip * 1e6:.3g} um after the reslide from a {hold:.3g} s "
+                         f"hold, where friction is still about {rem:.2g} above steady sliding "
+                         "(> 2x the noise): a, b, Dc and the stiffness may be biased; slide "
+                         "longer between holds")
+            notes.append(f"step {rows[-1]['index']}: {early[-1]}")
+        assess_step(rows[-1], r.notes, sc.specs, sc.theta, sc.used.matrix, sc.used.singular,
+                    quantile_95(False, sc.dof), d,
+                    rsf_series(r.fitted_model, {p.name: p.value for p in r.parameters}, d)
+                    if isinstance(r.fitted_model, RSFModel) else d.mu, data, int(w.i_start),
+                    PEAK_SAMPLES, early)
         prev = r
         if progress is not None:
             progress(i + 1, len(wins))
-    joint_fit = _fit_joint(pieces, fits, law, stiffness, trend) if joint else None
-    return StepsResult(rows, fits, pieces, joint_fit, notes)
-
-
-def _fit_joint(pieces: list[SeriesData], fits: list[FitResult], law: str,
-               stiffness: float | str, trend: bool) -> FitResult:
-    """All windows with one ``a, b, dc`` (and stiffness), from the per-step fits' medians."""
-    if isinstance(stiffness, str) and stiffness == "slope":
-        # one machine: the stiffness from the first window's slope holds for all
-        stiffness = float(RSFModel(1.0, law, "slope").resolve([pieces[0]]).stiffness)
-    base = RSFModel(1.0, law, stiffness, trend=trend)
-    vals = [{p.name: p.value for p in r.parameters} for r in fits]
-    start: dict[str, float] = {}
-    for name in ("a", "b", "dc", "stiffness"):
-        if name in vals[0]:
-            start[name] = float(np.exp(np.median(np.log([v[name] for v in vals]))))
-    for i, v in enumerate(vals):
-        start[f"mu0_{i}"] = v["mu0"]
-        if trend:
-            start[f"trend_{i}"] = v.get("trend", 0.0)
-    jm = JointStepsModel(tuple(pieces), base, start)
-    # Wald intervals: the engine's profile walk over 3 + 2 n parameters would cost far more
-    # than all the per-step fits
-    return fit(list(pieces), jm, start=start, multistart=False, profile=False,
-               consistency=False)
+    joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
+    return StepsResult(rows, fits, pieces, joint_fit, notes, record_stiffness(rows))
 
 
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:

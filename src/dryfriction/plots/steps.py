@@ -15,11 +15,35 @@ from .style import FRICTION_SI, TIME_S, VELOCITY_SI, save_png
 if TYPE_CHECKING:
     from ..fit.steps import StepsResult
 
-__all__ = ["plot_step", "plot_steps_summary"]
+__all__ = ["plot_step", "plot_steps_summary", "step_title"]
 
 _DATA = {"s": 2.0, "color": "0.6", "alpha": 0.5, "linewidths": 0, "rasterized": True,
          "zorder": 1}
 _MODEL = {"color": "C3", "lw": 1.4, "zorder": 3}
+
+
+def _g(x: float, scale: float = 1.0, unit: str = "") -> str:
+    """4 significant digits and the unit, as the terminal table; "not identified" for a
+    value not reported (NaN)."""
+    return "not identified" if x != x else f"{x * scale:.4g}{unit}"
+
+
+def step_title(row: Mapping[str, Any]) -> str:
+    """The step figure's title: velocities, the values as in ``steps.csv`` (4 digits; "not
+    identified" where the value is not reported) and, on a second line, the flags."""
+    from ..fit.identify import split_flags
+
+    head = (f"step {row['index']} ({row['kind']}): {row['v_before'] * 1e6:.3g} -> "
+            f"{row['v_after'] * 1e6:.3g} µm/s;  a = {_g(row['a'])}, b = {_g(row['b'])}, "
+            f"a-b = {_g(row['a_minus_b'])}, Dc = {_g(row['dc'], 1e6, ' µm')}, "
+            f"k = {_g(row['stiffness'], 1.0, ' /m')}, rms = {row['rms']:.2g}")
+    words = split_flags(row.get("flags", ""))
+    if not words:
+        return head
+    lost = [w.split(":", 1)[1] for w in words if w.startswith("not_identified:")]
+    tail = (f"{', '.join(lost)} not identified" if lost else "") + (
+        ("; " if lost else "") + "flags: " + "; ".join(words))
+    return head + "\n" + tail
 
 
 def plot_step(result: StepsResult, i: int, path: Any = None, *,
@@ -51,34 +75,41 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
         top.set_ylabel(FRICTION_SI)
         bot.set_ylabel("residual")
     axes[0, 0].legend(loc="best", fontsize=8, markerscale=4)
-    fig.suptitle(f"step {row['index']} ({row['kind']}): {row['v_before'] * 1e6:.3g} -> "
-                 f"{row['v_after'] * 1e6:.3g} µm/s;  a-b = {row['a_minus_b']:.4g}, "
-                 f"Dc = {row['dc'] * 1e6:.3g} µm, k = {row['stiffness']:.4g} /m, "
-                 f"rms = {row['rms']:.2g}", fontsize=9)
-    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.1, top=0.92, hspace=0.08, wspace=0.25)
+    fig.suptitle(step_title(row), fontsize=9)
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.1, top=0.9, hspace=0.08, wspace=0.25)
     if path is not None:
         save_png(fig, path)
     return fig, axes
 
 
 def plot_steps_summary(result: StepsResult, path: Any = None) -> tuple[Figure, Any]:
-    """``a - b`` and ``Dc`` of every step against the velocity after the change (error bars:
-    one standard error)."""
+    """``a - b`` and ``Dc`` of every step against the velocity after the change, with their
+    95 % intervals (``steps.csv``'s ``*_lo``, ``*_hi``); a value not identified is left out
+    and its step marked "n.i." along the bottom of the panel."""
     rows = result.rows
     v = np.array([r["v_after"] for r in rows])
     fig = Figure(figsize=(8.0, 3.6))
-    ax1, ax2 = fig.subplots(1, 2)
-    ax1.errorbar(v, [r["a_minus_b"] for r in rows], yerr=[r["sigma_a_minus_b"] for r in rows],
-                 fmt="o", capsize=3)
-    ax1.axhline(0.0, color="0.5", lw=0.8)
-    ax1.set_ylabel(r"$a - b$")
-    ax2.errorbar(v, [r["dc"] * 1e6 for r in rows], yerr=[r["sigma_dc"] * 1e6 for r in rows],
-                 fmt="o", capsize=3)
-    ax2.set_ylabel(r"$D_c$  [µm]")
-    for ax in (ax1, ax2):
+    ax1, ax2 = fig.subplots(1, 2, sharex=True)
+    for ax, name, scale, label in ((ax1, "a_minus_b", 1.0, r"$a - b$"),
+                                   (ax2, "dc", 1e6, r"$D_c$  [µm]")):
+        y = np.array([r[name] for r in rows], float) * scale
+        lo = np.array([r[f"{name}_lo"] for r in rows], float) * scale
+        hi = np.array([r[f"{name}_hi"] for r in rows], float) * scale
+        ok = np.isfinite(y)
+        err = np.vstack([np.where(np.isfinite(lo), y - lo, 0.0),
+                         np.where(np.isfinite(hi), hi - y, 0.0)])[:, ok]
+        ax.errorbar(v[ok], y[ok], yerr=err, fmt="o", capsize=3, label="95 % interval")
+        for vi in v[~ok]:
+            ax.annotate("n.i.", (vi, 0.02), xycoords=("data", "axes fraction"), ha="center",
+                        fontsize=8, color="C3")
+        ax.set_ylabel(label)
         ax.set_xscale("log")
         ax.set_xlabel(VELOCITY_SI.replace("$V$", r"$V_{after}$"))
-    fig.subplots_adjust(left=0.13, right=0.98, bottom=0.16, top=0.94, wspace=0.35)
+    ax1.axhline(0.0, color="0.5", lw=0.8)
+    if not np.all([np.isfinite(r["a_minus_b"]) and np.isfinite(r["dc"]) for r in rows]):
+        fig.suptitle("n.i.: not identified by the data (left out; see steps.csv flags)",
+                     fontsize=8)
+    fig.subplots_adjust(left=0.13, right=0.98, bottom=0.16, top=0.9, wspace=0.35)
     if path is not None:
         save_png(fig, path)
     return fig, (ax1, ax2)

@@ -1,0 +1,51 @@
+"""One machine for a whole record (issue 30 item 3, ``--stiffness record``; ours): the steps of
+one record share one apparatus, so its stiffness is estimated once, from the steps whose free
+fit identifies it (:func:`.identify.record_stiffness`: the inverse-variance weighted mean of
+``ln k``, steps that disagree flagged ``k_inconsistent`` and left out), and every step is then
+refitted with ``k`` held at that value.
+
+The per-step intervals of ``a``, ``b``, ``Dc`` then hold ``k`` exact: the record's ``k`` is
+known to its own interval (in ``fit.json``'s ``record_stiffness``), which they do not carry.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .identify import join_flags, split_flags
+from .steps import StepsResult, fit_steps
+
+__all__ = ["fit_steps_one_machine"]
+
+
+def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None,
+                          **kwargs: Any) -> StepsResult:
+    """:func:`.steps.fit_steps` twice: with a free stiffness per step, then with the record's
+    one stiffness fixed (module docstring). Keyword arguments as :func:`.steps.fit_steps`
+    (``stiffness`` is not one of them). Where fewer than two steps identify ``k`` the free
+    fits are returned, with a note."""
+    free = fit_steps(record, windows, segments, stiffness="fit", **kwargs)
+    rec = free.stiffness
+    if rec is None:
+        free.notes.append("--stiffness record: fewer than two steps identify k, so each step "
+                          "keeps its own fitted stiffness")
+        return free
+    fixed = fit_steps(record, windows, segments, stiffness=float(rec["value"]), **kwargs)
+    for row, own, f in zip(fixed.rows, free.rows, free.fits, strict=True):
+        words = split_flags(row["flags"])
+        carried = [n for n in own["notes"][len(f.notes):] if n.startswith("k_inconsistent")]
+        if "k_inconsistent" in split_flags(own["flags"]):
+            words.append("k_inconsistent")
+        row["flags"] = join_flags(words)
+        row["stiffness_lo"], row["stiffness_hi"] = rec["lo"], rec["hi"]
+        row["sigma_stiffness"] = math.nan  # not fitted in this step: the record's interval
+        row["notes"] += carried + [
+            f"k = {rec['value']:.4g} /m [{rec['lo']:.4g}, {rec['hi']:.4g}] held: the record's "
+            f"one machine (steps {', '.join(map(str, rec['steps']))}); this step's own free "
+            f"fit gave k = {own['stiffness']:.4g} /m"]
+    fixed.stiffness = rec
+    fixed.notes.append(f"one machine: k = {rec['value']:.4g} /m [{rec['lo']:.4g}, "
+                       f"{rec['hi']:.4g}] from the free fits of steps "
+                       f"{', '.join(map(str, rec['steps']))}, held in every step")
+    return fixed
