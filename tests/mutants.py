@@ -276,8 +276,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "lx = -math.log(abs(v) / (2.0 * v_ref)) + 1.0 / direct",
        _DIR, "-k", "velocity_step"),
     _m("direct: g at the load point's velocity, not the slider's", "ensemble/driving.py",
-       "velocity_scale(ens, tj - t_sub))",
-       "(lambda g: type(\"LoadScale\", (), {\"__call__\": lambda _s, x: g, "
+       "K * xj, K, 1e9, velocity_scale(ens, tj - t_sub))",
+       "K * xj, K, 1e9, (lambda g: type(\"LoadScale\", (), {\"__call__\": lambda _s, x: g, "
        "\"slope\": lambda _s, x: 0.0})())(velocity_scale(ens, tj - t_sub)(ens.x + "
        "(float(xp1) - xp_prev) / n)) if ens.model.direct else None)",
        _DIR, "-k", "load_point"),
