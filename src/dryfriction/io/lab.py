@@ -42,10 +42,10 @@ import numpy as np
 
 from ..validation import Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
+from .detection import Detection, detect_program, detect_segments, no_change_message
 from .labsteps import (
     Segment,
     StepWindow,
-    detect_segments,
     load_velocity_series,
     parse_segments,
     segments_table,
@@ -60,7 +60,10 @@ __all__ = [
     "MIN_ROWS",
     "read_record",
     "parse_column_map",
+    "Detection",
+    "detect_program",
     "detect_segments",
+    "no_change_message",
     "parse_segments",
     "segments_table",
     "load_velocity_series",
