@@ -221,8 +221,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
             # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the
             # slower half less r's part; 2.198 = 1.4826**2 turns a median of squares of a
             # Gaussian into its variance
-            fast = u > np.median(u)
-            r2 = 2.198 * float(np.median(y[fast] / u[fast] ** 2)) if fast.sum() >= 8 else 0.0
+            fast = np.zeros(y.size, bool)
+            fast[np.argsort(u, kind="stable")[y.size // 2:]] = True  # by rank: ties split
+            uf = u[fast]
+            r2 = 2.198 * float(np.median(y[fast] / uf**2)) if (uf > 0).all() else 0.0
             r2 = max(r2, 0.0)
             a2 = max(2.198 * float(np.median((y - r2 * u**2)[~fast])), 0.0)
             scales.append(T)
