@@ -204,9 +204,9 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     rel: list[float] = []
     ab: list[float] = []
     T = 5.0 * dt
-    while T <= span / 4.0:
+    while T <= span / 3.0:
         ys, us = [], []
-        for off in (0.0, 0.5 * T):
+        for off in (0.0, 0.25 * T, 0.5 * T, 0.75 * T):
             s, sxx, ok = _window_slopes(t, res, T, float(t[0]) - off)
             w = np.floor((t - float(t[0]) + off) / T).astype(np.int64)
             w -= w[0]
@@ -217,7 +217,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
             ys.append((0.5 * (s[1:] - s[:-1]) ** 2 - w2)[pair])
             us.append((0.5 * (u[1:] + u[:-1]))[pair])
         y, u = np.concatenate(ys), np.concatenate(us)
-        if y.size >= 16:
+        if y.size >= 24:
             # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the
             # slower half less r's part; 2.198 = 1.4826**2 turns a median of squares of a
             # Gaussian into its variance
