@@ -23,6 +23,8 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+import numpy as np  # noqa: E402
+
 from dryfriction.io.lab import detect_program, read_record  # noqa: E402
 from records_zoo import make_record, score, specs, write  # noqa: E402
 
@@ -30,6 +32,7 @@ from records_zoo import make_record, score, specs, write  # noqa: E402
 def run(n: int, verbose: bool = True) -> dict[str, float]:
     """Generate, write, read and detect ``n`` zoo records; return the rates."""
     scores = []
+    groups: dict[str, list] = {}
     rows = 0
     with tempfile.TemporaryDirectory() as tmp:
         for i, prog, arts, dialect in specs(n):
@@ -42,6 +45,9 @@ def run(n: int, verbose: bool = True) -> dict[str, float]:
             s = score(rec, det, cpu)
             rows += rec.rows
             scores.append(s)
+            kind = "plain" if not arts else arts[0] if len(arts) == 1 else "mixed"
+            groups.setdefault(f"program {prog}", []).append(s)
+            groups.setdefault(f"artifacts {kind}", []).append(s)
             path.unlink()
             if verbose and not s.right:
                 print(f"  wrong: {rec.name} ({dialect}, {rec.rows} rows): found {s.found} "
@@ -54,6 +60,14 @@ def run(n: int, verbose: bool = True) -> dict[str, float]:
     missed = sum(s.missed for s in scores) / max(sum(len(make_record(i, p, a, d).changes)
                                                      for i, p, a, d in specs(0)) or 1, 1)
     cpu = sum(s.cpu for s in scores) / rows * 1e6
+    if verbose:
+        print(f"{'group':<22} {'records':>7} {'number right':>12} {'and times':>10}")
+        for name, g in groups.items():
+            print(f"{name:<22} {len(g):>7d} {100 * sum(x.count_right for x in g) / len(g):>11.0f}%"
+                  f" {100 * sum(x.right for x in g) / len(g):>9.0f}%")
+        errs = [x.worst_error for x in scores if x.count_right]
+        print("worst change-time error per record with the right number: median "
+              f"{np.median(errs):.3g} s, 90th percentile {np.percentile(errs, 90):.3g} s")
     return {"records": len(scores), "rows": rows, "right": right, "count": count,
             "false": false,
             "cpu_per_1e6_rows": cpu, "missed": sum(s.missed for s in scores) + 0 * missed}

@@ -50,7 +50,7 @@ Z_MIN = 6.0
 """Confidence (velocity change over its fluctuation scatter) a detected change must reach."""
 Z_HOLD = 3.0
 """A stretch whose speed is below this many times its slope scatter is a hold."""
-_RESET_K = 40.0  # a reset's jump, in robust scales of the increments' scatter
+_RESET_K = 15.0  # a reset's jump, in robust scales of the increments' scatter
 _NORMAL_REL = 0.03  # a normal-stress change: at least 3 % of the level ...
 _NORMAL_K = 10.0  # ... and 10 robust scales of its block-to-block scatter
 _RATE_FACTOR = 1.5  # a sampling-rate change: the median interval changes by this factor
@@ -270,8 +270,9 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     vb = np.where(np.isfinite(vb), vb, va)
     va = np.where(np.isfinite(va), va, vb)
     lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
-    e = d - np.median(rate) * dt
-    spread = 1.4826 * float(np.median(np.abs(e - np.median(e))))
+    e = d - vb * dt  # the increment less the slip the velocity just before gives
+    e = e[np.isfinite(e)]
+    spread = 1.4826 * float(np.median(np.abs(e - np.median(e)))) if e.size else 0.0
     nz = np.abs(d[d != 0.0])
     quantum = float(nz.min()) if nz.size else 0.0
     scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)

@@ -44,12 +44,15 @@ from ..validation import Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import Detection, detect_program, detect_segments, no_change_message
 from .labsteps import (
+    SEGMENTS_SYNTAX,
     Segment,
     StepWindow,
     load_velocity_series,
     parse_segments,
+    segments_spec,
     segments_table,
     slice_steps,
+    write_segments_csv,
 )
 
 __all__ = [
@@ -66,6 +69,9 @@ __all__ = [
     "no_change_message",
     "parse_segments",
     "segments_table",
+    "segments_spec",
+    "write_segments_csv",
+    "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
 ]

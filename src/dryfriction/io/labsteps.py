@@ -24,6 +24,8 @@ __all__ = [
     "make_segments",
     "parse_segments",
     "segments_table",
+    "write_segments_csv",
+    "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
 ]
@@ -136,6 +138,44 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment]) -> str:
     lines.append("confidence: the velocity change at the segment's start over the scatter the "
                  "apparatus' fluctuations give it; normal: mean normal stress, MPa (force: kN)")
     return "\n".join(lines)
+
+
+SEGMENTS_SYNTAX = (
+    "The load program as comma-separated START:VELOCITY items: START in s from the record's "
+    "first sample (the first item starts at 0; starts increase and lie inside the record), "
+    "VELOCITY the load-point velocity in m/s from there to the next START (0: a hold; "
+    "negative: sliding back). E.g. 0:2e-7,1200:2e-6 (0.2 um/s, then 2 um/s from 1200 s); "
+    "0:1e-5,100:0,130:1e-5 (a 30-s hold). The table of the 'record' command and its "
+    "segments.csv give the detected program in this form to edit.")
+"""The full syntax of ``--segments`` (its CLI help)."""
+
+
+def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float) -> str:
+    """The program in the ``--segments`` form (starts in s from ``t0``, the first sample)."""
+    return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)
+
+
+def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
+                       normal_unit: str = "Pa") -> None:
+    """Write the load program as CSV, one row per segment, units in the headers; the
+    ``--segments`` form of the whole program in a comment line on top."""
+    nu, scale = ("MPa", 1e-6) if normal_unit != "N" else ("kN", 1e-3)
+    what = "normal stress" if normal_unit != "N" else "normal force"
+    rows = [f"# --segments {segments_spec(segments, t0)}",
+            f"segment,kind,t_start [s],t_end [s],t_start from first sample [s],duration [s],"
+            f"velocity [m/s],velocity [um/s],i_start,i_end,samples,confidence [-],"
+            f"{what} [{nu}]"]
+    for j, s in enumerate(segments):
+        prev = segments[j - 1].velocity if j else None
+        kind = ("hold" if s.velocity == 0.0 else "start" if j == 0 else
+                "normal change" if prev == s.velocity else "step")
+        conf = "" if not np.isfinite(s.confidence) else f"{s.confidence:.4g}"
+        normal = "" if not np.isfinite(s.normal) else f"{s.normal * scale:.6g}"
+        rows.append(f"{j},{kind},{s.t_start:.9g},{s.t_end:.9g},{s.t_start - t0:.9g},"
+                    f"{s.duration:.9g},{s.velocity:.6e},{s.velocity * 1e6:.6g},{s.i_start},"
+                    f"{s.i_end},{s.i_end - s.i_start},{conf},{normal}")
+    with open(path, "w", encoding="utf-8") as fh:  # type: ignore[call-overload]
+        fh.write("\n".join(rows) + "\n")
 
 
 def load_velocity_series(record: LabRecord, segments: tuple[Segment, ...]) -> Array:
