@@ -66,6 +66,25 @@ def test_servo_bursts_and_rate_change_make_one_step() -> None:
     assert det.rate_changes == pytest.approx([1400.0], abs=0.2)
 
 
+def excursion(ratio: float, seed: int = 5) -> LabRecord:
+    """2 um/s at 5 Hz for 600 s with an excursion to ``ratio`` times that from 300 to 320 s,
+    0.17 um of white noise."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 600.0, 0.2)
+    v = np.where((t >= 300.0) & (t < 320.0), 2e-6 * ratio, 2e-6)
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * np.diff(t))]) + rng.normal(0, 0.17e-6,
+                                                                               t.size)
+    return LabRecord("exc.txt", t, x, None, np.full(t.size, 0.6), None, "", {}, 2)
+
+
+def test_an_excursion_that_returns_is_no_step_a_short_step_is_two() -> None:
+    # 2 -> 2.32 -> 2 um/s for 20 s (the issue's servo lurch): no change; 2 -> 2.6 -> 2 (a
+    # ratio of 1.3, the smallest step asked for): two
+    assert len(detect_program(excursion(1.16)).segments) == 1
+    segs = detect_program(excursion(1.3)).segments
+    assert [round(s.t_start) for s in segs] == [0, 300, 320], segments_table(segs)
+
+
 def test_no_change_through_red_noise_is_refused() -> None:
     rec, _ = servo_record(2, step=False)
     det = detect_program(rec)
