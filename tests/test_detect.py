@@ -237,3 +237,59 @@ def test_segments_help_gives_the_syntax() -> None:
         text = " ".join(r.output.split())
         assert "START:VELOCITY" in text and "0: a hold" in text, text
         assert "see the README" not in text
+
+
+# ----------------------------------------------------------------------------- other forms
+def _same_record(a: LabRecord, b: LabRecord) -> None:
+    for name in ("time", "load_point", "friction", "normal_stress"):
+        np.testing.assert_allclose(getattr(a, name), getattr(b, name), rtol=1e-12, atol=0)
+    assert list(a.columns) == list(b.columns) and a.normal_unit == b.normal_unit
+
+
+def test_xlsx_reads_as_the_text_record(tmp_path: Path) -> None:
+    openpyxl = pytest.importorskip("openpyxl")
+    text = read_record(SHARED)
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.append(["Time (s)", "Displ (microns)", "Friction", "EffectiveNormalstress (MPa)"])
+    n = 2000
+    for row in zip(text.time[:n], text.load_point[:n] * 1e6, text.friction[:n],
+                   text.normal_stress[:n] / 1e6, strict=True):
+        ws.append([float(v) for v in row])
+    ws.cell(row=40, column=3, value="n/a")  # a cell that is not a number: refused by row
+    p = tmp_path / "rec.xlsx"
+    wb.save(p)
+    with pytest.raises(ValueError, match=r"^.*rec\.xlsx, row 40, column 3 \(Friction\): nan "
+                                         r"is not a finite number$"):
+        read_record(p)
+    ws.cell(row=40, column=3, value=float(text.friction[38]))
+    wb.save(p)
+    rec = read_record(p)
+    cut = LabRecord(text.source, text.time[:n], text.load_point[:n], None, text.friction[:n],
+                    text.normal_stress[:n], "Pa", text.columns, 2)
+    _same_record(rec, cut)
+    assert rec.first_line == 2
+
+
+def test_mat_reads_as_the_text_record(tmp_path: Path) -> None:
+    from scipy.io import savemat
+
+    text = read_record(SHARED)
+    p = tmp_path / "rec.mat"
+    savemat(p, {"exp": {"Time_s": text.time, "Displ_um": text.load_point * 1e6,
+                        "Friction": text.friction,
+                        "EffectiveNormalstress_MPa": text.normal_stress / 1e6}})
+    _same_record(read_record(p), text)
+    savemat(p, {"Time": text.time, "Displ": text.load_point * 1e3, "mu": text.friction})
+    rec = read_record(p, {"disp": "Displ:mm"})
+    np.testing.assert_allclose(rec.load_point, text.load_point, rtol=1e-12)
+    savemat(p, {"Time": text.time, "mu": text.friction})
+    with pytest.raises(ValueError, match=r"rec\.mat: no load-point displacement \(or "
+                                         r"velocity\) column: found 'Time', 'mu'"):
+        read_record(p)
+    savemat(p, {"Time": text.time, "Displ": text.load_point[:-1], "mu": text.friction})
+    with pytest.raises(ValueError, match=r"rec\.mat: the column vectors differ in length"):
+        read_record(p)
+    p.write_bytes(b"not a mat file at all" * 10)
+    with pytest.raises(ValueError, match=r"rec\.mat: not a readable MATLAB \.mat file"):
+        read_record(p)
