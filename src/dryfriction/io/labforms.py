@@ -114,14 +114,16 @@ def _read_mat(path: Path, src: str) -> tuple[list[str], Array, int, int, list[st
     from scipy.io import loadmat
 
     try:
-        raw = loadmat(path, squeeze_me=True, struct_as_record=False)
+        raw = loadmat(path, squeeze_me=True, struct_as_record=True)
     except (ValueError, TypeError, OSError, NotImplementedError) as exc:
         raise ValueError(f"{src}: not a readable MATLAB .mat file ({exc}); a v7.3 (HDF5) "
                          "file: save it with -v7, or as a text table") from None
     found = {k: v for k, v in raw.items() if not k.startswith("__")}
-    structs = [v for v in found.values() if hasattr(v, "_fieldnames")]
+    # a struct is a structured array (its fields the dtype's names)
+    structs = [v for v in found.values() if isinstance(v, np.ndarray) and v.dtype.names]
     if len(structs) == 1:
-        found = {f: getattr(structs[0], f) for f in structs[0]._fieldnames}
+        st = structs[0].reshape(-1)[0]
+        found = {f: st[f] for f in structs[0].dtype.names}
     cols = {k: np.asarray(v, float).ravel() for k, v in found.items()
             if isinstance(v, np.ndarray) and v.dtype.kind in "fiu" and v.size > 1}
     if not cols:
