@@ -106,7 +106,8 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     if speeds and max(speeds) / min(speeds) > 30.0:
         ax.set_yscale("symlog", linthresh=min(speeds) * 1e6)
     vmax = max(speeds or [1e-6]) * 1e6
-    ax.set_ylim(-0.15 * vmax, 1.5 * vmax) if ax.get_yscale() == "linear" else None
+    if ax.get_yscale() == "linear":  # the smoothed velocity's spikes do not set the scale
+        ax.set_ylim(-0.15 * vmax, 1.5 * vmax)
     axes[1].scatter(t - t0, record.friction, s=1.0, color="0.35", linewidths=0,
                     rasterized=True)
     axes[1].set_ylabel(FRICTION_SI)
@@ -114,6 +115,7 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
         unit, scale = ("MPa", 1e-6) if record.normal_unit == "Pa" else ("kN", 1e-3)
         axes[2].plot(t - t0, np.asarray(record.normal_stress) * scale, color="C0", lw=0.8)
         axes[2].set_ylabel(f"normal {'stress' if unit == 'MPa' else 'force'}  [{unit}]")
+        axes[2].ticklabel_format(axis="y", useOffset=False)  # 30.002, not +3e1 and 0.002
     # each step and hold shaded and numbered as in the table (segment 0 is where it starts)
     for j, s in enumerate(segments):
         if j == 0 and s.velocity != 0.0:
