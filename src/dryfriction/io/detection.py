@@ -212,7 +212,9 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     T = 5.0 * dt
     while T <= span / 3.0:
         ys, us = [], []
-        for off in (0.0, 0.25 * T, 0.5 * T, 0.75 * T):
+        for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):
+            if off in (0.25 * T, 0.75 * T) and sum(len(q) for q in ys) >= 100:
+                break  # pairs enough from two offsets (the other two only for long T)
             s, sxx, ok = _window_slopes(t, res, T, float(t[0]) - off)
             w = np.floor((t - float(t[0]) + off) / T).astype(np.int64)
             w -= w[0]
@@ -247,18 +249,14 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
 
 # ------------------------------------------------------------------------------ artifacts
 def _local_rate(rate: Array, side: str, k: int = 5) -> Array:
-    """Median of the ``k`` increment rates before (``side='before'``) or after each increment."""
+    """Median of the ``k`` increment rates before (``side='before'``) or after each increment
+    (the record's first or last rate standing in beyond its ends)."""
     n = len(rate)
-    pad = np.concatenate([np.full(k, np.nan), rate, np.full(k, np.nan)])
+    pad = np.concatenate([np.full(k, rate[0]), rate, np.full(k, rate[-1])])
     win = np.lib.stride_tricks.sliding_window_view(pad, k)
     # window j covers pad[j:j+k] = rate[j-k:j]: before increment i is window i, after is i+k+1
     idx = np.arange(n) + (0 if side == "before" else k + 1)
-    with np.errstate(all="ignore"):
-        import warnings
-
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            return np.nanmedian(win[np.minimum(idx, len(win) - 1)], axis=1)
+    return np.median(win[np.minimum(idx, len(win) - 1)], axis=1)
 
 
 def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
