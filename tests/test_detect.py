@@ -57,9 +57,9 @@ def test_servo_bursts_and_rate_change_make_one_step() -> None:
     det = detect_program(rec)
     segs = det.segments
     assert len(segs) == 2, segments_table(segs)
-    # measured 1.13 s late: the 8 % wander moves a kink fitted to the whole record (the
-    # issue's 0.5 s is not met here)
-    assert abs(segs[1].t_start - 1000.0 - change) <= 1.5
+    # within the issue's 0.5 s (measured 0.00 s; 1.13 s with the kink of the whole stretches,
+    # which the 8 % wander bends)
+    assert abs(segs[1].t_start - 1000.0 - change) <= 0.5
     assert segs[0].velocity == pytest.approx(3e-6, rel=0.03)
     assert segs[1].velocity == pytest.approx(10e-6, rel=0.03)
     assert segs[1].confidence > 6.0
@@ -98,7 +98,7 @@ def test_a_reset_is_no_step_and_is_reported() -> None:
     rec, change = servo_record(3, reset=True)
     det = detect_program(rec)
     assert len(det.segments) == 2, segments_table(det.segments)
-    assert abs(det.segments[1].t_start - 1000.0 - change) <= 1.5
+    assert abs(det.segments[1].t_start - 1000.0 - change) <= 0.5
     assert det.resets == pytest.approx([1550.0], abs=0.02)
 
 
@@ -156,16 +156,16 @@ def _zoo_rates(n: int) -> tuple[float, float, float, tuple[str, ...]]:
 def test_zoo_subset_rates() -> None:
     """Every 10th zoo record (30, most with every artifact at once): the number of changes
     right on >= 28 (measured 29), no false change (measured 0 %), each change within max(1
-    sample, 0.5 s) on >= 14 (measured 15). The issue's target (>= 98 % with the times) is not
+    sample, 0.5 s) on >= 22 (measured 23). The issue's target (>= 98 % with the times) is not
     met: see the next test."""
     count, right, false, bad = _zoo_rates(ZOO_SUBSET)
     assert count >= 28 / 30, bad
-    assert right >= 14 / 30
+    assert right >= 22 / 30
     assert false <= 0.01
 
 
 @pytest.mark.xfail(strict=True, reason="measured: the change times miss max(1 sample, 0.5 s) "
-                   "on half of this subset (small or slow steps under an 8 % wander)")
+                   "on 7 of this subset's 30 (small or slow steps under an 8 % wander)")
 def test_zoo_subset_meets_the_issue_target() -> None:
     _, right, false, _ = _zoo_rates(ZOO_SUBSET)
     assert right >= 0.98 and false <= 0.01

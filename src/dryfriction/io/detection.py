@@ -519,6 +519,7 @@ def detect_program(
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute)
         t, x = t_all, x_all
         fits = _Fits(t, x)
+    bounds = _local(t, x, sigma, bounds, _z(fits, fl, bounds))
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
     hold = [bool(h) for h in _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)]
@@ -541,6 +542,30 @@ def detect_program(
     rate, gaps = sampling_changes(t)
     return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),
                      tuple(gaps), tuple(float(t[i]) for i in nchg))
+
+
+LOCAL_Z = 500.0
+"""Below this confidence a change is placed on the samples near it (:func:`_local`)."""
+LOCAL_SAMPLES = 150
+"""How near: samples on either side."""
+
+
+def _local(t: Array, x: Array, sigma: float, bounds: list[int], z: Array) -> list[int]:
+    """Each change of confidence below :data:`LOCAL_Z` moved to the best hinge on the
+    :data:`LOCAL_SAMPLES` samples either side of it (ours). The lines of two whole stretches
+    bend with a wander of the load point that is slow against them, and their kink with them;
+    near the change the wander has had no time to add up. A larger change is placed as well by
+    the whole stretches. Chosen on the first 120 zoo records (``bench_detect``: 75 -> 84 % of
+    the changes within max(1 sample, 0.5 s); 150 samples placed better than 50, 300 or 1000)."""
+    out = [0]
+    for j in range(1, len(bounds) - 1):
+        a = max(out[-1] + 3, bounds[j] - LOCAL_SAMPLES)
+        b = min(bounds[j + 1] - 3, bounds[j] + LOCAL_SAMPLES)
+        k = 0
+        if z[j - 1] < LOCAL_Z and b - a > 8:
+            k, _ = best_hinge(t[a:b], (x[a:b] - x[a]) / sigma, 3, 0.0)
+        out.append(a + k if k > 0 else bounds[j])
+    return out + [bounds[-1]]
 
 
 MAX_POINTS = 30_000
