@@ -32,7 +32,9 @@ jump in one sample that neither neighbouring velocity explains: a transducer re-
 taken out, and after it a normal-stress change splits a stretch (a segment boundary,
 reported). Sampling-rate changes and gaps are found and reported; they create no change, the
 fit being against time. A record longer than ``MAX_POINTS`` samples is searched on block
-means and each change then placed on the samples near it.
+means and each change then placed on the samples near it; a change of confidence below
+``LOCAL_Z`` is finally placed on the ``LOCAL_SAMPLES`` either side of it (a slow wander bends
+the kink of the whole stretches).
 """
 
 from __future__ import annotations
