@@ -296,6 +296,7 @@ def test_command_record_writes_steps(tmp_path: Path):
     assert len(rep["steps"]) == 2
     assert rep["steps"][1]["dc"] == pytest.approx(float(rows[1]["dc"]), rel=1e-12)
     assert (out / "step_0.png").exists() and (out / "steps_summary.png").exists()
+    assert (out / "record.png").exists() and (out / "segments.csv").exists()  # issue 23
     assert "--run-cv" in rep["comparison"]["not_run"]
 
 

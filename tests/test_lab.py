@@ -325,7 +325,7 @@ def test_segments_given_by_hand() -> None:
     assert rec.time[segs[1].i_start] >= 9200.0 > rec.time[segs[1].i_start - 1]
     assert segs[1].i_end == len(rec)
     text = segments_table(segs)
-    assert "(s)" in text and "(m/s)" in text and len(text.splitlines()) == 3
+    assert "(s)" in text and "(m/s)" in text and len(text.splitlines()) == 4  # + legend
     for bad, msg in [("5:2e-7", "must start at 0"), ("0:2e-7,1200", "start:velocity"),
                      ("0:2e-7,9200:1e-6", "outside synthetic.txt"),
                      ("0:1e-6,300:0,200:1e-6", "must increase"), ("0:x", "start:velocity")]:

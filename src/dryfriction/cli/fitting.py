@@ -27,6 +27,7 @@ from .common import (
     say,
 )
 from .model import CREEP_HELP
+from .record import SEGMENTS_HELP
 from .records import is_project_csv, parse_stiffness
 
 
@@ -69,8 +70,7 @@ def fit_command(
                                "off for CSV)."),
     columns: str = typer.Option(None, "--columns", help="Record: column map, e.g. "
                                 "time=Time,disp=LP_disp,friction=Mu."),
-    segments: str = typer.Option(None, "--segments", help="Record: the load program instead "
-                                 "of the detected one (see the README)."),
+    segments: str = typer.Option(None, "--segments", help="Record: " + SEGMENTS_HELP),
     joint: bool = typer.Option(False, "--joint", help="Record: also fit all steps with one "
                                "a, b, Dc and one stiffness."),
     errors: str = typer.Option("hac", "--errors", help="Record: uncertainties that allow for "

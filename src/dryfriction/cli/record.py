@@ -1,5 +1,5 @@
 """The record command: what a laboratory record holds, as the reader and the step finder see it
-(read-only: writes nothing)."""
+(it writes only with --out: record.png and segments.csv)."""
 
 from __future__ import annotations
 
@@ -11,14 +11,18 @@ from typing import Annotated, Any
 import typer
 
 from ..io.files import to_jsonable
-from .common import app, cli_errors
+from .common import FORCE_HELP, app, cli_errors, say
 
 COLUMNS_HELP = ("Name the columns the guesses miss: time=Time,disp=LP_disp:mm,mu=Friction "
                 "(keys time, disp, velocity, mu, shear, normal; an optional :unit for a header "
                 "without one).")
-SEGMENTS_HELP = ("Give the load program instead of detecting it: start:velocity items, the "
-                 "start in s from the record's first sample, the velocity in m/s (0: hold), "
-                 "e.g. 0:2e-7,1200:2e-6.")
+def _segments_help() -> str:
+    from ..io.labsteps import SEGMENTS_SYNTAX
+
+    return "Give the load program instead of detecting it. " + SEGMENTS_SYNTAX
+
+
+SEGMENTS_HELP = _segments_help()
 
 
 @app.command("record")
@@ -29,24 +33,40 @@ def record_command(
     columns: str = typer.Option(None, "--columns", help=COLUMNS_HELP),
     segments: str = typer.Option(None, "--segments", help=SEGMENTS_HELP),
     json_out: bool = typer.Option(False, "--json", help="Print the same as JSON."),
+    out: str = typer.Option(None, "--out", help="Also write record.png (the velocity "
+                                 "with the load program on it, friction and normal stress; "
+                                 "each step and hold shaded and numbered as in the table) "
+                                 "and segments.csv into this folder."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
     """Show how a laboratory record is read: its columns and units, the load program (detected
-    from the load-point displacement, or --segments) and the steps it is cut into."""
+    from the load-point displacement against the apparatus' own fluctuations, or --segments)
+    and the steps it is cut into. A record in which no velocity change stands above the
+    fluctuations is refused (exit 2): give its program with --segments."""
+    from ..io.files import check_output_dir
+    out_dir = Path(out) if out is not None else None
     from ..io.lab import (
         apparatus_note,
-        detect_segments,
+        detect_program,
+        no_change_message,
         parse_column_map,
         parse_segments,
         read_record,
+        segments_spec,
         segments_table,
         slice_steps,
     )
 
+    if out_dir is not None:
+        check_output_dir(out_dir, force=force)
     rec = read_record(path, parse_column_map(columns) if columns else None)
-    segs = parse_segments(segments, rec) if segments else detect_segments(rec)
+    det = None if segments else detect_program(rec)
+    segs = parse_segments(segments, rec) if segments else det.segments  # type: ignore[union-attr]
     note = apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
     if note:
         print(note, file=sys.stderr)
+    if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
+        raise ValueError(no_change_message(rec, det))
     try:
         steps = slice_steps(rec, segs)
         no_steps = ""
@@ -68,6 +88,14 @@ def record_command(
         report["no_steps"] = no_steps
     if note:
         report["apparatus_note"] = note.removeprefix("note: ")
+    if det is not None:
+        report["resets_s"] = list(det.resets)
+        report["rate_changes_s"] = list(det.rate_changes)
+        report["gaps_s"] = list(det.gaps)
+        report["normal_changes_s"] = list(det.normal_changes)
+    report["segments_option"] = segments_spec(segs, float(t[0]))
+    if out_dir is not None:
+        write_record_outputs(out_dir, rec, segs, det, force=force, given=bool(segments))
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
         return
@@ -78,6 +106,14 @@ def record_command(
         print(f"  {role:<9} {h!r:<32} unit {unit}")
     print(f"\nload program ({report['segments_from']}):")
     print(segments_table(segs))
+    print(f"as --segments: {report['segments_option']}")
+    for key, what in (("resets_s", "displacement resets taken out"),
+                      ("rate_changes_s", "sampling-rate changes"), ("gaps_s", "gaps"),
+                      ("normal_changes_s", "normal-stress changes (segment boundaries)")):
+        if report.get(key):
+            print(f"{what} at t = " + ", ".join(f"{v:g}" for v in report[key]) + " s")
+    if out_dir is not None:
+        print(f"wrote {out_dir}/record.png, segments.csv")
     if no_steps:
         print(f"\n{no_steps}")
         return
@@ -87,3 +123,25 @@ def record_command(
     for w in steps:
         print(f"{w.index:>3} {w.kind:>5} {w.t_change:>13.6g} {w.v_before * 1e6:>16.4g} "
                   f"{w.v_after * 1e6:>15.4g} {w.hold:>9.4g} {w.i_start:>7d}-{w.i_end:<8d}")
+
+
+def write_record_outputs(out_dir: Path, rec: Any, segs: Any, det: Any, *, force: bool,
+                         given: bool, command: str = "record", inputs: Any = None) -> None:
+    """Write record.png and segments.csv into ``out_dir`` (whole or not at all)."""
+    from ..io.files import output_directory
+
+    with output_directory(out_dir, command=command, force=force,
+                          inputs=inputs or [rec.source], report=say) as tmp:
+        write_record_files(tmp, rec, segs, det, given=given)
+
+
+def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bool,
+                       fmt: str = "png", dpi: int | None = None) -> None:
+    """record.{fmt} and segments.csv into ``folder`` (a staging folder)."""
+    from ..io.lab import write_segments_csv
+    from ..plots.record import plot_record
+    from ..plots.style import save_figure
+
+    write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)
+    fig, _ = plot_record(rec, segs, det, given=given)
+    save_figure(fig, folder / f"record.{fmt}", fmt, dpi)

@@ -154,10 +154,13 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
 
     check_choice("errors", errors, ERRORS)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
-    segs = lab.parse_segments(segments, rec) if segments else lab.detect_segments(rec)
+    det = None if segments else lab.detect_program(rec)
+    segs = lab.parse_segments(segments, rec) if segments else det.segments  # type: ignore[union-attr]
     note = lab.apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
     if note:  # before the fit: a record of micrometres read as metres fits for minutes
         say(note)
+    if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
+        raise ValueError(lab.no_change_message(rec, det))
     wins = lab.slice_steps(rec, segs)
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
@@ -232,6 +235,10 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         if figure:
             from ..plots.steps import plot_step, plot_steps_summary
             from ..plots.style import save_figure
+            from .record import write_record_files
+
+            # what the step finder decided, as the record command draws it (issue 23)
+            write_record_files(tmp, rec, segs, det, given=bool(segments), fmt=fmt, dpi=dpi)
 
             for i in range(len(res.rows)):
                 # the trap model beside rsf: one more forward run of its fit per step
@@ -275,7 +282,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 for n, p in f["parameters"].items()) + f"; {verdicts.get(f['step'])}",
                 highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"
-                  + (f", step_*.{fmt}, steps_summary.{fmt}" if figure else ""), highlight=False)
+                  + (f", step_*.{fmt}, steps_summary.{fmt}, record.{fmt}, segments.csv"
+                     if figure else ""), highlight=False)
         out.print(flagged_line(res.rows), highlight=False)
     if not res.success:
         err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)

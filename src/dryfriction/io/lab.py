@@ -1,6 +1,7 @@
 """Laboratory friction records as they come from the apparatus: reading, load program, steps.
 
-A record is a text table with one header line of column names, units in parentheses or square
+A record is a text table (or a spreadsheet ``.xlsx`` or MATLAB ``.mat`` file, read as one:
+:mod:`.labforms`) with one header line of column names, units in parentheses or square
 brackets after the name (``Time(s)``, ``Displ(microns)``, ``Shear_stress[MPa]``), separated by
 tabs, commas, semicolons or spaces (sniffed). Lines starting with ``#`` and blank lines are
 skipped; a units row under the header (``s  um  -  MPa``) and trailing empty columns are
@@ -33,7 +34,7 @@ from __future__ import annotations
 import io
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
@@ -42,14 +43,18 @@ import numpy as np
 
 from ..validation import Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
+from .detection import Detection, detect_program, detect_segments, no_change_message
+from .labforms import FORMS, read_table
 from .labsteps import (
+    SEGMENTS_SYNTAX,
     Segment,
     StepWindow,
-    detect_segments,
     load_velocity_series,
     parse_segments,
+    segments_spec,
     segments_table,
     slice_steps,
+    write_segments_csv,
 )
 from .textfile import HEAD_BYTES, check_text
 
@@ -63,9 +68,15 @@ __all__ = [
     "apparatus_note",
     "FRICTION_MAX",
     "parse_column_map",
+    "Detection",
+    "detect_program",
     "detect_segments",
+    "no_change_message",
     "parse_segments",
     "segments_table",
+    "segments_spec",
+    "write_segments_csv",
+    "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
 ]
@@ -414,6 +425,8 @@ def read_record(
     """
     path = Path(path)
     src = str(path)
+    if path.suffix.lower() in FORMS:  # a spreadsheet or a MATLAB file (.labforms)
+        return _read_form(path, columns)
     size = path.stat().st_size
     with open(path, "rb") as fh:
         chunk = fh.read(1 << 20)
@@ -445,8 +458,30 @@ def read_record(
     if width > len(names):
         raise ValueError(f"{src}, line {sline}: {width} cells, the header (line {hline}) names "
                          f"{len(names)}: separate the columns with tabs or commas")
-    idx, forced = _assign(src, hline, names, columns)
     row_units = _header_cells(units_row[0], delim) if units_row else []
+
+    def load(usecols: list[int], roles: list[str]) -> tuple[Array, Callable[[int], int]]:
+        need = size + size / max(len(sample), 8) * (120 + 24 * len(usecols))
+        check_memory(f"{src}: reading this {size / 1e6:.0f} MB record needs", need,
+                     "split the file")
+        decimal_comma = delim != "," and bool(re.search(r"\d,\d", sample))
+        with open(path, "rb") as fh:
+            raw = fh.read()
+        if decimal_comma:
+            raw = raw.replace(b",", b".")
+        data = _parse(raw, sline - 1, delim, usecols, src, names, roles)
+        return data, _line_mapper(raw, sline, len(data))
+
+    return _finish(src, names, columns, hline, sline, row_units, load)
+
+
+def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline: int,
+            sline: int, row_units: list[str],
+            load: Callable[[list[int], list[str]], tuple[Array, Callable[[int], int]]]
+            ) -> LabRecord:
+    """The columns assigned and their units checked, then the data ``load``-ed (the used
+    columns and a row -> file line map), checked and turned into a :class:`LabRecord`."""
+    idx, forced = _assign(src, hline, names, columns)
     roles = list(idx)
     factors: dict[str, float] = {}
     kinds: dict[str, str] = {}
@@ -465,17 +500,8 @@ def read_record(
         raise ValueError(f"{src}, line {hline}: shear column {names[idx['shear']]!r} is a "
                          f"{kinds['shear']} and normal column {names[idx['normal']]!r} a "
                          f"{kinds['normal']}: friction needs two stresses or two forces")
-    need = size + size / max(len(sample), 8) * (120 + 24 * len(idx))
-    check_memory(f"{src}: reading this {size / 1e6:.0f} MB record needs", need,
-                 "split the file")
-    decimal_comma = delim != "," and bool(re.search(r"\d,\d", sample))
-    with open(path, "rb") as fh:
-        raw = fh.read()
-    if decimal_comma:
-        raw = raw.replace(b",", b".")
     usecols = [idx[r] for r in roles]
-    data = _parse(raw, sline - 1, delim, usecols, src, names, roles)
-    line_of = _line_mapper(raw, sline, len(data))
+    data, line_of = load(usecols, roles)
     vals: dict[str, Array] = {}
     for k, role in enumerate(roles):
         j, col = idx[role], data[:, k]
@@ -520,6 +546,20 @@ def read_record(
         friction=friction, normal_stress=normal, normal_unit=normal_unit,
         columns=MappingProxyType({r: names[idx[r]].strip() for r in roles}),
         first_line=sline, units=MappingProxyType(units))
+
+
+def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
+    """:func:`read_record` for a ``.xlsx`` or ``.mat`` file: its table read as a text one."""
+    names, table, hline, sline, row_units, word = read_table(path)
+
+    def load(usecols: list[int], roles: list[str]) -> tuple[Array, Callable[[int], int]]:
+        return table[:, usecols], lambda i: sline + i
+
+    try:
+        return _finish(str(path), names, columns, hline, sline, row_units, load)
+    except ValueError as exc:  # the same refusal, in the file's own words for a row
+        msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
+        raise ValueError(msg.replace(", line ", f", {word} ")) from None
 
 
 def _parse(raw: bytes, skip: int, delim: str | None, usecols: list[int], src: str,

@@ -1,7 +1,7 @@
 """The load program of a laboratory record and its velocity steps (used through :mod:`.lab`).
 
-:func:`detect_segments` finds the piecewise-constant load-point velocities and holds from the
-displacement, :func:`parse_segments` reads them from the ``--segments`` form, and
+:func:`.detection.detect_segments` finds the piecewise-constant load-point velocities and holds
+from the displacement, :func:`parse_segments` reads them from the ``--segments`` form, and
 :func:`slice_steps` cuts the record into the windows of its velocity steps and slide-hold-slide
 cycles, as one would choose them by hand.
 """
@@ -15,7 +15,6 @@ import numpy as np
 
 from ..rsf.law import V_MAX, V_MIN
 from ..validation import Array
-from .segmentation import hinge_segments, line_fit, noise_level, refine, rss
 
 if TYPE_CHECKING:
     from .lab import LabRecord
@@ -23,9 +22,11 @@ if TYPE_CHECKING:
 __all__ = [
     "Segment",
     "StepWindow",
-    "detect_segments",
+    "make_segments",
     "parse_segments",
     "segments_table",
+    "write_segments_csv",
+    "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
 ]
@@ -42,6 +43,12 @@ class Segment:
         Load-point velocity, m/s (``0``: a hold).
     i_start, i_end : int
         The samples ``[i_start, i_end)`` of the record it covers.
+    confidence : float
+        Of the change at its start: the velocity difference over the scatter the apparatus'
+        fluctuations give it (:mod:`.detection`); NaN for the first segment, one given by
+        ``--segments``, or a boundary set by a normal-stress change alone.
+    normal : float
+        Mean normal stress (Pa) or force (N) over it; NaN without a normal column.
     """
 
     t_start: float
@@ -49,6 +56,8 @@ class Segment:
     velocity: float
     i_start: int
     i_end: int
+    confidence: float = float("nan")
+    normal: float = float("nan")
 
     @property
     def duration(self) -> float:
@@ -56,126 +65,11 @@ class Segment:
         return self.t_end - self.t_start
 
 
-def _make_segments(t: Array, bounds: list[int], vel: list[float]) -> tuple[Segment, ...]:
+def make_segments(t: Array, bounds: list[int], vel: list[float]) -> tuple[Segment, ...]:
+    """Segments over the samples ``bounds[j]:bounds[j+1]`` with velocities ``vel`` (m/s)."""
     n = len(t)
     return tuple(Segment(float(t[a]), float(t[b]) if b < n else float(t[-1]), float(v), a, b)
                  for a, b, v in zip(bounds[:-1], bounds[1:], vel, strict=True))
-
-
-def _displacement(record: LabRecord) -> Array:
-    if record.load_point is not None:
-        return np.asarray(record.load_point)
-    v, t = np.asarray(record.load_velocity), record.time
-    # a velocity column becomes a displacement (trapezoids): the same detection then applies
-    return np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
-
-
-def detect_segments(
-    record: LabRecord,
-    *,
-    rel_tol: float = 0.1,
-    hold_velocity: float | None = None,
-    min_samples: int = 10,
-    min_duration: float = 0.0,
-    penalty: float = 10.0,
-) -> tuple[Segment, ...]:
-    """The load program of a record: constant load velocities and holds, from the displacement.
-
-    The displacement is cut where its slope changes (:func:`.segmentation.hinge_segments`: a
-    continuous broken line against *time*, so noise and sampling-rate changes do not matter;
-    a change starts at the sample where the two lines meet); neighbours whose velocities
-    differ by less than ``rel_tol``, or by less than their noise, are joined, and velocities
-    within ``rel_tol`` of each other anywhere in the record are set to their common
-    (duration-weighted) plateau value: a record that returns to 0.2 um/s gives 0.2 um/s each
-    time. A stretch slower than the hold velocity is a hold (velocity 0).
-
-    A stretch's velocity noise is the larger of 4 standard errors from the white noise of
-    the displacement and ``2 sqrt(12) w / T``, with ``w`` the slow wander of the displacement
-    about the broken line (a motor's wobble; RMS beyond the white noise) and ``T`` the
-    stretch's duration.
-
-    Parameters
-    ----------
-    record : LabRecord
-        With a load-point displacement or velocity.
-    rel_tol : float
-        Relative difference below which two velocities are one, ``0 < rel_tol < 1``.
-    hold_velocity : float, optional
-        Speed (m/s) below which a stretch is a hold. Default: the larger of the stretch's
-        velocity noise and 1e-4 of the fastest velocity in the record.
-    min_samples, min_duration : int, float
-        Shortest stretch, in samples (``>= 3``) and in seconds.
-    penalty : float
-        Strictness of a new change point (``> 0``; larger finds fewer).
-
-    Returns
-    -------
-    tuple of Segment
-        Covering every sample, in time order.
-    """
-    if not 0.0 < rel_tol < 1.0:
-        raise ValueError(f"rel_tol = {rel_tol:g} is out of range: allowed > 0 and < 1")
-    if min_samples < 3:
-        raise ValueError(f"min_samples = {min_samples} is out of range: allowed >= 3")
-    if not penalty > 0.0:
-        raise ValueError(f"penalty = {penalty:g} is out of range: allowed > 0")
-    if hold_velocity is not None and not hold_velocity >= 0.0:
-        raise ValueError(f"hold_velocity = {hold_velocity:g} is out of range: allowed >= 0")
-    t = np.asarray(record.time)
-    x = _displacement(record)
-    span = float(np.ptp(x))
-    sigma = max(noise_level(x), 1e-9 * span, 1e-300)
-    bounds = hinge_segments(t, x, sigma, min_samples=min_samples, min_duration=min_duration,
-                            penalty=penalty)
-    xs = (x - x[0]) / sigma
-    wander = _wander(t, xs, bounds) * sigma
-    while True:
-        fits = [line_fit(t[a:b], x[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
-        vel = [f[0] for f in fits]
-        vmax = max(abs(v) for v in vel)
-        # a velocity is known to within white noise over the stretch's samples, and to within
-        # the slow wander (a motor's wobble) over its duration: 2 sqrt(12) w / T at most
-        noise = [max(4.0 * sigma / np.sqrt(f[2]),
-                     2.0 * np.sqrt(12.0) * wander / max(t[b - 1] - t[a], 1e-300))
-                 for f, a, b in zip(fits, bounds[:-1], bounds[1:], strict=True)]
-        hold = [abs(v) <= (hold_velocity if hold_velocity is not None else max(e, 1e-4 * vmax))
-                for v, e in zip(vel, noise, strict=True)]
-        join = [j for j in range(1, len(vel)) if (hold[j] and hold[j - 1]) or (
-            not hold[j] and not hold[j - 1] and abs(vel[j] - vel[j - 1]) <= max(
-                rel_tol * max(abs(vel[j]), abs(vel[j - 1])), noise[j] + noise[j - 1]))]
-        if not join:
-            break
-        gone = set(join)
-        near = {bounds[i] for j in join for i in (j - 1, j + 1) if i not in gone}
-        bounds = refine(t, xs, [b for j, b in enumerate(bounds) if j not in gone],
-                        min_samples, min_duration, only=near)
-    # one plateau value for the velocities within rel_tol of each other (same sign)
-    plateau = [0.0] * len(vel)
-    order = sorted((j for j in range(len(vel)) if not hold[j]), key=lambda j: vel[j])
-    groups: list[list[int]] = []
-    for j in order:
-        p = groups[-1][-1] if groups else None
-        if p is not None and vel[p] * vel[j] > 0 and (
-                abs(vel[j] - vel[p]) <= rel_tol * max(abs(vel[j]), abs(vel[p]))):
-            groups[-1].append(j)
-        else:
-            groups.append([j])
-    for g in groups:
-        w = np.array([t[bounds[j + 1] - 1] - t[bounds[j]] for j in g])
-        v = float(np.average([vel[j] for j in g], weights=w if w.sum() > 0 else None))
-        for j in g:
-            plateau[j] = v
-    # neighbours that now share a value are one stretch
-    keep = [0] + [bounds[j] for j in range(1, len(plateau)) if plateau[j] != plateau[j - 1]]
-    vals = [plateau[0]] + [plateau[j] for j in range(1, len(plateau))
-                           if plateau[j] != plateau[j - 1]]
-    return _make_segments(t, keep + [len(t)], vals)
-
-
-def _wander(t: Array, xs: Array, bounds: list[int]) -> float:
-    """RMS of the residuals about the broken line beyond the white noise (``xs`` in units of
-    the noise): the slow part that makes short stretches' slopes scatter."""
-    return float(np.sqrt(max(rss(t, xs, bounds) / len(t) - 1.0, 0.0)))
 
 
 def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
@@ -227,7 +121,7 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
         if idx[j] == idx[j + 1] or idx[j] == idx[j - 1]:
             raise ValueError(f"--segments: the segment starting at {starts[j]:g} s holds no "
                              f"sample of {src}")
-    segs = list(_make_segments(t, idx, vel))
+    segs = list(make_segments(t, idx, vel))
     # a given start falls between samples: keep the time the user wrote
     segs = [Segment(float(t[0]) + s, g.t_end if j == len(segs) - 1 else float(t[0]) +
                     starts[j + 1], g.velocity, g.i_start, g.i_end)
@@ -236,15 +130,59 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
 
 
 def segments_table(segments: tuple[Segment, ...] | list[Segment]) -> str:
-    """The load program as a fixed-width table (times in s, velocities in m/s and um/s)."""
+    """The load program as a fixed-width table (times in s, velocities in m/s and um/s, the
+    confidence of the change at each start, the mean normal stress in MPa or force in kN)."""
     lines = [f"{'#':>3} {'t_start (s)':>13} {'t_end (s)':>13} {'duration (s)':>12} "
-             f"{'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8}"]
+             f"{'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} {'confidence':>10} "
+             f"{'normal':>9}"]
     for j, s in enumerate(segments):
         kind = "  hold" if s.velocity == 0.0 else ""
+        conf = "-" if not np.isfinite(s.confidence) else f"{s.confidence:.3g}"
+        normal = "-" if not np.isfinite(s.normal) else f"{s.normal / 1e6:.4g}"
         lines.append(f"{j:>3} {s.t_start:>13.6g} {s.t_end:>13.6g} {s.duration:>12.6g} "
                      f"{s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
-                     f"{s.i_end - s.i_start:>8d}{kind}")
+                     f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>9}{kind}")
+    lines.append("confidence: the velocity change at the segment's start over the scatter the "
+                 "apparatus' fluctuations give it; normal: mean normal stress, MPa (force: kN)")
     return "\n".join(lines)
+
+
+SEGMENTS_SYNTAX = (
+    "The load program as comma-separated START:VELOCITY items: START in s from the record's "
+    "first sample (the first item starts at 0; starts increase and lie inside the record), "
+    "VELOCITY the load-point velocity in m/s from there to the next START (0: a hold; "
+    "negative: sliding back). E.g. 0:2e-7,1200:2e-6 (0.2 um/s, then 2 um/s from 1200 s); "
+    "0:1e-5,100:0,130:1e-5 (a 30-s hold). The table of the 'record' command and its "
+    "segments.csv give the detected program in this form to edit.")
+"""The full syntax of ``--segments`` (its CLI help)."""
+
+
+def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float) -> str:
+    """The program in the ``--segments`` form (starts in s from ``t0``, the first sample)."""
+    return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)
+
+
+def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
+                       normal_unit: str = "Pa") -> None:
+    """Write the load program as CSV, one row per segment, units in the headers; the
+    ``--segments`` form of the whole program in a comment line on top."""
+    nu, scale = ("MPa", 1e-6) if normal_unit != "N" else ("kN", 1e-3)
+    what = "normal stress" if normal_unit != "N" else "normal force"
+    rows = [f"# --segments {segments_spec(segments, t0)}",
+            f"segment,kind,t_start [s],t_end [s],t_start from first sample [s],duration [s],"
+            f"velocity [m/s],velocity [um/s],i_start,i_end,samples,confidence [-],"
+            f"{what} [{nu}]"]
+    for j, s in enumerate(segments):
+        prev = segments[j - 1].velocity if j else None
+        kind = ("hold" if s.velocity == 0.0 else "start" if j == 0 else
+                "normal change" if prev == s.velocity else "step")
+        conf = "" if not np.isfinite(s.confidence) else f"{s.confidence:.4g}"
+        normal = "" if not np.isfinite(s.normal) else f"{s.normal * scale:.6g}"
+        rows.append(f"{j},{kind},{s.t_start:.9g},{s.t_end:.9g},{s.t_start - t0:.9g},"
+                    f"{s.duration:.9g},{s.velocity:.6e},{s.velocity * 1e6:.6g},{s.i_start},"
+                    f"{s.i_end},{s.i_end - s.i_start},{conf},{normal}")
+    with open(path, "w", encoding="utf-8") as fh:  # type: ignore[call-overload]
+        fh.write("\n".join(rows) + "\n")
 
 
 def load_velocity_series(record: LabRecord, segments: tuple[Segment, ...]) -> Array:

@@ -10,11 +10,13 @@ the time variable, so the cost is ``O(n log k)`` and a change of sampling rate c
 
 from __future__ import annotations
 
+import heapq
+
 import numpy as np
 
 from ..validation import Array
 
-__all__ = ["noise_level", "line_fit", "rss", "hinge_segments", "refine", "prune"]
+__all__ = ["noise_level", "line_fit", "rss", "best_hinge", "hinge_segments", "refine", "prune"]
 
 
 def noise_level(x: Array) -> float:
@@ -52,7 +54,7 @@ def line_fit(t: Array, x: Array) -> tuple[float, float, float]:
     return slope, float(xm), sxx
 
 
-def _best_hinge(t: Array, x: Array, m: int, min_dur: float) -> tuple[int, float]:
+def best_hinge(t: Array, x: Array, m: int, min_dur: float) -> tuple[int, float]:
     """Best hinge sample ``k`` (``m <= k <= n - m``) and the RSS it saves over one line."""
     n = len(t)
     if n < 2 * m + 1:
@@ -102,6 +104,7 @@ def hinge_segments(
     penalty: float = 10.0,
     max_segments: int = 10_000,
     max_points: int = 5_000,
+    tidy: bool = True,
 ) -> list[int]:
     """Sample indices of the slope changes of ``x(t)``, with ``0`` and ``len(t)`` at the ends.
 
@@ -125,13 +128,16 @@ def hinge_segments(
         Stop splitting beyond this many stretches.
     max_points : int
         Longest signal searched sample by sample.
+    tidy : bool
+        Prune the stretches that do not earn their place (:func:`prune`); ``False`` leaves
+        that to the caller (a detector with its own criterion).
     """
     n = len(t)
     xs = (np.asarray(x, float) - x[0]) / sigma
     block = max(1, n // max_points)
     if block == 1:
         return _segment(t, xs, penalty * np.log(max(n, 2)), min_samples, min_duration,
-                        max_segments)
+                        max_segments, tidy)
     nb = n // block
     tb = t[: nb * block].reshape(nb, block).mean(axis=1)
     xb = xs[: nb * block].reshape(nb, block).mean(axis=1)
@@ -144,27 +150,34 @@ def hinge_segments(
         k = coarse[j] * block
         a = max(out[-1], k - 2 * block)
         b = min(coarse[j + 1] * block, k + 2 * block)
-        kk, _ = _best_hinge(t[a:b], xs[a:b], min(min_samples, (b - a) // 3), 0.0)
+        kk, _ = best_hinge(t[a:b], xs[a:b], min(min_samples, (b - a) // 3), 0.0)
         out.append(a + kk if kk > 0 else k)
     # a block that straddles a kink lies off both lines: it may have left a short stretch
     return prune(t, xs, out + [n], penalty * np.log(n), min_samples, 0.0, window=4 * block)
 
 
 def _segment(t: Array, xs: Array, threshold: float, m: int, min_dur: float,
-             max_segments: int) -> list[int]:
-    """Binary segmentation, then each boundary refined and the stretches pruned."""
+             max_segments: int, tidy: bool = True) -> list[int]:
+    """Binary segmentation, best split first (so that ``max_segments`` keeps the largest
+    gains), then each boundary refined and the stretches pruned."""
     n = len(t)
     bounds = [0, n]
-    todo = [(0, n)]
-    while todo and len(bounds) - 1 < max_segments:
-        a, b = todo.pop()
-        k, gain = _best_hinge(t[a:b], xs[a:b], m, min_dur)
+    heap: list[tuple[float, int, int, int]] = []
+
+    def push(a: int, b: int) -> None:
+        k, gain = best_hinge(t[a:b], xs[a:b], m, min_dur)
         if k > 0 and gain > threshold:
-            bounds.append(a + k)
-            todo += [(a, a + k), (a + k, b)]
+            heapq.heappush(heap, (-gain, a, b, a + k))
+
+    push(0, n)
+    while heap and len(bounds) - 1 < max_segments:
+        _, a, b, k = heapq.heappop(heap)
+        bounds.append(k)
+        push(a, k)
+        push(k, b)
     bounds.sort()
     bounds = refine(t, xs, bounds, m, min_dur)
-    return prune(t, xs, bounds, threshold, m, min_dur)
+    return prune(t, xs, bounds, threshold, m, min_dur) if tidy else bounds
 
 
 def rss(t: Array, xs: Array, bounds: list[int]) -> float:
@@ -205,7 +218,7 @@ def prune(t: Array, xs: Array, bounds: list[int], threshold: float, m: int,
             a, b = sub[0], sub[-1]
             now = rss(t, xs, sub)
             if len(sub) == 4:
-                k, _ = _best_hinge(t[a:b], xs[a:b], min(m, (b - a) // 3), 0.0)
+                k, _ = best_hinge(t[a:b], xs[a:b], min(m, (b - a) // 3), 0.0)
                 if k <= 0:
                     kept.add(tuple(sub))
                     continue
@@ -229,7 +242,7 @@ def refine(t: Array, xs: Array, bounds: list[int], m: int, min_dur: float,
         if only is not None and out[j] not in only:
             continue
         a, b = out[j - 1], out[j + 1]
-        k, _ = _best_hinge(t[a:b], xs[a:b], m, min_dur)
+        k, _ = best_hinge(t[a:b], xs[a:b], m, min_dur)
         if k > 0:
             out[j] = a + k
     return out

@@ -1,0 +1,88 @@
+"""Detection of the commanded load program on the artifact zoo (issue 23).
+
+Generates the zoo's records (``tests/records_zoo.py``: an independent rate-and-state spring
+slider, every artifact alone and combined at the shared record's levels), writes each in its
+dialect to a temporary folder, reads it back with :func:`dryfriction.io.lab.read_record` and
+detects its program. Prints the fraction of records with the right number of velocity changes
+(and normal-stress changes), each within the larger of one sample and 0.5 s; the false-change
+rate (detected changes more than 5 s from every true one, over all detected changes); and the
+detection's CPU time per 1e6 rows. Records that fail are listed.
+
+Run: ``python -m benchmarks bench_detect [N]`` (N records, default 300).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+import numpy as np  # noqa: E402
+
+from dryfriction.io.lab import detect_program, read_record  # noqa: E402
+from records_zoo import make_record, score, specs, write  # noqa: E402
+
+
+def run(n: int, verbose: bool = True) -> dict[str, float]:
+    """Generate, write, read and detect ``n`` zoo records; return the rates."""
+    scores = []
+    groups: dict[str, list] = {}
+    rows = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, prog, arts, dialect in specs(n):
+            rec = make_record(i, prog, arts, dialect)
+            path = write(rec, Path(tmp))
+            lab = read_record(path)
+            c0 = time.process_time()
+            det = detect_program(lab)
+            cpu = time.process_time() - c0
+            s = score(rec, det, cpu)
+            rows += rec.rows
+            scores.append(s)
+            kind = "plain" if not arts else arts[0] if len(arts) == 1 else "mixed"
+            groups.setdefault(f"program {prog}", []).append(s)
+            groups.setdefault(f"artifacts {kind}", []).append(s)
+            path.unlink()
+            if verbose and not s.right:
+                print(f"  wrong: {rec.name} ({dialect}, {rec.rows} rows): found {s.found} "
+                      f"changes, true {len(rec.changes)}, false {s.false}, missed {s.missed}, "
+                      f"worst time error {s.worst_error:.3g} s {s.note}")
+    right = sum(s.right for s in scores) / len(scores)
+    count = sum(s.count_right for s in scores) / len(scores)
+    found = sum(s.found for s in scores)
+    false = sum(s.false for s in scores) / max(found, 1)
+    missed = sum(s.missed for s in scores) / max(sum(len(make_record(i, p, a, d).changes)
+                                                     for i, p, a, d in specs(0)) or 1, 1)
+    cpu = sum(s.cpu for s in scores) / rows * 1e6
+    if verbose:
+        print(f"{'group':<22} {'records':>7} {'number right':>12} {'and times':>10}")
+        for name, g in groups.items():
+            print(f"{name:<22} {len(g):>7d} {100 * sum(x.count_right for x in g) / len(g):>11.0f}%"
+                  f" {100 * sum(x.right for x in g) / len(g):>9.0f}%")
+        errs = [x.worst_error for x in scores if x.count_right]
+        print("worst change-time error per record with the right number: median "
+              f"{np.median(errs):.3g} s, 90th percentile {np.percentile(errs, 90):.3g} s")
+    return {"records": len(scores), "rows": rows, "right": right, "count": count,
+            "false": false,
+            "cpu_per_1e6_rows": cpu, "missed": sum(s.missed for s in scores) + 0 * missed}
+
+
+def main() -> None:
+    n = int(sys.argv[-1]) if len(sys.argv) > 1 and sys.argv[-1].isdigit() else 300
+    r = run(n)
+    print(f"zoo: {r['records']} records, {r['rows']:,} rows")
+    print(f"right number of changes, each within max(1 sample, 0.5 s): {100 * r['right']:.1f} %"
+          f" (target >= 98 %); right number alone: {100 * r['count']:.1f} %")
+    print(f"false changes: {100 * r['false']:.2f} % of the detected (target <= 1 %); "
+          f"missed changes: {r['missed']}")
+    print(f"detection CPU: {r['cpu_per_1e6_rows']:.2f} s per 1e6 rows (target <= 1 s)")
+
+
+if __name__ == "__main__":
+    main()

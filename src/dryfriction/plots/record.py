@@ -1,0 +1,155 @@
+"""The figure of a laboratory record as the step finder read it (``record.png``, issue 23):
+the load-point velocity (a smoothed estimate, light) with the load program drawn on it, friction
+and normal stress against time below; each step and hold shaded and numbered as in the table,
+sampling-rate changes, gaps, resets and normal-stress changes marked."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .style import FRICTION_SI
+
+if TYPE_CHECKING:
+    from ..io.detection import Detection
+    from ..io.lab import LabRecord, Segment
+
+__all__ = ["RecordFigure", "plot_record", "smoothed_velocity"]
+
+
+@dataclass
+class RecordFigure:
+    """What :func:`plot_record` drew, for a reader (or a test) to check.
+
+    Attributes
+    ----------
+    panels : list of str
+        The panels' names, top to bottom (``velocity``, ``friction``, ``normal``).
+    shaded : list of int
+        The table's segment numbers that were shaded (each step and hold).
+    marks : dict
+        Kind (``rate change``, ``gap``, ``reset``, ``normal change``) -> times marked, s.
+    artists : dict
+        Panel -> the matplotlib artists of the shading.
+    """
+
+    panels: list[str]
+    shaded: list[int]
+    marks: dict[str, list[float]] = field(default_factory=dict)
+    artists: dict[str, list[Any]] = field(default_factory=dict)
+
+
+def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float) -> tuple[np.ndarray,
+                                                                              np.ndarray]:
+    """Load-point velocity (m/s) as the slope of ``x`` over consecutive windows of ``width``
+    s (least squares in each: the sampling may vary), at the windows' mean times."""
+    w = np.floor((t - t[0]) / width).astype(np.int64)
+    nw = int(w[-1]) + 1
+    n = np.bincount(w, minlength=nw).astype(float)
+    tc = t - t[0]
+    st, sx = np.bincount(w, tc, nw), np.bincount(w, x - x[0], nw)
+    stt, stx = np.bincount(w, tc * tc, nw), np.bincount(w, tc * (x - x[0]), nw)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        var = stt / n - (st / n) ** 2
+        v = (stx / n - st * sx / n**2) / var
+    ok = (n >= 3) & (var > 0)
+    return t[0] + st[ok] / n[ok], v[ok]
+
+
+def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment],
+                detection: Detection | None = None, x: np.ndarray | None = None,
+                given: bool = False) -> tuple[Figure, RecordFigure]:
+    """Draw the record and its load program.
+
+    Parameters
+    ----------
+    record : LabRecord
+        The record (SI).
+    segments : sequence of Segment
+        Its load program, numbered as in the table (:func:`~dryfriction.io.lab.segments_table`).
+    detection : Detection, optional
+        What the detector found besides (marks); ``None`` for a program given by hand.
+    x : array, optional
+        Load-point displacement, m (resets taken out); default from the record.
+    given : bool
+        The program was given with ``--segments`` (said in the title).
+
+    Returns
+    -------
+    Figure, RecordFigure
+    """
+    from ..io.detection import displacement
+
+    t = np.asarray(record.time, float)
+    t0 = float(t[0])
+    x = displacement(record) if x is None else x
+    has_normal = record.normal_stress is not None
+    names = ["velocity", "friction"] + (["normal"] if has_normal else [])
+    fig = Figure(figsize=(10.0, 2.3 * len(names) + 0.8))
+    axes = fig.subplots(len(names), 1, sharex=True)
+    info = RecordFigure(panels=names, shaded=[], artists={n: [] for n in names})
+    span = float(t[-1] - t0)
+    width = max(span / 400.0, 3.0 * float(np.median(np.diff(t))))
+    tv, v = smoothed_velocity(t, x, width)
+    ax = axes[0]
+    ax.plot(tv - t0, v * 1e6, color="0.6", lw=0.8, alpha=0.7,
+            label=f"load-point velocity (slope over {width:.3g} s)")
+    for s in segments:
+        ax.plot([s.t_start - t0, s.t_end - t0], [s.velocity * 1e6] * 2, color="C3", lw=1.8)
+    ax.plot([], [], color="C3", lw=1.8, label="load program" + (" (--segments)" if given
+                                                                  else " (detected)"))
+    ax.set_ylabel("velocity  [µm/s]")
+    speeds = [abs(s.velocity) for s in segments if s.velocity != 0.0]
+    if speeds and max(speeds) / min(speeds) > 30.0:
+        ax.set_yscale("symlog", linthresh=min(speeds) * 1e6)
+    vmax = max(speeds or [1e-6]) * 1e6
+    if ax.get_yscale() == "linear":  # the smoothed velocity's spikes do not set the scale
+        ax.set_ylim(-0.15 * vmax, 1.5 * vmax)
+    axes[1].scatter(t - t0, record.friction, s=1.0, color="0.35", linewidths=0,
+                    rasterized=True)
+    axes[1].set_ylabel(FRICTION_SI)
+    if has_normal:
+        unit, scale = ("MPa", 1e-6) if record.normal_unit == "Pa" else ("kN", 1e-3)
+        axes[2].plot(t - t0, np.asarray(record.normal_stress) * scale, color="C0", lw=0.8)
+        axes[2].set_ylabel(f"normal {'stress' if unit == 'MPa' else 'force'}  [{unit}]")
+        axes[2].ticklabel_format(axis="y", useOffset=False)  # 30.002, not +3e1 and 0.002
+    # each step and hold shaded and numbered as in the table (segment 0 is where it starts)
+    for j, s in enumerate(segments):
+        if j == 0 and s.velocity != 0.0:
+            continue
+        prev = segments[j - 1].velocity if j else None
+        if prev is not None and prev == s.velocity:
+            continue  # a boundary set by the normal stress alone
+        hold = s.velocity == 0.0
+        info.shaded.append(j)
+        for name, a in zip(names, axes, strict=True):
+            info.artists[name].append(a.axvspan(s.t_start - t0, s.t_end - t0,
+                                                color="C0" if hold else "C2",
+                                                alpha=0.12 if hold else 0.08, lw=0))
+        ax.annotate(f"{j}" + (" hold" if hold else ""), (s.t_start - t0, 1.0),
+                    xycoords=("data", "axes fraction"), xytext=(2, -10),
+                    textcoords="offset points", fontsize=8)
+    marks = {"rate change": list(detection.rate_changes) if detection else [],
+             "gap": list(detection.gaps) if detection else [],
+             "reset": list(detection.resets) if detection else [],
+             "normal change": list(detection.normal_changes) if detection else []}
+    styles = {"rate change": ("C1", ":"), "gap": ("k", "--"), "reset": ("C4", "-."),
+              "normal change": ("C0", "--")}
+    for kind, times in marks.items():
+        color, ls = styles[kind]
+        for k, tm in enumerate(times):
+            for a in axes:
+                a.axvline(tm - t0, color=color, ls=ls, lw=0.9,
+                          label=kind if (k == 0 and a is ax) else None)
+    info.marks = {k: [float(v) for v in vs] for k, vs in marks.items() if vs}
+    ax.legend(loc="upper left", fontsize=7, ncol=2)
+    axes[-1].set_xlabel(f"time from the first sample  [s]  (t0 = {t0:g} s)")
+    n_steps = sum(1 for j in info.shaded if segments[j].velocity != 0.0)
+    n_holds = len(info.shaded) - n_steps
+    fig.suptitle(f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
+                 f"{n_holds} hold(s); shaded and numbered as in segments.csv", fontsize=9)
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=0.93, hspace=0.08)
+    return fig, info
