@@ -134,6 +134,29 @@ def test_deferred_keeps_the_default_action_and_does_nothing_in_a_thread() -> Non
     assert errors == []
 
 
+_CRITICAL = """
+import os, signal, sys
+from dryfriction import interrupts
+signal.signal(signal.SIGTERM, signal.SIG_DFL)
+with interrupts.deferred(defaults={defaults}):
+    os.kill(os.getpid(), signal.SIGTERM)
+    print("finished the block", flush=True)
+print("after the block", flush=True)
+"""
+
+
+@pytest.mark.parametrize("defaults", [True, False])
+def test_deferred_with_defaults_holds_the_default_sigterm_to_the_blocks_end(
+        defaults: bool) -> None:
+    """The mistake: a results folder's final moves cut by a library user's default SIGTERM
+    (``io.files`` commits inside ``deferred(defaults=True)``): the block must finish, then the
+    default action end the process (status -15), never run on past the block."""
+    proc = subprocess.run([sys.executable, "-c", _CRITICAL.format(defaults=defaults)],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == -signal.SIGTERM
+    assert proc.stdout == ("finished the block\n" if defaults else "")
+
+
 def test_chunked_compiled_stepper_gives_the_one_call_result(monkeypatch) -> None:
     """The compiled stepper runs in chunks (so that an interrupt is acted on between them):
     resumed at every chunk, it must give the single call's steps bit for bit (mistake: a

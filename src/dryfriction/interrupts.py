@@ -41,18 +41,22 @@ __all__ = ["SIGNALS", "deferred"]
 SIGNALS: tuple[int, ...] = (signal.SIGINT, signal.SIGTERM)
 """The signals held back by :func:`deferred`."""
 
-Handler = Callable[[int, Any], Any]
+Handler = Callable[[int, Any], Any] | int
 
 
 @contextlib.contextmanager
-def deferred() -> Iterator[None]:
+def deferred(*, defaults: bool = False) -> Iterator[None]:
     """Within the block SIGINT and SIGTERM are only recorded; on the way out the handlers that
     were in place are restored and called, once per signal received, in arrival order (the
     last one's exception propagates; every handler sees its signal).
 
     Only handlers that are Python functions are replaced: the default action of SIGTERM and an
-    ignored signal never run Python code, and keep their effect. Outside the main thread
-    (where Python runs no handler) this is a no-op. Nested blocks deliver to the outer one.
+    ignored signal never run Python code, and keep their effect. With ``defaults`` a signal
+    whose action is the default (SIGTERM in a library user's process) is held back too and
+    raised again on the way out, so that it still ends the process, but after the block: a
+    critical section that must not be cut (the final moves of a results folder,
+    :mod:`dryfriction.io.files`). Outside the main thread (where Python runs no handler) this
+    is a no-op. Nested blocks deliver to the outer one.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
@@ -61,7 +65,7 @@ def deferred() -> Iterator[None]:
     previous: dict[int, Handler] = {}
     for s in SIGNALS:
         handler = signal.getsignal(s)
-        if callable(handler):
+        if callable(handler) or (defaults and handler == signal.SIG_DFL):
             previous[s] = handler
             signal.signal(s, lambda signum, frame: caught.append(signum))
     try:
@@ -77,6 +81,10 @@ def _deliver(signums: list[int], handlers: dict[int, Handler]) -> None:
     if not signums:
         return
     try:
-        handlers[signums[0]](signums[0], None)
+        handler = handlers[signums[0]]
+        if callable(handler):
+            handler(signums[0], None)
+        else:  # the default action, restored: it ends the process now
+            signal.raise_signal(signums[0])
     finally:
         _deliver(signums[1:], handlers)

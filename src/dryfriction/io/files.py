@@ -39,14 +39,14 @@ import os
 import re
 import secrets
 import shutil
-import signal
 import stat
-import threading
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from ..interrupts import deferred
 
 __all__ = [
     "MANIFEST",
@@ -397,27 +397,6 @@ def _back_up(path: Path) -> Path | None:
                 return None
 
 
-@contextlib.contextmanager
-def _signals_deferred() -> Iterator[None]:
-    """Hold back Ctrl-C and SIGTERM during a short critical section, then deliver them.
-
-    Only possible in the main thread (where Python handles signals); elsewhere a no-op.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    caught: list[int] = []
-    kinds = (signal.SIGINT, signal.SIGTERM)
-    previous = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in kinds}
-    try:
-        yield
-    finally:
-        for s, handler in previous.items():
-            signal.signal(s, handler)
-        for s in dict.fromkeys(caught):  # deliver each once, through the restored handler
-            signal.raise_signal(s)
-
-
 def _write_manifest(folder: Path, command: str, files: Mapping[str, str],
                     hand_over: bool = False) -> None:
     manifest = {
@@ -548,7 +527,7 @@ def output_directory(out: str | os.PathLike[str], *, command: str = "results",
     stage = Path(tmp)
     try:
         yield stage
-        with _signals_deferred():
+        with deferred(defaults=True):
             if existed:
                 _commit(stage, out, command, protected, force, say, option, hand_over)
                 shutil.rmtree(stage, ignore_errors=True)
