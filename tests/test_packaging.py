@@ -29,7 +29,9 @@ def test_every_source_package_is_listed_for_the_wheel() -> None:
     listed = set(PYPROJECT["tool"]["setuptools"]["packages"])
     found = {".".join(p.parent.relative_to(SRC).parts) for p in SRC.rglob("__init__.py")}
     assert found <= listed
-    assert listed - found == {"dryfriction.examples", "dryfriction.examples.data",
+    # data-only packages: the examples, and the model's description (docs/model.md)
+    assert listed - found == {"dryfriction.docs", "dryfriction.examples",
+                              "dryfriction.examples.data",
                               "dryfriction.examples.data.lab",
                               "dryfriction.examples.gallery"}
 
