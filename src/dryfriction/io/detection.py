@@ -46,6 +46,7 @@ import numpy as np
 
 from ..validation import Array
 from .labsteps import Segment, make_segments
+from .placement import place_changes
 from .segmentation import best_hinge, hinge_segments, line_fit, noise_level, refine
 
 if TYPE_CHECKING:
@@ -521,7 +522,8 @@ def detect_program(
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute)
         t, x = t_all, x_all
         fits = _Fits(t, x)
-    bounds = _local(t, x, sigma, bounds, _z(fits, fl, bounds))
+    bounds = place_changes(t, x, bounds, fits.table(bounds)[0], sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
+                           fl.absolute, m)
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
     hold = [bool(h) for h in _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)]
