@@ -55,8 +55,12 @@ if TYPE_CHECKING:
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments",
            "displacement", "no_change_message", "Z_MIN"]
 
-Z_MIN = 6.0
-"""Confidence (velocity change over its fluctuation scatter) a detected change must reach."""
+Z_MIN = 6.5
+"""Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
+the null distribution (``python -m benchmarks bench_detect_null``: 150 seeded no-step zoo
+records, searched at 2): the largest ``z`` per record reaches 6 on 2.0 % of them, 6.5 on 1.3 %
+(7.5 and 20, excursions of a short record); the tuning records (zoo 0-149) lose no change
+between 6 and 6.5, one at 7.6."""
 Z_HOLD = 3.0
 """A stretch whose speed is below this many times its slope scatter is a hold."""
 _RESET_K = 15.0  # a reset's jump, in robust scales of the increments' scatter
@@ -522,7 +526,8 @@ def detect_program(
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute)
         t, x = t_all, x_all
         fits = _Fits(t, x)
-    bounds = place_changes(t, x, bounds, fits.table(bounds)[0], sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
+    bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
+                           sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
                            fl.absolute, m)
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
