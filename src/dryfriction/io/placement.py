@@ -122,9 +122,9 @@ def place_change(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2
     if b - a < 12 or not a < guess < b:
         return guess
     tt = t[a:b]
-    # block means, at most 400: the wander is smooth within a block, the white noise of a
+    # block means, at most 256: the wander is smooth within a block, the white noise of a
     # block falls as 1/count
-    k = max(1, int(np.ceil((b - a) / 400)))
+    k = max(1, int(np.ceil((b - a) / 256)))
     idx = np.arange(0, b - a, k)
     cnt = np.diff(np.append(idx, b - a)).astype(float)
     tb = np.add.reduceat(tt, idx) / cnt
