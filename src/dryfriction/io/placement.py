@@ -44,8 +44,9 @@ def _cov_int(p: Array, q: Array, r: Array, w: Array, tau: float) -> Array:
 def _psi_table() -> tuple[Array, Array]:
     """``psi(T / tau)``: what :func:`.detection.measure_fluctuations` measures (the variance of
     a window's least-squares slope less its covariance with the next window's) for a unit-rms
-    OU velocity wander, on a log grid of ``T / tau``, as its non-increasing envelope. The slope of a line fitted over ``[0, T]``
-    to ``int eps`` is ``int w eps`` with ``w(u) = 6 u (T - u) / T**3`` (ours)."""
+    OU velocity wander, on a log grid of ``T / tau``, as its non-increasing envelope. The
+    slope of a line fitted over ``[0, T]`` to ``int eps`` is ``int w eps`` with
+    ``w(u) = 6 u (T - u) / T**3`` (ours)."""
     q = np.logspace(-2.0, 3.0, 61)
     u = (np.arange(200) + 0.5) / 200.0  # window in units of T
     w = 6.0 * u * (1.0 - u) / 200.0
