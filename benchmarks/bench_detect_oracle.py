@@ -7,9 +7,10 @@ velocity wander (Ornstein-Uhlenbeck, 8 % rms, 3 s; optionally its machine oscill
 hinge GIVEN THE TRUE NOISE MODEL: the exact Gaussian likelihood of the displacement on +-120 s
 (sampled at <= 8 Hz) with the integrated-OU covariance of the true parameters, maximised over
 the change time (0.02-s grid, +-15 s) with free offset and velocities (generalised least
-squares). With the machine oscillation added, the likelihood still knows only the OU wander
-(an oracle for the red-only rows alone). No detector knows more; the fraction it places within max(one sample, 0.5 s) is what
-the zoo's levels allow (an estimate from an ML oracle, not a proven bound).
+squares). With the machine oscillation added, the likelihood still knows only the OU
+wander (an oracle for the red-only rows alone). No detector knows more; the fraction it
+places within max(one sample, 0.5 s) is what the zoo's levels allow (an estimate from an ML
+oracle, not a proven bound).
 
 Run: ``python -m benchmarks bench_detect_oracle [N]`` (N records per case, default 50; seeded).
 """

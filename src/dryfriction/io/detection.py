@@ -33,8 +33,8 @@ taken out, and after it a normal-stress change splits a stretch (a segment bound
 reported). Sampling-rate changes and gaps are found and reported; they create no change, the
 fit being against time. A record longer than ``MAX_POINTS`` samples is searched on block
 means and each change then placed on the samples near it; a change of confidence below
-``LOCAL_Z`` is finally placed on the ``LOCAL_SAMPLES`` either side of it (a slow wander bends
-the kink of the whole stretches).
+``LOCAL_Z`` is finally placed by the maximum-likelihood hinge under the record's own wander
+(:mod:`.placement`: a slow wander bends the kink of the whole stretches).
 """
 
 from __future__ import annotations
@@ -528,7 +528,7 @@ def detect_program(
         fits = _Fits(t, x)
     bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
                            sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
-                           fl.absolute, m)
+                           fl.absolute, m, weak=_z(fits, fl, bounds) < LOCAL_Z)
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
     hold = [bool(h) for h in _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)]
@@ -554,27 +554,9 @@ def detect_program(
 
 
 LOCAL_Z = 500.0
-"""Below this confidence a change is placed on the samples near it (:func:`_local`)."""
-LOCAL_SAMPLES = 150
-"""How near: samples on either side."""
-
-
-def _local(t: Array, x: Array, sigma: float, bounds: list[int], z: Array) -> list[int]:
-    """Each change of confidence below :data:`LOCAL_Z` moved to the best hinge on the
-    :data:`LOCAL_SAMPLES` samples either side of it (ours). The lines of two whole stretches
-    bend with a wander of the load point that is slow against them, and their kink with them;
-    near the change the wander has had no time to add up. A larger change is placed as well by
-    the whole stretches. Chosen on the first 120 zoo records (``bench_detect``: 75 -> 84 % of
-    the changes within max(1 sample, 0.5 s); 150 samples placed better than 50, 300 or 1000)."""
-    out = [0]
-    for j in range(1, len(bounds) - 1):
-        a = max(out[-1] + 3, bounds[j] - LOCAL_SAMPLES)
-        b = min(bounds[j + 1] - 3, bounds[j] + LOCAL_SAMPLES)
-        k = 0
-        if z[j - 1] < LOCAL_Z and b - a > 8:
-            k, _ = best_hinge(t[a:b], (x[a:b] - x[a]) / sigma, 3, 0.0)
-        out.append(a + k if k > 0 else bounds[j])
-    return out + [bounds[-1]]
+"""Below this confidence a change is placed by the generalised-least-squares hinge under the
+record's wander (:func:`.placement.place_changes`); a larger one is placed as well by the whole
+stretches (the shared record's, z ~ 1.4e3, stays at sample 16451)."""
 
 
 MAX_POINTS = 30_000

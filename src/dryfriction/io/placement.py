@@ -192,7 +192,8 @@ def place_change(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2
 
 
 def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma: float,
-                  scales: Array, relative: Array, absolute: Array, m: int = 3) -> list[int]:
+                  scales: Array, relative: Array, absolute: Array, m: int = 3,
+                  weak: Array | None = None) -> list[int]:
     """Each inner boundary of ``bounds`` placed by :func:`place_change`, in order, each window
     kept ``m`` samples clear of the neighbouring boundaries.
 
@@ -211,11 +212,16 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         ``a(T)`` (m/s).
     m : int
         Samples kept clear of a neighbouring boundary.
+    weak : Array of bool, optional
+        Which inner boundaries to place (default all); the others stay.
     """
     rel = ou_parameters(scales, relative)
     ab = ou_parameters(scales, absolute)
     out = [0]
     for j in range(1, len(bounds) - 1):
+        if weak is not None and not weak[j - 1]:
+            out.append(bounds[j])
+            continue
         lo = out[-1] + m
         hi = bounds[j + 1] - m
         new = place_change(t, x, bounds[j], lo, hi, float(velocity[j - 1]),
