@@ -287,6 +287,13 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     nz = np.abs(d[d != 0.0])
     quantum = float(nz.min()) if nz.size else 0.0
     scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
+    # the local rates are medians of 5 noisy increment rates: their error, times an
+    # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
+    # hundreds of intervals), so it widens the range by 3 of its scales (1.2533: a median's)
+    r = (rate - vb)[np.isfinite(rate - vb)]
+    s_v = 1.2533 * 1.4826 * float(np.median(np.abs(r - np.median(r)))) / np.sqrt(5.0) if (
+        r.size) else 0.0
+    lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
     jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
     if jump.size == 0:
         return x, []
