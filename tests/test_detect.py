@@ -155,17 +155,17 @@ def _zoo_rates(n: int) -> tuple[float, float, float, tuple[str, ...]]:
 
 def test_zoo_subset_rates() -> None:
     """Every 10th zoo record (30, most with every artifact at once): the number of changes
-    right on >= 28 (measured 29), no false change (measured 0 %), each change within max(1
-    sample, 0.5 s) on >= 22 (measured 23). The issue's target (>= 98 % with the times) is not
-    met: see the next test."""
+    right on >= 29 (measured 29), no false change (measured 0 %), each change within max(1
+    sample, 0.5 s) on >= 29 (measured 29; 23 before the changes were placed by the GLS hinge).
+    The issue's target (>= 98 % with the times) is not met: see the next test."""
     count, right, false, bad = _zoo_rates(ZOO_SUBSET)
-    assert count >= 28 / 30, bad
-    assert right >= 22 / 30
+    assert count >= 29 / 30, bad
+    assert right >= 29 / 30, bad
     assert false <= 0.01
 
 
-@pytest.mark.xfail(strict=True, reason="measured: the change times miss max(1 sample, 0.5 s) "
-                   "on 7 of this subset's 30 (small or slow steps under an 8 % wander)")
+@pytest.mark.xfail(strict=True, reason="measured: 29 of this subset's 30 right (96.7 %; "
+                   "zoo_210, a ratio-1.3 up-step between 60-s slides, is not found)")
 def test_zoo_subset_meets_the_issue_target() -> None:
     _, right, false, _ = _zoo_rates(ZOO_SUBSET)
     assert right >= 0.98 and false <= 0.01
