@@ -1,0 +1,42 @@
+"""Classes found by the second outside run of issue 24 (outside24: 1,166 cases kept outside the
+repository, in /tmp/outside24/run.py): one fast test per class, each written against the
+mistake named in its comment."""
+
+from __future__ import annotations
+
+import pytest
+
+from dryfriction.cli import main
+
+
+def _one_error_line(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
+    capsys.readouterr()
+    code = main(argv)
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and lines[0].startswith("error:"), lines
+    return lines[0]
+
+
+@pytest.mark.parametrize(("argv", "option"), [
+    (["static", "--eps", "0.04", "--T", "10", "--v-ref", "-1"], "--v-ref = -1"),
+    (["stability", "--eps", "0.04", "--u", "0.3", "--v-ref", "nan"], "--v-ref = nan"),
+    (["static", "--eps", "0.04", "--T", "3", "--direct", "0.1"], "--pull-velocity is required"),
+    (["rsf", "--mu0", "inf"], "--mu0 = inf"),
+])
+def test_a_refused_value_is_named_by_the_option_typed(
+        capsys: pytest.CaptureFixture[str], argv: list[str], option: str) -> None:
+    # mistake: the command line passes on the library's Python name (v_ref, pull_velocity),
+    # which is no option the user can type (--v-ref): the one line must name the option
+    assert option in _one_error_line(capsys, argv)
+
+
+def test_a_message_whose_first_word_is_no_option_is_left_alone(
+        capsys: pytest.CaptureFixture[str], tmp_path) -> None:
+    # mistake: every leading word turned into an option, a protocol's own key included
+    proto = tmp_path / "p.toml"
+    proto.write_text('[model]\nlaw = "rsf"\na = 0.005\nb = 0.01\ndc = 1e-5\nmu0 = 0.6\n'
+                     'v0 = 1e-6\n[drive]\nkind = "spring"\nstiffness = -3.0\n'
+                     'segments = [{velocity = 1e-6, duration = 1.0}]\n')
+    line = _one_error_line(capsys, ["simulate", str(proto), "--out", str(tmp_path / "o")])
+    assert "stiffness" in line and "--stiffness" not in line
+
