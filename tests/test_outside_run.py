@@ -40,3 +40,29 @@ def test_a_message_whose_first_word_is_no_option_is_left_alone(
     line = _one_error_line(capsys, ["simulate", str(proto), "--out", str(tmp_path / "o")])
     assert "stiffness" in line and "--stiffness" not in line
 
+
+def test_a_gap_of_years_in_a_record_asks_for_a_bounded_number_of_windows(monkeypatch) -> None:
+    # mistake: the fluctuation windows sized from the median sample interval alone, so that
+    # one gap of 1e9 s between samples asked bincount for ~1e9 windows (record and fit hung
+    # silently, exhausting the memory); the guard counts the windows asked for, not the time
+    import numpy as np
+
+    from dryfriction.io import detection
+
+    rng = np.random.default_rng(24)
+    n = 3000
+    t = 0.136 * np.arange(n)
+    x = 2e-7 * t + 1e-8 * rng.standard_normal(n)
+    t[n // 3:] += 1e9  # the clock jumps by 31 years; the displacement goes on
+    asked: list[float] = []
+    slopes = detection._window_slopes
+
+    def counted(tt, xx, width, offset):
+        asked.append((tt[-1] - tt[0]) / width)
+        if asked[-1] > 100 * len(tt):
+            raise AssertionError(f"{asked[-1]:.3g} windows for {len(tt)} samples")
+        return slopes(tt, xx, width, offset)
+
+    monkeypatch.setattr(detection, "_window_slopes", counted)
+    detection.measure_fluctuations(t, x, 1e-8, [0, n], np.array([2e-7]))
+    assert asked and max(asked) <= 10 * n + 1
