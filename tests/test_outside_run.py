@@ -66,3 +66,29 @@ def test_a_gap_of_years_in_a_record_asks_for_a_bounded_number_of_windows(monkeyp
     monkeypatch.setattr(detection, "_window_slopes", counted)
     detection.measure_fluctuations(t, x, 1e-8, [0, n], np.array([2e-7]))
     assert asked and max(asked) <= 10 * n + 1
+
+
+def test_a_false_mat_file_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path) -> None:
+    # mistake: only ValueError, OSError... caught around scipy's loadmat, whose MatReadError
+    # (a truncated or false .mat) is none of them: a 40-line traceback, exit 1
+    bad = tmp_path / "run.mat"
+    bad.write_text("not a mat file\n")
+    for argv in (["record", str(bad)],
+                 ["fit", str(bad), "--model", "rsf", "--out", str(tmp_path / "o")]):
+        assert "run.mat: not a readable MATLAB .mat file" in _one_error_line(capsys, argv)
+
+
+def test_fit_reads_a_mat_record_as_record_does(capsys: pytest.CaptureFixture[str],
+                                               tmp_path) -> None:
+    # mistake: fit sniffs a .xlsx/.mat as text (a project CSV or not) before reading it as a
+    # record, and refuses it ("holds NUL bytes", "a zip archive") where record reads it
+    import numpy as np
+    from scipy.io import savemat
+
+    t = 8000.0 + 0.25 * np.arange(400)
+    rec = tmp_path / "run.mat"
+    savemat(rec, {"Time_s": t, "LP_disp_um": 0.2 * (t - t[0]), "Mu": 0.6 + 0 * t})
+    for argv in (["record", str(rec)],
+                 ["fit", str(rec), "--model", "rsf", "--out", str(tmp_path / "o")]):
+        line = _one_error_line(capsys, argv)  # one velocity only: no change to fit
+        assert "no velocity change found" in line, line
