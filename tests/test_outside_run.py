@@ -92,3 +92,45 @@ def test_fit_reads_a_mat_record_as_record_does(capsys: pytest.CaptureFixture[str
                  ["fit", str(rec), "--model", "rsf", "--out", str(tmp_path / "o")]):
         line = _one_error_line(capsys, argv)  # one velocity only: no change to fit
         assert "no velocity change found" in line, line
+
+
+@pytest.mark.parametrize(("argv", "said"), [
+    (["static", "--eps", "0.04", "--t-w", "10", "--t0", "0.01", "--mu-el", "1e300"],
+     "--mu-el = 1e+300 is out of range"),
+    (["steady", "--eps", "0.04", "--V", "1e-6", "--a0", "1e-6", "--t0", "0.01", "--mu-el",
+      "12"], "<= 10"),
+    (["rsf", "--mu0", "50", "--t1", "1", "--t2", "1", "--no-figure"], "--mu0 = 50"),
+])
+def test_a_friction_coefficient_no_apparatus_shows_is_refused(
+        capsys: pytest.CaptureFixture[str], argv: list[str], said: str) -> None:
+    # mistake: mu_el (F_el/W) and mu0 checked only for > 0 (or |mu0| <= 1e3): a friction
+    # coefficient of 1.3e300 (or 50) was printed with exit 0
+    assert said in _one_error_line(capsys, argv)
+
+
+def test_a_protocol_mu_el_past_the_bound_is_refused(capsys: pytest.CaptureFixture[str],
+                                                    tmp_path) -> None:
+    proto = tmp_path / "p.toml"
+    proto.write_text('[model]\nalpha = 0.13\neps = 0.04\nmu_el = 1e300\n[ensemble]\n'
+                     'traps_per_a0 = 100\ninitial = "steady"\ninitial_velocity = 1.0\n[drive]\n'
+                     'kind = "velocity"\nsegments = [{velocity = 1.0, slip = 0.3}]\n'
+                     '[output]\nevery_slip = 0.01\n')
+    line = _one_error_line(capsys, ["simulate", str(proto), "--out", str(tmp_path / "o")])
+    assert "mu_el = 1e+300" in line and "<= 10" in line
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("bad", [["--mu0", "-1"], ["--v0", "1e-300"]])
+def test_a_negative_rate_and_state_friction_is_no_result(
+        capsys: pytest.CaptureFixture[str], tmp_path, bad: list[str]) -> None:
+    # mistake: the friction's lower bound 0 checked for the regularised law only; the classic
+    # law's ln(V/V0) went to mu = -2.8 (v0 = 1e-300) with exit 0 and a results folder
+    out = tmp_path / "o"
+    argv = ["rsf", "--t1", "2", "--t2", "2", "--v1", "1e-7", "--v2", "1e-6", "--no-figure",
+            "--out", str(out), *bad]
+    line = _one_error_line(capsys, argv)
+    assert "below 0" in line and "regularised" in line
+    assert not out.exists()
+    # the same run at the default mu0 and v0 is a result: the bound refuses no good run
+    capsys.readouterr()
+    assert main(argv[:-2]) == 0 and out.is_dir()
