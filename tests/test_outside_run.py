@@ -134,3 +134,19 @@ def test_a_negative_rate_and_state_friction_is_no_result(
     # the same run at the default mu0 and v0 is a result: the bound refuses no good run
     capsys.readouterr()
     assert main(argv[:-2]) == 0 and out.is_dir()
+
+
+def test_more_sweep_workers_than_the_machine_holds_are_refused_before_any_start(
+        capsys: pytest.CaptureFixture[str], tmp_path) -> None:
+    # mistake: --workers bounded below only: --workers 100000 started a local cluster of
+    # 100000 processes and printed nothing for as long as it took to run out
+    proto = tmp_path / "p.toml"
+    proto.write_text('[model]\nalpha = 0.13\neps = 0.04\n[ensemble]\ntraps_per_a0 = 50\n'
+                     'initial = "steady"\ninitial_velocity = 0.1\n[drive]\nkind = "spring"\n'
+                     'stiffness = 0.05\nsegments = [{velocity = 0.1, slip = 4.0}]\n[output]\n'
+                     'every_slip = 0.05\n[sweep]\n"drive.stiffness" = [0.05, 0.1]\n')
+    out = tmp_path / "o"
+    line = _one_error_line(capsys, ["sweep", str(proto), "--out", str(out), "--workers",
+                                    "100000"])
+    assert "--workers 100000 is out of range" in line and "per core" in line
+    assert not out.exists()
