@@ -150,3 +150,18 @@ def test_more_sweep_workers_than_the_machine_holds_are_refused_before_any_start(
                                     "100000"])
     assert "--workers 100000 is out of range" in line and "per core" in line
     assert not out.exists()
+
+
+@pytest.mark.parametrize("option", [["--fix", "a=nan"], ["--fix", "zz=1"], ["--v0", "1e-6"]])
+def test_fit_of_a_record_refuses_the_csv_options_it_would_ignore(
+        capsys: pytest.CaptureFixture[str], tmp_path, option: list[str]) -> None:
+    # mistake: --fix (and --v0) read only on the project's CSV route: on a record they were
+    # dropped silently and the steps fitted free, exit 0, as if --fix a=nan had been obeyed
+    from pathlib import Path
+
+    lab = Path(__file__).parents[1] / "examples/data/lab/sepiolite_velstep_0.2-2um_s.txt"
+    out = tmp_path / "o"
+    line = _one_error_line(capsys, ["fit", str(lab), "--model", "rsf", *option, "--out",
+                                    str(out), "--no-figure"])
+    assert f"{option[0]} is for the project's CSV files" in line
+    assert not out.exists()
