@@ -165,3 +165,20 @@ def test_fit_of_a_record_refuses_the_csv_options_it_would_ignore(
                                     str(out), "--no-figure"])
     assert f"{option[0]} is for the project's CSV files" in line
     assert not out.exists()
+
+
+def test_the_athermal_model_with_mass_and_damping_is_stable_not_refused(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    # mistake: with damping, the scan's top frequency is 1.05 reach/eta, 0 at eps = 0 (Z real,
+    # no Im Z for eta omega to meet): refused as "omega_max = 0", an input nobody gave;
+    # eps = 0 is allowed (--eps >= 0), and no crossing means K_c = 0 (stable at any K)
+    import json
+
+    from dryfriction.theory.stability import critical_stiffness
+
+    res = critical_stiffness(0.1, 0.0, mass=1.0, damping=0.1)
+    assert res.critical_stiffness == 0.0
+    capsys.readouterr()
+    assert main(["stability", "--eps", "0", "--u", "0.1", "--mass", "1", "--damping", "0.1",
+                 "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["K_c"] == [0.0]
