@@ -182,3 +182,15 @@ def test_the_athermal_model_with_mass_and_damping_is_stable_not_refused(
     assert main(["stability", "--eps", "0", "--u", "0.1", "--mass", "1", "--damping", "0.1",
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["K_c"] == [0.0]
+
+
+def test_a_shear_column_without_a_unit_is_said_so(capsys: pytest.CaptureFixture[str],
+                                                  tmp_path) -> None:
+    # mistake: the kind of a unitless column printed as it is, '', so the one line read
+    # "shear column 'Friction' is a  and normal column ... a stress"
+    rec = tmp_path / "r.txt"
+    rows = [f"{8000 + 0.5 * i:.3f}\t{0.1 * i:.4f}\t0.6\t30" for i in range(40)]
+    rec.write_text("Time(s)\tDispl(microns)\tFriction\tNormal(MPa)\n" + "\n".join(rows) + "\n")
+    line = _one_error_line(capsys, ["record", str(rec), "--columns",
+                                    "shear=Friction,normal=Normal(MPa)"])
+    assert "'Friction' is without a unit" in line and "a  and" not in line
