@@ -319,11 +319,12 @@ def test_cli_direct_options() -> None:
                          "--json"])
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
         critical_stiffness_direct(0.1, EPS, direct=0.02).critical_stiffness, rel=1e-9)
-    for args, word in ((["steady", "--eps", "0.04", "--u", "1", "--direct", "2"], "direct"),
+    # the option typed, not the library's name (outside24)
+    for args, word in ((["steady", "--eps", "0.04", "--u", "1", "--direct", "2"], "--direct"),
                        (["static", "--eps", "0.04", "--T", "1", "--direct", "0.1"],
-                        "pull_velocity"),
+                        "--pull-velocity"),
                        (["steady", "--eps", "0.04", "--u", "1", "--direct", "0.1", "--v-ref",
-                         "0"], "v_ref")):
+                         "0"], "--v-ref")):
         r = run.invoke(app, args)
         assert r.exit_code == 2 and word in r.output and len(r.output.strip().splitlines()) == 1
 

@@ -41,6 +41,7 @@ __all__ = [
     "U_MIN",
     "U_MAX",
     "T_MAX",
+    "FRICTION_MAX",
     "DIRECT_MAX",
     "check_direct",
 ]
@@ -65,6 +66,13 @@ U_MAX: float = 1e30
 
 T_MAX: float = 1e30
 """Largest reduced waiting time ``t_w/t0`` accepted."""
+
+FRICTION_MAX: float = 10.0
+"""Largest friction coefficient ``F/W`` a run's inputs may set (ours): ``mu_el = F_el/W`` of
+the trap model and ``|mu0|`` of rate-and-state. Measured coefficients of solids stay below
+about 5 (clean metals in vacuum), and the fits bound ``mu_el`` to 10 already; beyond it a run
+reports a friction no apparatus shows (issue 24, outside24: ``mu_el = 1e300`` gave
+``mu_s = 1.3e300`` with exit 0)."""
 
 
 def _fmt_range(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:

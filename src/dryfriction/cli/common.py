@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 import time
 import warnings
 from collections.abc import Callable, Iterator
@@ -85,10 +86,31 @@ def cli_errors(fn: F) -> F:
         except BrokenPipeError:
             raise  # the reader went away (``| head``): not an error of the input
         except (ValueError, OSError) as exc:
-            error_line(str(exc))
+            error_line(option_named(str(exc)))
             raise typer.Exit(2) from None
 
     return wrapper  # type: ignore[return-value]
+
+
+_LEADING_NAME = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?= = | is )")
+
+
+def option_named(message: str) -> str:
+    """The library's message with its leading parameter name (``v_ref = -1 is out of range``)
+    given as the option the user typed (``--v-ref = -1 ...``), where the running command has
+    that option: the library's checks name their Python parameter, the user knows only the
+    command line (issue 24: bad input names the option given). Any other message is returned
+    unchanged (a protocol's ``FILE: in model: ...``, a name that is not an option here)."""
+    match = _LEADING_NAME.match(message)
+    from typer._click.globals import get_current_context  # the Click that Typer vendors
+
+    ctx = get_current_context(silent=True)
+    if match is None or ctx is None:
+        return message
+    option = "--" + match.group(1).replace("_", "-")
+    if not any(option in param.opts for param in ctx.command.params):
+        return message
+    return option + message[match.end():]
 
 
 FORMAT_HELP = "Figure file format: png, pdf or svg (vector)."

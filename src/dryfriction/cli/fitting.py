@@ -111,9 +111,19 @@ def fit_command(
     fmt, dpi = check_figure_format(fmt, dpi)
     check_fit_options(alpha=alpha, creep=creep, v0=v0, state_law=state_law, errors=errors,
                       traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref)
+    record = len(data) == 1 and not is_project_csv(data[0])
+    if record:
+        # the mirror of the CSV files' refusal of the record's options below: a record's fit
+        # reads neither, and an option silently ignored looks obeyed (outside24: --fix a=nan
+        # and --fix zz=1 fitted the record free, exit 0)
+        for flag, given in (("--fix", fix or None), ("--v0", v0)):
+            if given is not None:
+                raise ValueError(f"{flag} is for the project's CSV files, not a laboratory "
+                                 "record (its steps are fitted free; --stiffness K holds "
+                                 "the machine)")
     check_output_dir(out_dir, force=force)
     compile_notice()
-    if len(data) == 1 and not is_project_csv(data[0]):
+    if record:
         from .records import fit_record
 
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,

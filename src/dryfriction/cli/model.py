@@ -37,8 +37,8 @@ def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
 _SI_HELP = {
     "t0": "Creep time t0 [s], > 0: with it, times are in seconds (theory.units.PhysicalScales).",
     "a0": "Contact radius a0 [m], > 0: with it and --t0, velocities are in m/s.",
-    "mu_el": "Elastic friction level F_el/W, > 0: with it, friction is the coefficient F/W "
-             "(default: friction in F_el).",
+    "mu_el": "Elastic friction level F_el/W, 0 < mu_el <= 10: with it, friction is the "
+             "coefficient F/W (default: friction in F_el).",
 }
 
 

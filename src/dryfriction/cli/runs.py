@@ -64,7 +64,7 @@ def rsf(
     a: float = typer.Option(0.005, help="Direct effect a, > 0."),
     b: float = typer.Option(0.01, help="Evolution effect b, >= 0."),
     dc: float = typer.Option(1e-5, help="Characteristic slip Dc, m, > 0."),
-    mu0: float = typer.Option(0.6, help="Reference friction at V0."),
+    mu0: float = typer.Option(0.6, help="Reference friction at V0, -10 to 10."),
     v0: float = typer.Option(1e-6, help="Reference velocity V0, m/s, > 0."),
     state_law: str = typer.Option("ageing", help="ageing (Dieterich) or slip (Ruina)."),
     regularized: bool = typer.Option(False, help="Regularised asinh law (needed for holds "

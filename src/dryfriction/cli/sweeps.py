@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +19,10 @@ from .common import (
     progress_bar,
     say_interrupted,
 )
+
+WORKERS_PER_CORE = 4
+"""Most local workers per core (ours): more processes than that only wait for one another
+and take memory each; a larger pool is a ``--scheduler``'s."""
 
 
 def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | None,
@@ -51,6 +56,13 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
                          "confirm with --yes")
     if workers is not None and workers < 1:
         raise ValueError(f"--workers {workers} is out of range: allowed >= 1")
+    cores = os.cpu_count() or 1
+    if workers is not None and workers > WORKERS_PER_CORE * cores:
+        # ours: each local worker is a process of its own (~0.1-0.2 GB with NumPy and Numba);
+        # --workers 100000 forked until the machine ran out, silently (issue 24, outside24)
+        raise ValueError(f"--workers {workers} is out of range: allowed 1 to "
+                         f"{WORKERS_PER_CORE * cores} ({WORKERS_PER_CORE} per core, {cores} "
+                         "cores here; each worker is a process)")
     if workers is not None and scheduler is not None:
         raise ValueError("--workers is for the local cluster and --scheduler brings its own "
                          "workers: give one of the two")

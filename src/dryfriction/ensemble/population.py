@@ -56,6 +56,7 @@ from ..theory.trap import Regime, Trap
 from ..validation import (
     ALPHA_MIN,
     EPS_MAX,
+    FRICTION_MAX,
     U_MAX,
     U_MIN,
     Array,
@@ -103,7 +104,7 @@ class TrapModel:
         Ageing law (eq. 17 or eqs. 15-16).
     mu_el : float
         Friction coefficient of the purely elastic model, ``F_el / N``: the reported
-        ``mu = mu_el F/F_el``. ``> 0``, default 1.
+        ``mu = mu_el F/F_el``. ``0 < mu_el <= FRICTION_MAX`` (10), default 1.
     direct : float
         Direct-effect coefficient ``A``, ``0 <= A <= 1`` (:mod:`dryfriction.theory.direct`):
         the friction force is ``g(V) x`` the population's force, ``V`` the slider's present
@@ -124,7 +125,8 @@ class TrapModel:
         object.__setattr__(self, "alpha", a)
         object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0, EPS_MAX))
         check_choice("creep", self.creep, CREEP_LAWS)
-        object.__setattr__(self, "mu_el", check_scalar("mu_el", self.mu_el, 0.0, lo_open=True))
+        object.__setattr__(self, "mu_el", check_scalar("mu_el", self.mu_el, 0.0, FRICTION_MAX,
+                                                                   lo_open=True))
         direct, v_ref = check_direct(self.direct, self.v_ref)
         object.__setattr__(self, "direct", direct)
         object.__setattr__(self, "v_ref", v_ref)

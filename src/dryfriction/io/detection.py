@@ -218,7 +218,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     scales: list[float] = []
     rel: list[float] = []
     ab: list[float] = []
-    T = 5.0 * dt
+    # ours: windows of at least 5 samples, and never more windows than 10 per sample, so that
+    # a gap of years between two samples (span >> n dt) cannot ask for span/T ~ 1e9 windows
+    # and exhaust the memory in bincount (issue 24, outside24: a silent hang)
+    T = max(5.0 * dt, span / (10.0 * len(t)))
     while T <= span / 3.0:
         ys, us = [], []
         for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):

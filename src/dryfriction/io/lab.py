@@ -497,9 +497,12 @@ def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline
         factors[role], kinds[role] = _unit(role, unit or "", where)
         units[role] = unit or ""
     if "mu" not in idx and kinds["shear"] != kinds["normal"]:
-        raise ValueError(f"{src}, line {hline}: shear column {names[idx['shear']]!r} is a "
-                         f"{kinds['shear']} and normal column {names[idx['normal']]!r} a "
-                         f"{kinds['normal']}: friction needs two stresses or two forces")
+        # a column without a unit has no kind: say so (the line read "is a  and", outside24)
+        said = {r: f"a {kinds[r]}" if kinds[r] else "without a unit" for r in ("shear", "normal")}
+        raise ValueError(f"{src}, line {hline}: shear column {names[idx['shear']]!r} is "
+                         f"{said['shear']} and normal column {names[idx['normal']]!r} "
+                         f"{said['normal']}: friction needs two stresses or two forces (a "
+                         "unit with --columns, e.g. shear=NAME:MPa)")
     usecols = [idx[r] for r in roles]
     data, line_of = load(usecols, roles)
     vals: dict[str, Array] = {}

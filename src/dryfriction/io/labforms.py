@@ -112,10 +112,11 @@ def _number(cell: object) -> float:
 
 def _read_mat(path: Path, src: str) -> tuple[list[str], Array, int, int, list[str], str]:
     from scipy.io import loadmat
+    from scipy.io.matlab import MatReadError  # not a ValueError: a truncated or false .mat
 
     try:
         raw = loadmat(path, squeeze_me=True, struct_as_record=True)
-    except (ValueError, TypeError, OSError, NotImplementedError) as exc:
+    except (ValueError, TypeError, OSError, NotImplementedError, MatReadError) as exc:
         raise ValueError(f"{src}: not a readable MATLAB .mat file ({exc}); a v7.3 (HDF5) "
                          "file: save it with -v7, or as a text table") from None
     found = {k: v for k, v in raw.items() if not k.startswith("__")}

@@ -45,7 +45,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..validation import Array, check_choice, check_range, check_scalar
+from ..validation import FRICTION_MAX, Array, check_choice, check_range, check_scalar
 
 __all__ = ["RateState", "STATE_LAWS", "V_MAX", "V_MIN"]
 
@@ -61,9 +61,10 @@ StateLaw = Literal["ageing", "slip"]
 STATE_LAWS: tuple[str, ...] = ("ageing", "slip")
 
 MU_MAX: float = 1e3
-"""Largest ``|mu0|`` and largest ``a``, ``b``, ``b2`` accepted: friction coefficients and their
-rate and state parameters are of order 1 (``a, b ~ 0.01``); beyond this the friction times the
-stiffness overflows long before a run could mean anything (``a = 1e308`` ran to garbage)."""
+"""Largest ``a``, ``b``, ``b2`` accepted (``|mu0|``: ``validation.FRICTION_MAX``): friction
+coefficients and their rate and state parameters are of order 1 (``a, b ~ 0.01``); beyond
+this the friction times the stiffness overflows long before a run could mean anything
+(``a = 1e308`` ran to garbage)."""
 
 # Above this ln z, asinh(z) = ln(2z) + 1/(4 z^2) to double precision (next term ~ z^-4).
 _ASINH_LARGE = 20.0
@@ -93,7 +94,7 @@ class RateState:
     dc : float
         Characteristic slip of the first state variable, m, ``> 0``.
     mu0 : float
-        Reference friction at ``V = V0`` in steady state (finite).
+        Reference friction at ``V = V0`` in steady state, ``|mu0| <= FRICTION_MAX`` (10).
     v0 : float
         Reference velocity, m/s, ``> 0``.
     state_law : {"ageing", "slip"}
@@ -122,7 +123,7 @@ class RateState:
         set_(self, "a", check_scalar("a", self.a, 0.0, MU_MAX, lo_open=True))
         set_(self, "b", check_scalar("b", self.b, 0.0, MU_MAX))
         set_(self, "dc", check_scalar("dc", self.dc, 0.0, lo_open=True))
-        set_(self, "mu0", check_scalar("mu0", self.mu0, -MU_MAX, MU_MAX))
+        set_(self, "mu0", check_scalar("mu0", self.mu0, -FRICTION_MAX, FRICTION_MAX))
         set_(self, "v0", check_scalar("v0", self.v0, 0.0, V_MAX, lo_open=True))
         check_choice("state_law", self.state_law, STATE_LAWS)
         set_(self, "b2", check_scalar("b2", self.b2, 0.0, MU_MAX))

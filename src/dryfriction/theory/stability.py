@@ -513,7 +513,10 @@ def critical_stiffness(
         top = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
     elif damping > 0:
         reach = resp.delay_amplitude + float(np.sum(np.abs(resp.b))) / resp.H0
-        top = 1.05 * reach / damping
+        # reach 0 (eps = 0: Z is real, no Im Z for eta omega to meet): no crossing at any
+        # omega > 0, and the log grid finds none; the scan up to 0 was refused as
+        # "omega_max = 0", a name no user gave (outside24: --eps 0 --mass 1 --damping 0.1)
+        top = 1.05 * reach / damping if reach > 0 else top_log
     elif mass > 0:
         top = 200.0 / resp.tau_d
     else:

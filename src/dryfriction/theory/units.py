@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..validation import Array, check_broadcast, check_range, check_scalar
+from ..validation import FRICTION_MAX, Array, check_broadcast, check_range, check_scalar
 from .static import static_friction
 from .steady import steady_friction
 
@@ -34,7 +34,7 @@ class PhysicalScales:
     t0 : float
         Plastic creep time of eq. 18, s (``> 0``).
     mu_el : float
-        Elastic friction level ``F_el / W`` (dimensionless, ``> 0``).
+        Elastic friction level ``F_el / W`` (dimensionless, ``0 < mu_el <= FRICTION_MAX``).
     normal_load : float, optional
         Normal load ``W``, N (``> 0``); needed only to express forces in newtons.
     """
@@ -47,7 +47,7 @@ class PhysicalScales:
     def __post_init__(self) -> None:
         check_scalar("a0", self.a0, 0.0, lo_open=True)
         check_scalar("t0", self.t0, 0.0, lo_open=True)
-        check_scalar("mu_el", self.mu_el, 0.0, lo_open=True)
+        check_scalar("mu_el", self.mu_el, 0.0, FRICTION_MAX, lo_open=True)
         if self.normal_load is not None:
             check_scalar("normal_load", self.normal_load, 0.0, lo_open=True)
 
