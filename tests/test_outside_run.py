@@ -194,3 +194,15 @@ def test_a_shear_column_without_a_unit_is_said_so(capsys: pytest.CaptureFixture[
     line = _one_error_line(capsys, ["record", str(rec), "--columns",
                                     "shear=Friction,normal=Normal(MPa)"])
     assert "'Friction' is without a unit" in line and "a  and" not in line
+
+
+@pytest.mark.parametrize("alpha", ["5", "1e300"])
+def test_a_trap_without_pinning_shows_no_nan_or_inf(
+        capsys: pytest.CaptureFixture[str], alpha: str) -> None:
+    # mistake: the undefined constants of a trap that does not pin (alpha >= 1: no spinodal,
+    # no friction) printed as nan and inf with exit 0, as if the computation had failed
+    capsys.readouterr()
+    assert main(["trap", "--alpha", alpha]) == 0
+    table = capsys.readouterr().out
+    assert "no pinning" in table and " nan " not in table and " inf " not in table
+    assert table.count("none (no pinning: alpha >= 1)") == 6

@@ -14,13 +14,23 @@ from .common import app, cli_errors, columns, emit, many
 @app.command()
 @cli_errors
 def trap(
-    alpha: float = typer.Option(0.13, help="Reduced trap stiffness kappa a^2/(6 Phi0), > 0."),
+    alpha: float = typer.Option(0.13, help="Reduced trap stiffness kappa a^2/(6 Phi0), > 0 "
+                                "(>= 1: no pinning, no friction)."),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
     """All single-trap constants and the pinning regime (`dryfriction model`, §1)."""
+    import math
+
     from ..theory.trap import Trap
 
-    emit(Trap(alpha).summary(), json_out, f"trap, alpha = {alpha:g}")
+    summary = Trap(alpha).summary()
+    if not json_out and alpha >= 1.0:
+        # no pinning (module theory.trap): no spinodal, no jump, no friction; a NaN or inf in
+        # the table would read as a failed computation (JSON keeps null)
+        summary = {k: ("none (no pinning: alpha >= 1)"
+                       if isinstance(v, float) and not math.isfinite(v) else v)
+                   for k, v in summary.items()}
+    emit(summary, json_out, f"trap, alpha = {alpha:g}")
 
 
 CREEP_HELP = "Creep law: log (eq. 17) or eyring-nabarro (exact, eqs. 15-16)."
