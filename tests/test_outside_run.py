@@ -206,3 +206,20 @@ def test_a_trap_without_pinning_shows_no_nan_or_inf(
     table = capsys.readouterr().out
     assert "no pinning" in table and " nan " not in table and " inf " not in table
     assert table.count("none (no pinning: alpha >= 1)") == 6
+
+
+@pytest.mark.parametrize("text", ["", " , "])
+@pytest.mark.parametrize("command", ["record", "fit"])
+def test_an_empty_segments_option_is_refused_not_taken_as_absent(
+        capsys: pytest.CaptureFixture[str], command: str, text: str, tmp_path) -> None:
+    # mistake: `--segments ""` read as "not given", so the program was detected (and, in fit,
+    # fitted) instead of the user hearing that the program they meant to give is empty
+    from pathlib import Path
+
+    record = (Path(__file__).resolve().parents[1] / "examples" / "data" / "lab"
+              / "sepiolite_velstep_0.2-2um_s.txt")
+    argv = [command, str(record), "--segments", text]
+    if command == "fit":
+        argv += ["--model", "rsf", "--out", str(tmp_path / "o")]
+    assert "--segments is empty" in _one_error_line(capsys, argv)
+    assert not (tmp_path / "o").exists()

@@ -60,9 +60,9 @@ def record_command(
     if out_dir is not None:
         check_output_dir(out_dir, force=force)
     rec = read_record(path, parse_column_map(columns) if columns else None)
-    det = None if segments else detect_program(rec)
-    segs = parse_segments(segments, rec) if segments else det.segments  # type: ignore[union-attr]
-    note = apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
+    det = None if segments is not None else detect_program(rec)
+    segs = parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
+    note = apparatus_note(rec, [s.velocity for s in segs], given=segments is not None)
     if note:
         print(note, file=sys.stderr)
     if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
@@ -80,7 +80,7 @@ def record_command(
         "time_span_s": [float(t[0]), float(t[-1])],
         "columns": {role: {"header": h, "unit": rec.units.get(role, "")}
                     for role, h in rec.columns.items()},
-        "segments_from": "--segments" if segments else "detected",
+        "segments_from": "--segments" if segments is not None else "detected",
         "segments": [vars(s) for s in segs],
         "steps": [vars(w) for w in steps],
     }
@@ -95,7 +95,7 @@ def record_command(
         report["normal_changes_s"] = list(det.normal_changes)
     report["segments_option"] = segments_spec(segs, float(t[0]))
     if out_dir is not None:
-        write_record_outputs(out_dir, rec, segs, det, force=force, given=bool(segments))
+        write_record_outputs(out_dir, rec, segs, det, force=force, given=segments is not None)
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
         return

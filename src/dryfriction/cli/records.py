@@ -157,9 +157,9 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
 
     check_choice("errors", errors, ERRORS)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
-    det = None if segments else lab.detect_program(rec)
-    segs = lab.parse_segments(segments, rec) if segments else det.segments  # type: ignore[union-attr]
-    note = lab.apparatus_note(rec, [s.velocity for s in segs], given=bool(segments))
+    det = None if segments is not None else lab.detect_program(rec)
+    segs = lab.parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
+    note = lab.apparatus_note(rec, [s.velocity for s in segs], given=segments is not None)
     if note:  # before the fit: a record of micrometres read as metres fits for minutes
         say(note)
     if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
@@ -241,7 +241,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             from .record import write_record_files
 
             # what the step finder decided, as the record command draws it (issue 23)
-            write_record_files(tmp, rec, segs, det, given=bool(segments), fmt=fmt, dpi=dpi)
+            write_record_files(tmp, rec, segs, det, given=segments is not None, fmt=fmt, dpi=dpi)
 
             for i in range(len(res.rows)):
                 # the trap model beside rsf: one more forward run of its fit per step

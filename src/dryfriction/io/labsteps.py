@@ -84,6 +84,10 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
     ValueError
         Naming the item and the file.
     """
+    if not text.strip(" ,"):  # an empty option is no program, not "detect it"
+        raise ValueError("--segments is empty: give the load program as start:velocity items "
+                         "(s from the record's start : m/s), e.g. 0:2e-7,1200:2e-6, or leave "
+                         "the option out to detect it")
     t = np.asarray(record.time)
     src, dur = record.source, float(t[-1] - t[0])
     starts: list[float] = []
