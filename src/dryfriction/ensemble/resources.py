@@ -44,6 +44,11 @@ SECONDS_PER_CALL = 15e-6
 (measured 16-25 us on spring drives with ~750 traps in contact, less the pairs' share)."""
 SECONDS_PER_PAIR = 10e-9
 """Seconds per trap in contact per kernel call (measured 13-18 ns)."""
+SECONDS_PER_PLACED_PAIR = 4e-8
+"""Seconds per pair of the buffer to place the initial population (``Ensemble._place_initial``,
+once per run; measured 2e-8 at 1e5 and 4.6e-8 at 1e6 pairs per ``a0``, steady start: 0.06 s
+and 1.43 s of CPU). Without it a run of 1e6 pairs per ``a0`` was estimated at 3.5 s for 5.3 s
+of CPU."""
 
 BYTES_PER_SAMPLE = 480.0
 """Peak bytes per recorded sample (measured 456)."""
@@ -170,7 +175,8 @@ def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimat
     the longest step ``0.05 * 2 pi sqrt(M/(K + k_c))``, and at least the travel over the
     longest slip of a step, ``spacing/4`` (:mod:`.driving`). Each call costs
     :data:`SECONDS_PER_CALL` plus :data:`SECONDS_PER_PAIR` per trap in contact
-    (``est.active``). Floats throughout.
+    (``est.active``); placing the initial population adds :data:`SECONDS_PER_PLACED_PAIR` per
+    pair of the buffer (``est.traps``). Floats throughout.
     """
     from .driving import ForceDrive, SpringDrive  # driving imports this module
     from .thermal import SUBSTEP_SLIP
@@ -196,7 +202,8 @@ def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimat
             dt = 0.05 * 2.0 * math.pi * math.sqrt(drive.mass / (drive.stiffness + k_c))
             calls = max(prog.total_time / dt, travel * lam / 0.25)
             kind = "steps"
-    return calls, calls * (SECONDS_PER_CALL + SECONDS_PER_PAIR * est.active), kind
+    seconds = calls * (SECONDS_PER_CALL + SECONDS_PER_PAIR * est.active)
+    return calls, seconds + SECONDS_PER_PLACED_PAIR * est.traps, kind
 
 
 def _check_clock(model: TrapModel, drive: object, qualified: bool) -> None:
@@ -274,7 +281,8 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
                          "the drive)")
     _check_clock(model, drive, qualified)
     calls, seconds, kind = estimate_work(model, track, drive, est)
-    pair_bound = SECONDS_PER_PAIR * est.active > SECONDS_PER_CALL
+    pair_bound = SECONDS_PER_PAIR * est.active > SECONDS_PER_CALL \
+        or SECONDS_PER_PLACED_PAIR * est.traps > 0.5 * seconds  # the placement dominates
     if kind == "steps":
         what = (f"{('drive.' if qualified else '')}mass = {drive.mass:g} over "  # type: ignore
                 f"{drive.program.total_time:.3g} t0 of drive needs {calls:.1e} "  # type: ignore
