@@ -123,7 +123,7 @@ class ImpossibleResultError(ValueError):
 def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: ArrayLike, *,
                    unit: str, forward: bool = False, tol: float = 0.0,
                    slip_max: float | None = None, slip_integral: float | None = None,
-                   mu_min: float | None = None) -> None:
+                   mu_min: float | None = None, mu_why: str | None = None) -> None:
     """Refuse a time series that breaks the bounds every run of either law obeys (issue 24).
 
     The one check of both simulators (:func:`dryfriction.ensemble.driving.simulate`,
@@ -158,6 +158,9 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
         ``int V dt`` over the run, in ``unit``, computed independently of ``x``.
     mu_min : float, optional
         Smallest friction the model can give.
+    mu_why : str, optional
+        Why friction below ``mu_min`` can happen with these inputs (a law used outside its
+        domain, not a numerical failure): said instead of "a numerical failure".
 
     Raises
     ------
@@ -166,9 +169,9 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
     """
     t, x, v, mu = (np.asarray(a, float) for a in (t, x, v, mu))
 
-    def fail(msg: str) -> None:
-        raise ImpossibleResultError(f"{what}: impossible result, {msg}: a numerical failure "
-                                    "of these inputs (please report it)")
+    def fail(msg: str, why: str | None = None) -> None:
+        raise ImpossibleResultError(f"{what}: impossible result, {msg}: " + (
+            why or "a numerical failure of these inputs (please report it)"))
 
     for name, arr, nan_ok in (("t", t, False), ("x", x, False), ("v", v, True),
                               ("mu", mu, True)):
@@ -187,7 +190,8 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
                  "its velocity is positive throughout")
     if mu_min is not None and np.any(mu < mu_min):
         i = int(np.nanargmin(mu))
-        fail(f"friction {mu[i]:.6g} at t = {t[i]:g} is below the model's bound {mu_min:g}")
+        fail(f"friction {mu[i]:.6g} at t = {t[i]:g} is below the model's bound {mu_min:g}",
+             mu_why)
     slip = float(x[-1] - x[0])
     if slip_max is not None and slip > slip_max + tol:
         fail(f"slip {slip:.6g} {unit} is more than the load-point travel plus the spring's "

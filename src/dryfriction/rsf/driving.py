@@ -43,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
-from ..results import ImpossibleResultError, check_physical
+from ..results import check_physical
 from ..validation import Array, check_scalar
 from .growth import unstable_start, warn_unstable
 from .law import RateState
@@ -198,24 +198,22 @@ def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None) ->
     if math.isinf(res.stiffness):  # the kinematic machine: x is the load point's, exactly
         check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m")
         return
-    if not res.params.regularized and res.mu.size and float(np.min(res.mu)) < 0.0:
-        # ours: the slider slides forward (V > 0) throughout, so friction resists it, F/W >= 0;
-        # the classic law's ln(V/V0) has no lower bound, and a negative value means it was
-        # used outside its domain (V far below V0, mu0 near 0; outside24: --mu0 -1 or
-        # --v0 1e-300 reported mu = -2.8 with exit 0). The regularised law is >= 0 by itself.
-        i = int(np.argmin(res.mu))
-        raise ImpossibleResultError(
-            f"rate-and-state run: friction {float(res.mu[i]):.4g} at t = {float(res.t[i]):g} s "
-            "is below 0 on a slider that slides forward: the law mu0 + a ln(V/V0) + "
-            f"b ln(V0 theta/Dc) is outside its domain here (mu0 = {res.params.mu0:g}, "
-            f"V0 = {res.params.v0:g} m/s, V = {float(res.v[i]):.3g} m/s); check mu0 and v0, "
-            "or use the regularised law (--regularized, regularized = true)")
     path = float(np.sum(np.abs(np.diff(res.x))))
     tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc)
     give_back = (float(res.stress[0]) - float(np.min(res.stress))) / res.stiffness
+    # ours: the slider slides forward (V > 0) throughout, so friction resists it, F/W >= 0.
+    # The regularised law is >= 0 by itself; the classic law's ln(V/V0) has no lower bound,
+    # and a negative value means it was used outside its domain (outside24: --mu0 -1 or
+    # --v0 1e-300 reported mu = -2.8 with exit 0)
+    p = res.params
+    why = None if p.regularized else (
+        "friction below 0 on a slider that slides forward means that the law mu0 + "
+        "a ln(V/V0) + b ln(V0 theta/Dc) is outside its domain here "
+        f"(mu0 = {p.mu0:g}, V0 = {p.v0:g} m/s); check mu0 and v0, or use the regularised law "
+        "(--regularized, regularized = true)")
     check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m", forward=True,
                    tol=tol, slip_max=travel + give_back, slip_integral=slip_integral,
-                   mu_min=0.0 if res.params.regularized else None)
+                   mu_min=0.0, mu_why=why)
 
 
 def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]
