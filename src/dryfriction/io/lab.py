@@ -41,7 +41,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ..validation import Array, check_memory
+from ..validation import FRICTION_MAX, Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import Detection, detect_program, detect_segments, no_change_message
 from .labforms import FORMS, read_table
@@ -82,10 +82,9 @@ __all__ = [
 ]
 
 MIN_ROWS = 10
-FRICTION_MAX = 10.0
-"""Largest ``|friction|`` a record may hold (ours): measured coefficients lie between 0 and
-about 1.5 (adhesive contacts a few); a cell of 1e300 is a typo, and read as friction it
-overflowed the fit (``rms = inf``)."""
+# FRICTION_MAX (validation): the largest |friction| a record may hold, as a run's inputs;
+# measured coefficients lie between 0 and about 1.5, and a cell of 1e300 is a typo that,
+# read as friction, overflowed the fit (rms = inf)
 APPARATUS_V_MAX = 1e-2
 """Load velocity (m/s) above which a record is flagged as implausible for a friction
 apparatus (ours: rotary shear reaches ~1 m/s, but a velocity-step record of 0.2 m/s is far
