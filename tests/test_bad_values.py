@@ -217,3 +217,28 @@ def test_a_memory_refusal_inside_a_fit_names_the_fits_own_option(
     msg = str(exc.value)
     assert msg.startswith("s.csv: a trap-model run") and "--traps-per-a0" in msg
     assert "every_slip" not in msg and "traps_per_a0 " not in msg
+
+
+# ------------------------------------------------------------------------- rsf velocities
+@pytest.mark.parametrize("argv, words", [
+    # was: "segments[0].velocity = -1 m/s is out of range", a name the user never typed
+    (["--v1", "-3.7e-6"], ["--v1", "-3.7e-06", "--stiffness inf --regularized"]),
+    (["--v2", "-2.3e-5"], ["--v2", "-2.3e-05"]),
+    (["--v1", "-3.7e-6", "--stiffness", "inf"], ["--v1", "--regularized"]),
+    # was: "give v_init (> 0, m/s)", the library's parameter name
+    (["--v1", "0"], ["--v-init", "--v1 is 0"]),
+    (["--v1", "-3.7e-6", "--stiffness", "inf", "--regularized"], ["--v-init"]),
+])
+def test_rsf_velocities_name_the_option(capsys: pytest.CaptureFixture[str],
+                                        tmp_path: Path, argv: list[str],
+                                        words: list[str]) -> None:
+    out = tmp_path / "out"
+    code, _, err = run(capsys, "rsf", *argv, "--no-figure", "--out", str(out))
+    one_error_line(code, err, *words)
+    assert not out.exists()  # refused before any work
+
+
+def test_rsf_sliding_back_runs_where_the_law_allows_it(capsys: pytest.CaptureFixture[str]):
+    code, _, err = run(capsys, "rsf", "--v1", "-3.7e-6", "--stiffness", "inf", "--regularized",
+                       "--v-init", "2.9e-6", "--t1", "1.5", "--t2", "0.7", "--no-figure")
+    assert code == 0, err

@@ -3,6 +3,7 @@ compare."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -118,8 +119,16 @@ def rsf(
         if value != 0.0 and abs(value) < V_MIN:  # named as typed, not as segments[0]
             raise ValueError(f"{name} {value:g} is out of range: allowed 0 (a hold) or "
                              f"{V_MIN:g} <= |{name[2:]}| <= {V_MAX:g} m/s")
+        if value < 0.0 and not (math.isinf(stiffness) and regularized):
+            # the spring driver integrates ln V and the standard law needs V > 0: the
+            # driver's own check would name segments[i], which the user never typed
+            raise ValueError(f"{name} {value:g} is out of range: allowed 0 to {V_MAX:g} m/s "
+                             "(sliding back needs --stiffness inf --regularized)")
     if v_init is not None:
         check_scalar("--v-init", v_init, 0.0, V_MAX, lo_open=True)
+    elif v1 <= 0.0:  # the library would ask for v_init, a name the user never typed
+        raise ValueError(f"--v-init is needed when --v1 is {v1:g} m/s: the initial slip "
+                         f"velocity, > 0 and <= {V_MAX:g} m/s (the state starts steady for it)")
     check_scalar("--damping", damping, 0.0, LOAD_MAX)
     check_scalar("--mass", mass, 0.0, LOAD_MAX)
     check_scalar("--rtol", rtol, 0.0, 0.1, lo_open=True)
