@@ -242,3 +242,15 @@ def test_rsf_sliding_back_runs_where_the_law_allows_it(capsys: pytest.CaptureFix
     code, _, err = run(capsys, "rsf", "--v1", "-3.7e-6", "--stiffness", "inf", "--regularized",
                        "--v-init", "2.9e-6", "--t1", "1.5", "--t2", "0.7", "--no-figure")
     assert code == 0, err
+
+
+@pytest.mark.parametrize("a0, t0, words", [
+    # was: "--u = 0 is out of range", an option the user of --V never typed
+    ("1e300", "1e-300", ["--a0", "--t0", "V* = a0/t0 = inf"]),
+    ("3.3e-6", "1e300", ["--V 2.7e-06 m/s", "--a0 3.3e-06", "u = V t0/a0"]),
+])
+def test_steady_si_velocity_out_of_range_names_v(capsys: pytest.CaptureFixture[str],
+                                                 a0: str, t0: str, words: list[str]) -> None:
+    code, _, err = run(capsys, "steady", "--eps", "0.021", "--V", "2.7e-6", "--a0", a0,
+                       "--t0", t0)
+    one_error_line(code, err, *words)

@@ -144,6 +144,25 @@ def static(
         columns("static friction", params, cols, units)
 
 
+def _velocities_in_range(V: np.ndarray, a0: float, t0: float) -> None:
+    """``--V`` within the reduced range ``U_MIN <= V t0/a0 <= U_MAX``, refused naming --V
+    (and --a0/--t0 when they leave no range): the core's message names ``u``, which the user
+    of --V never typed."""
+    from ..validation import U_MAX, U_MIN
+
+    vstar = a0 / t0
+    if not (np.isfinite(vstar) and vstar > 0.0):
+        raise ValueError(f"--a0 {a0:g} m and --t0 {t0:g} s give V* = a0/t0 = {vstar:g} m/s: "
+                         "allowed a finite positive ratio")
+    u = V / vstar
+    bad = ~((u >= U_MIN) & (u <= U_MAX))
+    if bad.any():
+        v = float(V[np.argmax(bad)])
+        raise ValueError(f"--V {v:g} m/s is out of range: with --a0 {a0:g} m and --t0 {t0:g} s "
+                         f"allowed {U_MIN * vstar:g} to {U_MAX * vstar:g} m/s "
+                         f"(u = V t0/a0 from {U_MIN:g} to {U_MAX:g})")
+
+
 @app.command(cls=many("--u", "--V"))
 @cli_errors
 def steady(
@@ -183,6 +202,7 @@ def steady(
         raise ValueError("--direct takes reduced inputs (--u and --v-ref in a0/t0); in SI use "
                          "dryfriction.theory.units.steady_friction_si")
     else:
+        _velocities_in_range(np.asarray(V, float), scales.a0, scales.t0)
         mu = steady_friction_si(np.asarray(V, float), eps, scales, alpha, creep)
         params.update(a0=scales.a0, t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
         cols = {"V": list(V or []), "mu_d": mu}
