@@ -21,6 +21,14 @@ interleaved with the rest, what rsfmodel imports before it can solve anything (N
 ``scipy.integrate``, ``matplotlib.pyplot`` and ``mpl_toolkits.mplot3d``, the imports at the top
 of its ``rsfmodel/rsf.py``): a floor under any rsfmodel run on this machine.
 
+Issue 26 asks the velocity step without a figure at <= 0.9x the CPU of rsfmodel's own script
+for the same case. rsfmodel is not installable beside the package (it needs SciPy < 1.14), so
+it is run from a scratch environment of its own when one is named, ``RSFMODEL_PYTHON=PATH``
+(an interpreter with rsfmodel installed: see ``../shared/peers/README.md``); its standard velocity
+step (a = 0.005, b = 0.01, Dc = 10 um, k = 1e-3 /um, 1 -> 10 um/s at 10 s, 40 s at 100 Hz,
+ageing law) without the plots, interleaved with the rest. Without it, the floor is what that
+script imports (NumPy and ``scipy.integrate``), in this interpreter.
+
 Run: ``python -m benchmarks bench_cli`` (add ``--first-run`` when run directly).
 """
 
@@ -42,6 +50,24 @@ REFERENCE = {"rsfmodel": 0.41, "PyRSF": 1.2}  # s, issue 12 (not installable fro
 TARGETS = {"dryfriction --help": 0.3, "simulate --no-figure": 0.5, "simulate (figure)": 1.0,
            "reproduce": 3.0}  # s, issue 12
 RSFMODEL_FLOOR = "rsfmodel's imports"
+RSFMODEL_RUN = "rsfmodel velocity step"
+CPU_RATIO_GOAL = 0.9  # simulate --no-figure / rsfmodel's step, CPU (issue 26)
+# rsfmodel's standard velocity step through its public API, without its plots (the case of
+# its examples/velocity_step_one_state.py; written here, the peer is only called)
+RSFMODEL_STEP = """
+import numpy as np
+from rsfmodel import rsf, staterelations
+m = rsf.Model()
+m.mu0, m.a, m.k, m.v, m.vref = 0.6, 0.005, 1e-3, 1.0, 1.0
+s = staterelations.DieterichState()
+s.b, s.Dc = 0.01, 10.0
+m.state_relations = [s]
+m.time = np.arange(0, 40.01, 0.01)
+v = np.ones_like(m.time)
+v[1000:] = 10.0
+m.loadpoint_velocity = v
+m.solve()
+"""
 
 
 def _command() -> list[str]:
@@ -72,9 +98,11 @@ def whole_process(rounds: int = 9) -> dict[str, tuple[float, float]]:
         "simulate (figure)": [*cmd, "simulate", str(PROTOCOL), "--out", "fig", "--json"],
         "  without painter": [*cmd, "simulate", str(PROTOCOL), "--out", "fig0", "--json"],
         "reproduce": [*cmd, "reproduce", "--out", "rep"],
-        RSFMODEL_FLOOR: [sys.executable, "-c", "import numpy, scipy.integrate, "
-                         "matplotlib.pyplot, mpl_toolkits.mplot3d"],
+        RSFMODEL_FLOOR: [sys.executable, "-c", "import numpy, scipy.integrate"],
     }
+    peer = os.environ.get("RSFMODEL_PYTHON")
+    if peer:
+        variants[RSFMODEL_RUN] = [peer, "-c", RSFMODEL_STEP]
     # the figure drawn in the command's own process: what the painter saves
     environ = {"  without painter": {**os.environ, "DRYFRICTION_PAINTER": "0"},
                RSFMODEL_FLOOR: {**os.environ, "MPLBACKEND": "Agg"}}
@@ -120,9 +148,13 @@ def main(first_run: bool = False) -> None:
     for ref, t in REFERENCE.items():
         print(f"  {ref} (issue's figure, {t} s): with figure x{t / fig:.2f}, without "
               f"x{t / nofig:.2f} (wall; > 1: dryfriction faster)")
-    floor = med[RSFMODEL_FLOOR][0]
-    print(f"  {RSFMODEL_FLOOR} on this machine ({floor:.3f} s, a floor under its run): with "
-          f"figure x{floor / fig:.2f}, without x{floor / nofig:.2f} (> 1: dryfriction faster)")
+    ours = med["simulate --no-figure"][1]
+    peer = RSFMODEL_RUN if RSFMODEL_RUN in med else RSFMODEL_FLOOR
+    what = ("its whole velocity step" if peer == RSFMODEL_RUN else
+            "a floor under its run; set RSFMODEL_PYTHON to run the step itself")
+    ratio = ours / med[peer][1]
+    print(f"  simulate --no-figure / {peer} ({what}), CPU: x{ratio:.2f} "
+          f"(goal <= {CPU_RATIO_GOAL}: {'met' if ratio <= CPU_RATIO_GOAL else 'NOT met'})")
     if first_run:
         print("first run after install (fresh copy, no Numba cache):")
         for name, (wall, cpu) in first_run_after_install().items():
