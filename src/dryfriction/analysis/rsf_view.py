@@ -1,7 +1,7 @@
 """The trap model seen through rate-and-state friction (the analysis is ours).
 
 Run the standard rate-and-state experiments on the trap ensemble (reduced units, kinematic
-loading: the ensemble's :class:`~dryfriction.driving.VelocityDrive` prescribes the slider's
+loading: the ensemble's :class:`~dryfriction.ensemble.driving.VelocityDrive` prescribes the slider's
 motion, which is an infinitely stiff machine) and fit rate-and-state friction
 (:class:`~dryfriction.rsf.RateState`, ageing and slip laws) to what comes out with the least
 squares of :mod:`dryfriction.fit`:
@@ -24,16 +24,16 @@ What the trap model is expected to show (and :func:`trap_model_as_rsf` measures)
 * **no direct velocity effect**: the ensemble's friction is a continuous function of slip and
   time, so a velocity step leaves it unchanged at the instant of the step (rate-and-state jumps
   by ``a ln f``). The fitted ``a`` goes to (nearly) zero; at high frequency the model's response
-  to a forward shift is even softening (:func:`dryfriction.stability.shift_stiffness`);
+  to a forward shift is even softening (:func:`dryfriction.theory.stability.shift_stiffness`);
 * **a finite memory**: a trap lives over a slip ``1 + p_d`` (eq. 29; ``p_d = y_c a_r``, about
   ``(1 + y_c) a0`` for small ``eps``), after which the population present at the step is
   entirely renewed; the transient ends there, it is not an exponential in slip. The shape is
   measured by the slips ``x50``, ``x90``, ``x99`` at which 50, 90, 99 % of the change is done:
   ``x99/x90 = 2`` for an exponential, close to 1 for a transient that ends;
 * the steady state: ``a - b`` from the fit equals the slope of the exact steady friction
-  :func:`dryfriction.steady.steady_friction` (eq. 34) over the steps, ``u dmu_d/du``;
-* the independent **linear prediction** :func:`dryfriction.stability.effective_rsf`: the ``a``,
-  ``b``, ``Dc`` that match the model's slow linear response (``Z(lambda)`` to third order).
+  :func:`dryfriction.theory.steady.steady_friction` (eq. 34) over the steps, ``u dmu_d/du``;
+* the independent **linear prediction** :func:`dryfriction.theory.stability.effective_rsf`: the
+  ``a``, ``b``, ``Dc`` that match the model's slow linear response (``Z(lambda)`` to third order).
 """
 
 from __future__ import annotations
@@ -235,7 +235,7 @@ def rsf_twin_series(params: RateState, program: VelocityProgram, t: Array,
     kinematic machine the slider does not move, the ageing law's state grows by the hold time
     (``dtheta/dt = 1`` at ``V = 0``; Dieterich 1979), the slip law's does not change (Ruina
     1983), and the friction, ``ln V`` at ``V = 0``, is undefined: NaN there. Sliding stretches
-    run through :func:`dryfriction.rsf_driving.simulate_rsf`.
+    run through :func:`dryfriction.rsf.driving.simulate_rsf`.
     """
     t = np.asarray(t, float)
     out = np.full(t.shape, np.nan)
@@ -359,7 +359,7 @@ def trap_model_as_rsf(
         Fits with the ageing law (steps; steps + hold peaks) and the slip law (steps), their
         residuals, the transient shapes, the hold peaks against the laws' predictions, the
         steady slope of eq. 34 and the linear prediction of
-        :func:`dryfriction.stability.effective_rsf`.
+        :func:`dryfriction.theory.stability.effective_rsf`.
     """
     eps = check_scalar("eps", eps, 0.0, lo_open=True)
     u0 = check_scalar("u0", u0, 0.0, lo_open=True)
@@ -527,7 +527,7 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
 
     Parameters
     ----------
-    proto : dryfriction.protocol.Protocol
+    proto : dryfriction.io.protocol.Protocol
         A trap-model protocol with ``drive.kind = "velocity"``.
     state_law : {"ageing", "slip"}
 

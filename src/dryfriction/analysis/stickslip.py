@@ -2,8 +2,9 @@
 bifurcation (docs/model.md §6; every definition here is ours unless an equation is cited).
 
 Reduced units throughout: lengths ``a0``, times ``t0``, velocities ``a0/t0``, forces ``F_el``
-(reported forces are friction units ``mu_el F/F_el``, like :class:`~dryfriction.driving.
-SimulationResult`), stiffness ``F_el/a0``, mass ``F_el t0^2/a0``, damping ``F_el t0/a0``.
+(reported forces are friction units ``mu_el F/F_el``, like
+:class:`~dryfriction.ensemble.driving.SimulationResult`), stiffness ``F_el/a0``, mass
+``F_el t0^2/a0``, damping ``F_el t0/a0``.
 
 Reading a run (:func:`analyse`)
 -------------------------------
@@ -39,15 +40,15 @@ From the steady population at ``u`` (``Initial("steady")``) with the slider star
 ``(1 + kick) u``, the deviation ``v - u`` of an inertial, damped slider is fitted (least
 squares) by ``A e^{sigma t} cos(omega t + phi) + c`` over the window where the linear forward
 branch holds (``|v - u| < u/2``, stability.py's module doc) and the signal is above the granular
-floor. ``sigma + i omega`` is compared with :func:`dryfriction.stability.rightmost_root`, an
+floor. ``sigma + i omega`` is compared with :func:`dryfriction.theory.stability.rightmost_root`, an
 independent route (the characteristic equation of the continuum response ``Z``).
 
 Bifurcation (:func:`bifurcation_scan`)
 --------------------------------------
 Continuation in ``K``: one ensemble is pulled at ``u`` with a list of stiffnesses taken down
 then back up; each step starts from the end of the previous one (population, slider velocity
-and spring force kept, :func:`dryfriction.driving.continue_spring`) and is analysed after its
-own transient. A hysteresis loop (stick-slip on the way up at stiffnesses where the way down
+and spring force kept, :func:`dryfriction.ensemble.driving.continue_spring`) and is analysed after
+its own transient. A hysteresis loop (stick-slip on the way up at stiffnesses where the way down
 was steady) means a subcritical bifurcation (bistability).
 """
 

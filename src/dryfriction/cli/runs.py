@@ -200,7 +200,7 @@ def _peak_at_end(res: Any, reload_start: float) -> bool:
 @app.command()
 @cli_errors
 def simulate(
-    protocol: str = typer.Argument(..., help="Protocol file (TOML), see dryfriction.protocol."),
+    protocol: str = typer.Argument(..., help="Protocol file (TOML), see dryfriction.io.protocol."),
     out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all; "
                             "new, empty, or written by this program before)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),

@@ -106,7 +106,7 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                   workers: int | None, confirm: bool, *, source: str = "",
                   protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "",
                   variables: Any = None, outputs: Any = None) -> Any:
-    """:func:`~dryfriction.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
+    """:func:`~dryfriction.io.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
     are stored and the command that resumes, and exits with 130."""
     from ..io.sweep import SweepInterrupted, run_sweep
 

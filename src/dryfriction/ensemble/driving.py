@@ -5,8 +5,9 @@ Reduced units: lengths ``a0``, times ``t0``, forces ``F_el``; stiffness ``F_el/a
 ``F_el t0^2/a0``, damping ``F_el t0/a0``. The reported friction is ``mu = mu_el F/F_el``.
 
 One orchestrating call, :func:`simulate`, composes small frozen objects: a
-:class:`~dryfriction.ensemble.TrapModel`, a :class:`~dryfriction.ensemble.Track`, an
-:class:`~dryfriction.ensemble.Initial` population, a drive (:class:`VelocityDrive`,
+:class:`~dryfriction.ensemble.population.TrapModel`, a
+:class:`~dryfriction.ensemble.population.Track`, an
+:class:`~dryfriction.ensemble.population.Initial` population, a drive (:class:`VelocityDrive`,
 :class:`ForceDrive` or :class:`SpringDrive`) and an :class:`Output` sampling.
 
 Integrators (ours)

@@ -31,8 +31,8 @@ Model (docs/model.md §6; every choice below is ours unless an equation is cited
   causes no transition and costs one step whatever its length.
 * Initial states (all births at ``t = 0`` unless said): ``rest`` (eq. 25: (+) on
   ``[-1, 0)``, (-) on ``[0, 1]``); ``loaded`` (edge at ``d_w`` where the fresh force equals
-  ``f_w``, :func:`dryfriction.static.loaded_edge`: (+) on ``[-1, d_w)``, (-) on ``[d_w, 1]``);
-  ``steady`` at velocity ``u`` (eq. 29: (+) on ``[-1, p_d]`` with birth ``-(p + 1)/u``, in
+  ``f_w``, :func:`dryfriction.theory.static.loaded_edge`: (+) on ``[-1, d_w)``, (-) on ``[d_w,
+  1]``); ``steady`` at velocity ``u`` (eq. 29: (+) on ``[-1, p_d]`` with birth ``-(p + 1)/u``, in
   strong pinning continued on (-) up to ``w = 1``).
 
 Numerics

@@ -22,20 +22,20 @@ Models (SI units; friction coefficients ``F/W``):
   default). Static data ``mu_s(t_w) = mu_el static_friction(t_w/t0, eps)`` (eq. 27) fix ``eps``,
   ``t0`` (s) and ``mu_el``; steady data ``mu_d(V) = mu_el steady_friction(V/V*, eps)`` (eq. 34)
   fix ``eps``, ``V* = a0/t0`` (m/s) and ``mu_el``; together they fix ``eps, t0, a0, mu_el``
-  (``a0`` in m) with one parameter set. Both go through :mod:`dryfriction.units`.
+  (``a0`` in m) with one parameter set. Both go through :mod:`dryfriction.theory.units`.
 * ``"rsf"`` — rate-and-state friction (:class:`RSFModel`), ``v0`` fixed and reported. Steady
   data give only ``a - b`` and ``mu0`` (``mu_ss = mu0 + (a - b) ln(V/V0)``, Ruina 1983); static
   (healing) data give ``mu0, b, Dc`` through
   :meth:`dryfriction.rsf.RateState.hold_peak_friction` (``mu0 + b ln(1 + t_w V0/Dc)``, ageing
   law, reload at ``V0``; Beeler, Tullis & Weeks 1994; Marone 1998) and nothing about ``a``;
   time series (velocity steps, slide-hold-slide) give ``a, b, Dc, mu0`` through
-  :func:`dryfriction.rsf_driving.simulate_rsf`.
+  :func:`dryfriction.rsf.driving.simulate_rsf`.
 
 Time-series models are callables ``(values, data) -> predicted friction``
 (:data:`SeriesModel`); the rate-and-state one is :func:`rsf_series`, the trap model's is
-:func:`cv_series` (the ensemble simulator :func:`dryfriction.driving.simulate` with the data's
-load program as a kinematic :class:`~dryfriction.driving.VelocityDrive`, through
-:class:`~dryfriction.units.PhysicalScales`). The ensemble's friction is a sum over discrete
+:func:`cv_series` (the ensemble simulator :func:`dryfriction.ensemble.driving.simulate` with the
+data's load program as a kinematic :class:`~dryfriction.ensemble.driving.VelocityDrive`, through
+:class:`~dryfriction.theory.units.PhysicalScales`). The ensemble's friction is a sum over discrete
 traps, so it is a fine staircase in the parameters (a trap dies at a sample): its Jacobian is
 taken with a larger difference step (:attr:`CVModel.diff_step`).
 

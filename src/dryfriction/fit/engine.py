@@ -393,9 +393,9 @@ def fit(
     Parameters
     ----------
     datasets : data set or iterable of them
-        :class:`~dryfriction.data.StaticData`, :class:`~dryfriction.data.SteadyData`,
-        :class:`~dryfriction.data.SeriesData` (SI units), e.g. from
-        :func:`dryfriction.data.read_csv`.
+        :class:`~dryfriction.io.data.StaticData`, :class:`~dryfriction.io.data.SteadyData`,
+        :class:`~dryfriction.io.data.SeriesData` (SI units), e.g. from
+        :func:`dryfriction.io.data.read_csv`.
     model : {"cv", "rsf"} or CVModel or RSFModel
         The trap model or rate-and-state friction. The keyword options below build the model
         from a name and are ignored for a model object.

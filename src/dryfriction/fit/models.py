@@ -400,7 +400,7 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     The slider starts in steady sliding at ``v_load[0]``; the program is the data's
     piecewise-constant ``v_load`` (:meth:`SeriesData.segments`); the returned friction is the
     spring force per unit normal force (what a load cell measures), at the data's times,
-    from :func:`dryfriction.rsf_driving.simulate_rsf` with the model's stiffness
+    from :func:`dryfriction.rsf.simulate_rsf` with the model's stiffness
     (``values["stiffness"]`` where it is fitted), damping and state law, plus the linear trend
     ``values["trend"] * x_lp`` in the load-point displacement ``x_lp`` from the first sample
     (:func:`load_point_displacement`) where the model has one (``trend=True``). A program

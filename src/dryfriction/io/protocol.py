@@ -121,7 +121,7 @@ _REQUIRED_DRIVE = {
 
 @dataclass(frozen=True)
 class Protocol:
-    """A validated protocol: everything :func:`dryfriction.driving.simulate` needs."""
+    """A validated protocol: everything :func:`dryfriction.ensemble.driving.simulate` needs."""
 
     model: TrapModel
     track: Track
@@ -135,7 +135,7 @@ class Protocol:
         progress: Callable[[float], None] | None = None,
         on_interrupt: str = "raise",
     ) -> SimulationResult:
-        """Run the simulation (see :func:`dryfriction.driving.simulate`)."""
+        """Run the simulation (see :func:`dryfriction.ensemble.driving.simulate`)."""
         from ..ensemble.driving import simulate
 
         return simulate(self.model, self.track, self.initial, self.drive, self.output,

@@ -4,9 +4,9 @@ Every function has the form ``fig_name(..., ax=None) -> (fig, ax)``: with ``ax=N
 new :class:`matplotlib.figure.Figure` in the style of :mod:`.style` (no pyplot, no global state,
 no display; PNGs are rendered by Agg); otherwise it draws into ``ax``. Figures of runs are in
 :mod:`.runs`. Nothing here computes physics beyond evaluating the
-library's functions on grids: forces come from :mod:`dryfriction.trap`, friction from
-:mod:`dryfriction.static` and :mod:`dryfriction.steady`, Dieterich constants from
-:mod:`dryfriction.dieterich`.
+library's functions on grids: forces come from :mod:`dryfriction.theory.trap`, friction from
+:mod:`dryfriction.theory.static` and :mod:`dryfriction.theory.steady`, Dieterich constants from
+:mod:`dryfriction.theory.dieterich`.
 
 Units are the reduced ones of the core: lengths in ``a0``, times in ``t0``, velocities in
 ``V* = a0/t0``, friction in ``F_el`` (eq. 12), and every trap force, in every figure, in
@@ -236,7 +236,8 @@ def fig2a_aged_pinning_curve(
 def population_at_shift(
     d: float, r: float, alpha: float = 0.13, d_w: float = 0.0, n: int = 400
 ) -> dict[str, tuple[Array, Array]]:
-    """The three groups of :func:`dryfriction.static.pull_force` after a shift ``d``, on grids.
+    """The three groups of :func:`dryfriction.theory.static.pull_force` after a shift ``d``, on
+    grids.
 
     Returns ``{"fresh": (p, f), "aged (+)": (p, f), "aged (-)": (p, f)}`` with ``p`` in ``a0`` and
     ``f`` the force per trap in ``Phi00/a0``: fresh traps on ``[-1, -1 + d]`` with ``f_+(p)``;

@@ -1,6 +1,6 @@
 """``dryfriction reproduce``: the paper's figures, the data behind them, the key numbers, a report.
 
-:func:`reproduce` writes, whole or not at all (:func:`dryfriction.io.output_directory`):
+:func:`reproduce` writes, whole or not at all (:func:`dryfriction.io.files.output_directory`):
 
 * ``fig1.png`` ... ``fig6.png`` (Fig. 2 is one PNG with panels a and b) and three extra panels
   (``extra_loaded.png``, ``extra_creep.png``, ``extra_dieterich_C.png``);
@@ -457,11 +457,12 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
     out : path
         Results folder: new, empty, or holding a previous result of ours (replaced). A folder
         holding anything else, an existing *file* or an unwritable place raises ``ValueError``
-        before any work (see :func:`dryfriction.io.output_directory`).
+        before any work (see :func:`dryfriction.io.files.output_directory`).
     progress : callable, optional
         ``progress(done, total, what)`` called after each step (the CLI's progress bar).
     force : bool
-        Write beside other files in ``out`` (kept; see :func:`dryfriction.io.output_directory`).
+        Write beside other files in ``out`` (kept; see
+        :func:`dryfriction.io.files.output_directory`).
     report : callable, optional
         ``report(line)`` for what was done to files already in ``out``.
     fmt : str

@@ -3,7 +3,7 @@
 SI units throughout: slip and ``dc`` in m, velocities in m/s, times in s; friction and the
 constitutive parameters ``a``, ``b``, ``mu0`` are dimensionless. Stiffness ``k`` (1/m), damping
 ``eta`` (s/m) and mass ``m`` (s^2/m) are per unit normal force (the rsfmodel convention); see
-:mod:`dryfriction.rsf_driving` for the spring-slider driver.
+:mod:`dryfriction.rsf.driving` for the spring-slider driver.
 
 Laws (``theta`` in s):
 
@@ -254,7 +254,7 @@ class RateState:
         1998, *Annu. Rev. Earth Planet. Sci.* 26, 643, the healing law with ``d mu_s/d ln t -> b``
         at long holds). The slip law does not evolve at rest, so it gives ``mu_ss(v)`` for every
         hold. With a finite machine stiffness the measured peak is lower (the slider creeps
-        during reloading); that case needs :func:`dryfriction.rsf_driving.simulate_rsf`.
+        during reloading); that case needs :func:`dryfriction.rsf.driving.simulate_rsf`.
 
         Parameters
         ----------
@@ -279,7 +279,7 @@ class RateState:
         if self.dc2 is not None or self.regularized:
             raise ValueError(
                 f"the closed-form {what} is for one state variable and the standard law: "
-                "use dryfriction.rsf_driving.linear_stability for these parameters"
+                "use dryfriction.rsf.driving.linear_stability for these parameters"
             )
 
     def critical_stiffness(self, v: float = 1.0, damping: float = 0.0, mass: float = 0.0) -> float:

@@ -17,7 +17,7 @@ per trap (eq. 31) and ``xi = e^{lambda t}``, the friction changes by ``delta mu 
 where ``tau_d`` is the age at the spinodal, ``r'_d = dr/dtheta`` there and ``Delta g_d`` the
 force lost there per trap (``r_d^2 f_+(y_c)`` in very strong pinning, ``r_d^2 [f_+ - f_-](y_c)``
 in strong pinning). Checks: ``Z(0) = 0`` (a constant shift is a relabelling) and
-``Z'(0) = d mu_d / du`` (the slope of :func:`dryfriction.steady.steady_friction`).
+``Z'(0) = d mu_d / du`` (the slope of :func:`dryfriction.theory.steady.steady_friction`).
 
 **The non-smooth part.** ``Z(lambda -> inf)`` along the real axis is the response to a sudden
 forward shift at frozen ages: the stiffening of all traps (``int u g_y dtau``, which alone is

@@ -17,7 +17,7 @@ tangential force ``f_w`` (units ``F_el``) that places the population edge at ``d
 fresh force equals ``f_w`` (:func:`loaded_edge`); the slider is then held in place during the
 wait (the distribution does not move, as in §4) and pulled.
 
-With ``Phi`` the closed-form cumulative work of :func:`dryfriction.trap.work_forward`, the
+With ``Phi`` the closed-form cumulative work of :func:`dryfriction.theory.trap.work_forward`, the
 force after a shift ``d`` is (ours; eq. 27 is its value at ``d*``)::
 
     mu(d) H0 = Phi(-1 + d) + r^3 [Phi((d_w + d)/r) - Phi((d - 1)/r)]

@@ -93,7 +93,7 @@ def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro")
 
     A trap dies where ``-1 + u T = w_d a_r(T)`` (eq. 32; ``w_d`` = :attr:`Trap.death_point`).
     The Eyring-Nabarro law holds up to the age ``T_v`` where ``a_r^2 = 1/eps``
-    (:func:`dryfriction.creep.max_age`). On the clock interval ``[0, Q_v]``,
+    (:func:`dryfriction.theory.creep.max_age`). On the clock interval ``[0, Q_v]``,
     ``g(Q) = -1 + u T(Q) - w a_r(Q)`` has ``g' = (u e^Q - w eps / (2 sqrt(b)))/b``, ``b = 1 - eps
     Q``, and ``ln(u e^Q 2 sqrt(b) / (w eps))`` has slope ``1 - eps/(2b) > 0`` there: ``g``
     falls, then rises, so the death lies inside the range exactly when ``g(Q_v) >= 0``, i.e.

@@ -1,0 +1,100 @@
+"""Docstrings, comments and help name the package's current paths (issue 26 item 6).
+
+After the re-layout into layer folders, 36 docstrings still named module paths of release 0.1
+(``dryfriction.driving.simulate``, ``dryfriction.stability.effective_rsf``): a reader who
+follows one gets an ImportError (or, through the compatibility finder, a deprecation warning).
+Every absolute ``dryfriction.a.b`` in the package's source must import and resolve to an
+attribute, and every relative Sphinx reference ``:func:`.a.b``` must end a real path, except
+in :mod:`dryfriction._compat`, whose subject is the old paths.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+import re
+from functools import cache
+from pathlib import Path
+
+import dryfriction
+
+SRC = Path(dryfriction.__file__).resolve().parent
+ABSOLUTE = re.compile(r"\bdryfriction(?:\.[A-Za-z_]\w*)+")
+RELATIVE = re.compile(r":(?:mod|func|class|meth|attr|data|obj|exc):`~?(\.[A-Za-z_][\w.]*)`")
+IMPORT_LINE = re.compile(r"\s*(from|import)\s")
+OLD_PATHS_ON_PURPOSE = {"_compat.py"}
+
+
+@cache
+def modules() -> dict[str, object]:
+    out: dict[str, object] = {"dryfriction": dryfriction}
+    for info in pkgutil.walk_packages(dryfriction.__path__, "dryfriction."):
+        if info.name.endswith("__main__"):  # running it would run the command line
+            continue
+        out[info.name] = importlib.import_module(info.name)
+    return out
+
+
+def resolves(path: str) -> bool:
+    """``path`` is a module, or a module's attribute chain (lazy names included)."""
+    parts = path.split(".")
+    for i in range(len(parts), 0, -1):
+        module = modules().get(".".join(parts[:i]))
+        if module is None:
+            continue
+        obj = module
+        for name in parts[i:]:
+            try:
+                obj = getattr(obj, name)
+            except AttributeError:
+                return False
+        return True
+    return False
+
+
+@cache
+def every_name() -> frozenset[str]:
+    """Every module, module attribute and class attribute, as full dotted paths."""
+    names = set()
+    for mod_name, module in modules().items():
+        names.add(mod_name)
+        for attr, obj in vars(module).items():
+            names.add(f"{mod_name}.{attr}")
+            if inspect.isclass(obj):
+                names.update(f"{mod_name}.{attr}.{member}" for member in vars(obj))
+    return frozenset(names)
+
+
+def references() -> list[tuple[str, int, str, bool]]:
+    """(file, line, path, absolute) for each path named outside import statements."""
+    found = []
+    for file in sorted(SRC.rglob("*.py")):
+        if file.name in OLD_PATHS_ON_PURPOSE:
+            continue
+        for number, line in enumerate(file.read_text().splitlines(), 1):
+            if IMPORT_LINE.match(line):
+                continue
+            rel = str(file.relative_to(SRC))
+            found += [(rel, number, m.group(0).rstrip("."), True) for m in ABSOLUTE.finditer(line)
+                      if m.group(0) != "dryfriction.json"]  # the manifest's file name
+            found += [(rel, number, m.group(1), False) for m in RELATIVE.finditer(line)]
+    return found
+
+
+def test_every_named_path_exists() -> None:
+    refs = references()
+    assert len(refs) > 200  # the scan sees the docstrings
+    names = every_name()
+    stale = [f"{f}:{n}: {p}" for f, n, p, absolute in refs
+             if not (resolves(p) if absolute else any(x.endswith(p) for x in names))]
+    assert not stale, "stale paths:\n" + "\n".join(stale)
+
+
+def test_the_check_sees_an_old_path() -> None:
+    # the mistake this file is for: a path of release 0.1, or a relative one that ends nowhere
+    assert not resolves("dryfriction.stability.effective_rsf")
+    assert not resolves("dryfriction.theory.stability.effective_rsf_twin")
+    assert resolves("dryfriction.theory.stability.effective_rsf")
+    assert resolves("dryfriction.rsf.RateState")  # a lazy public name
+    assert not any(x.endswith(".steady.steady_frictions") for x in every_name())
