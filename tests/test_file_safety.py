@@ -465,3 +465,18 @@ def test_a_sweep_folder_of_an_earlier_version_is_refused_untouched(sweep_copy):
     with pytest.raises(ValueError, match="earlier dryfriction, which recorded no hashes"):
         _rerun(out, markers)
     assert _tree(out) == before and computed() == 0
+
+
+def test_a_sweep_folder_holding_a_user_file_is_not_resumed_into(sweep_copy):
+    # was: exit 0, the resumed sweep writing beside notes.txt although run_sweep promises a
+    # folder holding anything else is refused (a new sweep's folder is)
+    out, markers, computed = sweep_copy
+    (out / "notes.txt").write_text("mine")
+    (out / ".sweep.nc.dftmp-99999999-0a1b2c3d.tmp").write_bytes(b"")  # a killed run's
+    before = _tree(out)
+    with pytest.raises(ValueError, match=r"--out .* holds files that are not this sweep's "
+                                         r"\(notes.txt\): move them away"):
+        _rerun(out, markers)
+    assert _tree(out) == before and computed() == 0
+    (out / "notes.txt").unlink()
+    _rerun(out, markers)  # the temporary is not the user's: the sweep resumes

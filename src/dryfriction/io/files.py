@@ -145,6 +145,11 @@ _SHA256 = re.compile(r"^[0-9a-f]{64}$")
 _TEMP = re.compile(r"^\..*\.dftmp-(\d+)-[0-9a-f]+\.tmp$")
 
 
+def is_temporary(name: str) -> bool:
+    """Whether a file name is one of this program's temporaries (:func:`_make_temp`)."""
+    return _TEMP.match(name) is not None
+
+
 def _make_temp(parent: Path, name: str, *, directory: bool) -> tuple[int, str]:
     """Create a temporary file (returns an open descriptor) or folder (descriptor -1) in
     ``parent``, named ``.NAME.dftmp-PID-RANDOM.tmp`` so that a later run can tell one left by a

@@ -46,7 +46,8 @@ import numpy as np
 from ..validation import check_scalar, require_extra
 from .cf import describe
 from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
-from .files import atomic_write_bytes, check_writable_dir, is_ours, to_jsonable, write_json
+from .files import (atomic_write_bytes, check_writable_dir, is_ours, is_temporary, to_jsonable,
+                    write_json)
 
 __all__ = [
     "SweepAxis",
@@ -316,6 +317,14 @@ def _check_folder(out: Path, marker: Mapping[str, Any], outputs: tuple[str, ...]
             raise ValueError(f"--out {out} holds a sweep written by an earlier dryfriction, "
                              "which recorded no hashes of its files: use another --out "
                              "(nothing in it was changed)")
+        ours = {MARKER, LOCK, "points", "sweep.nc", *outputs, *old["outputs"]}
+        others = sorted(p.name for p in out.iterdir()
+                        if p.name not in ours and not is_temporary(p.name))
+        if others:  # kept, but a resumed folder is this sweep's alone, like a new one
+            shown = ", ".join(others[:3]) + (", ..." if len(others) > 3 else "")
+            raise ValueError(f"--out {out} holds files that are not this sweep's ({shown}): "
+                             "move them away to resume, or use another --out (nothing in it "
+                             "was changed)")
         for name in ("sweep.nc", *outputs):
             if _foreign_output(out, old, name):
                 raise ValueError(f"--out {out}: {name} is not the file this sweep wrote "
