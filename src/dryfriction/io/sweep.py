@@ -46,8 +46,14 @@ import numpy as np
 from ..validation import check_scalar, require_extra
 from .cf import describe
 from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
-from .files import (atomic_write_bytes, check_writable_dir, is_ours, is_temporary, to_jsonable,
-                    write_json)
+from .files import (
+    atomic_write_bytes,
+    check_writable_dir,
+    is_ours,
+    is_temporary,
+    to_jsonable,
+    write_json,
+)
 
 __all__ = [
     "SweepAxis",
