@@ -129,7 +129,7 @@ def fit_command(
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
                    stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
-                   profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
+                   profile=profile, run_cv=run_cv, alpha=alpha,
                    creep=creep, errors=errors, direct=direct, v_ref=v_ref,
                    traps_per_a0=traps_per_a0,
                    json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)
