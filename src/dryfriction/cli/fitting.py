@@ -91,7 +91,7 @@ def fit_command(
                                 "of the direct effect, m/s, fixed."),
     profile: bool = typer.Option(None, "--profile/--no-profile", help="Profile-likelihood "
                                  "intervals and identifiability (for a record: of a, b, Dc "
-                                 "per step)."),
+                                 "per step; default on up to 6 steps, HAC intervals above)."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
