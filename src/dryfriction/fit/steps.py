@@ -583,7 +583,8 @@ def fit_steps(
         notes.append(f"the steps are at {len(each)} normal-stress levels ("
                      + ", ".join(lv["label"] for lv in levels["levels"]) + "): the stiffness "
                      "per unit normal stress (1/m) is K/sigma_n, one per level, so the "
-                     "record's one machine is estimated per level (fit.json grouping)")
+                     "record's one machine is estimated per level (fit.json grouping)"
+                     + ("; --joint fits one a, b, Dc and k over all of them" if joint else ""))
     return StepsResult(rows, fits, pieces, joint_fit, notes, one, levels)
 
 
