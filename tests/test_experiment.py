@@ -105,6 +105,16 @@ def test_summary_leaves_out_holds_and_unreported_values_with_the_reason() -> Non
     assert [q[0] for q in p["b"]["levels"][0]] == [0]
     assert p["b"]["left_out"] == {2: "at a bound"}
     assert p["a_minus_b"]["left_out"] == {2: "not identified"}
+    # the figure says how many it left out, and why, in the panel and in the title
+    from dryfriction.plots.summary import plot_experiment_summary
+
+    fig, axes = plot_experiment_summary(rows)
+    title = fig._suptitle.get_text()
+    assert "2 value(s) not identified or at a bound left out" in title
+    assert "1 slide-hold-slide(s) not drawn" in title and "HAC" in title
+    assert [t.get_text() for t in axes[2].texts] == ["left out: 1 at a bound"]
+    assert [t.get_text() for t in axes[0].texts] == ["left out: 1 not identified"]
+    assert [c.get_label() for c in axes[1].containers] == ["10 MPa"]
 
 
 def test_profiles_by_default_only_for_a_few_steps() -> None:
@@ -204,10 +214,10 @@ def test_a_whole_experiment_in_one_command(experiment: tuple[Path, object],
             for (lo, hi), c in zip(bars, mine, strict=True):
                 assert lo == pytest.approx(float(c[f"{name}_lo"]) * scale)
                 assert hi == pytest.approx(float(c[f"{name}_hi"]) * scale)
-        left = len(steps) - len(shown)
-        if left:
-            assert any(f"{left} not identified" in t or "at a bound" in t
-                       for t in drawn["texts"])  # type: ignore[union-attr]
+    gone = sum(not math.isfinite(float(c[n])) for c in steps
+               for n in ("a_minus_b", "a", "b", "dc"))
+    assert (f"{gone} value(s) not identified" in drawn["title"] if gone  # type: ignore[operator]
+            else "every value of every velocity step drawn" in drawn["title"])  # type: ignore[operator]
     # the truth within the 95 % intervals (a test at 95 % misses about one in twenty; the
     # detected program moves a few change times by a sample or two)
     for name, truth in TRUTH.items():

@@ -82,8 +82,8 @@ def default_profile(n_windows: int, given: bool | None) -> tuple[bool, str]:
 
 def interval_words(kind: str) -> str:
     """What a row's ``intervals`` value means, for a figure or a table."""
-    return {"profile": "profile likelihood 95 %", "hac": "HAC (autocorrelation-robust) Wald 95 %",
-            "white": "Wald 95 % (independent noise)"}.get(kind, kind)
+    return {"profile": "profile likelihood", "hac": "HAC (autocorrelation-robust) Wald",
+            "white": "Wald (independent noise)"}.get(kind, kind)
 
 
 def _change_index(t: np.ndarray, w: Any) -> int:

@@ -88,9 +88,11 @@ def plot_experiment_summary(rows: Sequence[Mapping[str, Any]], path: Any = None
                    title="normal stress", title_fontsize=LEGEND_SIZE)
     errs = sorted({str(r.get("errors", "hac")) for r in rows})
     kinds = pts["intervals"]
-    head = ("95 % intervals: a, b, Dc " + " / ".join(interval_words(k) for k in kinds)
-            + "; a - b " + " / ".join(interval_words(e) for e in errs) + " (delta method)")
-    tail = ("values not identified or at a bound are left out (steps.csv flags)")
+    head = ("95 % intervals: a, b, Dc: " + " / ".join(interval_words(k) for k in kinds)
+            + "; a - b: " + " / ".join(interval_words(e) for e in errs) + " (delta method)")
+    gone = sum(len(pts[name]["left_out"]) for name, _ in PANELS)
+    tail = (f"{gone} value(s) not identified or at a bound left out (count and reason in each "
+            "panel; steps.csv flags)" if gone else "every value of every velocity step drawn")
     if pts["holds"]:
         tail += (f"; {len(pts['holds'])} slide-hold-slide(s) not drawn (not velocity steps; "
                  "listed in steps.csv, kind shs)")
