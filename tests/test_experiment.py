@@ -27,6 +27,7 @@ from dryfriction.fit.experiment import (
     PROFILE_MAX_STEPS,
     annotate_steps,
     default_profile,
+    level_label,
     level_stiffness,
     normal_levels,
     step_normal,
@@ -51,6 +52,8 @@ def test_levels_join_within_3_percent_of_the_lowest_not_a_chain() -> None:
     assert normal_levels([math.nan, math.nan]) == [0, 0]  # no normal column: one level
     with pytest.raises(ValueError, match="rel"):
         normal_levels([1.0], rel=1.5)
+    assert level_label(20.0e6, "Pa") == "20 MPa" and level_label(5e3, "N") == "5 kN"
+    assert level_label(math.nan, "") == "normal stress not recorded"
 
 
 def test_a_steps_normal_stress_is_the_one_after_its_change() -> None:
