@@ -162,8 +162,11 @@ def test_csv_json_table_and_figures_agree(tmp_path: Path):
 
     def spy_summary(*a, **k):  # type: ignore[no-untyped-def]
         fig, axes = summary(*a, **k)
-        for ax, name in zip(axes, ("a_minus_b", "dc"), strict=True):
-            cont = ax.containers[0]
+        for ax, name in zip(axes, ("a_minus_b", "a", "b", "dc"), strict=True):
+            if not ax.containers:  # nothing identified in this panel
+                bars[name] = (np.array([]), [])
+                continue
+            cont = ax.containers[0]  # one normal-stress level: one container
             xy = cont.lines[0].get_data()
             segs = cont.lines[2][0].get_segments()
             bars[name] = (np.asarray(xy[1]), [(s[0][1], s[1][1]) for s in segs])
@@ -185,8 +188,8 @@ def test_csv_json_table_and_figures_agree(tmp_path: Path):
     table = _table_rows(r.stdout)
     values, intervals = table[:2], table[2:4]
     names = ("a", "b", "a_minus_b", "dc", "stiffness")
-    heads = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
-             "rms", "noise", "peak_residual", "flags")
+    heads = ("index", "kind", "v_before", "v_after", "normal", "a", "b", "a_minus_b", "dc",
+             "stiffness", "trend", "rms", "noise", "peak_residual", "flags")
     iv_names = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
     for i, (c, j) in enumerate(zip(rows, rep, strict=True)):
         assert c["flags"] == j["flags"] == (values[i][heads.index("flags")].replace("—", ""))
@@ -216,7 +219,7 @@ def test_csv_json_table_and_figures_agree(tmp_path: Path):
         if "not_identified:dc" in c["flags"]:
             assert "dc not identified" in title
     # the summary figure: identified values with their 95 % intervals, the others left out
-    for name, scale in (("a_minus_b", 1.0), ("dc", 1e6)):
+    for name, scale in (("a_minus_b", 1.0), ("a", 1.0), ("b", 1.0), ("dc", 1e6)):
         y, segs = bars[name]
         shown = [c for c in rows if math.isfinite(float(c[name]))]
         assert len(y) == len(shown)

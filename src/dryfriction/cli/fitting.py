@@ -91,7 +91,7 @@ def fit_command(
                                 "of the direct effect, m/s, fixed."),
     profile: bool = typer.Option(None, "--profile/--no-profile", help="Profile-likelihood "
                                  "intervals and identifiability (for a record: of a, b, Dc "
-                                 "per step)."),
+                                 "per step; default on up to 6 steps, HAC intervals above)."),
     compare: bool = typer.Option(True, help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
@@ -129,7 +129,7 @@ def fit_command(
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
                    stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
-                   profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
+                   profile=profile, run_cv=run_cv, alpha=alpha,
                    creep=creep, errors=errors, direct=direct, v_ref=v_ref,
                    traps_per_a0=traps_per_a0,
                    json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)

@@ -97,12 +97,16 @@ def _cell(x: Any) -> str:
 
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
     table = Table(title=title)
-    cols = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
-            "rms", "noise", "peak_residual", "flags")
+    cols = ("index", "kind", "v_before", "v_after", "normal", "a", "b", "a_minus_b", "dc",
+            "stiffness", "trend", "rms", "noise", "peak_residual", "flags")
+    unit = next((r.get("normal_unit") for r in rows if r.get("normal_unit")), "")
+    scale, shown = (1e-3, "kN") if unit == "N" else (1e-6, "MPa")
     for c in cols:
-        table.add_column(c, justify="left" if c == "flags" else "right")
+        table.add_column(f"normal [{shown}]" if c == "normal" else c,
+                         justify="left" if c == "flags" else "right")
     for r in rows:
-        table.add_row(*(_cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
+        table.add_row(*(_cell(float(r[c]) * scale) if c == "normal" else
+                        _cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
     return table
 
 
@@ -134,7 +138,7 @@ def flagged_line(rows: list[dict[str, Any]]) -> str:
 
 def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                segments: str | None, stiffness: float | str, trend: bool, law: str,
-               joint: bool, profile: bool, run_cv: bool, alpha: float, creep: str,
+               joint: bool, profile: bool | None, run_cv: bool, alpha: float, creep: str,
                json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
                figure: bool = True, errors: str = "hac", direct: float = 0.0,
                v_ref: float = 1e-6, traps_per_a0: float | None = None) -> None:
@@ -143,6 +147,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
 
     from ..fit import compare_models
     from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
+    from ..fit.experiment import default_profile, levels_lines
     from ..fit.steps import (
         ERRORS,
         fit_steps,
@@ -169,6 +174,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
                          "constant velocity (give it with --segments if it is not)")
     out.print(lab.segments_table(segs), highlight=False, markup=False)
+    profile, profile_note = default_profile(len(wins), profile)  # many steps: HAC unless asked
     if model == "cv" and not run_cv:  # the trap model is not run unasked (issue 10)
         # the estimate is one trap-model run: made only when the trap model was asked for
         # (on the shared record it costs several times the whole rsf fit)
@@ -185,6 +191,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         else:
             res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
                             joint=joint, profile=profile, errors=errors, progress=update)
+    if profile_note:
+        res.notes.append(profile_note)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
@@ -255,7 +263,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         err.print(flagged_line(res.rows), highlight=False)  # stdout stays one JSON document
     else:
         # one row per step in full, flags included: a console's width would squash them
-        wide = Console(width=max(out.width, 150 + max(len(r["flags"]) for r in res.rows)))
+        wide = Console(width=max(out.width, 175 + max(len(r["flags"]) for r in res.rows)))
         wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
         wide.print(_intervals_table(res.rows))
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
@@ -267,6 +275,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
+        for line in levels_lines(res.levels):
+            out.print(line, highlight=False, soft_wrap=True)
         if res.stiffness is not None:
             k = res.stiffness
             out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "

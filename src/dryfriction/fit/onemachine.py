@@ -28,8 +28,12 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
     free = fit_steps(record, windows, segments, stiffness="fit", **kwargs)
     rec = free.stiffness
     if rec is None:
-        free.notes.append("--stiffness record: fewer than two steps identify k, so each step "
-                          "keeps its own fitted stiffness")
+        several = free.levels is not None and len(free.levels["levels"]) > 1
+        free.notes.append("--stiffness record: " + (
+            "the steps are at several normal stresses, and k (1/m) = K/sigma_n differs "
+            "between them (each level's in fit.json grouping)" if several else
+            "fewer than two steps identify k") + ", so each step keeps its own fitted "
+            "stiffness")
         return free
     fixed = fit_steps(record, windows, segments, stiffness=float(rec["value"]), **kwargs)
     for row, own, f in zip(fixed.rows, free.rows, free.fits, strict=True):

@@ -44,7 +44,8 @@ from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .engine import fit
-from .identify import assess_step, record_stiffness, worse_than_noise
+from .experiment import EXPERIMENT_COLUMNS, annotate_steps, level_stiffness, levels_report
+from .identify import assess_step, worse_than_noise
 from .joint import fit_joint
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
@@ -66,6 +67,7 @@ STEP_COLUMNS: tuple[str, ...] = (
     "rms", "noise", "white_noise", "peak_residual", "n", "success", "errors", "resid_rho1",
     "hac_lags", "a_minus_b_lo", "a_minus_b_hi", "b_over_dc", "b_over_dc_lo", "b_over_dc_hi",
     "stiffness_lo", "stiffness_hi", "slip_before", "slip_after", "flags",
+    *EXPERIMENT_COLUMNS,
 )
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
 1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one; ``errors`` says how
@@ -73,7 +75,8 @@ the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covari
 ``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used;
 ``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
 record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
-:data:`.identify.FLAG_WORDS` separated by ``;``). A parameter that is not identified
+:data:`.identify.FLAG_WORDS` separated by ``;``; then the normal stress, its level, the hold and
+the intervals' kind: :data:`.experiment.EXPERIMENT_COLUMNS`). A parameter that is not identified
 (:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
 none."""
 
@@ -419,7 +422,10 @@ class StepsResult:
         per window (``mu0_<i>``, ``trend_<i>``).
     notes : list of str
     stiffness : dict or None
-        The record's one machine stiffness (:func:`.identify.record_stiffness`).
+        The record's one machine stiffness (:func:`.identify.record_stiffness`); ``None``
+        where the steps are at several normal stresses (one per level in ``levels``).
+    levels : dict or None
+        The steps grouped by normal stress (:func:`.experiment.levels_report`).
     """
 
     rows: list[dict[str, Any]]
@@ -428,6 +434,7 @@ class StepsResult:
     joint: FitResult | None = None
     notes: list[str] = field(default_factory=list)
     stiffness: dict[str, Any] | None = None  # the record's k (fit.identify.record_stiffness)
+    levels: dict[str, Any] | None = None  # the normal-stress levels (fit.experiment)
 
     @property
     def success(self) -> bool:
@@ -442,7 +449,8 @@ class StepsResult:
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"steps": self.rows, "success": self.success,
-                               "notes": list(self.notes), "record_stiffness": self.stiffness}
+                               "notes": list(self.notes), "record_stiffness": self.stiffness,
+                               "grouping": self.levels}
         if self.joint is not None:
             out["joint"] = self.joint.to_dict()
         return out
@@ -568,7 +576,16 @@ def fit_steps(
         if progress is not None:
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
-    return StepsResult(rows, fits, pieces, joint_fit, notes, record_stiffness(rows))
+    annotate_steps(rows, record, wins, profile)  # normal stress, level, hold (fit.experiment)
+    one, each = level_stiffness(rows)
+    levels = levels_report(rows, each)
+    if len(each) > 1:
+        notes.append(f"the steps are at {len(each)} normal-stress levels ("
+                     + ", ".join(lv["label"] for lv in levels["levels"]) + "): the stiffness "
+                     "per unit normal stress (1/m) is K/sigma_n, one per level, so the "
+                     "record's one machine is estimated per level (fit.json grouping)"
+                     + ("; --joint fits one a, b, Dc and k over all of them" if joint else ""))
+    return StepsResult(rows, fits, pieces, joint_fit, notes, one, levels)
 
 
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:

@@ -1,6 +1,6 @@
 """Figures of a per-step fit (:func:`dryfriction.fit.steps.fit_steps`): one figure per step
-(against load-point displacement and against time, residuals below) and a summary of
-``a - b`` and ``Dc`` against velocity."""
+(against load-point displacement and against time, residuals below) and the summary of
+``a - b``, ``a``, ``b``, ``Dc`` against velocity (:mod:`.summary`)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from .style import FRICTION_SI, TIME_S, VELOCITY_SI, save_png
+from .style import FRICTION_SI, TIME_S, save_png
 
 if TYPE_CHECKING:
     from ..fit.steps import StepsResult
@@ -83,33 +83,9 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
 
 
 def plot_steps_summary(result: StepsResult, path: Any = None) -> tuple[Figure, Any]:
-    """``a - b`` and ``Dc`` of every step against the velocity after the change, with their
-    95 % intervals (``steps.csv``'s ``*_lo``, ``*_hi``); a value not identified is left out
-    and its step marked "n.i." along the bottom of the panel."""
-    rows = result.rows
-    v = np.array([r["v_after"] for r in rows])
-    fig = Figure(figsize=(8.0, 3.6))
-    ax1, ax2 = fig.subplots(1, 2, sharex=True)
-    for ax, name, scale, label in ((ax1, "a_minus_b", 1.0, r"$a - b$"),
-                                   (ax2, "dc", 1e6, r"$D_c$  [µm]")):
-        y = np.array([r[name] for r in rows], float) * scale
-        lo = np.array([r[f"{name}_lo"] for r in rows], float) * scale
-        hi = np.array([r[f"{name}_hi"] for r in rows], float) * scale
-        ok = np.isfinite(y)
-        err = np.vstack([np.where(np.isfinite(lo), y - lo, 0.0),
-                         np.where(np.isfinite(hi), hi - y, 0.0)])[:, ok]
-        ax.errorbar(v[ok], y[ok], yerr=err, fmt="o", capsize=3, label="95 % interval")
-        for vi in v[~ok]:
-            ax.annotate("n.i.", (vi, 0.02), xycoords=("data", "axes fraction"), ha="center",
-                        fontsize=8, color="C3")
-        ax.set_ylabel(label)
-        ax.set_xscale("log")
-        ax.set_xlabel(VELOCITY_SI.replace("$V$", r"$V_{after}$"))
-    ax1.axhline(0.0, color="0.5", lw=0.8)
-    if not np.all([np.isfinite(r["a_minus_b"]) and np.isfinite(r["dc"]) for r in rows]):
-        fig.suptitle("n.i.: not identified by the data (left out; see steps.csv flags)",
-                     fontsize=8)
-    fig.subplots_adjust(left=0.13, right=0.98, bottom=0.16, top=0.9, wspace=0.35)
-    if path is not None:
-        save_png(fig, path)
-    return fig, (ax1, ax2)
+    """``a - b``, ``a``, ``b`` and ``Dc`` of every velocity step against the velocity after the
+    change, grouped by normal stress, with their 95 % intervals (``steps.csv``'s ``*_lo``,
+    ``*_hi``): :func:`.summary.plot_experiment_summary` of the result's rows."""
+    from .summary import plot_experiment_summary
+
+    return plot_experiment_summary(result.rows, path)
