@@ -263,9 +263,9 @@ MUTANTS: tuple[Mutant, ...] = (
        "if not r.success or (cold and worse_than_noise(d, rms)):",
        "if not r.success:",
        "tests/test_fit_identify.py", "-k", "astray"),
-    _m("summary figure: one standard error for the interval", "plots/steps.py",
-       'lo = np.array([r[f"{name}_lo"] for r in rows], float) * scale',
-       'lo = np.array([r[name] - r[f"sigma_{name}"] for r in rows], float) * scale',
+    _m("summary figure: one standard error for the interval", "fit/experiment.py",
+       'val, float(r[f"{name}_lo"]),',
+       'val, val - float(r.get(f"sigma_{name}", 0.0)),',
        "tests/test_fit_identify.py", "-k", "agree"),
     # --- the direct effect (issue 11) --------------------------------------------------------
     _m("direct: sign of the rate term flipped (theory)", "theory/direct.py",
