@@ -419,6 +419,36 @@ def _z(fits: _Fits, fl: Fluctuations, bounds: list[int]) -> Array:
     return np.abs(np.diff(v)) / np.hypot(e[1:], e[:-1])
 
 
+SLIP_MIN = 3.0
+"""The slip a change carries over the shorter of its two stretches, against the position
+error a servo may carry there (:func:`_slip_ratio`), must reach this (ours; set a priori
+between the tuning records' transients, below 1.1, and their weakest true changes, above 5)."""
+
+
+def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
+    """The slip ``|v2 - v1| d`` of each inner boundary over the shorter stretch ``d`` beside
+    it, over the servo's position error there, ``r(d) d U`` (ours).
+
+    The load point's wander is a position error of a servo, a displacement of about
+    ``r(T) T`` times the speed it was made at; the error left by a fast stretch relaxes
+    through the next ones, so a short stretch just after a fast one drifts by the *fast*
+    stretch's error: ``U`` is the largest speed of the two stretches and their outer
+    neighbours. A true change carries far more slip than that (a step of a few Dc, 8 s at
+    3 to 10 times the speed, carries 6-25 times it); the servo's settling after a large
+    change does not.
+    """
+    u = np.abs(np.asarray(v, float))
+    nb = np.maximum(u[1:], u[:-1])  # the two stretches beside each boundary
+    big = nb.copy()
+    big[1:] = np.maximum(big[1:], u[:-2])  # the stretch before the left one
+    big[:-1] = np.maximum(big[:-1], u[2:])  # the one after the right one
+    dmin = np.minimum(d[1:], d[:-1])
+    scale = np.hypot(fl._at(fl.relative, dmin) * big, fl._at(fl.absolute, dmin))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.abs(np.diff(v)) / scale
+    return np.where(scale > 0, out, np.inf)
+
+
 EXCURSION_REL = 0.2
 """A stretch between two of the same velocity (an excursion that returns) is a change only
 when it differs from them by this fraction too (a ratio of 1.25; the steps are >= 1.3)."""
@@ -440,9 +470,9 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         exc = np.zeros(len(v), bool)
         exc[1:-1] = back & ~hold[1:-1]
         tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
-    score = np.minimum(z / z_min, rel / tol)
+    score = np.minimum(np.minimum(z / z_min, rel / tol), _slip_ratio(v, d, fl) / SLIP_MIN)
     one = hold[1:] ^ hold[:-1]
-    score = np.where(one, z / z_min, score)
+    score = np.where(one, np.minimum(z / z_min, _slip_ratio(v, d, fl) / SLIP_MIN), score)
     score = np.where(hold[1:] & hold[:-1], 0.0, score)
     if len(v) >= 3 and m > 0:
         # a transition: a stretch of < 2m samples between its neighbours' velocities (a
@@ -533,8 +563,11 @@ def detect_program(
             break
         bounds = new
     if blk > 1:
-        bounds = _place(t_all, x_all, [b * blk for b in bounds[:-1]] + [n], blk, sigma)
+        # each change found on block means moved to the best hinge on the samples between
+        # its neighbours (one vectorised pass per change: O(n) each, few changes)
         sigma_all = max(noise_level(x_all), 1e-9 * span, 1e-300)
+        bounds = refine(t_all, (x_all - x_all[0]) / sigma_all,
+                        [b * blk for b in bounds[:-1]] + [n], max(3, min_samples), 0.0)
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute)
         t, x = t_all, x_all
         fits = _Fits(t, x)
@@ -571,7 +604,7 @@ record's wander (:func:`.placement.place_changes`); a larger one is placed as we
 stretches (the shared record's, z ~ 1.4e3, stays at sample 16451)."""
 
 
-MAX_POINTS = 30_000
+MAX_POINTS = 2_000
 """Longest signal searched sample by sample; a longer one is searched on block means."""
 MAX_CANDIDATES = 80
 """Most candidate stretches (the largest white-noise gains) judged against the fluctuations."""
