@@ -63,8 +63,9 @@ def best_hinge(t: Array, x: Array, m: int, min_dur: float, compiled: bool = True
     if compiled:
         from .hinge_kernel import hinge_scan  # Numba: imported on first use only
 
-        k, g = hinge_scan(np.ascontiguousarray(t, dtype=np.float64),
-                          np.ascontiguousarray(x, dtype=np.float64), int(m), float(min_dur))
+        # contiguous, writable float64: one compiled specialisation (the one warm-up builds)
+        k, g = hinge_scan(np.require(t, np.float64, ["C", "W"]),
+                          np.require(x, np.float64, ["C", "W"]), int(m), float(min_dur))
         return int(k), float(g)
     n = len(t)
     if n < 2 * m + 1:
