@@ -90,12 +90,17 @@ class Fluctuations:
         ``r(T)``, non-increasing in ``T``.
     absolute : Array
         ``a(T)``, m/s, non-increasing in ``T``.
+    lag : float
+        The load point's position error per unit speed, s (a servo's error: the robust rms of
+        the displacement about the broken line over the speed, white noise taken out; inf
+        where not measured): what a stretch carries into its neighbours (:func:`_slip_ratio`).
     """
 
     sigma: float
     scales: Array
     relative: Array
     absolute: Array
+    lag: float = float("inf")
 
     def _at(self, q: Array, durations: Array) -> Array:
         """``q(T)`` interpolated in log-log; ``T**-0.5`` beyond the longest scale (a
@@ -205,6 +210,15 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         slope, mean, _ = line_fit(t[a:b], x[a:b])
         res[a:b] = x[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
         speed[a:b] = abs(v)
+    # the position error per unit speed, from the samples moving at least 5 % of the top
+    # speed (ours): the median of (res**2 - sigma**2) / speed**2, 2.198 times (a Gaussian's
+    # median of squares); unmeasured (inf) where the white noise hides it
+    fast = speed >= 0.05 * float(speed.max())
+    lag = float("inf")
+    if fast.sum() >= 24 and speed.max() > 0:
+        q = (res[fast] ** 2 - sigma**2) / speed[fast] ** 2
+        lag2 = 2.198 * float(np.median(q))
+        lag = float(np.sqrt(lag2)) if lag2 > 0 else float("inf")
     if n > 200_000:  # time-averaged blocks: windows of >= 5 blocks see the same slopes
         bl = n // 100_000
         m = n // bl
@@ -253,7 +267,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     # never less at a shorter scale than at a longer one
     r_arr = np.maximum.accumulate(np.asarray(rel)[::-1])[::-1]
     a_arr = np.maximum.accumulate(np.asarray(ab)[::-1])[::-1]
-    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr)
+    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr, lag)
 
 
 # ------------------------------------------------------------------------------ the program
@@ -306,15 +320,15 @@ between the tuning records' transients, below 1.1, and their weakest true change
 
 def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
     """The slip ``|v2 - v1| d`` of each inner boundary over the shorter stretch ``d`` beside
-    it, over the servo's position error there, ``r(d) d U`` (ours).
+    it, over the position error a servo may carry there, ``D U`` (ours).
 
-    The load point's wander is a position error of a servo, a displacement of about
-    ``r(T) T`` times the speed it was made at; the error left by a fast stretch relaxes
-    through the next ones, so a short stretch just after a fast one drifts by the *fast*
-    stretch's error: ``U`` is the largest speed of the two stretches and their outer
-    neighbours. A true change carries far more slip than that (a step of a few Dc, 8 s at
-    3 to 10 times the speed, carries 6-25 times it); the servo's settling after a large
-    change does not.
+    The load point's wander is a servo's position error, a displacement ``D`` (s) times the
+    speed it was made at, ``D = min(r(d) d, lag)`` (the wander over ``d``, at most the
+    record's measured position error, :class:`Fluctuations`). The error left by a fast stretch
+    relaxes through the next ones, so a short stretch just after a fast one drifts by the
+    *fast* stretch's error: ``U`` is the largest speed of the two stretches and their outer
+    neighbours. A true change carries far more slip than that; the servo's settling after a
+    large change does not.
     """
     u = np.abs(np.asarray(v, float))
     nb = np.maximum(u[1:], u[:-1])  # the two stretches beside each boundary
@@ -322,9 +336,10 @@ def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
     big[1:] = np.maximum(big[1:], u[:-2])  # the stretch before the left one
     big[:-1] = np.maximum(big[:-1], u[2:])  # the one after the right one
     dmin = np.minimum(d[1:], d[:-1])
-    scale = np.hypot(fl._at(fl.relative, dmin) * big, fl._at(fl.absolute, dmin))
+    lag = np.minimum(fl._at(fl.relative, dmin) * dmin, fl.lag)
+    scale = np.hypot(lag * big, fl._at(fl.absolute, dmin) * dmin)
     with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.abs(np.diff(v)) / scale
+        out = np.abs(np.diff(v)) * dmin / scale
     return np.where(scale > 0, out, np.inf)
 
 
@@ -453,7 +468,7 @@ def detect_program(
         sigma_all = max(noise_level(x_all), 1e-9 * span, 1e-300)
         bounds = refine(t_all, (x_all - x_all[0]) / sigma_all,
                         [b * blk for b in bounds[:-1]] + [n], max(3, min_samples), 0.0)
-        fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute)
+        fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
         t, x = t_all, x_all
         fits = _Fits(t, x)
     bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
