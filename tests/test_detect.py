@@ -129,6 +129,19 @@ def test_servo_settling_after_a_large_step_is_no_step() -> None:
         assert s.count_right and s.false == 0, (rec.name, s)
 
 
+def test_a_velocity_column_has_no_resets(tmp_path: Path) -> None:
+    # zoo record 139, a velocity column (1 Hz, then 10 Hz): integrated, its noisy increments
+    # were taken for dozens of displacement resets, which moved its one change 1.9 s; the
+    # mistake it is for: looking for a transducer's resets in a record with no displacement
+    prog, arts, dialect = next((p, a, d) for j, p, a, d in specs(140) if j == 139)
+    rec = make_record(139, prog, arts, dialect)
+    lab = read_record(write(rec, tmp_path))
+    assert lab.load_point is None
+    det = detect_program(lab)
+    assert det.resets == ()
+    assert score(rec, det, 0.0).right
+
+
 def test_compiled_hinge_is_the_numpy_hinge() -> None:
     # the mistake it is for: a sign or an index wrong in the compiled sums (e.g. the right
     # side's sum of (t - tk) x taken with + tk): another hinge, or another gain

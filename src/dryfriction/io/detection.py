@@ -439,7 +439,10 @@ def detect_program(
     if hold_velocity is not None and not hold_velocity >= 0.0:
         raise ValueError(f"hold_velocity = {hold_velocity:g} is out of range: allowed >= 0")
     t_all = np.asarray(record.time, float)
-    x_all, resets = find_resets(t_all, displacement(record))
+    # a reset is a displacement transducer's (re-zeroed): a velocity column integrated has
+    # none, and its noisy increments would only be taken for some
+    x_all, resets = (find_resets(t_all, displacement(record)) if record.load_point is not None
+                     else (displacement(record), []))
     n = len(t_all)
     # a long record is searched on the means of blocks (<= MAX_POINTS), each change then
     # placed on the samples near it: the cost stays linear in the length
