@@ -58,8 +58,8 @@ Artifacts (names used in :data:`ARTIFACTS`):
   ``drift``: a slow displacement drift of 2 um over the record;
   ``quant``: a coarse quantum of 0.1-0.5 um;
 * a velocity column (the ``velocity`` dialect) is the servo's reading: the load point's
-  velocity with 2 % white noise (no reset, drift or transducer noise: those are a
-  displacement transducer's);
+  velocity (the servo error's rate included) with 2 % white noise (no reset, drift or
+  transducer noise: those are a displacement transducer's);
 * ``normal``: the normal stress changes once (10 to 30 MPa, over a 2-10 s ramp), a segment
   boundary the detector must report.
 """

@@ -22,9 +22,12 @@ hold), beside the white noise of the transducer. Beyond the longest scale measur
 Steps (:func:`detect_program`): candidates are the slope changes of a continuous broken line
 (:func:`.segmentation.hinge_segments`, white-noise criterion, the 80 largest gains: too many
 under red noise, by design); each boundary gets the confidence ``z = |v2 - v1| / sqrt(e1**2 +
-e2**2)`` (the stretches' OLS slopes and their errors ``e`` from the fluctuations); the weakest
-boundary below ``z_min``, or with a relative change below ``rel_tol``, is removed and its
-neighbours re-placed, and the fluctuations measured again, until every boundary stands. An
+e2**2)`` (the stretches' OLS slopes and their errors ``e`` from the fluctuations), and must
+also carry slip beyond the servo's position error (``SLIP_MIN``, :func:`_slip_ratio`: the
+settling of the load point after a large change is no step); every weak boundary (below
+``z_min``, below ``SLIP_MIN``, or with a relative change below ``rel_tol``) that is weaker than
+both its neighbours is removed, their neighbours re-placed, and the fluctuations measured
+again, until every boundary stands. An
 excursion that returns to the same velocity must differ from it by ``EXCURSION_REL`` too; a
 stretch of fewer than ``2 min_samples`` samples between its neighbours' velocities is a
 transition (a change between two samples), not a step. Before that, displacement resets (a
@@ -32,7 +35,8 @@ jump in one sample that neither neighbouring velocity explains: a transducer re-
 taken out, and after it a normal-stress change splits a stretch (a segment boundary,
 reported). Sampling-rate changes and gaps are found and reported; they create no change, the
 fit being against time. A record longer than ``MAX_POINTS`` samples is searched on block
-means and each change then placed on the samples near it; a change of confidence below
+means and each change then moved to the best hinge on the samples between its neighbours
+(the hinge search is compiled: :mod:`.hinge_kernel`); a change of confidence below
 ``LOCAL_Z`` is finally placed by the maximum-likelihood hinge under the record's own wander
 (:mod:`.placement`: a slow wander bends the kink of the whole stretches).
 """
