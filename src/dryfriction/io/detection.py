@@ -115,6 +115,14 @@ class Fluctuations:
         out = np.where(q.max() > 0, out, 0.0)
         return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)
 
+    def relative_at(self, durations: Array) -> Array:
+        """``r(T)`` (1) at these durations (s)."""
+        return self._at(self.relative, durations)
+
+    def absolute_at(self, durations: Array) -> Array:
+        """``a(T)`` (m/s) at these durations (s)."""
+        return self._at(self.absolute, durations)
+
     def scatter(self, durations: Array, velocities: Array, sxx: Array) -> Array:
         """``e``, m/s, of stretches of these durations (s), velocities (m/s) and ``Sxx``
         (s^2)."""
@@ -340,8 +348,8 @@ def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
     big[1:] = np.maximum(big[1:], u[:-2])  # the stretch before the left one
     big[:-1] = np.maximum(big[:-1], u[2:])  # the one after the right one
     dmin = np.minimum(d[1:], d[:-1])
-    lag = np.minimum(fl._at(fl.relative, dmin) * dmin, fl.lag)
-    scale = np.hypot(lag * big, fl._at(fl.absolute, dmin) * dmin)
+    lag = np.minimum(fl.relative_at(dmin) * dmin, fl.lag)
+    scale = np.hypot(lag * big, fl.absolute_at(dmin) * dmin)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = np.abs(np.diff(v)) * dmin / scale
     return np.where(scale > 0, out, np.inf)
