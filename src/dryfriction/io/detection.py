@@ -63,11 +63,11 @@ __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "fi
 Z_MIN = 6.5
 """Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
 the null distribution (``python -m benchmarks bench_detect_null``: 150 seeded no-step zoo
-records, searched at 2): the largest ``z`` per record reached 6 on 2.0 % of them and 6.5 on
-1.3 % (6.08, 7.5 and 20) with the reset finder before the gap correction, and reaches 6.5 on
-2.0 % (7.5, 10.4 and 34: excursions of 20-30 % in short records with every artifact) after
-it, as at 6; the tuning records (zoo 0-149) lose no change between 6 and 6.5, one at 7.6. No
-threshold that keeps their weakest true change (z 6.7) brings the null under 1 %."""
+records, searched at 2): on the first zoo (a velocity random walk) the largest ``z`` per record
+reached 6.5 on 2.0 % of them (7.5, 10.4 and 34: excursions of 20-30 % in short records with
+every artifact), and the tuning records (zoo 0-149) lost no change between 6 and 6.5, one at
+7.6; on the zoo whose wander is a servo's position error, with the slip test, the largest is
+4.35 (a change found on 3 % of the records at 2, none at 6.5)."""
 Z_HOLD = 3.0
 """A stretch whose speed is below this many times its slope scatter is a hold."""
 
