@@ -52,7 +52,7 @@ from ..validation import Array
 from .artifacts import find_resets, normal_changes, sampling_changes
 from .labsteps import Segment, make_segments
 from .placement import place_changes
-from .segmentation import best_hinge, hinge_segments, line_fit, noise_level, refine
+from .segmentation import hinge_segments, line_fit, noise_level, refine
 
 if TYPE_CHECKING:
     from .lab import LabRecord
@@ -516,7 +516,7 @@ def detect_program(
 LOCAL_Z = 500.0
 """Below this confidence a change is placed by the generalised-least-squares hinge under the
 record's wander (:func:`.placement.place_changes`); a larger one is placed as well by the whole
-stretches (the shared record's, z ~ 1.4e3, stays at sample 16451)."""
+stretches (the shared record's, z ~ 760, stays at sample 16451)."""
 
 
 MAX_POINTS = 2_000
@@ -532,18 +532,6 @@ def _blocks(t: Array, x: Array, blk: int) -> tuple[Array, Array]:
     idx = np.arange(0, len(t), blk)
     cnt = np.diff(np.append(idx, len(t)))
     return np.add.reduceat(t, idx) / cnt, np.add.reduceat(x, idx) / cnt
-
-
-def _place(t: Array, x: Array, bounds: list[int], blk: int, sigma: float) -> list[int]:
-    """Each inner boundary found on block means moved to the best hinge on the samples within
-    two blocks of it."""
-    out = [0]
-    for j in range(1, len(bounds) - 1):
-        a = max(out[-1] + 1, bounds[j] - 2 * blk)
-        b = min(bounds[j + 1] - 1, bounds[j] + 2 * blk)
-        k, _ = best_hinge(t[a:b], (x[a:b] - x[a]) / sigma, max(1, min(3, (b - a) // 3)), 0.0)
-        out.append(a + k if k > 0 else bounds[j])
-    return out + [bounds[-1]]
 
 
 def _plateaus(t: Array, bounds: list[int], vel: list[float], hold: list[bool],
