@@ -126,8 +126,8 @@ def place_change(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2
         return guess
     tt = t[a:b]
     # block means, at most 128: the wander is smooth within a block, the white noise of a
-    # block falls as 1/count (256 placed the tuning records' changes no better, at 4 times
-    # the cost of the Cholesky factor)
+    # block falls as 1/count (256 before: 8 times the Cholesky factor's cost; its effect on
+    # the placements alone was not measured apart)
     k = max(1, int(np.ceil((b - a) / 128)))
     idx = np.arange(0, b - a, k)
     cnt = np.diff(np.append(idx, b - a)).astype(float)
