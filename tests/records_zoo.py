@@ -13,17 +13,43 @@ rate-and-state friction and the ageing law (Dieterich 1979; Ruina 1983), in the 
     dtau/dt = k (V_load - V),   d ln(theta)/dt = 1/theta - V/Dc
 
 Artifact levels are those measured on the shared sepiolite record
-(``examples/data/lab``, 0.2 -> 2 um/s, 7.4 Hz; ``benchmarks/bench_detect.py`` prints them):
-white displacement noise 0.17 um, a 20 nm quantum; the load point's velocity wanders by about
-8 % rms (residuals of 0.2 um rms in the 2-15 s band and 0.55 um in the 15-60 s band at 2 um/s,
-about a tenth of that at 0.2 um/s: a *relative* velocity fluctuation), friction noise 3.5e-4,
-normal-stress noise 1 kPa on 30 MPa. The servo bursts of the issue (3 -> 3.36 -> 3 um/s for
-0.5-3 s) are added as +-12 % velocity excursions of 0.5-3 s.
+(``examples/data/lab``, 0.2 -> 2 um/s, 7.4 Hz): white displacement noise 0.17 um, a 20 nm
+quantum, friction noise 3.5e-4, normal-stress noise 1 kPa on 30 MPa. The load point's own
+fluctuations are calibrated on that record's noise spectrum, the relative scatter of the
+slopes of adjacent windows of 2 to 80 s (``python -m benchmarks bench_detect_levels`` prints
+the record's and the zoo's side by side; at 2 um/s the zoo's servo error with the machine
+oscillation is within a factor 1.4 of the record's at every scale of 2-80 s).
+
+The servo (ours; the standard picture of a load point under position feedback, e.g. Ogata,
+*Modern Control Engineering*, 5th ed., ch. 5: a type-1 loop tracks a ramp with a bounded
+error): the commanded displacement is followed by a position loop, so what wanders is the
+*position error* ``e``, a stationary displacement process, not the velocity (whose
+integrated wander, a random walk, would grow without bound). A disturbance of the drive
+proportional to its speed (a motor's or a screw's ripple: the shared record's wander is the
+same fraction of the velocity at 0.2 and 2 um/s) is corrected by the loop with time constant
+``SERVO_TAU``::
+
+    de/dt = -e / SERVO_TAU + V_load(t) eta(t),   x = x_commanded + e
+
+``eta`` an Ornstein-Uhlenbeck process of rms ``SERVO_RMS`` and correlation time
+``SERVO_ETA_TAU``. Over windows shorter than ``SERVO_TAU`` the velocity wanders as ``eta``
+does; over longer ones the slope scatter falls like a bounded displacement's (as ``1/T`` and
+faster), as the shared record's does (0.006 and 0.004 of the velocity at 40 and 80 s).
+``e`` is continuous through a velocity change (no jump of the load point at a step) and
+relaxes to 0 in a hold. The machine oscillation (``wobble``) is a velocity oscillation, a
+bounded displacement too. The servo bursts of the issue (3 -> 3.36 -> 3 um/s for 0.5-3 s)
+are added as +-12 % velocity excursions of 0.5-3 s.
+
+A harsher **stress family** (:func:`stress_specs`, reported apart from the target rates by
+``bench_detect``) replaces the servo error by the zoo's first wander model, an
+Ornstein-Uhlenbeck process on the *velocity* (``walk``: 8 % rms, 3 s): its displacement is a
+random walk, 5-6 times the shared record's slope scatter at 40-80 s.
 
 Artifacts (names used in :data:`ARTIFACTS`):
 
-* ``red``: the relative velocity wander, an Ornstein-Uhlenbeck process of correlation time 3 s
-  and 8 % rms; ``wobble``: the machine oscillation, 6 % at 22 s and 4 % at 45 s periods;
+* ``red``: the servo's position error (above); ``walk`` (stress family only): a relative
+  velocity wander, Ornstein-Uhlenbeck of 8 % rms and 3 s; ``wobble``: the machine
+  oscillation, 6 % at 22 s and 4 % at 45 s periods;
   ``bursts``: 3 to 8 servo bursts;
 * ``rate``: the sampling rate changes 10-fold (up, or down from >= 10 Hz) at a random time or
   at a change; ``irregular``: sampling intervals jittered by +-30 %; ``gaps``: 1 to 3 missing
@@ -32,8 +58,8 @@ Artifacts (names used in :data:`ARTIFACTS`):
   ``drift``: a slow displacement drift of 2 um over the record;
   ``quant``: a coarse quantum of 0.1-0.5 um;
 * a velocity column (the ``velocity`` dialect) is the servo's reading: the load point's
-  velocity with 2 % white noise (no reset, drift or transducer noise: those are a
-  displacement transducer's);
+  velocity (the servo error's rate included) with 2 % white noise (no reset, drift or
+  transducer noise: those are a displacement transducer's);
 * ``normal``: the normal stress changes once (10 to 30 MPa, over a 2-10 s ramp), a segment
   boundary the detector must report.
 """
@@ -55,7 +81,8 @@ DIALECTS = ("tab_um", "comma_mm", "semicolon_decimal_comma", "space_units_row", 
 
 WHITE = 0.17e-6  # m, displacement noise (shared record)
 QUANTUM = 20e-9  # m (shared record's smallest increment)
-RED_RMS, RED_TAU = 0.08, 3.0  # relative velocity wander, s
+SERVO_RMS, SERVO_ETA_TAU, SERVO_TAU = 0.08, 1.0, 3.0  # servo disturbance (1, s), loop (s)
+WALK_RMS, WALK_TAU = 0.08, 3.0  # stress family: relative velocity wander (1, s)
 WOBBLE = ((0.06, 22.0), (0.04, 45.0))  # (relative amplitude, period s)
 MU_NOISE, SN_NOISE = 3.5e-4, 1e3
 
@@ -181,6 +208,20 @@ def _ou(t: np.ndarray, tau: float, rms: float, rng: np.random.Generator) -> np.n
     return out
 
 
+def servo_error(t: np.ndarray, v: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """The load point's position error ``e`` (m) at times ``t`` under the commanded velocity
+    ``v`` (m/s): ``de/dt = -e / SERVO_TAU + v eta`` (module docstring), ``eta`` held over each
+    interval (exact exponential update), started at its quasi-static value."""
+    eta = _ou(t, SERVO_ETA_TAU, SERVO_RMS, rng)
+    rho = np.exp(-np.diff(t) / SERVO_TAU)
+    drive = v[:-1] * eta[:-1] * SERVO_TAU * (1.0 - rho)
+    e = np.empty_like(t)
+    e[0] = v[0] * eta[0] * SERVO_TAU
+    for i in range(1, t.size):
+        e[i] = rho[i - 1] * e[i - 1] + drive[i - 1]
+    return e
+
+
 def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: str,
                 seed: int = 0) -> ZooRecord:
     """The zoo record ``index`` (its own seed: ``seed * 100003 + index``)."""
@@ -204,10 +245,11 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     vl = np.zeros_like(t)
     for s, v in prog:
         vl[t >= s] = v
-    # the load point's motion: the commanded velocity times (1 + the relative wander)
+    # the load point's motion: the commanded velocity times (1 + the relative velocity
+    # fluctuations), then the servo's position error
     eps = np.zeros_like(t)
-    if "red" in artifacts:
-        eps += _ou(t, RED_TAU, RED_RMS, rng)
+    if "walk" in artifacts:
+        eps += _ou(t, WALK_TAU, WALK_RMS, rng)
     if "wobble" in artifacts:
         for amp, per in WOBBLE:
             eps += amp * np.sin(2 * np.pi * t / per + rng.uniform(0, 2 * np.pi))
@@ -217,6 +259,11 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
             eps += np.where((t >= s) & (t < s + w), rng.choice([-0.12, 0.12]), 0.0)
     vt = vl * (1.0 + eps)
     x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
+    if "red" in artifacts:
+        e = servo_error(t, vl, rng)
+        x += e
+        # the servo's velocity reading sees the error's rate too
+        vt = vt + np.gradient(e, t)
     x += 1e-3 + rng.normal(0.0, WHITE, t.size)
     if "drift" in artifacts:
         x += 2e-6 * np.sin(np.pi * t / end + rng.uniform(0, np.pi))
@@ -268,6 +315,15 @@ def specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:
             arts = tuple(a for a in arts if a != "normal") + ("normal",)
         yield i, prog, arts, DIALECTS[i % len(DIALECTS)]
         i += 1
+
+
+def stress_specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:
+    """The stress family (module docstring): each of :func:`specs`' first ``n`` records with
+    the servo error (``red``) in it, with the velocity random walk (``walk``) instead, from the
+    same seed. Not part of the target rates."""
+    for i, prog, arts, dialect in specs(n):
+        if "red" in arts:
+            yield i, prog, tuple("walk" if a == "red" else a for a in arts), dialect
 
 
 def write(rec: ZooRecord, folder: Path) -> Path:

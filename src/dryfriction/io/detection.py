@@ -22,9 +22,12 @@ hold), beside the white noise of the transducer. Beyond the longest scale measur
 Steps (:func:`detect_program`): candidates are the slope changes of a continuous broken line
 (:func:`.segmentation.hinge_segments`, white-noise criterion, the 80 largest gains: too many
 under red noise, by design); each boundary gets the confidence ``z = |v2 - v1| / sqrt(e1**2 +
-e2**2)`` (the stretches' OLS slopes and their errors ``e`` from the fluctuations); the weakest
-boundary below ``z_min``, or with a relative change below ``rel_tol``, is removed and its
-neighbours re-placed, and the fluctuations measured again, until every boundary stands. An
+e2**2)`` (the stretches' OLS slopes and their errors ``e`` from the fluctuations), and must
+also carry slip beyond the servo's position error (``SLIP_MIN``, :func:`_slip_ratio`: the
+settling of the load point after a large change is no step); every weak boundary (below
+``z_min``, below ``SLIP_MIN``, or with a relative change below ``rel_tol``) that is weaker than
+both its neighbours is removed, their neighbours re-placed, and the fluctuations measured
+again, until every boundary stands. An
 excursion that returns to the same velocity must differ from it by ``EXCURSION_REL`` too; a
 stretch of fewer than ``2 min_samples`` samples between its neighbours' velocities is a
 transition (a change between two samples), not a step. Before that, displacement resets (a
@@ -32,7 +35,8 @@ jump in one sample that neither neighbouring velocity explains: a transducer re-
 taken out, and after it a normal-stress change splits a stretch (a segment boundary,
 reported). Sampling-rate changes and gaps are found and reported; they create no change, the
 fit being against time. A record longer than ``MAX_POINTS`` samples is searched on block
-means and each change then placed on the samples near it; a change of confidence below
+means and each change then moved to the best hinge on the samples between its neighbours
+(the hinge search is compiled: :mod:`.hinge_kernel`); a change of confidence below
 ``LOCAL_Z`` is finally placed by the maximum-likelihood hinge under the record's own wander
 (:mod:`.placement`: a slow wander bends the kink of the whole stretches).
 """
@@ -45,30 +49,27 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..validation import Array
+from .artifacts import find_resets, normal_changes, sampling_changes
 from .labsteps import Segment, make_segments
 from .placement import place_changes
-from .segmentation import best_hinge, hinge_segments, line_fit, noise_level, refine
+from .segmentation import hinge_segments, line_fit, noise_level, refine
 
 if TYPE_CHECKING:
     from .lab import LabRecord
 
-__all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments",
+__all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "Z_MIN"]
 
 Z_MIN = 6.5
 """Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
 the null distribution (``python -m benchmarks bench_detect_null``: 150 seeded no-step zoo
-records, searched at 2): the largest ``z`` per record reached 6 on 2.0 % of them and 6.5 on
-1.3 % (6.08, 7.5 and 20) with the reset finder before the gap correction, and reaches 6.5 on
-2.0 % (7.5, 10.4 and 34: excursions of 20-30 % in short records with every artifact) after
-it, as at 6; the tuning records (zoo 0-149) lose no change between 6 and 6.5, one at 7.6. No
-threshold that keeps their weakest true change (z 6.7) brings the null under 1 %."""
+records, searched at 2): on the first zoo (a velocity random walk) the largest ``z`` per record
+reached 6.5 on 2.0 % of them (7.5, 10.4 and 34: excursions of 20-30 % in short records with
+every artifact), and the tuning records (zoo 0-149) lost no change between 6 and 6.5, one at
+7.6; on the zoo whose wander is a servo's position error, with the slip test, the largest is
+4.35 (a change found on 3 % of the records at 2, none at 6.5)."""
 Z_HOLD = 3.0
 """A stretch whose speed is below this many times its slope scatter is a hold."""
-_RESET_K = 15.0  # a reset's jump, in robust scales of the increments' scatter
-_NORMAL_REL = 0.03  # a normal-stress change: at least 3 % of the level ...
-_NORMAL_K = 10.0  # ... and 10 robust scales of its block-to-block scatter
-_RATE_FACTOR = 1.5  # a sampling-rate change: the median interval changes by this factor
 
 
 @dataclass(frozen=True)
@@ -93,12 +94,17 @@ class Fluctuations:
         ``r(T)``, non-increasing in ``T``.
     absolute : Array
         ``a(T)``, m/s, non-increasing in ``T``.
+    lag : float
+        The load point's position error per unit speed, s (a servo's error: the robust rms of
+        the displacement about the broken line over the speed, white noise taken out; inf
+        where not measured): what a stretch carries into its neighbours (:func:`_slip_ratio`).
     """
 
     sigma: float
     scales: Array
     relative: Array
     absolute: Array
+    lag: float = float("inf")
 
     def _at(self, q: Array, durations: Array) -> Array:
         """``q(T)`` interpolated in log-log; ``T**-0.5`` beyond the longest scale (a
@@ -108,6 +114,14 @@ class Fluctuations:
         out = np.exp(np.interp(np.log(d), np.log(T), np.log(np.maximum(q, 1e-300))))
         out = np.where(q.max() > 0, out, 0.0)
         return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)
+
+    def relative_at(self, durations: Array) -> Array:
+        """``r(T)`` (1) at these durations (s)."""
+        return self._at(self.relative, durations)
+
+    def absolute_at(self, durations: Array) -> Array:
+        """``a(T)`` (m/s) at these durations (s)."""
+        return self._at(self.absolute, durations)
 
     def scatter(self, durations: Array, velocities: Array, sxx: Array) -> Array:
         """``e``, m/s, of stretches of these durations (s), velocities (m/s) and ``Sxx``
@@ -208,6 +222,15 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         slope, mean, _ = line_fit(t[a:b], x[a:b])
         res[a:b] = x[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
         speed[a:b] = abs(v)
+    # the position error per unit speed, from the samples moving at least 5 % of the top
+    # speed (ours): the median of (res**2 - sigma**2) / speed**2, 2.198 times (a Gaussian's
+    # median of squares); unmeasured (inf) where the white noise hides it
+    fast = speed >= 0.05 * float(speed.max())
+    lag = float("inf")
+    if fast.sum() >= 24 and speed.max() > 0:
+        q = (res[fast] ** 2 - sigma**2) / speed[fast] ** 2
+        lag2 = 2.198 * float(np.median(q))
+        lag = float(np.sqrt(lag2)) if lag2 > 0 else float("inf")
     if n > 200_000:  # time-averaged blocks: windows of >= 5 blocks see the same slopes
         bl = n // 100_000
         m = n // bl
@@ -256,151 +279,33 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     # never less at a shorter scale than at a longer one
     r_arr = np.maximum.accumulate(np.asarray(rel)[::-1])[::-1]
     a_arr = np.maximum.accumulate(np.asarray(ab)[::-1])[::-1]
-    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr)
-
-
-# ------------------------------------------------------------------------------ artifacts
-def _local_rate(rate: Array, side: str, k: int = 5) -> Array:
-    """Median of the ``k`` increment rates before (``side='before'``) or after each increment
-    (the record's first or last rate standing in beyond its ends)."""
-    n = len(rate)
-    pad = np.concatenate([np.full(k, rate[0]), rate, np.full(k, rate[-1])])
-    win = np.lib.stride_tricks.sliding_window_view(pad, k)
-    # window j covers pad[j:j+k] = rate[j-k:j]: before increment i is window i, after is i+k+1
-    idx = np.arange(n) + (0 if side == "before" else k + 1)
-    return np.median(win[np.minimum(idx, len(win) - 1)], axis=1)
-
-
-def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
-    """``x`` with its resets taken out, and the increments ``i`` (``x[i] -> x[i+1]``) that were.
-
-    A reset is one increment outside the range that the velocities just before and just after
-    it explain, by more than :data:`_RESET_K` robust scales of the increments' scatter (ours).
-    """
-    d = np.diff(x)
-    dt = np.diff(t)
-    if d.size < 12:
-        return x, []
-    rate = d / dt
-    vb, va = _local_rate(rate, "before"), _local_rate(rate, "after")
-    vb = np.where(np.isfinite(vb), vb, va)
-    va = np.where(np.isfinite(va), va, vb)
-    lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
-    e = d - vb * dt  # the increment less the slip the velocity just before gives
-    e = e[np.isfinite(e)]
-    spread = 1.4826 * float(np.median(np.abs(e - np.median(e)))) if e.size else 0.0
-    nz = np.abs(d[d != 0.0])
-    quantum = float(nz.min()) if nz.size else 0.0
-    scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
-    # the local rates are medians of 5 noisy increment rates: their error, times an
-    # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
-    # hundreds of intervals), so it widens the range by 3 of its scales (1.2533: a median's)
-    r = (rate - vb)[np.isfinite(rate - vb)]
-    s_v = 1.2533 * 1.4826 * float(np.median(np.abs(r - np.median(r)))) / np.sqrt(5.0) if (
-        r.size) else 0.0
-    lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
-    jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
-    if jump.size == 0:
-        return x, []
-    fix = np.zeros_like(x)
-    edges = [0] + [int(i) + 1 for i in jump] + [len(x)]
-    for j, i in enumerate(jump):
-        # the offset: one line with a step at the jump, fitted to up to 30 samples a side
-        a, b = max(edges[j], i + 1 - 30), min(edges[j + 2], i + 1 + 30)
-        tt = t[a:b] - t[i]
-        A = np.column_stack([np.ones(b - a), tt, (np.arange(a, b) > i).astype(float)])
-        fix[i + 1:] -= np.linalg.lstsq(A, x[a:b], rcond=None)[0][2]
-    return x + fix, [int(i) for i in jump]
-
-
-def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float]]:
-    """Times of sampling-rate changes and of gaps (see :class:`Detection`)."""
-    dt = np.diff(t)
-    if dt.size < 2 * block:
-        return [], []
-    med = float(np.median(dt))
-    m = dt.size // block
-    bm = np.median(dt[: m * block].reshape(m, block), axis=1)
-    changes: list[float] = []
-    ratio = bm[1:] / bm[:-1]
-    for j in np.flatnonzero((ratio > _RATE_FACTOR) | (ratio < 1.0 / _RATE_FACTOR)):
-        seg = dt[j * block:(j + 2) * block]
-        new = bm[j + 1]
-        k = int(np.argmax(np.abs(np.log(seg / new)) < np.log(1.2)))  # first at the new rate
-        changes.append(float(t[j * block + k]))
-    gap = np.flatnonzero(dt > 10.0 * np.maximum(med, np.concatenate([[med], dt[:-1]])))
-    return changes, [float(t[i]) for i in gap]
-
-
-def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[int]:
-    """Sample indices where the normal stress (or force) changes level (module docstring)."""
-    if sn is None or len(sn) < 4 * min_samples:
-        return []
-    sn = np.asarray(sn, float)
-    block = max(min_samples // 2, len(sn) // 2000, 1)
-    m = len(sn) // block
-    bm = np.median(sn[: m * block].reshape(m, block), axis=1)
-    noise = 1.4826 * float(np.median(np.abs(np.diff(bm) - np.median(np.diff(bm)))))
-    out: list[int] = []
-    todo = [(0, m)]
-    while todo:
-        a, b = todo.pop()
-        if b - a < 4:
-            continue
-        c = np.cumsum(bm[a:b])
-        k = np.arange(2, b - a - 1)
-        left = c[k - 1] / k
-        right = (c[-1] - c[k - 1]) / (b - a - k)
-        gain = np.abs(left - right) * np.sqrt(k * (b - a - k) / (b - a))
-        j = int(np.argmax(gain))
-        diff = abs(left[j] - right[j])
-        level = max(abs(left[j]), abs(right[j]))
-        if diff >= _NORMAL_REL * level and diff >= _NORMAL_K * noise:
-            kk = a + int(k[j])
-            out.append(kk)
-            todo += [(a, kk), (kk, b)]
-    # a ramp splits many times: changes within 30 s (or 10 blocks) of each other are one,
-    # placed where the level crosses half-way between the levels outside the cluster
-    tb = t[: m * block].reshape(m, block)[:, 0]
-    gap = max(30.0, 10 * block * float(np.median(np.diff(t))))
-    clusters: list[list[int]] = []
-    for kk in sorted(out):
-        if clusters and tb[kk] - tb[clusters[-1][-1]] <= gap:
-            clusters[-1].append(kk)
-        else:
-            clusters.append([kk])
-    idx = []
-    for c in clusters:
-        lo_b, hi_b = c[0], c[-1]
-        before = float(np.median(bm[max(lo_b - 5, 0):lo_b]))
-        after = float(np.median(bm[hi_b:min(hi_b + 5, m)]))
-        lo, hi = max((lo_b - 2) * block, 0), min((hi_b + 2) * block, len(sn))
-        mid = 0.5 * (before + after)
-        seg = sn[lo:hi]
-        cross = np.flatnonzero(seg >= mid if after > before else seg <= mid)
-        idx.append(lo + int(cross[0]) if cross.size else lo_b * block)
-    return idx
+    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr, lag)
 
 
 # ------------------------------------------------------------------------------ the program
 class _Fits:
-    """OLS line of each stretch ``[a, b)``, cached (a removal touches two stretches)."""
+    """OLS line of each stretch between boundaries, all stretches at once (a few passes over
+    their samples, not one Python call per stretch)."""
 
     def __init__(self, t: Array, x: Array) -> None:
-        self.t, self.x, self.cache = t, x, {}  # type: ignore[var-annotated]
-
-    def __call__(self, a: int, b: int) -> tuple[float, float, float]:
-        """(velocity m/s, duration s, Sxx s^2) of the stretch."""
-        key = (a, b)
-        if key not in self.cache:
-            slope, _, sxx = line_fit(self.t[a:b], self.x[a:b])
-            self.cache[key] = (slope, float(self.t[b - 1] - self.t[a]), sxx)
-        return self.cache[key]
+        self.t, self.x = t, x
 
     def table(self, bounds: list[int]) -> tuple[Array, Array, Array]:
-        """Velocities, durations and ``Sxx`` of the stretches between ``bounds``."""
-        vds = np.array([self(a, b) for a, b in zip(bounds[:-1], bounds[1:], strict=True)])
-        return vds[:, 0], vds[:, 1], vds[:, 2]
+        """Velocities (m/s), durations (s) and ``Sxx`` (s^2) of the stretches between
+        ``bounds`` (increasing sample indices; only the samples between the first and the last
+        are read)."""
+        b = np.asarray(bounds, np.int64)
+        lo = int(b[0])
+        t, x = self.t[lo:b[-1]], self.x[lo:b[-1]]
+        a = b[:-1] - lo
+        cnt = np.diff(b)
+        seg = np.repeat(np.arange(a.size), cnt)
+        tc = t - (np.add.reduceat(t, a) / cnt)[seg]  # centred in each stretch: no cancellation
+        xc = x - (np.add.reduceat(x, a) / cnt)[seg]
+        sxx = np.add.reduceat(tc * tc, a)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            v = np.where(sxx > 0, np.add.reduceat(tc * xc, a) / sxx, 0.0)
+        return v, self.t[b[1:] - 1] - self.t[b[:-1]], sxx
 
 
 def _is_hold(v: Array, d: Array, sxx: Array, fl: Fluctuations, floor: float,
@@ -417,6 +322,37 @@ def _z(fits: _Fits, fl: Fluctuations, bounds: list[int]) -> Array:
     v, d, sxx = fits.table(bounds)
     e = fl.scatter(d, v, sxx)
     return np.abs(np.diff(v)) / np.hypot(e[1:], e[:-1])
+
+
+SLIP_MIN = 3.0
+"""The slip a change carries over the shorter of its two stretches, against the position
+error a servo may carry there (:func:`_slip_ratio`), must reach this (ours; set a priori
+between the tuning records' transients, below 1.1, and their weakest true changes, above 5)."""
+
+
+def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
+    """The slip ``|v2 - v1| d`` of each inner boundary over the shorter stretch ``d`` beside
+    it, over the position error a servo may carry there, ``D U`` (ours).
+
+    The load point's wander is a servo's position error, a displacement ``D`` (s) times the
+    speed it was made at, ``D = min(r(d) d, lag)`` (the wander over ``d``, at most the
+    record's measured position error, :class:`Fluctuations`). The error left by a fast stretch
+    relaxes through the next ones, so a short stretch just after a fast one drifts by the
+    *fast* stretch's error: ``U`` is the largest speed of the two stretches and their outer
+    neighbours. A true change carries far more slip than that; the servo's settling after a
+    large change does not.
+    """
+    u = np.abs(np.asarray(v, float))
+    nb = np.maximum(u[1:], u[:-1])  # the two stretches beside each boundary
+    big = nb.copy()
+    big[1:] = np.maximum(big[1:], u[:-2])  # the stretch before the left one
+    big[:-1] = np.maximum(big[:-1], u[2:])  # the one after the right one
+    dmin = np.minimum(d[1:], d[:-1])
+    lag = np.minimum(fl.relative_at(dmin) * dmin, fl.lag)
+    scale = np.hypot(lag * big, fl.absolute_at(dmin) * dmin)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.abs(np.diff(v)) * dmin / scale
+    return np.where(scale > 0, out, np.inf)
 
 
 EXCURSION_REL = 0.2
@@ -440,9 +376,9 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         exc = np.zeros(len(v), bool)
         exc[1:-1] = back & ~hold[1:-1]
         tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
-    score = np.minimum(z / z_min, rel / tol)
+    score = np.minimum(np.minimum(z / z_min, rel / tol), _slip_ratio(v, d, fl) / SLIP_MIN)
     one = hold[1:] ^ hold[:-1]
-    score = np.where(one, z / z_min, score)
+    score = np.where(one, np.minimum(z / z_min, _slip_ratio(v, d, fl) / SLIP_MIN), score)
     score = np.where(hold[1:] & hold[:-1], 0.0, score)
     if len(v) >= 3 and m > 0:
         # a transition: a stretch of < 2m samples between its neighbours' velocities (a
@@ -461,12 +397,18 @@ def _prune(t: Array, x: Array, xs: Array, bounds: list[int], fl: Fluctuations, f
     """Remove the weakest boundary until each stands (module docstring)."""
     while len(bounds) > 2:
         score = _scores(fits, fl, bounds, rel_tol, z_min, floor, given, m)
-        worst = int(np.argmin(score)) + 1
-        if score[worst - 1] >= 1.0:
+        weak = score < 1.0
+        if not weak.any():
             break
-        near = {bounds[worst - 1], bounds[worst + 1]}
-        bounds = bounds[:worst] + bounds[worst + 1:]
-        bounds = refine(t, xs, bounds, m, 0.0, only=near - {0, len(t)})
+        # every weak boundary weaker than both its neighbours goes at once (never two
+        # neighbours: each removal touches only its own two stretches), its neighbours
+        # re-placed; the weakest first in each neighbourhood, as one by one, in a few passes
+        # (the cost of one by one is a pass per candidate)
+        s = np.concatenate([[np.inf], score, [np.inf]])
+        go = set((np.flatnonzero(weak & (score <= s[:-2]) & (score < s[2:])) + 1).tolist())
+        near = {bounds[j + d] for j in go for d in (-1, 1)} - {0, len(t)}
+        bounds = [q for j, q in enumerate(bounds) if j not in go]
+        bounds = refine(t, xs, bounds, m, 0.0, only=near)
     return bounds
 
 
@@ -509,7 +451,10 @@ def detect_program(
     if hold_velocity is not None and not hold_velocity >= 0.0:
         raise ValueError(f"hold_velocity = {hold_velocity:g} is out of range: allowed >= 0")
     t_all = np.asarray(record.time, float)
-    x_all, resets = find_resets(t_all, displacement(record))
+    # a reset is a displacement transducer's (re-zeroed): a velocity column integrated has
+    # none, and its noisy increments would only be taken for some
+    x_all, resets = (find_resets(t_all, displacement(record)) if record.load_point is not None
+                     else (displacement(record), []))
     n = len(t_all)
     # a long record is searched on the means of blocks (<= MAX_POINTS), each change then
     # placed on the samples near it: the cost stays linear in the length
@@ -533,9 +478,12 @@ def detect_program(
             break
         bounds = new
     if blk > 1:
-        bounds = _place(t_all, x_all, [b * blk for b in bounds[:-1]] + [n], blk, sigma)
+        # each change found on block means moved to the best hinge on the samples between
+        # its neighbours (one vectorised pass per change: O(n) each, few changes)
         sigma_all = max(noise_level(x_all), 1e-9 * span, 1e-300)
-        fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute)
+        bounds = refine(t_all, (x_all - x_all[0]) / sigma_all,
+                        [b * blk for b in bounds[:-1]] + [n], max(3, min_samples), 0.0)
+        fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
         t, x = t_all, x_all
         fits = _Fits(t, x)
     bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
@@ -568,10 +516,10 @@ def detect_program(
 LOCAL_Z = 500.0
 """Below this confidence a change is placed by the generalised-least-squares hinge under the
 record's wander (:func:`.placement.place_changes`); a larger one is placed as well by the whole
-stretches (the shared record's, z ~ 1.4e3, stays at sample 16451)."""
+stretches (the shared record's, z ~ 760, stays at sample 16451)."""
 
 
-MAX_POINTS = 30_000
+MAX_POINTS = 2_000
 """Longest signal searched sample by sample; a longer one is searched on block means."""
 MAX_CANDIDATES = 80
 """Most candidate stretches (the largest white-noise gains) judged against the fluctuations."""
@@ -584,18 +532,6 @@ def _blocks(t: Array, x: Array, blk: int) -> tuple[Array, Array]:
     idx = np.arange(0, len(t), blk)
     cnt = np.diff(np.append(idx, len(t)))
     return np.add.reduceat(t, idx) / cnt, np.add.reduceat(x, idx) / cnt
-
-
-def _place(t: Array, x: Array, bounds: list[int], blk: int, sigma: float) -> list[int]:
-    """Each inner boundary found on block means moved to the best hinge on the samples within
-    two blocks of it."""
-    out = [0]
-    for j in range(1, len(bounds) - 1):
-        a = max(out[-1] + 1, bounds[j] - 2 * blk)
-        b = min(bounds[j + 1] - 1, bounds[j] + 2 * blk)
-        k, _ = best_hinge(t[a:b], (x[a:b] - x[a]) / sigma, max(1, min(3, (b - a) // 3)), 0.0)
-        out.append(a + k if k > 0 else bounds[j])
-    return out + [bounds[-1]]
 
 
 def _plateaus(t: Array, bounds: list[int], vel: list[float], hold: list[bool],

@@ -54,8 +54,19 @@ def line_fit(t: Array, x: Array) -> tuple[float, float, float]:
     return slope, float(xm), sxx
 
 
-def best_hinge(t: Array, x: Array, m: int, min_dur: float) -> tuple[int, float]:
-    """Best hinge sample ``k`` (``m <= k <= n - m``) and the RSS it saves over one line."""
+def best_hinge(t: Array, x: Array, m: int, min_dur: float, compiled: bool = True
+               ) -> tuple[int, float]:
+    """Best hinge sample ``k`` (``m <= k <= n - m``) and the RSS it saves over one line.
+
+    Compiled (:func:`.hinge_kernel.hinge_scan`, the same sums sample by sample) unless
+    ``compiled=False``: this NumPy form is the reference it is tested against."""
+    if compiled:
+        from .hinge_kernel import hinge_scan  # Numba: imported on first use only
+
+        # contiguous, writable float64: one compiled specialisation (the one warm-up builds)
+        k, g = hinge_scan(np.require(t, np.float64, ["C", "W"]),
+                          np.require(x, np.float64, ["C", "W"]), int(m), float(min_dur))
+        return int(k), float(g)
     n = len(t)
     if n < 2 * m + 1:
         return -1, 0.0
