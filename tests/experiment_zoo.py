@@ -28,7 +28,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from records_zoo import MU_NOISE, QUANTUM, SN_NOISE, WHITE, ZooRecord, friction
+from records_zoo import (
+    MU_NOISE,
+    QUANTUM,
+    SERVO_RMS,
+    SN_NOISE,
+    WHITE,
+    ZooRecord,
+    friction,
+    servo_error,
+)
 
 __all__ = ["Level", "LEVELS", "VELOCITIES", "ExperimentRecord", "make_experiment"]
 
@@ -106,7 +115,8 @@ def make_experiment(seed: int = 0, *, levels: tuple[Level, ...] = LEVELS,
     dx : float
         Load-point travel per sample, m (rate 1 Hz to 1 kHz).
     red : float
-        Relative velocity wander (``records_zoo``'s ``red`` artifact, 3 s correlation), rms.
+        The servo's relative velocity disturbance, rms (``records_zoo``'s ``red`` artifact,
+        whose position error it scales).
     ramp : float
         Duration of the normal-stress ramp between levels, s.
     machine : float
@@ -128,13 +138,9 @@ def make_experiment(seed: int = 0, *, levels: tuple[Level, ...] = LEVELS,
     vl = np.zeros_like(t)
     for s, v, _ in body:
         vl[t >= s] = v
-    eps = np.zeros_like(t)
-    if red > 0.0:
-        from records_zoo import RED_TAU, _ou
-
-        eps = _ou(t, RED_TAU, red, rng)
-    vt = vl * (1.0 + eps)
-    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (vl[1:] + vl[:-1]) * np.diff(t))])
+    if red > 0.0:  # the servo's position error, its disturbance scaled to red (rms)
+        x = x + red / SERVO_RMS * servo_error(t, vl, rng)
     x = np.round((x + 1e-3 + rng.normal(0.0, WHITE, t.size)) / QUANTUM) * QUANTUM
     # friction, level by level: each starts in steady state at its first velocity
     mu = np.empty_like(t)
