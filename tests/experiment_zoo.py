@@ -139,8 +139,10 @@ def make_experiment(seed: int = 0, *, levels: tuple[Level, ...] = LEVELS,
     for s, v, _ in body:
         vl[t >= s] = v
     x = np.concatenate([[0.0], np.cumsum(0.5 * (vl[1:] + vl[:-1]) * np.diff(t))])
+    vt = vl
     if red > 0.0:  # the servo's position error, its disturbance scaled to red (rms)
         x = x + red / SERVO_RMS * servo_error(t, vl, rng)
+        vt = np.gradient(x, t)  # what the servo reads: its error's rate included
     x = np.round((x + 1e-3 + rng.normal(0.0, WHITE, t.size)) / QUANTUM) * QUANTUM
     # friction, level by level: each starts in steady state at its first velocity
     mu = np.empty_like(t)
