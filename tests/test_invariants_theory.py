@@ -1,0 +1,161 @@
+"""Physical functions of theory/ and rsf/ at generic points against independent routes
+(issue 25 items 1 and 5).
+
+Routes: a finite difference of another public function (the steady friction curve's slope is
+``a - b`` of any rate-and-state twin; ``d g/d ln V`` is the direct coefficient), the junction
+strength written here from Baumberger & Caroli's form, the closed-form Rice & Ruina critical
+stiffness against the eigenvalues of the exact Jacobian, and the model's monotonicities
+(static friction non-decreasing in the waiting time; the Dieterich time ``C/u`` where the two
+curves meet). The direct effect is always taken at ``u != v_ref``, where ``g != 1``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dryfriction.rsf.driving import linear_stability
+from dryfriction.rsf.law import RateState
+from dryfriction.theory.dieterich import dieterich_constant_local
+from dryfriction.theory.direct import (
+    instantaneous_jump,
+    junction_log_slope,
+    junction_strength,
+    strength_ratio,
+    strength_slope,
+)
+from dryfriction.theory.direct_stability import direct_response, effective_rsf_direct
+from dryfriction.theory.stability import effective_rsf, steady_response
+from dryfriction.theory.static import static_friction
+from dryfriction.theory.steady import steady_friction, steady_log_slope
+
+EPS, A, V_REF = 0.04, 0.02, 2.7e-3
+PROPS = settings(max_examples=25, derandomize=True, deadline=None)
+
+
+def _g(v: float, direct: float = A, v_ref: float = V_REF) -> float:
+    """``g(V) = A asinh(V e^{1/A} / (2 V_ref))`` (Baumberger & Caroli 2006), written here."""
+    return math.copysign(direct * math.asinh(abs(v) * math.exp(1.0 / direct) / (2.0 * v_ref)), v)
+
+
+def _dlog(f, u: float, h: float = 1e-3) -> float:  # type: ignore[no-untyped-def]
+    """Central difference ``d f / d ln u`` (error ``O(h^2)``)."""
+    return float((f(u * math.exp(h)) - f(u * math.exp(-h))) / (2.0 * h))
+
+
+# ------------------------------------------------------------------ junction strength
+@pytest.mark.parametrize("v", [3.1e-5, 0.017, 0.9, 42.0, -0.31])
+def test_junction_functions_against_the_written_form(v: float) -> None:
+    """``g``, ``V g'`` (finite difference of the written ``g``), ``g'``, the jump
+    ``mu (g2/g1 - 1)``; generic ``A``, ``V_ref`` (A = 0.11: ``e^{1/A}`` is finite, so the
+    written form can be evaluated directly)."""
+    a, vr = 0.11, 0.037
+    assert float(junction_strength(v, a, vr)) == pytest.approx(_g(v, a, vr), rel=1e-12)
+    assert strength_ratio(v, a, vr) == pytest.approx(_g(v, a, vr), rel=1e-12)
+    h = 1e-5
+    dg = (_g(v * math.exp(h), a, vr) - _g(v * math.exp(-h), a, vr)) / (2 * h)
+    assert float(junction_log_slope(v, a, vr)) == pytest.approx(abs(dg), rel=1e-7)
+    assert strength_slope(v, a, vr) == pytest.approx(abs(dg / v), rel=1e-7)
+    jump = float(instantaneous_jump(v, 1.7 * v, 0.63, a, vr))
+    assert jump == pytest.approx(0.63 * (_g(1.7 * v, a, vr) / _g(v, a, vr) - 1), rel=1e-10)
+
+
+# ------------------------------------------------------------------ the rate-and-state twin
+@pytest.mark.parametrize("u", [0.01, 0.3, 3.0])
+def test_direct_twin_against_the_steady_curve_away_from_v_ref(u: float) -> None:
+    """Any rate-and-state twin has ``a - b = d mu_ss/d ln V`` (Ruina 1983): here the finite
+    difference of the steady friction with the direct effect, ``g(u) mu_d(u)``, at
+    ``u/v_ref`` = 3.7, 111, 1111 (``g`` = 1.03-1.14). And ``b = g b_0``, ``Dc`` unchanged,
+    ``a_d = (d g/d ln u) mu_d``. Mistakes: ``a = a_0 + A mu_d`` without ``g`` (invisible at
+    ``u = v_ref``, 1.2e-3 here), ``b`` not scaled."""
+    tw = effective_rsf_direct(u, EPS, direct=A, v_ref=V_REF)
+    base = effective_rsf(u, EPS)
+    slope = _dlog(lambda x: steady_friction(x, EPS, direct=A, v_ref=V_REF), u)
+    assert tw["a"] - tw["b"] == pytest.approx(slope, abs=1e-7)
+    assert tw["b"] == pytest.approx(_g(u) * base["b"], rel=1e-12)
+    assert tw["dc"] == pytest.approx(base["dc"], rel=1e-12)
+    mu_d = float(steady_friction(u, EPS))
+    assert tw["a_direct"] == pytest.approx(_dlog(_g, u, 1e-5) * mu_d, rel=1e-7)
+    # the athermal twin against the athermal curve (the same identity with g = 1)
+    assert base["a"] - base["b"] == pytest.approx(_dlog(lambda x: steady_friction(x, EPS), u),
+                                                  abs=1e-7)
+
+
+def test_direct_response_matches_its_twin_at_small_rates() -> None:
+    """``Z_A(lambda)`` and the twin's linearised rate-and-state ``(lambda/u)(a - b u/(u +
+    lambda Dc))`` agree to third order in ``lambda`` (they were matched there): at ``lambda``
+    = 1e-2 and 2e-2 ``u/Dc`` the difference is below 1e-6 of ``|Z|`` and falls by ~2^4."""
+    u = 0.3
+    tw = effective_rsf_direct(u, EPS, direct=A, v_ref=V_REF)
+    resp = direct_response(u, EPS, direct=A, v_ref=V_REF)
+    diffs = []
+    for s in (2e-2, 1e-2):
+        lam = s * u / tw["dc"]
+        rsf = lam / u * (tw["a"] - tw["b"] * u / (u + lam * tw["dc"]))
+        z = complex(resp.Z(lam)).real
+        diffs.append(abs(z - rsf))
+        assert abs(z - rsf) < 1e-3 * abs(z)
+    assert diffs[0] / diffs[1] > 8.0
+
+
+@pytest.mark.parametrize("u", [0.02, 0.7])
+def test_steady_log_slope_is_the_slope_of_the_steady_curve(u: float) -> None:
+    """``steady_log_slope`` (with and without the direct effect) against a finite difference of
+    ``steady_friction`` taken here. Mistake: ``g`` dropped from the ageing term."""
+    for direct in (0.0, A):
+        want = _dlog(lambda x, d=direct: steady_friction(x, EPS, direct=d, v_ref=V_REF), u)
+        got = float(steady_log_slope(u, EPS, direct=direct, v_ref=V_REF))
+        assert got == pytest.approx(want, abs=2e-7)
+
+
+def test_athermal_response_derivative_is_the_steady_slope() -> None:
+    """``Z'(0) = d mu_d/du`` (a steady velocity change is a slow perturbation): the response's
+    first derivative at 0 against the curve's finite difference, at u = 0.45."""
+    u = 0.45
+    resp = steady_response(u, EPS)
+    h = 1e-4
+    fd = float((steady_friction(u + h, EPS) - steady_friction(u - h, EPS)) / (2 * h))
+    assert resp.derivative_at_zero(1) == pytest.approx(fd, rel=1e-5)
+
+
+# ------------------------------------------------------------------ monotonicity, Dieterich
+@PROPS
+@given(T=st.floats(1e-3, 1e6), f=st.floats(1.01, 100.0),
+       creep=st.sampled_from(["log", "eyring-nabarro"]), load=st.sampled_from([0.0, 0.43]))
+def test_static_friction_never_decreases_with_the_wait(T: float, f: float, creep: str,
+                                                       load: float) -> None:
+    """``mu_s(T f) >= mu_s(T)`` for ``f > 1``: contacts only grow while waiting (eq. 27)."""
+    eps = 0.02
+    lo, hi = static_friction(np.array([T, T * f]), eps, creep=creep, load=load)
+    assert hi >= lo - 1e-12
+
+
+def test_dieterich_time_is_where_the_curves_meet() -> None:
+    """``C(u)``: ``mu_s(C/u) = mu_d(u)`` at generic ``u`` (eq. 36 inverted)."""
+    u = np.array([3e-3, 0.07, 0.8])
+    c = dieterich_constant_local(u, EPS)
+    np.testing.assert_allclose(static_friction(c / u, EPS), steady_friction(u, EPS), atol=1e-9)
+
+
+# ------------------------------------------------------------------ RSF linear stability
+def test_rice_ruina_critical_stiffness_against_the_jacobian() -> None:
+    """At ``k = k_c(V, eta, m)`` (closed form, ``a' = a + eta V``) the exact Jacobian of the
+    driver has a pair on the imaginary axis at ``omega = (V/Dc) sqrt((b - a')/a')``; 2 %
+    stiffer is stable, 2 % softer unstable. Generic: ``V != V0``, damping and mass both on.
+    Mistakes: ``a' = a`` (damping dropped), ``1 + m V^2/(a Dc)`` with ``a`` for ``a'``."""
+    p = RateState(0.0071, 0.0123, 17e-6, 0.61, 2.3e-6)
+    v, eta, m = 7.1e-6, 130.0, 2.9e-3
+    kc = p.critical_stiffness(v, eta, m)
+    om = p.hopf_frequency(v, eta)
+    ap = 0.0071 + eta * v
+    assert kc == pytest.approx((0.0123 - ap) / 17e-6 * (1 + m * v * v / (ap * 17e-6)), rel=1e-12)
+    ev = linear_stability(p, v, kc, eta, m)
+    top = ev[np.argmax(ev.real)]
+    assert abs(top.real) < 1e-6 * om
+    assert abs(top.imag) == pytest.approx(om, rel=1e-6)
+    assert np.max(linear_stability(p, v, 1.02 * kc, eta, m).real) < 0
+    assert np.max(linear_stability(p, v, 0.98 * kc, eta, m).real) > 0
