@@ -159,3 +159,32 @@ def test_rice_ruina_critical_stiffness_against_the_jacobian() -> None:
     assert abs(top.imag) == pytest.approx(om, rel=1e-6)
     assert np.max(linear_stability(p, v, 1.02 * kc, eta, m).real) < 0
     assert np.max(linear_stability(p, v, 0.98 * kc, eta, m).real) > 0
+
+
+# ------------------------------------------------------------------ one trap, both regimes
+@pytest.mark.parametrize("alpha", [0.13, 0.37])
+def test_trap_work_against_quadrature_in_both_pinning_regimes(alpha: float) -> None:
+    """Very strong (``alpha`` = 0.13 < 3 - 2 sqrt 2) and strong (0.37) pinning: ``z_+`` solves
+    the equilibrium ``psi'(z) + 6 alpha (z - y) = 0`` on a stable branch, ``work_forward(x)``
+    is the quadrature of ``force_forward`` from -1 (across the jump to (-) in strong pinning),
+    and ``H0`` the quadrature to the death point."""
+    from scipy.integrate import quad
+
+    from dryfriction.theory.trap import Trap, force_forward, work_forward, z_plus
+
+    tr = Trap(alpha)
+    yc = (1 - alpha) ** 2 / (4 * alpha)
+    for y in (-0.83, -0.2, 0.41 * yc):
+        z = float(z_plus(y, alpha))
+        # psi'(z) = -6 z + 6 z |z| = -6 z - 6 z^2 for z < 0
+        assert -6 * z - 6 * z * z + 6 * alpha * (z - y) == pytest.approx(0.0, abs=1e-12)
+        assert z < 0
+        assert -6 - 12 * z + 6 * alpha > 0  # d2U/dz2 = psi'' + 6 alpha > 0: stable
+    breaks = [yc] if yc < 1 else []
+    for x in (-0.37, 0.5 * min(yc, 1.0), 0.93 * tr.death_point):
+        want = quad(lambda w: float(force_forward(w, alpha)), -1.0, x,
+                    points=[p for p in breaks if -1 < p < x] or None, epsabs=1e-13)[0]
+        assert float(work_forward(x, alpha)) == pytest.approx(want, rel=1e-9, abs=1e-12)
+    h0 = quad(lambda w: float(force_forward(w, alpha)), -1.0, tr.death_point,
+              points=breaks or None, epsabs=1e-13)[0]
+    assert tr.H0 == pytest.approx(h0, rel=1e-9)
