@@ -286,3 +286,48 @@ def test_step_white_covariance_is_the_engines_and_robust_is_about_it_on_white_no
         assert 0.85 < sc.inflation(names.index(name)) < 1.2, name
     for name in ("a", "b", "dc", "stiffness"):
         assert 0.4 < sc.inflation(names.index(name)) < 1.3, name
+
+
+# ------------------------------------------------------------------ tests and criteria
+def test_runs_test_is_wald_wolfowitz() -> None:
+    """Signs ``++-+--+++-`` (n1 = 6, n2 = 4, R = 6 runs): ``E R = 2 n1 n2/n + 1 = 5.8``,
+    ``var R = 2 n1 n2 (2 n1 n2 - n)/(n^2 (n - 1)) = 2.1333``, two-sided normal p-value."""
+    from scipy.stats import norm
+
+    from dryfriction.fit.statistics import runs_test
+
+    r = np.array([0.3, 1.1, -0.2, 0.7, -0.4, -0.9, 0.1, 0.2, 0.5, -0.6])
+    mean, var = 2 * 6 * 4 / 10 + 1, 2 * 6 * 4 * (2 * 6 * 4 - 10) / (100 * 9)
+    want = 2 * norm.sf(abs(6 - mean) / math.sqrt(var))
+    assert runs_test(r) == pytest.approx(want, rel=1e-12)
+
+
+def test_information_criteria_are_the_gaussian_definitions() -> None:
+    """Estimated noise: ``-2 ln L = n ln(RSS/n)`` (+ const), ``k = p + 1``; AIC ``+ 2k``, AICc
+    ``+ 2k(k+1)/(n-k-1)``, BIC ``+ k ln n``. Given noise: ``chi^2 = 2 cost``, ``k = p``."""
+    from dryfriction.fit.statistics import information_criteria
+
+    cost, n, p = 0.0137, 83, 4
+    ic = information_criteria(cost, n, p, sigma_given=False)
+    m2 = n * math.log(2 * cost / n)
+    k = p + 1
+    assert ic["aic"] == pytest.approx(m2 + 2 * k, rel=1e-12)
+    assert ic["aicc"] == pytest.approx(m2 + 2 * k + 2 * k * (k + 1) / (n - k - 1), rel=1e-12)
+    assert ic["bic"] == pytest.approx(m2 + k * math.log(n), rel=1e-12)
+    given = information_criteria(41.0, n, p, sigma_given=True)
+    assert given["aic"] == pytest.approx(82.0 + 2 * p, rel=1e-12)
+
+
+def test_consistency_test_is_the_chow_f_and_chi2_difference() -> None:
+    """F = ``((RSS_joint - RSS_sep)/(p_sep - p)) / (RSS_sep/(n - p_sep))`` and the chi-square
+    difference with ``p_sep - p`` dof (written here with SciPy's distributions)."""
+    from scipy import stats
+
+    from dryfriction.fit.statistics import consistency_test
+
+    r = consistency_test(cost=0.61, p=3, n=140, sep_cost=0.52, sep_p=7, sigma_given=False)
+    F = (2 * (0.61 - 0.52) / 4) / (2 * 0.52 / 133)
+    assert r["F"] == pytest.approx(F, rel=1e-12)
+    assert r["p_value"] == pytest.approx(stats.f.sf(F, 4, 133), rel=1e-10)
+    c = consistency_test(cost=9.1, p=3, n=140, sep_cost=6.3, sep_p=7, sigma_given=True)
+    assert c["p_value"] == pytest.approx(stats.chi2.sf(2 * (9.1 - 6.3), 4), rel=1e-10)
