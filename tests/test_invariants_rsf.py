@@ -229,3 +229,36 @@ def test_rate_only_scaling_of_a_kinematic_step(c: float, law: str) -> None:
     th_q = _theta_exact(law, slip / (c * v), c * v, DC / (c * 0.37e-6), DC)
     np.testing.assert_allclose(th_q, th_p / c, rtol=1e-9)
     np.testing.assert_allclose(q.friction(c * v, th_q), p.friction(v, th_p), rtol=0, atol=1e-12)
+
+
+@settings(max_examples=8, derandomize=True, deadline=None)
+@given(v1=st.floats(1e-8, 1e-4), r=st.floats(0.05, 20.0), law=st.sampled_from(["ageing", "slip"]))
+def test_mirrored_protocol_gives_mirrored_friction(v1: float, r: float, law: str) -> None:
+    """The regularised law is odd in ``V`` and the state laws see ``|V|``: a kinematic program
+    run backwards (every velocity negated) gives ``mu -> -mu`` and the same state."""
+    p = RateState(A, B, DC, MU0, V0, state_law=law, regularized=True)
+    segs = [(v1, 20 * DC / v1), (r * v1, 30 * DC / (r * v1))]
+    out = RSFOutput(every=sum(d for _, d in segs) / 40, rtol=1e-9)
+    fwd = simulate_rsf(p, SpringSlider([Segment(v, duration=d) for v, d in segs]), output=out)
+    bwd = simulate_rsf(p, SpringSlider([Segment(-v, duration=d) for v, d in segs]),
+                       RSFInitial(v=v1), output=out)  # v_init > 0: it sets theta = Dc/|V|
+    np.testing.assert_allclose(bwd.mu, -fwd.mu, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(bwd.theta, fwd.theta, rtol=1e-8)
+
+
+def test_small_mass_limit_is_the_quasi_static_slider() -> None:
+    """Inertia that is negligible (inertial time ``sqrt(m/k)`` 1e-4 of ``Dc/V``) changes a
+    velocity step on a soft spring by less than 1e-6 of friction: the inertial and quasi-static
+    schemes meet in that limit (and the spring force is the friction plus ``eta V``)."""
+    p = RateState(A, B, DC, MU0, V0)
+    v = 3.7e-6
+    k = 2.0 * (B - A) / DC
+    prog = [Segment(v, slip=10 * DC), Segment(4.1 * v, slip=40 * DC)]
+    te = np.linspace(0.0, 10 * DC / v + 40 * DC / (4.1 * v), 60)
+    m = k * (1e-4 * DC / v) ** 2
+    qs = simulate_rsf(p, SpringSlider(prog, stiffness=k, damping=17.0),
+                      output=RSFOutput(t_eval=te, rtol=1e-9))
+    inr = simulate_rsf(p, SpringSlider(prog, stiffness=k, damping=17.0, mass=m),
+                       output=RSFOutput(t_eval=te, rtol=1e-9))
+    np.testing.assert_allclose(inr.mu, qs.mu, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(inr.stress, qs.mu + 17.0 * qs.v, rtol=0, atol=1e-6)
