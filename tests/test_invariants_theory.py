@@ -188,3 +188,43 @@ def test_trap_work_against_quadrature_in_both_pinning_regimes(alpha: float) -> N
     h0 = quad(lambda w: float(force_forward(w, alpha)), -1.0, tr.death_point,
               points=breaks or None, epsabs=1e-13)[0]
     assert tr.H0 == pytest.approx(h0, rel=1e-9)
+
+
+# ------------------------------------------------------------------ expansions in eps and u
+@pytest.mark.parametrize("alpha", [0.13, 0.37])
+def test_first_order_expansions_miss_only_order_eps_squared(alpha: float) -> None:
+    """The full quadratures (eqs. 27, 34) minus their first order in ``eps`` (eq. 28a, ours for
+    eq. 34) fall by 4 when ``eps`` halves (measured 3.97-4.004), at generic ``u`` and ``T``
+    in both pinning regimes: the first-order coefficient is right, not only its sign.
+    Mistakes: ``H1`` for ``H0`` in the static slope, a factor 2 in the ``eps/2H0`` prefactor."""
+    from dryfriction.theory.static import static_friction_first_order
+    from dryfriction.theory.steady import steady_friction_first_order
+
+    for u in (0.23, 3.1):
+        d = [float(steady_friction(u, e, alpha) - steady_friction_first_order(u, e, alpha))
+             for e in (4e-3, 2e-3)]
+        assert 3.8 < d[0] / d[1] < 4.2, (u, d)
+    for T in (0.7, 300.0):
+        d = [float(static_friction(T, e, alpha) - static_friction_first_order(T, e, alpha))
+             for e in (4e-3, 2e-3)]
+        assert 3.8 < d[0] / d[1] < 4.2, (T, d)
+
+
+@pytest.mark.parametrize("alpha", [0.13, 0.37])
+def test_low_velocity_form_is_the_limit_of_the_first_order(alpha: float) -> None:
+    """Eq. 35 with its constant ``K1`` is the ``u -> 0`` limit of the first order in ``eps``:
+    their difference falls by more than 5 per decade of ``u`` (1e-4 -> 1e-5), and the
+    low-velocity slope is ``-(3/2) eps`` against a finite difference of the full curve."""
+    from dryfriction.theory.steady import (
+        steady_friction_first_order,
+        steady_friction_low_velocity,
+        steady_log_slope_low_velocity,
+    )
+
+    e = 1e-3
+    d = [abs(float(steady_friction_first_order(u, e, alpha)
+                   - steady_friction_low_velocity(u, e, alpha))) for u in (1e-4, 1e-5)]
+    assert d[0] > 5 * d[1], d
+    u = 1e-5
+    fd = _dlog(lambda x: steady_friction(x, e, alpha), u)
+    assert float(steady_log_slope_low_velocity(u, e, alpha)) == pytest.approx(fd, rel=0.02)
