@@ -228,3 +228,36 @@ def test_low_velocity_form_is_the_limit_of_the_first_order(alpha: float) -> None
     u = 1e-5
     fd = _dlog(lambda x: steady_friction(x, e, alpha), u)
     assert float(steady_log_slope_low_velocity(u, e, alpha)) == pytest.approx(fd, rel=0.02)
+
+
+# ------------------------------------------------------------------ creep, athermal stability
+def test_eyring_nabarro_radius_solves_its_ode() -> None:
+    """``s = a_r^2`` obeys ``ds/dT = eps s exp((1/s - 1)/eps)``, ``s(0) = 1`` (eqs. 15-16 in
+    reduced form): the package's clock integral against Radau on the ODE at ``eps`` = 0.07 and
+    generic ages; the log law against ``sqrt(1 + eps ln(1 + T))`` written here."""
+    from scipy.integrate import solve_ivp
+
+    from dryfriction.theory.creep import radius
+
+    eps, T = 0.07, np.array([0.3, 17.0, 2100.0, 4.4e5])
+    sol = solve_ivp(lambda t, s: eps * s * np.exp((1 / s - 1) / eps), (0.0, T[-1]), [1.0],
+                    method="Radau", t_eval=T, rtol=1e-11, atol=1e-13)
+    np.testing.assert_allclose(radius(T, eps, "eyring-nabarro"), np.sqrt(sol.y[0]), rtol=1e-8)
+    np.testing.assert_allclose(radius(T, eps, "log"), np.sqrt(1 + eps * np.log1p(T)), rtol=1e-14)
+
+
+def test_athermal_critical_stiffness_is_where_the_rightmost_root_crosses() -> None:
+    """Two algorithms: the Nyquist crossing scan (:func:`critical_stiffness`) and Newton on the
+    characteristic function (:func:`rightmost_root`): at ``K_c`` the rightmost root has real
+    part ~0 and imaginary part the onset ``omega``; 3 % either side it changes sign. Generic
+    ``u``, mass and damping on."""
+    from dryfriction.theory.stability import critical_stiffness, rightmost_root
+
+    u, mass, damping = 0.37, 0.6, 0.05
+    res = critical_stiffness(u, EPS, mass=mass, damping=damping)
+    resp = steady_response(u, EPS)
+    lam = rightmost_root(resp, res.critical_stiffness, mass, damping)
+    assert abs(lam.real) < 1e-4 * abs(lam.imag)
+    assert abs(lam.imag) == pytest.approx(res.omega, rel=1e-3)
+    assert rightmost_root(resp, 1.03 * res.critical_stiffness, mass, damping).real < 0
+    assert rightmost_root(resp, 0.97 * res.critical_stiffness, mass, damping).real > 0
