@@ -122,15 +122,17 @@ def _theta_exact(law: str, t: np.ndarray, v: float, th0: float, dc: float) -> np
     return dc / v * np.exp(math.log(v * th0 / dc) * np.exp(-v * t / dc))
 
 
+@pytest.mark.parametrize("up", [True, False])
 @pytest.mark.parametrize("regularized", [False, True])
 @pytest.mark.parametrize("law", ["ageing", "slip"])
-def test_kinematic_step_matches_the_closed_form_absolutely(law: str, regularized: bool) -> None:
-    """A kinematic step 0.37 -> 3.7 um/s (``V0`` = 1.3 um/s) with two state variables: the
-    friction at every output time against the exact ``theta(t)`` put into the written law, to
-    1e-6 (the step's jump and its whole transient, as levels). Mistakes: the stepper's
-    ``ln(2 V0)`` as ``ln V0``; the slip law's sign; the second variable with ``Dc``."""
+def test_kinematic_step_matches_the_closed_form_absolutely(law: str, regularized: bool,
+                                                           up: bool) -> None:
+    """A kinematic step 0.37 <-> 3.7 um/s, up and down (``V0`` = 1.3 um/s), with two state
+    variables: the friction at every output time against the exact ``theta(t)`` put into the
+    written law, to 1e-6 (the step's jump and its whole transient, as levels). Mistakes: the
+    stepper's ``ln(2 V0)`` as ``ln V0``; the slip law's sign; the second variable with ``Dc``."""
     p = RateState(A, B, DC, MU0, V0, state_law=law, b2=B2, dc2=DC2, regularized=regularized)
-    v1, v2 = 0.37e-6, 3.7e-6
+    v1, v2 = (0.37e-6, 3.7e-6) if up else (3.7e-6, 0.37e-6)
     d1, d2 = 40e-6 / v1, 400e-6 / v2
     te = np.concatenate([np.linspace(0, d1, 5)[:-1], d1 + np.geomspace(1e-3, d2, 40)])
     res = simulate_rsf(p, SpringSlider([Segment(v1, duration=d1), Segment(v2, duration=d2)]),
