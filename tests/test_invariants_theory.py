@@ -261,3 +261,51 @@ def test_athermal_critical_stiffness_is_where_the_rightmost_root_crosses() -> No
     assert abs(lam.imag) == pytest.approx(res.omega, rel=1e-3)
     assert rightmost_root(resp, 1.03 * res.critical_stiffness, mass, damping).real < 0
     assert rightmost_root(resp, 0.97 * res.critical_stiffness, mass, damping).real > 0
+
+
+# ------------------------------------------------------------------ static threshold, moments
+@pytest.mark.parametrize("alpha", [0.13, 0.37])
+def test_static_threshold_is_the_maximum_of_the_pull_force(alpha: float) -> None:
+    """``mu_s(r)`` is the largest force of the pull: a brute-force maximum of ``pull_force`` on
+    a fine grid of shifts (to well past every trap's death) is at most it and within 1e-6 of it,
+    at generic radii, waiting at zero load and under load (``d_w`` of ``f_w`` = 0.41).
+    ``fresh_force`` is 0 at rest, 1 at ``y_c``, and ``loaded_edge`` inverts it."""
+    from dryfriction.theory.static import (
+        fresh_force,
+        loaded_edge,
+        pull_force,
+        static_friction_at_radius,
+    )
+    from dryfriction.theory.trap import Trap
+
+    yc = Trap(alpha).y_c
+    assert float(fresh_force(0.0, alpha)) == pytest.approx(0.0, abs=1e-14)
+    assert float(fresh_force(yc, alpha)) == pytest.approx(1.0, rel=1e-12)
+    d_w = loaded_edge(0.41, alpha)
+    assert float(fresh_force(d_w, alpha)) == pytest.approx(0.41, rel=1e-12)
+    grid = np.linspace(0.0, 2.0 * (1.0 + yc) * 1.3, 40001)
+    for r in (1.013, 1.07):
+        for dw in (0.0, d_w):
+            # the cusps where a force can peak (edge at its spinodal): eq. 26's d*, 1 + y_c
+            d = np.sort(np.append(grid, [r * yc - dw, 1.0 + yc]))
+            brute = float(np.max(pull_force(d, r, alpha, dw)))
+            mu_s = float(static_friction_at_radius(r, alpha, dw))
+            assert brute <= mu_s + 1e-12
+            assert mu_s == pytest.approx(brute, abs=1e-6)
+
+
+@pytest.mark.parametrize("alpha", [0.13, 0.37])
+def test_forward_moments_against_quadrature(alpha: float) -> None:
+    """``int_{-1}^{death} y^k f(y) dy`` for k = 0, 1, 3 against SciPy's quad of
+    ``force_forward`` (k = 0 is ``H0``)."""
+    from scipy.integrate import quad
+
+    from dryfriction.theory.dieterich import forward_moment
+    from dryfriction.theory.trap import Trap, force_forward
+
+    tr = Trap(alpha)
+    pts = [tr.y_c] if tr.y_c < 1 else None
+    for k in (0, 1, 3):
+        want = quad(lambda y, k=k: y**k * float(force_forward(y, alpha)), -1.0, tr.death_point,
+                    points=pts, epsabs=1e-13, limit=200)[0]
+        assert forward_moment(k, alpha) == pytest.approx(want, rel=1e-9, abs=1e-12)
