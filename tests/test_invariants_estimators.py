@@ -220,6 +220,7 @@ def test_hac_stderr_against_the_exact_covariance_of_non_ar1_noise(name: str, lo:
         hac.append(hac_covariance(-X, res)[0].stderr)
         white.append(covariance(-X, float(res @ res) / (N - 3)).stderr)
     ratio = np.mean(hac, axis=0) / exact
+    print(f"REPORT {name}: HAC/exact {ratio}")
     assert np.all((ratio > lo) & (ratio < hi)), ratio
     # long-run over short-run variance: sum of acov (both sides) / gamma_0
     lrv = (acov[0] + 2 * acov[1:].sum()) / acov[0]
