@@ -33,8 +33,9 @@ Integrators (ours)
 * **Inertial slider** (:class:`SpringDrive`, ``mass > 0``):
   ``M X'' = K (X_pull - X) - F - eta X'`` by velocity Verlet with the force evaluated exactly
   from positions and ages each step; ``dt <= 0.05 * 2 pi sqrt(M / (K + k_c))`` (``k_c`` the
-  fresh contact stiffness, eqs. 13-14) and a slip per step ``<= 1/(4 lambda)`` so each trap
-  death is resolved.
+  fresh contact stiffness, eqs. 13-14), ``dt <= M/eta`` (the damping enters the velocity
+  predictor explicitly, unstable for ``eta dt/M > 2``: an overdamped slider blew up) and a slip
+  per step ``<= 1/(4 lambda)`` so each trap death is resolved.
 
 Direct effect (``model.direct = A > 0``, :mod:`dryfriction.theory.direct`; ours)
 ---------------------------------------------------------------------------------
@@ -392,6 +393,8 @@ def _run_spring(ens: Ensemble, drive: SpringDrive, output: Output, rec: Recorder
         M, eta = drive.mass, drive.damping
         k_c = ens.model.trap.contact_stiffness
         dt_osc = 0.05 * 2.0 * math.pi * math.sqrt(M / (K + k_c))
+        if eta > 0.0:  # the damping is explicit in the Verlet predictor: stable for eta dt/M < 2
+            dt_osc = min(dt_osc, M / eta)
         dx_max = 0.25 * ens.track.spacing
         V = float(velocity)
         F, f_pop = with_strength(ens, o, V).force, o.force

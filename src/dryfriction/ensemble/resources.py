@@ -172,7 +172,7 @@ def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimat
     step (:data:`.thermal.SUBSTEP_SLIP` of the spacing with the direct effect) and one per
     event, every trap passed entering and leaving contact once (``2 lambda`` events per ``a0``
     of load-point travel); the inertial spring one per time step, at least the duration over
-    the longest step ``0.05 * 2 pi sqrt(M/(K + k_c))``, and at least the travel over the
+    the longest step ``min(0.05 * 2 pi sqrt(M/(K + k_c)), M/eta)``, and at least the travel over the
     longest slip of a step, ``spacing/4`` (:mod:`.driving`). Each call costs
     :data:`SECONDS_PER_CALL` plus :data:`SECONDS_PER_PAIR` per trap in contact
     (``est.active``); placing the initial population adds :data:`SECONDS_PER_PLACED_PAIR` per
@@ -200,6 +200,8 @@ def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimat
         else:
             k_c = model.trap.contact_stiffness
             dt = 0.05 * 2.0 * math.pi * math.sqrt(drive.mass / (drive.stiffness + k_c))
+            if drive.damping > 0.0:
+                dt = min(dt, drive.mass / drive.damping)
             calls = max(prog.total_time / dt, travel * lam / 0.25)
             kind = "steps"
     seconds = calls * (SECONDS_PER_CALL + SECONDS_PER_PAIR * est.active)

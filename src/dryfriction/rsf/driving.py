@@ -169,6 +169,13 @@ def simulate_rsf(
                                            damping, output.max_steps), float(t_fail), v_fail)
     x = x_quad = None
     travel = float(prog.positions[-1] - prog.positions[0])
+    quad_rounding = 0.0
+    if mode == INERTIAL:
+        # the quadrature's Hermite slopes d ln V/dt = (tau - mu - eta V)/(m V) carry the
+        # rounding of that difference, 4 eps |tau|/(m V) (ours); it moves x by up to about
+        # 0.6 eps |tau| h^2/m a step whatever rtol (stiff, overdamped slider: 1e-6 of the slip)
+        quad_rounding = (4.0 * np.finfo(float).eps * float(np.max(np.abs(Y[:, -1])))
+                         * float(np.sum(np.diff(T) ** 2)) / mass)
     if mode != KINEMATIC:
         # int V dt: the position of a soft spring, a check of the force balance's otherwise
         x_quad = slip_by_quadrature(T, Y, F, prog.x0)
@@ -184,22 +191,25 @@ def simulate_rsf(
                        mass=mass, rtol=output.rtol, stress0=stress0, stats=stats, x=x)
     if unstable is not None:
         res.meta["unstable_start"] = unstable
-    _check_bounds(res, travel, None if x_quad is None else float(x_quad[-1] - x_quad[0]))
+    _check_bounds(res, travel, None if x_quad is None else float(x_quad[-1] - x_quad[0]),
+                  quad_rounding)
     return res
 
 
-def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None) -> None:
+def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None,
+                  quad_rounding: float = 0.0) -> None:
     """:func:`dryfriction.results.check_physical` for a rate-and-state run: on a spring the
     slip velocity is ``exp(ln V) > 0``, so the slider never moves back, and the slip is at
     most the load-point travel plus the stretch the spring can give back,
     ``(stress0 - min stress)/k``, and it equals ``int V dt`` (``slip_integral``, from the
     solver's steps); the tolerance is 100 times the solver's error in position (ours: ``rtol``
-    of the path, whatever the spring)."""
+    of the path, whatever the spring), plus ``quad_rounding`` (m), the quadrature's rounding
+    bound with inertia."""
     if math.isinf(res.stiffness):  # the kinematic machine: x is the load point's, exactly
         check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m")
         return
     path = float(np.sum(np.abs(np.diff(res.x))))
-    tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc)
+    tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc) + quad_rounding
     give_back = (float(res.stress[0]) - float(np.min(res.stress))) / res.stiffness
     # ours: the slider slides forward (V > 0) throughout, so friction resists it, F/W >= 0.
     # The regularised law is >= 0 by itself; the classic law's ln(V/V0) has no lower bound,
