@@ -519,6 +519,14 @@ def simulate(
         raise ValueError(f"drive = {drive!r} is not allowed: VelocityDrive, ForceDrive or "
                          "SpringDrive")
     check_snapshots(drive, output)
+    if model.direct and not isinstance(drive, ForceDrive):
+        back = [i for i, v in enumerate(drive.program.velocities) if v < 0.0]
+        if back:  # g(V) is odd and the population's force changes sign with V already, so
+            # the product would keep the forward sign (tests/test_invariants_ensemble.py)
+            raise ValueError(
+                f"segments[{back[0]}].velocity = {drive.program.velocities[back[0]]:g} is out "
+                "of range with the direct effect: allowed >= 0 (sliding back is modelled only "
+                "for the athermal model, direct = 0)")
     check_run(model, track, initial, drive, output)
     ens = Ensemble(model, track, initial, x0=0.0, age_horizon=min(horizon, 1e12))
     rec = Recorder(model.mu_el)
