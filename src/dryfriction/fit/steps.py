@@ -144,6 +144,8 @@ def _window_data(data: SeriesData, w: Any) -> SeriesData:
         raise ValueError(f"{data.source}: window {getattr(w, 'index', '?')} covers samples "
                          f"[{i0}, {i1}), out of range: allowed within [0, {len(data)})")
     sl = slice(i0, i1)
+    if hasattr(data, "window"):  # a measured drive goes with the window (.loadpoint)
+        return data.window(i0, i1, f"{data.source} [step {getattr(w, 'index', '?')}]")
     return SeriesData(data.t[sl], data.v_load[sl], data.mu[sl],
                       source=f"{data.source} [step {getattr(w, 'index', '?')}]")
 
@@ -428,6 +430,7 @@ class StepsResult:
     joint: FitResult | None = None
     notes: list[str] = field(default_factory=list)
     stiffness: dict[str, Any] | None = None  # the record's k (fit.identify.record_stiffness)
+    drive: dict[str, Any] | None = None  # the measured drive (fit.loadpoint.drive_report)
 
     @property
     def success(self) -> bool:
@@ -442,7 +445,8 @@ class StepsResult:
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"steps": self.rows, "success": self.success,
-                               "notes": list(self.notes), "record_stiffness": self.stiffness}
+                               "notes": list(self.notes), "record_stiffness": self.stiffness,
+                               "drive": self.drive or {"kind": "program"}}
         if self.joint is not None:
             out["joint"] = self.joint.to_dict()
         return out
@@ -478,6 +482,7 @@ def fit_steps(
     profile: bool = False,
     progress: Callable[[int, int], None] | None = None,
     errors: str = "hac",
+    drive: str = "program",
 ) -> StepsResult:
     """Fit rate-and-state friction to each step window of a record (module docstring).
 
@@ -514,6 +519,10 @@ def fit_steps(
     errors : {"hac", "white"}
         ``"hac"`` (default): standard errors and intervals allow for autocorrelated residuals
         (:func:`step_covariance`); ``"white"``: independent noise assumed.
+    drive : {"program", "measured"}
+        What drives the forward model: the piecewise-constant program, or the record's
+        measured load-point displacement, denoised (:mod:`.loadpoint`; a laboratory record
+        only).
 
     Returns
     -------
@@ -522,6 +531,13 @@ def fit_steps(
     check_choice("law", law, ("ageing", "slip"))
     check_choice("errors", errors, ERRORS)
     data = _as_series(record, segments)
+    drive_info = None
+    if drive != "program":
+        from .loadpoint import check_drive, drive_report, measured_series
+
+        check_drive(drive)
+        data = measured_series(data, None if isinstance(record, SeriesData) else record)
+        drive_info = drive_report(data)
     wins = list(series_windows(data) if windows is None else windows)
     if not wins:
         raise ValueError(f"{data.source}: no velocity step to fit (the load velocity never "
@@ -568,7 +584,8 @@ def fit_steps(
         if progress is not None:
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
-    return StepsResult(rows, fits, pieces, joint_fit, notes, record_stiffness(rows))
+    return StepsResult(rows, fits, pieces, joint_fit, notes, record_stiffness(rows),
+                       drive_info)
 
 
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:
