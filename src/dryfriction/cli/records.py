@@ -276,8 +276,11 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
         if res.stiffness is not None:
             k = res.stiffness
+            n_load = sum(ld["used"] for ld in k.get("loadings", []))
             out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "
-                      f"(95 %, steps {', '.join(map(str, k['steps']))})", highlight=False)
+                      f"(95 %, steps {', '.join(map(str, k['steps'])) or 'none'}"
+                      + (f", {n_load} elastic loading(s)" if n_load else "") + ")",
+                      highlight=False)
         for c in (res.drive or {}).get("changes", []):
             out.print(f"measured drive: change at {c['t_change']:.6g} s +- "
                       f"{c['sigma_t_change']:.2g} s (given {c['t_given']:.6g} s), "

@@ -43,8 +43,9 @@ from ..io.files import write_csv
 from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
+from .elastic import machine_stiffness_record
 from .engine import fit
-from .identify import assess_step, record_stiffness, worse_than_noise
+from .identify import assess_step, worse_than_noise
 from .joint import fit_joint
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
@@ -421,7 +422,8 @@ class StepsResult:
         per window (``mu0_<i>``, ``trend_<i>``).
     notes : list of str
     stiffness : dict or None
-        The record's one machine stiffness (:func:`.identify.record_stiffness`).
+        The record's one machine stiffness, from the steps' free fits and the record's
+        elastic loadings (:func:`.elastic.machine_stiffness_record`).
     """
 
     rows: list[dict[str, Any]]
@@ -584,8 +586,8 @@ def fit_steps(
         if progress is not None:
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
-    return StepsResult(rows, fits, pieces, joint_fit, notes, record_stiffness(rows),
-                       drive_info)
+    return StepsResult(rows, fits, pieces, joint_fit, notes,
+                       machine_stiffness_record(rows, data), drive_info)
 
 
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:
