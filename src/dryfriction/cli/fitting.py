@@ -61,10 +61,12 @@ def fit_command(
     state_law: str = typer.Option("ageing", "--state-law", help="rsf: ageing or slip."),
     stiffness: str = typer.Option(None, "--stiffness", help="rsf time series: machine "
                                   "stiffness per unit normal force: a number (1/m; inf: "
-                                  "kinematic, the default for CSV), fit (a free parameter, "
-                                  "the default for a record), slope (fixed from the loading "
-                                  "slope after the change) or record (a record's one machine: "
-                                  "from the steps' free fits, then held in every step)."),
+                                  "kinematic, the default for CSV), fit (a free parameter "
+                                  "per step), slope (fixed from the loading slope after the "
+                                  "change) or record (the default for a record: its one "
+                                  "machine, from the steps' free fits and its elastic "
+                                  "reloads, then held in every step; each step free where "
+                                  "fewer than two estimates exist)."),
     trend: bool = typer.Option(None, "--trend/--no-trend", help="rsf time series: a linear "
                                "trend in load-point displacement (default: on for a record, "
                                "off for CSV)."),
@@ -135,7 +137,7 @@ def fit_command(
         from .records import fit_record
 
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
-                   stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
+                   stiffness=parse_stiffness("record" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
                    profile=True if profile is None else profile, run_cv=run_cv, alpha=alpha,
                    creep=creep, errors=errors, direct=direct, v_ref=v_ref,
