@@ -185,3 +185,31 @@ def test_shared_record_with_the_measured_drive():
     assert 98.87e-6 <= row["dc"] <= 217.8e-6
     assert row["flags"] == "", row["notes"]
     assert row["rms"] <= 1.01 * fit_steps(rec, wins, segs).rows[0]["rms"]
+
+
+def test_fit_json_and_terminal_report_the_drive(basalt, tmp_path: Path):  # type: ignore[no-untyped-def]
+    """``dryfriction fit`` on the basalt-like record (defaults: --drive measured,
+    --stiffness record): fit.json carries the option, the placed change with its standard
+    error, and each step's k and a under both drives (the program's k = 5129 /m, below the
+    measured drive's interval); the terminal says the same. A comparison refitted on the
+    measured drive again (the drive not dropped) gives the same k twice and fails here."""
+    import json
+
+    rec, _ = basalt
+    path = write_record(tmp_path / "basalt.txt", rec)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["fit", str(path), "--model", "rsf", "--segments",
+                                 "0:3e-6,68.6:1e-5", "--out", str(out), "--no-figure"])
+    assert r.exit_code == 0, r.output
+    rep = json.loads((out / "fit.json").read_text())
+    assert rep["options"]["drive"] == "measured" and rep["options"]["stiffness"] == "record"
+    (ch,) = rep["drive"]["changes"]
+    assert ch["t_given"] == pytest.approx(68.6) and 68.65 < ch["t_change"] < 68.75
+    assert 0 < ch["sigma_t_change"] < 0.05
+    (cmp,) = rep["drive"]["comparison"]
+    row = rep["steps"][0]
+    assert cmp["measured"]["stiffness"] == pytest.approx(row["stiffness"])
+    assert cmp["program"]["stiffness"] < row["stiffness_lo"]
+    assert cmp["program"]["a"] != pytest.approx(row["a"], rel=1e-3)
+    text = " ".join(r.stdout.split())
+    assert "measured drive: change at" in text and "program drive k =" in text

@@ -286,6 +286,14 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                       f"{c['sigma_t_change']:.2g} s (given {c['t_given']:.6g} s), "
                       f"{c['v_before']:.4g} -> {c['v_after']:.4g} m/s", highlight=False,
                       soft_wrap=True)
+        for c in (res.drive or {}).get("comparison", []):
+            m, p = c["measured"], c["program"]
+            if "not_run" in p:
+                continue
+            out.print(f"step {c['index']}: measured drive k = {_cell(m['stiffness'])} /m, "
+                      f"a = {_cell(m['a'])}; program drive k = {_cell(p['stiffness'])} /m, "
+                      f"a = {_cell(p['a'])} (rms {_cell(m['rms'])} against "
+                      f"{_cell(p['rms'])})", highlight=False, soft_wrap=True)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:
