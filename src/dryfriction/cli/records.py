@@ -191,6 +191,11 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
                             joint=joint, profile=profile, errors=errors, progress=update,
                             drive=drive)
+    if res.drive is not None and res.drive.get("kind") == "measured":
+        from ..fit.loadpoint import compare_with_program
+
+        # how k and a depend on the drive: each step once more on the program (issue 30)
+        res.drive["comparison"] = compare_with_program(res.data, res.fits, res.rows)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],

@@ -586,10 +586,6 @@ def fit_steps(
         if progress is not None:
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
-    if drive_info is not None and drive_info["kind"] == "measured":
-        from .loadpoint import compare_with_program
-
-        drive_info["comparison"] = compare_with_program(pieces, fits, rows)
     return StepsResult(rows, fits, pieces, joint_fit, notes,
                        machine_stiffness_record(rows, data), drive_info)
 
