@@ -390,6 +390,29 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("SHS: an unfinished reslide before a window not noted", "fit/steps.py",
        'if rem > 2.0 * rows[-1]["white_noise"]', 'if rem > 20.0 * rows[-1]["white_noise"]',
        "tests/test_fit_shs.py", "-k", "short_reslides"),
+    _m("drive: the measured load point ignored by the forward model", "fit/models.py",
+       'drive = getattr(data, "drive", None)  # the measured load point (.loadpoint), if any',
+       "drive = None", "tests/test_fit_loadpoint.py", "-k", "hang"),
+    _m("drive: a change placed only at a sample time", "fit/loadpoint.py",
+       "tau = float(best.x) if best.fun <= rss[j] else float(cand[j])",
+       "tau = float(cand[j])", "tests/test_fit_loadpoint.py", "-k", "between"),
+    _m("drive: the transducer's noise kept in the drive", "fit/loadpoint.py",
+       "            c = sp(kt - t_ref)\n", "            c = np.interp(kt, ts, resid[lo:hi])\n",
+       "tests/test_fit_loadpoint.py", "-k", "servo"),
+    _m("drive: the program comparison refitted on the measured drive", "fit/loadpoint.py",
+       "rp = fit(plain, r.fitted_model", "rp = fit(d, r.fitted_model",
+       "tests/test_fit_loadpoint.py", "-k", "json_and_terminal"),
+    _m("elastic: a reload's noise read from its own residuals", "fit/elastic.py",
+       "    if calm.size > 3 and np.std(calm) > 0:\n"
+       "        rho = float(np.corrcoef(calm[1:], calm[:-1])[0, 1])\n"
+       "        s2 = max(s2, float(calm @ calm) / (calm.size - 2))",
+       "    if r.size > 3 and np.std(r) > 0:\n"
+       "        rho = float(np.corrcoef(r[1:], r[:-1])[0, 1])",
+       "tests/test_fit_elastic.py", "-k", "reload_slopes"),
+    _m("elastic: the slope against time, not load-point displacement", "fit/elastic.py",
+       "est = _slope(x[i0:i0 + n], seg[:n], z, calm)",
+       "est = _slope(data.t[i0:i0 + n], seg[:n], z, calm)",
+       "tests/test_fit_elastic.py", "-k", "reload_slopes"),
 )
 
 
