@@ -213,3 +213,22 @@ def test_fit_json_and_terminal_report_the_drive(basalt, tmp_path: Path):  # type
     assert cmp["program"]["a"] != pytest.approx(row["a"], rel=1e-3)
     text = " ".join(r.stdout.split())
     assert "measured drive: change at" in text and "program drive k =" in text
+
+
+def test_a_change_the_displacement_cannot_place_keeps_the_program():
+    """At 1 Hz with a wandering load point (a random walk of 0.3 um a step on 0.2 ->
+    0.6 um/s) the corner's standard error exceeds the sampling interval: the program's
+    change time stands (``placed`` false) and nothing is smoothed there; with a clean
+    displacement the same change is placed between the samples (issue 30: records_zoo's
+    slide-hold-slides at 1 Hz had corners 0.7-1.7 s uncertain and up to 3.4 s off)."""
+    from dryfriction.fit.loadpoint import measured_drive
+
+    t = np.arange(0.0, 200.0, 1.0)
+    v = np.where(t < 100.0, 2e-7, 6e-7)
+    x = np.where(t < 99.6, 2e-7 * t, 2e-7 * 99.6 + 6e-7 * (t - 99.6))
+    walk = np.cumsum(np.random.default_rng(5).normal(0.0, 3e-7, t.size))
+    (c,) = measured_drive(t, x + walk, v).changes
+    assert not c.placed and c.t == 100.0 and c.sigma > 1.0
+    (c,) = measured_drive(t, x + np.random.default_rng(5).normal(0.0, 2e-9, t.size),
+                          v).changes
+    assert c.placed and abs(c.t - 99.6) < 0.1
