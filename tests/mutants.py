@@ -442,6 +442,32 @@ MUTANTS: tuple[Mutant, ...] = (
        "    tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc) + quad_rounding",
        "    tol = 100.0 * res.rtol * (abs(travel) + path + res.params.dc)",
        "tests/test_invariants_rsf.py", "-k", "settles"),
+    _m("drive: the measured load point ignored by the forward model", "fit/models.py",
+       'drive = getattr(data, "drive", None)  # the measured load point (.loadpoint), if any',
+       "drive = None", "tests/test_fit_loadpoint.py", "-k", "hang"),
+    _m("drive: a change placed only at a sample time", "fit/loadpoint.py",
+       "tau = float(best.x) if best.fun <= rss[j] else float(cand[j])",
+       "tau = float(cand[j])", "tests/test_fit_loadpoint.py", "-k", "between"),
+    _m("drive: a change placed however wide its error", "fit/loadpoint.py",
+       "placed = bool(est.sigma < float(t[i] - t[i - 1]))", "placed = True",
+       "tests/test_fit_loadpoint.py", "-k", "cannot_place"),
+    _m("drive: the transducer's noise kept in the drive", "fit/loadpoint.py",
+       "            c = sp(kt - t_ref)\n", "            c = np.interp(kt, ts, resid[lo:hi])\n",
+       "tests/test_fit_loadpoint.py", "-k", "servo"),
+    _m("drive: the program comparison refitted on the measured drive", "fit/loadpoint.py",
+       "rp = fit(plain, r.fitted_model", "rp = fit(d, r.fitted_model",
+       "tests/test_fit_loadpoint.py", "-k", "json_and_terminal"),
+    _m("elastic: a reload's noise read from its own residuals", "fit/elastic.py",
+       "    if calm.size > 3 and np.std(calm) > 0:\n"
+       "        rho = float(np.corrcoef(calm[1:], calm[:-1])[0, 1])\n"
+       "        s2 = max(s2, float(calm @ calm) / (calm.size - 2))",
+       "    if r.size > 3 and np.std(r) > 0:\n"
+       "        rho = float(np.corrcoef(r[1:], r[:-1])[0, 1])",
+       "tests/test_fit_elastic.py", "-k", "reload_slopes"),
+    _m("elastic: the slope against time, not load-point displacement", "fit/elastic.py",
+       "est = _slope(x[i0:i0 + n], seg[:n], z, calm)",
+       "est = _slope(data.t[i0:i0 + n], seg[:n], z, calm)",
+       "tests/test_fit_elastic.py", "-k", "reload_slopes"),
 )
 
 

@@ -61,10 +61,12 @@ def fit_command(
     state_law: str = typer.Option("ageing", "--state-law", help="rsf: ageing or slip."),
     stiffness: str = typer.Option(None, "--stiffness", help="rsf time series: machine "
                                   "stiffness per unit normal force: a number (1/m; inf: "
-                                  "kinematic, the default for CSV), fit (a free parameter, "
-                                  "the default for a record), slope (fixed from the loading "
-                                  "slope after the change) or record (a record's one machine: "
-                                  "from the steps' free fits, then held in every step)."),
+                                  "kinematic, the default for CSV), fit (a free parameter "
+                                  "per step), slope (fixed from the loading slope after the "
+                                  "change) or record (the default for a record: its one "
+                                  "machine, from the steps' free fits and its elastic "
+                                  "reloads, then held in every step; each step free where "
+                                  "fewer than two estimates exist)."),
     trend: bool = typer.Option(None, "--trend/--no-trend", help="rsf time series: a linear "
                                "trend in load-point displacement (default: on for a record, "
                                "off for CSV)."),
@@ -73,6 +75,11 @@ def fit_command(
     segments: str = typer.Option(None, "--segments", help="Record: " + SEGMENTS_HELP),
     joint: bool = typer.Option(False, "--joint", help="Record: also fit all steps with one "
                                "a, b, Dc and one stiffness."),
+    drive: str = typer.Option("measured", "--drive", help="Record: what drives the fitted "
+                              "machine: measured (default: the record's load-point "
+                              "displacement, denoised, its change times placed from it, so "
+                              "that the stiffness does not hang on a given change time) or "
+                              "program (the idealised piecewise-constant program)."),
     errors: str = typer.Option("hac", "--errors", help="Record: uncertainties that allow for "
                                "autocorrelated residuals (hac, default) or that assume "
                                "independent noise (white)."),
@@ -108,6 +115,9 @@ def fit_command(
     from ..validation import check_choice, check_figure_format
 
     check_choice("model", model, ("cv", "rsf"))
+    from ..fit.loadpoint import check_drive
+
+    check_drive(drive)
     fmt, dpi = check_figure_format(fmt, dpi)
     check_fit_options(alpha=alpha, creep=creep, v0=v0, state_law=state_law, errors=errors,
                       traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref)
@@ -127,16 +137,17 @@ def fit_command(
         from .records import fit_record
 
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
-                   stiffness=parse_stiffness("fit" if stiffness is None else stiffness),
+                   stiffness=parse_stiffness("record" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
                    profile=profile, run_cv=run_cv, alpha=alpha,
                    creep=creep, errors=errors, direct=direct, v_ref=v_ref,
-                   traps_per_a0=traps_per_a0,
+                   traps_per_a0=traps_per_a0, drive=drive,
                    json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)
         return
     for flag, given in (("--columns", columns), ("--segments", segments),
                         ("--joint", joint or None), ("--run-cv", run_cv or None),
-                        ("--errors", None if errors == "hac" else errors)):
+                        ("--errors", None if errors == "hac" else errors),
+                        ("--drive", None if drive == "measured" else drive)):
         if given is not None:
             raise ValueError(f"{flag} is for a laboratory record, not the project's CSV files")
     profile = True if profile is None else profile

@@ -141,7 +141,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                joint: bool, profile: bool | None, run_cv: bool, alpha: float, creep: str,
                json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
                figure: bool = True, errors: str = "hac", direct: float = 0.0,
-               v_ref: float = 1e-6, traps_per_a0: float | None = None) -> None:
+               v_ref: float = 1e-6, traps_per_a0: float | None = None,
+               drive: str = "measured") -> None:
     """Read, slice, fit, print and write one laboratory record (module docstring)."""
     import typer
 
@@ -161,6 +162,9 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     from ..validation import check_choice
 
     check_choice("errors", errors, ERRORS)
+    from ..fit.loadpoint import check_drive
+
+    check_drive(drive)  # before any work
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     det = None if segments is not None else lab.detect_program(rec)
     segs = lab.parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
@@ -187,19 +191,27 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             from ..fit.onemachine import fit_steps_one_machine
 
             res = fit_steps_one_machine(rec, wins, segs, trend=trend, law=law, joint=joint,
-                                        profile=profile, errors=errors, progress=update)
+                                        profile=profile, errors=errors, progress=update,
+                                        drive=drive)
         else:
             res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                            joint=joint, profile=profile, errors=errors, progress=update)
+                            joint=joint, profile=profile, errors=errors, progress=update,
+                            drive=drive)
     if profile_note:
         res.notes.append(profile_note)
+    if res.drive is not None and res.drive.get("kind") == "measured":
+        from ..fit.loadpoint import compare_with_program
+
+        # how k and a depend on the drive: each step once more on the program (issue 30)
+        res.drive["comparison"] = compare_with_program(res.data, res.fits, res.rows)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
                               "model": "rsf", "options": {"stiffness": stiffness,
                                                           "trend": trend, "law": law,
                                                           "profile": profile,
-                                                          "errors": errors},
+                                                          "errors": errors,
+                                                          "drive": drive},
                               **res.to_dict()}
     if note:
         report["apparatus_note"] = note.removeprefix("note: ")
@@ -279,8 +291,24 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
             out.print(line, highlight=False, soft_wrap=True)
         if res.stiffness is not None:
             k = res.stiffness
+            n_load = sum(ld["used"] for ld in k.get("loadings", []))
             out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "
-                      f"(95 %, steps {', '.join(map(str, k['steps']))})", highlight=False)
+                      f"(95 %, steps {', '.join(map(str, k['steps'])) or 'none'}"
+                      + (f", {n_load} elastic loading(s)" if n_load else "") + ")",
+                      highlight=False)
+        for c in (res.drive or {}).get("changes", []):
+            out.print(f"measured drive: change at {c['t_change']:.6g} s +- "
+                      f"{c['sigma_t_change']:.2g} s (given {c['t_given']:.6g} s), "
+                      f"{c['v_before']:.4g} -> {c['v_after']:.4g} m/s", highlight=False,
+                      soft_wrap=True)
+        for c in (res.drive or {}).get("comparison", []):
+            m, p = c["measured"], c["program"]
+            if "not_run" in p:
+                continue
+            out.print(f"step {c['index']}: measured drive k = {_cell(m['stiffness'])} /m, "
+                      f"a = {_cell(m['a'])}; program drive k = {_cell(p['stiffness'])} /m, "
+                      f"a = {_cell(p['a'])} (rms {_cell(m['rms'])} against "
+                      f"{_cell(p['rms'])})", highlight=False, soft_wrap=True)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:

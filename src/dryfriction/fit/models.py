@@ -398,7 +398,8 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     """Rate-and-state friction along a measured load program (the RSF time-series model).
 
     The slider starts in steady sliding at ``v_load[0]``; the program is the data's
-    piecewise-constant ``v_load`` (:meth:`SeriesData.segments`); the returned friction is the
+    piecewise-constant ``v_load`` (:meth:`SeriesData.segments`), or the measured load point's
+    where the data carry one (``data.drive``, :mod:`.loadpoint`); the returned friction is the
     spring force per unit normal force (what a load cell measures), at the data's times,
     from :func:`dryfriction.rsf.simulate_rsf` with the model's stiffness
     (``values["stiffness"]`` where it is fitted), damping and state law, plus the linear trend
@@ -407,7 +408,9 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     with a hold (``v_load = 0``) uses the regularised law. Integration tolerance ``rtol = 1e-9``.
     """
     assert model.v0 is not None
-    dur, vel = data.segments()
+    drive = getattr(data, "drive", None)  # the measured load point (.loadpoint), if any
+    dur, vel = data.segments() if drive is None else drive.segments(float(data.t[0]),
+                                                                     float(data.t[-1]))
     params = RateState(values["a"], values["b"], values["dc"], values["mu0"], model.v0,
                        state_law=model.state_law,  # type: ignore[arg-type]
                        regularized=model.regularized or bool(np.any(vel <= 0.0)))

@@ -24,7 +24,8 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
     """:func:`.steps.fit_steps` twice: with a free stiffness per step, then with the record's
     one stiffness fixed (module docstring). Keyword arguments as :func:`.steps.fit_steps`
     (``stiffness`` is not one of them). Where fewer than two steps identify ``k`` the free
-    fits are returned, with a note."""
+    fits are returned, with a note. The record's stiffness also counts the slopes of its
+    elastic loadings (:func:`.elastic.machine_stiffness_record`)."""
     free = fit_steps(record, windows, segments, stiffness="fit", **kwargs)
     rec = free.stiffness
     if rec is None:
@@ -32,8 +33,8 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
         free.notes.append("--stiffness record: " + (
             "the steps are at several normal stresses, and k (1/m) = K/sigma_n differs "
             "between them (each level's in fit.json grouping)" if several else
-            "fewer than two steps identify k") + ", so each step keeps its own fitted "
-            "stiffness")
+            "fewer than two estimates of k (steps that identify it, elastic loadings)") +
+            ", so each step keeps its own fitted stiffness")
         return free
     fixed = fit_steps(record, windows, segments, stiffness=float(rec["value"]), **kwargs)
     for row, own, f in zip(fixed.rows, free.rows, free.fits, strict=True):
@@ -49,7 +50,18 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
             f"one machine (steps {', '.join(map(str, rec['steps']))}); this step's own free "
             f"fit gave k = {own['stiffness']:.4g} /m"]
     fixed.stiffness = rec
+    used = [ld for ld in rec.get("loadings", []) if ld["used"]]
+    at = ", ".join(f"{ld['t_start']:.6g}" for ld in used)
     fixed.notes.append(f"one machine: k = {rec['value']:.4g} /m [{rec['lo']:.4g}, "
                        f"{rec['hi']:.4g}] from the free fits of steps "
-                       f"{', '.join(map(str, rec['steps']))}, held in every step")
+                       f"{', '.join(map(str, rec['steps'])) or 'none'}"
+                       + (f" and {len(used)} elastic loading(s) (at "
+                          f"{at} s)"
+                          if used else "") + ", held in every step")
+    for ld in rec.get("loadings", []):
+        if ld["k_inconsistent"]:
+            fixed.notes.append(f"the elastic {ld['kind']} at {ld['t_start']:.6g} s gives k = "
+                               f"{ld['stiffness']:.4g} /m [{ld['stiffness_lo']:.4g}, "
+                               f"{ld['stiffness_hi']:.4g}], which disagrees with the other "
+                               "estimates: left out")
     return fixed

@@ -43,6 +43,7 @@ from ..io.files import write_csv
 from ..io.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
+from .elastic import machine_stiffness_record
 from .engine import fit
 from .experiment import EXPERIMENT_COLUMNS, annotate_steps, level_stiffness, levels_report
 from .identify import assess_step, worse_than_noise
@@ -147,6 +148,8 @@ def _window_data(data: SeriesData, w: Any) -> SeriesData:
         raise ValueError(f"{data.source}: window {getattr(w, 'index', '?')} covers samples "
                          f"[{i0}, {i1}), out of range: allowed within [0, {len(data)})")
     sl = slice(i0, i1)
+    if hasattr(data, "window"):  # a measured drive goes with the window (.loadpoint)
+        return data.window(i0, i1, f"{data.source} [step {getattr(w, 'index', '?')}]")
     return SeriesData(data.t[sl], data.v_load[sl], data.mu[sl],
                       source=f"{data.source} [step {getattr(w, 'index', '?')}]")
 
@@ -422,8 +425,9 @@ class StepsResult:
         per window (``mu0_<i>``, ``trend_<i>``).
     notes : list of str
     stiffness : dict or None
-        The record's one machine stiffness (:func:`.identify.record_stiffness`); ``None``
-        where the steps are at several normal stresses (one per level in ``levels``).
+        The record's one machine stiffness, from the steps' free fits and the record's
+        elastic loadings (:func:`.elastic.machine_stiffness_record`); ``None`` where the steps
+        are at several normal stresses (one per level in ``levels``).
     levels : dict or None
         The steps grouped by normal stress (:func:`.experiment.levels_report`).
     """
@@ -435,6 +439,7 @@ class StepsResult:
     notes: list[str] = field(default_factory=list)
     stiffness: dict[str, Any] | None = None  # the record's k (fit.identify.record_stiffness)
     levels: dict[str, Any] | None = None  # the normal-stress levels (fit.experiment)
+    drive: dict[str, Any] | None = None  # the measured drive (fit.loadpoint.drive_report)
 
     @property
     def success(self) -> bool:
@@ -450,7 +455,8 @@ class StepsResult:
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"steps": self.rows, "success": self.success,
                                "notes": list(self.notes), "record_stiffness": self.stiffness,
-                               "grouping": self.levels}
+                               "grouping": self.levels,
+                               "drive": self.drive or {"kind": "program"}}
         if self.joint is not None:
             out["joint"] = self.joint.to_dict()
         return out
@@ -486,6 +492,7 @@ def fit_steps(
     profile: bool = False,
     progress: Callable[[int, int], None] | None = None,
     errors: str = "hac",
+    drive: str = "program",
 ) -> StepsResult:
     """Fit rate-and-state friction to each step window of a record (module docstring).
 
@@ -522,6 +529,10 @@ def fit_steps(
     errors : {"hac", "white"}
         ``"hac"`` (default): standard errors and intervals allow for autocorrelated residuals
         (:func:`step_covariance`); ``"white"``: independent noise assumed.
+    drive : {"program", "measured"}
+        What drives the forward model: the piecewise-constant program, or the record's
+        measured load-point displacement, denoised (:mod:`.loadpoint`; a laboratory record
+        only).
 
     Returns
     -------
@@ -530,6 +541,13 @@ def fit_steps(
     check_choice("law", law, ("ageing", "slip"))
     check_choice("errors", errors, ERRORS)
     data = _as_series(record, segments)
+    drive_info = None
+    if drive != "program":
+        from .loadpoint import check_drive, drive_report, measured_series
+
+        check_drive(drive)
+        data = measured_series(data, None if isinstance(record, SeriesData) else record)
+        drive_info = drive_report(data)
     wins = list(series_windows(data) if windows is None else windows)
     if not wins:
         raise ValueError(f"{data.source}: no velocity step to fit (the load velocity never "
@@ -577,7 +595,11 @@ def fit_steps(
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
     annotate_steps(rows, record, wins, profile)  # normal stress, level, hold (fit.experiment)
-    one, each = level_stiffness(rows)
+    if len({int(r.get("normal_level", 0)) for r in rows}) > 1:
+        one, each = level_stiffness(rows)  # k = K/sigma_n: one machine per level
+    else:  # one level: the steps' free k and the record's elastic loadings (fit.elastic)
+        one = machine_stiffness_record(rows, data)
+        each = {int(rows[0].get("normal_level", 0)) if rows else 0: one}
     levels = levels_report(rows, each)
     if len(each) > 1:
         notes.append(f"the steps are at {len(each)} normal-stress levels ("
@@ -585,7 +607,7 @@ def fit_steps(
                      "per unit normal stress (1/m) is K/sigma_n, one per level, so the "
                      "record's one machine is estimated per level (fit.json grouping)"
                      + ("; --joint fits one a, b, Dc and k over all of them" if joint else ""))
-    return StepsResult(rows, fits, pieces, joint_fit, notes, one, levels)
+    return StepsResult(rows, fits, pieces, joint_fit, notes, one, levels, drive_info)
 
 
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:
