@@ -200,10 +200,15 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     if profile_note:
         res.notes.append(profile_note)
     if res.drive is not None and res.drive.get("kind") == "measured":
-        from ..fit.loadpoint import compare_with_program
+        if profile:  # the same rule as the profiles: a fit of its own per step
+            from ..fit.loadpoint import compare_with_program
 
-        # how k and a depend on the drive: each step once more on the program (issue 30)
-        res.drive["comparison"] = compare_with_program(res.data, res.fits, res.rows)
+            # how k and a depend on the drive: each step once more on the program (issue 30)
+            res.drive["comparison"] = compare_with_program(res.data, res.fits, res.rows)
+        else:
+            res.notes.append("the measured drive's comparison with the program (each step "
+                             "refitted on it) is left out with the profiles; --profile gives "
+                             "both")
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
