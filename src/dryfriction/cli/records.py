@@ -97,8 +97,8 @@ def _cell(x: Any) -> str:
 
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
     table = Table(title=title)
-    cols = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
-            "rms", "noise", "peak_residual", "flags")
+    cols = ("index", "v_before", "v_after", "state_law", "a", "b", "a_minus_b", "dc",
+            "stiffness", "trend", "rms", "noise", "peak_residual", "flags")
     for c in cols:
         table.add_column(c, justify="left" if c == "flags" else "right")
     for r in rows:
@@ -137,15 +137,16 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                joint: bool, profile: bool, run_cv: bool, alpha: float, creep: str,
                json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
                figure: bool = True, errors: str = "hac", direct: float = 0.0,
-               v_ref: float = 1e-6, traps_per_a0: float | None = None) -> None:
+               v_ref: float = 1e-6, traps_per_a0: float | None = None,
+               initial: str = "auto") -> None:
     """Read, slice, fit, print and write one laboratory record (module docstring)."""
     import typer
 
     from ..fit import compare_models
     from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
+    from ..fit.lawchoice import INITIAL_CHOICES, fit_steps_laws
     from ..fit.steps import (
         ERRORS,
-        fit_steps,
         robust_estimates,
         step_covariance,
         step_data,
@@ -156,6 +157,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     from ..validation import check_choice
 
     check_choice("errors", errors, ERRORS)
+    check_choice("--initial-state", initial, INITIAL_CHOICES)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     det = None if segments is not None else lab.detect_program(rec)
     segs = lab.parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
@@ -177,19 +179,16 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
                          "run --model rsf --run-cv [--direct A] to fit both and compare")
     with progress_bar("fitting steps", len(wins), unit="steps") as update:
-        if stiffness == "record":  # one machine: free fits, then the record's k held
-            from ..fit.onemachine import fit_steps_one_machine
-
-            res = fit_steps_one_machine(rec, wins, segs, trend=trend, law=law, joint=joint,
-                                        profile=profile, errors=errors, progress=update)
-        else:
-            res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                            joint=joint, profile=profile, errors=errors, progress=update)
+        # one machine (stiffness "record"), the law (or every law: auto) and the initial state
+        res = fit_steps_laws(rec, wins, segs, law=law, initial=initial, stiffness=stiffness,
+                             trend=trend, joint=joint, profile=profile, errors=errors,
+                             progress=update)
     report: dict[str, Any] = {"record": str(path), "columns": list(rec.columns),
                               "segments": [vars(s) if hasattr(s, "__dict__") else s
                                            for s in segs],
                               "model": "rsf", "options": {"stiffness": stiffness,
                                                           "trend": trend, "law": law,
+                                                          "initial_state": initial,
                                                           "profile": profile,
                                                           "errors": errors},
                               **res.to_dict()}
