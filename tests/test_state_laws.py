@@ -192,12 +192,13 @@ def test_free_initial_state_removes_the_reslide_bias():
 
 
 # ------------------------------------------------------------------------ the command line
+@pytest.mark.slow
 def test_cli_state_law_auto_writes_the_comparison_everywhere(tmp_path: Path):
     """``fit RECORD --model rsf --state-law auto`` on the PRZ record above written as a lab
     file: steps.csv has the chosen law per row (``state_law``, with ``aic``, ``bic``), fit.json
     each step's ``law_comparison`` over the five laws (its chosen law of least AIC, agreeing with
-    the CSV), and the terminal the table's ``state_law`` column and the note naming the law.
-    A CSV time series refuses ``auto`` in one line (exit 2)."""
+    the CSV), and the terminal the table's ``state_law`` column and the note naming the law
+    (48 s wall: slow)."""
     import csv
     import json
 
@@ -224,9 +225,26 @@ def test_cli_state_law_auto_writes_the_comparison_everywhere(tmp_path: Path):
         assert row["state_law"] == st["state_law"] == best == "prz"
         assert float(row["aic"]) == pytest.approx(comp["prz"]["aic"])
     assert "state law by AIC: prz" in r.output and "state_law" in r.output
-    csv_path = tmp_path / "series.csv"
-    csv_path.write_text("t[s],v_load[m/s],mu\n" + "".join(
-        f"{t},{v},{m}\n" for t, v, m in zip(d.t[:50], d.v_load[:50], d.mu[:50], strict=True)))
-    r = CliRunner().invoke(app, ["fit", str(csv_path), "--model", "rsf", "--state-law", "auto",
-                                 "--out", str(tmp_path / "csv")])
-    assert r.exit_code == 2 and "--state-law auto" in r.output, r.output
+
+
+
+@pytest.mark.parametrize(("args", "says"), [
+    (["--state-law", "auto"], "--state-law auto is for a laboratory record"),
+    (["--initial-state", "free"], "--initial-state is for a laboratory record"),
+    (["--state-law", "prz2"], "--state-law"),
+])
+def test_cli_refuses_what_a_csv_series_cannot_take(tmp_path: Path, args: list[str], says: str):
+    """A CSV time series refuses --state-law auto and --initial-state (record options), and
+    an unknown law, in one line naming the option, exit 2, before any work."""
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+
+    path = tmp_path / "series.csv"
+    t = np.arange(50.0)
+    path.write_text("t[s],v_load[m/s],mu\n" + "".join(
+        f"{x},{1e-6 if x < 25 else 1e-5},{0.6}\n" for x in t))
+    r = CliRunner().invoke(app, ["fit", str(path), "--model", "rsf", *args,
+                                 "--out", str(tmp_path / "out")])
+    assert r.exit_code == 2 and says in r.output, r.output
+    assert not (tmp_path / "out").exists()
