@@ -97,10 +97,10 @@ def _cell(x: Any) -> str:
 
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
     table = Table(title=title)
-    cols = ("index", "v_before", "v_after", "state_law", "a", "b", "a_minus_b", "dc",
-            "stiffness", "trend", "rms", "noise", "peak_residual", "flags")
+    cols = ("index", "v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
+            "rms", "noise", "peak_residual", "flags", "state_law")
     for c in cols:
-        table.add_column(c, justify="left" if c == "flags" else "right")
+        table.add_column(c, justify="left" if c in ("flags", "state_law") else "right")
     for r in rows:
         table.add_row(*(_cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
     return table
@@ -254,7 +254,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         err.print(flagged_line(res.rows), highlight=False)  # stdout stays one JSON document
     else:
         # one row per step in full, flags included: a console's width would squash them
-        wide = Console(width=max(out.width, 150 + max(len(r["flags"]) for r in res.rows)))
+        wide = Console(width=max(out.width, 162 + max(len(r["flags"]) for r in res.rows)))
         wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
         wide.print(_intervals_table(res.rows))
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
