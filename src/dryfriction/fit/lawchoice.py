@@ -14,7 +14,9 @@ data say the window starts inside a transient (issue 30 items 4 and 5; ours).
   inside a transient biases ``Dc`` silently (23.6 um for a true 20 um on a slide-hold-slide
   record with short reslides: README), while a free start where the data were steady costs
   one parameter and an identified ``state0`` near 0. ``initial="steady"`` or ``"free"``
-  forces one for every step.
+  forces one for every step. With a free stiffness per step, the record's stiffness and
+  ``k_inconsistent`` (:func:`.identify.record_stiffness`) are then found afresh from the
+  steps as finally fitted.
 * **state law** (``law="auto"``): every law of :data:`.laws.FIT_LAWS` per step; the one of
   least AIC is the step's (``state_law`` column), and its row carries ``law_comparison``
   (AIC, BIC, their differences from the least, rms, success for each law; in fit.json) and a
@@ -69,9 +71,8 @@ def _free_start(res: StepsResult, record: Any, wins: Sequence[Any], segments: An
         if "not_steady_before" not in words:  # the data's finding stays with the step
             words.append("not_steady_before")
             nrow["notes"] += [n for n in row["notes"] if n.startswith("not steady before")]
-        for w in split_flags(row["flags"]):
-            if w == "k_inconsistent" and w not in words:
-                words.append(w)
+        if stiffness == "record" and "k_inconsistent" in split_flags(row["flags"]):
+            words.append("k_inconsistent")  # its free k disagreed: the step's own finding
         nrow["flags"] = ";".join(dict.fromkeys(words))
         if stiffness == "record" and res.stiffness is not None:
             nrow["stiffness_lo"], nrow["stiffness_hi"] = res.stiffness["lo"], res.stiffness["hi"]
@@ -84,6 +85,12 @@ def _free_start(res: StepsResult, record: Any, wins: Sequence[Any], segments: An
             f"{nrow['aic']:.1f} against {row['aic']:.1f} from steady sliding; the steady fit "
             f"gave a = {row['a']:.4g}, b = {row['b']:.4g}, dc = {row['dc']:.4g} m")
         res.rows[i], res.fits[i], res.data[i] = nrow, nfit, new.data[0]
+    if stiffness != "record" and any(r["initial"] == "free" for r in res.rows):
+        # each step's k as now fitted: the record's k and k_inconsistent afresh
+        for r in res.rows:
+            r["flags"] = ";".join(w for w in split_flags(r["flags"]) if w != "k_inconsistent")
+            r["notes"] = [n for n in r["notes"] if not n.startswith("k_inconsistent")]
+        res.stiffness = record_stiffness(res.rows)
 
 
 def _choose(results: dict[str, StepsResult]) -> StepsResult:
