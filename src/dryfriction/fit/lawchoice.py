@@ -64,8 +64,11 @@ def _free_start(res: StepsResult, record: Any, wins: Sequence[Any], segments: An
         if "not_steady_before" not in split_flags(row["flags"]):
             continue
         one = {**kw, "progress": None, "joint": False}
+        # from the steady fit's optimum (state0 = 0 is that fit): no cold multistart
+        warm = {p.name: p.value for p in res.fits[i].parameters
+                if p.name != "stiffness" or k == "fit"}
         new = fit_steps(record, [wins[i]], segments, stiffness=k, law=law, initial="free",
-                        **one)
+                        warm=[{**warm, "state0": 0.0}], **one)
         nrow, nfit = new.rows[0], new.fits[0]
         words = split_flags(nrow["flags"])
         if "not_steady_before" not in words:  # the data's finding stays with the step

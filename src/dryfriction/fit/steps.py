@@ -481,6 +481,7 @@ def fit_steps(
     progress: Callable[[int, int], None] | None = None,
     errors: str = "hac",
     initial: str = "steady",
+    warm: Sequence[Mapping[str, float]] | None = None,
 ) -> StepsResult:
     """Fit rate-and-state friction to each step window of a record (module docstring).
 
@@ -519,6 +520,9 @@ def fit_steps(
         (:func:`step_covariance`); ``"white"``: independent noise assumed.
     initial : {"steady", "free"}
         Each window starts in steady sliding, or from a fitted state (:mod:`.laws`).
+    warm : sequence of mappings, optional
+        Starting values per window (e.g. a fit of the same window with another initial
+        state, :mod:`.lawchoice`); default: the previous window's optimum.
 
     Returns
     -------
@@ -545,6 +549,8 @@ def fit_steps(
         # a cold start with a free k can fall into a local minimum: retried if worse than noise
         start, cold = _start(prev, model, d), stiffness == "fit" and (prev is None
                                                                      or not prev.success)
+        if warm is not None:
+            start, cold = dict(warm[i]), False
         tick = None if progress is None else \
             (lambda n, total, what, i=i: progress(i, len(wins)))  # type: ignore[misc]
         r = fit(d, model, start=start, multistart=False, profile=False, progress=tick)
