@@ -75,7 +75,8 @@ the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covari
 ``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used;
 ``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
 record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
-:data:`.identify.FLAG_WORDS` separated by ``;``). A parameter that is not identified
+:data:`.identify.FLAG_WORDS` separated by ``;``; then the state law's,
+:data:`.lawcolumns.LAW_COLUMNS`). A parameter that is not identified
 (:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
 none."""
 
