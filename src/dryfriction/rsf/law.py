@@ -36,7 +36,11 @@ Laws (``theta`` in s):
   measures; equal to friction without damping or mass), so it needs a finite spring; with a
   fast change of ``tau`` the state drops by ``(c/b) Delta tau`` and the direct effect of a
   step on a stiff machine is ``a ln(V2/V1)/(1 + c)`` (ours, from the law). One state
-  variable.
+  variable. The paper's own text (and its equation number) was not at hand: the form and the
+  sign are those restated by Bhattacharya & Rubin 2014 (*J. Geophys. Res.* 119, 2272; ``c =
+  0`` is the ageing law) and by Kame et al. (ICF13, 2013: ``d Phi/dt = b (V*/L) exp(-Phi/b)
+  - b V/L - c dtau/dt`` for ``Phi = b ln(V* theta/L)``, which gives the factor ``1 + c`` in
+  ``d ln V/dt``), equivalent to the line above.
 
 Steady state: ``theta_ss = Dc/V`` and ``mu_ss = mu0 + (a - b - b2) ln(V/V0)`` (Ruina 1983),
 for every law.
