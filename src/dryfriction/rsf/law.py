@@ -38,9 +38,9 @@ Laws (``theta`` in s):
   step on a stiff machine is ``a ln(V2/V1)/(1 + c)`` (ours, from the law). One state
   variable. The paper's own text (and its equation number) was not at hand: the form and the
   sign are those restated by Bhattacharya & Rubin 2014 (*J. Geophys. Res.* 119, 2272; ``c =
-  0`` is the ageing law) and by Kame et al. (ICF13, 2013: ``d Phi/dt = b (V*/L) exp(-Phi/b)
-  - b V/L - c dtau/dt`` for ``Phi = b ln(V* theta/L)``, which gives the factor ``1 + c`` in
-  ``d ln V/dt``), equivalent to the line above.
+  0`` is the ageing law) and by Kame et al. (13th Int. Conf. Fracture, 2013, whose
+  nondimensional equation for ``d ln V/dt`` carries the factor ``1 + c`` on ``dtau/dt`` that
+  this form gives).
 
 Steady state: ``theta_ss = Dc/V`` and ``mu_ss = mu0 + (a - b - b2) ln(V/V0)`` (Ruina 1983),
 for every law.
