@@ -115,15 +115,19 @@ def test_nagata_direct_effect_is_a_over_one_plus_c(c: float):
 
 
 # ------------------------------------------------------------------------ independent solver
+@pytest.mark.parametrize("hold", [False, True])
 @pytest.mark.parametrize("law", list(EXTRA))
-def test_forward_model_matches_independent_solver(law: str):
+def test_forward_model_matches_independent_solver(law: str, hold: bool):
     """rsf_series (RODAS4 on ln V, ln theta; the fit's forward model) against SciPy LSODA on
     (tau, ln theta) written in tests/laws_synth.py, along steps up and down by 7.3 on k =
     3000 /m from a state off steady (ln(theta V/Dc) = 0.4, the free initial state): within
-    1e-8 (measured 1e-11). Catches a wrong law, sign, factor, a stress rate taken from the
-    wrong quantity, a second state variable mis-wired, or a free start read wrongly."""
+    1e-8 (measured 1e-11); and through a 100 s hold instead of the step up (the fit then
+    uses the regularised law, whose friction the kernel evaluates itself). Catches a wrong
+    law, sign, factor, a stress rate taken from the wrong quantity, a second state variable
+    mis-wired (in the force balance or, through a hold, in the friction), or a free start
+    read wrongly."""
     tr = Truth(a=A, b=B, dc=DC, mu0=MU0, law=law, **EXTRA[law])
-    prog = [(V1, 60.0), (R * V1, 20.0), (V1, 120.0)]
+    prog = [(V1, 60.0), (0.0, 100.0) if hold else (R * V1, 20.0), (V1, 120.0)]
     t, v, mu = simulate(tr, prog, 0.25, V0, lnth0=math.log(DC / V1) + 0.4)
     vals = {"a": A, "b": B, "dc": DC, "mu0": MU0, "stiffness": 3000.0, "state0": 0.4,
             **EXTRA[law]}
