@@ -58,7 +58,15 @@ def fit_command(
         "--fix", help="Hold a parameter fixed: --fix t0=0.01 (SI units; repeatable).")] = None,
     v0: float = typer.Option(None, "--v0", help="rsf: reference velocity V0, m/s (for static "
                              "data: the hold tests' sliding velocity; required then)."),
-    state_law: str = typer.Option("ageing", "--state-law", help="rsf: ageing or slip."),
+    state_law: str = typer.Option("ageing", "--state-law", help="rsf: ageing, slip, prz "
+                                  "(Perrin-Rice-Zheng), nagata (ageing with a stress-rate "
+                                  "term c, fitted) or ageing2 (two state variables: b2, dc2 "
+                                  "fitted); record: also auto (every law per step, the least "
+                                  "AIC chosen; the comparison in fit.json and the notes)."),
+    initial_state: str = typer.Option("auto", "--initial-state", help="Record: each step's "
+                                      "fit starts in steady sliding (steady), from a fitted "
+                                      "state ln(theta0 V/Dc) (free), or free only where the "
+                                      "step is flagged not_steady_before (auto)."),
     stiffness: str = typer.Option(None, "--stiffness", help="rsf time series: machine "
                                   "stiffness per unit normal force: a number (1/m; inf: "
                                   "kinematic, the default for CSV), fit (a free parameter "
@@ -139,7 +147,7 @@ def fit_command(
         fit_record(data[0], out_dir, model=model, columns=columns, segments=segments,
                    stiffness=parse_stiffness("record" if stiffness is None else stiffness),
                    trend=True if trend is None else trend, law=state_law, joint=joint,
-                   profile=profile, run_cv=run_cv, alpha=alpha,
+                   initial=initial_state, profile=profile, run_cv=run_cv, alpha=alpha,
                    creep=creep, errors=errors, direct=direct, v_ref=v_ref,
                    traps_per_a0=traps_per_a0, drive=drive,
                    json_out=json_out, force=force, fmt=fmt, dpi=dpi, figure=figure)
@@ -147,7 +155,9 @@ def fit_command(
     for flag, given in (("--columns", columns), ("--segments", segments),
                         ("--joint", joint or None), ("--run-cv", run_cv or None),
                         ("--errors", None if errors == "hac" else errors),
-                        ("--drive", None if drive == "measured" else drive)):
+                        ("--drive", None if drive == "measured" else drive),
+                        ("--state-law auto", None if state_law != "auto" else state_law),
+                        ("--initial-state", None if initial_state == "auto" else initial_state)):
         if given is not None:
             raise ValueError(f"{flag} is for a laboratory record, not the project's CSV files")
     profile = True if profile is None else profile
@@ -244,14 +254,15 @@ def check_fit_options(*, alpha: float, creep: str, v0: float | None, state_law: 
     """
     from ..ensemble.population import TRAPS_PER_A0_MIN
     from ..ensemble.resources import BYTES_PER_TRAP
+    from ..fit.laws import FIT_LAWS
     from ..fit.steps import ERRORS
-    from ..rsf.law import STATE_LAWS, V_MAX, V_MIN
+    from ..rsf.law import V_MAX, V_MIN
     from ..theory.creep import CREEP_LAWS
     from ..validation import ALPHA_MIN, DIRECT_MAX, check_choice, check_memory, check_scalar
 
     check_scalar("--alpha", alpha, ALPHA_MIN, 1.0, hi_open=True)
     check_choice("--creep", creep, CREEP_LAWS)
-    check_choice("--state-law", state_law, STATE_LAWS)
+    check_choice("--state-law", state_law, (*FIT_LAWS, "auto"))
     check_choice("--errors", errors, ERRORS)
     check_scalar("--direct", direct, 0.0, DIRECT_MAX)
     check_scalar("--v-ref", v_ref, V_MIN, V_MAX)

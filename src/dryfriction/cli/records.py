@@ -98,12 +98,12 @@ def _cell(x: Any) -> str:
 def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
     table = Table(title=title)
     cols = ("index", "kind", "v_before", "v_after", "normal", "a", "b", "a_minus_b", "dc",
-            "stiffness", "trend", "rms", "noise", "peak_residual", "flags")
+            "stiffness", "trend", "rms", "noise", "peak_residual", "flags", "state_law")
     unit = next((r.get("normal_unit") for r in rows if r.get("normal_unit")), "")
     scale, shown = (1e-3, "kN") if unit == "N" else (1e-6, "MPa")
     for c in cols:
         table.add_column(f"normal [{shown}]" if c == "normal" else c,
-                         justify="left" if c == "flags" else "right")
+                         justify="left" if c in ("flags", "state_law") else "right")
     for r in rows:
         table.add_row(*(_cell(float(r[c]) * scale) if c == "normal" else
                         _cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
@@ -142,16 +142,16 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                json_out: bool, force: bool, fmt: str = "png", dpi: int | None = None,
                figure: bool = True, errors: str = "hac", direct: float = 0.0,
                v_ref: float = 1e-6, traps_per_a0: float | None = None,
-               drive: str = "measured") -> None:
+               drive: str = "measured", initial: str = "auto") -> None:
     """Read, slice, fit, print and write one laboratory record (module docstring)."""
     import typer
 
     from ..fit import compare_models
     from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
     from ..fit.experiment import default_profile, levels_lines
+    from ..fit.lawchoice import INITIAL_CHOICES, fit_steps_laws
     from ..fit.steps import (
         ERRORS,
-        fit_steps,
         robust_estimates,
         step_covariance,
         step_data,
@@ -165,6 +165,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     from ..fit.loadpoint import check_drive
 
     check_drive(drive)  # before any work
+    check_choice("--initial-state", initial, INITIAL_CHOICES)
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     det = None if segments is not None else lab.detect_program(rec)
     segs = lab.parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
@@ -187,16 +188,10 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
                          "run --model rsf --run-cv [--direct A] to fit both and compare")
     with progress_bar("fitting steps", len(wins), unit="steps") as update:
-        if stiffness == "record":  # one machine: free fits, then the record's k held
-            from ..fit.onemachine import fit_steps_one_machine
-
-            res = fit_steps_one_machine(rec, wins, segs, trend=trend, law=law, joint=joint,
-                                        profile=profile, errors=errors, progress=update,
-                                        drive=drive)
-        else:
-            res = fit_steps(rec, wins, segs, stiffness=stiffness, trend=trend, law=law,
-                            joint=joint, profile=profile, errors=errors, progress=update,
-                            drive=drive)
+        # one machine (stiffness "record"), the law (or every law: auto) and the initial state
+        res = fit_steps_laws(rec, wins, segs, law=law, initial=initial, stiffness=stiffness,
+                             trend=trend, joint=joint, profile=profile, errors=errors,
+                             progress=update, drive=drive)
     if profile_note:
         res.notes.append(profile_note)
     if res.drive is not None and res.drive.get("kind") == "measured":
@@ -214,6 +209,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
                                            for s in segs],
                               "model": "rsf", "options": {"stiffness": stiffness,
                                                           "trend": trend, "law": law,
+                                                          "initial_state": initial,
                                                           "profile": profile,
                                                           "errors": errors,
                                                           "drive": drive},
@@ -280,7 +276,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         err.print(flagged_line(res.rows), highlight=False)  # stdout stays one JSON document
     else:
         # one row per step in full, flags included: a console's width would squash them
-        wide = Console(width=max(out.width, 175 + max(len(r["flags"]) for r in res.rows)))
+        wide = Console(width=max(out.width, 190 + max(len(r["flags"]) for r in res.rows)))
         wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
         wide.print(_intervals_table(res.rows))
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag

@@ -67,9 +67,9 @@ __all__ = ["FLAG_WORDS", "PHYSICAL", "MAX_SPAN", "MISFIT_RMS", "DRIFT_NOISE", "S
            "transient_test", "TRANSIENT_P", "worse_than_noise"]
 
 FLAG_WORDS: dict[str, str] = {
-    "not_identified:<name>": "the 95 % interval of <name> (a, b, dc, stiffness) is open, "
-                             "leaves the physical range or spans more than a decade: the value "
-                             "is not reported",
+    "not_identified:<name>": "the 95 % interval of <name> (a, b, dc, stiffness; state0, c, "
+                             "b2, dc2: fit.lawcolumns) is open, leaves the physical range or "
+                             "spans more than a decade: the value is not reported",
     "at_bound:<name>": "<name> ended on its search bound: the value is not reported",
     "misfit": "rms residual, peak residual or residual runs beyond their allowance",
     "not_steady_before": "friction was not in steady sliding before the change",

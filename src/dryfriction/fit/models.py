@@ -22,7 +22,7 @@ import numpy as np
 from ..io.data import Dataset, SeriesData, StaticData, SteadyData
 from ..program import Segment, VelocityProgram
 from ..rsf.driving import RSFOutput, SpringSlider, simulate_rsf
-from ..rsf.law import STATE_LAWS, RateState
+from ..rsf.law import RateState
 from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
 from ..theory.static import static_friction_first_order
@@ -31,6 +31,15 @@ from ..theory.trap import Trap
 from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
 from ..validation import DIRECT_MAX, Array, check_choice, check_scalar
 from .cvseries import cv_series
+from .laws import (
+    FIT_LAWS,
+    INITIAL_STATES,
+    initial_specs,
+    initial_state,
+    law_guess,
+    law_specs,
+    rate_state,
+)
 from .machine import load_point_displacement, loading_slope_stiffness
 
 __all__ = [
@@ -434,11 +443,10 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     """
     assert model.v0 is not None
     prog, te, hold = _load_program(data)
-    params = RateState(values["a"], values["b"], values["dc"], values["mu0"], model.v0,
-                       state_law=model.state_law,  # type: ignore[arg-type]
-                       regularized=model.regularized or hold)
+    params = rate_state(model.state_law, values, model.v0, model.regularized or hold)
     k = machine_stiffness(model.stiffness, values)
     res = simulate_rsf(params, SpringSlider(prog, k, model.damping),
+                       initial_state(model.initial, values, float(prog.velocities[0])),
                        output=RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
     mu = np.asarray(res.stress, float)
     if model.trend:
@@ -456,9 +464,9 @@ class RSFModel:
         Reference velocity, m/s, fixed. For static (healing) data it is also the sliding and
         reloading velocity of the hold tests, and must be given. Otherwise it defaults to the
         first load velocity of a time series or the geometric mean of the steady velocities.
-    state_law : {"ageing", "slip"}
-        State evolution law (static data need the ageing law: the slip law does not heal at
-        rest).
+    state_law : {"ageing", "slip", "prz", "nagata", "ageing2"}
+        State evolution law (:mod:`.laws`; static data need the ageing law: the slip law does
+        not heal at rest).
     stiffness : float or {"fit", "slope"}
         Machine stiffness per unit normal force for time series, 1/m; ``inf``: kinematic;
         ``"fit"``: a free parameter ``stiffness`` (fitted in ``ln k``); ``"slope"``: fixed from
@@ -474,6 +482,8 @@ class RSFModel:
         Regularised (``asinh``) law, needed for holds on a kinematic machine.
     series : callable
         Time-series model; default :func:`rsf_series`.
+    initial : {"steady", "free"}
+        Time series: start in steady sliding, or from a fitted state ``state0`` (:mod:`.laws`).
     """
 
     v0: float | None = None
@@ -483,12 +493,14 @@ class RSFModel:
     regularized: bool = False
     series: Callable[[RSFModel, Mapping[str, float], SeriesData], Array] = rsf_series
     trend: bool = False
+    initial: str = "steady"
     name: str = field(default="rsf", init=False)
 
     def __post_init__(self) -> None:
         if self.v0 is not None:
             object.__setattr__(self, "v0", check_scalar("v0", self.v0, 0.0, lo_open=True))
-        check_choice("state_law", self.state_law, STATE_LAWS)
+        check_choice("state_law", self.state_law, FIT_LAWS)
+        check_choice("initial", self.initial, INITIAL_STATES)
         if isinstance(self.stiffness, str):
             check_choice("stiffness", self.stiffness, ("fit", "slope"))
             # a fitted spring is finite: the damping check needs a finite stiffness
@@ -503,7 +515,8 @@ class RSFModel:
     def options(self) -> dict[str, Any]:
         return {"v0": self.v0, "state_law": self.state_law, "stiffness": self.stiffness,
                 "damping": self.damping, "regularized": self.regularized,
-                "trend": bool(self.trend)}
+                "trend": bool(self.trend), **({"initial": self.initial}
+                                              if self.initial != "steady" else {})}
 
     def resolve(self, datasets: Sequence[Dataset]) -> RSFModel:
         """Fill in ``v0`` from the data where it may be (see the class docstring)."""
@@ -538,7 +551,9 @@ class RSFModel:
             return mu0, ParamSpec("a_minus_b", "", False, -1.0, 1.0)
         if kinds == {"static"}:
             return mu0, b, dc
-        return (mu0, a, b, dc, *_machine_specs(kinds, self.stiffness, self.trend))
+        extra = (*law_specs(self.state_law), *initial_specs(self.initial))
+        return (mu0, a, b, dc, *(ParamSpec(*e) for e in extra),
+                *_machine_specs(kinds, self.stiffness, self.trend))
 
     def notes(self, kinds: frozenset[str]) -> list[str]:
         n = [f"v0 = {self.v0:g} m/s fixed (reference velocity)"]
@@ -558,9 +573,7 @@ class RSFModel:
         if "a_minus_b" in v:  # only a - b enters the steady state: any a, b with that difference
             b = max(0.0, -v["a_minus_b"]) + 1.0
             return RateState(v["a_minus_b"] + b, b, 1.0, v["mu0"], self.v0)
-        return RateState(v.get("a", 1.0), v["b"], v["dc"], v["mu0"], self.v0,
-                         state_law=self.state_law,  # type: ignore[arg-type]
-                         regularized=self.regularized)
+        return rate_state(self.state_law, {"a": 1.0, **v}, self.v0, self.regularized)
 
     def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
         x = d.x if x is None else x
@@ -626,8 +639,8 @@ class RSFModel:
         extra = _machine_guess(se, self.stiffness, self.trend)
         for dc in dcs:
             for a in ((0.005, 0.02) if se and not st else (max(b + amb, 1e-4),)):
-                out.append({"mu0": mu0, "a": a, "b": max(a - amb, 1e-4), "dc": float(dc),
-                            **extra})
+                g = {"mu0": mu0, "a": a, "b": max(a - amb, 1e-4), "dc": float(dc), **extra}
+                out.append({**g, **law_guess(self.state_law, self.initial, g)})
         return out
 
 

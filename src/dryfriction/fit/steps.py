@@ -48,6 +48,8 @@ from .engine import fit
 from .experiment import EXPERIMENT_COLUMNS, annotate_steps, level_stiffness, levels_report
 from .identify import assess_step, worse_than_noise
 from .joint import fit_joint
+from .lawcolumns import LAW_COLUMNS, add_law_columns
+from .laws import FIT_LAWS, INITIAL_STATES
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
@@ -69,7 +71,7 @@ STEP_COLUMNS: tuple[str, ...] = (
     "hac_lags", "a_minus_b_lo", "a_minus_b_hi", "b_over_dc", "b_over_dc_lo", "b_over_dc_hi",
     "stiffness_lo", "stiffness_hi", "slip_before", "slip_after", "flags",
     *EXPERIMENT_COLUMNS,
-)
+) + LAW_COLUMNS
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
 1/m; ``*_lo``/``*_hi`` the 95 % interval, the profile where there is one; ``errors`` says how
 the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covariance`),
@@ -77,7 +79,8 @@ the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covari
 ``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
 record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
 :data:`.identify.FLAG_WORDS` separated by ``;``; then the normal stress, its level, the hold and
-the intervals' kind: :data:`.experiment.EXPERIMENT_COLUMNS`). A parameter that is not identified
+the intervals' kind: :data:`.experiment.EXPERIMENT_COLUMNS`; then the state law's,
+:data:`.lawcolumns.LAW_COLUMNS`). A parameter that is not identified
 (:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
 none."""
 
@@ -493,6 +496,8 @@ def fit_steps(
     progress: Callable[[int, int], None] | None = None,
     errors: str = "hac",
     drive: str = "program",
+    initial: str = "steady",
+    warm: Sequence[Mapping[str, float]] | None = None,
 ) -> StepsResult:
     """Fit rate-and-state friction to each step window of a record (module docstring).
 
@@ -511,8 +516,8 @@ def fit_steps(
         (:class:`.models.RSFModel`).
     trend : bool
         Fit a linear trend in load-point displacement per window.
-    law : {"ageing", "slip"}
-        State law.
+    law : {"ageing", "slip", "prz", "nagata", "ageing2"}
+        State law (:mod:`.laws`; ``--state-law auto``: :mod:`.lawchoice`).
     joint : bool
         Also fit all windows together with one ``a, b, dc`` and one stiffness (the same
         gouge, the same machine); ``mu0`` and the trend stay per window (the level and the
@@ -533,12 +538,20 @@ def fit_steps(
         What drives the forward model: the piecewise-constant program, or the record's
         measured load-point displacement, denoised (:mod:`.loadpoint`; a laboratory record
         only).
+    initial : {"steady", "free"}
+        Each window starts in steady sliding, or from a fitted state (:mod:`.laws`).
+    warm : sequence of mappings, optional
+        Starting values per window (e.g. a fit of the same window with another initial
+        state, :mod:`.lawchoice`); default: the previous window's optimum.
 
     Returns
     -------
     StepsResult
     """
-    check_choice("law", law, ("ageing", "slip"))
+    check_choice("law", law, FIT_LAWS)
+    check_choice("initial", initial, INITIAL_STATES)
+    if joint and law not in ("ageing", "slip"):
+        raise ValueError(f"--joint is for the ageing and slip laws, not {law!r}")
     check_choice("errors", errors, ERRORS)
     data = _as_series(record, segments)
     drive_info = None
@@ -552,17 +565,19 @@ def fit_steps(
     if not wins:
         raise ValueError(f"{data.source}: no velocity step to fit (the load velocity never "
                          "changes)")
-    RSFModel(1.0, law, stiffness, trend=trend)  # check the options before any work
+    RSFModel(1.0, law, stiffness, trend=trend, initial=initial)  # the options, before any work
     pieces = [_window_data(data, w) for w in wins]
     fits: list[FitResult] = []
     rows: list[dict[str, Any]] = []
     notes: list[str] = []
     prev: FitResult | None = None
     for i, (w, d) in enumerate(zip(wins, pieces, strict=True)):
-        model = RSFModel(float(d.v_load[0]), law, stiffness, trend=trend)
+        model = RSFModel(float(d.v_load[0]), law, stiffness, trend=trend, initial=initial)
         # a cold start with a free k can fall into a local minimum: retried if worse than noise
         start, cold = _start(prev, model, d), stiffness == "fit" and (prev is None
                                                                      or not prev.success)
+        if warm is not None:
+            start, cold = dict(warm[i]), False
         tick = None if progress is None else \
             (lambda n, total, what, i=i: progress(i, len(wins)))  # type: ignore[misc]
         r = fit(d, model, start=start, multistart=False, profile=False, progress=tick)
@@ -590,6 +605,8 @@ def fit_steps(
                     rsf_series(r.fitted_model, {p.name: p.value for p in r.parameters}, d)
                     if isinstance(r.fitted_model, RSFModel) else d.mu, data, int(w.i_start),
                     PEAK_SAMPLES, early)
+        add_law_columns(rows[-1], law, r.information, sc.specs, sc.theta, sc.used.matrix,
+                        sc.used.singular, quantile_95(False, sc.dof))
         prev = r
         if progress is not None:
             progress(i + 1, len(wins))

@@ -22,9 +22,28 @@ Laws (``theta`` in s):
 
 * the Dieterich ("ageing") law ``dtheta/dt = 1 - |V| theta/Dc`` (Dieterich 1979; named by
   Ruina 1983) and the Ruina ("slip") law ``dtheta/dt = -(|V| theta/Dc) ln(|V| theta/Dc)``
-  (Ruina 1983). Each state variable follows the same law with its own ``Dc``.
+  (Ruina 1983). Each state variable follows the same law with its own ``Dc``;
+* the Perrin-Rice-Zheng ("prz") law ``dtheta'/dt = 1 - (|V| theta'/(2 Dc))^2`` (Perrin, Rice
+  & Zheng 1995, *J. Mech. Phys. Solids* 43, 1461), written here for ``theta = theta'/2`` so
+  that every law has ``theta_ss = Dc/V`` and the same ``mu0`` (PRZ's own ``theta'`` would
+  shift ``mu0`` by ``b ln 2``): ``dtheta/dt = (1 - (|V| theta/Dc)^2)/2``, i.e. ``d ln
+  theta/dt = (|V|/Dc) sinh(-ln(|V| theta/Dc))``, odd in ``ln(V theta/Dc)`` like the slip law
+  (ours, by the substitution); it heals at rest as ``theta' = t``;
+* the Nagata ("nagata") law ``dtheta/dt = 1 - |V| theta/Dc - (c/b) theta dtau/dt`` (Nagata,
+  Nakatani & Yoshida 2012, *J. Geophys. Res.* 117, B02314: the ageing law plus a weakening by
+  the rate of shear stress ``tau`` over normal stress, ``c >= 0``, about 2 in their fits).
+  Here ``tau`` is the stress the spring applies, ``k (x_load - x)`` (what the apparatus
+  measures; equal to friction without damping or mass), so it needs a finite spring; with a
+  fast change of ``tau`` the state drops by ``(c/b) Delta tau`` and the direct effect of a
+  step on a stiff machine is ``a ln(V2/V1)/(1 + c)`` (ours, from the law). One state
+  variable. The paper's own text (and its equation number) was not at hand: the form and the
+  sign are those restated by Bhattacharya & Rubin 2014 (*J. Geophys. Res.* 119, 2272; ``c =
+  0`` is the ageing law) and by Kame et al. (13th Int. Conf. Fracture, 2013, whose
+  nondimensional equation for ``d ln V/dt`` carries the factor ``1 + c`` on ``dtau/dt`` that
+  this form gives).
 
-Steady state: ``theta_ss = Dc/V`` and ``mu_ss = mu0 + (a - b - b2) ln(V/V0)`` (Ruina 1983).
+Steady state: ``theta_ss = Dc/V`` and ``mu_ss = mu0 + (a - b - b2) ln(V/V0)`` (Ruina 1983),
+for every law.
 
 Linear stability of steady sliding of a spring slider (one state variable, either law, both
 laws have the same linearisation about steady state; Ruina 1983; Rice & Ruina 1983): the
@@ -57,8 +76,8 @@ V_MIN: float = 1e-30
 """Slowest moving load point accepted, m/s (0 is a hold): it covers a picometre in the age of
 the universe; the trap model's velocities start at the same number (``U_MIN``, a0/t0)."""
 
-StateLaw = Literal["ageing", "slip"]
-STATE_LAWS: tuple[str, ...] = ("ageing", "slip")
+StateLaw = Literal["ageing", "slip", "prz", "nagata"]
+STATE_LAWS: tuple[str, ...] = ("ageing", "slip", "prz", "nagata")
 
 MU_MAX: float = 1e3
 """Largest ``a``, ``b``, ``b2`` accepted (``|mu0|``: ``validation.FRICTION_MAX``): friction
@@ -97,8 +116,9 @@ class RateState:
         Reference friction at ``V = V0`` in steady state, ``|mu0| <= FRICTION_MAX`` (10).
     v0 : float
         Reference velocity, m/s, ``> 0``.
-    state_law : {"ageing", "slip"}
-        Dieterich ageing law or Ruina slip law (used for every state variable).
+    state_law : {"ageing", "slip", "prz", "nagata"}
+        Dieterich ageing law, Ruina slip law, Perrin-Rice-Zheng or Nagata law (module
+        docstring; used for every state variable; Nagata's for one only).
     b2 : float
         Evolution coefficient of the optional second state variable, ``>= 0``.
     dc2 : float or None
@@ -106,6 +126,9 @@ class RateState:
         state variable (then ``b2`` must be 0).
     regularized : bool
         Use the regularised (``asinh``) friction law, defined for ``V <= 0`` too.
+    c : float
+        Nagata's stress-rate coefficient, ``>= 0`` (dimensionless); only with
+        ``state_law = "nagata"`` (which needs ``b > 0``).
     """
 
     a: float
@@ -117,6 +140,7 @@ class RateState:
     b2: float = 0.0
     dc2: float | None = None
     regularized: bool = False
+    c: float = 0.0
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -135,6 +159,13 @@ class RateState:
         if not isinstance(self.regularized, (bool, np.bool_)):
             raise ValueError(f"regularized = {self.regularized!r} is not allowed: true or false")
         set_(self, "regularized", bool(self.regularized))
+        set_(self, "c", check_scalar("c", self.c, 0.0, MU_MAX))
+        if self.state_law != "nagata" and self.c != 0.0:
+            raise ValueError(f"c = {self.c:g} is Nagata's stress-rate coefficient: it needs "
+                             "state_law = 'nagata'")
+        if self.state_law == "nagata" and (self.b == 0.0 or self.dc2 is not None):
+            raise ValueError("state_law = 'nagata' needs b > 0 (its term is c/b) and one "
+                             "state variable (no dc2)")
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -145,7 +176,8 @@ class RateState:
         ``dc2``, ``regularized``); ``law = "rsf"`` is accepted and ignored. Unknown keys and
         missing required keys are errors.
         """
-        allowed = {"a", "b", "dc", "mu0", "v0", "state_law", "b2", "dc2", "regularized", "law"}
+        allowed = {"a", "b", "dc", "mu0", "v0", "state_law", "b2", "dc2", "regularized", "law",
+                   "c"}
         unknown = set(m) - allowed
         if unknown:
             raise ValueError(
@@ -215,14 +247,18 @@ class RateState:
     def state_rate(self, v: ArrayLike, theta: ArrayLike, dc: float | None = None) -> Array:
         """``dtheta/dt`` (s/s) of the chosen state law at slip velocity ``v`` (m/s).
 
-        ``dc`` defaults to the first state variable's; pass ``self.dc2`` for the second.
+        ``dc`` defaults to the first state variable's; pass ``self.dc2`` for the second. For
+        Nagata's law, at a constant shear stress (its term ``-(c/b) theta dtau/dt`` needs the
+        stress rate, which the driver supplies).
         """
         v = np.abs(check_range("v", v))
         theta = check_range("theta", theta, 0.0, lo_open=True)
         dc = self.dc if dc is None else dc
         omega = v * theta / dc
-        if self.state_law == "ageing":
+        if self.state_law in ("ageing", "nagata"):
             return 1.0 - omega
+        if self.state_law == "prz":
+            return 0.5 * (1.0 - omega * omega)
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(omega > 0, -omega * np.log(omega), 0.0)
 
@@ -270,15 +306,20 @@ class RateState:
         """
         t_hold = check_range("t_hold", t_hold, 0.0)
         v = check_scalar("v", v, 0.0, lo_open=True)
-        heal = t_hold if self.state_law == "ageing" else 0.0 * t_hold
+        if self.state_law == "nagata":
+            raise ValueError("hold_peak_friction is for a truly stationary contact on a "
+                             "kinematic machine; Nagata's law needs the spring's stress rate: "
+                             "use simulate_rsf")
+        heal = {"ageing": 1.0, "prz": 0.5, "slip": 0.0}[self.state_law] * t_hold
         th2 = None if self.dc2 is None else self.dc2 / v + heal
         return self.friction(v, self.dc / v + heal, th2)
 
     # ------------------------------------------------------------------ stability
     def _one_state_standard(self, what: str) -> None:
-        if self.dc2 is not None or self.regularized:
+        if self.dc2 is not None or self.regularized or self.state_law == "nagata":
             raise ValueError(
-                f"the closed-form {what} is for one state variable and the standard law: "
+                f"the closed-form {what} is for one state variable, the standard law and "
+                "the ageing, slip or PRZ law (their linearisations agree): "
                 "use dryfriction.rsf.driving.linear_stability for these parameters"
             )
 

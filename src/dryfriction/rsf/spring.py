@@ -120,6 +120,10 @@ class SpringSlider:
 
     def check_model(self, model: RateState) -> None:
         """The load velocities this machine can run with ``model`` (before any work)."""
+        if self.kinematic and model.state_law == "nagata":
+            raise ValueError("stiffness = inf is out of range for state_law = 'nagata': its "
+                             "stress-rate term needs the spring's stress, allowed a finite "
+                             "stiffness > 0 (1/m)")
         if self.kinematic and not model.regularized:
             for i, vl in enumerate(self.program.velocities):
                 if vl <= 0.0:
@@ -132,7 +136,8 @@ class SpringSlider:
     def critical_stiffness(self, model: RateState, v: float) -> float | None:
         """``k_c`` (1/m) of steady sliding at ``v`` with this damping and mass, where the
         closed form applies (finite spring, one state variable, standard law); else ``None``."""
-        if self.kinematic or model.n_state != 1 or model.regularized or not v > 0:
+        if (self.kinematic or model.n_state != 1 or model.regularized or not v > 0
+                or model.state_law == "nagata"):
             return None
         return model.critical_stiffness(v, self.damping, self.mass)
 

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from ..interrupts import deferred
-from .law import RateState
+from .law import STATE_LAWS, RateState
 
 __all__ = ["COMPILED_CHUNK", "EFOLD", "INERTIAL", "INTERPRETED_STEPS", "KINEMATIC", "QUASISTATIC",
            "below", "compiled", "growth_limit", "integrate", "interpreted_steps", "param_vector",
@@ -48,8 +48,9 @@ KINEMATIC, QUASISTATIC, INERTIAL = 0, 1, 2
 
 # parameter vector layout
 (_A, _B, _LNDC, _INVDC, _B2, _LNDC2, _INVDC2, _MU0, _LNV0, _LAW, _NS, _REG, _K, _ETA, _M, _VL,
- _MODE, _LN2V0) = range(18)
-_NP = 18
+ _MODE, _LN2V0, _CN) = range(19)
+_NP = 19
+# p[_LAW]: 0 ageing, 1 slip, 2 PRZ, 3 Nagata (the order of law.STATE_LAWS)
 
 # the stepper's state between calls (see _integrate)
 _S, _T, _H, _REJ, _MID, _N, _NACC, _NREJ, _NFEV = range(9)
@@ -91,10 +92,15 @@ def _zeros(n: int) -> Any:
 
 # --------------------------------------------------------------------------- the kernels
 def _state_log_rate(law: int, v: float, lnth: float, lndc: float, invdc: float):  # type: ignore[no-untyped-def]
-    """``d ln theta/dt`` and its derivatives in ``ln V`` and ``ln theta`` (v = |V| >= 0)."""
-    if law == 0:  # ageing (Dieterich 1979): 1/theta - V/Dc
+    """``d ln theta/dt`` and its derivatives in ``ln V`` and ``ln theta`` (v = |V| >= 0); for
+    Nagata's law the ageing part (its stress-rate term is added in :func:`_rhs`)."""
+    if law == 0 or law == 3:  # ageing (Dieterich 1979): 1/theta - V/Dc
         e = math.exp(-lnth)
         return e - v * invdc, -v * invdc, -e
+    if law == 2:  # PRZ (Perrin, Rice & Zheng 1995), theta_ss = Dc/V: (1 - (V theta/Dc)^2)/(2 theta)
+        e = math.exp(-lnth)
+        q = v * invdc * v * invdc * math.exp(lnth)  # (V/Dc) * (V theta/Dc)
+        return 0.5 * (e - q), -q, -0.5 * (e + q)
     if v == 0.0:  # slip law (Ruina 1983) at rest: no evolution
         return 0.0, 0.0, 0.0
     w = v * invdc
@@ -150,6 +156,10 @@ def _rhs(y, p, f, jac, want_jac: bool) -> None:  # type: ignore[no-untyped-def]
     lnv = y[0]
     v = math.exp(lnv)
     g1, dgv1, dgt1 = _state_log_rate(law, v, y[1], p[_LNDC], p[_INVDC])
+    if law == 3:  # Nagata et al. 2012: - (c/b) dtau/dt, tau the spring's stress k (x_L - x)
+        cb = p[_CN] / p[_B]
+        g1 -= cb * p[_K] * (p[_VL] - v)
+        dgv1 += cb * p[_K] * v
     f[1] = g1
     lnth2 = 0.0
     g2, dgv2, dgt2 = 0.0, 0.0, 0.0
@@ -602,7 +612,8 @@ def param_vector(params: RateState, stiffness: float, damping: float, mass: floa
     if params.dc2 is not None:
         p[_LNDC2], p[_INVDC2] = math.log(params.dc2), 1.0 / params.dc2
     p[_MU0], p[_LNV0], p[_LN2V0] = params.mu0, math.log(params.v0), math.log(2.0 * params.v0)
-    p[_LAW] = 0.0 if params.state_law == "ageing" else 1.0
+    p[_LAW] = float(STATE_LAWS.index(params.state_law))
+    p[_CN] = params.c
     p[_NS] = params.n_state
     p[_REG] = 1.0 if params.regularized else 0.0
     p[_K] = 0.0 if math.isinf(stiffness) else stiffness
