@@ -39,17 +39,31 @@ RECORD_MAX_NFEV = 30
 outside the finite-difference Jacobian: about one per iteration; each iteration also costs
 one run per free parameter but the trend). The sepiolite step converged in 22."""
 
+SEARCH_COARSENING = 2.0
+"""The search runs on a track this many times sparser (ours, issue 30): a run costs about the
+square of the density (the creep steps per ``a0`` and the traps in contact both grow with it:
+0.30 s against 0.75 s on the basalt-like step), and its optimum is polished on the final
+track."""
+
+SEARCH_MAX_NFEV = 15
+"""Cap on the search's evaluations (as :data:`RECORD_MAX_NFEV` counts them)."""
+
+POLISH_MAX_NFEV = 3
+"""Cap on the polish's evaluations on the final track, from the search's optimum."""
+
 RECORD_DIFF_STEP = 0.03
 """Finite-difference step of the Jacobian, relative in the internal variables."""
 
 
 def record_cv_model(alpha: float, creep: str, direct: float = 0.0, v_ref: float = 1e-6,
                     traps_per_a0: float = RECORD_TRAPS_PER_A0,
-                    progress: Callable[[], None] | None = None) -> CVModel:
+                    progress: Callable[[], None] | None = None,
+                    max_nfev: int = RECORD_MAX_NFEV) -> CVModel:
     """The trap model as a record is fitted with it (module docstring)."""
     return CVModel(alpha, creep, traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref,
                    stiffness="fit", trend=True, sample_slip=RECORD_SAMPLE_SLIP,
-                   max_nfev=RECORD_MAX_NFEV, diff_step=RECORD_DIFF_STEP, progress=progress)
+                   max_nfev=max_nfev, diff_step=RECORD_DIFF_STEP, progress=progress,
+                   steady_tail=True)
 
 
 def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alpha: float,
@@ -80,12 +94,18 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
         One per window, without profiles (the covariance gives the intervals and the
         correlations).
     """
-    model = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0, progress)
+    search = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0 / SEARCH_COARSENING,
+                             progress, max_nfev=SEARCH_MAX_NFEV)
+    model = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0, progress,
+                            max_nfev=POLISH_MAX_NFEV)
     out = []
     for d, r in zip(data, rsf_fits, strict=True):
         rsf = {p.name: p.value for p in r.parameters}
         v0 = r.options["v0"]
         start = cv_start_from_rsf(rsf, float(v0), alpha, creep, direct, v_ref)
-        out.append(fit(d, model, start=start, multistart=False, profile=False,
+        coarse = fit(d, search, start=start, multistart=False, profile=False,
+                     consistency=False)
+        found = {p.name: p.value for p in coarse.parameters}
+        out.append(fit(d, model, start=found, multistart=False, profile=False,
                        consistency=False))
     return out
