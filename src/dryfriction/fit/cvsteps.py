@@ -7,14 +7,19 @@ fit's machine), from one start, the window's rate-and-state optimum mapped throu
 trap model's rate-and-state twin (:func:`.cvseries.cv_start_from_rsf`), instead of a
 multistart. The cost is held down by a coarse regular track (:data:`RECORD_TRAPS_PER_A0`), by
 sampling the ensemble in slip rather than at the data's rate (:data:`RECORD_SAMPLE_SLIP`), by
-the trend's cached run (:mod:`.cvseries`) and by a cap on evaluations
-(:data:`RECORD_MAX_NFEV`). The data are fitted whole (every sample), so the misfit and AIC
-compare with the rate-and-state fit's directly.
+not simulating the steady tail of a segment (:mod:`.cvtail`), by the memory of runs
+(:mod:`.cvseries`: the trend's Jacobian column, the covariances' repeated points), and by a
+search that stops when its steps are a tenth of a standard error (:func:`search_step`; issue
+30: the basalt step took 445 s of CPU). The data are fitted whole (every sample), so the
+misfit and AIC compare with the rate-and-state fit's directly.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
+
+import numpy as np
 
 from ..io.data import SeriesData
 from .cvseries import cv_start_from_rsf
@@ -22,8 +27,9 @@ from .engine import fit
 from .models import CVModel
 from .results import FitResult
 
-__all__ = ["fit_cv_steps", "record_cv_model", "RECORD_TRAPS_PER_A0", "RECORD_SAMPLE_SLIP",
-           "RECORD_MAX_NFEV", "RECORD_DIFF_STEP"]
+__all__ = ["fit_cv_steps", "record_cv_model", "search_step", "RECORD_TRAPS_PER_A0",
+           "RECORD_SAMPLE_SLIP", "RECORD_MAX_NFEV", "RECORD_DIFF_STEP", "SEARCH_MAX_ITER",
+           "SEARCH_STOP"]
 
 RECORD_TRAPS_PER_A0 = 100.0
 """Track density for a record (measured on the shared sepiolite step, at the rate-and-state
@@ -39,17 +45,22 @@ RECORD_MAX_NFEV = 30
 outside the finite-difference Jacobian: about one per iteration; each iteration also costs
 one run per free parameter but the trend). The sepiolite step converged in 22."""
 
-SEARCH_COARSENING = 2.0
-"""The search runs on a track this many times sparser (ours, issue 30): a run costs about the
-square of the density (the creep steps per ``a0`` and the traps in contact both grow with it:
-0.30 s against 0.75 s on the basalt-like step), and its optimum is polished on the final
-track."""
+SEARCH_MAX_ITER = RECORD_MAX_NFEV
+"""Most iterations of the search (:func:`search_step`), one accepted step each."""
 
-SEARCH_MAX_NFEV = 15
-"""Cap on the search's evaluations (as :data:`RECORD_MAX_NFEV` counts them)."""
+SEARCH_STOP = 0.1
+"""The search stops when its last step moved every parameter by less than this fraction of
+its standard error (the Jacobian's, white noise; ours, issue 30): a least-squares fit on the
+ensemble's staircase never meets scipy's relative tolerances, and went on to its cap of
+evaluations with steps of a thousandth of a standard error."""
 
-POLISH_MAX_NFEV = 3
-"""Cap on the polish's evaluations on the final track, from the search's optimum."""
+SEARCH_DOC = {
+    "step": f"converged: the last step moved every parameter by < {SEARCH_STOP:g} standard "
+            "error",
+    "refused": "converged: no step lowers the cost (the ensemble's staircase)",
+    "cap": f"not converged: {SEARCH_MAX_ITER} iterations",
+}
+"""Why :func:`search_step` stopped, as the fit's message says it."""
 
 RECORD_DIFF_STEP = 0.03
 """Finite-difference step of the Jacobian, relative in the internal variables."""
@@ -94,18 +105,64 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
         One per window, without profiles (the covariance gives the intervals and the
         correlations).
     """
-    search = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0 / SEARCH_COARSENING,
-                             progress, max_nfev=SEARCH_MAX_NFEV)
-    model = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0, progress,
-                            max_nfev=POLISH_MAX_NFEV)
+    model = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0, progress)
     out = []
     for d, r in zip(data, rsf_fits, strict=True):
         rsf = {p.name: p.value for p in r.parameters}
         v0 = r.options["v0"]
         start = cv_start_from_rsf(rsf, float(v0), alpha, creep, direct, v_ref)
-        coarse = fit(d, search, start=start, multistart=False, profile=False,
-                     consistency=False)
-        found = {p.name: p.value for p in coarse.parameters}
-        out.append(fit(d, model, start=found, multistart=False, profile=False,
-                       consistency=False))
+        found, iterations, why = search_step(d, model, start)
+        # the engine's fit from there: its first evaluation and Jacobian are the search's last
+        # (remembered, :mod:`.cvseries`), and it takes no step (one evaluation), so its own
+        # verdict is "evaluations exceeded"; the search's is the one that counts
+        res = fit(d, dataclasses.replace(model, max_nfev=1), start=found, multistart=False,
+                  profile=False, consistency=False)
+        at_bound = any("search bound" in n for n in res.notes)
+        done = why != "cap"
+        notes = [n for n in res.notes if "did not converge" not in n or not done]
+        notes.append(f"trap model: search of {iterations} iterations ({SEARCH_DOC[why]})")
+        if done and at_bound:
+            notes.append("the fit is not reliable (see the parameters on their bounds)")
+        out.append(dataclasses.replace(
+            res, nfev=iterations + 1, notes=tuple(notes),
+            success=done and not at_bound and "could not be evaluated" not in res.message,
+            status=1 if done else 0, message=SEARCH_DOC[why]))
     return out
+
+
+def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
+                ) -> tuple[dict[str, float], int]:
+    """The least-squares search of one window (ours, issue 30): scipy's trust-region
+    iterations (as :meth:`.problem.Problem.solve` runs them) one at a time, each from where the
+    last ended (the memory of runs makes the restart free), until a step moves every free
+    parameter by less than :data:`SEARCH_STOP` of its standard error
+    (``s^2 (J^T J)^-1``, ``J`` the step's own Jacobian), a step is refused, or
+    :data:`SEARCH_MAX_ITER` iterations.
+
+    Returns
+    -------
+    values, iterations, why : dict, int, str
+        The parameters found (SI), the iterations taken and why the search stopped (``"step"``,
+        ``"refused"``, ``"cap"``: :data:`SEARCH_DOC`).
+    """
+    from .problem import Problem
+
+    specs = model.parameters(frozenset({"series"}))
+    prob = Problem(model, [d], specs, {})
+    theta = np.array([s.to_internal(float(np.clip(start[s.name], s.lo, s.hi))) for s in specs])
+    it, why = 0, "cap"
+    while it < SEARCH_MAX_ITER:
+        it += 1
+        new, cost, sol = prob.solve(theta, max_nfev=2)  # one trial step, and its Jacobian
+        if sol is None or np.array_equal(new, theta):  # refused: the staircase's floor
+            why = "refused"
+            break
+        step, theta = new - theta, new
+        J = np.asarray(sol.jac)
+        with np.errstate(all="ignore"):
+            var = np.diag(np.linalg.pinv(J.T @ J)) * 2.0 * cost / max(prob.n - prob.p, 1)
+        if np.all(np.abs(step) < SEARCH_STOP * np.sqrt(np.abs(var))):
+            why = "step"
+            break
+    return {s.name: s.from_internal(t) for s, t in zip(specs, theta, strict=True)}, it, why
+
