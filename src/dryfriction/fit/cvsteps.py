@@ -29,7 +29,7 @@ from .results import FitResult
 
 __all__ = ["fit_cv_steps", "record_cv_model", "search_step", "RECORD_TRAPS_PER_A0",
            "RECORD_SAMPLE_SLIP", "RECORD_MAX_NFEV", "RECORD_DIFF_STEP", "SEARCH_MAX_ITER",
-           "SEARCH_STOP"]
+           "SEARCH_STOP", "SEARCH_TRIALS"]
 
 RECORD_TRAPS_PER_A0 = 100.0
 """Track density for a record (measured on the shared sepiolite step, at the rate-and-state
@@ -54,10 +54,15 @@ its standard error (the Jacobian's, white noise; ours, issue 30): a least-square
 ensemble's staircase never meets scipy's relative tolerances, and went on to its cap of
 evaluations with steps of a thousandth of a standard error."""
 
+SEARCH_TRIALS = 3
+"""Trial points of one iteration of :func:`search_step` (a refused one shrinks scipy's trust
+region fourfold: three refused, a 64th of its first radius, end the search)."""
+
 SEARCH_DOC = {
     "step": f"converged: the last step moved every parameter by < {SEARCH_STOP:g} standard "
             "error",
-    "refused": "converged: no step lowers the cost (the ensemble's staircase)",
+    "refused": "converged: no step lowers the cost, down to a 64th of the trust region (the "
+               "ensemble's staircase)",
     "cap": f"not converged: {SEARCH_MAX_ITER} iterations",
 }
 """Why :func:`search_step` stopped, as the fit's message says it."""
@@ -133,11 +138,11 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
 def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
                 ) -> tuple[dict[str, float], int]:
     """The least-squares search of one window (ours, issue 30): scipy's trust-region
-    iterations (as :meth:`.problem.Problem.solve` runs them) one at a time, each from where the
-    last ended (the memory of runs makes the restart free), until a step moves every free
-    parameter by less than :data:`SEARCH_STOP` of its standard error
-    (``s^2 (J^T J)^-1``, ``J`` the step's own Jacobian), a step is refused, or
-    :data:`SEARCH_MAX_ITER` iterations.
+    iterations (as :meth:`.problem.Problem.solve` runs them) a few trial points at a time
+    (:data:`SEARCH_TRIALS`), each batch from where the last ended (the memory of runs makes the
+    restart free), until a batch moves every free parameter by less than :data:`SEARCH_STOP`
+    of its standard error (``s^2 (J^T J)^-1``, ``J`` the Jacobian where it ended), refuses
+    every trial, or :data:`SEARCH_MAX_ITER` batches.
 
     Returns
     -------
@@ -153,8 +158,10 @@ def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
     it, why = 0, "cap"
     while it < SEARCH_MAX_ITER:
         it += 1
-        new, cost, sol = prob.solve(theta, max_nfev=2)  # one trial step, and its Jacobian
-        if sol is None or np.array_equal(new, theta):  # refused: the staircase's floor
+        # up to SEARCH_TRIALS trial points: a refused step shrinks the trust region, which
+        # each restart resets
+        new, cost, sol = prob.solve(theta, max_nfev=1 + SEARCH_TRIALS)
+        if sol is None or np.array_equal(new, theta):  # every trial refused: the floor
             why = "refused"
             break
         step, theta = new - theta, new
