@@ -116,7 +116,7 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
         rsf = {p.name: p.value for p in r.parameters}
         v0 = r.options["v0"]
         start = cv_start_from_rsf(rsf, float(v0), alpha, creep, direct, v_ref)
-        found, iterations, why = search_step(d, model, start)
+        found, iterations, why, nfev = search_step(d, model, start)
         # the engine's fit from there: its first evaluation and Jacobian are the search's last
         # (remembered, :mod:`.cvseries`), and it takes no step (one evaluation), so its own
         # verdict is "evaluations exceeded"; the search's is the one that counts
@@ -129,14 +129,14 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
         if done and at_bound:
             notes.append("the fit is not reliable (see the parameters on their bounds)")
         out.append(dataclasses.replace(
-            res, nfev=iterations + 1, notes=tuple(notes),
+            res, nfev=nfev + res.nfev, notes=tuple(notes),
             success=done and not at_bound and "could not be evaluated" not in res.message,
             status=1 if done else 0, message=SEARCH_DOC[why]))
     return out
 
 
 def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
-                ) -> tuple[dict[str, float], int]:
+                ) -> tuple[dict[str, float], int, str, int]:
     """The least-squares search of one window (ours, issue 30): scipy's trust-region
     iterations (as :meth:`.problem.Problem.solve` runs them) a few trial points at a time
     (:data:`SEARCH_TRIALS`), each batch from where the last ended (the memory of runs makes the
@@ -146,21 +146,23 @@ def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
 
     Returns
     -------
-    values, iterations, why : dict, int, str
-        The parameters found (SI), the iterations taken and why the search stopped (``"step"``,
-        ``"refused"``, ``"cap"``: :data:`SEARCH_DOC`).
+    values, iterations, why, nfev : dict, int, str, int
+        The parameters found (SI), the iterations taken, why the search stopped (``"step"``,
+        ``"refused"``, ``"cap"``: :data:`SEARCH_DOC`) and scipy's count of evaluations (those
+        outside the finite-difference Jacobians, restarts included).
     """
     from .problem import Problem
 
     specs = model.parameters(frozenset({"series"}))
     prob = Problem(model, [d], specs, {})
     theta = np.array([s.to_internal(float(np.clip(start[s.name], s.lo, s.hi))) for s in specs])
-    it, why = 0, "cap"
+    it, why, nfev = 0, "cap", 0
     while it < SEARCH_MAX_ITER:
         it += 1
         # up to SEARCH_TRIALS trial points: a refused step shrinks the trust region, which
         # each restart resets
         new, cost, sol = prob.solve(theta, max_nfev=1 + SEARCH_TRIALS)
+        nfev += 0 if sol is None else int(sol.nfev)
         if sol is None or np.array_equal(new, theta):  # every trial refused: the floor
             why = "refused"
             break
@@ -171,5 +173,6 @@ def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
         if np.all(np.abs(step) < SEARCH_STOP * np.sqrt(np.abs(var))):
             why = "step"
             break
-    return {s.name: s.from_internal(t) for s, t in zip(specs, theta, strict=True)}, it, why
+    return ({s.name: s.from_internal(t) for s, t in zip(specs, theta, strict=True)}, it, why,
+            nfev)
 
