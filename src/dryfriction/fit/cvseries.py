@@ -30,20 +30,29 @@ from .machine import load_point_displacement
 __all__ = ["cv_series", "cv_start_from_rsf"]
 
 _LAST: list[tuple[Any, SeriesData, Array]] = []
-"""One-entry memory of the last series before its trend (ours): the trend is additive, so a
-change of the trend alone (its column of the Jacobian, a step along it) needs no new run.
-Reused only for the same data object (its arrays are read-only) and the same everything else;
-read and replaced as one tuple, so that threads never see a half-written entry."""
+"""Memory of the last :data:`MEMORY_RUNS` series before their trend, newest last (ours): the
+trend is additive, so a change of the trend alone (its column of the Jacobian, a step along it)
+needs no new run; and a record fit asks for the same points again (the trend's column comes
+after the others', the covariance's central differences twice: the engine's and the robust
+one's, the figure the optimum). Reused only for the same data object (its arrays are
+read-only) and the same everything else; replaced as one list, so that threads never see a
+half-written entry."""
+
+MEMORY_RUNS = 32
+"""Series kept (about 80 kB each for a window of 1e4 samples)."""
 
 
 def _key(values: Mapping[str, float], *options: Any) -> tuple[Any, ...]:
-    return (tuple(sorted((k, float(v)) for k, v in values.items() if k != "trend")), options)
+    # 13 significant digits: a parameter read back through its internal variable
+    # (exp(log p), the robust covariance's) is the same point, not a new run
+    return (tuple(sorted((k, float(f"{float(v):.13g}")) for k, v in values.items()
+                         if k != "trend")), options)
 
 
 def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
               creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
               max_samples: int = 200_000, stiffness: float = math.inf,
-              sample_slip: float | None = None) -> Array:
+              sample_slip: float | None = None, steady_tail: bool = False) -> Array:
     """The trap model's friction along a measured load program (the CV time-series model).
 
     The ensemble starts in steady sliding at ``v_load[0]``; the data's piecewise-constant
@@ -79,6 +88,9 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
     sample_slip : float, optional
         Sample every this many ``a0`` of (load-point) slip instead of at the data's interval:
         the cost no longer grows with the data's sampling rate (the record fit).
+    steady_tail : bool
+        On a spring, without holds: the steady tail of each segment is not simulated
+        (:func:`.cvtail.spring_series`; the record fit).
 
     Returns
     -------
@@ -89,9 +101,10 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
     from ..ensemble.population import Initial, Track, TrapModel
 
     key = _key(values, alpha, creep, traps_per_a0, every_slip, max_samples, stiffness,
-               sample_slip)
-    hit = _LAST[-1] if _LAST else None
-    if hit is not None and hit[0] == key and hit[1] is data:
+               sample_slip, steady_tail)
+    memory = list(_LAST)
+    hit = next((m for m in reversed(memory) if m[0] == key and m[1] is data), None)
+    if hit is not None:
         mu = hit[2]
     else:
         sc = PhysicalScales(values["a0"], values["t0"], values["mu_el"])
@@ -124,9 +137,15 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
         drive = (SpringDrive(k_red, 0.0, prog) if k_red <= STIFFNESS_MAX
                  else VelocityDrive(prog))
         try:
-            res = simulate(model, Track(traps_per_a0), Initial("steady",
-                                                               velocity=float(u[0])),
-                           drive, output)
+            if steady_tail and isinstance(drive, SpringDrive) and np.all(u > 0):
+                from .cvtail import spring_series
+
+                res = spring_series(model, Track(traps_per_a0), prog, drive.stiffness,
+                                    float(output.every_slip))  # type: ignore[arg-type]
+            else:
+                res = simulate(model, Track(traps_per_a0), Initial("steady",
+                                                                   velocity=float(u[0])),
+                               drive, output)
         except ValueError as exc:
             if "DRYFRICTION_MEMORY_LIMIT" not in str(exc):
                 raise
@@ -135,8 +154,9 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
             raise ValueError(f"{data.source}: a trap-model run at t0 = {values['t0']:.3g} s, "
                              f"a0 = {values['a0']:.3g} m needs more memory than the limit: "
                              "lower --traps-per-a0 or set DRYFRICTION_MEMORY_LIMIT") from None
-        mu = np.interp((data.t - data.t[0]) / sc.t0, res.t, res.mu)
-        _LAST[:] = [(key, data, mu)]
+        t_res, mu_res = res if isinstance(res, tuple) else (res.t, res.mu)
+        mu = np.interp((data.t - data.t[0]) / sc.t0, t_res, mu_res)
+        _LAST[:] = (memory + [(key, data, mu)])[-MEMORY_RUNS:]
     if "trend" in values:
         return mu + values["trend"] * load_point_displacement(data)
     return mu.copy()  # the caller may change it; the memory must not

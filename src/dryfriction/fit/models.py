@@ -193,6 +193,9 @@ class CVModel:
     sample_slip : float, optional
         Time series: sample the ensemble every this many ``a0`` of slip, whatever the data's
         sampling (:func:`cv_series`); ``None``: at the data's interval (as before).
+    steady_tail : bool
+        Time series on a spring, without holds: the steady tail of each segment is not
+        simulated (:mod:`.cvtail`; the record fit).
     max_nfev : int, optional
         Cap on the model evaluations of one minimisation (default: scipy's ``100 p``).
     progress : callable, optional
@@ -219,6 +222,7 @@ class CVModel:
     max_nfev: int | None = None
     progress: Callable[[], None] | None = field(default=None, compare=False, repr=False)
     name: str = field(default="cv", init=False)
+    steady_tail: bool = False
 
     def __post_init__(self) -> None:
         check_scalar("alpha", self.alpha, 0.0, 1.0, lo_open=True, hi_open=True)
@@ -244,6 +248,8 @@ class CVModel:
         if self.stiffness != math.inf or self.trend:  # likewise for the kinematic machine
             opts.update(stiffness=self.stiffness, trend=bool(self.trend),
                         sample_slip=self.sample_slip, traps_per_a0=self.traps_per_a0)
+        if self.steady_tail:
+            opts["steady_tail"] = True
         return opts
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
@@ -300,7 +306,7 @@ class CVModel:
         else:
             mu = cv_series(v, d, self.alpha, self.creep, self.traps_per_a0,
                            stiffness=machine_stiffness(self.stiffness, v),
-                           sample_slip=self.sample_slip)
+                           sample_slip=self.sample_slip, steady_tail=self.steady_tail)
         if self.progress is not None:
             self.progress()
         return mu
