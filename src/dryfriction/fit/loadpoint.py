@@ -42,18 +42,20 @@ drive (:class:`DrivenSeries`); the change times then follow from the displacemen
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..io.data import SeriesData
+from ..program import Segment, VelocityProgram
 from ..validation import Array
 
 __all__ = ["DRIVES", "SPAN_SLIP", "HOLD_SPAN", "MIN_FRACTION", "ChangeEstimate",
            "LoadPointDrive", "DrivenSeries", "estimate_change", "measured_drive",
            "measured_series", "check_drive", "drive_report",
-           "COMPARED", "compare_with_program"]
+           "COMPARED", "compare_with_program", "load_program"]
 
 DRIVES = ("program", "measured")
 """``--drive``: the idealised piecewise-constant program, or the measured load point."""
@@ -343,3 +345,27 @@ def compare_with_program(pieces: list[SeriesData], fits: list[Any],
         entry["program"]["success"] = bool(rp.success)
         out.append(entry)
     return out
+
+
+_PROGRAMS: dict[int, tuple[Any, VelocityProgram, Array, bool]] = {}
+"""The load program of each data set a fit is evaluating (by ``id``, with a weak reference
+that tells a reused ``id`` apart): a fit evaluates one window thousands of times, and a
+measured drive has tens of segments, whose validation cost more than the integration."""
+
+
+def load_program(data: SeriesData) -> tuple[VelocityProgram, Array, bool]:
+    """``(program, sample times from the first, whether it holds)`` of ``data``'s load point:
+    its piecewise-constant ``v_load`` (:meth:`SeriesData.segments`) or the measured drive's
+    (``data.drive``, :mod:`.loadpoint`); built once per data set."""
+    hit = _PROGRAMS.get(id(data))
+    if hit is not None and hit[0]() is data:
+        return hit[1], hit[2], hit[3]
+    drive = getattr(data, "drive", None)  # the measured load point (.loadpoint), if any
+    dur, vel = data.segments() if drive is None else drive.segments(float(data.t[0]),
+                                                                     float(data.t[-1]))
+    prog = VelocityProgram([Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)])
+    te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
+    if len(_PROGRAMS) >= 64:  # windows of past fits
+        _PROGRAMS.clear()
+    _PROGRAMS[id(data)] = (weakref.ref(data), prog, te, bool(np.any(vel <= 0.0)))
+    return prog, te, bool(np.any(vel <= 0.0))

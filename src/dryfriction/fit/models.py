@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -20,7 +19,6 @@ from typing import Any
 import numpy as np
 
 from ..io.data import Dataset, SeriesData, StaticData, SteadyData
-from ..program import Segment, VelocityProgram
 from ..rsf.driving import RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring
@@ -40,6 +38,7 @@ from .laws import (
     law_specs,
     rate_state,
 )
+from .loadpoint import load_program
 from .machine import load_point_displacement, loading_slope_stiffness
 
 __all__ = [
@@ -410,30 +409,6 @@ class CVModel:
                 for f in (1.0, 0.1, 10.0)]
 
 
-_PROGRAMS: dict[int, tuple[Any, VelocityProgram, Array, bool]] = {}
-"""The load program of each data set a fit is evaluating (by ``id``, with a weak reference
-that tells a reused ``id`` apart): a fit evaluates one window thousands of times, and a
-measured drive has tens of segments, whose validation cost more than the integration."""
-
-
-def _load_program(data: SeriesData) -> tuple[VelocityProgram, Array, bool]:
-    """``(program, sample times from the first, whether it holds)`` of ``data``'s load point:
-    its piecewise-constant ``v_load`` (:meth:`SeriesData.segments`) or the measured drive's
-    (``data.drive``, :mod:`.loadpoint`); built once per data set."""
-    hit = _PROGRAMS.get(id(data))
-    if hit is not None and hit[0]() is data:
-        return hit[1], hit[2], hit[3]
-    drive = getattr(data, "drive", None)  # the measured load point (.loadpoint), if any
-    dur, vel = data.segments() if drive is None else drive.segments(float(data.t[0]),
-                                                                     float(data.t[-1]))
-    prog = VelocityProgram([Segment(float(v), float(t)) for v, t in zip(vel, dur, strict=True)])
-    te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))
-    if len(_PROGRAMS) >= 64:  # windows of past fits
-        _PROGRAMS.clear()
-    _PROGRAMS[id(data)] = (weakref.ref(data), prog, te, bool(np.any(vel <= 0.0)))
-    return prog, te, bool(np.any(vel <= 0.0))
-
-
 def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -> Array:
     """Rate-and-state friction along a measured load program (the RSF time-series model).
 
@@ -448,7 +423,7 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     with a hold (``v_load = 0``) uses the regularised law. Integration tolerance ``rtol = 1e-9``.
     """
     assert model.v0 is not None
-    prog, te, hold = _load_program(data)
+    prog, te, hold = load_program(data)
     params = rate_state(model.state_law, values, model.v0, model.regularized or hold)
     k = machine_stiffness(model.stiffness, values)
     res = simulate_rsf(params, SpringSlider(prog, k, model.damping),
