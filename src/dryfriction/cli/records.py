@@ -21,12 +21,13 @@ __all__ = ["is_project_csv", "parse_stiffness", "fit_record", "cv_cost", "CV_CAL
 
 _PROJECT_COLUMNS = ({"t_w", "mu_s"}, {"v", "mu_d"}, {"t", "v_load", "mu"})
 
-CV_CALLS_PER_STEP = 130
+CV_CALLS_PER_STEP = 91
 """Forward runs of the trap model for one step of a record (:func:`dryfriction.fit.cvsteps.
-fit_cv_steps`: one start, the minimisation capped at
-:data:`~dryfriction.fit.cvsteps.RECORD_MAX_NFEV` evaluations, the trend's column of the
-Jacobian free, plus the covariance's central differences), for the cost estimate; counted on
-the shared sepiolite record (README, "The direct effect")."""
+fit_cv_steps`: the batched search of :func:`~dryfriction.fit.cvsteps.search_step`, then one
+evaluation for the result and covariance, runs read back from the memory of past runs not
+counted), for the cost estimate; counted on the shared sepiolite record with the direct effect
+free (91 runs; 74 with A = 0: ``python -m benchmarks bench_cv_record``). It was 130 before the
+search of issue 30, when the estimate ran 2.2 times over the measured CPU."""
 
 
 def is_project_csv(path: Path) -> bool:
