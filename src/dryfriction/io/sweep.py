@@ -43,6 +43,7 @@ from typing import Any
 
 import numpy as np
 
+from ..interrupts import deferred
 from ..validation import check_scalar, require_extra
 from .cf import describe
 from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
@@ -565,9 +566,10 @@ def _run_locked(spec: SweepSpec, runner: Runner, out: Path, keys: Mapping[tuple[
                     outcome = {"error": f"{type(exc).__name__}: {exc}"}
                 record = {"key": keys[idx], "version": RESULT_VERSION, "index": list(idx),
                           "overrides": ov, "protocol": spec.protocol(ov), **outcome}
-                write_json(points_dir / f"{keys[idx]}.json", _seal(record))
-                if "result" in outcome:
-                    done += 1
+                with deferred():  # a Ctrl-C after the write counts the point it stored
+                    write_json(points_dir / f"{keys[idx]}.json", _seal(record))
+                    if "result" in outcome:
+                        done += 1
                 if progress:
                     progress(done, spec.size)
         except KeyboardInterrupt:
