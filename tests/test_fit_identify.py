@@ -128,13 +128,19 @@ def test_nan_sigma_never_beside_success_without_a_flag():
     assert words and row["notes"]
 
 
-def _two_steps(tmp_path: Path) -> Path:
+def _two_steps(tmp_path: Path, normal_mpa: float | None = None) -> Path:
     """1 -> 3 um/s (300 um after: identified), then 3 -> 1 um/s for only 25 um (Dc = 20 um:
-    the window is short)."""
+    the window is short); with ``normal_mpa`` a normal-stress column (MPa) too."""
     tr = Truth()
     t, _, mu, x = synth_program(tr, [(1e-6, 300.0), (3e-6, 100.0), (1e-6, 25.0)], 0.25,
                                 seed=11)
-    return write_lab_file(tmp_path / "rec.txt", t, x, mu)
+    if normal_mpa is None:
+        return write_lab_file(tmp_path / "rec.txt", t, x, mu)
+    path = tmp_path / "rec.txt"
+    np.savetxt(path, np.column_stack([t, x * 1e6, mu, np.full_like(t, normal_mpa)]),
+               delimiter="\t", header="Time(s)\tDispl(microns)\tFriction\t"
+               "EffectiveNormalstress(MPa)", comments="", fmt="%.10g")
+    return path
 
 
 def _table_rows(text: str) -> list[list[str]]:
@@ -177,7 +183,7 @@ def test_csv_json_table_and_figures_agree(tmp_path: Path):
     mp.setattr(step_plots, "plot_step", spy_step)
     mp.setattr(step_plots, "plot_steps_summary", spy_summary)
     try:
-        r = CliRunner().invoke(app, ["fit", str(_two_steps(tmp_path)), "--model", "rsf",
+        r = CliRunner().invoke(app, ["fit", str(_two_steps(tmp_path, 13.7)), "--model", "rsf",
                                      "--out", str(out)])
     finally:
         mp.undo()
@@ -198,6 +204,11 @@ def test_csv_json_table_and_figures_agree(tmp_path: Path):
             y = math.nan if j[n] is None else j[n]
             assert (math.isnan(x) and math.isnan(y)) or x == pytest.approx(y, rel=1e-12), n
             tab = _num(values[i][heads.index(n)])
+            assert (math.isnan(x) and math.isnan(tab)) or tab == pytest.approx(x, rel=5e-4), n
+        # the columns in other units than steps.csv's: the table's heads say which
+        for n, scale in (("v_before", 1.0), ("v_after", 1.0), ("normal", 1e-6)):
+            assert c["normal_unit"] == "Pa" and float(c["normal"]) == pytest.approx(13.7e6)
+            x, tab = float(c[n]) * scale, _num(values[i][heads.index(n)])
             assert (math.isnan(x) and math.isnan(tab)) or tab == pytest.approx(x, rel=5e-4), n
         for k, n in enumerate(iv_names):
             lo, hi = (_num(s) for s in intervals[i][k + 1].strip("[]").split(", "))
