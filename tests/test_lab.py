@@ -364,6 +364,12 @@ def test_record_command_shows_columns_program_and_steps(tmp_path: Path) -> None:
     assert r.exit_code == 0, r.output
     assert "LP_disp[mm]" in r.output and "velocity (m/s)" in r.output
     assert "step" in r.output.split("steps:")[1]
+    # the steps' line in the units its head names (um/s): 1 -> 10 um/s
+    head, line = r.output.split("steps:")[1].strip().splitlines()[:2]
+    assert "v_before (um/s)" in head and "v_after (um/s)" in head
+    cells = line.split()
+    assert float(cells[3]) == pytest.approx(1.0, rel=0.02)
+    assert float(cells[4]) == pytest.approx(10.0, rel=0.02)
     r = runner.invoke(app, ["record", str(p), "--segments", "0:1e-6,200:1e-5", "--json"])
     assert r.exit_code == 0, r.output
     rep = json.loads(r.output)
