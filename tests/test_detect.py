@@ -257,6 +257,14 @@ def test_record_command_writes_the_figure_and_the_table(tmp_path: Path) -> None:
     det = dp(rec)
     fig, info = plot_record(rec, det.segments, det)
     assert info.panels == ["velocity", "friction", "normal"] and len(fig.axes) == 3
+    # every panel's curves on one time axis, from the first sample (the record starts at
+    # t = 8105 s: a panel left in the file's clock would lie 8105 s to the right)
+    span = float(rec.time[-1] - rec.time[0])
+    for ax in fig.axes:
+        for line in ax.get_lines():
+            x = np.asarray(line.get_xdata(), float)
+            if x.size > 10:
+                assert -1.0 <= x.min() and x.max() <= span + 1.0, ax.get_ylabel()
     steps_and_holds = [j for j, s in enumerate(det.segments) if s.velocity == 0.0 or (
         j > 0 and s.velocity != det.segments[j - 1].velocity)]
     assert info.shaded == steps_and_holds == [1]
