@@ -6,8 +6,8 @@ steps.csv gives, for each parameter, its standard error ``sigma_<p>`` and its 95
 covariance, so they must agree by definition: for a parameter fitted in its logarithm (``a``,
 ``b``, ``Dc``, the stiffness: all positive) the interval is ``p exp(+-z s)`` with ``s`` the
 standard error of ``ln p``, and the standard error in the parameter's own units is ``p s``
-(the delta method); for a parameter fitted as itself it is ``p +- z sigma``. The mistake this file is for: the standard error of
-``ln p`` reported as that of ``p`` (off by the factor ``p``: 1e-5 for a Dc of 10 um).
+(the delta method). The mistake this file is for: the standard error of ``ln p`` reported as
+that of ``p`` (off by the factor ``p``: 1e-5 for a Dc of 10 um).
 """
 
 from __future__ import annotations
