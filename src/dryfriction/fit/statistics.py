@@ -27,6 +27,7 @@ __all__ = [
     "hac_covariance",
     "hac_bandwidth",
     "time_hac_covariance",
+    "with_stderr",
     "lag1_autocorrelation",
     "quantile_95",
     "runs_test",
@@ -277,6 +278,19 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
     cov = base.matrix @ omega @ base.matrix * (n / (n - p))
     cov = 0.5 * (cov + cov.T)
     return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), (lags + 1) * delta
+
+
+def with_stderr(cov: Covariance, j: int, se: float) -> Covariance:
+    """``cov`` with parameter ``j``'s standard error set to ``se``, its correlations kept
+    (row and column ``j`` scaled by ``se/se_j``: ``D C D`` stays positive semidefinite);
+    ``cov`` unchanged where either is not finite and positive."""
+    old = float(cov.stderr[j])
+    if cov.singular or not (math.isfinite(se) and se > 0 and math.isfinite(old) and old > 0):
+        return cov
+    scale = np.ones(len(cov.stderr))
+    scale[j] = se / old
+    mat = cov.matrix * np.outer(scale, scale)
+    return Covariance(mat, np.sqrt(np.abs(np.diag(mat))), False)
 
 
 def quantile_95(sigma_given: bool, dof: int) -> float:

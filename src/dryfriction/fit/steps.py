@@ -247,11 +247,11 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     """
     from .problem import Problem
     from .statistics import (
-        Covariance,
         covariance,
         hac_covariance,
         lag1_autocorrelation,
         time_hac_covariance,
+        with_stderr,
     )
 
     check_choice("errors", errors, ERRORS)
@@ -274,15 +274,10 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     if "stiffness" in names and not robust.singular:
         # k is fixed by ~0.2 s after the change: its variance from the noise's autocovariance
         # on a time lag (statistics.time_hac_covariance), the others' as before (their
-        # coverage holds); correlations kept, k's row and column rescaled
+        # coverage holds); correlations kept
         j = names.index("stiffness")
         local = time_hac_covariance(J, res, np.asarray(d.t, float))[0]
-        f = float(local.stderr[j]) / float(robust.stderr[j]) if robust.stderr[j] > 0 else 1.0
-        if math.isfinite(f) and f > 0:
-            scale = np.ones(len(names))
-            scale[j] = f
-            mat = robust.matrix * np.outer(scale, scale)
-            robust = Covariance(mat, np.sqrt(np.abs(np.diag(mat))), False)
+        robust = with_stderr(robust, j, float(local.stderr[j]))
     return StepCovariance(specs, theta, cost, dof, white, robust, rho1, lags)
 
 
