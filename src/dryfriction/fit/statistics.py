@@ -231,9 +231,10 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
     variance with about one degree of freedom, and the bandwidth chosen over the whole window
     (a lag count, while the sampling rate can change tenfold at the change) is too short for
     them. Here ``gamma`` is estimated from every pair of the window and only the Jacobian's
-    weights are local. Measured on the basalt-like records of ``tests/machine_zoo.py`` (red
-    friction noise, 10 Hz then 100 Hz): the 95 % interval of ``k`` held the true value in 8 of
-    20 with :func:`hac_covariance` and ~19 of 20 with this one (``benchmarks/bench_k_coverage``).
+    weights are local. Measured on 20 basalt-like records of ``tests/machine_zoo.py`` (red
+    friction noise, 10 Hz then 100 Hz; ``benchmarks/bench_k_coverage``): the 95 % interval of
+    ``k`` held the true value in 6 of 20 with :func:`hac_covariance` and 18 of 20 with this
+    one (standard errors 2.5x wider, median).
 
     Parameters
     ----------
