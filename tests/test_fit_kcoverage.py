@@ -21,9 +21,9 @@ from benchmarks.bench_k_coverage import _old_ratio, coverage, fit_one  # noqa: E
 
 def test_stiffness_interval_is_not_the_score_hac_one():
     """Two basalt-like records with red friction noise (seeds 1, 2): k's standard error is
-    >= 1.8x the score HAC's (measured 2.6x and 3.1x; the score HAC's 95 % interval missed
+    >= 1.8x the score HAC's (measured 2.7x and 3.3x; the score HAC's 95 % interval missed
     the truth in 14 of 20 such records), the interval holds the true 7000 /m (ln k off by
-    0.14 and 0.06, standard errors 0.14 and 0.13), and a, b, Dc keep the score HAC's
+    0.14 and 0.06, standard errors 0.14 and 0.14), and a, b, Dc keep the score HAC's
     standard errors. Caught: k left on the score HAC (ratio 1)."""
     from dryfriction.fit.steps import step_covariance
 
@@ -42,13 +42,15 @@ def test_stiffness_interval_is_not_the_score_hac_one():
 
 
 @pytest.mark.slow
-def test_stiffness_coverage_red_noise(runslow: bool):
-    """20 basalt-like records with the generator's red friction noise: k's interval holds
-    the truth in >= 18 (measured 18; the score HAC 6), a, b, Dc as before."""
+def test_stiffness_coverage(runslow: bool):
+    """20 basalt-like records each with the generator's red friction noise and with white
+    noise: k's interval holds the truth in >= 18 and >= 17 of 20 (measured 19 and 17; the
+    score HAC 6 and 13). The white-noise records fall short of 18 (90 %): see the README."""
     if not runslow:
-        pytest.skip("the 20-record coverage study runs with --runslow")
-    c = coverage("basalt_red", range(20))
-    assert c["hits"]["stiffness"] >= 18, c
+        pytest.skip("the 40-record coverage study runs with --runslow")
+    red, white = (coverage(kind, range(20)) for kind in ("basalt_red", "basalt_white"))
+    assert red["hits"]["stiffness"] >= 18, red
+    assert white["hits"]["stiffness"] >= 17, white
 
 
 def test_change_time_part_against_refits():
