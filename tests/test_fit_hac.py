@@ -80,3 +80,72 @@ def test_singular_jacobian_is_flagged():
     J = np.column_stack([X, X[:, :1]])
     c, lags = hac_covariance(J, np.random.default_rng(3).normal(size=N))
     assert c.singular and np.all(np.isinf(c.stderr)) and lags == 0
+
+
+def _basalt_times() -> np.ndarray:
+    """10 Hz for 30 s, then 100 Hz for 20 s (the sampling of issue 30's basalt record)."""
+    return np.concatenate([np.arange(0.0, 30.0, 0.1), np.arange(30.01, 50.0, 0.01)])
+
+
+def _local_design(t: np.ndarray) -> np.ndarray:
+    """A constant, a ramp, a regressor confined to ~0.2 s after 30 s, as the machine
+    stiffness is in a velocity-step window (it is fixed by the first instants after the
+    change), and one confined to 20-22 s, in the 10 Hz part."""
+    u = t - 30.0
+    return np.column_stack([np.ones(t.size), u / 20.0, np.where(u >= 0, np.exp(-u / 0.1), 0),
+                            ((t > 20.0) & (t < 22.0)).astype(float)])
+
+
+def test_time_lag_kernel_holds_a_local_parameter_under_red_noise():
+    """White (0.5) plus Ornstein-Uhlenbeck (0.6, 0.5 s) noise on the irregular sampling:
+    the exact covariance ``B X^T Sigma X B`` with ``Sigma = 0.25 I + 0.36 exp(-|dt|/0.5)``
+    is independent of the code. The local coefficients' standard errors from
+    :func:`time_hac_covariance` are within 20 % of it (RMS over 150 draws; measured 0.94 for
+    the 0.2 s one, 0.87 for the 2 s one at 10 Hz, which the Bartlett taper shortens) and
+    their 95 % intervals hold the truth in >= 90 % (>= 85 %) of the draws (measured 141 and
+    135 of 150); :func:`hac_covariance` (a Bartlett kernel on the scores, bandwidth a lag
+    count) gives 0.32 of it for the 0.2 s one, the interval issue 30's machine stiffness had.
+    Caught: ``rho`` from the lag-1 autocorrelation (white part kept: 133 of 150), lags
+    counted in samples rather than time (1.23 for the 10 Hz one)."""
+    from dryfriction.fit.statistics import time_hac_covariance
+
+    t = _basalt_times()
+    X = _local_design(t)
+    sigma = 0.25 * np.eye(t.size) + 0.36 * np.exp(-np.abs(t[:, None] - t[None, :]) / 0.5)
+    bread = np.linalg.inv(X.T @ X)
+    exact = np.sqrt(np.diag(bread @ X.T @ sigma @ X @ bread))[2:]
+    chol = np.linalg.cholesky(sigma)
+    rng = np.random.default_rng(11)
+    new, old, hits = [], [], np.zeros(2)
+    draws = 150
+    for _ in range(draws):
+        y = chol @ rng.normal(size=t.size)  # the true coefficients are 0
+        beta = bread @ X.T @ y
+        r = y - X @ beta
+        se = time_hac_covariance(X, r, t)[0].stderr[2:]
+        new.append(se)
+        old.append(hac_covariance(X, r)[0].stderr[2:])
+        hits += np.abs(beta[2:]) <= 1.96 * se
+    rms_new, rms_old = (np.sqrt(np.mean(np.square(v), axis=0)) / exact for v in (new, old))
+    assert np.all(np.abs(rms_new - 1.0) < 0.2) and hits[0] >= 0.9 * draws \
+        and hits[1] >= 0.85 * draws, (rms_new, hits)
+    assert rms_old[0] < 0.75, rms_old
+
+
+def test_time_lag_kernel_is_the_white_covariance_for_white_noise():
+    """Independent noise: the estimate is within 10 % of ``s^2 (X^T X)^-1``'s (RMS over 40
+    draws), for every coefficient."""
+    from dryfriction.fit.statistics import time_hac_covariance
+
+    t = _basalt_times()
+    X = _local_design(t)
+    rng = np.random.default_rng(5)
+    ratios = []
+    for _ in range(40):
+        y = rng.normal(0.0, 0.7, t.size)
+        beta = np.linalg.lstsq(X, y, rcond=None)[0]
+        r = y - X @ beta
+        white = covariance(X, float(r @ r) / (t.size - 3)).stderr
+        ratios.append(time_hac_covariance(X, r, t)[0].stderr / white)
+    rms = np.sqrt(np.mean(np.square(ratios), axis=0))
+    assert np.all(np.abs(rms - 1.0) < 0.1), rms

@@ -245,8 +245,15 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     intervals are far too narrow there; the robust ones count the correlated residuals as the
     fewer independent samples they are.
     """
+    from .loadpoint import change_time_effect
     from .problem import Problem
-    from .statistics import covariance, hac_covariance, lag1_autocorrelation
+    from .statistics import (
+        covariance,
+        hac_covariance,
+        lag1_autocorrelation,
+        time_hac_covariance,
+        with_stderr,
+    )
 
     check_choice("errors", errors, ERRORS)
     m = r.fitted_model
@@ -264,6 +271,17 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     if errors == "white":
         return StepCovariance(specs, theta, cost, dof, white, None, rho1, 0)
     robust, lags = hac_covariance(J, res)
+    names = [s.name for s in specs]
+    if "stiffness" in names and not robust.singular:
+        # k is fixed by ~0.2 s after the change: its variance from the noise's autocovariance
+        # on a time lag (statistics.time_hac_covariance; the score HAC's where that is larger,
+        # ours: each is biased low in its own way) and the measured drive's change time
+        # (loadpoint.change_time_effect); the others' as before; correlations kept
+        j = names.index("stiffness")
+        se = max(float(time_hac_covariance(J, res, np.asarray(d.t, float))[0].stderr[j]),
+                 float(robust.stderr[j]))
+        tc = change_time_effect(lambda x: Problem(m, [x], specs, fixed).residuals(theta), d, J)
+        robust = with_stderr(robust, j, se if tc is None else math.hypot(se, float(tc[j])))
     return StepCovariance(specs, theta, cost, dof, white, robust, rho1, lags)
 
 
