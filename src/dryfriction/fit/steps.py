@@ -272,11 +272,11 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
         return StepCovariance(specs, theta, cost, dof, white, None, rho1, 0)
     robust, lags = hac_covariance(J, res)
     names = [s.name for s in specs]
-    if "stiffness" in names and not robust.singular:
+    if "stiffness" in names and not robust.singular and isinstance(m, RSFModel):
         # k is fixed by ~0.2 s after the change: its variance from the noise's autocovariance
-        # on a time lag (statistics.time_hac_covariance; the score HAC's where that is larger,
-        # ours: each is biased low in its own way) and the measured drive's change time
-        # (loadpoint.change_time_effect); the others' as before; correlations kept
+        # on a time lag (statistics.time_hac_covariance; the score HAC's where larger, ours)
+        # and the measured drive's change time (loadpoint.change_time_effect); measured on
+        # rate-and-state only (a trap-model fit keeps the score HAC); correlations kept
         j = names.index("stiffness")
         se = max(float(time_hac_covariance(J, res, np.asarray(d.t, float))[0].stderr[j]),
                  float(robust.stderr[j]))
