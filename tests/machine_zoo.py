@@ -30,6 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from records_zoo import _ou  # the zoo's exact OU update, one definition
+
 
 @dataclass(frozen=True)
 class Machine:
@@ -75,16 +77,6 @@ def servo_step(u: np.ndarray | float, w: float, zeta: float) -> np.ndarray:
     s = 1.0 - np.exp(-zeta * w * up) * (np.cos(wd * up)
                                         + zeta / math.sqrt(1.0 - zeta**2) * np.sin(wd * up))
     return np.where(u > 0.0, s, 0.0)
-
-
-def _ou(t: np.ndarray, tau: float, rms: float, rng: np.random.Generator) -> np.ndarray:
-    out = np.empty_like(t)
-    out[0] = rng.normal(0.0, rms)
-    rho = np.exp(-np.diff(t) / tau)
-    e = rng.normal(0.0, 1.0, t.size - 1) * rms * np.sqrt(1.0 - rho**2)
-    for i in range(1, t.size):
-        out[i] = rho[i - 1] * out[i - 1] + e[i - 1]
-    return out
 
 
 def sample_times(m: Machine) -> np.ndarray:
