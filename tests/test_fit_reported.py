@@ -67,3 +67,17 @@ def test_robust_estimates_are_the_rows_numbers(result) -> None:  # type: ignore[
         assert est[name]["stderr"] == pytest.approx(float(r[f"sigma_{name}"]), rel=1e-6)
         assert est[name]["lo"] == pytest.approx(float(r[f"{name}_lo"]), rel=1e-6)
         assert est[name]["hi"] == pytest.approx(float(r[f"{name}_hi"]), rel=1e-6)
+
+
+def test_a_one_step_summary_shows_its_point(rows: list[dict]) -> None:
+    """One velocity after the step gave the log axis identical limits: matplotlib's own
+    expansion put the point on the panel's edge, hidden under the spine in two panels (seen on
+    the shared record). Every point drawn must lie strictly inside its panel's x range."""
+    from dryfriction.plots.summary import plot_experiment_summary
+
+    fig, axes = plot_experiment_summary(rows[:1])
+    for ax in axes:
+        lo, hi = ax.get_xlim()
+        for cont in ax.containers:
+            x = np.asarray(cont.lines[0].get_xdata(), float)
+            assert x.size == 1 and lo < x[0] < hi and math.log(hi / x[0]) > 0.2, ax.get_ylabel()

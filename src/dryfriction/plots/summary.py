@@ -77,6 +77,11 @@ def plot_experiment_summary(rows: Sequence[Mapping[str, Any]], path: Any = None
             ax.axhline(0.0, color="0.5", lw=0.8)
     for ax in axes[2:]:
         ax.set_xlabel(r"load-point velocity after the step $V$  [µm/s]")
+    v_all = [q[1] * 1e6 for name, _ in PANELS for p in pts[name]["levels"].values() for q in p]
+    if v_all:  # one velocity (or a narrow range) gave singular log limits: pad to x2 each way
+        lo, hi = min(v_all), max(v_all)
+        if hi < 3.0 * lo:
+            axes[0].set_xlim(lo / 2.0, hi * 2.0)  # the axes share x
     found: dict[str, Any] = {}  # every level drawn in any panel, once
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
