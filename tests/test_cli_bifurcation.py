@@ -91,3 +91,16 @@ def test_too_many_checks_and_trap_model_refused(tmp_path: Path) -> None:
     cv = Path(__file__).resolve().parents[1] / "examples" / "velocity_step.toml"
     r = run(str(cv), "--velocities", "1e-6", "--out", str(out))
     assert r.exit_code == 2 and "law = 'cv'" in r.stderr and not out.exists()
+
+
+def test_supercritical_check_columns(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing", mass=0.3 * 6.1e-6 / 2e-6**2), "--velocities", "2e-6",
+            "--out", str(out), "--check", "--json", "--no-figure")
+    assert r.exit_code == 0, r.output
+    row = json.loads(r.stdout)["rows"][0]
+    assert row["nature"] == "supercritical" and row["check"] == "settled cycles below K_c"
+    assert abs(row["check_exponent"] - 0.5) < 0.03 and row["check_exponent_err"] < 0.02
+    assert row["check_amp_ratio"] == pytest.approx(1.0, abs=0.03)
+    with open(out / "bifurcation.csv") as f:
+        assert "check_exponent" in next(csv.reader(f))

@@ -22,6 +22,7 @@ import math
 from typing import Any
 
 from ..io.protocol import RSFProtocol
+from ..rsf.driving import SolverError
 from ..rsf.law import V_MAX
 from .rsf_hopf import rsf_hopf
 from .rsf_hopf_check import amplitude_exponent, basin_threshold, settled_amplitude
@@ -39,7 +40,8 @@ CHECK_DISTANCES = (0.005, 0.01, 0.02)
 UNITS = {"velocity": "m/s", "K_c": "1/m (per unit normal force)", "frequency": "rad/s",
          "l1": "1 (reduced coordinates ln V, ln theta, tau/a)", "relative_l1": "1",
          "nature": "", "amp_coef": "1 (half peak-to-peak ln V per sqrt(|K - K_c|/K_c))",
-         "check": "", "check_exponent": "1", "check_exponent_err": "1",
+         "check": "", "check_distance": "1 (|K - K_c|/K_c of the amplitude ratio)",
+         "check_exponent": "1", "check_exponent_err": "1",
          "check_amp_ratio": "1", "check_threshold": "1 (ln V kick)"}
 """The unit of each column of ``bifurcation.csv``."""
 
@@ -63,11 +65,16 @@ def parse_velocities(text: str) -> list[float]:
     return out
 
 
+def _empty_check() -> dict[str, Any]:
+    return {"check": "", "check_distance": math.nan, "check_exponent": math.nan,
+            "check_exponent_err": math.nan, "check_amp_ratio": math.nan,
+            "check_threshold": math.nan}
+
+
 def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
-    out: dict[str, Any] = {"check": "", "check_exponent": math.nan,
-                           "check_exponent_err": math.nan, "check_amp_ratio": math.nan,
-                           "check_threshold": math.nan}
+    out = _empty_check()
     if h.nature == "supercritical":
+        out["check_distance"] = CHECK_DISTANCES[0]
         rows = [settled_amplitude(model, h, d, damping, mass) for d in CHECK_DISTANCES]
         beta, err, _ = amplitude_exponent(rows)
         first = rows[0]
@@ -78,10 +85,13 @@ def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
         out["check"] = ("settled cycles below K_c" if not unsettled else
                         f"NOT settled at d = {unsettled} (exponent from the others)")
     elif h.nature in ("subcritical", "degenerate"):
-        r = basin_threshold(model, h, 0.01, damping, mass)
+        # where the predicted unstable cycle is small (half peak-to-peak ln V of 0.2)
+        d = min(0.01, (0.2 / h.amp_coef) ** 2) if h.nature == "subcritical" else 0.01
+        out["check_distance"] = d
+        r = basin_threshold(model, h, d, damping, mass)
         out["check_threshold"] = r["delta_lo"] if math.isfinite(r["delta_hi"]) else math.nan
         if h.nature == "subcritical" and math.isfinite(r["amplitude"]):
-            out["check_amp_ratio"] = r["amplitude"] / (h.amp_coef * math.sqrt(0.01))
+            out["check_amp_ratio"] = r["amplitude"] / (h.amp_coef * math.sqrt(d))
             out["check"] = "unstable cycle by bisection above K_c"
         elif math.isfinite(r["delta_hi"]):
             out["check"] = "finite kick threshold above K_c"
@@ -119,7 +129,10 @@ def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: boo
         h = rsf_hopf(model, v, drive.damping, drive.mass)
         row = h.as_row()
         if check:
-            row.update(_check(model, h, drive.damping, drive.mass))
+            try:
+                row.update(_check(model, h, drive.damping, drive.mass))
+            except SolverError as exc:  # said in the row, not a crash of the whole table
+                row.update({**_empty_check(), "check": f"simulation failed: {exc}"})
         rows.append(row)
     notes = ["nature from the sign of the first Lyapunov coefficient l1 (Kuznetsov 2004); "
              "degenerate: |l1| < 1e-8 of its largest term (docs/hopf.md)"]

@@ -159,6 +159,9 @@ class RSFHopf:
         subcritical); NaN if degenerate or none.
     point : HopfPoint or None
         The normal form (reduced coordinates and time).
+    growth_slope : float
+        ``-(k_c/omega) dRe(lambda)/dk`` at ``k_c`` (dimensionless, ``> 0``): the linear
+        growth rate per radian is ``growth_slope (k_c - k)/k_c`` near ``k_c``.
     """
 
     velocity: float
@@ -169,6 +172,7 @@ class RSFHopf:
     nature: str
     amp_coef: float
     point: HopfPoint | None
+    growth_slope: float = math.nan
 
     def as_row(self) -> dict[str, Any]:
         """The CSV/JSON row: ``velocity`` (m/s), ``K_c`` (1/m), ``frequency`` (rad/s), ``l1``,
@@ -236,10 +240,11 @@ def rsf_hopf(model: RateState, v: float, damping: float = 0.0, mass: float = 0.0
     else:
         nature = "supercritical" if point.l1 < 0 else "subcritical"
     amp = math.nan
+    dk = 1e-5 * kc
+    sigma_k = (field.growth(kc + dk).real - field.growth(kc - dk).real) / (2 * dk)
     if nature != "degenerate":
-        dk = 1e-5 * kc
-        sigma_k = (field.growth(kc + dk).real - field.growth(kc - dk).real) / (2 * dk)
         # beta = sigma_k (kappa - kappa_c) = -sigma_k kappa_c d on the cycle's side, d = |.|/kc
         amp = 2 * abs(point.q[0]) * math.sqrt(abs(sigma_k * kc / point.c1.real))
     return RSFHopf(velocity=v, k_c=kc / model.dc, frequency=point.omega * v / model.dc,
-                   l1=point.l1, relative_l1=rel, nature=nature, amp_coef=amp, point=point)
+                   l1=point.l1, relative_l1=rel, nature=nature, amp_coef=amp, point=point,
+                   growth_slope=-sigma_k * kc / point.omega)
