@@ -4,7 +4,8 @@ procedure here is ours).
 
 * **Supercritical** (:func:`settled_amplitude`, :func:`amplitude_exponent`): below ``k_c``
   the run starts on the predicted cycle (``ln V`` kicked by the predicted amplitude, state
-  steady) and is lengthened until the half peak-to-peak ``ln V`` of the last period and of
+  steady), lasts at least three relaxation times ``1/(2 beta)`` onto the cycle, and is
+  lengthened until the half peak-to-peak ``ln V`` of the last period and of
   the period 50 periods earlier differ by less than ``1e-3`` of it (settled); the amplitudes
   at several distances ``d = (k_c - k)/k_c`` give the exponent of ``amp ~ d^beta`` by
   least squares in log-log, with its standard error (1/2 for a Hopf point).
@@ -68,7 +69,10 @@ def settled_amplitude(model: RateState, hopf: RSFHopf, distance: float,
     periods and the run's length (linear periods)."""
     k = hopf.k_c * (1.0 - distance)
     start = hopf.amp_coef * math.sqrt(distance) if math.isfinite(hopf.amp_coef) else 0.05
-    periods = 4 * SETTLE_PERIODS
+    # at least three relaxation times 1/(2 |beta|) onto the cycle: a slow approach changes
+    # little over 50 periods long before it has arrived
+    relax = 3 / (4 * math.pi * hopf.growth_slope * distance) if hopf.growth_slope > 0 else 0.0
+    periods = int(min(max_periods, max(4 * SETTLE_PERIODS, math.ceil(relax))))
     while True:
         amps = period_amplitudes(model, hopf, k, start, periods, damping, mass)
         last = float(np.mean(amps[-_MEAN:]))
