@@ -104,3 +104,16 @@ def test_supercritical_check_columns(tmp_path: Path) -> None:
     assert row["check_amp_ratio"] == pytest.approx(1.0, abs=0.03)
     with open(out / "bifurcation.csv") as f:
         assert "check_exponent" in next(csv.reader(f))
+
+
+def test_extreme_velocities_are_said_not_crashed(tmp_path: Path) -> None:
+    """A vanishing reduced mass (M = 1e-55 at 1e-30 m/s: a fast eigenvalue of 1e55 beside the
+    pair) is still found, and degenerate to the method's precision; a huge one (M = 1e11)
+    says in its row that K_c lost precision."""
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing", mass=0.1), "--velocities", "1e-30,1e3", "--out",
+            str(out), "--json", "--no-figure")
+    assert r.exit_code == 0, r.output
+    rows = json.loads(r.stdout)["rows"]
+    assert rows[0]["nature"] == "degenerate" and rows[0]["note"] == ""
+    assert "closed form" in rows[1]["note"]

@@ -39,7 +39,7 @@ CHECK_DISTANCES = (0.005, 0.01, 0.02)
 
 UNITS = {"velocity": "m/s", "K_c": "1/m (per unit normal force)", "frequency": "rad/s",
          "l1": "1 (reduced coordinates ln V, ln theta, tau/a)", "relative_l1": "1",
-         "nature": "", "amp_coef": "1 (half peak-to-peak ln V per sqrt(|K - K_c|/K_c))",
+         "nature": "", "note": "", "amp_coef": "1 (half peak-to-peak ln V per sqrt(|K - K_c|/K_c))",
          "check": "", "check_distance": "1 (|K - K_c|/K_c of the amplitude ratio)",
          "check_exponent": "1", "check_exponent_err": "1",
          "check_amp_ratio": "1", "check_threshold": "1 (ln V kick)"}
@@ -98,7 +98,7 @@ def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
         else:
             out["check"] = "every kick up to ln(V/V*) = 2 decays above K_c"
     else:
-        out["check"] = "no Hopf point"
+        out["check"] = "not run: no Hopf point" if h.nature == "none" else "not run"
     return out
 
 

@@ -55,8 +55,9 @@ the Cauchy-circle derivatives are good to ~1e-13 relative, the Jacobian's eigenv
 ~1e-14; 1e-8 leaves room for ill-conditioned eigenvectors and is far below any l1 found
 non-zero here, whose ratios are 1e-3 and above)."""
 
-NATURES = ("supercritical", "subcritical", "degenerate", "none")
-"""What :func:`rsf_hopf` reports: ``none`` where steady sliding is stable at every stiffness."""
+NATURES = ("supercritical", "subcritical", "degenerate", "none", "undetermined")
+"""What :func:`rsf_hopf` reports: ``none`` where steady sliding is stable at every stiffness;
+``undetermined`` where the normal form could not be computed (``note`` says why)."""
 
 
 @dataclass(frozen=True)
@@ -159,6 +160,9 @@ class RSFHopf:
         subcritical); NaN if degenerate or none.
     point : HopfPoint or None
         The normal form (reduced coordinates and time).
+    note : str
+        What the user must know about this row (an undetermined nature, a ``K_c`` off Rice &
+        Ruina's closed form); empty if nothing.
     growth_slope : float
         ``-(k_c/omega) dRe(lambda)/dk`` at ``k_c`` (dimensionless, ``> 0``): the linear
         growth rate per radian is ``growth_slope (k_c - k)/k_c`` near ``k_c``.
@@ -173,13 +177,14 @@ class RSFHopf:
     amp_coef: float
     point: HopfPoint | None
     growth_slope: float = math.nan
+    note: str = ""
 
     def as_row(self) -> dict[str, Any]:
         """The CSV/JSON row: ``velocity`` (m/s), ``K_c`` (1/m), ``frequency`` (rad/s), ``l1``,
-        ``relative_l1``, ``nature``, ``amp_coef``."""
+        ``relative_l1``, ``nature``, ``amp_coef``, ``note``."""
         return {"velocity": self.velocity, "K_c": self.k_c, "frequency": self.frequency,
                 "l1": self.l1, "relative_l1": self.relative_l1, "nature": self.nature,
-                "amp_coef": self.amp_coef}
+                "amp_coef": self.amp_coef, "note": self.note}
 
 
 def critical_kappa(field: SliderField) -> float:
@@ -233,7 +238,17 @@ def rsf_hopf(model: RateState, v: float, damping: float = 0.0, mass: float = 0.0
     kc = critical_kappa(field)
     if not math.isfinite(kc):
         return RSFHopf(v, math.nan, math.nan, math.nan, math.nan, "none", math.nan, None)
-    point = first_lyapunov(lambda X: field(X, kc), np.zeros(field.n), residual_max=1e-7)
+    note = ""
+    if model.n_state == 1 and model.state_law != "nagata":
+        ref = model.critical_stiffness(v, damping, mass) * model.dc
+        if abs(kc / ref - 1.0) > 1e-6:  # the eigenproblem lost precision (a huge mass)
+            note = (f"K_c is {kc / ref - 1.0:+.1e} off Rice & Ruina's closed form: the "
+                    "eigenproblem is ill-conditioned here, l1 is not to be trusted")
+    try:
+        point = first_lyapunov(lambda X: field(X, kc), np.zeros(field.n), residual_max=1e-7)
+    except ValueError as exc:
+        return RSFHopf(v, kc / model.dc, math.nan, math.nan, math.nan, "undetermined",
+                       math.nan, None, note=f"no normal form: {exc}")
     rel = point.relative_l1
     if abs(rel) < DEGENERATE_TOL:
         nature = "degenerate"
@@ -247,4 +262,4 @@ def rsf_hopf(model: RateState, v: float, damping: float = 0.0, mass: float = 0.0
         amp = 2 * abs(point.q[0]) * math.sqrt(abs(sigma_k * kc / point.c1.real))
     return RSFHopf(velocity=v, k_c=kc / model.dc, frequency=point.omega * v / model.dc,
                    l1=point.l1, relative_l1=rel, nature=nature, amp_coef=amp, point=point,
-                   growth_slope=-sigma_k * kc / point.omega)
+                   growth_slope=-sigma_k * kc / point.omega, note=note)

@@ -12,7 +12,8 @@ from .style import LEGEND_SIZE, RUN_WIDTH, TITLE_SIZE, VELOCITY_SI, new_figure
 __all__ = ["plot_bifurcation"]
 
 _MARK = {"supercritical": ("o", "tab:blue"), "subcritical": ("s", "tab:red"),
-         "degenerate": ("D", "tab:gray"), "none": ("x", "k")}
+         "degenerate": ("D", "tab:gray"), "none": ("x", "k"),
+         "undetermined": ("+", "tab:orange")}
 
 
 def plot_bifurcation(report: dict[str, Any], title: str = "") -> tuple[Any, Any]:

@@ -248,7 +248,9 @@ def first_lyapunov(
     x0 = np.asarray(x0, float).ravel()
     A = jacobian(f, x0, method, scale) if jac is None else np.asarray(jac, float)
     lam, vecs = np.linalg.eig(A)
-    pair = np.flatnonzero(lam.imag > 1e-12 * max(1.0, float(np.max(np.abs(lam)))))
+    # complex relative to its own size: a stiff field's fast real eigenvalues (1e50 at a
+    # vanishing mass) must not hide a pair of order 1
+    pair = np.flatnonzero(lam.imag > 1e-9 * np.abs(lam))
     if pair.size == 0:
         raise ValueError("the Jacobian has no complex pair: x0 is not a Hopf point")
     i = pair[np.argmin(np.abs(lam[pair].real))]
