@@ -45,9 +45,34 @@ def period_amplitudes(model: RateState, hopf: RSFHopf, k: float, delta: float, p
                       damping: float = 0.0, mass: float = 0.0, rtol: float = 1e-9
                       ) -> np.ndarray:
     """Half peak-to-peak of ``ln(V/V*)`` in each linear period ``2 pi/omega_c`` of a run at
-    stiffness ``k`` (1/m) started at ``V = V* e^delta`` with the state steady at ``V*``.
+    stiffness ``k`` started at ``V = V* e^delta`` with the state steady at ``V*``.
 
-    Returns the amplitudes (dimensionless); raises :class:`SolverError` on a runaway."""
+    Parameters
+    ----------
+    model : RateState
+    hopf : RSFHopf
+        The Hopf point (its ``velocity`` ``V*``, m/s, and ``frequency``, rad/s).
+    k : float
+        Spring stiffness, 1/m per unit normal force.
+    delta : float
+        Initial kick ``ln(V/V*)``.
+    periods : int
+        Run length in linear periods.
+    damping, mass : float
+        ``eta/sigma`` (s/m) and ``m`` (s^2/m) per unit normal force.
+    rtol : float
+        Solver tolerance.
+
+    Returns
+    -------
+    ndarray
+        One amplitude per period (dimensionless).
+
+    Raises
+    ------
+    SolverError
+        A runaway velocity, or the solver's step budget.
+    """
     v = hopf.velocity
     period = 2 * math.pi / hopf.frequency
     t = np.linspace(0.0, periods * period, periods * _SAMPLES + 1)

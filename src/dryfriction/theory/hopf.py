@@ -103,7 +103,23 @@ def jacobian(f: Callable[[Array], Array], x0: Array, method: Method = "complex",
              scale: float = 1.0) -> Array:
     """``Df(x0)``: by the complex step ``Im f(x0 + i h e_j)/h`` (``h = 1e-20 scale``, exact to
     rounding for a holomorphic ``f``; Squire & Trapp 1998, *SIAM Rev.* 40, 110) or by fourth-order
-    central differences (``"fd"``)."""
+    central differences (``"fd"``, ``[1, -8, 8, -1]/12 h``, ``h = 0.01 scale``).
+
+    Parameters
+    ----------
+    f : callable
+        The vector field (units of x per unit time).
+    x0 : array_like
+        Where the Jacobian is taken.
+    method : {"complex", "fd"}
+    scale : float
+        Size of ``x`` over which ``f`` is smooth (unit of x).
+
+    Returns
+    -------
+    ndarray
+        ``n x n``, 1/time.
+    """
     x0 = np.asarray(x0, float)
     n = x0.size
     out = np.empty((n, n))
