@@ -58,7 +58,7 @@ def test_ageing_quasistatic_is_degenerate_and_checked(tmp_path: Path) -> None:
 
 def test_laws_and_inertia(tmp_path: Path) -> None:
     """Slip law quasi-static: degenerate as well (ours; not Gu et al.'s subcritical: their
-    finite-kick instability is global, tests/test_rsf_hopf.py); PRZ subcritical; a mass
+    finite-kick instability is global, tests/analysis/test_rsf_hopf.py); PRZ subcritical; a mass
     (M = m V^2/Dc = 0.3 at 2 um/s) makes the ageing law supercritical."""
     def natures(law: str, mass: float = 0.0) -> list[str]:
         out = tmp_path / f"{law}{mass}"
@@ -88,7 +88,7 @@ def test_too_many_checks_and_trap_model_refused(tmp_path: Path) -> None:
     many = ",".join(str(1e-6 * (i + 1)) for i in range(13))
     r = run(protocol(tmp_path, "ageing"), "--velocities", many, "--out", str(out), "--check")
     assert r.exit_code == 2 and "at most 12" in r.stderr and not out.exists()
-    cv = Path(__file__).resolve().parents[1] / "examples" / "velocity_step.toml"
+    cv = Path(__file__).resolve().parents[2] / "examples" / "velocity_step.toml"
     r = run(str(cv), "--velocities", "1e-6", "--out", str(out))
     assert r.exit_code == 2 and "law = 'cv'" in r.stderr and not out.exists()
 
