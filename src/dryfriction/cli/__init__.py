@@ -20,7 +20,7 @@ COMMAND_MODULES: dict[str, str] = {
     "trap": "model", "static": "model", "steady": "model", "stability": "model",
     "fit": "fitting", "record": "record",
     "reproduce": "runs", "rsf": "runs", "simulate": "runs", "compare": "runs",
-    "sweep": "sweeps", "phase-diagram": "sweeps",
+    "sweep": "sweeps", "phase-diagram": "sweeps", "bifurcation": "bifurcation",
 }
 """Command name -> the module that registers it on :data:`.common.app`: :func:`main` imports
 only the one a command line names (issue 26: the other command modules and what they import

@@ -10,7 +10,6 @@ parsed, less the run's wall time; every other file byte for byte).
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +18,7 @@ import pytest
 from dryfriction import app
 from dryfriction.cli import main
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 VOLATILE = {"wall_s"}  # the run's own wall-clock time: differs between any two runs
 
@@ -105,11 +104,7 @@ def test_fit_csv_files(tmp_path: Path) -> None:
 
 
 def test_fit_a_laboratory_record(tmp_path: Path) -> None:
-    sys.path.insert(0, str(Path(__file__).parent))
-    try:
-        import records_zoo as zoo
-    finally:
-        sys.path.pop(0)
+    import records_zoo as zoo  # tests/ (the shared generators)
     path = zoo.write(zoo.make_record(0, "up", (), "tab_um"), tmp_path)
     assert run("fit", path, "--model", "rsf", "--out", tmp_path / "cli", "--no-profile") == 0
     done = app.fit(path, tmp_path / "py", model="rsf", profile=False)
