@@ -50,7 +50,7 @@ _PUBLIC: dict[str, str] = {
     "RateState": "rsf.law",
     "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
     # files, fitting
-    "load_protocol": "io.protocol", "read_csv": "io.data",
+    "load_protocol": "io.protocol", "read_csv": "records.data",
     "fit": "fit",
 }
 _RENAMED = {"rsf_linear_stability": ("rsf.driving", "linear_stability")}
