@@ -9,7 +9,8 @@ The package is layered, each layer importing only those below it::
     plots/      every figure (the only matplotlib user)
     analysis/   stick-slip, the trap model seen through rate-and-state
     fit/        models, statistics, the fitting engine
-    io/         files, protocol files (the only parser), measured data, sweeps
+    records/    measured records and data sets         sweeps/  parameter sweeps on Dask
+    io/         files and results folders, protocol files (the only parser)
     ensemble/   the trap population and its drives      rsf/  rate-and-state laws and solver
     theory/     the model's equations
     program.py, validation.py
