@@ -205,10 +205,12 @@ def test_no_import_cycle():
     assert not cycles, "import cycles: " + "; ".join(" <-> ".join(c) for c in cycles)
 
 
-# a module (with or without a function after ':') named by a string
-_MODULE_STRING = re.compile(r"(dryfriction(?:\.\w+)+)(?::\w+)?")
-# the package's lazy public names (checked by tests/test_doc_paths.py) and the old paths
-# of release 0.1, which are the subject of dryfriction._compat
+# a module (with or without a function after ':') named by a string, in full
+# ("dryfriction.plots.runs") or from the package ("plots.runs", as importlib's relative names)
+_MODULE_STRING = re.compile(r"(?:dryfriction((?:\.\w+)+)|\.?(\w+(?:\.\w+)+))(?::\w+)?")
+# the package's lazy public names (tests/test_compat.py checks that each is on a current path
+# and loads; the package's root is in no layer) and the old paths of release 0.1, which are the
+# subject of dryfriction._compat
 _NAMES_MODULES_ON_PURPOSE = {"dryfriction", "dryfriction._compat"}
 
 
@@ -242,9 +244,10 @@ def _module_strings(module: str, source: str) -> list[tuple[int, str]]:
         if (isinstance(node, ast.Constant) and isinstance(node.value, str)
                 and id(node) not in skip):
             match = _MODULE_STRING.fullmatch(node.value.strip())
-            if match and (SRC.parent.joinpath(*match.group(1).split(".")).is_dir()
-                          or SRC.parent.joinpath(*match.group(1).split(".")).with_suffix(
-                              ".py").exists()):
+            if match is None:
+                continue
+            where = SRC.joinpath(*(match.group(1) or "." + match.group(2)).split(".")[1:])
+            if where.is_dir() or where.with_suffix(".py").exists():
                 out.append((node.lineno, node.value))
     return out
 
@@ -277,6 +280,9 @@ def test_the_cycle_and_string_checks_can_fail(tmp_path):
     assert _module_strings("x", 'draw("dryfriction.plots.runs:rsf_figure")\n') == [
         (1, "dryfriction.plots.runs:rsf_figure")]
     assert _module_strings("x", '"""See dryfriction.plots.runs."""\nX = 1\n') == []
+    assert _module_strings("x", 'importlib.import_module(".plots.runs", "dryfriction")\n') == [
+        (1, ".plots.runs")]
+    assert _module_strings("x", 'open("fit.json")\n') == []
 
 
 def test_the_layer_check_can_fail(tmp_path):
