@@ -151,7 +151,7 @@ def test_assemble_imports_nothing_after_the_warm_up(tmp_path: Path) -> None:
     imported anything already."""
     code = """
 import sys
-from dryfriction.io import sweep as sw
+from dryfriction.sweeps import sweep as sw
 spec = sw.parse_sweep({"model": {"eps": 0.04}, "sweep": {"model.eps": [0.02, 0.03]}})
 keys = {idx: sw.point_key(spec.protocol(ov), "a") for idx, ov in spec.points()}
 out = sys.argv[1]
