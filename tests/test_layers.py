@@ -293,3 +293,24 @@ def test_the_layer_check_can_fail(tmp_path):
     (target, _, _), = _imports("dryfriction.theory.x", fake)
     assert target == "dryfriction.ensemble.driving"
     assert _layer(target) > _layer("dryfriction.theory.x")
+
+
+# project-level checks (the layout, packaging, the docs, start-up) and root-level modules'
+# tests (results.py's tables) stay at the top of tests/; everything else mirrors a package
+ROOT_TESTS = {"test_layers", "test_packaging", "test_docs", "test_doc_paths", "test_readme",
+              "test_startup", "test_benchmarks", "test_mutants_list", "test_tables", "test_compat"}
+
+
+def test_the_tests_mirror_the_packages() -> None:
+    """Every test file lives in ``tests/<package>/`` for a package of ``src/dryfriction``
+    (the generators the tests share stay in ``tests/``), and every package with code has its
+    folder of tests."""
+    tests = Path(__file__).resolve().parent
+    packages = {p.parent.name for p in SRC.glob("*/__init__.py")
+                if any(q.name != "__init__.py" for q in p.parent.glob("*.py"))}
+    folders = {p.name for p in tests.iterdir() if p.is_dir() and p.name != "__pycache__"
+               and any(p.glob("test_*.py"))}
+    assert folders <= packages, f"test folders that name no package: {folders - packages}"
+    assert packages <= folders, f"packages without a folder of tests: {packages - folders}"
+    top = {p.stem for p in tests.glob("test_*.py")}
+    assert top == ROOT_TESTS, f"test files at the top of tests/: {sorted(top ^ ROOT_TESTS)}"
