@@ -79,7 +79,7 @@ def test_a_json_run_loads_neither_rich_nor_the_other_commands(tmp_path: Path) ->
     proto = EXAMPLES / "rsf_velocity_step.toml"
     others = ("rich", "dryfriction.cli.fitting", "dryfriction.cli.records",
               "dryfriction.cli.record", "dryfriction.cli.sweeps", "dryfriction.cli.examples",
-              "dryfriction.io.labsteps", "dryfriction.cli.runs")
+              "dryfriction.records.labsteps", "dryfriction.cli.runs")
     got = _loaded_after(
         "import contextlib, io\nfrom dryfriction.cli import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"

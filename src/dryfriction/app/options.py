@@ -48,7 +48,7 @@ SWEEP: dict[str, Option] = {
                         "local cluster"),
     "workers": Option("--workers", None, "1 to WORKERS_PER_CORE per core; default one per "
                       "core"),
-    "yes": Option("--yes", False, "allow grids larger than io.sweep.MAX_POINTS"),
+    "yes": Option("--yes", False, "allow grids larger than sweeps.sweep.MAX_POINTS"),
     "connect_timeout": Option("--connect-timeout", 10.0, "> 0 s"),
 }
 """The options both sweeps share."""

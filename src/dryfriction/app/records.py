@@ -68,9 +68,9 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
                        fmt: str = "png", dpi: int | None = None) -> None:
     """record.{fmt} and segments.csv into ``folder`` (a staging folder): the record as the
     step finder saw it (``dryfriction record --out``, and beside a record's fit)."""
-    from ..io.lab import write_segments_csv
     from ..plots.record import plot_record
     from ..plots.style import save_figure
+    from ..records.lab import write_segments_csv
 
     write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)
     fig, _ = plot_record(rec, segs, det, given=given)
@@ -98,7 +98,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
     Parameters
     ----------
     path : path
-        The record (any text table, .xlsx, .mat: :func:`dryfriction.io.lab.read_record`).
+        The record (any text table, .xlsx, .mat: :func:`dryfriction.records.lab.read_record`).
     out : path
         Results folder: new, empty, or written by this program before.
     stiffness : float or str
@@ -138,7 +138,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
     """
     from ..io.files import check_output_dir
     from ..validation import check_figure_format
-    from .fitting import check_fit_options
+    from .checks import check_fit_options
 
     fmt, dpi = check_figure_format(fmt, dpi)
     check_fit_options(alpha=alpha, creep=creep, v0=None, state_law=law, errors=errors,
@@ -156,8 +156,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
         step_data,
         write_steps_csv,
     )
-    from ..io import lab
     from ..io.files import output_directory, write_json
+    from ..records import lab
     from ..validation import check_choice
 
     check_choice("errors", errors, ERRORS)
@@ -199,7 +199,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
         res.notes.append(profile_note)
     if res.drive is not None and res.drive.get("kind") == "measured":
         if profile:  # the same rule as the profiles: a fit of its own per step
-            from ..fit.loadpoint import compare_with_program
+            from ..fit.steps import compare_with_program
 
             # how k and a depend on the drive: each step once more on the program (issue 30)
             res.drive["comparison"] = compare_with_program(res.data, res.fits, res.rows)

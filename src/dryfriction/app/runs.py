@@ -15,7 +15,7 @@ __all__ = ["simulate", "compare", "reproduce", "draw_here", "Draw", "Progress"]
 
 Draw = Callable[..., None]
 """``draw(builder, *args, path=..., fmt=..., dpi=...)``: build a figure with ``builder(*args)``
-(``"module:function"`` returning ``(fig, axes)``) and save it; the command line passes its
+(a function returning ``(fig, axes)``) and save it; the command line passes its
 painter's (:func:`dryfriction.cli.painter.draw_figure`), which draws in a process forked
 before the command's imports."""
 Progress = Callable[..., None]
@@ -26,15 +26,36 @@ _CMP = OPTIONS["compare"]
 _REP = OPTIONS["reproduce"]
 
 
-def draw_here(builder: str, *args: Any, path: Any, fmt: str, dpi: int | None) -> None:
+def draw_here(builder: Callable[..., Any], *args: Any, path: Any, fmt: str,
+              dpi: int | None) -> None:
     """The default :data:`Draw`: build and save the figure in this process."""
-    import importlib
-
     from ..plots.style import save_figure
 
-    module, _, name = builder.partition(":")
-    fig, _ = getattr(importlib.import_module(module), name)(*args)
+    fig, _ = builder(*args)
     save_figure(fig, path, fmt, dpi)
+
+
+# the figures as functions that import matplotlib when called (a painter, forked before the
+# command's imports, receives them by module and name: cli.painter)
+def timeseries_figure(result: Any) -> tuple[Any, Any]:
+    """:func:`dryfriction.plots.runs.timeseries_figure` (a trap-model run)."""
+    from ..plots.runs import timeseries_figure as build
+
+    return build(result)
+
+
+def rsf_timeseries_figure(result: Any) -> tuple[Any, Any]:
+    """:func:`dryfriction.plots.runs.rsf_timeseries_figure` (a rate-and-state protocol)."""
+    from ..plots.runs import rsf_timeseries_figure as build
+
+    return build(result)
+
+
+def comparison_figure(c: Any, title: str = "") -> tuple[Any, Any]:
+    """:func:`dryfriction.plots.runs.comparison_figure` (``compare``)."""
+    from ..plots.runs import comparison_figure as build
+
+    return build(c, title)
 
 
 def _summary(result: Any, context: dict[str, Any]) -> dict[str, Any]:
@@ -95,14 +116,14 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
         start = time.perf_counter()
         result = proto.run()
         context = {"wall_s": time.perf_counter() - start, **context}
-        builder = "dryfriction.plots.runs:rsf_timeseries_figure"
+        builder: Callable[..., Any] = rsf_timeseries_figure
     else:
         def step(fraction: float) -> None:
             if progress is not None:
                 progress(100.0 * fraction)
 
         result = proto.run(progress=step, on_interrupt="partial")
-        builder = "dryfriction.plots.runs:timeseries_figure"
+        builder = timeseries_figure
     files = ["timeseries.csv", "summary.json"]
     summary = _summary(result, context)
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
@@ -170,7 +191,7 @@ def compare(protocol: str | Path, out: str | Path, *,
                           report=report) as tmp:
         write_json(tmp / "compare.json", summary)
         if figure:
-            (draw or draw_here)("dryfriction.plots.runs:comparison_figure", c,
+            (draw or draw_here)(comparison_figure, c,
                                 Path(protocol).name, path=tmp / f"compare.{fmt}", fmt=fmt,
                                 dpi=dpi)
             files.append(f"compare.{fmt}")

@@ -1,6 +1,6 @@
 """Parameter sweeps on Dask and the stick-slip phase diagram (``dryfriction sweep``,
 ``dryfriction phase-diagram``): the grid parsed and every point checked before any worker
-starts, then :func:`dryfriction.io.sweep.run_sweep` (resumable: the same call again goes on
+starts, then :func:`dryfriction.sweeps.sweep.run_sweep` (resumable: the same call again goes on
 where it stopped)."""
 
 from __future__ import annotations
@@ -55,9 +55,9 @@ def _no_bar(label: str, total: float | None = None, unit: str = "", **kw: Any) -
 def _run_sweep(spec: Any, runner: Any, out: str, bar: Callable[..., Any] | None, *,
                scheduler: str | None, workers: int | None, confirm: bool, source: str,
                connect_timeout: float, variables: Any, outputs: Any = None) -> Any:
-    """:func:`~dryfriction.io.sweep.run_sweep` under the progress bar ``bar``; Ctrl-C raises
-    :class:`dryfriction.io.sweep.SweepInterrupted` (how many points are stored)."""
-    from ..io.sweep import run_sweep
+    """:func:`~dryfriction.sweeps.sweep.run_sweep` under the progress bar ``bar``; Ctrl-C raises
+    :class:`dryfriction.sweeps.sweep.SweepInterrupted` (how many points are stored)."""
+    from ..sweeps.sweep import run_sweep
 
     with (bar or _no_bar)("sweep", spec.size, unit="points") as update:
         return run_sweep(spec, runner, out, scheduler=scheduler, n_workers=workers,
@@ -77,8 +77,8 @@ def prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | Non
 
     from ..io.files import check_writable_dir
     from ..io.protocol import spring_point
-    from ..io.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
     from ..io.textfile import HEAD_BYTES, check_text
+    from ..sweeps.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
     from ..validation import require_extra
 
     require_extra("sweep", SWEEP_MODULES, "a sweep")  # before any work, like bad input
@@ -159,7 +159,7 @@ def sweep(protocol: str | Path, out: str | Path, *,
 
     Raises
     ------
-    dryfriction.io.sweep.SweepInterrupted
+    dryfriction.sweeps.sweep.SweepInterrupted
         Ctrl-C: the points computed so far are stored.
     """
     from ..analysis import linear as linear_analysis

@@ -176,6 +176,6 @@ def fit_command(
 
 def _print_program(segments: Any) -> None:
     """A record's load program, printed before its fit."""
-    from ..io import lab
+    from ..records import lab
 
     out.print(lab.segments_table(segments), highlight=False, markup=False)

@@ -17,7 +17,7 @@ COLUMNS_HELP = ("Name the columns the guesses miss: time=Time,disp=LP_disp:mm,mu
                 "(keys time, disp, velocity, mu, shear, normal; an optional :unit for a header "
                 "without one).")
 def _segments_help() -> str:
-    from ..io.labsteps import SEGMENTS_SYNTAX
+    from ..records.labsteps import SEGMENTS_SYNTAX
 
     return "Give the load program instead of detecting it. " + SEGMENTS_SYNTAX
 
@@ -45,7 +45,7 @@ def record_command(
     fluctuations is refused (exit 2): give its program with --segments."""
     from ..io.files import check_output_dir
     out_dir = Path(out) if out is not None else None
-    from ..io.lab import (
+    from ..records.lab import (
         apparatus_note,
         detect_program,
         no_change_message,

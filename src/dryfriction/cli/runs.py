@@ -11,6 +11,7 @@ import typer
 import typer.core
 
 from ..app.options import OPTIONS
+from . import figures
 from .common import (
     DPI_HELP,
     FIGURE_HELP,
@@ -162,7 +163,7 @@ def rsf(
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
             if figure:
-                draw_figure("dryfriction.plots.runs:rsf_figure", res,
+                draw_figure(figures.rsf_figure, res,
                             f"{case}, {state_law} law", path=tmp / f"rsf.{fmt}", fmt=fmt,
                             dpi=dpi)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}

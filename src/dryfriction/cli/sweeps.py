@@ -95,7 +95,7 @@ def sweep(
     written to OUT/sweep.nc. Re-running the same command resumes; exit code 1 if any point
     failed, 130 on Ctrl-C."""
     from ..app.sweeps import sweep as run
-    from ..io.sweep import SweepInterrupted
+    from ..sweeps.sweep import SweepInterrupted
 
     try:
         done = run(protocol, out_dir, scheduler=scheduler, workers=workers, yes=yes,
@@ -130,7 +130,7 @@ def phase_diagram(
     """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line.
     Exit code 1 if any point failed, 130 on Ctrl-C (re-run to resume)."""
     from ..app.sweeps import phase_diagram as run
-    from ..io.sweep import SweepInterrupted
+    from ..sweeps.sweep import SweepInterrupted
 
     try:
         done = run(protocol, out_dir, scheduler=scheduler, workers=workers, yes=yes,
