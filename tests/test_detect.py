@@ -160,7 +160,7 @@ def test_small_step_between_short_slides_is_found() -> None:
     # records in seeds 0-39): the wander measured up to 16 s and extrapolated as a random walk
     # (T**-0.5) put z near 4.5 at 60 s; the bound sqrt(12) lag / T on a bounded wander finds
     # all 15 (measured). The mistake it is for: no bound (3 of the 15 missed, measured; 11 of
-    # 30 such in bench_detect_oracle's ratio-1.3 records)
+    # bench_detect_oracle's 60 ratio-1.3 records with the oscillation)
     got = [(len(detect_program(rec).segments), sim) for sim, rec in _oracle_records(
         1.3, lambda s: s.t[-1] <= 130.0, range(40))]
     assert len(got) == 15
