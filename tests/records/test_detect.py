@@ -145,7 +145,7 @@ def test_a_velocity_column_has_no_resets(tmp_path: Path) -> None:
 def _oracle_records(ratio: float, keep, seeds: range):  # noqa: ANN001, ANN202
     """``bench_detect_oracle``'s records (the zoo's up/down draws with the servo error and the
     machine oscillation), one per seed, those that ``keep(sim)``."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
     from benchmarks.bench_detect_oracle import simulate
 
     for seed in seeds:
