@@ -27,7 +27,7 @@ by the maximum-likelihood hinge GIVEN THE TRUE NOISE MODEL, maximised over the c
 
 No detector knows more; the fraction it places within max(one sample, 0.5 s) is what the
 zoo's levels allow (an estimate from an ML oracle, not a proven bound). The detector
-(:func:`dryfriction.io.lab.detect_program`, which knows nothing of the model) is run on the
+(:func:`dryfriction.records.lab.detect_program`, which knows nothing of the model) is run on the
 same records: its rate with the right number of changes (one) and the time within the
 tolerance, overall and on the records that the best oracle places within it.
 
@@ -51,7 +51,7 @@ import numpy as np  # noqa: E402
 from scipy.linalg import solve_triangular  # noqa: E402
 
 import records_zoo as z  # noqa: E402
-from dryfriction.io.lab import LabRecord, detect_program  # noqa: E402
+from dryfriction.records.lab import LabRecord, detect_program  # noqa: E402
 
 
 def draw(rng: np.random.Generator, ratio: float, up: bool) -> tuple[float, ...]:

@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dryfriction.io.detection import detect_program, no_change_message
-from dryfriction.io.lab import LabRecord, read_record, segments_table
+from dryfriction.records.detection import detect_program, no_change_message
+from dryfriction.records.lab import LabRecord, read_record, segments_table
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from records_zoo import make_record, score, specs, write  # noqa: E402
@@ -173,8 +173,8 @@ def test_oscillation_regressors_place_small_steps_better() -> None:
     # 15 (measured). The mistake it is for: the periods ignored (15 of 27; 17 with only the
     # window widened, measured), or regressors that switch with the guessed velocity at the
     # guess (a kink of their own: changes pushed 5-10 s to the edge of the search, seen)
-    from dryfriction.io import detection as D
-    from dryfriction.io.placement import oscillation_periods
+    from dryfriction.records import detection as D
+    from dryfriction.records.placement import oscillation_periods
 
     sims = list(_oracle_records(1.3, lambda s: s.t[-1] >= 200.0, range(60)))
     hits = {}
@@ -195,7 +195,7 @@ def test_oscillation_periods_found() -> None:
     # Ornstein-Uhlenbeck position error and 0.17 um of white noise, 2 Hz for 3000 s: both
     # periods within 2 %. The mistake it is for: the periodogram's frequencies of the
     # unpadded length (periods off by 2)
-    from dryfriction.io.placement import oscillation_periods
+    from dryfriction.records.placement import oscillation_periods
 
     rng = np.random.default_rng(4)
     t = np.arange(0.0, 3000.0, 0.5)
@@ -230,7 +230,7 @@ def test_a_small_reset_is_no_excursion() -> None:
 def test_compiled_hinge_is_the_numpy_hinge() -> None:
     # the mistake it is for: a sign or an index wrong in the compiled sums (e.g. the right
     # side's sum of (t - tk) x taken with + tk): another hinge, or another gain
-    from dryfriction.io.segmentation import best_hinge
+    from dryfriction.records.segmentation import best_hinge
 
     rng = np.random.default_rng(11)
     for _ in range(60):
@@ -321,8 +321,8 @@ def test_record_command_writes_the_figure_and_the_table(tmp_path: Path) -> None:
     from typer.testing import CliRunner
 
     from dryfriction.cli import app
-    from dryfriction.io.lab import detect_program as dp
     from dryfriction.plots.record import plot_record
+    from dryfriction.records.lab import detect_program as dp
 
     out = tmp_path / "rec"
     r = CliRunner().invoke(app, ["record", str(SHARED), "--out", str(out), "--json"])

@@ -47,7 +47,6 @@ a machine oscillation found in the record as free regressors.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -55,10 +54,8 @@ from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
 from .labsteps import Segment, make_segments
 from .placement import oscillation_periods, place_changes
+from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
-
-if TYPE_CHECKING:
-    from .lab import LabRecord
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "Z_MIN"]
