@@ -59,6 +59,7 @@ from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..program import Segment, VelocityProgram
 from ..theory.direct import junction_strength
 from ..theory.direct_stability import critical_stiffness_direct, direct_response
+from ..theory.model import TRAPS_PER_A0, TRAPS_PER_A0_COARSE
 from ..theory.stability import rightmost_root
 from ..validation import check_direct, check_scalar
 from .stickslip import fit_growth
@@ -83,7 +84,7 @@ def _checked(u: float, eps: float, direct: float, v_ref: float,
              traps_per_a0: float, state_kick: float) -> tuple[float, float]:
     check_scalar("u", u, 0.0, lo_open=True)
     check_scalar("eps", eps, 0.0, lo_open=True)
-    check_scalar("traps_per_a0", traps_per_a0, 1.0)
+    TRAPS_PER_A0.check(traps_per_a0)
     check_scalar("state_kick", state_kick, -0.5, 0.5)
     direct, v_ref = check_direct(direct, v_ref)
     if direct == 0.0:
@@ -94,7 +95,7 @@ def _checked(u: float, eps: float, direct: float, v_ref: float,
 
 def growth_check(
     u: float, eps: float, stiffness_factor: float, *, direct: float, v_ref: float = 1.0,
-    alpha: float = 0.13, traps_per_a0: float = 100.0, state_kick: float = 0.03,
+    alpha: float = 0.13, traps_per_a0: float = TRAPS_PER_A0_COARSE, state_kick: float = 0.03,
     periods: float = 4.0, linear_limit: float = 1.0,
 ) -> dict[str, Any]:
     """Simulated growth rate of a state kick at ``K = stiffness_factor K_c`` against the
@@ -161,7 +162,7 @@ def growth_check(
 
 def continuation(
     u: float, eps: float, distances: Sequence[float], *, direct: float, v_ref: float = 1.0,
-    alpha: float = 0.13, traps_per_a0: float = 100.0, state_kick: float = 0.05,
+    alpha: float = 0.13, traps_per_a0: float = TRAPS_PER_A0_COARSE, state_kick: float = 0.05,
     periods: float = 15.0, measure: float = 4.0, rekick: bool = False,
 ) -> dict[str, Any]:
     """Continuation in ``K = K_c (1 - d)`` down then up, the amplitude at each ``d`` (module

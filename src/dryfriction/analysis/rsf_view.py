@@ -52,6 +52,7 @@ from ..io.data import SeriesData, StaticData
 from ..program import Segment, VelocityProgram
 from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
+from ..theory.model import TRAPS_PER_A0
 from ..theory.stability import effective_rsf, shift_stiffness
 from ..theory.steady import steady_friction
 from ..theory.trap import Trap
@@ -330,7 +331,7 @@ def trap_model_as_rsf(
     u0: float = 0.1,
     factor: float = 10.0,
     holds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0, 10000.0),
-    traps_per_a0: float = 1000.0,
+    traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
     creep: str = "log",
     every_slip: float = 0.02,
 ) -> RSFView:

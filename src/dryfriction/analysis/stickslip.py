@@ -68,6 +68,7 @@ from ..io.protocol import pulling_velocity, spring_point
 from ..program import Segment, VelocityProgram
 from ..theory.direct import junction_strength
 from ..theory.direct_stability import critical_stiffness_direct
+from ..theory.model import TRAPS_PER_A0_COARSE
 from ..theory.stability import critical_stiffness, rightmost_root, steady_response
 from ..validation import Array, check_scalar
 
@@ -402,7 +403,7 @@ def linear_check(
     mass: float,
     damping: float,
     alpha: float = 0.13,
-    traps_per_a0: float = 100.0,
+    traps_per_a0: float = TRAPS_PER_A0_COARSE,
     kick: float = 0.03,
     duration: float = 1500.0,
     skip: float = 50.0,
@@ -488,7 +489,7 @@ def bifurcation_scan(
     mass: float = 0.0,
     damping: float = 0.0,
     alpha: float = 0.13,
-    traps_per_a0: float = 100.0,
+    traps_per_a0: float = TRAPS_PER_A0_COARSE,
     travel: float = 20.0,
     transient: float = 10.0,
     kick: float = 0.03,

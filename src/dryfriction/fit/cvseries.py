@@ -21,6 +21,7 @@ import numpy as np
 from ..io.data import SeriesData
 from ..program import Segment
 from ..theory.direct import junction_strength
+from ..theory.model import TRAPS_PER_A0
 from ..theory.stability import effective_rsf
 from ..theory.steady import steady_friction
 from ..theory.units import PhysicalScales
@@ -50,7 +51,8 @@ def _key(values: Mapping[str, float], *options: Any) -> tuple[Any, ...]:
 
 
 def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
-              creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
+              creep: str = "log", traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
+              every_slip: float = 0.01,
               max_samples: int = 200_000, stiffness: float = math.inf,
               sample_slip: float | None = None, steady_tail: bool = False) -> Array:
     """The trap model's friction along a measured load program (the CV time-series model).
