@@ -16,17 +16,18 @@ import math
 import pytest
 
 from dryfriction.analysis.rsf_stability import rsf_stability_prediction
-from dryfriction.theory.stability import effective_rsf
+from dryfriction.theory.linear_stability import effective_rsf
+from dryfriction.theory.model import TrapModel
 
 
 @pytest.mark.parametrize("mass, damping", [(0.0, 0.0), (0.0, 0.013), (2.3, 0.013),
                                            (0.7, 0.0)])
 def test_twin_stability_written_out(mass: float, damping: float) -> None:
     u, eps, alpha = 0.37, 0.023, 0.21
-    p = effective_rsf(u, eps, alpha, "log")
+    p = effective_rsf(u, TrapModel(alpha=alpha, eps=eps, creep="log"))
     a1 = p["a"] + damping * u
     assert p["b"] > a1  # a Hopf point exists
-    got = rsf_stability_prediction(u, eps, alpha, mass=mass, damping=damping)
+    got = rsf_stability_prediction(u, TrapModel(alpha, eps), mass=mass, damping=damping)
     kc = (p["b"] - a1) / p["dc"] * (1.0 + mass * u * u / (a1 * p["dc"]))
     omega = u / p["dc"] * math.sqrt((p["b"] - a1) / a1)
     assert got["K_c"] == pytest.approx(kc, rel=1e-12)

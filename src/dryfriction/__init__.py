@@ -40,7 +40,8 @@ _PUBLIC: dict[str, str] = {
     "dieterich_constant_asymptotic": "theory.dieterich",
     "dieterich_constant_least_squares": "theory.dieterich",
     "dieterich_constant_local": "theory.dieterich",
-    "critical_stiffness": "theory.stability",
+    "critical_stiffness": "theory.linear_stability", "effective_rsf": "theory.linear_stability",
+    "TrapModel": "theory.model",
     "PhysicalScales": "theory.units", "static_friction_si": "theory.units",
     "steady_friction_si": "theory.units",
     # programs

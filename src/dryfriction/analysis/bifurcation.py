@@ -4,7 +4,7 @@ every definition here is ours).
 Reduced units as in :mod:`.stickslip`: lengths ``a0``, times ``t0``, velocities ``a0/t0``,
 forces ``F_el`` (the spring force is reported as friction, ``mu_el = 1``), stiffness
 ``F_el/a0``. The slider is quasi-static (``M = eta = 0``), where ``K_c`` is finite only with
-the direct effect (:func:`~dryfriction.theory.direct_stability.critical_stiffness_direct`).
+the direct effect (:func:`~dryfriction.theory.linear_stability.critical_stiffness`).
 
 The perturbation: a *state kick*
 ---------------------------------
@@ -58,7 +58,7 @@ from ..ensemble.driving import Output, SpringDrive, continue_spring
 from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..program import Segment, VelocityProgram
 from ..theory.direct import junction_strength
-from ..theory.direct_stability import critical_stiffness_direct, direct_response
+from ..theory.linear_stability import critical_stiffness, linear_response
 from ..theory.model import TRAPS_PER_A0, TRAPS_PER_A0_COARSE
 from ..theory.stability import rightmost_root
 from ..validation import check_direct, check_scalar
@@ -131,9 +131,10 @@ def growth_check(
     direct, v_ref = _checked(u, eps, direct, v_ref, traps_per_a0, state_kick)
     check_scalar("stiffness_factor", stiffness_factor, 0.0, lo_open=True)
     check_scalar("periods", periods, 2.0)
-    Kc = critical_stiffness_direct(u, eps, alpha, direct=direct, v_ref=v_ref).critical_stiffness
+    model = TrapModel(alpha, eps, direct=direct, v_ref=v_ref)
+    Kc = critical_stiffness(u, model).critical_stiffness
     K = stiffness_factor * Kc
-    lam = rightmost_root(direct_response(u, eps, alpha, direct=direct, v_ref=v_ref), K)
+    lam = rightmost_root(linear_response(u, model), K)
     if lam.imag == 0.0:
         raise ValueError(f"stiffness_factor = {stiffness_factor:g}: the rightmost root is real "
                          "(no oscillation to fit); allowed a K with an oscillatory mode")
@@ -201,9 +202,10 @@ def continuation(
     if not 0 < measure < periods:
         raise ValueError(f"measure = {measure:g} is not allowed: 0 < measure < periods "
                          f"= {periods:g}")
-    lin = critical_stiffness_direct(u, eps, alpha, direct=direct, v_ref=v_ref)
+    model = TrapModel(alpha, eps, direct=direct, v_ref=v_ref)
+    lin = critical_stiffness(u, model)
     Kc = lin.critical_stiffness
-    resp = direct_response(u, eps, alpha, direct=direct, v_ref=v_ref)
+    resp = linear_response(u, model)
 
     def period(K: float) -> float:
         lam = rightmost_root(resp, K)

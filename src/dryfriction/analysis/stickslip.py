@@ -67,9 +67,9 @@ from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..io.protocol import pulling_velocity, spring_point
 from ..program import Segment, VelocityProgram
 from ..theory.direct import junction_strength
-from ..theory.direct_stability import critical_stiffness_direct
-from ..theory.model import TRAPS_PER_A0_COARSE
-from ..theory.stability import critical_stiffness, rightmost_root, steady_response
+from ..theory.linear_stability import critical_stiffness
+from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0_COARSE
+from ..theory.stability import rightmost_root, steady_response
 from ..validation import Array, check_scalar
 
 __all__ = [
@@ -292,7 +292,7 @@ def granular_floor(traps_per_a0: float, u: float, eps: float, alpha: float = 0.1
     from ..theory.trap import Trap
 
     trap = Trap(alpha)
-    tau_d = steady_response(u, eps, alpha, creep).tau_d
+    tau_d = steady_response(u, TrapModel(alpha, eps, creep)).tau_d
     r2 = float(creep_law(creep, eps).radius(np.array([tau_d]))[0]) ** 2
     return factor * mu_el * trap.f_c * r2 / (trap.H0 * traps_per_a0)
 
@@ -435,10 +435,10 @@ def linear_check(
     """
     if not mass > 0:
         raise ValueError(f"mass = {mass!r} is not allowed: > 0 (the inertial case)")
-    res = critical_stiffness(u, eps, alpha, mass=mass, damping=damping)
-    Kc = res.critical_stiffness
-    resp = steady_response(u, eps, alpha)
     model = TrapModel(alpha, eps)
+    res = critical_stiffness(u, model, mass, damping)
+    Kc = res.critical_stiffness
+    resp = steady_response(u, model)
     track = Track(traps_per_a0)
     floor = granular_floor(traps_per_a0, u, eps, alpha)
     rows = []
@@ -524,8 +524,8 @@ def bifurcation_scan(
         mass on the spring when ``M > 0``).
     direct, v_ref : float
         Direct effect ``A`` and its reference velocity (``a0/t0``); ``A > 0`` needs ``M = 0``
-        and takes ``K_c`` from :func:`~dryfriction.theory.direct_stability.
-        critical_stiffness_direct`; the force kick is added to the friction ``g(u) F``.
+        and takes ``K_c`` from :func:`~dryfriction.theory.linear_stability.
+        critical_stiffness`; the force kick is added to the friction ``g(u) F``.
     progress : callable, optional
         ``progress(done, total)`` after each stiffness (``2 len(stiffnesses) - 1`` runs of
         equal load-point travel).
@@ -541,12 +541,8 @@ def bifurcation_scan(
         raise ValueError("stiffnesses is empty")
     if transient >= travel:
         raise ValueError(f"transient = {transient:g} must be less than travel = {travel:g}")
-    if direct:
-        lin = critical_stiffness_direct(u, eps, alpha, mass=mass, damping=damping,
-                                        direct=direct, v_ref=v_ref)
-    else:
-        lin = critical_stiffness(u, eps, alpha, mass=mass, damping=damping)
     model = TrapModel(alpha, eps, direct=direct, v_ref=v_ref)
+    lin = critical_stiffness(u, model, mass, damping)
     track = Track(traps_per_a0)
     floor = granular_floor(traps_per_a0, u, eps, alpha)
     ens = Ensemble(model, track, Initial("steady", velocity=u),
@@ -600,9 +596,10 @@ def phase_axes(spec: Any) -> tuple[str, str]:
 def critical_line(base: Mapping[str, Any], u: ArrayLike) -> Array:
     """``K_c(u)`` of the linear analysis for the model and spring of a protocol dict."""
     m, d = base.get("model", {}), base.get("drive", {})
+    # every model key, the direct effect too; the defaults are the model's own
+    model = TrapModel(**{k: v for k, v in m.items() if k in TRAP_PARAMETERS})
     return np.array([
-        critical_stiffness(float(uu), float(m["eps"]), float(m.get("alpha", 0.13)),
-                           str(m.get("creep", "log")), float(d.get("mass", 0.0)),
+        critical_stiffness(float(uu), model, float(d.get("mass", 0.0)),
                            float(d.get("damping", 0.0))).critical_stiffness
         for uu in np.asarray(u, float).ravel()
     ])
