@@ -96,3 +96,46 @@ def test_the_track_density_has_one_default_and_one_minimum():
     _checked(0.1, 0.04, 0.02, 1.0, 0.5, 0.03)  # one minimum: 0.5 pairs per a0 is a track
     from dryfriction.fit import CVModel
     assert CVModel().traps_per_a0 == TRAPS_PER_A0.default
+
+
+# ---------------------------------------------------------------- rate-and-state
+
+
+def test_rate_state_model_is_the_one_object_and_reads_its_table():
+    from dryfriction import RateStateModel
+    from dryfriction.rsf.law import RATE_STATE_PARAMETERS, RateState
+    from dryfriction.validation import REQUIRED
+
+    assert RateStateModel is RateState
+    fields = dataclasses.fields(RateState)
+    assert [f.name for f in fields] == list(RATE_STATE_PARAMETERS)
+    for f in fields:  # mistake caught: a default edited in one place only
+        want = RATE_STATE_PARAMETERS[f.name].default
+        assert (f.default is dataclasses.MISSING) if want is REQUIRED else f.default == want
+    m = RateState(0.011, 0.016, 2e-5, 0.6, 3e-6)
+    assert (m.state_law, m.b2, m.dc2, m.regularized, m.c) == ("ageing", 0.0, None, False, 0.0)
+    # from_mapping's allowed and required keys are the table's
+    with pytest.raises(ValueError, match="missing rate-and-state key.s.: dc, mu0, v0$"):
+        RateState.from_mapping({"a": 0.011, "b": 0.016})
+    with pytest.raises(ValueError, match="allowed a, b, b2, c, dc, dc2, law, mu0"):
+        RateState.from_mapping({"a": 0.011, "q": 1})
+
+
+@pytest.mark.parametrize("bad, message", [
+    ({"a": 0.0}, r"^a = 0 is out of range: allowed finite and > 0 and <= 1000"),
+    ({"b": -1e-3}, r"^b = -0.001 is out of range"),
+    ({"dc": 0.0}, r"^dc = 0 is out of range"),
+    ({"mu0": 11.0}, r"^mu0 = 11 is out of range: allowed finite and >= -10 and <= 10"),
+    ({"v0": 2e3}, r"^v0 = 2000 is out of range"),
+    ({"state_law": "rate"}, r"^state_law = 'rate' is not allowed"),
+    ({"b2": 0.01}, r"^b2 = 0.01 needs dc2"),
+    ({"b2": 0.01, "dc2": -1.0}, r"^dc2 = -1 is out of range"),
+    ({"regularized": 1}, r"^regularized = 1 is not allowed: true or false"),
+    ({"c": 1.0}, r"^c = 1 is Nagata's stress-rate coefficient"),
+])
+def test_rate_state_ranges_are_enforced_naming_the_parameter(bad, message):
+    from dryfriction.rsf.law import RateState
+
+    kw = {"a": 0.011, "b": 0.016, "dc": 2e-5, "mu0": 0.6, "v0": 3e-6, **bad}
+    with pytest.raises(ValueError, match=message):
+        RateState(**kw)

@@ -48,7 +48,7 @@ _PUBLIC: dict[str, str] = {
     "Segment": "program", "VelocityProgram": "program",
     # simulators
     "simulate": "ensemble.driving",
-    "RateState": "rsf.law",
+    "RateState": "rsf.law", "RateStateModel": "rsf.law",
     "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
     # files, fitting
     "load_protocol": "io.protocol", "read_csv": "io.data",

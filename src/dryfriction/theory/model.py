@@ -11,7 +11,7 @@ check nothing again. Reduced units: velocities in ``a0/t0``, friction in ``F_el`
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from ..validation import (
@@ -21,50 +21,14 @@ from ..validation import (
     FRICTION_MAX,
     U_MAX,
     U_MIN,
-    check_choice,
+    Parameter,
     check_direct,
-    check_scalar,
+    declared,
 )
 from .creep import CREEP_LAWS, CreepLaw, creep_law
 from .trap import Trap
 
 __all__ = ["Parameter", "TRAP_PARAMETERS", "TRAPS_PER_A0", "TRAPS_PER_A0_COARSE", "TrapModel"]
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One declared parameter: its default and its allowed values.
-
-    Parameters
-    ----------
-    name : str
-        The name a user types (Python keyword; the CLI option is ``--name`` with ``-``).
-    default : float or str
-        The one default of the package.
-    lo, hi : float or None
-        Bounds (``None``: unbounded); ``lo_open``/``hi_open`` exclude the bound itself.
-    choices : tuple of str, optional
-        For a named choice instead of a number.
-    meaning : str
-        What the parameter is, with its unit.
-    """
-
-    name: str
-    default: float | str
-    lo: float | None = None
-    hi: float | None = None
-    lo_open: bool = False
-    hi_open: bool = False
-    choices: tuple[str, ...] = ()
-    meaning: str = ""
-
-    def check(self, value: Any) -> Any:
-        """``value`` checked (a float, or the chosen name): a ``ValueError`` naming the
-        parameter and the allowed range otherwise."""
-        if self.choices:
-            return check_choice(self.name, value, self.choices)
-        return check_scalar(self.name, value, self.lo, self.hi,
-                            lo_open=self.lo_open, hi_open=self.hi_open)
 
 
 TRAP_PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
@@ -100,7 +64,7 @@ on the shared sepiolite step its rms difference from a 1000-trap track was 1.0e-
 
 
 def _default(name: str) -> Any:
-    return field(default=TRAP_PARAMETERS[name].default)
+    return declared(TRAP_PARAMETERS, name)
 
 
 @dataclass(frozen=True)
