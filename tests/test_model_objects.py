@@ -139,3 +139,61 @@ def test_rate_state_ranges_are_enforced_naming_the_parameter(bad, message):
     kw = {"a": 0.011, "b": 0.016, "dc": 2e-5, "mu0": 0.6, "v0": 3e-6, **bad}
     with pytest.raises(ValueError, match=message):
         RateState(**kw)
+
+
+# ---------------------------------------------------------------- no route drops the direct effect
+
+
+def test_linear_routes_of_a_protocol_keep_its_direct_effect():
+    # mistake caught: a route that rebuilds the model from eps, alpha, creep only (the
+    # --linear sweep runner and critical_line did, before issue 26: athermal K_c for a protocol
+    # with [model] direct)
+    from dryfriction.analysis.linear import linear_summary
+    from dryfriction.analysis.stickslip import critical_line
+    from dryfriction.theory.linear_stability import critical_stiffness
+
+    u, eps, A, v_ref, mass, eta = 0.3, 0.04, 0.02, 0.7, 1.5, 0.05
+    proto = {"model": {"alpha": 0.2, "eps": eps, "direct": A, "v_ref": v_ref},
+             "ensemble": {"traps_per_a0": 100, "initial": "steady", "initial_velocity": u},
+             "drive": {"kind": "spring", "stiffness": 0.05, "mass": mass, "damping": eta,
+                       "segments": [{"velocity": u, "duration": 100.0}]},
+             "output": {"every_slip": 0.1}}
+    model = TrapModel(0.2, eps, direct=A, v_ref=v_ref)
+    want = critical_stiffness(u, model, mass, eta).critical_stiffness
+    athermal = critical_stiffness(u, model.athermal, mass, eta).critical_stiffness
+    assert abs(want / athermal - 1) > 0.05  # the direct effect matters at this point
+    assert linear_summary(proto)["K_c"] == pytest.approx(want, rel=1e-12)
+    assert critical_line(proto, [u])[0] == pytest.approx(want, rel=1e-12)
+
+
+def test_the_direct_effect_enters_every_linear_quantity_of_the_model():
+    # one function per quantity: with direct = 0 it is the athermal analysis bit for bit, with
+    # direct > 0 each quantity carries g(u) (mistake caught: g left out of one of them)
+    from dryfriction.theory.direct import junction_log_slope, junction_strength
+    from dryfriction.theory.linear_stability import critical_stiffness, effective_rsf
+    from dryfriction.theory.stability import (
+        nyquist_stiffness,
+        rsf_from_response,
+        shift_stiffness,
+        steady_response,
+    )
+    from dryfriction.theory.steady import steady_friction
+
+    u, A, v_ref = 0.2, 0.03, 0.5
+    base = TrapModel(0.16, 0.05)
+    m = base.replace(direct=A, v_ref=v_ref)
+    resp = steady_response(u, base)
+    assert critical_stiffness(u, base) == nyquist_stiffness(resp)
+    assert effective_rsf(u, base) == {**rsf_from_response(resp), "a_direct": 0.0}
+    g = float(junction_strength(u, A, v_ref))
+    a_d = float(junction_log_slope(u, A, v_ref)) * float(steady_friction(u, 0.05, 0.16))
+    tw0, tw = effective_rsf(u, base), effective_rsf(u, m)
+    assert tw["b"] == pytest.approx(g * tw0["b"], rel=1e-10)
+    assert tw["a"] == pytest.approx(g * tw0["a"] + a_d, rel=1e-10)
+    assert tw["dc"] == pytest.approx(tw0["dc"], rel=1e-10)
+    assert tw["a_direct"] == pytest.approx(a_d, rel=1e-12)
+    fwd0, bwd0 = shift_stiffness(u, base)
+    fwd, bwd = shift_stiffness(u, m)
+    assert (fwd, bwd) == pytest.approx((g * fwd0, g * bwd0), rel=1e-12)
+    res = critical_stiffness(u, m)
+    assert (res.forward_stiffness, res.backward_stiffness) == pytest.approx((fwd, bwd), rel=1e-12)
