@@ -93,7 +93,7 @@ def test_the_track_density_has_one_default_and_one_minimum():
     with pytest.raises(ValueError, match="^traps_per_a0 = 5e-07 is out of range"):
         population.Track(5e-7)
     from dryfriction.analysis.bifurcation import _checked
-    _checked(0.1, 0.04, 0.02, 1.0, 0.5, 0.03)  # one minimum: 0.5 pairs per a0 is a track
+    _checked(0.1, TrapModel(eps=0.04, direct=0.02), 0.5, 0.03)  # one minimum: 0.5 pairs a0
     from dryfriction.fit import CVModel
     assert CVModel().traps_per_a0 == TRAPS_PER_A0.default
 
