@@ -2,7 +2,7 @@
 and mass, at a generic point of the trap model (issue 25: one regime only hides a term).
 
 :func:`~dryfriction.analysis.rsf_stability.rsf_stability_prediction` takes the model's
-effective ``a, b, Dc`` (:func:`~dryfriction.theory.stability.effective_rsf`) and returns
+effective ``a, b, Dc`` (:func:`~dryfriction.theory.linear_stability.effective_rsf`) and returns
 ``K_c = (b - a')/Dc [1 + M u^2/(a' Dc)]`` and ``omega_c = (u/Dc) sqrt((b - a')/a')`` with
 ``a' = a + eta u`` (the damping as an addition to the direct effect). Mistakes this is for: the
 damping left out of either (every other test of the twin runs at ``eta = 0``), the mass term

@@ -118,7 +118,7 @@ def test_growth_rates_match_the_rightmost_root(runslow):
     and the rightmost root crosses cleanly. Below K_c the simulated perturbation grows, above it
     decays, at the rate of the characteristic equation (an independent route)."""
     factors = [0.6, 0.8, 1.2] if runslow else [0.6, 1.2]
-    rows = linear_check(0.1, 0.04, factors, mass=10.0, damping=0.1,
+    rows = linear_check(0.1, TrapModel(eps=0.04), factors, mass=10.0, damping=0.1,
                         traps_per_a0=200 if runslow else 100)
     for r in rows:
         assert np.sign(r["sigma_sim"]) == np.sign(r["sigma_linear"]), r
@@ -144,7 +144,8 @@ def test_continuation_in_K_shows_hysteresis_quasi_static(runslow):
     u = 0.1
     Kc = critical_stiffness(u, TrapModel(eps=0.04)).critical_stiffness
     fr = [1.3, 1.1, 1.05, 1.0, 0.95, 0.9] if runslow else [1.3, 1.1, 0.9]
-    out = bifurcation_scan(u, 0.04, [f * Kc for f in fr], traps_per_a0=100, travel=40.0,
+    out = bifurcation_scan(u, TrapModel(eps=0.04), [f * Kc for f in fr], traps_per_a0=100,
+                           travel=40.0,
                            transient=20.0)
     down = {round(r["stiffness"] / Kc, 3): r for r in out["down"]}
     up = {round(r["stiffness"] / Kc, 3): r for r in out["up"]}
@@ -162,7 +163,7 @@ def test_continuation_in_K_inertial(runslow):
     u = 0.1
     Kc = critical_stiffness(u, TrapModel(eps=0.04), mass=10.0, damping=0.1).critical_stiffness
     fr = [1.3, 1.0, 0.8, 0.6] if runslow else [1.2, 0.6]
-    out = bifurcation_scan(u, 0.04, [f * Kc for f in fr], mass=10.0, damping=0.1,
+    out = bifurcation_scan(u, TrapModel(eps=0.04), [f * Kc for f in fr], mass=10.0, damping=0.1,
                            traps_per_a0=100, travel=90.0, transient=40.0)
     assert out["down"][0]["class"] == 0
     # grown from the 3 % kick into stick-slip (the slider stops): at this run length the
