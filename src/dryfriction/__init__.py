@@ -41,14 +41,15 @@ _PUBLIC: dict[str, str] = {
     "dieterich_constant_asymptotic": "theory.dieterich",
     "dieterich_constant_least_squares": "theory.dieterich",
     "dieterich_constant_local": "theory.dieterich",
-    "critical_stiffness": "theory.stability",
+    "critical_stiffness": "theory.linear_stability", "effective_rsf": "theory.linear_stability",
+    "TrapModel": "theory.model",
     "PhysicalScales": "theory.units", "static_friction_si": "theory.units",
     "steady_friction_si": "theory.units",
     # programs
     "Segment": "program", "VelocityProgram": "program",
     # simulators
     "simulate": "ensemble.driving",
-    "RateState": "rsf.law",
+    "RateState": "rsf.law", "RateStateModel": "rsf.law",
     "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
     # files, fitting
     "load_protocol": "io.protocol", "read_csv": "records.data",

@@ -27,7 +27,7 @@ from dryfriction.ensemble.driving import (
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.ensemble.result import segment_grid
 from dryfriction.program import Segment, VelocityProgram
-from dryfriction.theory.direct_stability import critical_stiffness_direct, direct_response
+from dryfriction.theory.linear_stability import critical_stiffness, linear_response
 from dryfriction.theory.stability import rightmost_root, steady_response
 from dryfriction.theory.steady import steady_friction
 
@@ -180,7 +180,7 @@ def _chi(lam: complex, u: float, A: float, K: float, M: float, eta: float) -> co
         return A * math.asinh(v * math.exp(1.0 / A) / 2.0) if A else 1.0
 
     dg = (g(u * 1.0001) - g(u / 1.0001)) / (u * (1.0001 - 1 / 1.0001))
-    Z = complex(steady_response(u, EPS).Z(lam))
+    Z = complex(steady_response(u, TrapModel(eps=EPS)).Z(lam))
     return M * lam**2 + eta * lam + K + g(u) * Z + dg * float(steady_friction(u, EPS)) * lam
 
 
@@ -201,7 +201,7 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
     crossing is a root of the linearisation above."""
     u, A, K, M = 1.0, 0.05, 2.0, 0.2
     root = _root_near(complex(-0.1, 3.1), u, A, K, M, 0.0)
-    lib = rightmost_root(direct_response(u, EPS, direct=A), K, M, 0.0)  # type: ignore[arg-type]
+    lib = rightmost_root(linear_response(u, TrapModel(eps=EPS, direct=A)), K, M, 0.0)  # type: ignore[arg-type]
     assert complex(lib.real, abs(lib.imag)) == pytest.approx(root, abs=1e-6)
     assert root.real < 0 < _root_near(complex(0.0, 3.1), u, 0.0, K, M, 0.0).real
     ens = Ensemble(TrapModel(eps=EPS, direct=A), Track(100.0), Initial("steady", velocity=u),
@@ -215,7 +215,7 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
     assert sigma == pytest.approx(root.real, rel=0.05)
     assert omega == pytest.approx(abs(root.imag), rel=0.005)
     for uu, m in ((0.1, 1.0), (1.0, 0.2)):  # A = 0.02: velocity weakening at both
-        res = critical_stiffness_direct(uu, EPS, mass=m, direct=0.02)
+        res = critical_stiffness(uu, TrapModel(eps=EPS, direct=0.02), mass=m)
         assert 0 < res.critical_stiffness < 10 and not res.supremum_at_infinity
         kc = res.critical_stiffness
         assert abs(_chi(complex(0.0, res.omega), uu, 0.02, kc, m, 0.0)) < 1e-3 * kc
@@ -226,8 +226,8 @@ def test_growth_below_and_decay_above_K_c_with_mass() -> None:
     grows at 0.7 K_c and decays at 1.3 K_c with the rightmost root's sign, rate (within 30 %:
     the rates are ~1e-2, the granular noise of 200 traps/a0 is not) and frequency (1 %)."""
     u, A, M = 1.0, 0.02, 0.2
-    kc = critical_stiffness_direct(u, EPS, mass=M, direct=A).critical_stiffness
-    resp = direct_response(u, EPS, direct=A)
+    kc = critical_stiffness(u, TrapModel(eps=EPS, direct=A), mass=M).critical_stiffness
+    resp = linear_response(u, TrapModel(eps=EPS, direct=A))
     for f in (0.7, 1.3):
         lam = rightmost_root(resp, f * kc, M, 0.0)  # type: ignore[arg-type]
         assert abs(_root_near(complex(lam.real, abs(lam.imag)), u, A, f * kc, M, 0.0)
@@ -315,4 +315,5 @@ def test_stability_cli_takes_mass_without_damping_with_the_direct_effect() -> No
                                  "--direct", "0.02", "--json"])
     assert r.exit_code == 0, r.output
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
-        critical_stiffness_direct(1.0, EPS, mass=0.2, direct=0.02).critical_stiffness, rel=1e-9)
+        critical_stiffness(1.0, TrapModel(eps=EPS, direct=0.02), mass=0.2).critical_stiffness,
+        rel=1e-9)

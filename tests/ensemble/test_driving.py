@@ -582,7 +582,7 @@ def test_damped_inertial_oscillation_decays_at_the_linear_rate() -> None:
                                          eta), Output(every=0.02), velocity=1.5 * u)
     assert np.min(r.v) > 0  # the linear (forward-sliding) regime throughout
     sigma, omega = fit_growth(r.t[10:], r.v[10:] - u)
-    root = rightmost_root(steady_response(u, EPS), K, M, eta)
+    root = rightmost_root(steady_response(u, TrapModel(eps=EPS)), K, M, eta)
     assert sigma == pytest.approx(root.real, rel=0.01)
     assert omega == pytest.approx(abs(root.imag), rel=0.01)
 

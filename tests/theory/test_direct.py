@@ -26,12 +26,8 @@ from dryfriction.ensemble.driving import (
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.theory.direct import instantaneous_jump, junction_log_slope, junction_strength
-from dryfriction.theory.direct_stability import (
-    critical_stiffness_direct,
-    direct_response,
-    effective_rsf_direct,
-)
-from dryfriction.theory.stability import critical_stiffness, effective_rsf, rightmost_root
+from dryfriction.theory.linear_stability import critical_stiffness, effective_rsf, linear_response
+from dryfriction.theory.stability import rightmost_root, rsf_from_response, steady_response
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import (
     steady_death_point,
@@ -91,7 +87,9 @@ def test_zero_direct_is_bit_for_bit_the_athermal_model() -> None:
     T = np.geomspace(1e-2, 1e4, 7)
     np.testing.assert_array_equal(static_friction(T, EPS, direct=0.0, pull_velocity=3.0),
                                   static_friction(T, EPS))
-    assert effective_rsf_direct(0.1, EPS)["a"] == effective_rsf(0.1, EPS)["a"]
+    # A = 0 is the athermal analysis bit for bit: the population's own response, no g factor
+    athermal = rsf_from_response(steady_response(0.1, TrapModel(eps=EPS)))
+    assert effective_rsf(0.1, TrapModel(eps=EPS, direct=0.0))["a"] == athermal["a"]
     prog = VelocityProgram([{"velocity": 1.0, "slip": 0.6}, {"velocity": 0.0, "duration": 30.0},
                             {"velocity": 1.0, "slip": 1.5}])
     runs = [
@@ -158,7 +156,7 @@ def test_effective_rsf_a_is_A_times_the_friction_level() -> None:
     """a = g a_0 + A_u mu_d: the direct part is A mu_d (the instantaneous jump per e-fold),
     b and Dc come from the population as before (b scaled by g)."""
     A, u = 0.01, 1.0
-    e0, e = effective_rsf(u, EPS), effective_rsf_direct(u, EPS, direct=A)
+    e0, e = effective_rsf(u, TrapModel(eps=EPS)), effective_rsf(u, TrapModel(eps=EPS, direct=A))
     mu = float(steady_friction(u, EPS))
     assert e["a_direct"] == pytest.approx(A * mu, rel=1e-12)
     assert e["a"] - e0["a"] == pytest.approx(A * mu, rel=1e-12)  # g(u = v_ref) = 1
@@ -261,13 +259,13 @@ def test_critical_stiffness_is_finite_without_mass_and_matches_simulation() -> N
     (granular noise and the backward-Euler step). The fit is of the spring force, which the
     slider integrates."""
     u, A = 0.1, 0.02
-    res = critical_stiffness_direct(u, EPS, direct=A)
+    res = critical_stiffness(u, TrapModel(eps=EPS, direct=A))
     assert not res.supremum_at_infinity and 0 < res.critical_stiffness < 1.0
     assert np.isfinite(res.omega)
-    resp = direct_response(u, EPS, direct=A)
+    resp = linear_response(u, TrapModel(eps=EPS, direct=A))
     print(f"REPORT K_c(M = eta = 0, u = {u}, eps = {EPS}, A = {A}) = "
           f"{res.critical_stiffness:.5f}, omega = {res.omega:.5f}; athermal "
-          f"{critical_stiffness(u, EPS).critical_stiffness:.5f}")
+          f"{critical_stiffness(u, TrapModel(eps=EPS)).critical_stiffness:.5f}")
     for f, kick in ((0.8, 1e-3), (1.2, 5e-3)):
         K = f * res.critical_stiffness
         lam = rightmost_root(resp, K)  # type: ignore[arg-type]
@@ -318,7 +316,7 @@ def test_cli_direct_options() -> None:
     r = run.invoke(app, ["stability", "--eps", "0.04", "--u", "0.1", "--direct", "0.02",
                          "--json"])
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
-        critical_stiffness_direct(0.1, EPS, direct=0.02).critical_stiffness, rel=1e-9)
+        critical_stiffness(0.1, TrapModel(eps=EPS, direct=0.02)).critical_stiffness, rel=1e-9)
     # the option typed, not the library's name (outside24)
     for args, word in ((["steady", "--eps", "0.04", "--u", "1", "--direct", "2"], "--direct"),
                        (["static", "--eps", "0.04", "--T", "1", "--direct", "0.1"],

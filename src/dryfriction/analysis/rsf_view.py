@@ -32,8 +32,9 @@ What the trap model is expected to show (and :func:`trap_model_as_rsf` measures)
   ``x99/x90 = 2`` for an exponential, close to 1 for a transient that ends;
 * the steady state: ``a - b`` from the fit equals the slope of the exact steady friction
   :func:`dryfriction.theory.steady.steady_friction` (eq. 34) over the steps, ``u dmu_d/du``;
-* the independent **linear prediction** :func:`dryfriction.theory.stability.effective_rsf`: the
-  ``a``, ``b``, ``Dc`` that match the model's slow linear response (``Z(lambda)`` to third order).
+* the independent **linear prediction**
+  :func:`dryfriction.theory.linear_stability.effective_rsf`: the ``a``, ``b``, ``Dc`` that
+  match the model's slow linear response (``Z(lambda)`` to third order).
 """
 
 from __future__ import annotations
@@ -52,7 +53,9 @@ from ..program import Segment, VelocityProgram
 from ..records.data import SeriesData, StaticData
 from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
-from ..theory.stability import effective_rsf, shift_stiffness
+from ..theory.linear_stability import effective_rsf
+from ..theory.model import TRAPS_PER_A0
+from ..theory.stability import shift_stiffness
 from ..theory.steady import steady_friction
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales
@@ -330,7 +333,7 @@ def trap_model_as_rsf(
     u0: float = 0.1,
     factor: float = 10.0,
     holds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0, 10000.0),
-    traps_per_a0: float = 1000.0,
+    traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
     creep: str = "log",
     every_slip: float = 0.02,
 ) -> RSFView:
@@ -359,7 +362,7 @@ def trap_model_as_rsf(
         Fits with the ageing law (steps; steps + hold peaks) and the slip law (steps), their
         residuals, the transient shapes, the hold peaks against the laws' predictions, the
         steady slope of eq. 34 and the linear prediction of
-        :func:`dryfriction.theory.stability.effective_rsf`.
+        :func:`dryfriction.theory.linear_stability.effective_rsf`.
     """
     eps = check_scalar("eps", eps, 0.0, lo_open=True)
     u0 = check_scalar("u0", u0, 0.0, lo_open=True)
@@ -388,7 +391,7 @@ def trap_model_as_rsf(
     peak_data = StaticData(np.asarray(holds) * SCALES.t0, peaks, source="hold peaks")
     twins["ageing_with_holds"] = fit_rsf_twin(series, u0, "ageing", peak_data)
 
-    lin = effective_rsf(u0, eps, alpha, creep)
+    lin = effective_rsf(u0, model)
     lin_twin = RateState(lin["a"], lin["b"], lin["dc"], float(steady_friction(u0, eps, alpha,
                                                                                  creep)), u0)
     for name, u1, res, _data in runs:
@@ -434,7 +437,7 @@ def trap_model_as_rsf(
                    - steady_friction(u0 / factor, eps, alpha, creep)) / (2 * math.log(factor)))
     steady = {"mu_d_u0": mu_u0, "u_dmu_du_at_u0": slope, "chord_slope_over_steps": chord,
               "eq35_slope": -1.5 * eps}
-    fwd, bwd = shift_stiffness(u0, eps, alpha, creep)
+    fwd, bwd = shift_stiffness(u0, TrapModel(alpha, eps, creep))
     linear = {"a": lin["a"], "b": lin["b"], "dc": lin["dc"], "a_minus_b": lin["a"] - lin["b"],
               "forward_shift_stiffness": fwd, "backward_shift_stiffness": bwd}
     memory = {"one_plus_yc": 1.0 + yc}

@@ -175,8 +175,9 @@ def fit_command(
                                 stiffness=_csv_stiffness(stiffness),
                                 regularized=regularized, trend=bool(trend))
     from ..fit import CVModel
+    from ..theory.model import TRAPS_PER_A0
 
-    chosen: Any = (CVModel(alpha, creep, traps_per_a0=1000.0 if traps_per_a0 is None
+    chosen: Any = (CVModel(alpha, creep, traps_per_a0=TRAPS_PER_A0.default if traps_per_a0 is None
                            else traps_per_a0, direct=direct,
                            v_ref=v_ref) if model == "cv" else model)
     with progress_bar("fit", unit="evaluations") as update:

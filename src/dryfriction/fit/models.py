@@ -23,6 +23,7 @@ from ..rsf.driving import RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
+from ..theory.model import TRAPS_PER_A0
 from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
@@ -211,7 +212,7 @@ class CVModel:
     alpha: float = 0.13
     creep: str = "log"
     series: SeriesModel | None = None
-    traps_per_a0: float = 1000.0
+    traps_per_a0: float = TRAPS_PER_A0.default  # type: ignore[assignment]
     diff_step: float = 0.03
     direct: float = 0.0
     v_ref: float = 1e-6
