@@ -15,7 +15,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "dryfriction"
 
 # bottom to top; a module may import its own layer and those below
 LAYERS: list[set[str]] = [
-    {"validation", "program", "results", "_compat", "interrupts"},
+    {"validation", "program", "results", "simulation", "_compat", "interrupts"},
     {"theory"},
     {"ensemble", "rsf"},
     {"io"},
