@@ -74,6 +74,12 @@ def test_the_old_trap_form_runs_the_same_and_warns(kind: str) -> None:
     for old in forms:
         with pytest.warns(DeprecationWarning, match=r"simulate\(model, drive, Initial"):
             _same(old(), new)
+    # its keywords go along (mistake: the adapter drops them: no progress, a Ctrl-C raised)
+    calls: list[float] = []
+    with pytest.warns(OldSimulatorFormWarning):
+        _same(driving.simulate(MODEL, TRACK, initial, drive, output, progress=calls.append,
+                               on_interrupt="partial"), new)
+    assert calls and calls[-1] == 1.0
 
 
 def _fields(initial: Initial) -> dict[str, object]:

@@ -230,8 +230,10 @@ class Initial(simulation.Initial):
     velocity : float, optional
         ``steady`` only: the reduced sliding velocity ``u > 0`` (units ``a0/t0``).
     track : Track
-        Positions of the asperity pairs; required by :func:`~dryfriction.ensemble.driving.
-        simulate` (``None`` only for the old form, which passes the track on its own).
+        Positions of the asperity pairs, required by a run
+        (:func:`dryfriction.ensemble.driving.simulate`); ``None`` only for the old form of the
+        call, which passes the track on its own, and for an :class:`Ensemble`, which takes it
+        as its own argument.
     """
 
     law: ClassVar[str] = "cv"
