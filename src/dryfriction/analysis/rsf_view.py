@@ -48,8 +48,8 @@ import numpy as np
 from ..ensemble.driving import Output, SimulationResult, VelocityDrive, simulate
 from ..ensemble.population import Initial, Track, TrapModel
 from ..fit import FitResult, RSFModel, fit
-from ..io.data import SeriesData, StaticData
 from ..program import Segment, VelocityProgram
+from ..records.data import SeriesData, StaticData
 from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider
 from ..rsf.driving import simulate as simulate_rate_state
 from ..rsf.law import RateState
