@@ -12,6 +12,7 @@ for the ring-down of a kicked slider.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -83,7 +84,7 @@ def test_zero_direct_inertial_slider_is_the_athermal_verlet_bit_for_bit() -> Non
         out = Output(every_slip=0.02)
         ref = _athermal_verlet(TrapModel(eps=EPS), Track(150.0), init, drive, out)
         for model in (TrapModel(eps=EPS), TrapModel(eps=EPS, direct=0.0, v_ref=5.0)):
-            r = simulate(model, Track(150.0), init, drive, out)
+            r = simulate(model, drive, replace(init, track=Track(150.0)), out)
             for k, col in ref.items():
                 np.testing.assert_array_equal(getattr(r, k)[1:], col, err_msg=k)
             assert "direct" not in r.info["parameters"]["model"]
@@ -103,9 +104,9 @@ def test_stiff_spring_and_small_mass_follow_a_velocity_step_like_the_velocity_dr
     u1, u2, s0 = 1.0, 10.0, 0.1
     prog = VelocityProgram([{"velocity": u1, "slip": s0}, {"velocity": u2, "slip": 0.2}])
     model, d = TrapModel(eps=EPS, direct=A), 1 / (8 * lam)
-    sp = simulate(model, Track(lam), Initial("steady", velocity=u1),
-                  SpringDrive(K, M, prog, 2 * math.sqrt(K * M)), Output(every_slip=d))
-    kin = simulate(model, Track(lam), Initial("steady", velocity=u1), VelocityDrive(prog),
+    sp = simulate(model, SpringDrive(K, M, prog, 2 * math.sqrt(K * M)),
+                  Initial("steady", velocity=u1, track=Track(lam)), Output(every_slip=d))
+    kin = simulate(model, VelocityDrive(prog), Initial("steady", velocity=u1, track=Track(lam)),
                    Output(every_slip=d))
     before = sp.x < s0 - 1e-3
     np.testing.assert_allclose(sp.mu[before], np.interp(sp.x[before], kin.x, kin.mu),
@@ -136,9 +137,9 @@ def _work_residual(h: float) -> tuple[float, float, np.ndarray]:
     A, v_ref, lam, u, K, M, eta = 0.02, 0.01, 20.0, 1.0, 0.1, 0.1, 0.02
     model = TrapModel(eps=EPS, direct=A, v_ref=v_ref)
     # steps are min(oscillation/20, a quarter spacing of slip, the sample): h below both
-    r = simulate(model, Track(lam), Initial("rest"),
+    r = simulate(model,
                  SpringDrive(K, M, VelocityProgram([{"velocity": u, "duration": 16.0}]), eta),
-                 Output(every=h))
+                 Initial("rest", track=Track(lam)), Output(every=h))
     assert r.info["slip_events"] >= 1 and np.max(r.v) * h <= 0.25 / lam
     x, v, f, s = r.x, r.v, r.mu / model.mu_el, K * (r.x_pull - r.x)
 

@@ -51,7 +51,8 @@ from ..ensemble.population import Initial, Track, TrapModel
 from ..fit import FitResult, RSFModel, fit
 from ..program import Segment, VelocityProgram
 from ..records.data import SeriesData, StaticData
-from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
+from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider
+from ..rsf.driving import simulate as simulate_rate_state
 from ..rsf.law import RateState
 from ..theory.linear_stability import effective_rsf
 from ..theory.model import TRAPS_PER_A0
@@ -114,7 +115,7 @@ def trap_series(model: TrapModel, track: Track, u_init: float,
         ``v_load`` in m/s, ``mu = F/F_el``), with the velocity changes on samples.
     """
     prog = _program(program)
-    res = simulate(model, track, Initial("steady", velocity=u_init), VelocityDrive(prog),
+    res = simulate(model, VelocityDrive(prog), Initial("steady", velocity=u_init, track=track),
                    Output(every_slip=every_slip))
     vl = prog.velocity(res.t)  # right-continuous: a change is on the sample at the boundary
     data = SeriesData(res.t * SCALES.t0, vl * SCALES.velocity_scale, res.mu / model.mu_el,
@@ -132,10 +133,9 @@ def hold_peaks(model: TrapModel, track: Track, u0: float, holds: Sequence[float]
     yc = Trap(model.alpha).y_c
     out = []
     for th in holds:
-        res = simulate(model, track, Initial("steady", velocity=u0),
-                       VelocityDrive([Segment(0.0, float(th)),
-                                      Segment(u0, slip=2.0 * (1.0 + yc))]),
-                       Output(every_slip=every_slip))
+        res = simulate(model, VelocityDrive([Segment(0.0, float(th)),
+                                             Segment(u0, slip=2.0 * (1.0 + yc))]),
+                       Initial("steady", velocity=u0, track=track), Output(every_slip=every_slip))
         out.append(float(np.max(res.mu)) / model.mu_el)
     return np.asarray(out)
 
@@ -238,7 +238,7 @@ def rsf_twin_series(params: RateState, program: VelocityProgram, t: Array,
     kinematic machine the slider does not move, the ageing law's state grows by the hold time
     (``dtheta/dt = 1`` at ``V = 0``; Dieterich 1979), the slip law's does not change (Ruina
     1983), and the friction, ``ln V`` at ``V = 0``, is undefined: NaN there. Sliding stretches
-    run through :func:`dryfriction.rsf.driving.simulate_rsf`.
+    run through :func:`dryfriction.rsf.driving.simulate`.
     """
     t = np.asarray(t, float)
     out = np.full(t.shape, np.nan)
@@ -257,9 +257,9 @@ def rsf_twin_series(params: RateState, program: VelocityProgram, t: Array,
         if seg.velocity < 0.0:
             raise ValueError("backward motion is not supported by the rate-and-state twin")
         te = np.clip(t[inside] - t0, 0.0, t1 - t0)
-        res = simulate_rsf(params, SpringSlider([Segment(seg.velocity, t1 - t0)]),
-                           RSFInitial(theta=theta),
-                           RSFOutput(t_eval=np.union1d(te, [t1 - t0]), rtol=1e-9))
+        res = simulate_rate_state(params, SpringSlider([Segment(seg.velocity, t1 - t0)]),
+                                  RSFInitial(theta=theta),
+                                  RSFOutput(t_eval=np.union1d(te, [t1 - t0]), rtol=1e-9))
         if te.size:
             out[inside] = np.interp(te, res.t, res.mu)
         theta = float(res.theta[-1])

@@ -317,7 +317,7 @@ def stick_slip_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     function), so :func:`dryfriction.sweeps.sweep.run_sweep` can ship it to workers.
     """
     proto, opts = spring_point(protocol)
-    res = simulate(proto.model, proto.track, proto.initial, proto.drive, proto.output)
+    res = simulate(proto.model, proto.drive, proto.initial, proto.output)
     return summarise(res, proto.drive, proto.model, proto.track,
                      **{k: v for k, v in opts.items() if k != "follow_velocity"})
 

@@ -45,10 +45,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 
+from .. import simulation
 from ..interrupts import deferred
 from ..theory.model import TRAPS_PER_A0, TrapModel
 from ..theory.static import loaded_edge
@@ -153,8 +154,16 @@ class Track:
 
 
 @dataclass(frozen=True)
-class Initial:
-    """Initial population.
+class Initial(simulation.Initial):
+    """The contact population at ``t = 0``: which pairs are in contact, how old, and where
+    the pairs sit on the track.
+
+    The track belongs here, not to the :class:`TrapModel`: the model is the law of one trap
+    (stiffness, creep, direct effect), which the theory (:mod:`dryfriction.theory`) uses for
+    the continuum of traps, where the pairs have no positions; the track is one realisation
+    of the population (a density, a layout, a seed), as the state is for rate-and-state
+    (:class:`dryfriction.rsf.spring.RSFInitial`). So the same model serves the theory and
+    every run, and two runs on the same track differ only in how they start.
 
     Parameters
     ----------
@@ -166,13 +175,23 @@ class Initial:
         ``0 <= force < 1``.
     velocity : float, optional
         ``steady`` only: the reduced sliding velocity ``u > 0`` (units ``a0/t0``).
+    track : Track
+        Positions of the asperity pairs, required by a run
+        (:func:`dryfriction.ensemble.driving.simulate`); ``None`` only for the old form of the
+        call, which passes the track on its own, and for an :class:`Ensemble`, which takes it
+        as its own argument.
     """
 
+    law: ClassVar[str] = "cv"
     kind: str = "rest"
     force: float | None = None
     velocity: float | None = None
+    track: Track | None = None
 
     def __post_init__(self) -> None:
+        if self.track is not None and not isinstance(self.track, Track):
+            raise ValueError(f"track = {self.track!r} is not allowed: a Track (the pairs' "
+                             "density traps_per_a0, layout and seed)")
         check_choice("initial", self.kind, INITIAL_KINDS)
         if self.kind == "loaded":
             if self.force is None:

@@ -145,9 +145,8 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
                 res = spring_series(model, Track(traps_per_a0), prog, drive.stiffness,
                                     float(output.every_slip))  # type: ignore[arg-type]
             else:
-                res = simulate(model, Track(traps_per_a0), Initial("steady",
-                                                                   velocity=float(u[0])),
-                               drive, output)
+                res = simulate(model, drive, Initial("steady", velocity=float(u[0]),
+                                                     track=Track(traps_per_a0)), output)
         except ValueError as exc:
             if "DRYFRICTION_MEMORY_LIMIT" not in str(exc):
                 raise

@@ -309,7 +309,7 @@ class RateState:
         1998, *Annu. Rev. Earth Planet. Sci.* 26, 643, the healing law with ``d mu_s/d ln t -> b``
         at long holds). The slip law does not evolve at rest, so it gives ``mu_ss(v)`` for every
         hold. With a finite machine stiffness the measured peak is lower (the slider creeps
-        during reloading); that case needs :func:`dryfriction.rsf.driving.simulate_rsf`.
+        during reloading); that case needs :func:`dryfriction.rsf.driving.simulate`.
 
         Parameters
         ----------
@@ -328,7 +328,7 @@ class RateState:
         if self.state_law == "nagata":
             raise ValueError("hold_peak_friction is for a truly stationary contact on a "
                              "kinematic machine; Nagata's law needs the spring's stress rate: "
-                             "use simulate_rsf")
+                             "use dryfriction.simulate on a spring")
         heal = {"ageing": 1.0, "prz": 0.5, "slip": 0.0}[self.state_law] * t_hold
         th2 = None if self.dc2 is None else self.dc2 / v + heal
         return self.friction(v, self.dc / v + heal, th2)
@@ -339,7 +339,7 @@ class RateState:
             raise ValueError(
                 f"the closed-form {what} is for one state variable, the standard law and "
                 "the ageing, slip or PRZ law (their linearisations agree): "
-                "use dryfriction.rsf.driving.linear_stability for these parameters"
+                "use dryfriction.rsf.stability.linear_stability for these parameters"
             )
 
     def critical_stiffness(self, v: float = 1.0, damping: float = 0.0, mass: float = 0.0) -> float:
