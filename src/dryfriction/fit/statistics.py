@@ -27,6 +27,8 @@ __all__ = [
     "hac_covariance",
     "hac_bandwidth",
     "time_hac_covariance",
+    "local_covariance",
+    "held_parameter_covariance",
     "with_stderr",
     "lag1_autocorrelation",
     "quantile_95",
@@ -279,6 +281,82 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
     cov = base.matrix @ omega @ base.matrix * (n / (n - p))
     cov = 0.5 * (cov + cov.T)
     return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), (lags + 1) * delta
+
+
+def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
+    """The covariance of a rate-and-state step fit (ours; issue 30): the time-lag sandwich
+    :func:`time_hac_covariance`, each standard error floored at the score HAC's
+    (:func:`hac_covariance`; the time-lag one's correlations kept, ``D C D`` with ``D``
+    diagonal: positive semidefinite). The score HAC where the time-lag one is singular.
+
+    Why: in a step window ``a``, ``b``, ``Dc`` and ``k`` are fixed by the transient, a second
+    or two after the change, where friction noise that is white plus red (an apparatus
+    wander) holds one or two correlation times. The score HAC's bandwidth then comes from the
+    residuals' lag-1 autocorrelation, which the white part sets (0.56 on the basalt-like
+    records of ``tests/machine_zoo.py``, whose red part has 0.98 at 100 Hz): 24 lags (0.24 s)
+    for a correlation time of 0.5 s. The time-lag plug-in removes the white part
+    (:func:`time_hac_covariance`), and counts lags in seconds across the window's change of
+    sampling rate. Measured (``benchmarks/bench_k_coverage``): see the README's coverage line.
+    The floor keeps the score HAC's where the residuals are not stationary (a misfit).
+
+    Returns
+    -------
+    Covariance, int
+        The covariance and the score HAC's Bartlett bandwidth (lags).
+    """
+    score, lags = hac_covariance(J, r)
+    local = time_hac_covariance(J, r, t)[0]
+    if score.singular or local.singular:
+        return score, lags
+    scale = np.ones(len(local.stderr))
+    ok = local.stderr > 0
+    scale[ok] = np.maximum(local.stderr[ok], score.stderr[ok]) / local.stderr[ok]
+    mat = local.matrix * np.outer(scale, scale)
+    return Covariance(mat, np.sqrt(np.abs(np.diag(mat))), False), lags
+
+
+def held_parameter_covariance(J: Array, cov: Array, j: int, var: float, share: float
+                              ) -> Array:
+    """What holding parameter ``j`` at an estimate of its own adds to the covariance of the
+    others: the correction of a two-step estimator (Murphy & Topel, J. Bus. Econ. Stat. 3,
+    370 (1985)), in the form it takes for least squares (ours)::
+
+        Delta = var G G^T + share (x G^T + G x^T),   G = -(J_o^T J_o)^-1 J_o^T J_j,
+        x = C_oj - G C_jj
+
+    ``G`` is how the others move with the held value (``d theta_o / d theta_j`` of the
+    constrained fit; ``J_o`` the Jacobian's other columns), ``var`` the variance of the held
+    value (its first stage), ``C`` the covariance of the fit with ``j`` free on the same
+    data, and ``x`` the covariance of the others' error at the true ``theta_j`` with this
+    fit's own free estimate of ``theta_j`` (ours, from ``C = B J^T Sigma J B``, ``B =
+    (J^T J)^-1``: ``x = (J_o^T J_o)^-1 J_o^T Sigma J B e_j = C_oj - G C_jj``; 0 for white
+    noise). ``share`` is the weight of this fit's own estimate in the held value (its
+    inverse-variance share; 0 when the held value comes from other data): the cross term of
+    Murphy & Topel's ``R``. In the fitted (internal) variables.
+
+    Parameters
+    ----------
+    J : ndarray
+        ``n x p`` Jacobian of the residuals with ``j`` free, at the constrained optimum.
+    cov : ndarray
+        ``p x p`` covariance of that fit (the same noise model as the constrained one's).
+    j : int
+        The held parameter's column.
+    var : float
+        Variance of the held value, in its internal variable (``ln k``).
+    share : float
+        This fit's weight in the held value, in ``[0, 1]``.
+
+    Returns
+    -------
+    ndarray
+        ``(p - 1) x (p - 1)``, for the other parameters in their order.
+    """
+    o = [i for i in range(J.shape[1]) if i != j]
+    G = -np.linalg.pinv(J[:, o]) @ J[:, j]
+    x = cov[o, j] - G * cov[j, j]
+    delta = var * np.outer(G, G) + share * (np.outer(x, G) + np.outer(G, x))
+    return 0.5 * (delta + delta.T)
 
 
 def with_stderr(cov: Covariance, j: int, se: float) -> Covariance:
