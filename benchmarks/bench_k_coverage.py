@@ -41,8 +41,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 KINDS = ("basalt_red", "basalt_white", "lab_red", "lab_white")
 
 
-def _old_ratio(res: Any) -> list[float]:
-    """k's standard error over the score-HAC's (the estimate before the time-lag kernel)."""
+def _old_ratio(res: Any, name: str = "stiffness") -> list[float]:
+    """A free parameter's standard error over the score HAC's (the estimate before the
+    time-lag kernel), per fit that has it free."""
     from dryfriction.fit.problem import Problem
     from dryfriction.fit.statistics import hac_covariance
     from dryfriction.fit.steps import step_covariance
@@ -51,13 +52,36 @@ def _old_ratio(res: Any) -> list[float]:
     for r, d in zip(res.fits, res.data, strict=True):
         sc = step_covariance(r, d)
         names = [s.name for s in sc.specs]
-        if "stiffness" not in names:
+        if name not in names:
             continue
         fixed = {p.name: p.value for p in r.parameters if p.fixed}
         prob = Problem(r.fitted_model, [d], list(sc.specs), fixed)
         old = hac_covariance(prob.jacobian(sc.theta), prob.residuals(sc.theta))[0]
-        j = names.index("stiffness")
+        j = names.index(name)
         out.append(float(sc.used.stderr[j] / old.stderr[j]))
+    return out
+
+
+def _score_hac_rows(res: Any) -> list[dict[str, float]]:
+    """Per fit, the 95 % Wald intervals of its free a, b, Dc, k from the score HAC alone
+    (:func:`dryfriction.fit.statistics.hac_covariance`; what the table gave before the
+    time-lag kernel and the held k's error)."""
+    from dryfriction.fit.problem import Problem
+    from dryfriction.fit.statistics import hac_covariance, quantile_95
+    from dryfriction.fit.steps import step_covariance
+
+    out = []
+    for r, d in zip(res.fits, res.data, strict=True):
+        sc = step_covariance(r, d, "white")
+        fixed = {p.name: p.value for p in r.parameters if p.fixed}
+        prob = Problem(r.fitted_model, [d], list(sc.specs), fixed)
+        se = hac_covariance(prob.jacobian(sc.theta), prob.residuals(sc.theta))[0].stderr
+        z = quantile_95(False, sc.dof)
+        row = {}
+        for j, spec in enumerate(sc.specs):
+            row[f"{spec.name}_lo"] = spec.from_internal(sc.theta[j] - z * se[j])
+            row[f"{spec.name}_hi"] = spec.from_internal(sc.theta[j] + z * se[j])
+        out.append(row)
     return out
 
 
@@ -89,23 +113,30 @@ def coverage(kind: str, seeds: range) -> dict[str, Any]:
     (``record``), with the totals, the mean widths ``ln(hi/lo)`` per parameter, and a free
     k's standard-error ratio to the score HAC's."""
     hits = dict.fromkeys(("stiffness", "a", "b", "dc", "record"), 0)
+    old = dict.fromkeys(("stiffness", "a", "b", "dc"), 0)
     widths: dict[str, list[float]] = {p: [] for p in ("stiffness", "a", "b", "dc")}
+    old_w: dict[str, list[float]] = {p: [] for p in ("stiffness", "a", "b", "dc")}
     steps = records = 0
     ratios: list[float] = []
     for seed in seeds:
         res, truth = fit_one(kind, seed)
-        for row in res.rows:
+        for row, prev in zip(res.rows, _score_hac_rows(res), strict=True):
             steps += 1
             for p in ("a", "b", "dc", "stiffness"):
                 hits[p] += bool(row[f"{p}_lo"] <= truth[p] <= row[f"{p}_hi"])
                 widths[p].append(math.log(row[f"{p}_hi"] / row[f"{p}_lo"]))
+                if f"{p}_lo" in prev:
+                    old[p] += bool(prev[f"{p}_lo"] <= truth[p] <= prev[f"{p}_hi"])
+                    old_w[p].append(math.log(prev[f"{p}_hi"] / prev[f"{p}_lo"]))
         if res.stiffness is not None:
             records += 1
             hits["record"] += bool(res.stiffness["lo"] <= truth["stiffness"]
                                    <= res.stiffness["hi"])
         ratios += _old_ratio(res)
-    return {"hits": hits, "steps": steps, "records": records,
+    return {"hits": hits, "steps": steps, "records": records, "score_hac": old,
             "width": {p: float(np.mean(w)) for p, w in widths.items()},
+            "score_hac_width": {p: float(np.mean(w)) if w else math.nan
+                                for p, w in old_w.items()},
             "ratio_to_old": float(np.median(ratios)) if ratios else math.nan}
 
 
@@ -148,6 +179,11 @@ def main() -> None:
             line += f"; record's k {rate(h['record'], c['records'])}"
         print(line + f"; free k's se / score-HAC's (median) {c['ratio_to_old']:.2f}  "
               f"({time.process_time() - t0:.0f} s CPU)", flush=True)
+        o, ow = c["score_hac"], c["score_hac_width"]
+        print("   the score HAC alone (before; a held k exact): " + ", ".join(
+            f"{p} {rate(o[key], s)} width {ow[key]:.3f}" for p, key in
+            (("k", "stiffness"), ("a", "a"), ("b", "b"), ("Dc", "dc")) if ow[key] == ow[key]),
+            flush=True)
 
 
 if __name__ == "__main__":
