@@ -114,6 +114,7 @@ def coverage(kind: str, seeds: range) -> dict[str, Any]:
     k's standard-error ratio to the score HAC's."""
     hits = dict.fromkeys(("stiffness", "a", "b", "dc", "record"), 0)
     old = dict.fromkeys(("stiffness", "a", "b", "dc"), 0)
+    old_n = dict.fromkeys(("stiffness", "a", "b", "dc"), 0)
     widths: dict[str, list[float]] = {p: [] for p in ("stiffness", "a", "b", "dc")}
     old_w: dict[str, list[float]] = {p: [] for p in ("stiffness", "a", "b", "dc")}
     steps = records = 0
@@ -126,6 +127,7 @@ def coverage(kind: str, seeds: range) -> dict[str, Any]:
                 hits[p] += bool(row[f"{p}_lo"] <= truth[p] <= row[f"{p}_hi"])
                 widths[p].append(math.log(row[f"{p}_hi"] / row[f"{p}_lo"]))
                 if f"{p}_lo" in prev:
+                    old_n[p] += 1
                     old[p] += bool(prev[f"{p}_lo"] <= truth[p] <= prev[f"{p}_hi"])
                     old_w[p].append(math.log(prev[f"{p}_hi"] / prev[f"{p}_lo"]))
         if res.stiffness is not None:
@@ -134,6 +136,7 @@ def coverage(kind: str, seeds: range) -> dict[str, Any]:
                                    <= res.stiffness["hi"])
         ratios += _old_ratio(res)
     return {"hits": hits, "steps": steps, "records": records, "score_hac": old,
+            "score_hac_n": old_n,
             "width": {p: float(np.mean(w)) for p, w in widths.items()},
             "score_hac_width": {p: float(np.mean(w)) if w else math.nan
                                 for p, w in old_w.items()},
@@ -179,9 +182,9 @@ def main() -> None:
             line += f"; record's k {rate(h['record'], c['records'])}"
         print(line + f"; free k's se / score-HAC's (median) {c['ratio_to_old']:.2f}  "
               f"({time.process_time() - t0:.0f} s CPU)", flush=True)
-        o, ow = c["score_hac"], c["score_hac_width"]
+        o, on, ow = c["score_hac"], c["score_hac_n"], c["score_hac_width"]
         print("   the score HAC alone (before; a held k exact): " + ", ".join(
-            f"{p} {rate(o[key], s)} width {ow[key]:.3f}" for p, key in
+            f"{p} {rate(o[key], on[key])} width {ow[key]:.3f}" for p, key in
             (("k", "stiffness"), ("a", "a"), ("b", "b"), ("Dc", "dc")) if ow[key] == ow[key]),
             flush=True)
 
