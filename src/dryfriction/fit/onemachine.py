@@ -29,7 +29,20 @@ def held_stiffness(rec: dict[str, Any], rows: list[dict[str, Any]]) -> list[tupl
     """Per step, ``(var ln k, share)`` of the record's stiffness ``rec``
     (:func:`.identify.record_stiffness`; standard errors from the 95 % intervals as it reads
     them): the variance of its ``ln k``, and the step's inverse-variance weight in it (its
-    free fit's, from ``rows``; 0 for a step left out of it)."""
+    free fit's, from ``rows``; 0 for a step left out of it).
+
+    Parameters
+    ----------
+    rec : dict
+        The record's stiffness (``lo``, ``hi``: its 95 % interval, 1/m; ``steps``).
+    rows : list of dict
+        The free fits' rows (``stiffness_lo``, ``stiffness_hi``, 1/m).
+
+    Returns
+    -------
+    list of (float, float)
+        Per row, ``(var ln k, share)`` for :func:`.steps.fit_steps`'s ``held``.
+    """
     var = (math.log(rec["hi"] / rec["lo"]) / (2.0 * Z)) ** 2
     out = []
     for i, r in enumerate(rows):

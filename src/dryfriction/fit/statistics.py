@@ -300,6 +300,15 @@ def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
     time-lag one's bandwidth: 14, 12, 25 of 40); this one: 1.04, 1.04, 0.94 and 37, 38, 39 of
     40. The floor keeps the score HAC's where the residuals are not stationary (a misfit).
 
+    Parameters
+    ----------
+    J : ndarray
+        ``n x p`` Jacobian of the residuals, samples in time order.
+    r : ndarray
+        The ``n`` residuals at the optimum.
+    t : ndarray
+        The ``n`` sample times (s), increasing.
+
     Returns
     -------
     Covariance, int
