@@ -82,7 +82,8 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
         row["notes"] += carried + [
             f"k = {rec['value']:.4g} /m [{rec['lo']:.4g}, {rec['hi']:.4g}] held: the record's "
             f"one machine (steps {', '.join(map(str, rec['steps']))}); this step's own free "
-            f"fit gave k = {own['stiffness']:.4g} /m"]
+            f"fit gave k = {own['stiffness']:.4g} /m; the intervals of a, b, Dc carry the "
+            "record's k's error"]
     fixed.stiffness = rec
     used = [ld for ld in rec.get("loadings", []) if ld["used"]]
     at = ", ".join(f"{ld['t_start']:.6g}" for ld in used)
