@@ -70,7 +70,7 @@ def test_one_machine_counts_the_reload():
 
 def test_coverage_with_k_from_the_record():
     """Issue 30's "done when": the coverage of a, b, Dc on red-noise records (AR(1),
-    rho = 0.98; the records of test_fit_steps.test_coverage_with_correlated_noise) holds
+    rho = 0.98; the records of fit/test_steps.py::test_coverage_with_correlated_noise) holds
     with k taken from the record (--stiffness record), its error carried into a, b, Dc:
     >= 90 % of 24 here (measured 23 of 24; on 40 records, ``python -m benchmarks
     bench_k_coverage 0:40 lab_red``: a, b, Dc 80, 72, 80 of 80, the score HAC alone with k
