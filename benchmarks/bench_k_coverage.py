@@ -34,7 +34,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from dryfriction.fit.onemachine import fit_steps_one_machine  # noqa: E402
-from dryfriction.io.data import SeriesData  # noqa: E402
+from dryfriction.records.data import SeriesData  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
@@ -88,7 +88,7 @@ def _score_hac_rows(res: Any) -> list[dict[str, float]]:
 def fit_one(kind: str, seed: int) -> tuple[Any, dict[str, float]]:
     """The fit of one seeded record of ``kind`` (:data:`KINDS`) and its truth."""
     if kind.startswith("basalt"):
-        from dryfriction.io import lab
+        from dryfriction.records import lab
         from machine_zoo import Machine, basalt_like, write_record
 
         m = Machine() if kind == "basalt_red" else Machine(mu_red=0.0,

@@ -11,8 +11,8 @@ import pytest
 
 from dryfriction.ensemble.driving import Initial, Output, Track, TrapModel, VelocityDrive, simulate
 from dryfriction.fit import fit_static
-from dryfriction.io.data import StaticData
 from dryfriction.program import Segment, VelocityProgram
+from dryfriction.records.data import StaticData
 from dryfriction.results import dataset_records, records, to_dataframe
 from dryfriction.rsf import RSFOutput, SpringSlider
 from dryfriction.rsf.driving import simulate_rsf

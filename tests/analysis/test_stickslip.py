@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 from dryfriction.analysis.stickslip import analyse, bifurcation_scan, linear_check
 from dryfriction.cli import app
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
-from dryfriction.io.sweep import MAX_POINTS, load_sweep
+from dryfriction.sweeps.sweep import MAX_POINTS, load_sweep
 from dryfriction.theory.stability import critical_stiffness
 from sweep_protocols import spring_sweep
 

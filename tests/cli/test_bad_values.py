@@ -62,12 +62,12 @@ def test_fit_refuses_a_bad_option_before_any_work(option: str, value: str, tmp_p
                                                   capsys: pytest.CaptureFixture[str],
                                                   monkeypatch: pytest.MonkeyPatch) -> None:
     # was: exit 0 after 6 s of rsf fitting, the refusal only inside fit.json
-    import dryfriction.io.lab
+    import dryfriction.records.lab
 
     def no_work(*args: object, **kwargs: object) -> None:
         raise AssertionError("the record was read: work started before the refusal")
 
-    monkeypatch.setattr(dryfriction.io.lab, "read_record", no_work)
+    monkeypatch.setattr(dryfriction.records.lab, "read_record", no_work)
     code, _, err = run(capsys, "fit", str(LAB), "--model", "rsf", "--run-cv", option, value,
                        "--out", str(tmp_path / "out"), "--no-figure")
     one_error_line(code, err, option)
@@ -205,7 +205,7 @@ def test_a_memory_refusal_inside_a_fit_names_the_fits_own_option(
     # was: the simulator's hint, "raise every_slip ... lower traps_per_a0", keys fit does not
     # have, in fit.json's notes
     from dryfriction.fit.cvseries import cv_series
-    from dryfriction.io.data import SeriesData
+    from dryfriction.records.data import SeriesData
 
     monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "1MiB")
     t = np.linspace(0.0, 37.0, 60)

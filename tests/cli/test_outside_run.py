@@ -47,7 +47,7 @@ def test_a_gap_of_years_in_a_record_asks_for_a_bounded_number_of_windows(monkeyp
     # silently, exhausting the memory); the guard counts the windows asked for, not the time
     import numpy as np
 
-    from dryfriction.io import detection
+    from dryfriction.records import detection
 
     rng = np.random.default_rng(24)
     n = 3000

@@ -168,7 +168,7 @@ def test_a_record_fit_reports_progress_within_a_window(monkeypatch) -> None:
     progress comes after the model evaluations inside a window, not only after each window."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from dryfriction.fit.steps import fit_steps
-    from dryfriction.io.data import SeriesData
+    from dryfriction.records.data import SeriesData
     from lab_synth import Truth, synth_record
 
     t, v, mu, _ = synth_record(Truth(), [1e-6, 3e-6], duration_slip=300e-6, dt_per_um=0.5,

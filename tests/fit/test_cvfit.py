@@ -14,7 +14,7 @@ import pytest
 from dryfriction.fit import fit
 from dryfriction.fit.cvseries import cv_series, cv_start_from_rsf
 from dryfriction.fit.models import CVModel
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 from dryfriction.theory.direct import junction_strength
 from dryfriction.theory.direct_stability import effective_rsf_direct
 from dryfriction.theory.steady import steady_friction

@@ -87,7 +87,7 @@ def test_memory_answers_the_same_point_read_back(monkeypatch: pytest.MonkeyPatch
     """The covariance asks again for the points of the fit's Jacobian, its parameters read
     back through their logarithms (one ulp off): the memory answers them without a run (a
     key of exact floats ran them again), and a point 1e-9 away is a new run."""
-    from dryfriction.io.data import SeriesData
+    from dryfriction.records.data import SeriesData
 
     calls = [0]
     real = cvtail.spring_series
@@ -169,7 +169,7 @@ def test_search_agrees_with_the_fit_before(tmp_path: object) -> None:
     from basalt_step import basalt_step
     from dryfriction.fit.cvsteps import fit_cv_steps
     from dryfriction.fit.steps import fit_steps, robust_estimates, step_covariance
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     rec = lab.read_record(basalt_step(Path(str(tmp_path)) / "basalt_like.txt"))
     segs = lab.detect_program(rec).segments

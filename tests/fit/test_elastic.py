@@ -14,7 +14,7 @@ from pathlib import Path
 from dryfriction.fit.elastic import loading_segments
 from dryfriction.fit.onemachine import fit_steps_one_machine
 from dryfriction.fit.steps import fit_steps, step_covariance
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from lab_synth import Truth, synth_program, synth_record  # noqa: E402

@@ -14,7 +14,7 @@ from typer.testing import CliRunner
 from dryfriction import RateState, Segment, simulate_rsf
 from dryfriction.cli import app
 from dryfriction.fit import CVModel, compare_models, fit, fit_joint, fit_static, fit_steady
-from dryfriction.io.data import SeriesData, StaticData, SteadyData
+from dryfriction.records.data import SeriesData, StaticData, SteadyData
 from dryfriction.rsf import RSFOutput, SpringSlider
 from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 

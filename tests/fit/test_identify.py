@@ -23,7 +23,7 @@ from dryfriction.cli import app
 from dryfriction.fit.identify import judge_step, split_flags
 from dryfriction.fit.models import ParamSpec
 from dryfriction.fit.steps import fit_steps
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from identify_synth import make_case  # noqa: E402
@@ -279,7 +279,7 @@ def test_shared_record_keeps_its_values_and_raises_no_flag():
     (steps.csv of commit 83acd23: a [0.01955, 0.02301], b [0.01192, 0.01762], Dc [98.87,
     217.8] um) and no flag (measured: none; rms/noise 1.13, peak residual 2.5e-3 against an
     allowance of 4.4e-3)."""
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     rec = lab.read_record(RECORD)
     segs = lab.detect_segments(rec)

@@ -22,7 +22,7 @@ from dryfriction.fit.statistics import (
     lag1_autocorrelation,
 )
 from dryfriction.fit.steps import steady_noise, white_noise
-from dryfriction.io.segmentation import noise_level
+from dryfriction.records.segmentation import noise_level
 
 N = 3000
 
@@ -267,7 +267,7 @@ def test_step_white_covariance_is_the_engines_and_robust_is_about_it_on_white_no
     from pathlib import Path
 
     from dryfriction.fit.steps import fit_steps, step_covariance
-    from dryfriction.io.data import SeriesData
+    from dryfriction.records.data import SeriesData
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from lab_synth import Truth, synth_record

@@ -17,7 +17,7 @@ from typer.testing import CliRunner
 from dryfriction.cli import app
 from dryfriction.fit.loadpoint import estimate_change, measured_series
 from dryfriction.fit.steps import fit_steps
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from machine_zoo import Machine, basalt_like, program_friction, write_record  # noqa: E402
@@ -28,7 +28,7 @@ RECORD = (Path(__file__).resolve().parents[2] / "examples/data/lab"
 
 @pytest.fixture(scope="module")
 def basalt(tmp_path_factory: pytest.TempPathFactory):  # type: ignore[no-untyped-def]
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     rec = basalt_like(0)
     path = write_record(tmp_path_factory.mktemp("basalt") / "basalt.txt", rec)
@@ -36,7 +36,7 @@ def basalt(tmp_path_factory: pytest.TempPathFactory):  # type: ignore[no-untyped
 
 
 def _fit(lab_rec, t_change: float, drive: str):  # type: ignore[no-untyped-def]
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     segs = lab.parse_segments(f"0:3e-6,{t_change}:1e-5", lab_rec)
     return fit_steps(lab_rec, lab.slice_steps(lab_rec, segs), segs, drive=drive)
@@ -62,7 +62,7 @@ def test_drive_follows_the_servo(basalt):  # type: ignore[no-untyped-def]
     not at the given 68.6 s. Catches a drive that ignores the measured displacement (the
     program's corner at 68.6 s is 0.6 um off) or that keeps its noise (0.15 um rms)."""
     rec, lab_rec = basalt
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     segs = lab.parse_segments("0:3e-6,68.6:1e-5", lab_rec)
     d = lab_rec
@@ -176,7 +176,7 @@ def test_shared_record_with_the_measured_drive():
     inside the intervals they had before issue 30 (as
     test_fit_identify.test_shared_record_keeps_its_values_and_raises_no_flag), no flag, and
     an rms residual no worse than the program's (measured 1.66e-3 against 1.67e-3)."""
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     rec = lab.read_record(RECORD)
     segs = lab.detect_segments(rec)

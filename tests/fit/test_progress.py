@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 from dryfriction.cli import app, common
 from dryfriction.fit import CVModel, fit
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 
 runner = CliRunner()
 
@@ -59,7 +59,7 @@ def test_fit_progress_counts_every_evaluation_and_ends_at_its_estimate() -> None
 def test_fit_progress_counts_the_separate_fits_of_a_joint_fit() -> None:
     """The consistency test fits each data set alone: their evaluations continue the count,
     one each (a nested fit's final report is no evaluation), under the data set's name."""
-    from dryfriction.io.data import read_csv
+    from dryfriction.records.data import read_csv
 
     calls = [0]
 

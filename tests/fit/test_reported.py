@@ -19,7 +19,7 @@ import pytest
 from scipy.stats import t as student_t
 
 from dryfriction.fit.steps import fit_steps, robust_estimates, step_covariance
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 from lab_synth import Truth, synth_record
 
 

@@ -26,8 +26,8 @@ from dryfriction.cli import app
 from dryfriction.fit.machine import hold_remnant
 from dryfriction.fit.models import RSFModel, rsf_series
 from dryfriction.fit.steps import PEAK_SAMPLES, StepsResult, fit_steps
-from dryfriction.io import lab
-from dryfriction.io.data import SeriesData
+from dryfriction.records import lab
+from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from lab_synth import Truth, shs_program, synth_program, write_lab_file  # noqa: E402

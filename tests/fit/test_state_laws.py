@@ -17,8 +17,8 @@ import pytest
 
 from dryfriction.fit.lawchoice import fit_steps_laws
 from dryfriction.fit.models import RSFModel, rsf_series
-from dryfriction.io.data import SeriesData
 from dryfriction.program import Segment
+from dryfriction.records.data import SeriesData
 from dryfriction.rsf.driving import RSFOutput, SpringSlider, simulate_rsf
 from dryfriction.rsf.law import RateState
 
@@ -173,7 +173,7 @@ def test_free_initial_state_removes_the_reslide_bias():
     and the other windows keep the steady start."""
     import tempfile
 
-    from dryfriction.io import lab
+    from dryfriction.records import lab
     from lab_synth import Truth as ShsTruth
     from lab_synth import shs_program, synth_program, write_lab_file
 

@@ -3,7 +3,7 @@ in the RSF fit, ``fit_steps``, the record front of ``dryfriction fit``.
 
 The synthetic records come from an independent solver (``tests/lab_synth.py``: SciPy Radau on
 ``(tau, theta)``, not the project's RODAS4 on log variables). Where part A's reader
-(``dryfriction.io.lab``) is present they are also written in two header dialects and read
+(``dryfriction.records.lab``) is present they are also written in two header dialects and read
 back through it.
 """
 
@@ -26,12 +26,12 @@ from dryfriction.fit.models import (
     rsf_series,
 )
 from dryfriction.fit.steps import fit_steps, series_windows, steady_noise, white_noise
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from lab_synth import Truth, synth_record  # noqa: E402
 
-HAVE_LAB = importlib.util.find_spec("dryfriction.io.lab") is not None
+HAVE_LAB = importlib.util.find_spec("dryfriction.records.lab") is not None
 RECORD = (Path(__file__).resolve().parents[2] / "examples/data/lab"
           / "sepiolite_velstep_0.2-2um_s.txt")  # the shipped copy of the shared record
 runner = CliRunner()
@@ -61,7 +61,7 @@ def write_dialect(path: Path, d: SeriesData, dialect: int) -> Path:
 
 
 def fit_record_file(path: Path, **kw):  # type: ignore[no-untyped-def]
-    from dryfriction.io import lab
+    from dryfriction.records import lab
 
     rec = lab.read_record(path)
     segs = lab.detect_segments(rec)
@@ -206,7 +206,7 @@ def test_joint_fit_recovers_shared_parameters():
 
 
 # ----------------------------------------------------------------------------- the shared record
-@pytest.mark.skipif(not HAVE_LAB or not RECORD.exists(), reason="needs io.lab and the record")
+@pytest.mark.skipif(not HAVE_LAB or not RECORD.exists(), reason="needs records.lab and the record")
 def test_shared_record_follows_the_peak():
     """Read, sliced and fitted as it is: the fitted curve follows the peak (mean residual over
     the peak's samples within 3x the noise: the line-detrended spread of the steady part)."""
@@ -253,7 +253,7 @@ def test_command_bad_stiffness_and_record_options(tmp_path: Path):
     assert r.exit_code == 2 and not out.exists()
 
 
-@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.io.lab)")
+@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.records.lab)")
 def test_command_record_bad_input(tmp_path: Path):
     out = tmp_path / "out"
     rows = [f"{i}\t{i * 1.0}\t0.6\n" for i in range(50)]
@@ -274,7 +274,7 @@ def test_command_record_bad_input(tmp_path: Path):
         _one_line_exit_2(r, out, name, *words)
 
 
-@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.io.lab)")
+@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.records.lab)")
 def test_command_record_writes_steps(tmp_path: Path):
     d = small(Truth(), 7)
     rec = write_dialect(tmp_path / "rec.txt", d, 1)
@@ -322,7 +322,7 @@ def test_quick_profile_matches_the_engine_profile():
             assert abs(quick[p.name][1] - hi) < 0.05 * width, p.name
 
 
-@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.io.lab)")
+@pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.records.lab)")
 def test_command_run_cv_fits_the_trap_model_and_draws_it_beside_rsf(tmp_path: Path):
     """``--run-cv`` (on a small synthetic record, a coarse track to keep it short): the trap
     model's fit of each step is in fit.json with its comparison to rsf, and each step's figure

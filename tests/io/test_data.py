@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from dryfriction.io.data import SeriesData, StaticData, SteadyData, read_csv
+from dryfriction.records.data import SeriesData, StaticData, SteadyData, read_csv
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
 

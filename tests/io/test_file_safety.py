@@ -18,12 +18,12 @@ import pytest
 from typer.testing import CliRunner
 
 import dryfriction.io.files as dio
-import dryfriction.io.sweep as sw
+import dryfriction.sweeps.sweep as sw
 import sweep_runners
 from dryfriction.cli import app
 from dryfriction.io.examples import copy_examples, example_files, examples_path
 from dryfriction.io.files import MANIFEST, check_output_dir, output_directory
-from dryfriction.io.sweep import load_sweep, parse_sweep, run_sweep
+from dryfriction.sweeps.sweep import load_sweep, parse_sweep, run_sweep
 
 cloudpickle.register_pickle_by_value(sweep_runners)
 runner = CliRunner()

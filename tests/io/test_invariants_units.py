@@ -18,8 +18,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dryfriction.io.data import read_csv
-from dryfriction.io.lab import read_record
+from dryfriction.records.data import read_csv
+from dryfriction.records.lab import read_record
 from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 
 # SI value of each unit, written from the definitions (not imported)

@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dryfriction.io.detection import detect_program, no_change_message
-from dryfriction.io.lab import LabRecord, read_record, segments_table
+from dryfriction.records.detection import detect_program, no_change_message
+from dryfriction.records.lab import LabRecord, read_record, segments_table
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from records_zoo import make_record, score, specs, write  # noqa: E402
@@ -145,7 +145,7 @@ def test_a_velocity_column_has_no_resets(tmp_path: Path) -> None:
 def test_compiled_hinge_is_the_numpy_hinge() -> None:
     # the mistake it is for: a sign or an index wrong in the compiled sums (e.g. the right
     # side's sum of (t - tk) x taken with + tk): another hinge, or another gain
-    from dryfriction.io.segmentation import best_hinge
+    from dryfriction.records.segmentation import best_hinge
 
     rng = np.random.default_rng(11)
     for _ in range(60):
@@ -236,8 +236,8 @@ def test_record_command_writes_the_figure_and_the_table(tmp_path: Path) -> None:
     from typer.testing import CliRunner
 
     from dryfriction.cli import app
-    from dryfriction.io.lab import detect_program as dp
     from dryfriction.plots.record import plot_record
+    from dryfriction.records.lab import detect_program as dp
 
     out = tmp_path / "rec"
     r = CliRunner().invoke(app, ["record", str(SHARED), "--out", str(out), "--json"])

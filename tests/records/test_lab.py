@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dryfriction.io.lab import (
+from dryfriction.records.lab import (
     LabRecord,
     detect_segments,
     load_velocity_series,

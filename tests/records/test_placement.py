@@ -1,5 +1,5 @@
 """Placement of a velocity change by the generalised-least-squares hinge under a red-noise load
-point (issue 23; ``dryfriction.io.placement``): the integrated-OU covariance against a direct
+point (issue 23; ``dryfriction.records.placement``): the integrated-OU covariance against a direct
 double integral, the wander's parameters recovered from the fluctuation model, and a ratio-1.3
 step placed better than by the white-noise hinge; and a gap in a fast-sampled record, which
 the reset finder (``detection.find_resets``) must not take for a reset."""
@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dryfriction.io.detection import measure_fluctuations
-from dryfriction.io.placement import _cov_int, ou_parameters, place_change
-from dryfriction.io.segmentation import best_hinge
+from dryfriction.records.detection import measure_fluctuations
+from dryfriction.records.placement import _cov_int, ou_parameters, place_change
+from dryfriction.records.segmentation import best_hinge
 
 
 def test_integrated_ou_covariance_matches_a_double_integral() -> None:
@@ -88,7 +88,7 @@ def test_a_gap_in_a_fast_record_is_no_reset() -> None:
     the gap is 52 um, explained by the velocity; the local rates (medians of 5 increments of
     +-24 um/s scatter) are uncertain by several um/s, times 541 intervals. 20 seeded records:
     no reset found, while a 30-um re-zeroing elsewhere still is."""
-    from dryfriction.io.detection import find_resets
+    from dryfriction.records.detection import find_resets
 
     for seed in range(20):
         rng = np.random.default_rng(seed)

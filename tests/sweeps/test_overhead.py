@@ -34,7 +34,7 @@ def test_every_process_of_a_local_cluster_runs_lean() -> None:
     that do not reach the worker processes fail here."""
     import dask
 
-    from dryfriction.io.cluster import close_client, start_client
+    from dryfriction.sweeps.cluster import close_client, start_client
 
     trim = "MALLOC_TRIM_THRESHOLD_"
     if trim in os.environ:
@@ -66,7 +66,7 @@ def _start_marked_server(tmp_path: Path, marker: Path, monkeypatch: pytest.Monke
     ``atexit`` handler touches ``marker``; check it was preloaded; return the server's pid."""
     from multiprocessing import forkserver, get_context
 
-    from dryfriction.io.cluster import start_fork_server
+    from dryfriction.sweeps.cluster import start_fork_server
 
     monkeypatch.setenv("ATEXIT_MARKER", str(marker))  # the server inherits it
     monkeypatch.delitem(sys.modules, "atexit_marker", raising=False)
@@ -100,7 +100,7 @@ def test_the_fork_server_is_ended_without_its_interpreter_shutdown(
     server is gone when the stop returns."""
     from multiprocessing import forkserver
 
-    from dryfriction.io.cluster import fork_server_running, stop_fork_server
+    from dryfriction.sweeps.cluster import fork_server_running, stop_fork_server
 
     if fork_server_running():
         pytest.skip("another fork server runs in this process")
@@ -126,7 +126,7 @@ def test_the_fork_server_is_ended_without_its_interpreter_shutdown(
 def test_meanwhile_runs_while_the_fork_server_starts_and_an_interrupt_stops_it() -> None:
     """``meanwhile`` is called after the fork server started and before any worker exists;
     Ctrl-C inside it stops the server (nothing is left behind) and reaches the caller."""
-    from dryfriction.io.cluster import fork_server_running, start_client
+    from dryfriction.sweeps.cluster import fork_server_running, start_client
 
     me = psutil.Process()
     seen: list[tuple[bool, int]] = []
@@ -151,7 +151,7 @@ def test_assemble_imports_nothing_after_the_warm_up(tmp_path: Path) -> None:
     imported anything already."""
     code = """
 import sys
-from dryfriction.io import sweep as sw
+from dryfriction.sweeps import sweep as sw
 spec = sw.parse_sweep({"model": {"eps": 0.04}, "sweep": {"model.eps": [0.02, 0.03]}})
 keys = {idx: sw.point_key(spec.protocol(ov), "a") for idx, ov in spec.points()}
 out = sys.argv[1]

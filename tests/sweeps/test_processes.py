@@ -116,7 +116,7 @@ def test_sweep_through_an_external_scheduler_and_worker(tmp_path: Path) -> None:
         assert r.returncode == 0, r.stderr
         assert "4 points, 0 failed" in r.stdout
         assert scheduler.poll() is None and worker.poll() is None  # not ours to stop
-        from dryfriction.io.sweep import load_sweep
+        from dryfriction.sweeps.sweep import load_sweep
 
         ds = load_sweep(tmp_path / "o" / "sweep.nc")
         assert ds["class"].shape == (4,) and int(ds.attrs["n_failed"]) == 0
@@ -141,7 +141,7 @@ def test_local_workers_are_forked_warm_and_the_fork_server_is_stopped() -> None:
     """Workers start from the fork server with the runner's module already imported (a
     spawned worker, or a server without the preload list, would not have it before its first
     task), with one BLAS thread each, and closing stops the server: nothing of ours is left."""
-    from dryfriction.io.cluster import (
+    from dryfriction.sweeps.cluster import (
         close_client,
         fork_server_running,
         start_client,
@@ -176,7 +176,7 @@ def test_forked_workers_give_the_serial_results(tmp_path: Path) -> None:
     import tomllib
 
     from dryfriction.analysis.stickslip import stick_slip_summary
-    from dryfriction.io.sweep import parse_sweep, run_sweep
+    from dryfriction.sweeps.sweep import parse_sweep, run_sweep
 
     spec = parse_sweep(tomllib.loads(PROTO))
     ds = run_sweep(spec, stick_slip_summary, tmp_path / "o", n_workers=2)

@@ -12,10 +12,10 @@ import cloudpickle
 import numpy as np
 import pytest
 
-import dryfriction.io.sweep as sweep_mod
+import dryfriction.sweeps.sweep as sweep_mod
 import sweep_runners
 from dryfriction.analysis.linear import linear_summary
-from dryfriction.io.sweep import MAX_POINTS, load_sweep, parse_sweep, point_key, run_sweep
+from dryfriction.sweeps.sweep import MAX_POINTS, load_sweep, parse_sweep, point_key, run_sweep
 from dryfriction.theory.stability import critical_stiffness
 from sweep_protocols import spring_sweep
 
@@ -70,7 +70,7 @@ def test_killed_sweep_resumes_without_recomputing(tmp_path):
         sys.path.insert(0, {str(Path(__file__).resolve().parents[1])!r})
         import sweep_runners
         cloudpickle.register_pickle_by_value(sweep_runners)
-        from dryfriction.io.sweep import parse_sweep, run_sweep
+        from dryfriction.sweeps.sweep import parse_sweep, run_sweep
         proto = {json.dumps(_proto(markers, sleep=0.4))}
         if __name__ == "__main__":
             run_sweep(parse_sweep(proto), sweep_runners.counting_runner, {str(out)!r},
@@ -217,7 +217,7 @@ def test_failed_points_are_computed_again_on_the_next_run(tmp_path):
 def test_no_http_server_and_no_process_left(tmp_path):
     import psutil
 
-    from dryfriction.io.cluster import close_client, start_client
+    from dryfriction.sweeps.cluster import close_client, start_client
 
     me = psutil.Process()
     client = start_client(None, 1)

@@ -393,7 +393,7 @@ def test_fit_recovers_the_direct_effect_from_steps() -> None:
 
 def test_direct_fit_refuses_static_data() -> None:
     from dryfriction.fit import CVModel, fit
-    from dryfriction.io.data import StaticData
+    from dryfriction.records.data import StaticData
 
     d = StaticData(np.array([1.0, 10.0, 100.0, 1000.0]), np.array([0.5, 0.51, 0.52, 0.53]))
     with pytest.raises(ValueError, match="static"):

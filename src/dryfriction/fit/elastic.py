@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from .identify import record_stiffness
 from .machine import load_point_displacement
 

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from ..validation import Array
 
 __all__ = ["load_point_displacement", "loading_slope_stiffness", "hold_remnant"]

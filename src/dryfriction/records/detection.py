@@ -44,7 +44,6 @@ means and each change then moved to the best hinge on the samples between its ne
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -52,10 +51,8 @@ from ..validation import Array
 from .artifacts import find_resets, normal_changes, sampling_changes
 from .labsteps import Segment, make_segments
 from .placement import place_changes
+from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
-
-if TYPE_CHECKING:
-    from .lab import LabRecord
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "Z_MIN"]

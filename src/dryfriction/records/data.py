@@ -43,8 +43,8 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..io.textfile import check_text_file
 from ..validation import Array
-from .textfile import check_text_file
 
 __all__ = [
     "StaticData",

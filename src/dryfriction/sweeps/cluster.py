@@ -160,7 +160,7 @@ def _quiet_class(name: str) -> type:
     ``dashboard_address=None`` only hides the dashboard's pages: the scheduler still listens
     on port 8787 (and each worker on a random port) for its health and metrics routes, and
     reports that server as its ``dashboard`` service. A local sweep needs none of it. Built on
-    first use (importing distributed is slow) and reached as ``dryfriction.io.cluster.<name>``
+    first use (importing distributed is slow) and reached as ``dryfriction.sweeps.cluster.<name>``
     (module ``__getattr__``), so that the worker processes can unpickle it.
     """
     if name not in _QUIET:

@@ -9,15 +9,12 @@ cycles, as one would choose them by hand.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..rsf.law import V_MAX, V_MIN
 from ..validation import Array
-
-if TYPE_CHECKING:
-    from .lab import LabRecord
+from .record import LabRecord
 
 __all__ = [
     "Segment",

@@ -44,10 +44,7 @@ from typing import Any
 import numpy as np
 
 from ..interrupts import deferred
-from ..validation import check_scalar, require_extra
-from .cf import describe
-from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
-from .files import (
+from ..io.files import (
     atomic_write_bytes,
     check_writable_dir,
     is_ours,
@@ -55,6 +52,9 @@ from .files import (
     to_jsonable,
     write_json,
 )
+from ..validation import check_scalar, require_extra
+from .cf import describe
+from .cluster import CONNECT_TIMEOUT, close_client, probe_scheduler, start_client
 
 __all__ = [
     "SweepAxis",
@@ -476,7 +476,7 @@ def run_sweep(
     connect_timeout : float
         Seconds to wait for ``scheduler`` to answer, ``> 0``.
     variables : mapping, optional
-        CF attributes of the runner's results (:func:`dryfriction.io.cf.describe`).
+        CF attributes of the runner's results (:func:`dryfriction.sweeps.cf.describe`).
     outputs : mapping, optional
         Further files of the folder, ``{name: dataset -> bytes}`` (``phase_diagram.png``),
         written after ``sweep.nc`` under the same rule: an existing one this sweep did not
@@ -584,7 +584,7 @@ def _warm_results() -> None:
     imports when it builds its first Dataset (``dask.array``, to tell Dask arrays apart) and
     writes its first NetCDF file (SciPy's reader and writer), by doing both in memory.
 
-    Called while the fork server imports (:func:`~dryfriction.io.cluster.start_client`), when
+    Called while the fork server imports (:func:`~dryfriction.sweeps.cluster.start_client`), when
     this process would otherwise wait for it; after the last point it cost ~0.25 s."""
     import xarray as xr
 

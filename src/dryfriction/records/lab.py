@@ -35,12 +35,12 @@ import io
 import os
 import re
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 
 import numpy as np
 
+from ..io.textfile import HEAD_BYTES, check_text
 from ..validation import FRICTION_MAX, Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import Detection, detect_program, detect_segments, no_change_message
@@ -56,7 +56,7 @@ from .labsteps import (
     slice_steps,
     write_segments_csv,
 )
-from .textfile import HEAD_BYTES, check_text
+from .record import LabRecord
 
 __all__ = [
     "LabRecord",
@@ -112,49 +112,6 @@ _LENGTH = {**LENGTH_UNITS, "μm": 1e-6, "micron": 1e-6, "microns": 1e-6}
 _STRESS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 _FORCE = {"N": 1.0, "kN": 1e3, "MN": 1e6}
 _NONE = ("", "-", "1")
-
-
-@dataclass(frozen=True)
-class LabRecord:
-    """A laboratory friction record in SI units.
-
-    Attributes
-    ----------
-    source : str
-        The file it was read from (used in messages).
-    time : Array
-        Time, s, strictly increasing; the file's own clock (it may start at any value).
-    load_point : Array or None
-        Load-point displacement, m (``None`` when the file gives a velocity instead).
-    load_velocity : Array or None
-        Load-point velocity, m/s, when the file has a velocity column.
-    friction : Array
-        Friction coefficient (the file's, or shear over normal stress).
-    normal_stress : Array or None
-        Normal stress, Pa, or normal force, N, as the file gives it (see ``normal_unit``).
-    normal_unit : str
-        ``"Pa"``, ``"N"``, or ``""`` when there is no normal column.
-    columns : Mapping[str, str]
-        Role (``time, disp, velocity, mu, shear, normal``) -> header cell as found.
-    first_line : int
-        File line (1-based) of the first data row.
-    units : Mapping[str, str]
-        Role -> unit as written in the file (``""``: none, read as SI).
-    """
-
-    source: str
-    time: Array
-    load_point: Array | None
-    load_velocity: Array | None
-    friction: Array
-    normal_stress: Array | None
-    normal_unit: str
-    columns: Mapping[str, str]
-    first_line: int
-    units: Mapping[str, str] = field(default_factory=dict)
-
-    def __len__(self) -> int:
-        return len(self.time)
 
 
 # ------------------------------------------------------------------------------ header
