@@ -345,7 +345,12 @@ def main(argv: list[str]) -> int:
     whole = "--no-whole" not in argv
     skip_chosen = "--whole-only" in argv
     wanted = [a for a in argv if not a.startswith("--")]
-    todo = [m for m in MUTANTS if not wanted or m[0] in wanted]
+    by_name = {m[0]: m for m in MUTANTS}
+    unknown = [w for w in wanted if w not in by_name]
+    if unknown:
+        print(f"unknown mutant(s): {', '.join(unknown)}")
+        return 2
+    todo = [by_name[w] for w in wanted] if wanted else list(MUTANTS)  # in the order given
     log = Path(tempfile.gettempdir()) / "blind_mutants2_results.jsonl"
     results = []
     for m in todo:
