@@ -20,7 +20,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from dryfriction.cli.records import cv_cost  # noqa: E402
 from dryfriction.fit.cvsteps import fit_cv_steps  # noqa: E402
 from dryfriction.fit.steps import fit_steps, step_data  # noqa: E402
-from dryfriction.io import lab  # noqa: E402
+from dryfriction.records import lab  # noqa: E402
 
 RECORD = Path(__file__).resolve().parents[1] / "examples/data/lab/sepiolite_velstep_0.2-2um_s.txt"
 

@@ -40,7 +40,7 @@ import dryfriction.fit.cvtail as cvtail  # noqa: E402
 from basalt_step import basalt_step  # noqa: E402
 from dryfriction.fit.cvsteps import fit_cv_steps, record_cv_model  # noqa: E402
 from dryfriction.fit.steps import fit_steps, step_covariance  # noqa: E402
-from dryfriction.io import lab  # noqa: E402
+from dryfriction.records import lab  # noqa: E402
 
 DIRECT = 0.03
 

@@ -2,7 +2,7 @@
 
 Generates the zoo's records (``tests/records_zoo.py``: an independent rate-and-state spring
 slider, every artifact alone and combined at the shared record's levels), writes each in its
-dialect to a temporary folder, reads it back with :func:`dryfriction.io.lab.read_record` and
+dialect to a temporary folder, reads it back with :func:`dryfriction.records.lab.read_record` and
 detects its program. Prints the fraction of records with the right number of velocity changes
 (and normal-stress changes), each within the larger of one sample and 0.5 s; the false-change
 rate (detected changes more than 5 s from every true one, over all detected changes); and the
@@ -34,7 +34,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import numpy as np  # noqa: E402
 
-from dryfriction.io.lab import detect_program, read_record  # noqa: E402
+from dryfriction.records.lab import detect_program, read_record  # noqa: E402
 from records_zoo import make_record, score, specs, stress_specs, write  # noqa: E402
 
 

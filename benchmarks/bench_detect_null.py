@@ -23,8 +23,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import numpy as np  # noqa: E402
 
-from dryfriction.io.detection import Z_MIN  # noqa: E402
-from dryfriction.io.lab import detect_program, read_record  # noqa: E402
+from dryfriction.records.detection import Z_MIN  # noqa: E402
+from dryfriction.records.lab import detect_program, read_record  # noqa: E402
 from records_zoo import make_record, specs, write  # noqa: E402
 
 Z_SEARCH = 2.0  # the threshold the null records are searched with

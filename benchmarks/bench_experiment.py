@@ -40,10 +40,10 @@ def _whole(path: Path, out: Path, *extra: str) -> tuple[float, float]:
 
 def main() -> None:
     from dryfriction.fit.steps import fit_steps
-    from dryfriction.io import lab
     from dryfriction.plots.record import plot_record
     from dryfriction.plots.steps import plot_step, plot_steps_summary
     from dryfriction.plots.style import save_figure
+    from dryfriction.records import lab
     from experiment_zoo import make_experiment
     from records_zoo import write
 

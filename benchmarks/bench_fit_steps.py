@@ -22,7 +22,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from dryfriction.fit.steps import fit_steps  # noqa: E402
-from dryfriction.io.data import SeriesData  # noqa: E402
+from dryfriction.records.data import SeriesData  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from lab_synth import Truth, synth_record  # noqa: E402

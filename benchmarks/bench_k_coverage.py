@@ -30,7 +30,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from dryfriction.fit.steps import fit_steps  # noqa: E402
-from dryfriction.io.data import SeriesData  # noqa: E402
+from dryfriction.records.data import SeriesData  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
@@ -60,7 +60,7 @@ def _old_ratio(res: Any) -> list[float]:
 def fit_one(kind: str, seed: int) -> tuple[Any, dict[str, float]]:
     """The fit of one seeded record of ``kind`` (:data:`KINDS`) and its truth."""
     if kind.startswith("basalt"):
-        from dryfriction.io import lab
+        from dryfriction.records import lab
         from machine_zoo import Machine, basalt_like, write_record
 
         m = Machine() if kind == "basalt_red" else Machine(mu_red=0.0,

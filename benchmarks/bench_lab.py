@@ -21,7 +21,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from dryfriction.io.lab import detect_segments, read_record, slice_steps  # noqa: E402
+from dryfriction.records.lab import detect_segments, read_record, slice_steps  # noqa: E402
 
 N = 1_000_000
 

@@ -31,7 +31,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from dryfriction.io.sweep import parse_sweep, run_sweep
+from dryfriction.sweeps.sweep import parse_sweep, run_sweep
 from dryfriction.theory.stability import critical_stiffness
 
 ROOT = Path(__file__).resolve().parents[1]

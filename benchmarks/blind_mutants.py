@@ -38,29 +38,37 @@ SRC = ROOT / "src" / "dryfriction"
 PY = str(ROOT / ".venv" / "bin" / "python")
 
 # ----------------------------------------------------------------------------- test choice
-T_RSF = ["tests/test_rsf.py", "tests/test_invariants_rsf.py", "tests/test_independent_reference.py"]
-T_STEP = ["tests/test_rsf.py", "tests/test_rsf_routes.py", "tests/test_invariants_steppers.py",
-          "tests/test_invariants_rsf.py", "tests/test_independent_reference.py"]
-T_PROG = ["tests/test_rsf_protocol.py", "tests/test_protocol.py", "tests/test_rsf.py"]
-T_THEORY = ["tests/test_direct.py", "tests/test_steady.py", "tests/test_static.py",
-            "tests/test_invariants_theory.py", "tests/test_independent_reference.py"]
-T_STAB = ["tests/test_stability.py", "tests/test_direct.py", "tests/test_invariants_theory.py",
-          "tests/test_independent_reference.py"]
-T_DIET = ["tests/test_dieterich.py", "tests/test_invariants_theory.py", "tests/test_trap.py"]
-T_CREEP = ["tests/test_creep.py", "tests/test_units.py", "tests/test_invariants_theory.py"]
-T_STAT = ["tests/test_fit.py", "tests/test_fit_hac.py", "tests/test_invariants_estimators.py"]
-T_STEPS = ["tests/test_fit_steps.py", "tests/test_invariants_estimators.py",
-           "tests/test_fit_shs.py"]
-T_LAB = ["tests/test_lab.py", "tests/test_invariants_units.py", "tests/test_records.py"]
-T_DATA = ["tests/test_data.py", "tests/test_invariants_units.py", "tests/test_io.py"]
-T_SEG = ["tests/test_detect.py", "tests/test_invariants_estimators.py", "tests/test_signals.py"]
-T_FILES = ["tests/test_file_safety.py", "tests/test_io.py"]
-T_BIF = ["tests/test_bifurcation.py"]
-T_SS = ["tests/test_stickslip.py"]
-T_ENS = ["tests/test_direct_inertia.py", "tests/test_invariants_ensemble.py",
-         "tests/test_ensemble.py"]
-T_PLOT = ["tests/test_plots.py", "tests/test_figure_formats.py"]
-T_CLI = ["tests/test_cli.py", "tests/test_records.py", "tests/test_cli_simulate.py"]
+T_RSF = ["tests/rsf/test_rsf.py", "tests/rsf/test_invariants.py",
+         "tests/theory/test_independent_reference.py"]
+T_STEP = ["tests/rsf/test_rsf.py", "tests/rsf/test_routes.py",
+          "tests/ensemble/test_invariants_steppers.py",
+          "tests/rsf/test_invariants.py", "tests/theory/test_independent_reference.py"]
+T_PROG = ["tests/cli/test_rsf_protocol.py", "tests/io/test_protocol.py", "tests/rsf/test_rsf.py"]
+T_THEORY = ["tests/theory/test_direct.py", "tests/theory/test_steady.py",
+            "tests/theory/test_static.py",
+            "tests/theory/test_invariants.py", "tests/theory/test_independent_reference.py"]
+T_STAB = ["tests/theory/test_stability.py", "tests/theory/test_direct.py",
+          "tests/theory/test_invariants.py",
+          "tests/theory/test_independent_reference.py"]
+T_DIET = ["tests/theory/test_dieterich.py", "tests/theory/test_invariants.py",
+          "tests/theory/test_trap.py"]
+T_CREEP = ["tests/theory/test_creep.py", "tests/theory/test_units.py",
+           "tests/theory/test_invariants.py"]
+T_STAT = ["tests/fit/test_fit.py", "tests/fit/test_hac.py",
+          "tests/fit/test_invariants_estimators.py"]
+T_STEPS = ["tests/fit/test_steps.py", "tests/fit/test_invariants_estimators.py",
+           "tests/fit/test_shs.py"]
+T_LAB = ["tests/records/test_lab.py", "tests/io/test_invariants_units.py", "tests/test_tables.py"]
+T_DATA = ["tests/io/test_data.py", "tests/io/test_invariants_units.py", "tests/io/test_io.py"]
+T_SEG = ["tests/records/test_detect.py", "tests/fit/test_invariants_estimators.py",
+         "tests/cli/test_signals.py"]
+T_FILES = ["tests/io/test_file_safety.py", "tests/io/test_io.py"]
+T_BIF = ["tests/analysis/test_bifurcation.py"]
+T_SS = ["tests/analysis/test_stickslip.py"]
+T_ENS = ["tests/ensemble/test_direct_inertia.py", "tests/ensemble/test_invariants.py",
+         "tests/ensemble/test_population.py"]
+T_PLOT = ["tests/plots/test_plots.py", "tests/plots/test_figure_formats.py"]
+T_CLI = ["tests/cli/test_cli.py", "tests/test_tables.py", "tests/cli/test_simulate.py"]
 
 # ----------------------------------------------------------------------------- the mutants
 # (name, file under src/dryfriction, original, mutated, why plausible, test files)
@@ -136,7 +144,7 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "log_vc = math.log(2.0 * v_ref) - 1.0 / direct",
      "log_vc = math.log(v_ref) - 1.0 / direct",
      "V_c without its factor 2 in g'(V) (near-rest, ensemble inertia)",
-     T_THEORY + ["tests/test_direct_inertia.py"]),
+     T_THEORY + ["tests/ensemble/test_direct_inertia.py"]),
     ("direct_jump_not_relative", "theory/direct.py",
      "return np.asarray(mu, float) * (g2 / g1 - 1.0)",
      "return np.asarray(mu, float) * (g2 - g1)",
@@ -178,7 +186,7 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "chain = delay_chain_limit(resp, stiffness, mass, damping)",
      "chain = delay_chain_limit(resp, stiffness)",
      "mass and damping not passed to the chain limit (inertial regime only)",
-     ["tests/test_stability.py", "tests/test_sweep.py"]),
+     ["tests/theory/test_stability.py", "tests/sweeps/test_sweep.py"]),
     ("bif_hysteresis_strict", "analysis/bifurcation.py",
      "hyst = [r[\"d\"] for r in scan[\"up\"] if r[\"d\"] <= 0.0 and r[\"amplitude\"] > thr",
      "hyst = [r[\"d\"] for r in scan[\"up\"] if r[\"d\"] < 0.0 and r[\"amplitude\"] > thr",
@@ -240,23 +248,23 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "delta method forgotten for log-fitted parameters (stderr of ln p reported as of p)",
      T_STEPS),
     # --- io
-    ("lab_hr_factor", "io/lab.py",
+    ("lab_hr_factor", "records/lab.py",
      "_TIME = {**TIME_UNITS, \"sec\": 1.0, \"hr\": 3600.0}",
      "_TIME = {**TIME_UNITS, \"sec\": 1.0, \"hr\": 60.0}",
      "hours alias given minutes' factor (rare unit)", T_LAB),
-    ("lab_MN_factor", "io/lab.py",
+    ("lab_MN_factor", "records/lab.py",
      "_FORCE = {\"N\": 1.0, \"kN\": 1e3, \"MN\": 1e6}",
      "_FORCE = {\"N\": 1.0, \"kN\": 1e3, \"MN\": 1e3}",
      "mega-newton factor copied from kN (rare unit)", T_LAB),
-    ("data_day_factor", "io/data.py",
+    ("data_day_factor", "records/data.py",
      "\"d\": 86400.0,",
      "\"d\": 8640.0,",
      "seconds per day typo (rare unit)", T_DATA),
-    ("seg_noise_mad_unscaled", "io/segmentation.py",
+    ("seg_noise_mad_unscaled", "records/segmentation.py",
      "mad = 1.4826 * float(np.median(np.abs(d2 - np.median(d2))))",
      "mad = float(np.median(np.abs(d2 - np.median(d2))))",
      "MAD not scaled to a Gaussian sigma (hidden by the max with the trimmed RMS?)", T_SEG),
-    ("labsteps_kN_scale", "io/labsteps.py",
+    ("labsteps_kN_scale", "records/labsteps.py",
      "nu, scale = (\"MPa\", 1e-6) if normal_unit != \"N\" else (\"kN\", 1e-3)",
      "nu, scale = (\"MPa\", 1e-6) if normal_unit != \"N\" else (\"kN\", 1e3)",
      "segments.csv normal force column in the wrong unit factor (force records only)", T_LAB),

@@ -4,7 +4,7 @@ independent rate-and-state forward model of :mod:`records_zoo` (ageing law, LSOD
 values the issue reports for that step (a = 0.0088, b = 0.0093, Dc = 6.8 um) on a spring of
 7000 /m, a trend of -3 /m of load-point travel and white noise of 8e-4 (the record's rms
 misfit, 8.3e-4). 200 s before the change, 100 s after: the step's window (50 um before the
-change, :func:`dryfriction.io.lab.slice_steps`) holds 10166 samples, as the basalt step's
+change, :func:`dryfriction.records.lab.slice_steps`) holds 10166 samples, as the basalt step's
 ~1e4."""
 
 from __future__ import annotations

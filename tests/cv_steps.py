@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from dryfriction.io.data import SeriesData
+from dryfriction.records.data import SeriesData
 
 
 def synthetic_steps(true: Mapping[str, float], model: Any, seed: int,

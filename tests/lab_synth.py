@@ -13,7 +13,7 @@ The slip rate is a function of ``(tau, theta)``, positive for any finite ``tau``
 standard (unregularised) law stays valid through a hold: with the load point stopped the spring
 unloads, ``V`` falls by decades but never reaches 0, and ``theta`` grows at nearly ``1``. (The
 project uses the regularised ``asinh`` law for a program with a hold; the two differ by a
-relative ``exp(-2 mu/a)``, about ``1e-87`` here.) ``tests/test_fit_shs.py`` checks the holds
+relative ``exp(-2 mu/a)``, about ``1e-87`` here.) ``tests/fit/test_shs.py`` checks the holds
 against the closed-form healing ``b ln(1 + t_h/theta_ss)`` on a stiff machine.
 
 The measured friction is ``tau + trend * x_lp + noise`` with ``x_lp`` the load-point

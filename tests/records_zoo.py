@@ -382,7 +382,7 @@ def tolerance(t: np.ndarray, at: float) -> float:
 
 
 def score(rec: ZooRecord, det: object, cpu: float) -> Score:
-    """Compare a :class:`dryfriction.io.detection.Detection` with the truth of ``rec``."""
+    """Compare a :class:`dryfriction.records.detection.Detection` with the truth of ``rec``."""
     segs = det.segments  # type: ignore[attr-defined]
     t0 = float(rec.t[0])
     found = [s.t_start - t0 for p, s in zip(segs, segs[1:], strict=False)

@@ -50,7 +50,7 @@ def test_the_sweep_benchmarks_are_32_points_of_what_they_say() -> None:
     from benchmarks.bench_sweep import CASES
 
     from dryfriction.analysis.stickslip import stick_slip_summary
-    from dryfriction.io.sweep import parse_sweep
+    from dryfriction.sweeps.sweep import parse_sweep
 
     for case, make in CASES.items():
         assert parse_sweep(make()[0]).size == 32, case

@@ -5,7 +5,9 @@ After the re-layout into layer folders, 36 docstrings still named module paths o
 follows one gets an ImportError (or, through the compatibility finder, a deprecation warning).
 Every absolute ``dryfriction.a.b`` in the package's source must import and resolve to an
 attribute, and every relative Sphinx reference ``:func:`.a.b``` must end a real path, except
-in :mod:`dryfriction._compat`, whose subject is the old paths.
+in :mod:`dryfriction._compat`, whose subject is the old paths. The command line's help, as a
+user reads it (every command's and option's text, composed however the source composes it), is
+held to the same rule.
 """
 
 from __future__ import annotations
@@ -91,9 +93,38 @@ def test_every_named_path_exists() -> None:
     assert not stale, "stale paths:\n" + "\n".join(stale)
 
 
+def help_texts() -> list[tuple[str, str]]:
+    """(command, text) for the help of every command and group of the command line and of each
+    of their arguments and options."""
+    import typer
+
+    from dryfriction.cli.commands import app
+
+    def walk(command: object, path: str) -> list[tuple[str, str]]:
+        texts = [getattr(command, "help", None), getattr(command, "epilog", None)]
+        texts += [getattr(p, "help", None) for p in getattr(command, "params", [])]
+        out = [(path, t) for t in texts if t]
+        for name, sub in getattr(command, "commands", {}).items():
+            out += walk(sub, f"{path} {name}")
+        return out
+
+    return walk(typer.main.get_command(app), "dryfriction")
+
+
+def test_every_path_in_help_exists() -> None:
+    texts = help_texts()
+    assert len(texts) > 100  # the walk reaches the commands' options
+    named = [(c, m.group(0).rstrip(".")) for c, t in texts for m in ABSOLUTE.finditer(t)]
+    assert named  # at least one help text names a module (simulate's protocol)
+    stale = [f"{c}: {p}" for c, p in named if not resolves(p)]
+    assert not stale, "stale paths in help:\n" + "\n".join(stale)
+
+
 def test_the_check_sees_an_old_path() -> None:
     # the mistake this file is for: a path of release 0.1, or a relative one that ends nowhere
     assert not resolves("dryfriction.stability.effective_rsf")
+    assert not resolves("dryfriction.io.lab.read_record")  # moved to records/ (issue 26)
+    assert resolves("dryfriction.records.lab.read_record")
     assert not resolves("dryfriction.theory.stability.effective_rsf_twin")
     assert resolves("dryfriction.theory.stability.effective_rsf")
     assert resolves("dryfriction.rsf.RateState")  # a lazy public name

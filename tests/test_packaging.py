@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 
 from dryfriction.cli import app
 from dryfriction.io.examples import copy_examples, example_files, examples_path
-from dryfriction.io.sweep import SWEEP_MODULES, parse_sweep, run_sweep
+from dryfriction.sweeps.sweep import SWEEP_MODULES, parse_sweep, run_sweep
 from dryfriction.validation import MissingExtraError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -42,7 +42,7 @@ def test_formulas_need_no_sweep_packages() -> None:
     code = (
         "import sys\n"
         f"for m in {SWEEP_MODULES!r}: sys.modules[m] = None\n"
-        "import dryfriction as df, dryfriction.io.sweep, dryfriction.cli\n"
+        "import dryfriction as df, dryfriction.sweeps.sweep, dryfriction.cli\n"
         "print(float(df.static_friction(10.0, eps=0.04)))\n"
         "from dryfriction.cli import main\n"
         "sys.exit(main(['trap', '--alpha', '0.13', '--json']))\n"

@@ -9,7 +9,8 @@ The package is layered, each layer importing only those below it::
     plots/      every figure (the only matplotlib user)
     analysis/   stick-slip, the trap model seen through rate-and-state
     fit/        models, statistics, the fitting engine
-    io/         files, protocol files (the only parser), measured data, sweeps
+    records/    measured records and data sets         sweeps/  parameter sweeps on Dask
+    io/         files and results folders, protocol files (the only parser)
     ensemble/   the trap population and its drives      rsf/  rate-and-state laws and solver
     theory/     the model's equations
     program.py, validation.py
@@ -50,7 +51,7 @@ _PUBLIC: dict[str, str] = {
     "RateState": "rsf.law",
     "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
     # files, fitting
-    "load_protocol": "io.protocol", "read_csv": "io.data",
+    "load_protocol": "io.protocol", "read_csv": "records.data",
     "fit": "fit",
 }
 _RENAMED = {"rsf_linear_stability": ("rsf.driving", "linear_stability")}

@@ -21,12 +21,19 @@ MOVED: dict[str, str] = {
     "stability": "theory.stability", "units": "theory.units",
     "ensemble": "ensemble.population", "driving": "ensemble.driving",
     "rsf_driving": "rsf.driving",
-    "protocol": "io.protocol", "data": "io.data", "sweep": "io.sweep",
+    "protocol": "io.protocol", "data": "records.data", "sweep": "sweeps.sweep",
     "stickslip": "analysis.stickslip", "rsf_view": "analysis.rsf_view",
     "plotting": "plots.paper", "figures": "plots.report",
+    # release 0.2: io/ split by concern (issue 26 item 3)
+    **{f"io.{m}": f"records.{m}" for m in (
+        "lab", "labsteps", "labforms", "data", "detection", "segmentation", "placement",
+        "artifacts", "hinge_kernel")},
+    **{f"io.{m}": f"sweeps.{m}" for m in ("sweep", "cluster", "cf")},
 }
 """Old module (under ``dryfriction.``) -> its new home. ``dryfriction.rsf`` and
-``dryfriction.io`` are packages now; ``dryfriction.rsf.RateState`` still works."""
+``dryfriction.io`` are packages now; ``dryfriction.rsf.RateState`` still works. The records
+and sweeps modules of ``dryfriction.io`` moved to ``dryfriction.records`` and
+``dryfriction.sweeps`` (``dryfriction.io.lab`` -> ``dryfriction.records.lab``)."""
 
 
 class MovedModuleFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):

@@ -25,7 +25,7 @@ fraction of a second (the rate-and-state stepper resumes exactly where it stoppe
 installing without ``make``'s warm-up, announced by its own line) holds it back until it ends.
 A loaded compiled function that returns only scalars (the trap ensemble's kernel,
 :func:`dryfriction.ensemble.kernel.advance_window`) needs no guard: its wrapper calls no Python
-code (``tests/test_signals.py`` keeps both halves of the rule).
+code (``tests/cli/test_signals.py`` keeps both halves of the rule).
 """
 
 from __future__ import annotations

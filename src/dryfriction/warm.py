@@ -81,11 +81,11 @@ def warm() -> float:
             for i, doc in enumerate(WARM_PROTOCOLS):
                 protocol_from_dict(doc, f"warm-up protocol {i}").run()
     linear_stability(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6), 1e-6, 1e3)
-    # the load-program detector's hinge kernel (io/hinge_kernel.py, small: about 2 s to
+    # the load-program detector's hinge kernel (records/hinge_kernel.py, small: about 2 s to
     # compile, so it is not in KERNEL_MODULES' notice)
     import numpy as np
 
-    from .io.segmentation import best_hinge
+    from .records.segmentation import best_hinge
 
     best_hinge(np.linspace(0.0, 1.0, 16), np.zeros(16), 3, 0.0)
     return time.perf_counter() - start

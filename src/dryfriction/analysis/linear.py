@@ -45,7 +45,8 @@ SWEEP_VARIABLES: dict[str, dict[str, str]] = {
     "linearly_stable": {"long_name": "steady sliding linearly stable (1) or not (0)",
                         "units": "1"},
 }
-"""CF attributes of :func:`linear_summary`'s results in ``sweep.nc`` (:mod:`dryfriction.io.cf`)."""
+"""CF attributes of :func:`linear_summary`'s results in ``sweep.nc``
+(:mod:`dryfriction.sweeps.cf`)."""
 
 
 def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:

@@ -48,8 +48,8 @@ import numpy as np
 from ..ensemble.driving import Output, SimulationResult, VelocityDrive, simulate
 from ..ensemble.population import Initial, Track, TrapModel
 from ..fit import FitResult, RSFModel, fit
-from ..io.data import SeriesData, StaticData
 from ..program import Segment, VelocityProgram
+from ..records.data import SeriesData, StaticData
 from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
 from ..theory.stability import effective_rsf, shift_stiffness

@@ -115,7 +115,7 @@ SWEEP_VARIABLES: dict[str, dict[str, Any]] = {
     "stiffness": {"long_name": "spring stiffness", "units": "F_el/a0"},
 }
 """CF attributes of :func:`stick_slip_summary`'s results in ``sweep.nc``
-(:mod:`dryfriction.io.cf`)."""
+(:mod:`dryfriction.sweeps.cf`)."""
 
 
 @dataclass(frozen=True)
@@ -316,7 +316,7 @@ def stick_slip_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
       ``drive.segments.0.velocity`` moves both.
 
     Returns :meth:`StickSlipStats.to_dict` plus ``u`` and ``stiffness``. Picklable (a module
-    function), so :func:`dryfriction.io.sweep.run_sweep` can ship it to workers.
+    function), so :func:`dryfriction.sweeps.sweep.run_sweep` can ship it to workers.
     """
     proto, opts = spring_point(protocol)
     res = simulate(proto.model, proto.track, proto.initial, proto.drive, proto.output)

@@ -118,8 +118,8 @@ def fit_command(
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
     fit.png (data, fitted curve, residuals)."""
     from ..fit import compare_models, fit
-    from ..io.data import read_csv
     from ..io.files import check_output_dir, output_directory, write_json
+    from ..records.data import read_csv
     from ..validation import check_choice, check_figure_format
 
     check_choice("model", model, ("cv", "rsf"))

@@ -27,6 +27,8 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from . import figures
+
 __all__ = ["FIGURE_COMMANDS", "MAX_PAYLOAD", "Painter", "active", "draw_figure", "paint",
            "painting", "start", "stop", "wanted"]
 
@@ -41,7 +43,7 @@ ENV = "DRYFRICTION_PAINTER"
 """``"0"`` turns the painter off (the figures are then drawn in the command's own process)."""
 
 _HEADER = struct.Struct("<Q")
-_PRELOAD = ("dryfriction.plots.runs",)
+_PRELOAD: tuple[Callable[[], object], ...] = (figures.preload,)
 
 
 @dataclass(frozen=True)
@@ -65,8 +67,8 @@ def wanted(argv: Sequence[str]) -> bool:
     return command in FIGURE_COMMANDS
 
 
-def start(preload: Sequence[str] = _PRELOAD) -> Painter | None:
-    """Fork a painter that imports ``preload``, then waits for jobs.
+def start(preload: Sequence[Callable[[], object]] = _PRELOAD) -> Painter | None:
+    """Fork a painter that calls each of ``preload`` (imports), then waits for jobs.
 
     Returns ``None`` (and starts nothing) where a painter cannot help or is not safe: no
     ``fork``, a single core, other threads running in this process (a fork copies only the
@@ -130,9 +132,10 @@ def painting(argv: Sequence[str] | None) -> Iterator[Painter | None]:
             stop()
 
 
-def paint(target: str, *args: Any, **kwargs: Any) -> Any:
-    """Call ``target`` (``"module:function"``) with the arguments, in the painter if one is
-    running, else here; return what it returns, or raise what it raised.
+def paint(target: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+    """Call ``target`` (a module-level function: it is pickled as its module and name) with the
+    arguments, in the painter if one is running, else here; return what it returns, or raise
+    what it raised.
 
     The painter is used only for arguments that pickle to at most :data:`MAX_PAYLOAD` bytes.
     If the painter has died, the call runs here (and the painter is reaped).
@@ -158,40 +161,33 @@ def paint(target: str, *args: Any, **kwargs: Any) -> Any:
                 if ok:
                     return value
                 raise value
-    return _resolve(target)(*args, **kwargs)
+    return target(*args, **kwargs)
 
 
-def draw_figure(builder: str, *args: Any, path: Any, fmt: str = "png",
-                dpi: int | None = None) -> None:
-    """Build a figure with ``builder(*args)`` (``"module:function"`` returning ``(fig, axes)``)
-    and save it to ``path`` with :func:`dryfriction.plots.style.save_figure`, in the painter
-    if one is running (:func:`paint`)."""
-    paint(f"{__name__}:_render", builder, *args, path=path, fmt=fmt, dpi=dpi)
+def draw_figure(builder: Callable[..., tuple[Any, Any]], *args: Any, path: Any,
+                fmt: str = "png", dpi: int | None = None) -> None:
+    """Build a figure with ``builder(*args)`` (one of :mod:`.figures`, returning
+    ``(fig, axes)``) and save it to ``path`` with :func:`dryfriction.plots.style.save_figure`,
+    in the painter if one is running (:func:`paint`)."""
+    paint(render, builder, *args, path=path, fmt=fmt, dpi=dpi)
 
 
-def _render(builder: str, *args: Any, path: Any, fmt: str, dpi: int | None) -> None:
+def render(builder: Callable[..., tuple[Any, Any]], *args: Any, path: Any, fmt: str,
+           dpi: int | None) -> None:
+    """Build the figure and save it (what :func:`draw_figure` runs, here or in the painter)."""
     from ..plots.style import save_figure
 
-    fig, _ = _resolve(builder)(*args)
+    fig, _ = builder(*args)
     save_figure(fig, path, fmt, dpi)
 
 
-def _resolve(target: str) -> Callable[..., Any]:
-    import importlib
-
-    module, _, name = target.partition(":")
-    return getattr(importlib.import_module(module), name)  # type: ignore[no-any-return]
-
-
-def _serve(jobs: int, results: int, preload: Sequence[str]) -> None:
+def _serve(jobs: int, results: int, preload: Sequence[Callable[[], object]]) -> None:
     """The painter's life: import, then run each job until the command closes the pipe.
 
     Nothing is drawn ahead to warm matplotlib's caches: measured, a warm-up figure cost 0.15 s
     and saved 0.03 s of the real one (its caches are mostly per figure)."""
-    import importlib
-
-    for name in preload:
-        importlib.import_module(name)
+    for load in preload:
+        load()
     while True:
         try:
             message = _receive(jobs)
@@ -199,7 +195,7 @@ def _serve(jobs: int, results: int, preload: Sequence[str]) -> None:
             return
         try:
             target, args, kwargs = pickle.loads(message)
-            reply = (True, _resolve(target)(*args, **kwargs))
+            reply = (True, target(*args, **kwargs))
         except Exception as exc:  # noqa: BLE001 - raised again in the command
             reply = (False, exc)
         try:

@@ -17,7 +17,7 @@ COLUMNS_HELP = ("Name the columns the guesses miss: time=Time,disp=LP_disp:mm,mu
                 "(keys time, disp, velocity, mu, shear, normal; an optional :unit for a header "
                 "without one).")
 def _segments_help() -> str:
-    from ..io.labsteps import SEGMENTS_SYNTAX
+    from ..records.labsteps import SEGMENTS_SYNTAX
 
     return "Give the load program instead of detecting it. " + SEGMENTS_SYNTAX
 
@@ -45,7 +45,7 @@ def record_command(
     fluctuations is refused (exit 2): give its program with --segments."""
     from ..io.files import check_output_dir
     out_dir = Path(out) if out is not None else None
-    from ..io.lab import (
+    from ..records.lab import (
         apparatus_note,
         detect_program,
         no_change_message,
@@ -138,9 +138,9 @@ def write_record_outputs(out_dir: Path, rec: Any, segs: Any, det: Any, *, force:
 def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bool,
                        fmt: str = "png", dpi: int | None = None) -> None:
     """record.{fmt} and segments.csv into ``folder`` (a staging folder)."""
-    from ..io.lab import write_segments_csv
     from ..plots.record import plot_record
     from ..plots.style import save_figure
+    from ..records.lab import write_segments_csv
 
     write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)
     fig, _ = plot_record(rec, segs, det, given=given)

@@ -31,11 +31,11 @@ search of issue 30, when the estimate ran 2.2 times over the measured CPU."""
 
 
 def is_project_csv(path: Path) -> bool:
-    """Whether ``path`` is in the project's own CSV format (:mod:`dryfriction.io.data`): its
+    """Whether ``path`` is in the project's own CSV format (:mod:`dryfriction.records.data`): its
     first line that is not a comment or blank is a comma-separated header holding the columns
     of one data kind. Anything else is read as a laboratory record."""
-    from ..io.labforms import FORMS
     from ..io.textfile import check_text_file
+    from ..records.labforms import FORMS
 
     if Path(path).suffix.lower() in FORMS:  # a .xlsx or .mat is a record, as `record` reads it
         return False
@@ -158,8 +158,8 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         step_data,
         write_steps_csv,
     )
-    from ..io import lab
     from ..io.files import output_directory, write_json
+    from ..records import lab
     from ..validation import check_choice
 
     check_choice("errors", errors, ERRORS)
@@ -197,7 +197,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
         res.notes.append(profile_note)
     if res.drive is not None and res.drive.get("kind") == "measured":
         if profile:  # the same rule as the profiles: a fit of its own per step
-            from ..fit.loadpoint import compare_with_program
+            from ..fit.steps import compare_with_program
 
             # how k and a depend on the drive: each step once more on the program (issue 30)
             res.drive["comparison"] = compare_with_program(res.data, res.fits, res.rows)

@@ -10,6 +10,7 @@ from typing import Annotated, Any
 import typer
 import typer.core
 
+from . import figures
 from .common import (
     DPI_HELP,
     FIGURE_HELP,
@@ -161,7 +162,7 @@ def rsf(
             write_csv(tmp / "series.csv", res.columns())
             summary = write_summary(tmp / "summary.json", res, context)
             if figure:
-                draw_figure("dryfriction.plots.runs:rsf_figure", res,
+                draw_figure(figures.rsf_figure, res,
                             f"{case}, {state_law} law", path=tmp / f"rsf.{fmt}", fmt=fmt,
                             dpi=dpi)
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
@@ -240,7 +241,7 @@ def simulate(
         summary = write_summary(tmp / "summary.json", result,
                                 {"protocol": str(Path(protocol))})
         if figure:
-            draw_figure("dryfriction.plots.runs:timeseries_figure", result,
+            draw_figure(figures.timeseries_figure, result,
                         path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
         for i, snap in enumerate(result.snapshots):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
@@ -294,7 +295,7 @@ def compare(
                           report=say) as tmp:
         write_json(tmp / "compare.json", report)
         if figure:
-            draw_figure("dryfriction.plots.runs:comparison_figure", c, Path(protocol).name,
+            draw_figure(figures.comparison_figure, c, Path(protocol).name,
                         path=tmp / f"compare.{fmt}", fmt=fmt, dpi=dpi)
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
@@ -319,7 +320,7 @@ def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
         write_csv(tmp / "timeseries.csv", res.columns())
         summary = write_summary(tmp / "summary.json", res, context)
         if figure:
-            draw_figure("dryfriction.plots.runs:rsf_timeseries_figure", res,
+            draw_figure(figures.rsf_timeseries_figure, res,
                         path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
     brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
     emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "

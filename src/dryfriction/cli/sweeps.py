@@ -35,8 +35,8 @@ def _prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | No
 
     from ..io.files import check_writable_dir
     from ..io.protocol import spring_point
-    from ..io.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
     from ..io.textfile import HEAD_BYTES, check_text
+    from ..sweeps.sweep import MAX_POINTS, SWEEP_MODULES, parse_sweep
     from ..validation import require_extra
 
     require_extra("sweep", SWEEP_MODULES, "a sweep")  # before any work, like bad input
@@ -106,9 +106,9 @@ def _run_with_bar(spec: Any, runner: Any, out_dir: str, scheduler: str | None,
                   workers: int | None, confirm: bool, *, source: str = "",
                   protocol_text: str = "", connect_timeout: float = 10.0, resume: str = "",
                   variables: Any = None, outputs: Any = None) -> Any:
-    """:func:`~dryfriction.io.sweep.run_sweep` with a progress bar; Ctrl-C prints how many points
-    are stored and the command that resumes, and exits with 130."""
-    from ..io.sweep import SweepInterrupted, run_sweep
+    """:func:`~dryfriction.sweeps.sweep.run_sweep` with a progress bar; Ctrl-C prints how many
+    points are stored and the command that resumes, and exits with 130."""
+    from ..sweeps.sweep import SweepInterrupted, run_sweep
 
     try:
         with progress_bar("sweep", spec.size, unit="points", delay=0.0) as update:

@@ -522,7 +522,7 @@ def simulate(
     if model.direct and not isinstance(drive, ForceDrive):
         back = [i for i, v in enumerate(drive.program.velocities) if v < 0.0]
         if back:  # g(V) is odd and the population's force changes sign with V already, so
-            # the product would keep the forward sign (tests/test_invariants_ensemble.py)
+            # the product would keep the forward sign (tests/ensemble/test_invariants.py)
             raise ValueError(
                 f"segments[{back[0]}].velocity = {drive.program.velocities[back[0]]:g} is out "
                 "of range with the direct effect: allowed >= 0 (sliding back is modelled only "

@@ -18,8 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
 from ..program import Segment
+from ..records.data import SeriesData
 from ..theory.direct import junction_strength
 from ..theory.stability import effective_rsf
 from ..theory.steady import steady_friction

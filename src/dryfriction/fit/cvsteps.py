@@ -21,7 +21,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from .cvseries import cv_start_from_rsf
 from .engine import fit
 from .models import CVModel

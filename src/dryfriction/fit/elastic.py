@@ -15,7 +15,7 @@ rise (at least :data:`MIN_SAMPLES` samples), its standard error that of AR(1) no
 ``rho`` read from the segment's second half about its line (the steady sliding after the
 peak). The slider creeps during the reload, so the slope is low by the mean ``V/V_lp`` over
 that stretch: about 1.5 % on the synthetic slide-hold-slide records of
-``tests/test_fit_elastic.py`` (k = 3000 /m, a reload rise of 0.03-0.04). An unloading (the
+``tests/fit/test_elastic.py`` (k = 3000 /m, a reload rise of 0.03-0.04). An unloading (the
 load point moving back) would do as well; the records read here do not run backwards
 (``v_load >= 0``), so none is used.
 """
@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from .identify import record_stiffness
 from .machine import load_point_displacement
 

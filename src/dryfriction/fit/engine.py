@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
-from ..io.data import Dataset, SeriesData, StaticData, SteadyData
+from ..records.data import Dataset, SeriesData, StaticData, SteadyData
 from ..validation import Array, check_choice, check_scalar
 from .models import CVModel, Model, ParamSpec, RSFModel, data_kinds
 from .problem import Problem
@@ -393,9 +393,10 @@ def fit(
     Parameters
     ----------
     datasets : data set or iterable of them
-        :class:`~dryfriction.io.data.StaticData`, :class:`~dryfriction.io.data.SteadyData`,
-        :class:`~dryfriction.io.data.SeriesData` (SI units), e.g. from
-        :func:`dryfriction.io.data.read_csv`.
+        :class:`~dryfriction.records.data.StaticData`,
+        :class:`~dryfriction.records.data.SteadyData`,
+        :class:`~dryfriction.records.data.SeriesData` (SI units), e.g. from
+        :func:`dryfriction.records.data.read_csv`.
     model : {"cv", "rsf"} or CVModel or RSFModel
         The trap model or rate-and-state friction. The keyword options below build the model
         from a name and are ignored for a model object.

@@ -48,7 +48,7 @@ __all__ = ["LEVEL_REL", "PANELS", "EXPERIMENT_COLUMNS", "PROFILE_MAX_STEPS", "st
 LEVEL_REL = 0.03
 """Two steps are at one normal-stress level when their normal stresses differ by at most this
 fraction of the lower one: the size of change the detector takes for a change of level
-(:mod:`dryfriction.io.detection`, a normal-stress change is at least 3 % of the level), so that
+(:mod:`dryfriction.records.detection`, a normal-stress change is at least 3 % of the level), so that
 levels and the detector's boundaries agree."""
 
 PANELS: tuple[tuple[str, str], ...] = (("a_minus_b", "a - b"), ("a", "a"), ("b", "b"),

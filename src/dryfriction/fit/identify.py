@@ -56,7 +56,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from ..validation import Array
 from .machine import load_point_displacement
 from .models import ParamSpec

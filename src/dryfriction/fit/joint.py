@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from ..validation import Array
 from .engine import fit
 from .models import ParamSpec, RSFModel, rsf_series

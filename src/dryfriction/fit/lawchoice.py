@@ -32,7 +32,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from .identify import record_stiffness, split_flags
 from .laws import FIT_LAWS
 from .onemachine import fit_steps_one_machine

@@ -48,15 +48,15 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
 from ..program import Segment, VelocityProgram
+from ..records.data import SeriesData
 from ..validation import Array
 
 __all__ = ["DRIVES", "SPAN_SLIP", "HOLD_SPAN", "MIN_FRACTION", "ChangeEstimate",
            "change_time_effect", "LoadPointDrive", "DrivenSeries", "estimate_change",
            "measured_drive",
            "measured_series", "check_drive", "drive_report",
-           "COMPARED", "compare_with_program", "load_program"]
+           "load_program"]
 
 DRIVES = ("program", "measured")
 """``--drive``: the idealised piecewise-constant program, or the measured load point."""
@@ -289,7 +289,7 @@ def measured_series(data: SeriesData, record: Any,
                     shift: dict[int, float] | None = None) -> DrivenSeries:
     """``data`` (the record's program as a series) with the measured drive of ``record``
     (a laboratory record with a load-point displacement or velocity column)."""
-    from ..io.detection import displacement, find_resets
+    from ..records.detection import displacement, find_resets
 
     if record is None or (getattr(record, "load_point", None) is None
                           and getattr(record, "load_velocity", None) is None):
@@ -311,41 +311,6 @@ def drive_report(data: SeriesData) -> dict[str, Any]:
             "method": "the record's load-point displacement: the program's broken line with "
                       "its corners placed from the displacement, plus the residual smoothed by "
                       "a GCV smoothing spline (fit.loadpoint)"}
-
-
-COMPARED = ("a", "b", "dc", "stiffness")
-"""The values :func:`compare_with_program` reports under both drives."""
-
-
-def compare_with_program(pieces: list[SeriesData], fits: list[Any],
-                         rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """How each step's values depend on the drive (issue 30 item 3: "report how k and a
-    depend on that choice"): every window refitted on the idealised program, started from
-    its measured-drive optimum (one local fit each), its ``a, b, dc, stiffness`` and rms
-    beside the measured drive's (the rows' values, NaN where not identified: the refit's
-    are raw). One dict per step for ``fit.json``'s ``drive.comparison``."""
-    from .engine import fit
-
-    out: list[dict[str, Any]] = []
-    for d, r, row in zip(pieces, fits, rows, strict=True):
-        plain = SeriesData(d.t, d.v_load, d.mu, d.sigma, d.source)
-        start = {p.name: p.value for p in r.parameters if not p.fixed}
-        entry: dict[str, Any] = {"index": row["index"],
-                                 "measured": {n: row[n] for n in (*COMPARED, "rms")}}
-        try:
-            rp = fit(plain, r.fitted_model, start=start, multistart=False, profile=False)
-        except ValueError as exc:  # the program cannot be run with these values
-            entry["program"] = {"not_run": str(exc)}
-            out.append(entry)
-            continue
-        vals = {p.name: p.value for p in rp.parameters}
-        k_fixed = getattr(r.fitted_model, "stiffness", math.nan)
-        entry["program"] = {n: float(vals.get(n, k_fixed if n == "stiffness" else math.nan))
-                            for n in COMPARED}
-        entry["program"]["rms"] = float(rp.goodness.get("rms_residual", math.nan))
-        entry["program"]["success"] = bool(rp.success)
-        out.append(entry)
-    return out
 
 
 _PROGRAMS: dict[int, tuple[Any, VelocityProgram, Array, bool]] = {}

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from ..io.data import SeriesData
+from ..records.data import SeriesData
 from ..validation import Array
 
 __all__ = ["load_point_displacement", "loading_slope_stiffness", "hold_remnant"]
@@ -79,7 +79,7 @@ def hold_remnant(data: SeriesData, i_start: int, b: float, dc: float
     law, ``b ln(1 + t_h V/Dc)`` (``V`` the velocity before that hold), decayed as
     ``exp(-s/Dc)`` over the load-point slip ``s`` from the reslide to ``i_start``: an order of
     magnitude, low on a soft machine, whose transient decays more slowly (on the synthetic
-    record of ``tests/test_fit_shs.py`` with k = 3000 /m: 1.8e-3 for a true 4.1e-3).
+    record of ``tests/fit/test_shs.py`` with k = 3000 /m: 1.8e-3 for a true 4.1e-3).
     ``(0, 0, inf)`` when no hold comes before ``i_start`` or the record is not sliding there.
     """
     v = data.v_load[: i_start + 1]

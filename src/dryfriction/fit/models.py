@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import Dataset, SeriesData, StaticData, SteadyData
+from ..records.data import Dataset, SeriesData, StaticData, SteadyData
 from ..rsf.driving import RSFOutput, SpringSlider, simulate_rsf
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring

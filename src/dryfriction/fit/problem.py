@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
-from ..io.data import Dataset, SeriesData
+from ..records.data import Dataset, SeriesData
 from ..rsf.driving import SolverError
 from ..validation import Array
 from .models import Model, ParamSpec

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import Dataset
+from ..records.data import Dataset
 from ..results import records, to_dataframe
 from ..validation import Array
 from .models import Model

@@ -127,7 +127,7 @@ PREWHITEN_CAP = 0.99
 """Largest singular value of the prewhitening VAR(1) matrix (Andrews & Monahan use 0.97; ours:
 0.99, because apparatus fluctuations in friction records are correlated over hundreds of
 samples, where 0.97 leaves the estimate ~2x low; measured on AR(1) noise with rho = 0.99 in
-tests/test_fit_hac.py)."""
+tests/fit/test_hac.py)."""
 
 
 def _bartlett(u: Array, lags: int) -> Array:

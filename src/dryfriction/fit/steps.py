@@ -2,12 +2,12 @@
 slide-hold-slide cycle) fitted on its own with rate-and-state friction on an elastic machine
 with a linear slip trend, optionally all steps together with one ``(a, b, Dc)``.
 
-The record is a :class:`~dryfriction.io.data.SeriesData` (time, load velocity, friction) or a
+The record is a :class:`~dryfriction.records.data.SeriesData` (time, load velocity, friction) or a
 laboratory record (anything with ``time``, ``friction`` and ``source``, such as
-``io.lab``'s ``LabRecord``), whose load velocity then comes from the detected ``segments``
+``records.lab``'s ``LabRecord``), whose load velocity then comes from the detected ``segments``
 (objects with ``velocity``, ``i_start``, ``i_end``: samples ``[i_start, i_end)``). A window
 is any object with ``i_start``, ``i_end`` (samples ``[i_start, i_end)``), such as
-``io.lab``'s ``StepWindow``; :func:`series_windows` makes them from a SeriesData alone.
+``records.lab``'s ``StepWindow``; :func:`series_windows` makes them from a SeriesData alone.
 
 Each window is fitted by :func:`.engine.fit` with :class:`.models.RSFModel` (reference
 velocity ``v0`` = the window's first load velocity, so ``mu0`` is the steady friction before
@@ -38,9 +38,9 @@ from typing import Any
 
 import numpy as np
 
-from ..io.data import SeriesData
 from ..io.files import write_csv
-from ..io.labsteps import StepWindow
+from ..records.data import SeriesData
+from ..records.labsteps import StepWindow
 from ..rsf.driving import SolverError
 from ..validation import Array, check_choice
 from .elastic import machine_stiffness_record
@@ -58,7 +58,8 @@ from .statistics import Covariance, quantile_95
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
            "STEP_COLUMNS", "PEAK_SAMPLES", "steady_noise", "white_noise", "quick_profile",
-           "PROFILED", "ERRORS", "StepCovariance", "step_covariance", "robust_estimates"]
+           "PROFILED", "ERRORS", "StepCovariance", "step_covariance", "robust_estimates",
+           "COMPARED", "compare_with_program"]
 
 PEAK_SAMPLES = 11
 """Samples averaged at the peak (module docstring)."""
@@ -92,7 +93,7 @@ residuals (:func:`.statistics.hac_covariance`), ``"white"`` assumes independent 
 def series_windows(data: SeriesData) -> tuple[StepWindow, ...]:
     """One window per change of ``v_load`` to a sliding velocity: from halfway through the
     previous stretch to the end of the stretch after the change (a hold and the reload after
-    it make one "shs" window), as :class:`dryfriction.io.labsteps.StepWindow` (``t_change`` in
+    it make one "shs" window), as :class:`dryfriction.records.labsteps.StepWindow` (``t_change`` in
     the series' time, s)."""
     v = data.v_load
     change = [0, *(np.flatnonzero(np.diff(v) != 0.0) + 1).tolist(), len(v)]
@@ -648,3 +649,36 @@ def fit_steps(
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:
     """Write the per-step table (:data:`STEP_COLUMNS`) atomically as CSV."""
     write_csv(path, {c: [r[c] for r in rows] for c in STEP_COLUMNS})
+
+
+COMPARED = ("a", "b", "dc", "stiffness")
+"""The values :func:`compare_with_program` reports under both drives."""
+
+
+def compare_with_program(pieces: list[SeriesData], fits: list[Any],
+                         rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """How each step's values depend on the drive (issue 30 item 3: "report how k and a
+    depend on that choice"): every window refitted on the idealised program, started from
+    its measured-drive optimum (one local fit each), its ``a, b, dc, stiffness`` and rms
+    beside the measured drive's (the rows' values, NaN where not identified: the refit's
+    are raw). One dict per step for ``fit.json``'s ``drive.comparison``."""
+    out: list[dict[str, Any]] = []
+    for d, r, row in zip(pieces, fits, rows, strict=True):
+        plain = SeriesData(d.t, d.v_load, d.mu, d.sigma, d.source)
+        start = {p.name: p.value for p in r.parameters if not p.fixed}
+        entry: dict[str, Any] = {"index": row["index"],
+                                 "measured": {n: row[n] for n in (*COMPARED, "rms")}}
+        try:
+            rp = fit(plain, r.fitted_model, start=start, multistart=False, profile=False)
+        except ValueError as exc:  # the program cannot be run with these values
+            entry["program"] = {"not_run": str(exc)}
+            out.append(entry)
+            continue
+        vals = {p.name: p.value for p in rp.parameters}
+        k_fixed = getattr(r.fitted_model, "stiffness", math.nan)
+        entry["program"] = {n: float(vals.get(n, k_fixed if n == "stiffness" else math.nan))
+                            for n in COMPARED}
+        entry["program"]["rms"] = float(rp.goodness.get("rms_residual", math.nan))
+        entry["program"]["success"] = bool(rp.success)
+        out.append(entry)
+    return out

@@ -16,7 +16,7 @@ from .style import save_png
 
 if TYPE_CHECKING:
     from ..fit import FitResult
-    from ..io.data import Dataset
+    from ..records.data import Dataset
 
 __all__ = ["plot_fit", "MAX_POINTS_DRAWN"]
 
@@ -85,7 +85,7 @@ def plot_fit(result: FitResult, datasets: Sequence[Dataset], path: Any = None,
     fig, axes
         A new figure (Agg-renderable, not shown) and its ``2 x len(datasets)`` axes.
     """
-    from ..io.data import SeriesData
+    from ..records.data import SeriesData
 
     if max_points < 8:
         raise ValueError(f"max_points = {max_points}: must be at least 8")

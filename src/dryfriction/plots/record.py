@@ -14,8 +14,8 @@ from matplotlib.figure import Figure
 from .style import FRICTION_SI
 
 if TYPE_CHECKING:
-    from ..io.detection import Detection
-    from ..io.lab import LabRecord, Segment
+    from ..records.detection import Detection
+    from ..records.lab import LabRecord, Segment
 
 __all__ = ["RecordFigure", "plot_record", "smoothed_velocity"]
 
@@ -69,7 +69,8 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     record : LabRecord
         The record (SI).
     segments : sequence of Segment
-        Its load program, numbered as in the table (:func:`~dryfriction.io.lab.segments_table`).
+        Its load program, numbered as in the table
+        (:func:`~dryfriction.records.lab.segments_table`).
     detection : Detection, optional
         What the detector found besides (marks); ``None`` for a program given by hand.
     x : array, optional
@@ -81,7 +82,7 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     -------
     Figure, RecordFigure
     """
-    from ..io.detection import displacement
+    from ..records.detection import displacement
 
     t = np.asarray(record.time, float)
     t0 = float(t[0])

@@ -126,7 +126,8 @@ class RSFResult:
                          {k: UNITS[k] for k in cols}, extra=extra)
 
     def to_dict(self) -> dict[str, Any]:
-        """Everything as a plain mapping (arrays as NumPy arrays; see ``io.to_jsonable``)."""
+        """Everything as a plain mapping (arrays as NumPy arrays; see
+        :func:`dryfriction.io.files.to_jsonable`)."""
         return {
             "params": self.params.to_dict(),
             "stiffness": self.stiffness,

@@ -15,7 +15,7 @@ that the same source runs in two ways (issue 12):
 the whole process) and, when it runs out, carries on from the current state with the compiled
 kernels; once they are loaded, every later run uses them (the budget drops to 0). Both routes
 do the same floating-point operations in the same order, so their results agree to rounding
-(``tests/test_rsf_routes.py``).
+(``tests/rsf/test_routes.py``).
 Where the interpreted route raises on what the compiled one carries as ``inf``/``nan`` (Python's
 ``math`` raises OverflowError and ValueError), the run is redone compiled from the start.
 

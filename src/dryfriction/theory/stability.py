@@ -44,7 +44,7 @@ arrives from infinity once ``K < -Z(inf)``.
 jump of the slider returns one death age later, when the pairs born during it reach the
 spinodal together, as an echo ``c = -|D| / (K + Z(inf))`` times the jump, so sharp features grow
 for ``-Z(inf) < K < K_c`` and decay above ``K_c``. Direct simulation of the quasi-static spring
-(u = 0.01, eps = 0.04, 1000 pairs/a0; tests/test_stability.py) shows the first jump
+(u = 0.01, eps = 0.04, 1000 pairs/a0; tests/theory/test_stability.py) shows the first jump
 ``kick / (K + Z(inf))`` to ~10 % and the echoes sustained at 0.978 ``K_c`` and decaying at
 1.04 ``K_c``: it brackets ``K_c = 0.07515`` but cannot resolve it closer (a finite-width echo is
 damped by the memory term as well, and the best finite crossing is only 0.15 % lower).

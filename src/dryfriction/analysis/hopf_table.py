@@ -1,0 +1,143 @@
+"""``dryfriction bifurcation``: the nature of the onset of stick-slip of a rate-and-state
+protocol at a list of load velocities (issue 28; the table's layout is ours).
+
+Each row is :func:`.rsf_hopf.rsf_hopf` at one velocity with the protocol's friction law,
+damping and mass (the protocol's own stiffness and program are not used: ``K_c`` is what is
+sought). With ``check``, each row is also checked by direct simulation
+(:mod:`.rsf_hopf_check`):
+
+* supercritical: settled cycles at ``K = K_c (1 - d)``, ``d`` in :data:`CHECK_DISTANCES`; the
+  fitted exponent of the amplitude (1/2 expected) with its standard error, and the ratio of
+  the simulated amplitude at the smallest ``d`` to the normal form's;
+* subcritical: the unstable cycle by bisection at ``K = K_c (1 + d)``, ``d = 0.01``, and the
+  ratio of its amplitude to the normal form's;
+* degenerate: the bisection at ``d = 0.01`` with kicks up to ``ln(V/V*) = 2``: either every
+  kick decays (as Ranjith & Rice 1999 prove for the ageing law) or a finite threshold is
+  found (a global instability, not a small cycle: the slip law, Gu et al. 1984).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..io.protocol import RSFProtocol
+from ..rsf.driving import SolverError
+from ..rsf.law import V_MAX
+from .rsf_hopf import rsf_hopf
+from .rsf_hopf_check import amplitude_exponent, basin_threshold, settled_amplitude
+
+__all__ = ["parse_velocities", "bifurcation_table", "UNITS", "MAX_VELOCITIES",
+           "MAX_CHECKED", "CHECK_DISTANCES"]
+
+MAX_VELOCITIES = 400
+"""Most velocities in one table (each costs ~10 ms; ours)."""
+MAX_CHECKED = 12
+"""Most velocities with ``check`` (each check runs ~5-30 s of simulations; ours)."""
+CHECK_DISTANCES = (0.005, 0.01, 0.02)
+"""Relative distances ``(K_c - K)/K_c`` of the supercritical check's settled cycles."""
+
+UNITS = {"velocity": "m/s", "K_c": "1/m (per unit normal force)", "frequency": "rad/s",
+         "l1": "1 (reduced coordinates ln V, ln theta, tau/a)", "relative_l1": "1",
+         "nature": "", "note": "", "amp_coef": "1 (half peak-to-peak ln V per sqrt(|K - K_c|/K_c))",
+         "check": "", "check_distance": "1 (|K - K_c|/K_c of the amplitude ratio)",
+         "check_exponent": "1", "check_exponent_err": "1",
+         "check_amp_ratio": "1", "check_threshold": "1 (ln V kick)"}
+"""The unit of each column of ``bifurcation.csv``."""
+
+
+def parse_velocities(text: str) -> list[float]:
+    """``"V1,V2,..."`` (m/s) as floats, each in ``(0, V_MAX]``, at most
+    :data:`MAX_VELOCITIES`; ``ValueError`` naming ``--velocities`` otherwise."""
+    parts = [p.strip() for p in str(text).split(",")]
+    out = []
+    for p in parts:
+        try:
+            v = float(p)
+        except ValueError:
+            raise ValueError(f"--velocities: {p!r} is not a number: allowed a comma-separated "
+                             f"list of load velocities in (0, {V_MAX:g}] m/s") from None
+        if not 0.0 < v <= V_MAX:
+            raise ValueError(f"--velocities: {p} is out of range: allowed (0, {V_MAX:g}] m/s")
+        out.append(v)
+    if not 1 <= len(out) <= MAX_VELOCITIES:
+        raise ValueError(f"--velocities: {len(out)} values: allowed 1 to {MAX_VELOCITIES}")
+    return out
+
+
+def _empty_check() -> dict[str, Any]:
+    return {"check": "", "check_distance": math.nan, "check_exponent": math.nan,
+            "check_exponent_err": math.nan, "check_amp_ratio": math.nan,
+            "check_threshold": math.nan}
+
+
+def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
+    out = _empty_check()
+    if h.nature == "supercritical":
+        out["check_distance"] = CHECK_DISTANCES[0]
+        rows = [settled_amplitude(model, h, d, damping, mass) for d in CHECK_DISTANCES]
+        beta, err, _ = amplitude_exponent(rows)
+        first = rows[0]
+        out.update(check_exponent=beta, check_exponent_err=err,
+                   check_amp_ratio=first["amplitude"] / (h.amp_coef * math.sqrt(
+                       first["distance"])))
+        unsettled = [r["distance"] for r in rows if not r["settled"]]
+        out["check"] = ("settled cycles below K_c" if not unsettled else
+                        f"NOT settled at d = {unsettled} (exponent from the others)")
+    elif h.nature in ("subcritical", "degenerate"):
+        # where the predicted unstable cycle is small (half peak-to-peak ln V of 0.2)
+        d = min(0.01, (0.2 / h.amp_coef) ** 2) if h.nature == "subcritical" else 0.01
+        out["check_distance"] = d
+        r = basin_threshold(model, h, d, damping, mass)
+        out["check_threshold"] = r["delta_lo"] if math.isfinite(r["delta_hi"]) else math.nan
+        if h.nature == "subcritical" and math.isfinite(r["amplitude"]):
+            out["check_amp_ratio"] = r["amplitude"] / (h.amp_coef * math.sqrt(d))
+            out["check"] = "unstable cycle by bisection above K_c"
+        elif math.isfinite(r["delta_hi"]):
+            out["check"] = "finite kick threshold above K_c"
+        else:
+            out["check"] = "every kick up to ln(V/V*) = 2 decays above K_c"
+    else:
+        out["check"] = "not run: no Hopf point" if h.nature == "none" else "not run"
+    return out
+
+
+def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: bool = False
+                      ) -> dict[str, Any]:
+    """Rows of the Hopf point's nature at each velocity (module docstring).
+
+    Parameters
+    ----------
+    protocol : RSFProtocol
+        Friction law (``params``) and machine (``drive.damping``, s/m; ``drive.mass``, s^2/m).
+    velocities : list of float
+        Load velocities, m/s (:func:`parse_velocities`).
+    check : bool
+        Also simulate each row (at most :data:`MAX_CHECKED` velocities).
+
+    Returns
+    -------
+    dict
+        ``{"rows": [...], "units": UNITS, "law", "damping", "mass", "notes"}``.
+    """
+    if check and len(velocities) > MAX_CHECKED:
+        raise ValueError(f"--velocities: {len(velocities)} values with --check: allowed at "
+                         f"most {MAX_CHECKED} (each check simulates for ~5-30 s)")
+    model, drive = protocol.params, protocol.drive
+    rows = []
+    for v in velocities:
+        h = rsf_hopf(model, v, drive.damping, drive.mass)
+        row = h.as_row()
+        if check:
+            try:
+                row.update(_check(model, h, drive.damping, drive.mass))
+            except SolverError as exc:  # said in the row, not a crash of the whole table
+                row.update({**_empty_check(), "check": f"simulation failed: {exc}"})
+        rows.append(row)
+    notes = ["nature from the sign of the first Lyapunov coefficient l1 (Kuznetsov 2004); "
+             "degenerate: |l1| < 1e-8 of its largest term (docs/hopf.md)"]
+    if model.regularized:
+        notes.append("regularized = true: the standard law is used (equal to it near steady "
+                     "sliding to O((V0/V)^2 exp(-2 Psi/a)))")
+    return {"rows": rows, "units": {k: UNITS[k] for k in rows[0]}, "law": model.state_law,
+            "damping": drive.damping, "mass": drive.mass, "notes": notes}

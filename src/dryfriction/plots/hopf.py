@@ -1,0 +1,48 @@
+"""The figure of ``dryfriction bifurcation`` (``bifurcation.png``): the critical stiffness
+against the load velocity, each point marked with the nature of the Hopf point, and the
+relative first Lyapunov coefficient below it."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .style import LEGEND_SIZE, RUN_WIDTH, TITLE_SIZE, VELOCITY_SI, new_figure
+
+__all__ = ["plot_bifurcation"]
+
+_MARK = {"supercritical": ("o", "tab:blue"), "subcritical": ("s", "tab:red"),
+         "degenerate": ("D", "tab:gray"), "none": ("x", "k"),
+         "undetermined": ("+", "tab:orange")}
+
+
+def plot_bifurcation(report: dict[str, Any], title: str = "") -> tuple[Any, Any]:
+    """Two panels sharing the velocity axis (m/s, log): ``K_c`` (1/m, log) and
+    ``l1 / max|term|`` (symmetric log), marked by nature (circle supercritical, square
+    subcritical, diamond degenerate). Returns ``(fig, axes)``."""
+    fig, axes = new_figure((RUN_WIDTH, 5.6), nrows=2, sharex=True, suptitle=bool(title))
+    rows = report["rows"]
+    for nature, (marker, colour) in _MARK.items():
+        pts = [r for r in rows if r["nature"] == nature]
+        if not pts:
+            continue
+        v = [r["velocity"] for r in pts]
+        kc = [r["K_c"] if math.isfinite(r["K_c"]) else float("nan") for r in pts]
+        axes[0].plot(v, kc, marker, color=colour, label=nature, ms=5)
+        axes[1].plot(v, [r["relative_l1"] for r in pts], marker, color=colour, ms=5)
+    axes[0].set_xscale("log")
+    kcs = [r["K_c"] for r in rows if math.isfinite(r["K_c"]) and r["K_c"] > 0]
+    if kcs and max(kcs) > 10 * min(kcs):  # log only over a decade: else unreadable ticks
+        axes[0].set_yscale("log")
+    axes[0].set_ylabel(r"critical stiffness $K_c$  [1/m]")
+    axes[0].legend(fontsize=LEGEND_SIZE)
+    axes[1].set_yscale("symlog", linthresh=1e-8)
+    axes[1].axhline(0.0, color="k", lw=0.6)
+    axes[1].set_ylabel(r"$\ell_1$ / largest term  [1]")
+    axes[1].set_xlabel(VELOCITY_SI)
+    vs = [r["velocity"] for r in rows]
+    if min(vs) == max(vs):  # one velocity: a visible decade around it
+        axes[1].set_xlim(min(vs) / 3, max(vs) * 3)
+    if title:
+        fig.suptitle(title, fontsize=TITLE_SIZE)
+    return fig, axes

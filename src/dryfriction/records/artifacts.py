@@ -1,0 +1,228 @@
+"""The artifacts of a laboratory record that are not velocity changes (issue 23).
+
+Displacement resets (a transducer re-zeroed: a jump in one sample that neither neighbouring
+velocity explains; or, too small for that, a short excursion that a jump fits as well),
+sampling-rate changes and gaps, and normal-stress changes (a segment boundary). Found here,
+reported by :func:`.detection.detect_program`; every criterion is ours.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..validation import Array
+from .segmentation import line_fit
+
+__all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
+
+_RESET_K = 15.0  # a reset's jump, in robust scales of the increments' scatter
+_NORMAL_REL = 0.03  # a normal-stress change: at least 3 % of the level ...
+_NORMAL_K = 10.0  # ... and 10 robust scales of its block-to-block scatter
+_RATE_FACTOR = 1.5  # a sampling-rate change: the median interval changes by this factor
+
+
+def _median5(a: Array, b: Array, c: Array, d: Array, e: Array) -> Array:
+    """Elementwise median of five arrays (a selection network: the lowest and the highest of
+    the first four cannot be the median, which is then the median of the other two and
+    ``e``)."""
+    f = np.maximum(np.minimum(a, b), np.minimum(c, d))
+    g = np.minimum(np.maximum(a, b), np.maximum(c, d))
+    return np.maximum(np.minimum(f, g), np.minimum(np.maximum(f, g), e))
+
+
+def _local_rate(rate: Array, side: str, k: int = 5) -> Array:
+    """Median of the ``k`` increment rates before (``side='before'``) or after each increment
+    (the record's first or last rate standing in beyond its ends)."""
+    n = len(rate)
+    pad = np.concatenate([np.full(k, rate[0]), rate, np.full(k, rate[-1])])
+    win = np.lib.stride_tricks.sliding_window_view(pad, k)
+    # window j covers pad[j:j+k] = rate[j-k:j]: before increment i is window i, after is i+k+1
+    idx = np.arange(n) + (0 if side == "before" else k + 1)
+    w = win[np.minimum(idx, len(win) - 1)]
+    if k == 5:  # a network, not a sort per row (a tenth of the time)
+        return _median5(*(w[:, j] for j in range(5)))
+    return np.median(w, axis=1)
+
+
+def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
+    """``x`` with its resets taken out, and the increments ``i`` (``x[i] -> x[i+1]``) that were.
+
+    A reset is one increment outside the range that the velocities just before and just after
+    it explain, by more than :data:`_RESET_K` robust scales of the increments' scatter (ours).
+    """
+    d = np.diff(x)
+    dt = np.diff(t)
+    if d.size < 12:
+        return x, []
+    rate = d / dt
+    vb, va = _local_rate(rate, "before"), _local_rate(rate, "after")
+    vb = np.where(np.isfinite(vb), vb, va)
+    va = np.where(np.isfinite(va), va, vb)
+    lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
+    e = d - vb * dt  # the increment less the slip the velocity just before gives
+    e = e[np.isfinite(e)]
+    spread = 1.4826 * float(np.median(np.abs(e - np.median(e)))) if e.size else 0.0
+    nz = np.abs(d[d != 0.0])
+    quantum = float(nz.min()) if nz.size else 0.0
+    scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
+    # the local rates are medians of 5 noisy increment rates: their error, times an
+    # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
+    # hundreds of intervals), so it widens the range by 3 of its scales (1.2533: a median's)
+    r = (rate - vb)[np.isfinite(rate - vb)]
+    s_v = 1.2533 * 1.4826 * float(np.median(np.abs(r - np.median(r)))) / np.sqrt(5.0) if (
+        r.size) else 0.0
+    lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
+    jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
+    if jump.size == 0:
+        return x, []
+    fix = np.zeros_like(x)
+    edges = [0] + [int(i) + 1 for i in jump] + [len(x)]
+    for j, i in enumerate(jump):
+        # the offset: one line with a step at the jump, fitted to up to 30 samples a side
+        a, b = max(edges[j], i + 1 - 30), min(edges[j + 2], i + 1 + 30)
+        tt = t[a:b] - t[i]
+        A = np.column_stack([np.ones(b - a), tt, (np.arange(a, b) > i).astype(float)])
+        fix[i + 1:] -= np.linalg.lstsq(A, x[a:b], rcond=None)[0][2]
+    return x + fix, [int(i) for i in jump]
+
+
+JUMP_REL = 0.1
+"""An excursion is a jump of the displacement when a line with a step fits within this fraction
+of the three stretches' residual sum of squares (ours; zoo record 123, a 3-um re-zeroing at 20
+Hz under a 0.12-um quantum: 6 %)."""
+
+
+def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: float, m: int
+             ) -> list[tuple[int, int, float]]:
+    """Excursions (a stretch between two of the same velocity) that one line with a jump of
+    the displacement fits as well: ``(j, k, jump)``, ``j`` the excursion's first boundary
+    (index in ``bounds``), ``k`` the first sample after the jump, ``jump`` in m.
+
+    Ours: a velocity excursion is a ramp of the displacement, a re-zeroing a jump. The line
+    plus a step at the best sample ``k`` (its gain over one line from cumulative sums of the
+    line's residuals) is compared with the three stretches' own lines near the excursion; it
+    stands in for them when its residual sum of squares exceeds theirs by less than
+    :data:`JUMP_REL` of theirs (relative: the residuals are mostly the red wander, not the
+    white noise), with three parameters fewer.
+
+    Parameters
+    ----------
+    t, x : Array
+        Times, s, and load-point displacement, m (every sample).
+    bounds : list of int
+        Stretch boundaries (samples, from 0 to ``len(t)``).
+    v : Array
+        Velocity of each stretch, m/s.
+    rel_tol : float
+        Velocities within this fraction are the same (an excursion returns to it).
+    m : int
+        Samples either side of the excursion's boundaries where the jump may lie.
+    """
+    out: list[tuple[int, int, float]] = []
+    for j in range(1, len(bounds) - 2):
+        if out and out[-1][0] >= j - 1:
+            continue
+        va, vb = v[j - 1], v[j + 1]
+        if abs(vb - va) > rel_tol * max(abs(va), abs(vb)) or abs(v[j] - va) <= rel_tol * abs(
+                va):
+            continue
+        # near the excursion only (twice its length and m samples each side): the
+        # neighbours' own wander far from it is no evidence either way
+        w = 2 * (bounds[j + 1] - bounds[j]) + m
+        a, c = max(bounds[j - 1], bounds[j] - w), min(bounds[j + 2], bounds[j + 1] + w)
+        tt, y = t[a:c], x[a:c]
+        slope, mean, sxx = line_fit(tt, y)
+        tc = tt - tt.mean()
+        r = y - mean - slope * tc
+        n = c - a
+        # gain of a step starting at sample i (a-relative): (sum_{>=i} r)**2 / |step|**2, the
+        # step projected off the line: n_i - n_i**2 / n - (sum_{>=i} tc)**2 / sxx
+        ks = np.arange(max(1, bounds[j] - m - a), min(n - 1, bounds[j + 1] + m - a))
+        if ks.size == 0 or sxx <= 0:
+            continue
+        rs = np.cumsum(r[::-1])[::-1]
+        ts = np.cumsum(tc[::-1])[::-1]
+        ni = (n - ks).astype(float)
+        den = ni - ni**2 / n - ts[ks] ** 2 / sxx
+        with np.errstate(divide="ignore", invalid="ignore"):
+            gain = np.where(den > 0, rs[ks] ** 2 / den, -np.inf)
+        i = int(np.argmax(gain))
+        rss_jump = float(r @ r) - float(gain[i])
+        rss3 = 0.0
+        for p, q in zip([a, bounds[j], bounds[j + 1]], [bounds[j], bounds[j + 1], c],
+                        strict=True):
+            sl, mu, _ = line_fit(t[p:q], x[p:q])
+            e = x[p:q] - mu - sl * (t[p:q] - t[p:q].mean())
+            rss3 += float(e @ e)
+        if rss_jump - rss3 < JUMP_REL * rss3:
+            out.append((j, a + int(ks[i]), float(rs[ks[i]] / den[i])))
+    return out
+
+
+def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float]]:
+    """Times of sampling-rate changes and of gaps (see :class:`Detection`)."""
+    dt = np.diff(t)
+    if dt.size < 2 * block:
+        return [], []
+    med = float(np.median(dt))
+    m = dt.size // block
+    bm = np.median(dt[: m * block].reshape(m, block), axis=1)
+    changes: list[float] = []
+    ratio = bm[1:] / bm[:-1]
+    for j in np.flatnonzero((ratio > _RATE_FACTOR) | (ratio < 1.0 / _RATE_FACTOR)):
+        seg = dt[j * block:(j + 2) * block]
+        new = bm[j + 1]
+        k = int(np.argmax(np.abs(np.log(seg / new)) < np.log(1.2)))  # first at the new rate
+        changes.append(float(t[j * block + k]))
+    gap = np.flatnonzero(dt > 10.0 * np.maximum(med, np.concatenate([[med], dt[:-1]])))
+    return changes, [float(t[i]) for i in gap]
+
+
+def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[int]:
+    """Sample indices where the normal stress (or force) changes level (module docstring)."""
+    if sn is None or len(sn) < 4 * min_samples:
+        return []
+    sn = np.asarray(sn, float)
+    block = max(min_samples // 2, len(sn) // 2000, 1)
+    m = len(sn) // block
+    bm = np.median(sn[: m * block].reshape(m, block), axis=1)
+    noise = 1.4826 * float(np.median(np.abs(np.diff(bm) - np.median(np.diff(bm)))))
+    out: list[int] = []
+    todo = [(0, m)]
+    while todo:
+        a, b = todo.pop()
+        if b - a < 4:
+            continue
+        c = np.cumsum(bm[a:b])
+        k = np.arange(2, b - a - 1)
+        left = c[k - 1] / k
+        right = (c[-1] - c[k - 1]) / (b - a - k)
+        gain = np.abs(left - right) * np.sqrt(k * (b - a - k) / (b - a))
+        j = int(np.argmax(gain))
+        diff = abs(left[j] - right[j])
+        level = max(abs(left[j]), abs(right[j]))
+        if diff >= _NORMAL_REL * level and diff >= _NORMAL_K * noise:
+            kk = a + int(k[j])
+            out.append(kk)
+            todo += [(a, kk), (kk, b)]
+    # a ramp splits many times: changes within 30 s (or 10 blocks) of each other are one,
+    # placed where the level crosses half-way between the levels outside the cluster
+    tb = t[: m * block].reshape(m, block)[:, 0]
+    gap = max(30.0, 10 * block * float(np.median(np.diff(t))))
+    clusters: list[list[int]] = []
+    for kk in sorted(out):
+        if clusters and tb[kk] - tb[clusters[-1][-1]] <= gap:
+            clusters[-1].append(kk)
+        else:
+            clusters.append([kk])
+    idx = []
+    for c in clusters:
+        lo_b, hi_b = c[0], c[-1]
+        before = float(np.median(bm[max(lo_b - 5, 0):lo_b]))
+        after = float(np.median(bm[hi_b:min(hi_b + 5, m)]))
+        lo, hi = max((lo_b - 2) * block, 0), min((hi_b + 2) * block, len(sn))
+        mid = 0.5 * (before + after)
+        seg = sn[lo:hi]
+        cross = np.flatnonzero(seg >= mid if after > before else seg <= mid)
+        idx.append(lo + int(cross[0]) if cross.size else lo_b * block)
+    return idx

@@ -1,0 +1,626 @@
+"""The commanded load program of a laboratory record, told from the apparatus' fluctuations.
+
+A record's load-point displacement is the commanded program (constant velocities and holds)
+plus the machine's own fluctuations: white transducer noise, quantisation, and red noise (a
+servo's oscillation of seconds, a gear's wobble, drift). A test that assumes independent samples
+takes every wobble for a step. Here a change is a step only when the velocities on its two sides
+differ by more than the scatter that the fluctuations give the slopes of stretches of those
+durations.
+
+The fluctuations are measured on the record itself, at every time scale ``T`` (ours; the
+model is :class:`Fluctuations`): the residuals about the current broken line are cut into
+adjacent windows of duration ``T`` and the slopes of neighbouring windows differ by ``Delta``.
+``var(slope_T) = sum_ij w_i w_j gamma(t_i - t_j)`` (``w`` the least-squares weights, ``gamma``
+the displacement's autocovariance), so the spread of ``Delta / sqrt 2`` is the long-run,
+autocorrelation-aware error of a slope over ``T``, estimated without a model of ``gamma``
+(robustly: medians, so the odd pair across a real change does not count). It is split into a
+part proportional to the velocity (a servo's wander: on the shared record 6 % of the velocity
+over 10-s windows at both 0.2 and 2 um/s) and one that is not (a wobble or a drift, seen in a
+hold), beside the white noise of the transducer. Beyond the longest scale measured they fall as
+``T**-0.5`` (a random-walk wander; conservative for a bounded one), the relative part at most
+``sqrt(12) lag / T`` (:meth:`Fluctuations.relative_at`: no wander of the measured rms
+position error can tilt a longer stretch more).
+
+Steps (:func:`detect_program`): candidates are the slope changes of a continuous broken line
+(:func:`.segmentation.hinge_segments`, white-noise criterion, the 80 largest gains: too many
+under red noise, by design); each boundary gets the confidence ``z = |v2 - v1| / sqrt(e1**2 +
+e2**2)`` (the stretches' OLS slopes and their errors ``e`` from the fluctuations), and must
+also carry slip beyond the servo's position error (``SLIP_MIN``, :func:`_slip_ratio`: the
+settling of the load point after a large change is no step); every weak boundary (below
+``z_min``, below ``SLIP_MIN``, or with a relative change below ``rel_tol``) that is weaker than
+both its neighbours is removed, their neighbours re-placed, and the fluctuations measured
+again, until every boundary stands. An
+excursion that returns to the same velocity must differ from it by ``EXCURSION_REL`` too; a
+stretch of fewer than ``2 min_samples`` samples between its neighbours' velocities is a
+transition (a change between two samples), not a step. Before that, displacement resets (a
+jump in one sample that neither neighbouring velocity explains: a transducer re-zeroed) are
+taken out, and after it a normal-stress change splits a stretch (a segment boundary,
+reported). Sampling-rate changes and gaps are found and reported; they create no change, the
+fit being against time. A record longer than ``MAX_POINTS`` samples is searched on block
+means and each change then moved to the best hinge on the samples between its neighbours
+(the hinge search is compiled: :mod:`.hinge_kernel`); a change of confidence below
+``LOCAL_Z`` is finally placed by the maximum-likelihood hinge under the record's own wander
+(:mod:`.placement`: a slow wander bends the kink of the whole stretches), with the periods of
+a machine oscillation found in the record as free regressors.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..validation import Array
+from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
+from .labsteps import Segment, make_segments
+from .placement import oscillation_periods, place_changes
+from .record import LabRecord
+from .segmentation import hinge_segments, line_fit, noise_level, refine
+
+__all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
+           "displacement", "no_change_message", "Z_MIN"]
+
+Z_MIN = 6.5
+"""Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
+the null distribution (``python -m benchmarks bench_detect_null``: 150 seeded no-step zoo
+records, searched at 2): on the first zoo (a velocity random walk) the largest ``z`` per record
+reached 6.5 on 2.0 % of them (7.5, 10.4 and 34: excursions of 20-30 % in short records with
+every artifact), and the tuning records (zoo 0-149) lost no change between 6 and 6.5, one at
+7.6; on the zoo whose wander is a servo's position error, with the slip test, the largest is
+4.35 (a change found on 3 % of the records at 2, none at 6.5)."""
+Z_HOLD = 3.0
+"""A stretch whose speed is below this many times its slope scatter is a hold."""
+
+
+@dataclass(frozen=True)
+class Fluctuations:
+    """The scatter of a stretch's velocity from the apparatus' fluctuations (ours).
+
+    ``e(T, v, Sxx)**2 = sigma**2 / Sxx + a(T)**2 + (r(T) v)**2``: the transducer's white
+    noise (and quantum) ``sigma`` gives a least-squares slope the variance ``sigma**2 / Sxx``
+    (``Sxx = sum (t - mean t)**2`` of the stretch's samples); the load point's own wander (a
+    servo's oscillation, bursts) is mostly *relative*: the same fraction ``r(T)`` of the
+    velocity at 0.2 and at 2 um/s on the shared record (6 % over 10-s windows at both); a
+    wander that does not scale with the velocity (a gear's wobble, a drift, seen in a hold
+    too) is ``a(T)``.
+
+    Attributes
+    ----------
+    sigma : float
+        White noise of the displacement, m.
+    scales : Array
+        Window durations ``T``, s, at which ``r`` was measured (increasing).
+    relative : Array
+        ``r(T)``, non-increasing in ``T``.
+    absolute : Array
+        ``a(T)``, m/s, non-increasing in ``T``.
+    lag : float
+        The load point's position error per unit speed, s (a servo's error: the robust rms of
+        the displacement about the broken line over the speed, white noise taken out; inf
+        where not measured): what a stretch carries into its neighbours (:func:`_slip_ratio`).
+    """
+
+    sigma: float
+    scales: Array
+    relative: Array
+    absolute: Array
+    lag: float = float("inf")
+
+    def _at(self, q: Array, durations: Array) -> Array:
+        """``q(T)`` interpolated in log-log; ``T**-0.5`` beyond the longest scale (a
+        random-walk wander: conservative for a bounded one), constant below the shortest."""
+        T = self.scales
+        d = np.maximum(np.asarray(durations, float), 1e-300)
+        out = np.exp(np.interp(np.log(d), np.log(T), np.log(np.maximum(q, 1e-300))))
+        out = np.where(q.max() > 0, out, 0.0)
+        return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)
+
+    def relative_at(self, durations: Array) -> Array:
+        """``r(T)`` (1) at these durations (s); beyond the longest scale measured, at most
+        ``sqrt(12) lag / T``.
+
+        The bound (ours, Cauchy-Schwarz): a least-squares slope over ``T`` of a wander ``e``
+        is ``sum (t - tbar) e / Sxx``, so ``slope**2 <= sum e**2 / Sxx = 12 rms(e)**2 / T**2``
+        for samples spread evenly over ``T``; a servo's position error of rms ``lag`` times the
+        speed can tilt a stretch by no more, whatever its spectrum (a machine oscillation of
+        22-45 s, which the ``T**-0.5`` extrapolation takes for a random walk, included)."""
+        d = np.maximum(np.asarray(durations, float), 1e-300)
+        out = self._at(self.relative, d)
+        if np.isfinite(self.lag):
+            out = np.where(d > self.scales[-1], np.minimum(out, np.sqrt(12.0) * self.lag / d),
+                           out)
+        return out
+
+    def absolute_at(self, durations: Array) -> Array:
+        """``a(T)`` (m/s) at these durations (s)."""
+        return self._at(self.absolute, durations)
+
+    def scatter(self, durations: Array, velocities: Array, sxx: Array) -> Array:
+        """``e``, m/s, of stretches of these durations (s), velocities (m/s) and ``Sxx``
+        (s^2)."""
+        v = np.asarray(velocities, float)
+        return np.sqrt(self.sigma**2 / np.maximum(sxx, 1e-300)
+                       + self._at(self.absolute, durations) ** 2
+                       + (self.relative_at(durations) * v) ** 2)
+
+
+@dataclass(frozen=True)
+class Detection:
+    """What the detector decided about a record, to show and to report.
+
+    Attributes
+    ----------
+    segments : tuple of Segment
+        The load program, each with the confidence of the change at its start.
+    fluctuations : Fluctuations
+        The velocity scatter against stretch duration it judged by.
+    resets : tuple of float
+        Times, s, of displacement resets taken out (a jump with no slip).
+    rate_changes : tuple of float
+        Times, s, where the sampling interval changes by more than a factor 1.5.
+    gaps : tuple of float
+        Start times, s, of gaps in the sampling (an interval 10 times its neighbours').
+    normal_changes : tuple of float
+        Times, s, of normal-stress changes (segment boundaries).
+    """
+
+    segments: tuple[Segment, ...]
+    fluctuations: Fluctuations
+    resets: tuple[float, ...] = ()
+    rate_changes: tuple[float, ...] = ()
+    gaps: tuple[float, ...] = ()
+    normal_changes: tuple[float, ...] = ()
+
+
+def displacement(record: LabRecord) -> Array:
+    """The load-point displacement, m (a velocity column integrated by trapezoids)."""
+    if record.load_point is not None:
+        return np.asarray(record.load_point, float)
+    v, t = np.asarray(record.load_velocity, float), np.asarray(record.time)
+    return np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+
+
+# ------------------------------------------------------------------------------ fluctuations
+def _window_slopes(t: Array, x: Array, width: float, offset: float
+                   ) -> tuple[Array, Array, Array]:
+    """OLS slope of each window ``[offset + m width, offset + (m+1) width)``, its ``Sxx`` and
+    whether it is usable (>= 3 samples spread over at least half the window)."""
+    w = np.floor((t - offset) / width).astype(np.int64)
+    w0 = int(w[0])
+    w -= w0
+    tt = t - (offset + (w + w0) * width)  # in [0, width): well-conditioned sums
+    nw = int(w[-1]) + 1
+    n = np.bincount(w, minlength=nw).astype(float)
+    st = np.bincount(w, tt, nw)
+    sx = np.bincount(w, x, nw)
+    stt = np.bincount(w, tt * tt, nw)
+    stx = np.bincount(w, tt * x, nw)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        var_t = stt / n - (st / n) ** 2
+        slope = (stx / n - st * sx / n**2) / var_t
+    # a window at least half covered: var_t of a uniform spread over width/2 is width**2/48
+    ok = (n >= 3) & (var_t >= width**2 / 48.0) & np.isfinite(slope)
+    return slope, n * var_t, ok
+
+
+def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
+                         velocity: Array) -> Fluctuations:
+    """``r(T)`` of the displacement ``x(t)`` about a broken line (:class:`Fluctuations`).
+
+    The residuals of ``x`` about a line fitted to each stretch between ``bounds`` (so that
+    the record's changes do not count as fluctuations) are cut into adjacent windows of
+    duration ``T``; for a pair with residual slopes ``s1, s2``, white parts ``w**2 = sigma**2
+    (1/Sxx1 + 1/Sxx2) / 2`` and stretch speed ``u``: ``r**2 = ((s2 - s1)**2 / 2 - w**2) /
+    u**2`` (0 where negative). ``r(T)`` is 1.4826 times the median over the pairs that move
+    (``u`` above 3 white parts): a Gaussian's MAD, blind to the odd pair across a missed
+    change. A line absorbs the wander at its own duration only, so a boundary too many
+    hides little of it; :func:`detect_program` measures again as boundaries go.
+
+    Parameters
+    ----------
+    t, x : Array
+        Times, s (increasing), and load-point displacement, m (resets taken out).
+    sigma : float
+        White noise of ``x``, m.
+    bounds : list of int
+        Stretch boundaries (samples, from 0 to ``len(t)``).
+    velocity : Array
+        Fitted velocity of each stretch, m/s.
+    """
+    n = len(t)
+    res = np.empty(n)
+    speed = np.empty(n)
+    for (a, b), v in zip(zip(bounds[:-1], bounds[1:], strict=True), velocity, strict=True):
+        slope, mean, _ = line_fit(t[a:b], x[a:b])
+        res[a:b] = x[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
+        speed[a:b] = abs(v)
+    # the position error per unit speed, from the samples moving at least 5 % of the top
+    # speed (ours): the median of (res**2 - sigma**2) / speed**2, 2.198 times (a Gaussian's
+    # median of squares); unmeasured (inf) where the white noise hides it
+    fast = speed >= 0.05 * float(speed.max())
+    lag = float("inf")
+    if fast.sum() >= 24 and speed.max() > 0:
+        q = (res[fast] ** 2 - sigma**2) / speed[fast] ** 2
+        lag2 = 2.198 * float(np.median(q))
+        lag = float(np.sqrt(lag2)) if lag2 > 0 else float("inf")
+    if n > 200_000:  # time-averaged blocks: windows of >= 5 blocks see the same slopes
+        bl = n // 100_000
+        m = n // bl
+        t, res, speed = (q[: m * bl].reshape(m, bl).mean(axis=1) for q in (t, res, speed))
+        sigma = sigma / np.sqrt(bl)
+    span = float(t[-1] - t[0])
+    dt = float(np.median(np.diff(t)))
+    scales: list[float] = []
+    rel: list[float] = []
+    ab: list[float] = []
+    # ours: windows of at least 5 samples, and never more windows than 10 per sample, so that
+    # a gap of years between two samples (span >> n dt) cannot ask for span/T ~ 1e9 windows
+    # and exhaust the memory in bincount (issue 24, outside24: a silent hang)
+    T = max(5.0 * dt, span / (10.0 * len(t)))
+    while T <= span / 3.0:
+        ys, us = [], []
+        for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):
+            if off in (0.25 * T, 0.75 * T) and sum(len(q) for q in ys) >= 100:
+                break  # pairs enough from two offsets (the other two only for long T)
+            s, sxx, ok = _window_slopes(t, res, T, float(t[0]) - off)
+            w = np.floor((t - float(t[0]) + off) / T).astype(np.int64)
+            w -= w[0]
+            u = np.bincount(w, speed, len(s)) / np.maximum(np.bincount(w, None, len(s)), 1)
+            pair = ok[1:] & ok[:-1]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                w2 = 0.5 * sigma**2 * (1.0 / sxx[1:] + 1.0 / sxx[:-1])
+            ys.append((0.5 * (s[1:] - s[:-1]) ** 2 - w2)[pair])
+            us.append((0.5 * (u[1:] + u[:-1]))[pair])
+        y, u = np.concatenate(ys), np.concatenate(us)
+        if y.size >= 24:
+            # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the
+            # slower half less r's part; 2.198 = 1.4826**2 turns a median of squares of a
+            # Gaussian into its variance
+            fast = np.zeros(y.size, bool)
+            fast[np.argsort(u, kind="stable")[y.size // 2:]] = True  # by rank: ties split
+            uf = u[fast]
+            r2 = 2.198 * float(np.median(y[fast] / uf**2)) if (uf > 0).all() else 0.0
+            r2 = max(r2, 0.0)
+            a2 = max(2.198 * float(np.median((y - r2 * u**2)[~fast])), 0.0)
+            scales.append(T)
+            rel.append(np.sqrt(r2))
+            ab.append(np.sqrt(a2))
+        T *= 2.0
+    if not scales:  # too short a record to measure a wander: none assumed
+        scales, rel, ab = [max(span, 1e-300)], [0.0], [0.0]
+    # never less at a shorter scale than at a longer one
+    r_arr = np.maximum.accumulate(np.asarray(rel)[::-1])[::-1]
+    a_arr = np.maximum.accumulate(np.asarray(ab)[::-1])[::-1]
+    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr, lag)
+
+
+# ------------------------------------------------------------------------------ the program
+class _Fits:
+    """OLS line of each stretch between boundaries, all stretches at once (a few passes over
+    their samples, not one Python call per stretch)."""
+
+    def __init__(self, t: Array, x: Array) -> None:
+        self.t, self.x = t, x
+
+    def table(self, bounds: list[int]) -> tuple[Array, Array, Array]:
+        """Velocities (m/s), durations (s) and ``Sxx`` (s^2) of the stretches between
+        ``bounds`` (increasing sample indices; only the samples between the first and the last
+        are read)."""
+        b = np.asarray(bounds, np.int64)
+        lo = int(b[0])
+        t, x = self.t[lo:b[-1]], self.x[lo:b[-1]]
+        a = b[:-1] - lo
+        cnt = np.diff(b)
+        seg = np.repeat(np.arange(a.size), cnt)
+        tc = t - (np.add.reduceat(t, a) / cnt)[seg]  # centred in each stretch: no cancellation
+        xc = x - (np.add.reduceat(x, a) / cnt)[seg]
+        sxx = np.add.reduceat(tc * tc, a)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            v = np.where(sxx > 0, np.add.reduceat(tc * xc, a) / sxx, 0.0)
+        return v, self.t[b[1:] - 1] - self.t[b[:-1]], sxx
+
+
+def _is_hold(v: Array, d: Array, sxx: Array, fl: Fluctuations, floor: float,
+             given: bool) -> Array:
+    """A hold: slower than ``floor`` (given), or than ``Z_HOLD`` slope errors of a still load point
+    (white noise and absolute wander; and 1e-4 of the fastest velocity, ``floor``)."""
+    v = np.asarray(v, float)
+    return np.abs(v) <= (floor if given else np.maximum(
+        Z_HOLD * fl.scatter(d, 0.0 * v, sxx), floor))
+
+
+def _z(fits: _Fits, fl: Fluctuations, bounds: list[int]) -> Array:
+    """Confidence of each inner boundary: ``|v2 - v1| / sqrt(e1**2 + e2**2)``."""
+    v, d, sxx = fits.table(bounds)
+    e = fl.scatter(d, v, sxx)
+    return np.abs(np.diff(v)) / np.hypot(e[1:], e[:-1])
+
+
+SLIP_MIN = 3.0
+"""The slip a change carries over the shorter of its two stretches, against the position
+error a servo may carry there (:func:`_slip_ratio`), must reach this (ours; set a priori
+between the tuning records' transients, below 1.1, and their weakest true changes, above 5)."""
+
+
+def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
+    """The slip ``|v2 - v1| d`` of each inner boundary over the shorter stretch ``d`` beside
+    it, over the position error a servo may carry there, ``D U`` (ours).
+
+    The load point's wander is a servo's position error, a displacement ``D`` (s) times the
+    speed it was made at, ``D = min(r(d) d, lag)`` (the wander over ``d``, at most the
+    record's measured position error, :class:`Fluctuations`). The error left by a fast stretch
+    relaxes through the next ones, so a short stretch just after a fast one drifts by the
+    *fast* stretch's error: ``U`` is the largest speed of the two stretches and their outer
+    neighbours. A true change carries far more slip than that; the servo's settling after a
+    large change does not.
+    """
+    u = np.abs(np.asarray(v, float))
+    nb = np.maximum(u[1:], u[:-1])  # the two stretches beside each boundary
+    big = nb.copy()
+    big[1:] = np.maximum(big[1:], u[:-2])  # the stretch before the left one
+    big[:-1] = np.maximum(big[:-1], u[2:])  # the one after the right one
+    dmin = np.minimum(d[1:], d[:-1])
+    lag = np.minimum(fl.relative_at(dmin) * dmin, fl.lag)
+    scale = np.hypot(lag * big, fl.absolute_at(dmin) * dmin)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.abs(np.diff(v)) * dmin / scale
+    return np.where(scale > 0, out, np.inf)
+
+
+EXCURSION_REL = 0.2
+"""A stretch between two of the same velocity (an excursion that returns) is a change only
+when it differs from them by this fraction too (a ratio of 1.25; the steps are >= 1.3)."""
+
+
+def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_min: float,
+            floor: float, given: bool, m: int = 0) -> Array:
+    """Each inner boundary's standing: ``min(z / z_min, rel / rel_tol)`` (< 1: remove), 0
+    between two holds, ``z / z_min`` between a hold and a slide."""
+    v, d, sxx = fits.table(bounds)
+    hold = _is_hold(v, d, sxx, fl, floor, given)
+    dv = np.abs(np.diff(v))
+    z = _z(fits, fl, bounds)
+    rel = dv / np.maximum(np.maximum(np.abs(v[1:]), np.abs(v[:-1])), 1e-300)
+    # an excursion: the stretches on either side of this one's two boundaries agree
+    tol = np.full(len(dv), rel_tol)
+    if len(v) >= 3:
+        back = np.abs(v[2:] - v[:-2]) <= rel_tol * np.maximum(np.abs(v[2:]), np.abs(v[:-2]))
+        exc = np.zeros(len(v), bool)
+        exc[1:-1] = back & ~hold[1:-1]
+        tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
+    score = np.minimum(np.minimum(z / z_min, rel / tol), _slip_ratio(v, d, fl) / SLIP_MIN)
+    one = hold[1:] ^ hold[:-1]
+    score = np.where(one, np.minimum(z / z_min, _slip_ratio(v, d, fl) / SLIP_MIN), score)
+    score = np.where(hold[1:] & hold[:-1], 0.0, score)
+    if len(v) >= 3 and m > 0:
+        # a transition: a stretch of < 2m samples between its neighbours' velocities (a
+        # change between two samples, which a kink at a sample cannot follow): its weaker
+        # boundary goes
+        size = np.diff(np.asarray(bounds))
+        mono = (v[1:-1] - v[:-2]) * (v[2:] - v[1:-1]) > 0
+        for j in np.flatnonzero(mono & (size[1:-1] < 2 * m)) + 1:
+            k = j - 1 if score[j - 1] <= score[j] else j
+            score[k] = min(score[k], 0.0)
+    return score
+
+
+def _prune(t: Array, x: Array, xs: Array, bounds: list[int], fl: Fluctuations, fits: _Fits,
+           rel_tol: float, z_min: float, floor: float, given: bool, m: int) -> list[int]:
+    """Remove the weakest boundary until each stands (module docstring)."""
+    while len(bounds) > 2:
+        score = _scores(fits, fl, bounds, rel_tol, z_min, floor, given, m)
+        weak = score < 1.0
+        if not weak.any():
+            break
+        # every weak boundary weaker than both its neighbours goes at once (never two
+        # neighbours: each removal touches only its own two stretches), its neighbours
+        # re-placed; the weakest first in each neighbourhood, as one by one, in a few passes
+        # (the cost of one by one is a pass per candidate)
+        s = np.concatenate([[np.inf], score, [np.inf]])
+        go = set((np.flatnonzero(weak & (score <= s[:-2]) & (score < s[2:])) + 1).tolist())
+        near = {bounds[j + d] for j in go for d in (-1, 1)} - {0, len(t)}
+        bounds = [q for j, q in enumerate(bounds) if j not in go]
+        bounds = refine(t, xs, bounds, m, 0.0, only=near)
+    return bounds
+
+
+def detect_program(
+    record: LabRecord,
+    *,
+    rel_tol: float = 0.1,
+    z_min: float = Z_MIN,
+    hold_velocity: float | None = None,
+    min_samples: int = 10,
+) -> Detection:
+    """The commanded load program of a record, judged against its own fluctuations.
+
+    Parameters
+    ----------
+    record : LabRecord
+        With a load-point displacement or velocity.
+    rel_tol : float
+        A change smaller than this fraction of the faster velocity is no change, and velocities
+        within it anywhere in the record get one plateau value, ``0 < rel_tol < 1``.
+    z_min : float
+        Confidence a change must reach: velocity difference over the scatter of the two
+        stretches' slopes (module docstring), ``> 0``.
+    hold_velocity : float, optional
+        Speed (m/s) below which a stretch is a hold; default ``Z_HOLD`` times its slope
+        scatter, at least 1e-4 of the fastest velocity.
+    min_samples : int
+        Shortest stretch, samples (``>= 3``).
+
+    Returns
+    -------
+    Detection
+    """
+    if not 0.0 < rel_tol < 1.0:
+        raise ValueError(f"rel_tol = {rel_tol:g} is out of range: allowed > 0 and < 1")
+    if not z_min > 0.0:
+        raise ValueError(f"z_min = {z_min:g} is out of range: allowed > 0")
+    if min_samples < 3:
+        raise ValueError(f"min_samples = {min_samples} is out of range: allowed >= 3")
+    if hold_velocity is not None and not hold_velocity >= 0.0:
+        raise ValueError(f"hold_velocity = {hold_velocity:g} is out of range: allowed >= 0")
+    t_all = np.asarray(record.time, float)
+    # a reset is a displacement transducer's (re-zeroed): a velocity column integrated has
+    # none, and its noisy increments would only be taken for some
+    x_all, resets = (find_resets(t_all, displacement(record)) if record.load_point is not None
+                     else (displacement(record), []))
+    n = len(t_all)
+    # a long record is searched on the means of blocks (<= MAX_POINTS), each change then
+    # placed on the samples near it: the cost stays linear in the length
+    blk = max(1, -(-n // MAX_POINTS))
+    t, x = _blocks(t_all, x_all, blk)
+    span = float(np.ptp(x))
+    sigma = max(noise_level(x), 1e-9 * span, 1e-300)
+    m = max(3, -(-min_samples // blk))
+    bounds = hinge_segments(t, x, sigma, min_samples=m, penalty=10.0,
+                            max_segments=MAX_CANDIDATES, max_points=len(t), tidy=False)
+    xs = (x - x[0]) / sigma
+    fits = _Fits(t, x)
+    given = hold_velocity is not None
+    jumps: list[int] = []
+    for _ in range(2):
+        for _ in range(6):  # the wander about the boundaries left, until they settle
+            v_now = fits.table(bounds)[0]
+            fl = measure_fluctuations(t, x, sigma, bounds, v_now)
+            vmax = float(np.max(np.abs(v_now)))
+            floor = hold_velocity if given else 1e-4 * vmax
+            new = _prune(t, x, xs, bounds, fl, fits, rel_tol, z_min, floor, given, m)
+            if new == bounds:
+                break
+            bounds = new
+        # an excursion that a jump of the displacement explains as well is a reset too small
+        # for find_resets (a few quanta): taken out, and the boundaries searched again
+        # (on the samples: a block mean smears a jump into a ramp)
+        full = [b * blk for b in bounds[:-1]] + [n]
+        off = jump_excursions(t_all, x_all, full, fits.table(bounds)[0], rel_tol, m * blk) if (
+            record.load_point is not None) else []
+        if not off:
+            break
+        x_all = x_all.copy()
+        for _j, k, step in off:
+            x_all[k:] -= step
+            jumps.append(k - 1)
+        _, x = _blocks(t_all, x_all, blk)
+        drop = {j for j, _, _ in off} | {j + 1 for j, _, _ in off}
+        bounds = [q for i, q in enumerate(bounds) if i not in drop]
+        xs = (x - x[0]) / sigma
+        fits = _Fits(t, x)
+    resets = sorted(resets + jumps)
+    # the oscillation's periods on the searched signal (block means of a long record): only
+    # where some change is placed by the hinge under the wander
+    weak_now = _z(fits, fl, bounds) < LOCAL_Z
+    periods = _periods(t, x, bounds, fits) if weak_now.any() else ()
+    if blk > 1:
+        # each change found on block means moved to the best hinge on the samples between
+        # its neighbours (one vectorised pass per change: O(n) each, few changes)
+        sigma_all = max(noise_level(x_all), 1e-9 * span, 1e-300)
+        bounds = refine(t_all, (x_all - x_all[0]) / sigma_all,
+                        [b * blk for b in bounds[:-1]] + [n], max(3, min_samples), 0.0)
+        fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
+        t, x = t_all, x_all
+        fits = _Fits(t, x)
+    bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
+                           sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
+                           fl.absolute, m, weak=_z(fits, fl, bounds) < LOCAL_Z,
+                           periods=periods)
+    v_arr, d_arr, sxx_arr = fits.table(bounds)
+    vel = [float(v) for v in v_arr]
+    hold = [bool(h) for h in _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)]
+    plateau = _plateaus(t, bounds, vel, hold, rel_tol)
+    keep = [0] + [bounds[j] for j in range(1, len(plateau)) if plateau[j] != plateau[j - 1]]
+    keep.append(len(t))
+    # a normal-stress change is a boundary too (the velocity may stay)
+    nchg = normal_changes(t, record.normal_stress, min_samples)
+    cuts = sorted(set(keep) | {i for i in nchg if 0 < i < len(t)})
+    vals = [plateau[int(np.searchsorted(bounds, a, side="right")) - 1] for a in cuts[:-1]]
+    segs = list(make_segments(t, cuts, vals))
+    sn = None if record.normal_stress is None else np.asarray(record.normal_stress, float)
+    out = []
+    for j, s in enumerate(segs):
+        conf = float("nan")
+        if j > 0 and s.i_start in keep:
+            conf = float(_z(fits, fl, [segs[j - 1].i_start, s.i_start, s.i_end])[0])
+        normal = float(np.mean(sn[s.i_start:s.i_end])) if sn is not None else float("nan")
+        out.append(replace(s, confidence=conf, normal=normal))
+    rate, gaps = sampling_changes(t)
+    return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),
+                     tuple(gaps), tuple(float(t[i]) for i in nchg))
+
+
+LOCAL_Z = 500.0
+"""Below this confidence a change is placed by the generalised-least-squares hinge under the
+record's wander (:func:`.placement.place_changes`); a larger one is placed as well by the whole
+stretches (the shared record's, z ~ 760, stays at sample 16451)."""
+
+
+MAX_POINTS = 2_000
+"""Longest signal searched sample by sample; a longer one is searched on block means."""
+MAX_CANDIDATES = 80
+"""Most candidate stretches (the largest white-noise gains) judged against the fluctuations."""
+
+
+def _periods(t: Array, x: Array, bounds: list[int], fits: _Fits) -> tuple[float, ...]:
+    """Periods (s) of a machine oscillation in the displacement about the broken line
+    (:func:`.placement.oscillation_periods`)."""
+    v = fits.table(bounds)[0]
+    cnt = np.diff(np.asarray(bounds))
+    seg = np.repeat(np.arange(len(cnt)), cnt)
+    b0 = np.asarray(bounds[:-1])
+    tc = t - (np.add.reduceat(t, b0) / cnt)[seg]
+    res = x - (np.add.reduceat(x, b0) / cnt)[seg] - v[seg] * tc
+    return oscillation_periods(t, res, np.abs(v)[seg])
+
+
+def _blocks(t: Array, x: Array, blk: int) -> tuple[Array, Array]:
+    """Means of ``blk`` consecutive samples of ``t`` and ``x`` (the last block may be short)."""
+    if blk == 1:
+        return t, x
+    idx = np.arange(0, len(t), blk)
+    cnt = np.diff(np.append(idx, len(t)))
+    return np.add.reduceat(t, idx) / cnt, np.add.reduceat(x, idx) / cnt
+
+
+def _plateaus(t: Array, bounds: list[int], vel: list[float], hold: list[bool],
+              rel_tol: float) -> list[float]:
+    """One plateau value for the velocities within ``rel_tol`` of each other (same sign), the
+    duration-weighted mean; holds are 0: a record that returns to 0.2 um/s gives 0.2 um/s each
+    time."""
+    plateau = [0.0] * len(vel)
+    order = sorted((j for j in range(len(vel)) if not hold[j]), key=lambda j: vel[j])
+    groups: list[list[int]] = []
+    for j in order:
+        p = groups[-1][-1] if groups else None
+        if p is not None and vel[p] * vel[j] > 0 and (
+                abs(vel[j] - vel[p]) <= rel_tol * max(abs(vel[j]), abs(vel[p]))):
+            groups[-1].append(j)
+        else:
+            groups.append([j])
+    for g in groups:
+        w = np.array([t[bounds[j + 1] - 1] - t[bounds[j]] for j in g])
+        v = float(np.average([vel[j] for j in g], weights=w if w.sum() > 0 else None))
+        for j in g:
+            plateau[j] = v
+    return plateau
+
+
+def detect_segments(record: LabRecord, **kwargs: float) -> tuple[Segment, ...]:
+    """The load program of a record (:func:`detect_program`'s segments)."""
+    return detect_program(record, **kwargs).segments  # type: ignore[arg-type]
+
+
+def no_change_message(record: LabRecord, det: Detection) -> str:
+    """The one line for a record in which no velocity change stands above the fluctuations:
+    the smallest change the two halves of the record would show at confidence ``Z_MIN``."""
+    t = np.asarray(record.time)
+    x = displacement(record)
+    h = len(t) // 2
+    fits = _Fits(t, x)
+    v, d, sxx = fits.table([0, h, len(t)])
+    e = det.fluctuations.scatter(d, v, sxx)
+    lim = Z_MIN * float(np.hypot(e[0], e[1]))
+    return (f"{record.source}: no velocity change found above the apparatus' fluctuations of "
+            f"{lim * 1e6:.3g} um/s ({Z_MIN:g} times the scatter of the velocities of the "
+            "record's two halves); give the program with --segments, e.g. 0:2e-7,1200:2e-6")

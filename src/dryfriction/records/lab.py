@@ -1,0 +1,570 @@
+"""Laboratory friction records as they come from the apparatus: reading, load program, steps.
+
+A record is a text table (or a spreadsheet ``.xlsx`` or MATLAB ``.mat`` file, read as one:
+:mod:`.labforms`) with one header line of column names, units in parentheses or square
+brackets after the name (``Time(s)``, ``Displ(microns)``, ``Shear_stress[MPa]``), separated by
+tabs, commas, semicolons or spaces (sniffed). Lines starting with ``#`` and blank lines are
+skipped; a units row under the header (``s  um  -  MPa``) and trailing empty columns are
+tolerated. Columns are recognised by name, case-insensitively (the *role* in brackets is the key
+of the column map):
+
+* time (``time``): ``t``, ``Time``, ``time[s]``, ``elapsed_time``;
+* load-point displacement (``disp``): ``Displ``, ``Disp``, ``LP_disp``, ``load_point``,
+  ``displacement`` (a name with ``lp`` or ``load point`` wins over other displacements);
+* load-point velocity (``velocity``), when the file gives it instead of a displacement:
+  ``lp_velocity``, ``v_load``, ``velocity``;
+* friction (``mu``): ``Friction``, ``mu``, ``cof``, ``friction_coefficient``;
+* shear and normal stress or force (``shear``, ``normal``): ``Shear_stress``, ``tau``,
+  ``Normal_stress``, ``EffectiveNormalstress``, ``sigma_n`` (an *effective* normal stress wins).
+  Friction is shear over normal when there is no friction column (both stresses or both forces).
+
+Units (SI without one): time ``s, ms, us, min, h``; length ``m, cm, mm, um, µm, micron(s), nm``;
+velocity ``length/time`` (``um/s``); stress ``Pa, kPa, MPa, GPa``; force ``N, kN, MN``; friction
+dimensionless (none, ``-`` or ``1``). The column map ``time=Time,disp=LP_disp:mm,...`` (CLI
+``--columns``) names any column the guesses miss, with an optional unit after ``:``.
+
+The load program is found from the displacement (:func:`detect_segments`) or given
+(:func:`parse_segments`), and a multi-step record is cut into its velocity steps and
+slide-hold-slide cycles (:func:`slice_steps`). Every refusal is a :class:`ValueError` naming the
+file, the line (1-based) and the column.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from types import MappingProxyType
+
+import numpy as np
+
+from ..io.textfile import HEAD_BYTES, check_text
+from ..validation import FRICTION_MAX, Array, check_memory
+from .data import LENGTH_UNITS, TIME_UNITS
+from .detection import Detection, detect_program, detect_segments, no_change_message
+from .labforms import FORMS, read_table
+from .labsteps import (
+    SEGMENTS_SYNTAX,
+    Segment,
+    StepWindow,
+    load_velocity_series,
+    parse_segments,
+    segments_spec,
+    segments_table,
+    slice_steps,
+    write_segments_csv,
+)
+from .record import LabRecord
+
+__all__ = [
+    "LabRecord",
+    "Segment",
+    "StepWindow",
+    "ROLES",
+    "MIN_ROWS",
+    "read_record",
+    "apparatus_note",
+    "FRICTION_MAX",
+    "parse_column_map",
+    "Detection",
+    "detect_program",
+    "detect_segments",
+    "no_change_message",
+    "parse_segments",
+    "segments_table",
+    "segments_spec",
+    "write_segments_csv",
+    "SEGMENTS_SYNTAX",
+    "load_velocity_series",
+    "slice_steps",
+]
+
+MIN_ROWS = 10
+# FRICTION_MAX (validation): the largest |friction| a record may hold, as a run's inputs;
+# measured coefficients lie between 0 and about 1.5, and a cell of 1e300 is a typo that,
+# read as friction, overflowed the fit (rms = inf)
+APPARATUS_V_MAX = 1e-2
+"""Load velocity (m/s) above which a record is flagged as implausible for a friction
+apparatus (ours: rotary shear reaches ~1 m/s, but a velocity-step record of 0.2 m/s is far
+more often micrometres read as metres)."""
+APPARATUS_X_MAX = 1.0
+"""Load-point displacement span (m) above which a record is flagged likewise."""
+"""Fewest data rows a record may have (fewer cannot show a transient)."""
+
+ROLES: dict[str, str] = {
+    "time": "time",
+    "disp": "load-point displacement",
+    "velocity": "load-point velocity",
+    "mu": "friction",
+    "shear": "shear stress or force",
+    "normal": "normal stress or force",
+}
+"""The column-map keys and what each column holds."""
+
+_ALIASES = {"t": "time", "displacement": "disp", "lp": "disp", "load_point": "disp",
+            "v": "velocity", "vel": "velocity", "v_load": "velocity", "friction": "mu",
+            "tau": "shear", "sigma_n": "normal", "sn": "normal"}
+
+_TIME = {**TIME_UNITS, "sec": 1.0, "hr": 3600.0}
+_LENGTH = {**LENGTH_UNITS, "μm": 1e-6, "micron": 1e-6, "microns": 1e-6}
+_STRESS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
+_FORCE = {"N": 1.0, "kN": 1e3, "MN": 1e6}
+_NONE = ("", "-", "1")
+
+
+# ------------------------------------------------------------------------------ header
+_CELL = re.compile(r"^(.*?)\s*[\(\[]\s*([^\(\)\[\]]*?)\s*[\)\]]\s*$")
+
+
+def _split_cell(cell: str) -> tuple[str, str | None]:
+    """``'Time (s)'`` -> ``('Time', 's')``; ``'Friction'`` -> ``('Friction', None)``."""
+    m = _CELL.match(cell.strip())
+    return (m.group(1).strip(), m.group(2)) if m else (cell.strip(), None)
+
+
+def _key(name: str) -> str:
+    k = name.lower().replace("µ", "mu").replace("μ", "mu")
+    return re.sub(r"[^a-z0-9]", "", k)
+
+
+def _guess_role(name: str) -> tuple[str | None, bool]:
+    """(role, preferred) guessed from a column name (without its unit)."""
+    k = _key(name)
+    if re.fullmatch(r"t|times?\d*|timesec|elapsedtime|timeelapsed|runtime|testtime", k):
+        return "time", False
+    if re.search(r"vel|speed", k) or k in ("v", "vlp", "vload", "lpv"):
+        return "velocity", "lp" in k or "loadpoint" in k
+    if re.search(r"disp|loadpoint", k) or k in ("lp", "lpd", "x"):
+        if re.search(r"vert|norm|thick|dil", k):
+            return None, False
+        return "disp", k.startswith("lp") or "loadpoint" in k
+    if "fric" in k or k in ("mu", "cof", "coefficientoffriction"):
+        return "mu", False
+    if re.search(r"strain|rate|disp", k):
+        return None, False
+    if "shear" in k or k in ("tau", "ss"):
+        return "shear", False
+    if "normal" in k or k in ("sn", "sigman", "sigmaneff", "effsigman"):
+        return "normal", "eff" in k
+    return None, False
+
+
+def _lookup(unit: str, table: Mapping[str, float]) -> float | None:
+    if unit in table:
+        return table[unit]
+    folded = [k for k in table if k.casefold() == unit.casefold()]
+    return table[folded[0]] if len(folded) == 1 else None
+
+
+def _unit(role: str, unit: str, where: str) -> tuple[float, str]:
+    """SI factor and kind (``time, length, velocity, stress, force, none``) of a unit."""
+    u = unit.strip()
+    if role == "mu":
+        if u in _NONE:
+            return 1.0, "none"
+        raise ValueError(f"{where}: unit ({unit}) is not allowed: friction is dimensionless "
+                         "(no unit, - or 1)")
+    if u == "":
+        return 1.0, {"time": "time", "disp": "length", "velocity": "velocity"}.get(role, "")
+    tables: dict[str, dict[str, tuple[Mapping[str, float], str]]] = {
+        "time": {"time": (_TIME, "time")},
+        "disp": {"length": (_LENGTH, "length")},
+        "shear": {"stress": (_STRESS, "stress"), "force": (_FORCE, "force")},
+        "normal": {"stress": (_STRESS, "stress"), "force": (_FORCE, "force")},
+    }
+    if role == "velocity":
+        num, _, den = u.partition("/")
+        f_len, f_time = _lookup(num.strip(), _LENGTH), _lookup(den.strip(), _TIME)
+        if f_len is not None and f_time is not None:
+            return f_len / f_time, "velocity"
+        raise ValueError(f"{where}: unknown velocity unit ({unit}): accepted length/time with "
+                         f"length {', '.join(_LENGTH)} and time {', '.join(_TIME)} (e.g. um/s)")
+    for table, kind in tables[role].values():
+        f = _lookup(u, table)
+        if f is not None:
+            return f, kind
+    accepted = ", ".join(k for table, _ in tables[role].values() for k in table)
+    raise ValueError(f"{where}: unknown unit ({unit}) for the {ROLES[role]}: accepted "
+                     f"{accepted}")
+
+
+def parse_column_map(text: str) -> dict[str, str]:
+    """Parse the CLI column map ``time=Time,disp=LP_disp:mm,mu=Friction``.
+
+    Keys are the roles of :data:`ROLES` (``time, disp, velocity, mu, shear, normal``; also
+    ``t, displacement, v, friction, tau, sigma_n``); a value is a header name, matched
+    case-insensitively with or without its unit, optionally followed by ``:unit`` for a header
+    that has none.
+
+    Returns
+    -------
+    dict
+        Role -> ``"name"`` or ``"name:unit"``.
+
+    Raises
+    ------
+    ValueError
+        For an item that is not ``key=name``, an unknown key, or a key given twice.
+    """
+    out: dict[str, str] = {}
+    for item in (s.strip() for s in text.split(",")):
+        if not item:
+            continue
+        key, sep, value = item.partition("=")
+        key = key.strip().lower()
+        key = _ALIASES.get(key, key)
+        if not sep or not value.strip():
+            raise ValueError(f"--columns {item!r}: expected key=name, e.g. disp=LP_disp:mm")
+        if key not in ROLES:
+            raise ValueError(f"--columns {item!r}: unknown key {key!r}: allowed "
+                             f"{', '.join(ROLES)}")
+        if key in out:
+            raise ValueError(f"--columns: {key} is given twice")
+        out[key] = value.strip()
+    return out
+
+
+# ------------------------------------------------------------------------------ reading
+def _sniff(header: str, sample: str) -> str | None:
+    """The delimiter of the data lines (``None``: runs of spaces)."""
+    for d in ("\t", ";", ","):
+        if d in sample and (d in header or d != ","):
+            return d
+    return None
+
+
+def _cells(line: str, delim: str | None) -> list[str]:
+    cells = line.split(delim) if delim else line.split()
+    while cells and not cells[-1].strip():
+        cells.pop()  # trailing empty columns
+    return cells
+
+
+def _is_number(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def _header_cells(line: str, delim: str | None) -> list[str]:
+    cells = _cells(line, delim)
+    if delim is None:  # ``Shear_stress (MPa)``: a lone unit belongs to the name before it
+        merged: list[str] = []
+        for c in cells:
+            if merged and re.fullmatch(r"[\(\[].*[\)\]]", c):
+                merged[-1] += " " + c
+            else:
+                merged.append(c)
+        cells = merged
+    return cells
+
+
+def _decode(raw: bytes) -> str:
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return raw.decode("latin-1")  # older instruments write µ as one byte
+
+
+def _assign(
+    src: str, hline: int, names: list[str], columns: Mapping[str, str] | None
+) -> tuple[dict[str, int], dict[str, str | None]]:
+    """Column index and unit override of each role, from the map then from the names."""
+    idx: dict[str, int] = {}
+    forced: dict[str, str | None] = {}
+    found = ", ".join(repr(n) for n in names)
+    for role, spec in (columns or {}).items():
+        role = _ALIASES.get(role, role)
+        if role not in ROLES:
+            raise ValueError(f"{src}: column map key {role!r} is unknown: allowed "
+                             f"{', '.join(ROLES)}")
+        name, unit = spec, None
+        if ":" in spec:
+            name, _, unit = spec.rpartition(":")
+        hits = [j for j, n in enumerate(names)
+                if name.strip().lower() in (n.strip().lower(), _split_cell(n)[0].lower())]
+        if not hits:
+            raise ValueError(f"{src}, line {hline}: --columns {role}={spec}: no column "
+                             f"{name!r}; found {found}")
+        idx[role], forced[role] = hits[0], unit
+    guesses: dict[str, list[tuple[int, bool]]] = {}
+    for j, n in enumerate(names):
+        role, preferred = _guess_role(_split_cell(n)[0])
+        if role is not None and j not in idx.values():
+            guesses.setdefault(role, []).append((j, preferred))
+    for role, cands in guesses.items():
+        if role in idx:
+            continue
+        best = [c for c in cands if c[1]] or cands
+        if len(best) > 1:
+            which = " and ".join(f"{names[j]!r} (column {j + 1})" for j, _ in best)
+            raise ValueError(f"{src}, line {hline}: {which} could each be the {ROLES[role]}: "
+                             f"choose one with --columns {role}=NAME")
+        idx[role] = best[0][0]
+    if "time" not in idx:
+        raise ValueError(f"{src}, line {hline}: no time column: found {found}; name it with "
+                         "--columns time=NAME")
+    if "disp" not in idx and "velocity" not in idx:
+        raise ValueError(f"{src}, line {hline}: no load-point displacement (or velocity) column: "
+                         f"found {found}; name it with --columns disp=NAME (or velocity=NAME)")
+    if "mu" not in idx and not ("shear" in idx and "normal" in idx):
+        missing = "normal" if "shear" in idx else "shear"
+        raise ValueError(f"{src}, line {hline}: no friction column (nor shear and normal "
+                         f"stress: no {ROLES[missing]} column): found {found}; name it with "
+                         f"--columns mu=NAME (or shear=NAME,normal=NAME)")
+    return idx, forced
+
+
+def apparatus_note(record: LabRecord, velocities: Array | list[float],
+                   given: bool = False) -> str | None:
+    """One line when the record's numbers imply an implausible friction apparatus: load
+    velocities above :data:`APPARATUS_V_MAX` or a displacement span above
+    :data:`APPARATUS_X_MAX` (most often a column without a unit, micrometres read as metres);
+    it names the column and the ``--columns`` entry that gives its unit. ``None`` otherwise.
+
+    Parameters
+    ----------
+    record : LabRecord
+    velocities : array
+        The load program's velocities, m/s.
+    given : bool
+        The program was given (``--segments``, in m/s) rather than detected.
+    """
+    v = float(np.max(np.abs(velocities))) if len(velocities) else 0.0
+    x = record.load_point
+    span = float(np.ptp(x)) if x is not None and len(x) else 0.0
+    if not (v > APPARATUS_V_MAX or span > APPARATUS_X_MAX):
+        return None
+    role = "disp" if x is not None else "velocity"
+    header, unit = record.columns.get(role, role), record.units.get(role, "")
+    head = (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
+            "displacement are odd for a friction apparatus; ")
+    if not unit:
+        fix = "um" if role == "disp" else "um/s"
+        return (head + f"column {header!r} has no unit, so it is read as SI (m, m/s): if it "
+                f"is in micrometres, give --columns {role}={header}:{fix}")
+    if given and span <= APPARATUS_X_MAX:
+        return head + "--segments takes velocities in m/s (2e-7 for 0.2 um/s)"
+    return head + f"column {header!r} has the unit {unit!r}: is it right?"
+
+
+def read_record(
+    path: str | os.PathLike[str], columns: Mapping[str, str] | None = None
+) -> LabRecord:
+    """Read a laboratory friction record (see the module docstring for the format).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The text file.
+    columns : mapping, optional
+        Role -> header name (``"LP_disp"`` or ``"LP_disp:mm"``), overriding the guesses; the
+        form :func:`parse_column_map` returns.
+
+    Returns
+    -------
+    LabRecord
+        Values in SI units.
+
+    Raises
+    ------
+    ValueError
+        A missing or ambiguous column, an unknown unit, a cell that is not a finite number,
+        time that does not increase strictly, fewer than :data:`MIN_ROWS` rows, or a file too
+        large for the memory limit: one line naming the file, the line and the column.
+    OSError
+        If the file cannot be read.
+    """
+    path = Path(path)
+    src = str(path)
+    if path.suffix.lower() in FORMS:  # a spreadsheet or a MATLAB file (.labforms)
+        return _read_form(path, columns)
+    size = path.stat().st_size
+    with open(path, "rb") as fh:
+        chunk = fh.read(1 << 20)
+    check_text(chunk[:HEAD_BYTES], src)  # gzip, UTF-16: named, not read as Latin-1
+    head = _decode(chunk).splitlines()
+    if len(chunk) == 1 << 20 and len(head) > 1:
+        head.pop()  # may be cut short
+    header, hline, sample, sline, units_row = None, 0, None, 0, None
+    for n, line in enumerate(head, start=1):
+        s = line.strip()
+        if not s or s.startswith("#"):
+            continue
+        if header is None:
+            header, hline = line, n
+        elif sample is None and units_row is None and not any(
+                _is_number(c) for c in re.split(r"[\t;, ]+", s)):
+            units_row = (line, n)
+        else:
+            sample, sline = line, n
+            break
+    if header is None:
+        raise ValueError(f"{src}: no header line with column names")
+    if sample is None:
+        raise ValueError(f"{src}: no data rows after the header (line {hline}): at least "
+                         f"{MIN_ROWS} needed")
+    delim = _sniff(header, sample)
+    names = _header_cells(header, delim)
+    width = len(_cells(sample, delim))
+    if width > len(names):
+        raise ValueError(f"{src}, line {sline}: {width} cells, the header (line {hline}) names "
+                         f"{len(names)}: separate the columns with tabs or commas")
+    row_units = _header_cells(units_row[0], delim) if units_row else []
+
+    def load(usecols: list[int], roles: list[str]) -> tuple[Array, Callable[[int], int]]:
+        need = size + size / max(len(sample), 8) * (120 + 24 * len(usecols))
+        check_memory(f"{src}: reading this {size / 1e6:.0f} MB record needs", need,
+                     "split the file")
+        decimal_comma = delim != "," and bool(re.search(r"\d,\d", sample))
+        with open(path, "rb") as fh:
+            raw = fh.read()
+        if decimal_comma:
+            raw = raw.replace(b",", b".")
+        data = _parse(raw, sline - 1, delim, usecols, src, names, roles)
+        return data, _line_mapper(raw, sline, len(data))
+
+    return _finish(src, names, columns, hline, sline, row_units, load)
+
+
+def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline: int,
+            sline: int, row_units: list[str],
+            load: Callable[[list[int], list[str]], tuple[Array, Callable[[int], int]]]
+            ) -> LabRecord:
+    """The columns assigned and their units checked, then the data ``load``-ed (the used
+    columns and a row -> file line map), checked and turned into a :class:`LabRecord`."""
+    idx, forced = _assign(src, hline, names, columns)
+    roles = list(idx)
+    factors: dict[str, float] = {}
+    kinds: dict[str, str] = {}
+    units: dict[str, str] = {}
+    for role in roles:  # every unit is checked before the data are read
+        j = idx[role]
+        unit = forced.get(role)
+        if unit is None:
+            unit = _split_cell(names[j])[1]
+        if unit is None and j < len(row_units):
+            unit = row_units[j].strip().strip("()[]")
+        where = f"{src}, line {hline}, column {j + 1} ({names[j].strip()})"
+        factors[role], kinds[role] = _unit(role, unit or "", where)
+        units[role] = unit or ""
+    if "mu" not in idx and kinds["shear"] != kinds["normal"]:
+        # a column without a unit has no kind: say so (the line read "is a  and", outside24)
+        said = {r: f"a {kinds[r]}" if kinds[r] else "without a unit" for r in ("shear", "normal")}
+        raise ValueError(f"{src}, line {hline}: shear column {names[idx['shear']]!r} is "
+                         f"{said['shear']} and normal column {names[idx['normal']]!r} "
+                         f"{said['normal']}: friction needs two stresses or two forces (a "
+                         "unit with --columns, e.g. shear=NAME:MPa)")
+    usecols = [idx[r] for r in roles]
+    data, line_of = load(usecols, roles)
+    vals: dict[str, Array] = {}
+    for k, role in enumerate(roles):
+        j, col = idx[role], data[:, k]
+        bad = ~np.isfinite(col)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(f"{src}, line {line_of(i)}, column {j + 1} ({names[j].strip()}): "
+                             f"{col[i]} is not a finite number")
+        vals[role] = col * factors[role] if factors[role] != 1.0 else col.copy()
+    if len(data) < MIN_ROWS:
+        raise ValueError(f"{src}, line {line_of(len(data) - 1)}: only {len(data)} data rows: "
+                         f"at least {MIN_ROWS} needed")
+    t = vals["time"]
+    dec = np.flatnonzero(np.diff(t) <= 0.0)
+    if dec.size:
+        i, j, k = int(dec[0]) + 1, idx["time"], roles.index("time")
+        raise ValueError(f"{src}, line {line_of(i)}, column {j + 1} ({names[j].strip()}): "
+                         f"time {data[i, k]:g} does not increase (previous {data[i - 1, k]:g})")
+    if "mu" in vals:
+        friction = vals["mu"]
+    else:
+        zero = np.flatnonzero(vals["normal"] == 0.0)
+        if zero.size:
+            j = idx["normal"]
+            raise ValueError(f"{src}, line {line_of(int(zero[0]))}, column {j + 1} "
+                             f"({names[j].strip()}): normal stress 0: friction is undefined")
+        friction = vals["shear"] / vals["normal"]
+    far = np.flatnonzero(~(np.abs(friction) <= FRICTION_MAX))
+    if far.size:
+        i = int(far[0])
+        j = idx["mu" if "mu" in vals else "shear"]
+        raise ValueError(f"{src}, line {line_of(i)}, column {j + 1} ({names[j].strip()}): "
+                         f"friction {friction[i]:g} is out of range: allowed |friction| <= "
+                         f"{FRICTION_MAX:g} (a friction coefficient)")
+    normal = vals.get("normal")
+    normal_unit = "" if normal is None else ("N" if kinds["normal"] == "force" else "Pa")
+    for a in (t, friction, normal, vals.get("disp"), vals.get("velocity")):
+        if a is not None:
+            a.setflags(write=False)
+    return LabRecord(
+        source=src, time=t, load_point=vals.get("disp"), load_velocity=vals.get("velocity"),
+        friction=friction, normal_stress=normal, normal_unit=normal_unit,
+        columns=MappingProxyType({r: names[idx[r]].strip() for r in roles}),
+        first_line=sline, units=MappingProxyType(units))
+
+
+def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
+    """:func:`read_record` for a ``.xlsx`` or ``.mat`` file: its table read as a text one."""
+    names, table, hline, sline, row_units, word = read_table(path)
+
+    def load(usecols: list[int], roles: list[str]) -> tuple[Array, Callable[[int], int]]:
+        return table[:, usecols], lambda i: sline + i
+
+    try:
+        return _finish(str(path), names, columns, hline, sline, row_units, load)
+    except ValueError as exc:  # the same refusal, in the file's own words for a row
+        msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
+        raise ValueError(msg.replace(", line ", f", {word} ")) from None
+
+
+def _parse(raw: bytes, skip: int, delim: str | None, usecols: list[int], src: str,
+           names: list[str], roles: list[str]) -> Array:
+    """The used columns of the data lines as one float array (rows, len(usecols))."""
+    kw = dict(delimiter=delim, usecols=usecols, comments="#", ndmin=2, encoding="latin-1")
+    try:
+        return np.loadtxt(io.BytesIO(raw), skiprows=skip, **kw)  # type: ignore[call-overload]
+    except ValueError:
+        pass
+    # slow path, only for an unusual file: drop blank and comment lines, find the bad cell
+    lines = raw.decode("latin-1").splitlines()[skip:]
+    keep = [(n, ln) for n, ln in enumerate(lines, start=skip + 1)
+            if ln.strip() and not ln.lstrip().startswith("#")]
+    try:
+        return np.loadtxt([ln for _, ln in keep], **kw)  # type: ignore[call-overload]
+    except ValueError:
+        pass
+    for n, ln in keep:
+        cells = _cells(ln.split("#", 1)[0], delim)
+        for j, role in zip(usecols, roles, strict=True):
+            where = f"{src}, line {n}, column {j + 1} ({names[j].strip()})"
+            if j >= len(cells):
+                raise ValueError(f"{where}: missing: the line has {len(cells)} cells, the "
+                                 f"header {len(names)}")
+            if not _is_number(cells[j]):
+                what = "empty cell" if not cells[j].strip() else f"{cells[j].strip()!r}"
+                raise ValueError(f"{where}: {what} is not a number ({ROLES[role]})")
+    raise ValueError(f"{src}: the data lines cannot be read as numbers")
+
+
+def _line_mapper(raw: bytes, first: int, rows: int):  # type: ignore[no-untyped-def]
+    """Row index -> file line; scans the file only when blank or comment lines intervene."""
+    tail = raw.rstrip(b"\r\n \t")
+    n_lines = tail.count(b"\n") + 1 if tail else 0
+    if n_lines - (first - 1) == rows:
+        return lambda i: first + i
+    numbers: list[int] = []
+
+    def line_of(i: int) -> int:
+        if not numbers:
+            for n, ln in enumerate(raw.decode("latin-1").splitlines(), start=1):
+                s = ln.strip()
+                if n >= first and s and not s.startswith("#"):
+                    numbers.append(n)
+        return numbers[min(i, len(numbers) - 1)]
+
+    return line_of
+

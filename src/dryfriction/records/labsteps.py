@@ -1,0 +1,306 @@
+"""The load program of a laboratory record and its velocity steps (used through :mod:`.lab`).
+
+:func:`.detection.detect_segments` finds the piecewise-constant load-point velocities and holds
+from the displacement, :func:`parse_segments` reads them from the ``--segments`` form, and
+:func:`slice_steps` cuts the record into the windows of its velocity steps and slide-hold-slide
+cycles, as one would choose them by hand.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..rsf.law import V_MAX, V_MIN
+from ..validation import Array
+from .record import LabRecord
+
+__all__ = [
+    "Segment",
+    "StepWindow",
+    "make_segments",
+    "parse_segments",
+    "segments_table",
+    "write_segments_csv",
+    "SEGMENTS_SYNTAX",
+    "load_velocity_series",
+    "slice_steps",
+]
+
+@dataclass(frozen=True)
+class Segment:
+    """One stretch of the load program at a constant load-point velocity.
+
+    Attributes
+    ----------
+    t_start, t_end : float
+        Start and end, s, in the record's own time.
+    velocity : float
+        Load-point velocity, m/s (``0``: a hold).
+    i_start, i_end : int
+        The samples ``[i_start, i_end)`` of the record it covers.
+    confidence : float
+        Of the change at its start: the velocity difference over the scatter the apparatus'
+        fluctuations give it (:mod:`.detection`); NaN for the first segment, one given by
+        ``--segments``, or a boundary set by a normal-stress change alone.
+    normal : float
+        Mean normal stress (Pa) or force (N) over it; NaN without a normal column.
+    """
+
+    t_start: float
+    t_end: float
+    velocity: float
+    i_start: int
+    i_end: int
+    confidence: float = float("nan")
+    normal: float = float("nan")
+
+    @property
+    def duration(self) -> float:
+        """``t_end - t_start``, s."""
+        return self.t_end - self.t_start
+
+
+def make_segments(t: Array, bounds: list[int], vel: list[float]) -> tuple[Segment, ...]:
+    """Segments over the samples ``bounds[j]:bounds[j+1]`` with velocities ``vel`` (m/s)."""
+    n = len(t)
+    return tuple(Segment(float(t[a]), float(t[b]) if b < n else float(t[-1]), float(v), a, b)
+                 for a, b, v in zip(bounds[:-1], bounds[1:], vel, strict=True))
+
+
+def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
+    """The load program given by hand: ``"0:2e-7,1200:2e-6,2400:0,2500:2e-7"``.
+
+    Each item is ``start:velocity``: the start in seconds *from the record's first sample*
+    (so the first item starts at 0) and the load-point velocity in m/s from there until the
+    next start (0: a hold). Starts must increase and lie within the record.
+
+    Raises
+    ------
+    ValueError
+        Naming the item and the file.
+    """
+    if not text.strip(" ,"):  # an empty option is no program, not "detect it"
+        raise ValueError("--segments is empty: give the load program as start:velocity items "
+                         "(s from the record's start : m/s), e.g. 0:2e-7,1200:2e-6, or leave "
+                         "the option out to detect it")
+    t = np.asarray(record.time)
+    src, dur = record.source, float(t[-1] - t[0])
+    starts: list[float] = []
+    vel: list[float] = []
+    for item in (s.strip() for s in text.split(",")):
+        if not item:
+            continue
+        a, sep, b = item.partition(":")
+        try:
+            s, v = float(a), float(b)
+        except ValueError:
+            s = v = float("nan")
+        if not sep or not (np.isfinite(s) and np.isfinite(v)):
+            raise ValueError(f"--segments {item!r}: expected start:velocity (s from the "
+                             "record's start : m/s), e.g. 0:2e-7,1200:2e-6")
+        # the fits' own ranges (SeriesData: v_load >= 0; RateState: V0 <= V_MAX), here so
+        # that record shows what fit would refuse, before any work
+        if v != 0.0 and not V_MIN <= v <= V_MAX:
+            raise ValueError(f"--segments {item!r}: velocity {v:g} m/s is out of range: allowed "
+                             f"0 (a hold) or {V_MIN:g} to {V_MAX:g} m/s (the load point moves "
+                             "forward)")
+        if not 0.0 <= s < dur:
+            raise ValueError(f"--segments {item!r}: start {s:g} s is outside {src} (0 to "
+                             f"{dur:g} s from its first sample)")
+        if starts and s <= starts[-1]:
+            raise ValueError(f"--segments {item!r}: starts must increase (previous "
+                             f"{starts[-1]:g} s)")
+        starts.append(s)
+        vel.append(v)
+    if not starts or starts[0] != 0.0:
+        raise ValueError(f"--segments {text!r}: the first segment must start at 0 (the "
+                         f"record's first sample, t = {t[0]:g} s in {src})")
+    idx = [int(i) for i in np.searchsorted(t - t[0], starts, side="left")] + [len(t)]
+    for j in range(1, len(starts)):
+        if idx[j] == idx[j + 1] or idx[j] == idx[j - 1]:
+            raise ValueError(f"--segments: the segment starting at {starts[j]:g} s holds no "
+                             f"sample of {src}")
+    segs = list(make_segments(t, idx, vel))
+    # a given start falls between samples: keep the time the user wrote
+    segs = [Segment(float(t[0]) + s, g.t_end if j == len(segs) - 1 else float(t[0]) +
+                    starts[j + 1], g.velocity, g.i_start, g.i_end)
+            for j, (s, g) in enumerate(zip(starts, segs, strict=True))]
+    return tuple(segs)
+
+
+def segments_table(segments: tuple[Segment, ...] | list[Segment]) -> str:
+    """The load program as a fixed-width table (times in s, velocities in m/s and um/s, the
+    confidence of the change at each start, the mean normal stress in MPa or force in kN)."""
+    lines = [f"{'#':>3} {'t_start (s)':>13} {'t_end (s)':>13} {'duration (s)':>12} "
+             f"{'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} {'confidence':>10} "
+             f"{'normal':>9}"]
+    for j, s in enumerate(segments):
+        kind = "  hold" if s.velocity == 0.0 else ""
+        conf = "-" if not np.isfinite(s.confidence) else f"{s.confidence:.3g}"
+        normal = "-" if not np.isfinite(s.normal) else f"{s.normal / 1e6:.4g}"
+        lines.append(f"{j:>3} {s.t_start:>13.6g} {s.t_end:>13.6g} {s.duration:>12.6g} "
+                     f"{s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
+                     f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>9}{kind}")
+    lines.append("confidence: the velocity change at the segment's start over the scatter the "
+                 "apparatus' fluctuations give it; normal: mean normal stress, MPa (force: kN)")
+    return "\n".join(lines)
+
+
+SEGMENTS_SYNTAX = (
+    "The load program as comma-separated START:VELOCITY items: START in s from the record's "
+    "first sample (the first item starts at 0; starts increase and lie inside the record), "
+    "VELOCITY the load-point velocity in m/s from there to the next START (0: a hold; "
+    "negative: sliding back). E.g. 0:2e-7,1200:2e-6 (0.2 um/s, then 2 um/s from 1200 s); "
+    "0:1e-5,100:0,130:1e-5 (a 30-s hold). The table of the 'record' command and its "
+    "segments.csv give the detected program in this form to edit.")
+"""The full syntax of ``--segments`` (its CLI help)."""
+
+
+def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float) -> str:
+    """The program in the ``--segments`` form (starts in s from ``t0``, the first sample)."""
+    return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)
+
+
+def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
+                       normal_unit: str = "Pa") -> None:
+    """Write the load program as CSV, one row per segment, units in the headers; the
+    ``--segments`` form of the whole program in a comment line on top."""
+    nu, scale = ("MPa", 1e-6) if normal_unit != "N" else ("kN", 1e-3)
+    what = "normal stress" if normal_unit != "N" else "normal force"
+    rows = [f"# --segments {segments_spec(segments, t0)}",
+            f"segment,kind,t_start [s],t_end [s],t_start from first sample [s],duration [s],"
+            f"velocity [m/s],velocity [um/s],i_start,i_end,samples,confidence [-],"
+            f"{what} [{nu}]"]
+    for j, s in enumerate(segments):
+        prev = segments[j - 1].velocity if j else None
+        kind = ("hold" if s.velocity == 0.0 else "start" if j == 0 else
+                "normal change" if prev == s.velocity else "step")
+        conf = "" if not np.isfinite(s.confidence) else f"{s.confidence:.4g}"
+        normal = "" if not np.isfinite(s.normal) else f"{s.normal * scale:.6g}"
+        rows.append(f"{j},{kind},{s.t_start:.9g},{s.t_end:.9g},{s.t_start - t0:.9g},"
+                    f"{s.duration:.9g},{s.velocity:.6e},{s.velocity * 1e6:.6g},{s.i_start},"
+                    f"{s.i_end},{s.i_end - s.i_start},{conf},{normal}")
+    with open(path, "w", encoding="utf-8") as fh:  # type: ignore[call-overload]
+        fh.write("\n".join(rows) + "\n")
+
+
+def load_velocity_series(record: LabRecord, segments: tuple[Segment, ...]) -> Array:
+    """The load-point velocity at each sample (m/s), from the segments, for ``SeriesData``.
+
+    Raises
+    ------
+    ValueError
+        If the segments do not cover the record's samples exactly once, in order.
+    """
+    n = len(record.time)
+    v = np.empty(n)
+    i = 0
+    for s in segments:
+        if s.i_start != i or s.i_end <= s.i_start:
+            raise ValueError(f"{record.source}: the segments do not cover the record in order "
+                             f"(a segment starts at sample {s.i_start}, expected {i})")
+        v[s.i_start:s.i_end] = s.velocity
+        i = s.i_end
+    if i != n:
+        raise ValueError(f"{record.source}: the segments end at sample {i}, the record has {n}")
+    return v
+
+
+# ------------------------------------------------------------------------------ steps
+@dataclass(frozen=True)
+class StepWindow:
+    """The samples of one velocity step or slide-hold-slide cycle, as one would cut it by hand.
+
+    Attributes
+    ----------
+    index : int
+        Position in the record (0, 1, ...).
+    kind : str
+        ``"step"`` (a velocity change) or ``"shs"`` (slide, hold, slide).
+    i_start, i_end : int
+        The record's samples ``[i_start, i_end)``: steady sliding before the change, up to
+        the next change after it.
+    t_change : float
+        Time of the change (the start of the hold for ``"shs"``), s, record time.
+    v_before, v_after : float
+        Load-point velocities before and after (after the hold for ``"shs"``), m/s.
+    hold : float
+        Hold duration, s (0 for a step).
+    """
+
+    index: int
+    kind: str
+    i_start: int
+    i_end: int
+    t_change: float
+    v_before: float
+    v_after: float
+    hold: float
+
+
+def slice_steps(
+    record: LabRecord,
+    segments: tuple[Segment, ...],
+    *,
+    pre_slip: float = 50e-6,
+    pre_fraction: float = 0.5,
+) -> tuple[StepWindow, ...]:
+    """Cut a record into its velocity steps and slide-hold-slide cycles.
+
+    Each window starts before the change by ``pre_slip`` of load-point travel at the velocity
+    before (enough steady sliding to pin the level), but by no more than ``pre_fraction`` of
+    the segment before, and ends at the next change after it. A hold at the start or at the
+    end of the record (no sliding before it, or none after) gives no window.
+
+    Parameters
+    ----------
+    record : LabRecord
+        The record the segments describe.
+    segments : tuple of Segment
+        Its load program (:func:`detect_segments` or :func:`parse_segments`).
+    pre_slip : float
+        Load-point displacement before the change, m, ``> 0``.
+    pre_fraction : float
+        Largest part of the segment before the change to include, ``0 < pre_fraction <= 1``.
+
+    Raises
+    ------
+    ValueError
+        If the load program holds no step and no hold (naming the file).
+    """
+    if not (np.isfinite(pre_slip) and pre_slip > 0.0):
+        raise ValueError(f"pre_slip = {pre_slip:g} is out of range: allowed finite and > 0")
+    if not 0.0 < pre_fraction <= 1.0:
+        raise ValueError(f"pre_fraction = {pre_fraction:g} is out of range: allowed > 0 and "
+                         "<= 1")
+    t = np.asarray(record.time)
+    segs = list(segments)
+    out: list[StepWindow] = []
+    j = 1
+    while j < len(segs):
+        prev, cur = segs[j - 1], segs[j]
+        if prev.velocity == 0.0 or cur.velocity == prev.velocity:
+            j += 1
+            continue
+        lead = min(pre_fraction * prev.duration, pre_slip / abs(prev.velocity))
+        i0 = min(int(np.searchsorted(t, cur.t_start - lead, side="left")), cur.i_start - 1)
+        i0 = max(i0, prev.i_start)
+        if cur.velocity != 0.0:
+            out.append(StepWindow(len(out), "step", i0, cur.i_end, cur.t_start, prev.velocity,
+                                  cur.velocity, 0.0))
+            j += 1
+        elif j + 1 < len(segs):
+            after = segs[j + 1]
+            out.append(StepWindow(len(out), "shs", i0, after.i_end, cur.t_start,
+                                  prev.velocity, after.velocity, cur.duration))
+            j += 2
+        else:
+            break  # a final hold: nothing slides after it
+    if not out:
+        vs = ", ".join(f"{s.velocity:.3g}" for s in segs)
+        raise ValueError(f"{record.source}: no velocity step or hold in the load program "
+                         f"({len(segs)} segment(s), velocities {vs} m/s): give the program "
+                         "with --segments if it was missed")
+    return tuple(out)

@@ -1,0 +1,119 @@
+"""``dryfriction bifurcation``: the known rate-and-state results come out of the command, the
+files are whole, bad input is one line and exit 2 before any work."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from dryfriction.cli import app
+
+runner = CliRunner()
+
+
+def protocol(tmp_path: Path, law: str, damping: float = 0.0, mass: float = 0.0) -> str:
+    p = tmp_path / f"{law}.toml"
+    p.write_text(f"""[model]
+law = "rsf"
+state_law = "{law}"
+a = 0.0083
+b = 0.0121
+dc = 6.1e-6
+mu0 = 0.6
+v0 = 1.3e-6
+
+[drive]
+kind = "spring"
+stiffness = 400.0
+damping = {damping}
+mass = {mass}
+segments = [{{velocity = 2e-6, duration = 10.0}}]
+""")
+    return str(p)
+
+
+def run(*args: str):  # type: ignore[no-untyped-def]
+    return runner.invoke(app, ["bifurcation", *args])
+
+
+def test_ageing_quasistatic_is_degenerate_and_checked(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing"), "--velocities", "2.1e-6,3.7e-5", "--out", str(out),
+            "--json", "--check")
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    assert [row["nature"] for row in doc["rows"]] == ["degenerate", "degenerate"]
+    assert all("every kick" in row["check"] for row in doc["rows"])
+    with open(out / "bifurcation.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert list(rows[0])[:5] == ["velocity", "K_c", "frequency", "l1", "relative_l1"]
+    assert float(rows[0]["K_c"]) == pytest.approx((0.0121 - 0.0083) / 6.1e-6, rel=1e-10)
+    assert (out / "bifurcation.png").stat().st_size > 1000
+    assert json.loads((out / "bifurcation.json").read_text())["units"]["K_c"].startswith("1/m")
+
+
+def test_laws_and_inertia(tmp_path: Path) -> None:
+    """Slip law quasi-static: degenerate as well (ours; not Gu et al.'s subcritical: their
+    finite-kick instability is global, tests/analysis/test_rsf_hopf.py); PRZ subcritical; a mass
+    (M = m V^2/Dc = 0.3 at 2 um/s) makes the ageing law supercritical."""
+    def natures(law: str, mass: float = 0.0) -> list[str]:
+        out = tmp_path / f"{law}{mass}"
+        r = run(protocol(tmp_path, law, mass=mass), "--velocities", "2e-6", "--out", str(out),
+                "--json", "--no-figure")
+        assert r.exit_code == 0, r.output
+        return [row["nature"] for row in json.loads(r.stdout)["rows"]]
+
+    assert natures("slip") == ["degenerate"]
+    assert natures("prz") == ["subcritical"]
+    assert natures("ageing", mass=0.3 * 6.1e-6 / 2e-6**2) == ["supercritical"]
+
+
+@pytest.mark.parametrize("value,word", [("1e-6,abc", "not a number"), ("0,1e-6", "(0, "),
+                                        ("-1e-6", "out of range"), ("2e3", "out of range")])
+def test_bad_velocities_one_line_before_any_work(tmp_path: Path, value: str, word: str) -> None:
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing"), "--velocities", value, "--out", str(out))
+    assert r.exit_code == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "--velocities" in lines[0] and word in lines[0], r.stderr
+    assert not out.exists()
+
+
+def test_too_many_checks_and_trap_model_refused(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    many = ",".join(str(1e-6 * (i + 1)) for i in range(13))
+    r = run(protocol(tmp_path, "ageing"), "--velocities", many, "--out", str(out), "--check")
+    assert r.exit_code == 2 and "at most 12" in r.stderr and not out.exists()
+    cv = Path(__file__).resolve().parents[2] / "examples" / "velocity_step.toml"
+    r = run(str(cv), "--velocities", "1e-6", "--out", str(out))
+    assert r.exit_code == 2 and "law = 'cv'" in r.stderr and not out.exists()
+
+
+def test_supercritical_check_columns(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing", mass=0.3 * 6.1e-6 / 2e-6**2), "--velocities", "2e-6",
+            "--out", str(out), "--check", "--json", "--no-figure")
+    assert r.exit_code == 0, r.output
+    row = json.loads(r.stdout)["rows"][0]
+    assert row["nature"] == "supercritical" and row["check"] == "settled cycles below K_c"
+    assert abs(row["check_exponent"] - 0.5) < 0.03 and row["check_exponent_err"] < 0.02
+    assert row["check_amp_ratio"] == pytest.approx(1.0, abs=0.03)
+    with open(out / "bifurcation.csv") as f:
+        assert "check_exponent" in next(csv.reader(f))
+
+
+def test_extreme_velocities_are_said_not_crashed(tmp_path: Path) -> None:
+    """A vanishing reduced mass (M = 1e-55 at 1e-30 m/s: a fast eigenvalue of 1e55 beside the
+    pair) is still found, and degenerate to the method's precision; a huge one (M = 1e11)
+    says in its row that K_c lost precision."""
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing", mass=0.1), "--velocities", "1e-30,1e3", "--out",
+            str(out), "--json", "--no-figure")
+    assert r.exit_code == 0, r.output
+    rows = json.loads(r.stdout)["rows"]
+    assert rows[0]["nature"] == "degenerate" and rows[0]["note"] == ""
+    assert "closed form" in rows[1]["note"]
