@@ -20,6 +20,10 @@ files, killed/survived, restore (always; :func:`benchmarks.blind_mutants.run_one
 file, its mtime and its ``__pycache__``/Numba cache entries). A survivor is run once against
 the whole default suite. The first failing test of each kill is rerun on the unmutated tree.
 Results are appended to ``$TMPDIR/blind_mutants2_results.jsonl``.
+
+Measured at af8a8af with its flat ``tests/`` layout; after the merge that moved the records
+modules and put the tests in a folder per package, :func:`resolve` maps each mutant to the
+new paths (a test file gone under its old name: its package's test folder).
 """
 
 from __future__ import annotations
@@ -313,13 +317,36 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
 
 
 # ----------------------------------------------------------------------------- the runner
+def resolve(mut: tuple[str, str, str, str, str, list[str]]
+            ) -> tuple[str, str, str, str, str, list[str]]:
+    """The mutant at today's paths. The list was measured at af8a8af, before the modules moved
+    (``io/lab.py`` -> ``records/lab.py``) and the tests went into a folder per package: a
+    moved source is found by its file name; a test file that no longer exists under its flat
+    name is found by its name in a package folder, else replaced by the test folder of the
+    mutant's package (``tests/<package>/``)."""
+    name, rel, orig, mutated, why, tests = mut
+    if not (SRC / rel).exists():
+        hits = sorted(p.relative_to(SRC).as_posix() for p in SRC.rglob(Path(rel).name))
+        rel = hits[0] if len(hits) == 1 else rel
+    new: list[str] = []
+    for t in tests:
+        if (ROOT / t).exists():
+            new.append(t)
+            continue
+        hits = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "tests").rglob(Path(t).name))
+        pkg = f"tests/{rel.split('/')[0]}" if "/" in rel else "tests"
+        own = [h for h in hits if h.startswith(pkg + "/")]
+        new += own or hits[:1] or [pkg]
+    return name, rel, orig, mutated, why, list(dict.fromkeys(new))
+
+
 def check() -> list[str]:
     """Each original occurs exactly once; each test file exists; names unique."""
     bad = []
     names = [m[0] for m in MUTANTS]
     if len(set(names)) != len(names):
         bad.append("duplicate names")
-    for name, rel, orig, mut, _why, tests in MUTANTS:
+    for name, rel, orig, mut, _why, tests in map(resolve, MUTANTS):
         text = (SRC / rel).read_text()
         n = text.count(orig)
         if n != 1:
@@ -345,12 +372,12 @@ def main(argv: list[str]) -> int:
     whole = "--no-whole" not in argv
     skip_chosen = "--whole-only" in argv
     wanted = [a for a in argv if not a.startswith("--")]
-    by_name = {m[0]: m for m in MUTANTS}
+    by_name = {m[0]: resolve(m) for m in MUTANTS}
     unknown = [w for w in wanted if w not in by_name]
     if unknown:
         print(f"unknown mutant(s): {', '.join(unknown)}")
         return 2
-    todo = [by_name[w] for w in wanted] if wanted else list(MUTANTS)  # in the order given
+    todo = [by_name[w] for w in wanted] if wanted else list(by_name.values())  # order given
     log = Path(tempfile.gettempdir()) / "blind_mutants2_results.jsonl"
     results = []
     for m in todo:
