@@ -179,7 +179,7 @@ def fit_record(path: Path, out_dir: Path, *, model: str, columns: str | None,
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
                          "constant velocity (give it with --segments if it is not)")
-    out.print(lab.segments_table(segs), highlight=False, markup=False)
+    out.print(lab.segments_table(segs, rec.normal_unit), highlight=False, markup=False)
     profile, profile_note = default_profile(len(wins), profile)  # many steps: HAC unless asked
     if model == "cv" and not run_cv:  # the trap model is not run unasked (issue 10)
         # the estimate is one trap-model run: made only when the trap model was asked for
