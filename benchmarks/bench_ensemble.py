@@ -37,11 +37,10 @@ def updates_per_second(lam: float, steps: int, eps: float = 0.04, creep: str = "
 
 def steady_run(lam: float, slip: float, every_slip: float) -> tuple[float, int, float]:
     """Wall time of ``simulate`` for steady sliding at u = 1 (from the steady state)."""
-    args = (TrapModel(eps=0.04), Track(lam), Initial("steady", velocity=1.0),
-            VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": slip}])),
-            Output(every_slip=every_slip))
-    simulate(*args[:3], VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": 0.01}])),
-             args[4])  # warm up
+    args = (TrapModel(eps=0.04), VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": slip}])),
+            Initial("steady", velocity=1.0, track=Track(lam)), Output(every_slip=every_slip))
+    simulate(args[0], VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": 0.01}])),
+             *args[2:])  # warm up
     t0 = time.perf_counter()
     r = simulate(*args)
     return time.perf_counter() - t0, len(r.t), float(np.mean(r.n_active))
@@ -90,11 +89,12 @@ def drive_rate(kind: str, direct: float, lam: float = 10000.0, slip: float = 0.2
     prog = VelocityProgram([{"velocity": 1.0, "slip": slip}])
     drive = {"velocity": VelocityDrive(prog), "quasi-static": SpringDrive(200.0, 0.0, prog),
              "inertial": SpringDrive(1.0, 1.0, prog)}[kind]
-    args = (TrapModel(eps=0.04, direct=direct), Track(lam), Initial("steady", velocity=1.0))
-    simulate(*args, drive, Output(every_slip=0.5))  # warm up (compiled code, caches)
+    model = TrapModel(eps=0.04, direct=direct)
+    initial = Initial("steady", velocity=1.0, track=Track(lam))
+    simulate(model, drive, initial, Output(every_slip=0.5))  # warm up (compiled code, caches)
     with _Counter() as c:
         t0, c0 = time.perf_counter(), time.process_time()
-        simulate(*args, drive, Output(every_slip=1e-4))
+        simulate(model, drive, initial, Output(every_slip=1e-4))
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     return c.committed / cpu, (c.committed + c.probed) / cpu, wall
 

@@ -55,9 +55,9 @@ def peak_mb():
 
 
 def run(lam, slip):
-    return simulate(TrapModel(0.13, 0.04), Track(lam), Initial("steady", velocity=1.0),
+    return simulate(TrapModel(0.13, 0.04),
                     VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": slip}])),
-                    Output(every_slip=0.5))
+                    Initial("steady", velocity=1.0, track=Track(lam)), Output(every_slip=0.5))
 
 
 run(100.0, 0.5)  # compiled code and caches in, before the baseline

@@ -33,7 +33,7 @@ from dryfriction.rsf.driving import (  # noqa: E402
     RSFInitial,
     RSFOutput,
     SpringSlider,
-    simulate_rsf,
+    simulate,
 )
 from dryfriction.rsf.law import RateState  # noqa: E402
 from dryfriction.rsf.stepper import interpreted_steps  # noqa: E402
@@ -61,9 +61,9 @@ def velocity_step(rtols: tuple[float, ...]) -> None:
     drive = SpringSlider(prog, stiffness=1e3)
     for rtol in rtols:
         out = RSFOutput(rtol=rtol)
-        t = best_time(lambda out=out: simulate_rsf(p, drive, output=out))
-        r0 = simulate_rsf(p, drive, output=out)
-        r = simulate_rsf(p, drive, output=RSFOutput(rtol=rtol, t_eval=te))
+        t = best_time(lambda out=out: simulate(p, drive, output=out))
+        r0 = simulate(p, drive, output=out)
+        r = simulate(p, drive, output=RSFOutput(rtol=rtol, t_eval=te))
         dmu = np.max(np.abs(r.mu - ref["mu"]))
         dlv = np.max(np.abs(np.log(r.v / ref["v"])))
         print(f"  {rtol:7.0e} {t * 1e3:8.3f}ms {r0.n_steps:6d} {dmu:10.2e} {dlv:10.2e}")
@@ -85,9 +85,9 @@ def stick_slip(rtols: tuple[float, ...]) -> None:
     init = RSFInitial(v=1.01 * vl)
     for rtol in rtols:
         out = RSFOutput(rtol=rtol)
-        t = best_time(lambda out=out: simulate_rsf(p, drive, init, out), 5, 2)
-        r0 = simulate_rsf(p, drive, init, out)
-        r = simulate_rsf(p, drive, init, RSFOutput(rtol=rtol, t_eval=te))
+        t = best_time(lambda out=out: simulate(p, drive, init, out), 5, 2)
+        r0 = simulate(p, drive, init, out)
+        r = simulate(p, drive, init, RSFOutput(rtol=rtol, t_eval=te))
         e = _crossings(te, np.log(r.v / (10 * vl)))
         dte = np.max(np.abs(e - e_ref)) if len(e) == len(e_ref) else math.nan
         dmu = np.max(np.abs(r.mu - ref["mu"]))
@@ -110,8 +110,8 @@ def interpreted() -> None:
     print("interpreted route (no Numba; what a small job in a fresh process runs), rtol 1e-7")
     for name, args in cases.items():
         with interpreted_steps(10**9):
-            t = best_time(lambda args=args: simulate_rsf(*args), 3, 1)
-            r = simulate_rsf(*args)
+            t = best_time(lambda args=args: simulate(*args), 3, 1)
+            r = simulate(*args)
         steps = r.n_steps + r.n_rejected
         print(f"  {name:20s} {t * 1e3:8.2f}ms {steps:6d} steps  {t / steps * 1e6:6.1f} us/step")
 

@@ -32,15 +32,16 @@ from pathlib import Path
 from typing import Any
 
 from dryfriction.sweeps.sweep import parse_sweep, run_sweep
-from dryfriction.theory.stability import critical_stiffness
+from dryfriction.theory.linear_stability import critical_stiffness
+from dryfriction.theory.model import TrapModel
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def heavy_point(protocol: dict) -> dict[str, float]:  # type: ignore[type-arg]
     d = protocol["drive"]
-    res = critical_stiffness(d["velocity"], protocol["model"]["eps"], damping=d["damping"],
-                             n_omega=60000)
+    res = critical_stiffness(d["velocity"], TrapModel(eps=protocol["model"]["eps"]),
+                             damping=d["damping"], n_omega=60000)
     return {"K_c": res.critical_stiffness}
 
 

@@ -12,6 +12,7 @@ import sys
 import time
 
 from dryfriction.analysis.bifurcation import continuation
+from dryfriction.theory.model import TrapModel
 
 u = float(sys.argv[1])
 A = float(sys.argv[2]) if len(sys.argv) > 2 else 0.02
@@ -20,7 +21,7 @@ periods = float(sys.argv[4]) if len(sys.argv) > 4 else 15.0
 ds = ([float(a) for a in sys.argv[5].split(",")] if len(sys.argv) > 5
       else [-0.05, 0.03, 0.06, 0.1, 0.15, 0.2, 0.3, 0.45, 0.6])
 t = time.process_time()
-out = continuation(u, 0.04, ds, direct=A, traps_per_a0=n, periods=periods)
+out = continuation(u, TrapModel(eps=0.04, direct=A), ds, traps_per_a0=n, periods=periods)
 print(f"u = {u:g}, A = {A:g}, {n:g} traps/a0: K_c = {out['K_c']:.5g}, noise floor "
       f"{out['floor']:.2e}, type {out['type']}, exponent {out['exponent']:.3f}, hysteresis "
       f"at d = {out['hysteresis_d']} ({time.process_time() - t:.0f} s CPU)")

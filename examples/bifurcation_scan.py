@@ -10,12 +10,14 @@ import sys
 import time
 
 from dryfriction.analysis.stickslip import bifurcation_scan
-from dryfriction.theory.stability import critical_stiffness
+from dryfriction.theory.linear_stability import critical_stiffness
+from dryfriction.theory.model import TrapModel
 
 u, M, eta, n = (float(a) for a in sys.argv[1:5])
 factors = [float(a) for a in sys.argv[5].split(",")]
 travel = float(sys.argv[6]) if len(sys.argv) > 6 else 20.0
-Kc = critical_stiffness(u, 0.04, mass=M, damping=eta).critical_stiffness
+model = TrapModel(eps=0.04)
+Kc = critical_stiffness(u, model, mass=M, damping=eta).critical_stiffness
 t = time.perf_counter()
 
 
@@ -29,7 +31,7 @@ def progress(done: int, total: int) -> None:
 
 print(f"bifurcation scan: K_c = {Kc:.5g}; {2 * len(factors) - 1} runs of {travel:g} a0 "
       "(down, then up)", file=sys.stderr, flush=True)
-out = bifurcation_scan(u, 0.04, [f * Kc for f in factors], mass=M, damping=eta,
+out = bifurcation_scan(u, model, [f * Kc for f in factors], mass=M, damping=eta,
                        traps_per_a0=n, travel=travel, transient=travel / 2, progress=progress)
 print(f"u = {u:g}, M = {M:g}, eta = {eta:g}: K_c = {out['K_c']:.5g} "
       f"({time.perf_counter() - t:.1f} s)")

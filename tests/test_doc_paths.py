@@ -126,6 +126,7 @@ def test_the_check_sees_an_old_path() -> None:
     assert not resolves("dryfriction.io.lab.read_record")  # moved to records/ (issue 26)
     assert resolves("dryfriction.records.lab.read_record")
     assert not resolves("dryfriction.theory.stability.effective_rsf_twin")
-    assert resolves("dryfriction.theory.stability.effective_rsf")
+    assert resolves("dryfriction.theory.linear_stability.effective_rsf")
+    assert not resolves("dryfriction.theory.stability.effective_rsf")  # moved (issue 26)
     assert resolves("dryfriction.rsf.RateState")  # a lazy public name
     assert not any(x.endswith(".steady.steady_frictions") for x in every_name())

@@ -20,7 +20,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "dryfriction"
 
 # bottom to top; a module may import its own layer and those below
 LAYERS: list[set[str]] = [
-    {"validation", "program", "results", "_compat", "interrupts"},
+    {"validation", "program", "results", "simulation", "_compat", "interrupts"},
     {"theory"},
     {"ensemble", "rsf"},
     {"io"},                  # file formats and results folders
@@ -32,13 +32,10 @@ LAYERS: list[set[str]] = [
     {"cli", "warm"},  # warm: the install step's entry point (python -m dryfriction.warm)
 ]
 
-# Cycles being dissolved on another branch (issue 26 item 4, the simulator's shape: the drive
-# classes into their own module, the linear stability of the law next to the law). Delete this
-# set when that branch is merged; nothing may be added to it.
-KNOWN_CYCLES: set[frozenset[str]] = {
-    frozenset({"dryfriction.ensemble.driving", "dryfriction.ensemble.resources"}),
-    frozenset({"dryfriction.rsf.driving", "dryfriction.rsf.growth"}),
-}
+# no known cycle: issue 26 item 4 dissolved the simulator's two (the drive classes into
+# ensemble/drives.py, the linear stability of the law into rsf/stability.py); nothing may be
+# added here
+KNOWN_CYCLES: set[frozenset[str]] = set()
 
 
 def _layer(module: str) -> int | None:
@@ -299,7 +296,8 @@ def test_the_layer_check_can_fail(tmp_path):
 # project-level checks (the layout, packaging, the docs, start-up) and root-level modules'
 # tests (results.py's tables) stay at the top of tests/; everything else mirrors a package
 ROOT_TESTS = {"test_layers", "test_packaging", "test_docs", "test_doc_paths", "test_readme",
-              "test_startup", "test_benchmarks", "test_mutants_list", "test_tables", "test_compat"}
+              "test_startup", "test_benchmarks", "test_mutants_list", "test_tables", "test_compat",
+              "test_simulator_shape"}  # simulation.py, and no old simulator form anywhere
 
 
 def test_the_tests_mirror_the_packages() -> None:

@@ -9,13 +9,13 @@ import sys
 import numpy as np
 import pytest
 
+from dryfriction import simulate as df_simulate
 from dryfriction.ensemble.driving import Initial, Output, Track, TrapModel, VelocityDrive, simulate
 from dryfriction.fit import fit_static
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.records.data import StaticData
 from dryfriction.results import dataset_records, records, to_dataframe
 from dryfriction.rsf import RSFOutput, SpringSlider
-from dryfriction.rsf.driving import simulate_rsf
 from dryfriction.rsf.law import RateState
 from dryfriction.theory.units import PhysicalScales, static_friction_si
 
@@ -36,17 +36,17 @@ def test_records_keep_order_values_and_kinds() -> None:
 
 
 def test_ensemble_and_rsf_results_as_records() -> None:
-    r = simulate(TrapModel(eps=0.04), Track(50.0), Initial("steady", velocity=1.0),
+    r = simulate(TrapModel(eps=0.04),
                  VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": 0.2}])),
-                 Output(every_slip=0.05))
+                 Initial("steady", velocity=1.0, track=Track(50.0)), Output(every_slip=0.05))
     rec = r.to_records()
     assert rec.dtype.names == tuple(r.columns())
     for k, col in r.columns().items():
         np.testing.assert_array_equal(rec[k], col)
 
     p = RateState(0.005, 0.01, 1e-5, 0.6, 1e-6)
-    s = simulate_rsf(p, SpringSlider([Segment(1e-6, 1.0), Segment(1e-5, 1.0)]),
-                     output=RSFOutput(every=0.5))
+    s = df_simulate(p, SpringSlider([Segment(1e-6, 1.0), Segment(1e-5, 1.0)]),
+                    output=RSFOutput(every=0.5))
     rec = s.to_records()
     assert rec.dtype.names == ("t", "x", "v", "mu", "theta", "stress", "x_load", "v_load")
     np.testing.assert_array_equal(rec["mu"], s.mu)

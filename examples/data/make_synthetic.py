@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dryfriction import PhysicalScales, RateState, Segment, simulate_rsf
+from dryfriction import PhysicalScales, RateState, Segment, simulate
 from dryfriction.rsf import RSFOutput, SpringSlider
 from dryfriction.theory.units import static_friction_si, steady_friction_si
 
@@ -60,7 +60,7 @@ def main() -> None:
     p = RateState(0.008, 0.012, 1e-5, 0.6, 1e-6)
     t = np.linspace(0.0, 90.0, 181)
     drive = SpringSlider([Segment(1e-6, 20.0), Segment(1e-5, 10.0), Segment(1e-6, 60.0)])
-    res = simulate_rsf(p, drive, output=RSFOutput(t_eval=t, rtol=1e-10))
+    res = simulate(p, drive, output=RSFOutput(t_eval=t, rtol=1e-10))
     mu = res.stress + rng.normal(0.0, 2e-4, t.size)
     _write("synthetic_velocity_step_rsf.csv",
            ["rate-and-state, ageing law, kinematic machine: a 0.008, b 0.012, Dc 10 um, "

@@ -15,8 +15,8 @@ from dryfriction.rsf import RSFOutput, SpringSlider
 
 law = df.RateState(a=0.005, b=0.01, dc=1e-5, mu0=0.6, v0=1e-6)
 program = [df.Segment(1e-6, 20.0), df.Segment(1e-5, 60.0)]  # (velocity m/s, duration s)
-r = df.simulate_rsf(law, SpringSlider(program, stiffness=400.0, damping=1e-2),
-                    output=RSFOutput(every=0.02))
+r = df.simulate(law, SpringSlider(program, stiffness=400.0, damping=1e-2),
+                output=RSFOutput(every=0.02))
 
 fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True, layout="constrained")
 ax1.plot(r.t, r.mu)

@@ -15,8 +15,8 @@ from dryfriction.ensemble.driving import Initial, Output, Track, TrapModel, Velo
 
 eps = 0.04
 program = df.VelocityProgram([{"velocity": 1.0, "slip": 1.0}, {"velocity": 0.01, "slip": 4.0}])
-r = df.simulate(TrapModel(eps=eps), Track(200.0), Initial("steady", velocity=1.0),
-                VelocityDrive(program), Output(every_slip=0.01))
+r = df.simulate(TrapModel(eps=eps), VelocityDrive(program),
+                Initial("steady", velocity=1.0, track=Track(200.0)), Output(every_slip=0.01))
 
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 ax.plot(r.x, r.mu, label="trap ensemble, 200 pairs per a0")

@@ -41,14 +41,15 @@ _PUBLIC: dict[str, str] = {
     "dieterich_constant_asymptotic": "theory.dieterich",
     "dieterich_constant_least_squares": "theory.dieterich",
     "dieterich_constant_local": "theory.dieterich",
-    "critical_stiffness": "theory.stability",
+    "critical_stiffness": "theory.linear_stability", "effective_rsf": "theory.linear_stability",
+    "TrapModel": "theory.model",
     "PhysicalScales": "theory.units", "static_friction_si": "theory.units",
     "steady_friction_si": "theory.units",
     # programs
     "Segment": "program", "VelocityProgram": "program",
-    # simulators
-    "simulate": "ensemble.driving",
-    "RateState": "rsf.law",
+    # simulators (simulate, below, runs either law)
+    "Result": "simulation",
+    "RateState": "rsf.law", "RateStateModel": "rsf.law",
     "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
     # files, fitting
     "load_protocol": "io.protocol", "read_csv": "records.data",
@@ -56,7 +57,43 @@ _PUBLIC: dict[str, str] = {
 }
 _RENAMED = {"rsf_linear_stability": ("rsf.driving", "linear_stability")}
 
-__all__ = sorted([*_PUBLIC, *_RENAMED, "__version__"])
+__all__ = sorted([*_PUBLIC, *_RENAMED, "__version__", "simulate"])
+
+
+def simulate(*args: Any, **kwargs: Any) -> Any:
+    """Run either law: ``simulate(model, drive, initial, output) -> Result`` (issue 26).
+
+    Dispatches on the model's type (:mod:`dryfriction.simulation` lists the parts of each):
+
+    * a ``TrapModel`` runs :func:`dryfriction.ensemble.driving.simulate` (reduced units;
+      ``initial`` is an ``Initial`` with its ``track``; keywords ``progress``,
+      ``on_interrupt``) and returns a ``SimulationResult``;
+    * a ``RateState`` runs :func:`dryfriction.rsf.driving.simulate` (SI; ``initial`` and
+      ``output`` optional) and returns an ``RSFResult``.
+
+    A part of the other law (its numbers in the other units) is refused in one line. The old
+    trap-model form ``simulate(model, track, initial, drive, output)`` still works for one
+    release and warns.
+
+    Raises
+    ------
+    ValueError
+        ``model`` is neither, or a part does not fit it, before any work.
+    """
+    model = args[0] if args else kwargs.get("model")
+    # imported here: ``import dryfriction`` stays cheap, and a run imports its law's solver only
+    from .rsf.law import RateState
+
+    if isinstance(model, RateState):
+        from .rsf.driving import simulate as run
+    else:
+        from .theory.model import TrapModel
+
+        if not isinstance(model, TrapModel):
+            raise ValueError(f"model = {model!r} is not allowed: a TrapModel (the trap model, "
+                             "reduced units) or a RateState (rate-and-state, SI)")
+        from .ensemble.driving import simulate as run
+    return run(*args, **kwargs)
 
 
 def __getattr__(name: str) -> Any:

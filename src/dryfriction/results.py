@@ -127,7 +127,7 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
     """Refuse a time series that breaks the bounds every run of either law obeys (issue 24).
 
     The one check of both simulators (:func:`dryfriction.ensemble.driving.simulate`,
-    :func:`dryfriction.rsf.driving.simulate_rsf`), so every command that runs one (``rsf``,
+    :func:`dryfriction.rsf.driving.simulate`), so every command that runs one (``rsf``,
     ``simulate``, ``compare``, the fits' forward runs, sweeps) passes it before exit 0:
 
     * time and position finite, time non-decreasing; velocity and friction never infinite;

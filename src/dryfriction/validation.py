@@ -6,10 +6,13 @@ allowed range, before any work starts. The CLI turns these into one line and exi
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
 import math
 import os
 import re
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,6 +47,9 @@ __all__ = [
     "FRICTION_MAX",
     "DIRECT_MAX",
     "check_direct",
+    "Parameter",
+    "REQUIRED",
+    "declared",
 ]
 
 Array = NDArray[np.float64]
@@ -227,6 +233,69 @@ def check_direct(direct: float, v_ref: float) -> tuple[float, float]:
     ``U_MIN <= v_ref <= U_MAX`` (reduced ``a0/t0``), as floats."""
     return (check_scalar("direct", direct, 0.0, DIRECT_MAX),
             check_scalar("v_ref", v_ref, U_MIN, U_MAX))
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+REQUIRED: Any = _Required()
+"""The default of a :class:`Parameter` that has none (the caller must give it)."""
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One declared parameter of a model object: its default and its allowed values (issue
+    26; the model objects read both from a table of these, in the manner of scikit-learn's
+    declared parameter constraints).
+
+    Parameters
+    ----------
+    name : str
+        The name a user types (Python keyword; the CLI option is ``--name`` with ``-``).
+    default : float, str, bool, None or REQUIRED
+        The one default of the package; ``None`` for an optional part left out (then not
+        checked); :data:`REQUIRED` when the caller must give it.
+    lo, hi : float or None
+        Bounds (``None``: unbounded); ``lo_open``/``hi_open`` exclude the bound itself.
+    choices : tuple of str, optional
+        For a named choice instead of a number.
+    boolean : bool
+        For a switch (``True``/``False``) instead of a number.
+    meaning : str
+        What the parameter is, with its unit.
+    """
+
+    name: str
+    default: Any = REQUIRED
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    hi_open: bool = False
+    choices: tuple[str, ...] = ()
+    boolean: bool = False
+    meaning: str = ""
+
+    def check(self, value: Any) -> Any:
+        """``value`` checked (a float, the chosen name, a bool, or ``None`` where that is the
+        default): a ``ValueError`` naming the parameter and the allowed values otherwise."""
+        if value is None and self.default is None:
+            return None
+        if self.choices:
+            return check_choice(self.name, value, self.choices)
+        if self.boolean:
+            if not isinstance(value, (bool, np.bool_)):
+                raise ValueError(f"{self.name} = {value!r} is not allowed: true or false")
+            return bool(value)
+        return check_scalar(self.name, value, self.lo, self.hi,
+                            lo_open=self.lo_open, hi_open=self.hi_open)
+
+
+def declared(table: dict[str, Parameter], name: str) -> Any:
+    """A dataclass field whose default is ``table[name].default`` (none when required)."""
+    d = table[name].default
+    return dataclasses.field() if d is REQUIRED else dataclasses.field(default=d)
 
 
 # ---------------------------------------------------------------- memory budget

@@ -1,7 +1,7 @@
 """The stick-slip bifurcation with the direct effect (issue 11, part 5).
 
 Independent references: the linear theory's rightmost root (the characteristic equation of the
-continuum response, :mod:`dryfriction.theory.direct_stability`) against growth rates in direct
+continuum response, :mod:`dryfriction.theory.linear_stability`) against growth rates in direct
 simulation of the discrete ensemble; synthetic amplitude curves with a known exponent for the
 classification.
 """
@@ -13,8 +13,10 @@ import math
 import pytest
 
 from dryfriction.analysis.bifurcation import classify, continuation, growth_check
+from dryfriction.theory.model import TrapModel
 
 EPS, A = 0.04, 0.02
+MODEL = TrapModel(eps=EPS, direct=A)
 
 
 @pytest.mark.parametrize("u", [0.01, 1.0])
@@ -24,7 +26,7 @@ def test_state_kick_grows_at_the_linear_rate(u: float) -> None:
     frequency within 6 %. Catches a wrong K_c or root, a wrong sign or size of the direct
     term in the spring drive, and a kick that does not reach the unstable mode (the earlier
     scans' 1e-3 force kick did not grow at u = 1)."""
-    r = growth_check(u, EPS, 0.7, direct=A)
+    r = growth_check(u, MODEL, 0.7)
     print(f"REPORT u = {u}: K_c = {r['K_c']:.5f}, linear sigma {r['sigma_linear']:+.5f} omega "
           f"{r['omega_linear']:.5f}; simulated sigma {r['sigma_sim']:+.5f} omega "
           f"{r['omega_sim']:.5f}")
@@ -38,7 +40,7 @@ def test_state_kick_decays_above_K_c() -> None:
     by more than half over two periods (the root: by 0.31; the simulated decay is faster, the
     lattice's periodic sliding capturing the last of it). A drive that destabilised steady
     sliding would make it grow."""
-    r = growth_check(1.0, EPS, 1.3, direct=A, state_kick=0.1, periods=3.0)
+    r = growth_check(1.0, MODEL, 1.3, state_kick=0.1, periods=3.0)
     assert r["sigma_linear"] < 0
     assert r["ptp"][2] < 0.5 * r["ptp"][0]
 
@@ -68,16 +70,18 @@ def test_classify_reads_a_hopf_branch_and_a_hysteresis_loop() -> None:
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    ({"direct": 0.0}, "direct"),
+    ({"model": MODEL.athermal}, "^direct = 0 is not allowed here"),
+    ({"model": MODEL.replace(eps=0.0)}, "^eps = 0 is not allowed here"),
+    ({"traps_per_a0": 1e-7}, "^traps_per_a0 = 1e-07 is out of range"),
     ({"distances": [0.1, 0.05]}, "increasing"),
     ({"distances": [0.1, 1.0]}, "distance"),
     ({"u": -1.0}, "u"),
     ({"measure": 20.0}, "measure"),
 ])
 def test_continuation_refuses_bad_input(kwargs: dict, match: str) -> None:
-    args = {"u": 0.1, "eps": EPS, "distances": [-0.05, 0.1], "direct": A, **kwargs}
+    args = {"u": 0.1, "model": MODEL, "distances": [-0.05, 0.1], **kwargs}
     with pytest.raises(ValueError, match=match):
-        continuation(args.pop("u"), args.pop("eps"), args.pop("distances"), **args)
+        continuation(args.pop("u"), args.pop("model"), args.pop("distances"), **args)
 
 
 @pytest.mark.slow
@@ -89,7 +93,7 @@ def test_reduced_continuation_reads_the_reported_bifurcations() -> None:
     K_c, and at 1.05 K_c it has decayed to a small fraction of the 0.55 K_c cycle (no finite
     cycle above K_c). A wrong K_c, or a drive without the direct effect's damping, would move
     or remove these."""
-    low = continuation(0.01, EPS, [-0.05, 0.45], direct=A, periods=10.0, rekick=True)
+    low = continuation(0.01, MODEL, [-0.05, 0.45], periods=10.0, rekick=True)
     up = {r["d"]: r for r in low["up"]}
     print(f"REPORT u = 0.01: {low['type']}, up "
           f"{[(d, round(r['amplitude'], 4)) for d, r in up.items()]}")
@@ -97,7 +101,7 @@ def test_reduced_continuation_reads_the_reported_bifurcations() -> None:
     assert up[-0.05]["amplitude"] > 0.1 and up[-0.05]["v_min"] < 0.1
     # re-kicked on the way down: steady sliding on the regular track otherwise captures the
     # perturbation even at 0.55 K_c (seen: amplitude 1.3e-4 there after 10 periods)
-    high = continuation(1.0, EPS, [-0.05, 0.1, 0.45], direct=A, periods=10.0, rekick=True)
+    high = continuation(1.0, MODEL, [-0.05, 0.1, 0.45], periods=10.0, rekick=True)
     amp = {r["d"]: r["amplitude"] for r in high["up"]}
     amp[0.45] = high["down"][-1]["amplitude"]
     print(f"REPORT u = 1: {high['type']}, amplitudes {amp}, trend at 1.05 K_c "

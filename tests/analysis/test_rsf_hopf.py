@@ -16,7 +16,7 @@ from dryfriction.analysis.rsf_hopf_check import (
     settled_amplitude,
 )
 from dryfriction.program import Segment
-from dryfriction.rsf.driving import simulate_rsf
+from dryfriction.rsf.driving import simulate
 from dryfriction.rsf.law import RateState
 from dryfriction.rsf.spring import RSFInitial, RSFOutput, SpringSlider
 
@@ -50,7 +50,7 @@ def test_critical_stiffness_and_frequency_match_rice_ruina(name: str, eta: float
                                             ("ageing", 0.0, 0.0, True)])
 def test_field_follows_the_package_solver(name: str, eta: float, M: float,
                                           two: bool) -> None:
-    """The reduced field integrated by SciPy against simulate_rsf (its own Rosenbrock
+    """The reduced field integrated by SciPy against rsf.driving.simulate (its own Rosenbrock
     solver, in SI units) from a kicked start, above k_c: ``ln V`` and ``ln theta`` agree."""
     kw: dict[str, float] = {"c": 1.7} if name == "nagata" else {}
     if two:
@@ -63,8 +63,8 @@ def test_field_follows_the_package_solver(name: str, eta: float, M: float,
     tend = 20 * 2 * math.pi / h.frequency
     te = np.linspace(0.0, tend, 300)
     kick = 1.13
-    r = simulate_rsf(m, SpringSlider([Segment(V, duration=tend)], k, eta, mass),
-                     RSFInitial(v=kick * V), RSFOutput(t_eval=te, rtol=1e-10))
+    r = simulate(m, SpringSlider([Segment(V, duration=tend)], k, eta, mass),
+                 RSFInitial(v=kick * V), RSFOutput(t_eval=te, rtol=1e-10))
     X0 = np.zeros(fld.n)
     X0[0] = math.log(kick)
     X0[1:1 + m.n_state] = -math.log(kick)  # RSFInitial: steady state at the kicked V

@@ -14,7 +14,8 @@ from dryfriction.io.files import to_jsonable
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.rsf.law import RateState
 from dryfriction.theory.creep import radius
-from dryfriction.theory.stability import effective_rsf
+from dryfriction.theory.linear_stability import effective_rsf
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.steady import steady_friction
 from dryfriction.theory.trap import Trap
 
@@ -50,7 +51,7 @@ def test_no_direct_effect(view) -> None:  # type: ignore[no-untyped-def]
     """The ensemble's friction is continuous in slip: the first 0.02 a0 after the step
     u0 -> 10 u0 changes it by far less than the linear prediction's direct effect a ln 10,
     and the fitted a is a small fraction of b (the linear theory's a/b is 0.25 here)."""
-    lin = effective_rsf(U0, EPS, ALPHA)
+    lin = effective_rsf(U0, TrapModel(alpha=ALPHA, eps=EPS))
     up = view.steps[f"step {U0:g} -> {10 * U0:g}"]
     assert abs(up["jump_first_sample"]) < 0.1 * lin["a"] * math.log(10.0)
     for key in ("ageing", "slip", "ageing_with_holds"):
@@ -62,7 +63,7 @@ def test_b_scales_with_eps_between_the_linear_bounds(view) -> None:  # type: ign
     """b = c eps with c between (b - a)/eps and b/eps of the linear prediction
     (effective_rsf): with a -> 0 the fit puts all of the steady weakening into b, and the
     linear theory's b is the largest evolution effect the slow response allows."""
-    lin = effective_rsf(U0, EPS, ALPHA)
+    lin = effective_rsf(U0, TrapModel(alpha=ALPHA, eps=EPS))
     lo, hi = 0.95 * (lin["b"] - lin["a"]) / EPS, lin["b"] / EPS
     assert 1.3 < lo < hi < 2.2  # stated range at eps = 0.04, u0 = 0.1
     for key in ("ageing", "slip", "ageing_with_holds"):
@@ -75,7 +76,7 @@ def test_dc_is_of_order_a0_and_the_memory_is_finite(view) -> None:  # type: igno
     yc = Trap(ALPHA).y_c
     for key in ("ageing", "slip", "ageing_with_holds"):
         assert 0.25 * (1 + yc) < view.twins[key].dc < 0.5 * (1 + yc)
-    lin = effective_rsf(U0, EPS, ALPHA)
+    lin = effective_rsf(U0, TrapModel(alpha=ALPHA, eps=EPS))
     assert 0.25 * (1 + yc) < lin["dc"] < 0.5 * (1 + yc)
     for entry in view.steps.values():
         u_min = min(U0, entry["u_after"])

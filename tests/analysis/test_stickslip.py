@@ -13,7 +13,7 @@ from dryfriction.analysis.stickslip import analyse, bifurcation_scan, linear_che
 from dryfriction.cli import app
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.sweeps.sweep import MAX_POINTS, load_sweep
-from dryfriction.theory.stability import critical_stiffness
+from dryfriction.theory.linear_stability import critical_stiffness
 from sweep_protocols import spring_sweep
 
 runner = CliRunner()
@@ -118,7 +118,7 @@ def test_growth_rates_match_the_rightmost_root(runslow):
     and the rightmost root crosses cleanly. Below K_c the simulated perturbation grows, above it
     decays, at the rate of the characteristic equation (an independent route)."""
     factors = [0.6, 0.8, 1.2] if runslow else [0.6, 1.2]
-    rows = linear_check(0.1, 0.04, factors, mass=10.0, damping=0.1,
+    rows = linear_check(0.1, TrapModel(eps=0.04), factors, mass=10.0, damping=0.1,
                         traps_per_a0=200 if runslow else 100)
     for r in rows:
         assert np.sign(r["sigma_sim"]) == np.sign(r["sigma_linear"]), r
@@ -142,9 +142,10 @@ def test_continuation_in_K_shows_hysteresis_quasi_static(runslow):
     """M = 0, u = 0.1: steady sliding survives down to about K_c and stick-slip appears there
     with a finite amplitude; on the way back up it persists above K_c (subcritical)."""
     u = 0.1
-    Kc = critical_stiffness(u, 0.04).critical_stiffness
+    Kc = critical_stiffness(u, TrapModel(eps=0.04)).critical_stiffness
     fr = [1.3, 1.1, 1.05, 1.0, 0.95, 0.9] if runslow else [1.3, 1.1, 0.9]
-    out = bifurcation_scan(u, 0.04, [f * Kc for f in fr], traps_per_a0=100, travel=40.0,
+    out = bifurcation_scan(u, TrapModel(eps=0.04), [f * Kc for f in fr], traps_per_a0=100,
+                           travel=40.0,
                            transient=20.0)
     down = {round(r["stiffness"] / Kc, 3): r for r in out["down"]}
     up = {round(r["stiffness"] / Kc, 3): r for r in out["up"]}
@@ -160,9 +161,9 @@ def test_continuation_in_K_inertial(runslow):
     """M = 10, eta = 0.1, u = 0.1: steady above K_c, stick-slip grown from the kick well below;
     with --runslow the way back up still slips at K_c (hysteresis)."""
     u = 0.1
-    Kc = critical_stiffness(u, 0.04, mass=10.0, damping=0.1).critical_stiffness
+    Kc = critical_stiffness(u, TrapModel(eps=0.04), mass=10.0, damping=0.1).critical_stiffness
     fr = [1.3, 1.0, 0.8, 0.6] if runslow else [1.2, 0.6]
-    out = bifurcation_scan(u, 0.04, [f * Kc for f in fr], mass=10.0, damping=0.1,
+    out = bifurcation_scan(u, TrapModel(eps=0.04), [f * Kc for f in fr], mass=10.0, damping=0.1,
                            traps_per_a0=100, travel=90.0, transient=40.0)
     assert out["down"][0]["class"] == 0
     # grown from the 3 % kick into stick-slip (the slider stops): at this run length the
@@ -202,7 +203,7 @@ def test_sweep_cli_runs_on_two_workers(tmp_path):
                              "2", "--linear"])
     assert r2.exit_code == 0, r2.output
     lin = load_sweep(tmp_path / "lin" / "sweep.nc")
-    np.testing.assert_allclose(lin["K_c"].values, critical_stiffness(0.1, 0.04)
+    np.testing.assert_allclose(lin["K_c"].values, critical_stiffness(0.1, TrapModel(eps=0.04))
                                .critical_stiffness, rtol=1e-9)
     np.testing.assert_array_equal(lin["linearly_stable"].values, [0.0, 1.0])
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import pytest
 
 from dryfriction.cli import main
+from dryfriction.theory.model import TrapModel
 
 
 def _one_error_line(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
@@ -174,9 +175,9 @@ def test_the_athermal_model_with_mass_and_damping_is_stable_not_refused(
     # eps = 0 is allowed (--eps >= 0), and no crossing means K_c = 0 (stable at any K)
     import json
 
-    from dryfriction.theory.stability import critical_stiffness
+    from dryfriction.theory.linear_stability import critical_stiffness
 
-    res = critical_stiffness(0.1, 0.0, mass=1.0, damping=0.1)
+    res = critical_stiffness(0.1, TrapModel(eps=0.0), mass=1.0, damping=0.1)
     assert res.critical_stiffness == 0.0
     capsys.readouterr()
     assert main(["stability", "--eps", "0", "--u", "0.1", "--mass", "1", "--damping", "0.1",

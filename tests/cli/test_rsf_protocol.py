@@ -172,15 +172,15 @@ def test_kind_means_the_same_for_both_laws() -> None:
 def test_simulate_rsf_refuses_what_the_machine_cannot_hold(monkeypatch: pytest.MonkeyPatch,
                                                            output: dict, limit: str,
                                                            key: str) -> None:
-    from dryfriction.rsf import RSFOutput, SpringSlider, simulate_rsf
+    from dryfriction.rsf import RSFOutput, SpringSlider, simulate
 
     proto = parse_protocol(STEP)
     assert isinstance(proto, RSFProtocol)
     monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", limit)
     with pytest.raises(ValueError, match="more than the limit") as exc:
-        simulate_rsf(proto.params, SpringSlider(proto.program), output=RSFOutput(**output))
+        simulate(proto.params, SpringSlider(proto.program), output=RSFOutput(**output))
     assert key in str(exc.value) and "DRYFRICTION_MEMORY_LIMIT" in str(exc.value)
     monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "4GiB")  # the control: the same run fits
     if not output:
-        res = simulate_rsf(proto.params, SpringSlider(proto.program), output=RSFOutput())
+        res = simulate(proto.params, SpringSlider(proto.program), output=RSFOutput())
         assert np.all(np.isfinite(res.mu))

@@ -162,7 +162,7 @@ def test_chunked_compiled_stepper_gives_the_one_call_result(monkeypatch) -> None
     resumed at every chunk, it must give the single call's steps bit for bit (mistake: a
     resume that restarts the segment or forgets the rejected flag)."""
     from dryfriction.rsf import RateState, stepper
-    from dryfriction.rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
+    from dryfriction.rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate
 
     model = RateState(a=0.005, b=0.01, dc=1e-5, mu0=0.6, v0=1e-6)
     drive = SpringSlider([{"velocity": 1e-6, "duration": 600.0},
@@ -171,7 +171,7 @@ def test_chunked_compiled_stepper_gives_the_one_call_result(monkeypatch) -> None
     for chunk in (10**9, 401):
         monkeypatch.setattr(stepper, "COMPILED_CHUNK", chunk)
         with stepper.interpreted_steps(0):
-            runs.append(simulate_rsf(model, drive, RSFInitial(v=1.01e-6), RSFOutput()))
+            runs.append(simulate(model, drive, RSFInitial(v=1.01e-6), RSFOutput()))
     one, chunked = runs
     assert (one.n_steps, one.n_rejected, one.n_rhs) == \
         (chunked.n_steps, chunked.n_rejected, chunked.n_rhs)
@@ -205,7 +205,7 @@ def test_the_trap_kernel_returns_only_scalars() -> None:
 _DIRECT = r"""
 import os, signal, subprocess, sys
 from dryfriction.rsf import RateState, stepper
-from dryfriction.rsf.driving import RSFInitial, SpringSlider, simulate_rsf
+from dryfriction.rsf.driving import RSFInitial, SpringSlider, simulate
 
 def handler(signum, frame):
     raise KeyboardInterrupt
@@ -217,11 +217,11 @@ def drive(T):
     return SpringSlider([{"velocity": 1e-6, "duration": T}], stiffness=250.0, damping=0.5)
 
 with stepper.interpreted_steps(0):
-    simulate_rsf(model, drive(100.0), RSFInitial(v=1.01e-6))  # loads the kernels
+    simulate(model, drive(100.0), RSFInitial(v=1.01e-6))  # loads the kernels
     # another process sends the signal: a thread could not (the compiled code holds the GIL)
     killer = subprocess.Popen(["sh", "-c", f"sleep {sys.argv[1]}; kill -INT {os.getpid()}"])
     try:
-        simulate_rsf(model, drive(300000.0), RSFInitial(v=1.01e-6))  # ~1 s compiled
+        simulate(model, drive(300000.0), RSFInitial(v=1.01e-6))  # ~1 s compiled
     except KeyboardInterrupt:
         print("interrupted")
         sys.exit(130)

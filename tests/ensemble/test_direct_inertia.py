@@ -12,6 +12,7 @@ for the ring-down of a kicked slider.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -27,7 +28,7 @@ from dryfriction.ensemble.driving import (
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.ensemble.result import segment_grid
 from dryfriction.program import Segment, VelocityProgram
-from dryfriction.theory.direct_stability import critical_stiffness_direct, direct_response
+from dryfriction.theory.linear_stability import critical_stiffness, linear_response
 from dryfriction.theory.stability import rightmost_root, steady_response
 from dryfriction.theory.steady import steady_friction
 
@@ -83,7 +84,7 @@ def test_zero_direct_inertial_slider_is_the_athermal_verlet_bit_for_bit() -> Non
         out = Output(every_slip=0.02)
         ref = _athermal_verlet(TrapModel(eps=EPS), Track(150.0), init, drive, out)
         for model in (TrapModel(eps=EPS), TrapModel(eps=EPS, direct=0.0, v_ref=5.0)):
-            r = simulate(model, Track(150.0), init, drive, out)
+            r = simulate(model, drive, replace(init, track=Track(150.0)), out)
             for k, col in ref.items():
                 np.testing.assert_array_equal(getattr(r, k)[1:], col, err_msg=k)
             assert "direct" not in r.info["parameters"]["model"]
@@ -103,9 +104,9 @@ def test_stiff_spring_and_small_mass_follow_a_velocity_step_like_the_velocity_dr
     u1, u2, s0 = 1.0, 10.0, 0.1
     prog = VelocityProgram([{"velocity": u1, "slip": s0}, {"velocity": u2, "slip": 0.2}])
     model, d = TrapModel(eps=EPS, direct=A), 1 / (8 * lam)
-    sp = simulate(model, Track(lam), Initial("steady", velocity=u1),
-                  SpringDrive(K, M, prog, 2 * math.sqrt(K * M)), Output(every_slip=d))
-    kin = simulate(model, Track(lam), Initial("steady", velocity=u1), VelocityDrive(prog),
+    sp = simulate(model, SpringDrive(K, M, prog, 2 * math.sqrt(K * M)),
+                  Initial("steady", velocity=u1, track=Track(lam)), Output(every_slip=d))
+    kin = simulate(model, VelocityDrive(prog), Initial("steady", velocity=u1, track=Track(lam)),
                    Output(every_slip=d))
     before = sp.x < s0 - 1e-3
     np.testing.assert_allclose(sp.mu[before], np.interp(sp.x[before], kin.x, kin.mu),
@@ -136,9 +137,9 @@ def _work_residual(h: float) -> tuple[float, float, np.ndarray]:
     A, v_ref, lam, u, K, M, eta = 0.02, 0.01, 20.0, 1.0, 0.1, 0.1, 0.02
     model = TrapModel(eps=EPS, direct=A, v_ref=v_ref)
     # steps are min(oscillation/20, a quarter spacing of slip, the sample): h below both
-    r = simulate(model, Track(lam), Initial("rest"),
+    r = simulate(model,
                  SpringDrive(K, M, VelocityProgram([{"velocity": u, "duration": 16.0}]), eta),
-                 Output(every=h))
+                 Initial("rest", track=Track(lam)), Output(every=h))
     assert r.info["slip_events"] >= 1 and np.max(r.v) * h <= 0.25 / lam
     x, v, f, s = r.x, r.v, r.mu / model.mu_el, K * (r.x_pull - r.x)
 
@@ -180,7 +181,7 @@ def _chi(lam: complex, u: float, A: float, K: float, M: float, eta: float) -> co
         return A * math.asinh(v * math.exp(1.0 / A) / 2.0) if A else 1.0
 
     dg = (g(u * 1.0001) - g(u / 1.0001)) / (u * (1.0001 - 1 / 1.0001))
-    Z = complex(steady_response(u, EPS).Z(lam))
+    Z = complex(steady_response(u, TrapModel(eps=EPS)).Z(lam))
     return M * lam**2 + eta * lam + K + g(u) * Z + dg * float(steady_friction(u, EPS)) * lam
 
 
@@ -201,7 +202,7 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
     crossing is a root of the linearisation above."""
     u, A, K, M = 1.0, 0.05, 2.0, 0.2
     root = _root_near(complex(-0.1, 3.1), u, A, K, M, 0.0)
-    lib = rightmost_root(direct_response(u, EPS, direct=A), K, M, 0.0)  # type: ignore[arg-type]
+    lib = rightmost_root(linear_response(u, TrapModel(eps=EPS, direct=A)), K, M, 0.0)  # type: ignore[arg-type]
     assert complex(lib.real, abs(lib.imag)) == pytest.approx(root, abs=1e-6)
     assert root.real < 0 < _root_near(complex(0.0, 3.1), u, 0.0, K, M, 0.0).real
     ens = Ensemble(TrapModel(eps=EPS, direct=A), Track(100.0), Initial("steady", velocity=u),
@@ -215,7 +216,7 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
     assert sigma == pytest.approx(root.real, rel=0.05)
     assert omega == pytest.approx(abs(root.imag), rel=0.005)
     for uu, m in ((0.1, 1.0), (1.0, 0.2)):  # A = 0.02: velocity weakening at both
-        res = critical_stiffness_direct(uu, EPS, mass=m, direct=0.02)
+        res = critical_stiffness(uu, TrapModel(eps=EPS, direct=0.02), mass=m)
         assert 0 < res.critical_stiffness < 10 and not res.supremum_at_infinity
         kc = res.critical_stiffness
         assert abs(_chi(complex(0.0, res.omega), uu, 0.02, kc, m, 0.0)) < 1e-3 * kc
@@ -226,8 +227,8 @@ def test_growth_below_and_decay_above_K_c_with_mass() -> None:
     grows at 0.7 K_c and decays at 1.3 K_c with the rightmost root's sign, rate (within 30 %:
     the rates are ~1e-2, the granular noise of 200 traps/a0 is not) and frequency (1 %)."""
     u, A, M = 1.0, 0.02, 0.2
-    kc = critical_stiffness_direct(u, EPS, mass=M, direct=A).critical_stiffness
-    resp = direct_response(u, EPS, direct=A)
+    kc = critical_stiffness(u, TrapModel(eps=EPS, direct=A), mass=M).critical_stiffness
+    resp = linear_response(u, TrapModel(eps=EPS, direct=A))
     for f in (0.7, 1.3):
         lam = rightmost_root(resp, f * kc, M, 0.0)  # type: ignore[arg-type]
         assert abs(_root_near(complex(lam.real, abs(lam.imag)), u, A, f * kc, M, 0.0)
@@ -315,4 +316,5 @@ def test_stability_cli_takes_mass_without_damping_with_the_direct_effect() -> No
                                  "--direct", "0.02", "--json"])
     assert r.exit_code == 0, r.output
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
-        critical_stiffness_direct(1.0, EPS, mass=0.2, direct=0.02).critical_stiffness, rel=1e-9)
+        critical_stiffness(1.0, TrapModel(eps=EPS, direct=0.02), mass=0.2).critical_stiffness,
+        rel=1e-9)

@@ -9,6 +9,7 @@ mirror symmetry, history independence without ageing). Numbers quoted in the rep
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -34,8 +35,8 @@ YC = Trap(0.13).y_c
 
 def _velocity(segments: list[dict], lam: float, eps: float = EPS, initial: Initial | None = None,
               every_slip: float | None = None, every: float | None = None) -> SimulationResult:
-    return simulate(TrapModel(eps=eps), Track(lam), initial or Initial("rest"),
-                    VelocityDrive(VelocityProgram(segments)),
+    return simulate(TrapModel(eps=eps), VelocityDrive(VelocityProgram(segments)),
+                    replace(initial or Initial("rest"), track=Track(lam)),
                     Output(every=every, every_slip=every_slip))
 
 
@@ -115,8 +116,8 @@ def test_static_peak_after_hold_matches_eq27(T: float) -> None:
     r = _velocity([{"velocity": 0.0, "duration": T}, {"velocity": 1e6, "slip": 2.9}], lam,
                   every_slip=2e-4)
     peak_v = r.summary()["peak_mu"]
-    f = simulate(TrapModel(eps=EPS), Track(lam), Initial("rest"), ForceDrive(rate=1e6, hold=T),
-                 Output(every_slip=0.01))
+    f = simulate(TrapModel(eps=EPS), ForceDrive(rate=1e6, hold=T),
+                 Initial("rest", track=Track(lam)), Output(every_slip=0.01))
     peak_f = f.info["threshold_mu"]
     assert f.info["runaway"]
     print(f"REPORT static T={T:g}: mu_s={mu_s:.6f} velocity-route={peak_v:.6f} "
@@ -131,8 +132,8 @@ def test_static_threshold_converges_with_density(runslow: bool) -> None:
     mu_s = float(static_friction(T, EPS))
     errs = []
     for lam in lams:
-        f = simulate(TrapModel(eps=EPS), Track(lam), Initial("rest"),
-                     ForceDrive(rate=1e6, hold=T), Output(every_slip=0.01))
+        f = simulate(TrapModel(eps=EPS), ForceDrive(rate=1e6, hold=T),
+                     Initial("rest", track=Track(lam)), Output(every_slip=0.01))
         errs.append(abs(f.info["threshold_mu"] - mu_s))
     order = -np.polyfit(np.log(lams), np.log(errs), 1)[0]
     print(f"REPORT static threshold T=10: lambda={lams} abs.err={np.round(errs, 7).tolist()} "
@@ -278,8 +279,9 @@ def test_slide_hold_slide_peak_grows_with_hold() -> None:
 def test_quasi_static_stiff_spring_follows_the_load_point() -> None:
     """A stiff spring at M = 0 slides steadily at the pull velocity, at mu_d(u)."""
     lam, m, u, K = 400.0, 8, 1.0, 200.0
-    r = simulate(TrapModel(eps=EPS), Track(lam), Initial("steady", velocity=u),
+    r = simulate(TrapModel(eps=EPS),
                  SpringDrive(K, 0.0, VelocityProgram([{"velocity": u, "slip": 2.0}])),
+                 Initial("steady", velocity=u, track=Track(lam)),
                  Output(every_slip=1 / (m * lam)))
     np.testing.assert_allclose(r.x_pull - r.x, r.mu / K, atol=1e-9)  # force balance
     means, _ = _period_means(r, lam, m)
@@ -289,24 +291,24 @@ def test_quasi_static_stiff_spring_follows_the_load_point() -> None:
 
 def test_soft_spring_sticks_and_slips() -> None:
     """Velocity weakening (mu_d decreases with u) makes a soft spring stick-slip."""
-    r = simulate(TrapModel(eps=EPS), Track(200.0), Initial("steady", velocity=0.01),
+    r = simulate(TrapModel(eps=EPS),
                  SpringDrive(0.05, 0.0, VelocityProgram([{"velocity": 0.01, "slip": 10.0}])),
-                 Output(every_slip=0.01))
+                 Initial("steady", velocity=0.01, track=Track(200.0)), Output(every_slip=0.01))
     assert r.info["slip_events"] >= 1
     assert r.info["largest_sample_slip"] > 1.0
-    stiff = simulate(TrapModel(eps=EPS), Track(200.0), Initial("steady", velocity=0.01),
+    stiff = simulate(TrapModel(eps=EPS),
                      SpringDrive(5.0, 0.0, VelocityProgram([{"velocity": 0.01, "slip": 3.0}])),
-                     Output(every_slip=0.01))
+                     Initial("steady", velocity=0.01, track=Track(200.0)), Output(every_slip=0.01))
     assert stiff.info["slip_events"] == 0
 
 
 def test_inertial_slider_tends_to_the_quasi_static_one() -> None:
     """Small mass, stiff spring: the inertial integrator reproduces steady sliding at mu_d."""
     lam, u = 200.0, 1.0
-    r = simulate(TrapModel(eps=EPS), Track(lam), Initial("steady", velocity=u),
+    r = simulate(TrapModel(eps=EPS),
                  SpringDrive(20.0, 1e-4, VelocityProgram([{"velocity": u, "slip": 3.0}]),
                              damping=0.2),
-                 Output(every_slip=1 / (4 * lam)))
+                 Initial("steady", velocity=u, track=Track(lam)), Output(every_slip=1 / (4 * lam)))
     late = r.x > 1.0
     assert np.mean(r.mu[late]) == pytest.approx(float(steady_friction(u, EPS)), rel=2e-3)
     # the slider keeps up with the load point (the sampled v is phase-locked to the lattice,
@@ -320,9 +322,10 @@ def test_inertial_slider_tends_to_the_quasi_static_one() -> None:
 
 
 def test_holds_cost_one_step_and_snapshots() -> None:
-    r = simulate(TrapModel(eps=EPS), Track(100.0), Initial("rest"),
+    r = simulate(TrapModel(eps=EPS),
                  VelocityDrive(VelocityProgram([{"velocity": 0.0, "duration": 1e6},
                                                 {"velocity": 1.0, "slip": 0.05}])),
+                 Initial("rest", track=Track(100.0)),
                  Output(every_slip=0.01, snapshots=(0.0, 5e5, 1e6)))
     assert len(r.t) == 1 + 1 + 1 + 5  # t=0, the hold (split at the snapshot), the slide
     assert [s["t"] for s in r.snapshots] == [0.0, 5e5, 1e6]
@@ -343,7 +346,8 @@ def test_interrupt_gives_a_partial_result() -> None:
             raise KeyboardInterrupt
 
     drive = VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": 500.0}]))
-    args = (TrapModel(eps=EPS), Track(500.0), Initial("rest"), drive, Output(every_slip=1e-3))
+    args = (TrapModel(eps=EPS), drive, Initial("rest", track=Track(500.0)),
+            Output(every_slip=1e-3))
     import time
 
     def slow(fraction: float) -> None:
@@ -383,15 +387,14 @@ def test_event_accounting_closes(alpha: float) -> None:
     model = TrapModel(alpha=alpha, eps=EPS)
     strong = Trap(alpha).y_c < 1.0
     runs = [
-        simulate(model, Track(200.0), Initial("rest"),
+        simulate(model,
                  VelocityDrive(VelocityProgram([{"velocity": 1.0, "slip": 4.0},
                                                 {"velocity": -0.5, "slip": 1.5},
                                                 {"velocity": 0.0, "duration": 50.0},
                                                 {"velocity": 2.0, "slip": 3.0}])),
-                 Output(every_slip=0.01)),
-        simulate(model, Track(200.0), Initial("steady", velocity=0.01),
-                 SpringDrive(0.05, 0.0, VelocityProgram([{"velocity": 0.01, "slip": 8.0}])),
-                 Output(every_slip=0.01)),
+                 Initial("rest", track=Track(200.0)), Output(every_slip=0.01)),
+        simulate(model, SpringDrive(0.05, 0.0, VelocityProgram([{"velocity": 0.01, "slip": 8.0}])),
+                 Initial("steady", velocity=0.01, track=Track(200.0)), Output(every_slip=0.01)),
     ]
     for r in runs:
         deaths = r.exits + (0 if strong else r.spinodal)
@@ -402,17 +405,18 @@ def test_event_accounting_closes(alpha: float) -> None:
 def test_both_simulators_give_the_same_summary_keys_and_columns() -> None:
     """One schema (dryfriction.results): the trap model and rate-and-state share the common
     keys and columns, with values checked against what each run was asked to do."""
+    from dryfriction import simulate as df_simulate
     from dryfriction.results import COMMON_COLUMNS, COMMON_SUMMARY_KEYS
-    from dryfriction.rsf import RateState, RSFOutput, SpringSlider, simulate_rsf
+    from dryfriction.rsf import RateState, RSFOutput, SpringSlider
 
-    cv = simulate(TrapModel(eps=EPS), Track(100.0), Initial("rest"),
+    cv = simulate(TrapModel(eps=EPS),
                   VelocityDrive(VelocityProgram([{"velocity": 0.0, "duration": 10.0},
                                                  {"velocity": 1.0, "slip": 0.5}])),
-                  Output(every_slip=0.01))
-    rsf = simulate_rsf(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6),
-                       SpringSlider([{"velocity": 1e-6, "duration": 10.0},
-                                     {"velocity": 1e-5, "slip": 3e-4}]),
-                       output=RSFOutput(every=0.5))
+                  Initial("rest", track=Track(100.0)), Output(every_slip=0.01))
+    rsf = df_simulate(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6),
+                      SpringSlider([{"velocity": 1e-6, "duration": 10.0},
+                                    {"velocity": 1e-5, "slip": 3e-4}]),
+                      output=RSFOutput(every=0.5))
     sc, sr = cv.summary(), rsf.summary()
     common = set(COMMON_SUMMARY_KEYS)
     assert common <= set(sc) and common <= set(sr)
@@ -435,8 +439,8 @@ def test_both_simulators_give_the_same_summary_keys_and_columns() -> None:
 
 def _velocity_at(alpha: float, segments: list[dict], lam: float, initial: Initial,
                  every_slip: float) -> SimulationResult:
-    return simulate(TrapModel(alpha=alpha, eps=EPS), Track(lam), initial,
-                    VelocityDrive(VelocityProgram(segments)), Output(every_slip=every_slip))
+    return simulate(TrapModel(alpha=alpha, eps=EPS), VelocityDrive(VelocityProgram(segments)),
+                    replace(initial, track=Track(lam)), Output(every_slip=every_slip))
 
 
 @pytest.mark.parametrize("alpha", [0.3, 0.6])
@@ -553,8 +557,8 @@ def test_force_hold_sampled_in_slip_follows_the_creep(f_w: float) -> None:
     lam, T = 500.0, 100.0
     runs = {}
     for name, out in (("slip", Output(every_slip=0.005)), ("time", Output(every=0.1))):
-        runs[name] = simulate(TrapModel(eps=EPS), Track(lam), Initial("loaded", force=f_w),
-                              ForceDrive(rate=1e4, hold=T), out)
+        runs[name] = simulate(TrapModel(eps=EPS), ForceDrive(rate=1e4, hold=T),
+                              Initial("loaded", force=f_w, track=Track(lam)), out)
     slip = runs["slip"]
     end_hold = int(np.flatnonzero(slip.t <= T * (1 + 1e-12))[-1])
     assert slip.t[end_hold] == pytest.approx(T, rel=1e-12)
@@ -582,7 +586,7 @@ def test_damped_inertial_oscillation_decays_at_the_linear_rate() -> None:
                                          eta), Output(every=0.02), velocity=1.5 * u)
     assert np.min(r.v) > 0  # the linear (forward-sliding) regime throughout
     sigma, omega = fit_growth(r.t[10:], r.v[10:] - u)
-    root = rightmost_root(steady_response(u, EPS), K, M, eta)
+    root = rightmost_root(steady_response(u, TrapModel(eps=EPS)), K, M, eta)
     assert sigma == pytest.approx(root.real, rel=0.01)
     assert omega == pytest.approx(abs(root.imag), rel=0.01)
 
@@ -656,8 +660,8 @@ def test_quasi_static_slider_agrees_with_brents_roots(monkeypatch: pytest.Monkey
                             Segment(0.1, slip=1.5)])
 
     def run() -> np.ndarray:
-        return simulate(TrapModel(alpha, 0.04, direct=direct), Track(300.0),
-                        Initial("steady", velocity=1.0), SpringDrive(stiffness, 0.0, prog),
+        return simulate(TrapModel(alpha, 0.04, direct=direct), SpringDrive(stiffness, 0.0, prog),
+                        Initial("steady", velocity=1.0, track=Track(300.0)),
                         Output(every_slip=0.01)).mu
 
     ours = run()
@@ -691,7 +695,7 @@ def test_quasi_static_roots_take_a_few_kernel_passes(monkeypatch: pytest.MonkeyP
     monkeypatch.setattr(balance, "root_in_bracket", counted)
     prog = VelocityProgram([Segment(1.0, slip=1.5), Segment(0.0, duration=5.0),
                             Segment(0.1, slip=1.5)])
-    simulate(TrapModel(0.13, 0.04, direct=0.02), Track(300.0), Initial("steady", velocity=1.0),
-             SpringDrive(stiffness, 0.0, prog), Output(every_slip=0.01))
+    simulate(TrapModel(0.13, 0.04, direct=0.02), SpringDrive(stiffness, 0.0, prog),
+             Initial("steady", velocity=1.0, track=Track(300.0)), Output(every_slip=0.01))
     assert roots[0] > 1000
     assert passes[0] / roots[0] <= most

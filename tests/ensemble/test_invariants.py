@@ -24,8 +24,8 @@ TRACK = Track(37.0)
 
 
 def _run(model: TrapModel, segs: list[tuple[float, float]]):  # type: ignore[no-untyped-def]
-    return simulate(model, TRACK, Initial(), VelocityDrive([Segment(v, slip=s) for v, s in segs]),
-                    Output(every_slip=0.05))
+    return simulate(model, VelocityDrive([Segment(v, slip=s) for v, s in segs]),
+                    Initial(track=TRACK), Output(every_slip=0.05))
 
 
 @settings(max_examples=6, derandomize=True, deadline=None)

@@ -167,9 +167,8 @@ def _spring_run(eta: float, direct: float, every: float, t_end: float = 6.0
     from dryfriction.program import Segment
 
     model = TrapModel(alpha=0.13, direct=direct, v_ref=0.5)
-    return simulate(model, Track(1e-6), Initial(),
-                    SpringDrive(2.3, 0.7, [Segment(0.37, duration=t_end)], damping=eta),
-                    Output(every=every))
+    return simulate(model, SpringDrive(2.3, 0.7, [Segment(0.37, duration=t_end)], damping=eta),
+                    Initial(track=Track(1e-6)), Output(every=every))
 
 
 def _oscillator(t: np.ndarray, eta: float) -> np.ndarray:

@@ -31,7 +31,7 @@ def _soft_run(k: float, every: float | None = None) -> tuple[float, float]:
     """Slip of a slider pulled through a spring of stiffness ``k`` by a load point that
     steps from 1.3 to 17 um/s; the closed form for ``k -> 0`` is ``v_init * T``."""
     prog = [Segment(1.3e-6, 11.0), Segment(1.7e-5, 23.0)]
-    res = rsf_driving.simulate_rsf(STABLE, SpringSlider(prog, k), output=RSFOutput(every=every))
+    res = rsf_driving.simulate(STABLE, SpringSlider(prog, k), output=RSFOutput(every=every))
     return float(res.x[-1] - res.x[0]), 1.3e-6 * 34.0
 
 
@@ -55,8 +55,8 @@ def test_the_two_routes_to_the_position_agree_where_both_hold(
     for route in (False, True):
         monkeypatch.setattr(rsf_driving, "force_balance_is_ill_conditioned",
                             lambda *a, r=route: r)
-        runs[route] = rsf_driving.simulate_rsf(STABLE, SpringSlider(prog, 40.0, 0.3),
-                                               output=RSFOutput(every=0.5, rtol=1e-9))
+        runs[route] = rsf_driving.simulate(STABLE, SpringSlider(prog, 40.0, 0.3),
+                                           output=RSFOutput(every=0.5, rtol=1e-9))
     a, b = runs[False].x, runs[True].x
     assert np.max(np.abs(a - b)) <= 1e-7 * (a[-1] - a[0])
 
@@ -70,8 +70,8 @@ def test_the_old_position_is_refused_as_impossible(k: float,
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         with pytest.raises(ImpossibleResultError, match="impossible result"):
-            rsf_driving.simulate_rsf(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6),
-                                     SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 30.0)], k))
+            rsf_driving.simulate(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6),
+                                 SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 30.0)], k))
 
 
 def test_check_physical_names_each_bound() -> None:
@@ -100,7 +100,7 @@ MODEL = TrapModel(alpha=0.13, eps=0.037)
 
 
 def _threshold(every_slip: float, rate: float, hold: float) -> float:
-    res = simulate(MODEL, Track(300.0), Initial("rest"), ForceDrive(rate=rate, hold=hold),
+    res = simulate(MODEL, ForceDrive(rate=rate, hold=hold), Initial("rest", track=Track(300.0)),
                    Output(every_slip=every_slip))
     assert res.info["runaway"]
     return float(res.info["threshold_mu"])
@@ -136,9 +136,9 @@ def test_ramps_run_up_to_the_checked_ages_and_are_refused_past_them() -> None:
     # threshold above the one after 1e10 t0; past 2^46 t0 the clock no longer resolves the ages
     with pytest.raises(ValueError, match=r"allowed rate >= 1\.44e-13"):
         ForceDrive(rate=1e-14, hold=1e2)
-    long = simulate(MODEL, Track(100.0), Initial("rest"), ForceDrive(rate=1e-6, hold=5e13),
+    long = simulate(MODEL, ForceDrive(rate=1e-6, hold=5e13), Initial("rest", track=Track(100.0)),
                     Output(every_slip=0.5))
-    short = simulate(MODEL, Track(100.0), Initial("rest"), ForceDrive(rate=1e-6, hold=1e10),
+    short = simulate(MODEL, ForceDrive(rate=1e-6, hold=1e10), Initial("rest", track=Track(100.0)),
                      Output(every_slip=0.5))
     assert long.info["threshold_mu"] > short.info["threshold_mu"] > 1.0
 
@@ -160,10 +160,10 @@ def test_a_moving_segment_below_what_the_model_resolves_is_refused(make) -> None
 
 
 def test_the_slowest_resolved_velocity_runs_and_slower_is_refused() -> None:
-    res = simulate(MODEL, Track(50.0), Initial("rest"),
+    res = simulate(MODEL,
                    VelocityDrive(VelocityProgram([Segment(0.0, 3.0), Segment(1e-30, 2.0),
                                                   Segment(0.7, slip=0.3)])),
-                   Output(every=0.5))
+                   Initial("rest", track=Track(50.0)), Output(every=0.5))
     assert res.t[-1] == pytest.approx(5.0 + 0.3 / 0.7)
     with pytest.raises(ValueError, match=r"segments\[1\]\.velocity = 9e-31"):
         VelocityDrive(VelocityProgram([Segment(0.0, 3.0), Segment(9e-31, 2.0)]))
@@ -172,16 +172,16 @@ def test_the_slowest_resolved_velocity_runs_and_slower_is_refused() -> None:
 def test_a_snapshot_after_the_run_is_refused() -> None:
     drive = VelocityDrive(VelocityProgram([Segment(0.7, slip=1.3)]))
     with pytest.raises(ValueError, match="snapshots: the time 2.5 t0 is after the run's end"):
-        simulate(MODEL, Track(50.0), Initial("rest"), drive,
+        simulate(MODEL, drive, Initial("rest", track=Track(50.0)),
                  Output(every_slip=0.1, snapshots=(0.5, 2.5)))
-    res = simulate(MODEL, Track(50.0), Initial("rest"), drive,
+    res = simulate(MODEL, drive, Initial("rest", track=Track(50.0)),
                    Output(every_slip=0.1, snapshots=(0.5, 1.3 / 0.7)))
     assert len(res.snapshots) == 2
 
 
 def test_snapshots_a_runaway_does_not_reach_are_listed() -> None:
     # a ramp ends at its runaway, which no check places before the run
-    res = simulate(MODEL, Track(100.0), Initial("rest"), ForceDrive(rate=1e2, hold=2.0),
+    res = simulate(MODEL, ForceDrive(rate=1e2, hold=2.0), Initial("rest", track=Track(100.0)),
                    Output(every_slip=0.01, snapshots=(1.0, 2.0 + 0.09)))
     assert res.info["runaway"] and res.t[-1] < 2.09
     assert len(res.snapshots) == 1

@@ -191,9 +191,8 @@ def test_regular_lattice_sampling_does_not_alias(cells: int) -> None:
     from dryfriction.program import Segment, VelocityProgram
 
     lam, u, eps = 1000.0, 1.0, 0.04
-    r = simulate(TrapModel(eps=eps), Track(lam), Initial("steady", velocity=u),
-                 VelocityDrive(VelocityProgram([Segment(u, 3.0 / u)])),
-                 Output(every_slip=cells / lam))
+    r = simulate(TrapModel(eps=eps), VelocityDrive(VelocityProgram([Segment(u, 3.0 / u)])),
+                 Initial("steady", velocity=u, track=Track(lam)), Output(every_slip=cells / lam))
     n = round(3.0 * lam / cells)
     assert n < r.mu.size - 1 <= n + 64  # a few samples more, not a different sampling
     assert np.std(r.mu[1:]) > 1e-5  # the sawtooth is seen, not one phase of it

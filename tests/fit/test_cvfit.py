@@ -16,7 +16,8 @@ from dryfriction.fit.cvseries import cv_series, cv_start_from_rsf
 from dryfriction.fit.models import CVModel
 from dryfriction.records.data import SeriesData
 from dryfriction.theory.direct import junction_strength
-from dryfriction.theory.direct_stability import effective_rsf_direct
+from dryfriction.theory.linear_stability import effective_rsf
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.steady import steady_friction
 
 A0, T0, MU_EL = 1e-6, 1.0, 0.5  # a0 (m), t0 (s): V* = 1 um/s
@@ -82,7 +83,7 @@ def test_start_from_rsf_inverts_the_twin() -> None:
     v0 = 2e-7
     t0 = a0 / v0
     u_ref = v_ref * t0 / a0
-    tw = effective_rsf_direct(1.0, eps, direct=A, v_ref=u_ref)
+    tw = effective_rsf(1.0, TrapModel(eps=eps, direct=A, v_ref=u_ref))
     g = float(junction_strength(1.0, A, u_ref))
     rsf = {"a": mu_el * tw["a"], "b": mu_el * tw["b"], "dc": tw["dc"] * a0,
            "mu0": mu_el * g * float(steady_friction(1.0, eps)), "stiffness": 2000.0,

@@ -26,8 +26,9 @@ EVERY = 0.01
 
 
 def _whole(program: list[Segment]) -> tuple[np.ndarray, np.ndarray]:
-    r = simulate(MODEL, Track(100.0), Initial("steady", velocity=program[0].velocity),
-                 SpringDrive(K, 0.0, program), Output(every_slip=EVERY))
+    r = simulate(MODEL, SpringDrive(K, 0.0, program),
+                 Initial("steady", velocity=program[0].velocity, track=Track(100.0)),
+                 Output(every_slip=EVERY))
     return r.t, r.mu
 
 

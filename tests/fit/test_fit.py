@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from dryfriction import RateState, Segment, simulate_rsf
+from dryfriction import RateState, Segment, simulate
 from dryfriction.cli import app
 from dryfriction.fit import CVModel, compare_models, fit, fit_joint, fit_static, fit_steady
 from dryfriction.records.data import SeriesData, StaticData, SteadyData
@@ -144,7 +144,7 @@ def test_healing_closed_form_matches_simulated_slide_hold_slide() -> None:
     p = RateState(0.01, 0.015, 1e-5, 0.6, 1e-6, regularized=True)
     for th in (1.0, 100.0):
         prog = [Segment(1e-6, 50.0), Segment(0.0, th), Segment(1e-6, 5.0)]
-        r = simulate_rsf(p, SpringSlider(prog), output=RSFOutput(rtol=1e-10))
+        r = simulate(p, SpringSlider(prog), output=RSFOutput(rtol=1e-10))
         peak = r.mu[r.t > 50.0 + th].max()
         assert peak == pytest.approx(0.6 + 0.015 * math.log1p(1e-6 * th / 1e-5), abs=1e-6)
     assert RateState(0.01, 0.015, 1e-5, 0.6, 1e-6, "slip").hold_peak_friction(100.0, 1e-6) \
@@ -155,8 +155,8 @@ def test_rsf_time_series_spring_machine_recovers_parameters() -> None:
     p = RateState(0.008, 0.012, 1e-5, 0.6, 1e-6)
     t = np.linspace(0.0, 90.0, 181)  # samples at the velocity changes (SeriesData.segments)
     prog = [Segment(1e-6, 20.0), Segment(1e-5, 10.0), Segment(1e-6, 60.0)]
-    res = simulate_rsf(p, SpringSlider(prog, stiffness=1e3),
-                       output=RSFOutput(t_eval=t, rtol=1e-10))
+    res = simulate(p, SpringSlider(prog, stiffness=1e3),
+                   output=RSFOutput(t_eval=t, rtol=1e-10))
     vl = np.where((t >= 20.0) & (t < 30.0), 1e-5, 1e-6)
     y = res.stress + np.random.default_rng(10).normal(0.0, 2e-4, t.size)
     r = fit(SeriesData(t, vl, y, np.full(t.size, 2e-4)), "rsf", stiffness=1e3, profile=False)

@@ -15,11 +15,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from dryfriction import simulate as df_simulate
 from dryfriction.fit.lawchoice import fit_steps_laws
 from dryfriction.fit.models import RSFModel, rsf_series
 from dryfriction.program import Segment
 from dryfriction.records.data import SeriesData
-from dryfriction.rsf.driving import RSFOutput, SpringSlider, simulate_rsf
+from dryfriction.rsf.driving import RSFOutput, SpringSlider
 from dryfriction.rsf.law import RateState
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -48,7 +49,7 @@ def test_steady_state_is_the_same_for_every_law(law: str):
     friction (off by b2 ln(V/V0))."""
     p = params(law)
     v2 = R * V1
-    res = simulate_rsf(p, SpringSlider([Segment(V1, 5.0), Segment(v2, 150 * DC / v2 * (
+    res = df_simulate(p, SpringSlider([Segment(V1, 5.0), Segment(v2, 150 * DC / v2 * (
         1 if law != "ageing2" else 6))], 1e4), output=RSFOutput(rtol=1e-10))
     want = MU0 + (A - B - p.b2) * math.log(v2 / V0)
     assert float(res.mu[-1]) == pytest.approx(want, abs=1e-7)
@@ -58,8 +59,8 @@ def test_steady_state_is_the_same_for_every_law(law: str):
 def _ln_omega(law: str, v2: float, slip: np.ndarray) -> np.ndarray:
     """ln(V theta/Dc) on the kinematic machine after a jump V1 -> v2, at the given slips."""
     p = params(law)
-    res = simulate_rsf(p, SpringSlider([Segment(V1, 1.0), Segment(v2, 8 * DC / v2)]),
-                       output=RSFOutput(t_eval=1.0 + slip / v2, rtol=1e-11))
+    res = df_simulate(p, SpringSlider([Segment(V1, 1.0), Segment(v2, 8 * DC / v2)]),
+                      output=RSFOutput(t_eval=1.0 + slip / v2, rtol=1e-11))
     return np.log(v2 * np.asarray(res.theta) / DC)
 
 
@@ -91,11 +92,11 @@ def test_nagata_reduces_to_ageing_at_c_zero_and_needs_a_spring():
     stress-rate term needs the spring's stress)."""
     prog = SpringSlider([Segment(V1, 20.0), Segment(R * V1, 30.0), Segment(V1, 60.0)], 3000.0)
     out = RSFOutput(t_eval=np.linspace(0.0, 110.0, 400), rtol=1e-9)
-    ng = simulate_rsf(params("nagata", c=0.0), prog, output=out)
-    ag = simulate_rsf(params("ageing"), prog, output=out)
+    ng = df_simulate(params("nagata", c=0.0), prog, output=out)
+    ag = df_simulate(params("ageing"), prog, output=out)
     assert np.max(np.abs(np.asarray(ng.mu) - np.asarray(ag.mu))) < 1e-12
     with pytest.raises(ValueError, match="stiffness = inf is out of range for state_law"):
-        simulate_rsf(params("nagata"), SpringSlider([Segment(V1, 1.0)]))
+        df_simulate(params("nagata"), SpringSlider([Segment(V1, 1.0)]))
 
 
 @pytest.mark.parametrize("c", [0.5, 2.0])
@@ -108,8 +109,8 @@ def test_nagata_direct_effect_is_a_over_one_plus_c(c: float):
     p = params("nagata", c=c)
     v2 = R * V1
     t = 10.0 + 0.05e-6 / v2
-    res = simulate_rsf(p, SpringSlider([Segment(V1, 10.0), Segment(v2, 1.0)], 1e8),
-                       output=RSFOutput(t_eval=np.array([9.999, t]), rtol=1e-10))
+    res = df_simulate(p, SpringSlider([Segment(V1, 10.0), Segment(v2, 1.0)], 1e8),
+                      output=RSFOutput(t_eval=np.array([9.999, t]), rtol=1e-10))
     rise = float(res.mu[1] - res.mu[0])
     assert rise == pytest.approx(A * math.log(R) / (1.0 + c), rel=0.01)
 

@@ -55,7 +55,7 @@ def test_good_protocol_round_trip() -> None:
 @pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_examples_are_valid(path: Path) -> None:
     p = load_protocol(path)
-    if isinstance(p, RSFProtocol):  # model.law = "rsf": SI, simulate_rsf
+    if isinstance(p, RSFProtocol):  # model.law = "rsf": SI, rsf.driving.simulate
         assert p.program.total_time > 0
         return
     assert isinstance(p.drive, (VelocityDrive, ForceDrive, SpringDrive))
@@ -177,21 +177,21 @@ def test_protocol_from_dict_matches_text() -> None:
 @pytest.mark.parametrize(
     "make, key",
     [
-        (lambda: dict(track=Track(1e10)), "traps_per_a0 = 1e+10"),
-        (lambda: dict(track=Track(1e308)), "traps_per_a0 = 1e+308"),
+        (lambda: dict(initial=Initial("rest", track=Track(1e10))), "traps_per_a0 = 1e+10"),
+        (lambda: dict(initial=Initial("rest", track=Track(1e308))), "traps_per_a0 = 1e+308"),
         (lambda: dict(output=Output(every=1e-300)), "every = 1e-300"),
         (lambda: dict(drive=VelocityDrive(VelocityProgram([Segment(1.0, slip=1e300)]))),
          "every_slip = 0.01"),
         (lambda: dict(drive=ForceDrive(rate=1e-6), output=Output(every=1e-3)), "every = 0.001"),
         # within the run's 1 t0 (snapshots after its end are refused since issue 24)
         (lambda: dict(output=Output(every_slip=0.01, snapshots=tuple(np.arange(1, 5001) * 2e-4)),
-                      track=Track(1e5)), "snapshots"),
+                      initial=Initial("rest", track=Track(1e5))), "snapshots"),
     ],
 )
 def test_simulate_refuses_what_the_machine_cannot_hold(monkeypatch: pytest.MonkeyPatch, make,
                                                        key: str) -> None:
     monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "8GiB")
-    args = dict(model=TrapModel(eps=0.04), track=Track(100.0), initial=Initial("rest"),
+    args = dict(model=TrapModel(eps=0.04), initial=Initial("rest", track=Track(100.0)),
                 drive=VelocityDrive(VelocityProgram([Segment(1.0, slip=1.0)])),
                 output=Output(every_slip=0.01))
     args.update(make())
@@ -204,12 +204,13 @@ def test_simulate_refuses_what_the_machine_cannot_hold(monkeypatch: pytest.Monke
 def test_the_estimate_bounds_what_a_run_holds() -> None:
     # the per-sample and per-pair costs against tracemalloc's peak: a bound, not far above it
     model, drive = TrapModel(eps=0.04), VelocityDrive(VelocityProgram([Segment(1.0, slip=3.0)]))
-    simulate(model, Track(10.0), Initial("rest"), drive, Output(every_slip=1.0))  # load the kernel
+    simulate(model, drive, Initial("rest", track=Track(10.0)),
+             Output(every_slip=1.0))  # load the kernel
     for track, output in [(Track(10.0), Output(every_slip=1e-4)),     # samples dominate
                           (Track(1e5), Output(every_slip=0.5))]:     # pairs dominate
         est = estimate_run(model, track, Initial("rest"), drive, output)
         tracemalloc.start()
-        res = simulate(model, track, Initial("rest"), drive, output)
+        res = simulate(model, drive, Initial("rest", track=track), output)
         peak = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()
         assert len(res.t) <= est.samples <= len(res.t) + 5
@@ -260,7 +261,7 @@ def test_too_many_samples_refused_before_any_work() -> None:
 
     drive = VelocityDrive(VelocityProgram([Segment(0.5, duration=1e6)]))
     with pytest.raises(ValueError, match=r"every = 0.1 gives 1.0e\+07 samples, over the 2e\+06"):
-        simulate(TrapModel(eps=0.04), Track(5.0), Initial("steady", velocity=0.5), drive,
+        simulate(TrapModel(eps=0.04), drive, Initial("steady", velocity=0.5, track=Track(5.0)),
                  Output(every=0.1))
     # just under the cap it is not refused for its samples
     ok = VelocityDrive(VelocityProgram([Segment(0.5, duration=0.5 * MAX_SAMPLES * 0.1)]))

@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 from dryfriction.cli import app
 from dryfriction.plots.runs import rsf_figure
 from dryfriction.program import Segment
-from dryfriction.rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
+from dryfriction.rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate
 from dryfriction.rsf.law import RateState
 
 T1, HOLD = 10.0, 100.0
@@ -43,7 +43,7 @@ def test_shs_with_a_short_reload_says_it_ended_before_the_peak():
 def test_friction_against_ln_v_over_the_steady_state():
     law = RateState(0.005, 0.01, 1e-5, 0.6, 1e-6)
     drive = SpringSlider([Segment(1e-6, 5.0), Segment(1e-5, 10.0)], 1e3)
-    res = simulate_rsf(law, drive, RSFInitial(), RSFOutput())
+    res = simulate(law, drive, RSFInitial(), RSFOutput())
     fig, (ax1, ax2, ax3) = rsf_figure(res, "step")
     title = fig.get_suptitle()
     for part in ("step", "a = 0.005", "b = 0.01", "1e-05 m", "k = 1000 1/m"):

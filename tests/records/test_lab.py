@@ -377,3 +377,21 @@ def test_record_command_shows_columns_program_and_steps(tmp_path: Path) -> None:
     assert rep["steps"][0]["t_change"] == pytest.approx(700.0)
     r = runner.invoke(app, ["record", str(p), "--columns", "disp=nope"])
     assert r.exit_code == 2 and "r.csv, line 1" in r.output and "nope" in r.output
+
+
+def test_segments_table_gives_the_normal_column_in_its_own_unit(tmp_path: Path) -> None:
+    """The mistake this is for: the table divided every normal value by 1e6 and said
+    "MPa (force: kN)", so a record with a normal force of 4.2 kN printed 0.0042 (in MN). The
+    table and segments.csv must give the same number in the same unit."""
+    from dryfriction.records.labsteps import Segment, write_segments_csv
+
+    for unit, value, shown, name in (("Pa", 13.7e6, "13.7", "normal (MPa)"),
+                                     ("N", 4.2e3, "4.2", "normal (kN)")):
+        segs = (Segment(3.5, 80.25, 2.5e-6, 0, 700, 40.0, value),)
+        text = segments_table(segs, unit)
+        header, row = text.splitlines()[:2]
+        assert name in header and row.split()[-1] == shown, text
+        write_segments_csv(tmp_path / f"s{unit}.csv", segs, 3.5, unit)
+        csv_lines = (tmp_path / f"s{unit}.csv").read_text().splitlines()
+        assert csv_lines[1].endswith(f"[{name[8:-1]}]")
+        assert float(csv_lines[2].split(",")[-1]) == pytest.approx(float(shown))

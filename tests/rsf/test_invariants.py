@@ -25,7 +25,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dryfriction.program import Segment
-from dryfriction.rsf.driving import simulate_rsf
+from dryfriction.rsf.driving import simulate
 from dryfriction.rsf.law import RateState
 from dryfriction.rsf.spring import RSFInitial, RSFOutput, SpringSlider
 
@@ -135,8 +135,8 @@ def test_kinematic_step_matches_the_closed_form_absolutely(law: str, regularized
     v1, v2 = (0.37e-6, 3.7e-6) if up else (3.7e-6, 0.37e-6)
     d1, d2 = 40e-6 / v1, 400e-6 / v2
     te = np.concatenate([np.linspace(0, d1, 5)[:-1], d1 + np.geomspace(1e-3, d2, 40)])
-    res = simulate_rsf(p, SpringSlider([Segment(v1, duration=d1), Segment(v2, duration=d2)]),
-                       output=RSFOutput(t_eval=te, rtol=1e-9))
+    res = simulate(p, SpringSlider([Segment(v1, duration=d1), Segment(v2, duration=d2)]),
+                   output=RSFOutput(t_eval=te, rtol=1e-9))
     after = res.t > d1
     mu_law = _mu_regularised if regularized else _mu_standard
     th1 = _theta_exact(law, res.t[after] - d1, v2, DC / v1, DC)
@@ -164,7 +164,7 @@ def test_spring_slider_settles_on_the_absolute_steady_level(law: str, regularize
         mu_ss = MU0 + (A - p.b_total) * math.log(v / V0)
         drive = SpringSlider([Segment(v, slip=2500 * DC)], stiffness=k, damping=eta, mass=m)
         init = RSFInitial(v=1.4 * v, theta=3 * DC / v, theta2=0.6 * DC2 / v if two else None)
-        res = simulate_rsf(p, drive, init, RSFOutput(every=50 * DC / v, rtol=1e-9))
+        res = simulate(p, drive, init, RSFOutput(every=50 * DC / v, rtol=1e-9))
         assert res.mu[-1] == pytest.approx(mu_ss, abs=1e-6), (eta, m)
         assert res.stress[-1] == pytest.approx(mu_ss + eta * v, abs=1e-6), (eta, m)
         assert res.v[-1] == pytest.approx(v, rel=1e-4)
@@ -181,8 +181,8 @@ def test_kinematic_error_falls_with_the_tolerance() -> None:
     te = d1 + np.geomspace(1e-2, d2, 30)
     errs, steps = [], []
     for rtol in (1e-5, 1e-8):
-        res = simulate_rsf(p, SpringSlider([Segment(v1, duration=d1), Segment(v2, duration=d2)]),
-                           output=RSFOutput(t_eval=te, rtol=rtol))
+        res = simulate(p, SpringSlider([Segment(v1, duration=d1), Segment(v2, duration=d2)]),
+                       output=RSFOutput(t_eval=te, rtol=rtol))
         th = _theta_exact("slip", te - d1, v2, DC / v1, DC)
         want = np.array([_mu_standard(v2, x) for x in th])
         errs.append(float(np.max(np.abs(res.mu - want))) / B)
@@ -241,9 +241,9 @@ def test_mirrored_protocol_gives_mirrored_friction(v1: float, r: float, law: str
     p = RateState(A, B, DC, MU0, V0, state_law=law, regularized=True)
     segs = [(v1, 20 * DC / v1), (r * v1, 30 * DC / (r * v1))]
     out = RSFOutput(every=sum(d for _, d in segs) / 40, rtol=1e-9)
-    fwd = simulate_rsf(p, SpringSlider([Segment(v, duration=d) for v, d in segs]), output=out)
-    bwd = simulate_rsf(p, SpringSlider([Segment(-v, duration=d) for v, d in segs]),
-                       RSFInitial(v=v1), output=out)  # v_init > 0: it sets theta = Dc/|V|
+    fwd = simulate(p, SpringSlider([Segment(v, duration=d) for v, d in segs]), output=out)
+    bwd = simulate(p, SpringSlider([Segment(-v, duration=d) for v, d in segs]),
+                   RSFInitial(v=v1), output=out)  # v_init > 0: it sets theta = Dc/|V|
     np.testing.assert_allclose(bwd.mu, -fwd.mu, rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose(bwd.theta, fwd.theta, rtol=1e-8)
 
@@ -258,9 +258,9 @@ def test_small_mass_limit_is_the_quasi_static_slider() -> None:
     prog = [Segment(v, slip=10 * DC), Segment(4.1 * v, slip=40 * DC)]
     te = np.linspace(0.0, 10 * DC / v + 40 * DC / (4.1 * v), 60)
     m = k * (1e-4 * DC / v) ** 2
-    qs = simulate_rsf(p, SpringSlider(prog, stiffness=k, damping=17.0),
-                      output=RSFOutput(t_eval=te, rtol=1e-9))
-    inr = simulate_rsf(p, SpringSlider(prog, stiffness=k, damping=17.0, mass=m),
-                       output=RSFOutput(t_eval=te, rtol=1e-9))
+    qs = simulate(p, SpringSlider(prog, stiffness=k, damping=17.0),
+                  output=RSFOutput(t_eval=te, rtol=1e-9))
+    inr = simulate(p, SpringSlider(prog, stiffness=k, damping=17.0, mass=m),
+                   output=RSFOutput(t_eval=te, rtol=1e-9))
     np.testing.assert_allclose(inr.mu, qs.mu, rtol=0, atol=1e-6)
     np.testing.assert_allclose(inr.stress, qs.mu + 17.0 * qs.v, rtol=0, atol=1e-6)

@@ -10,7 +10,7 @@ import pytest
 
 from dryfriction.program import Segment
 from dryfriction.rsf import stepper
-from dryfriction.rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate_rsf
+from dryfriction.rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate
 from dryfriction.rsf.law import RateState
 
 A, B, DC, MU0, V0 = 0.005, 0.01, 1e-5, 0.6, 1e-6
@@ -41,7 +41,7 @@ CASES = {
 
 def _run(case: str, interpreted: int):  # type: ignore[no-untyped-def]
     with stepper.interpreted_steps(interpreted):
-        return simulate_rsf(*CASES[case])
+        return simulate(*CASES[case])
 
 
 def _same(r, ref) -> None:  # type: ignore[no-untyped-def]
@@ -90,11 +90,11 @@ def test_the_budget_is_the_whole_process_s(compiled_runs: dict,
     ref = compiled_runs["velocity_step"]
     steps = ref.n_steps + ref.n_rejected
     with stepper.interpreted_steps(steps + 5):
-        _same(simulate_rsf(*CASES["velocity_step"]), ref)
+        _same(simulate(*CASES["velocity_step"]), ref)
         assert calls == []
-        _same(simulate_rsf(*CASES["velocity_step"]), ref)  # 5 steps left
+        _same(simulate(*CASES["velocity_step"]), ref)  # 5 steps left
         assert calls == [1]
-        _same(simulate_rsf(*CASES["velocity_step"]), ref)  # none left
+        _same(simulate(*CASES["velocity_step"]), ref)  # none left
         assert calls == [1, 1]
 
 
@@ -108,7 +108,7 @@ def test_failures_are_the_same_on_both_routes() -> None:
     errors = []
     for budget in (0, 10**9):
         with stepper.interpreted_steps(budget), pytest.raises(SolverError) as e:
-            simulate_rsf(*args)
+            simulate(*args)
         errors.append((str(e.value), e.value.t))
     assert errors[0] == errors[1]
 
@@ -118,4 +118,4 @@ def test_step_budget_error_on_the_interpreted_route() -> None:
     model, drive, init, _ = CASES["stick_slip"]
     for budget in (0, 10**9):
         with stepper.interpreted_steps(budget), pytest.raises(SolverError, match="max_steps = 40"):
-            simulate_rsf(model, drive, init, RSFOutput(max_steps=40))
+            simulate(model, drive, init, RSFOutput(max_steps=40))

@@ -20,6 +20,7 @@ from dryfriction.rsf.driving import (
     SolverError,
     SpringSlider,
     linear_stability,
+    simulate,
     simulate_rsf,
 )
 from dryfriction.rsf.law import RateState
@@ -58,8 +59,8 @@ def test_regularised_matches_standard_away_from_zero() -> None:
 
 def test_constant_velocity_from_steady_state_stays() -> None:
     p = lab("slip")
-    r = simulate_rsf(p, SpringSlider([Segment(3e-6, 50.0)], stiffness=300.0),
-                     output=RSFOutput(rtol=1e-10))
+    r = simulate(p, SpringSlider([Segment(3e-6, 50.0)], stiffness=300.0),
+                 output=RSFOutput(rtol=1e-10))
     assert np.max(np.abs(r.mu - p.steady_state_friction(3e-6))) < 1e-13
     assert np.allclose(r.x, r.load, rtol=0, atol=1e-15)
 
@@ -72,9 +73,9 @@ def test_ageing_theta_at_constant_velocity(two_state: bool) -> None:
     kw = {"b2": 0.003, "dc2": 1e-4} if two_state else {}
     p = lab(**kw)
     te = np.linspace(0.0, 200.0, 401)
-    r = simulate_rsf(p, SpringSlider([Segment(v, 200.0)]),
-                     RSFInitial(theta=th0, theta2=7.0 if two_state else None),
-                     RSFOutput(rtol=1e-11, t_eval=te))
+    r = simulate(p, SpringSlider([Segment(v, 200.0)]),
+                 RSFInitial(theta=th0, theta2=7.0 if two_state else None),
+                 RSFOutput(rtol=1e-11, t_eval=te))
     exact = DC / v + (th0 - DC / v) * np.exp(-v * te / DC)
     assert np.max(np.abs(r.theta / exact - 1)) < 1e-9
     if two_state:
@@ -90,7 +91,7 @@ def test_slip_law_velocity_step_kinematic() -> None:
     p = lab("slip")
     prog = VelocityProgram([Segment(v1, 10.0), Segment(v2, slip=10 * DC)])
     te = np.linspace(10.0, prog.total_time, 301)
-    r = simulate_rsf(p, SpringSlider(prog), output=RSFOutput(rtol=1e-11, t_eval=te))
+    r = simulate(p, SpringSlider(prog), output=RSFOutput(rtol=1e-11, t_eval=te))
     slip = v2 * (te - 10.0)
     exact = p.steady_state_friction(v2) + B * math.log(v2 / v1) * np.exp(-slip / DC)
     assert np.max(np.abs(r.mu - exact)) < 1e-11
@@ -102,8 +103,8 @@ def test_ageing_law_velocity_step_kinematic() -> None:
     v1, v2 = 1e-6, 1e-5
     p = lab("ageing")
     te = np.linspace(10.0, 30.0, 201)
-    r = simulate_rsf(p, SpringSlider([Segment(v1, 10.0), Segment(v2, 20.0)]),
-                     output=RSFOutput(rtol=1e-11, t_eval=te))
+    r = simulate(p, SpringSlider([Segment(v1, 10.0), Segment(v2, 20.0)]),
+                 output=RSFOutput(rtol=1e-11, t_eval=te))
     th = DC / v2 + (DC / v1 - DC / v2) * np.exp(-v2 * (te - 10.0) / DC)
     exact = MU0 + A * math.log(v2 / V0) + B * np.log(V0 * th / DC)
     assert np.max(np.abs(r.mu - exact)) < 1e-11
@@ -116,8 +117,8 @@ def test_kinematic_slide_hold_slide(law: str) -> None:
     p = lab(law, regularized=True)
     v = 1e-5
     for th in (10.0, 1000.0):
-        r = simulate_rsf(p, SpringSlider([Segment(v, 5.0), Segment(0.0, th), Segment(v, 5.0)]),
-                         output=RSFOutput(rtol=1e-11))
+        r = simulate(p, SpringSlider([Segment(v, 5.0), Segment(0.0, th), Segment(v, 5.0)]),
+                     output=RSFOutput(rtol=1e-11))
         i = np.searchsorted(r.t, 5.0 + th, side="right") - 1  # start of the reload
         heal = r.mu[i] - p.steady_state_friction(v)
         expect = B * math.log(1 + v * th / DC) if law == "ageing" else 0.0
@@ -138,8 +139,8 @@ def test_velocity_step_peak_tends_to_direct_effect() -> None:
     short = []
     for k in ks:
         te = np.linspace(10.0, 10.0 + 40 * (direct / k) / v2, 2001)
-        r = simulate_rsf(p, SpringSlider([Segment(v1, 10.0), Segment(v2, 10.0)], stiffness=k),
-                         output=RSFOutput(rtol=1e-11, t_eval=te))
+        r = simulate(p, SpringSlider([Segment(v1, 10.0), Segment(v2, 10.0)], stiffness=k),
+                     output=RSFOutput(rtol=1e-11, t_eval=te))
         short.append(direct - (r.mu.max() - p.steady_state_friction(v1)))
     assert 0 < short[2] < short[1] < short[0]
     assert short[2] / direct < 1e-3
@@ -155,7 +156,7 @@ def test_slide_hold_slide_healing_rate_is_b() -> None:
     peaks = []
     for th in (1e3, 1e4):
         prog = [Segment(v, slip=1e-4), Segment(0.0, th), Segment(v, slip=2e-4)]
-        r = simulate_rsf(p, SpringSlider(prog, stiffness=1e3), output=RSFOutput(rtol=1e-9))
+        r = simulate(p, SpringSlider(prog, stiffness=1e3), output=RSFOutput(rtol=1e-9))
         peaks.append(r.mu[r.t > 10.0 + th].max())
     assert (peaks[1] - peaks[0]) / math.log(10) == pytest.approx(B, rel=0.01)
 
@@ -216,9 +217,9 @@ def test_small_oscillations_follow_linear_theory(law: str, kfac: float) -> None:
     lam = eig_closed_form(p, v, k)[-1]
     period = 2 * math.pi / lam.imag
     te = np.linspace(0.0, 6 * period, 6001)
-    r = simulate_rsf(p, SpringSlider([Segment(v, te[-1])], stiffness=k),
-                     RSFInitial(v=v * (1 + 1e-4)),
-                     RSFOutput(rtol=1e-11, t_eval=te))
+    r = simulate(p, SpringSlider([Segment(v, te[-1])], stiffness=k),
+                 RSFInitial(v=v * (1 + 1e-4)),
+                 RSFOutput(rtol=1e-11, t_eval=te))
     u = np.log(r.v / v)
     tc = _crossings(te, u)
     assert np.diff(tc) == pytest.approx(period, rel=2e-4)
@@ -234,8 +235,8 @@ def test_quasistatic_runaway_is_a_clear_error() -> None:
     solution (rsfmodel diverges here): a SolverError that says so, never NaNs."""
     p = lab()
     with pytest.raises(SolverError, match="runs away"):
-        simulate_rsf(p, SpringSlider([Segment(1e-6, 1000.0)], stiffness=250.0),
-                     RSFInitial(v=1.01e-6))
+        simulate(p, SpringSlider([Segment(1e-6, 1000.0)], stiffness=250.0),
+                 RSFInitial(v=1.01e-6))
 
 
 @pytest.mark.parametrize("law", ["ageing", "slip"])
@@ -246,8 +247,8 @@ def test_damped_stick_slip_is_finite_and_periodic(law: str) -> None:
     prog = [Segment(1e-5, 300.0)]
     periods = {}
     for rtol in (1e-8, 1e-10):
-        r = simulate_rsf(p, SpringSlider(prog, stiffness=0.8 * p.critical_stiffness(),
-                                         damping=0.5), RSFInitial(v=1.01e-5), RSFOutput(rtol=rtol))
+        r = simulate(p, SpringSlider(prog, stiffness=0.8 * p.critical_stiffness(),
+                                     damping=0.5), RSFInitial(v=1.01e-5), RSFOutput(rtol=rtol))
         assert np.all(np.isfinite(r.v)) and r.v.max() < 1.0
         tc = _crossings(r.t, np.log(r.v / 1e-4))
         assert len(tc) >= 10
@@ -282,8 +283,8 @@ def test_velocity_step_agrees_with_reference(case: str) -> None:
     segs = [(1e-6, 10.0), (1e-5, 30.0)]
     ref = reference_run(A, B, DC, MU0, V0, law, segs, v_init=1e-6, t_eval=te, **extra,
                         **dk)  # type: ignore[arg-type]
-    r = simulate_rsf(p, SpringSlider([Segment(v, d) for v, d in segs], **dk),
-                     output=RSFOutput(t_eval=te, rtol=1e-9))
+    r = simulate(p, SpringSlider([Segment(v, d) for v, d in segs], **dk),
+                 output=RSFOutput(t_eval=te, rtol=1e-9))
     assert np.max(np.abs(r.mu - ref["mu"])) < 1e-9
     assert np.max(np.abs(r.stress - ref["stress"])) < 1e-9
     assert np.max(np.abs(np.log(r.v / ref["v"]))) < 1e-7
@@ -295,9 +296,9 @@ def test_slip_law_runaway_after_large_step_matches_reference() -> None:
     time although k > k_c (Gu, Rice, Ruina & Tse 1984). Both integrations find the same time."""
     p = lab("slip")
     with pytest.raises(SolverError, match="runs away") as info:
-        simulate_rsf(p, SpringSlider([Segment(1e-5, 30.0)], stiffness=1e3),
-                     RSFInitial(v=1e-6),
-                     RSFOutput(rtol=1e-10))
+        simulate(p, SpringSlider([Segment(1e-5, 30.0)], stiffness=1e3),
+                 RSFInitial(v=1e-6),
+                 RSFOutput(rtol=1e-10))
     # the reference (DOP853, rtol 1e-12, linear variables) stops at the blow-up time
     from scipy.integrate import solve_ivp
 
@@ -322,9 +323,9 @@ def test_stick_slip_agrees_with_reference() -> None:
     te = np.linspace(0.0, 100.0, 10001)
     ref = reference_run(A, B, DC, MU0, V0, "ageing", [(1e-5, 100.0)], stiffness=k, damping=0.5,
                         v_init=1.01e-5, t_eval=te)
-    r = simulate_rsf(p, SpringSlider([Segment(1e-5, 100.0)], stiffness=k, damping=0.5),
-                     RSFInitial(v=1.01e-5),
-                     RSFOutput(rtol=1e-9, t_eval=te))
+    r = simulate(p, SpringSlider([Segment(1e-5, 100.0)], stiffness=k, damping=0.5),
+                 RSFInitial(v=1.01e-5),
+                 RSFOutput(rtol=1e-9, t_eval=te))
     e_ref = _crossings(te, np.log(ref["v"] / 1e-4))
     e = _crossings(te, np.log(r.v / 1e-4))
     assert len(e) == len(e_ref) >= 4
@@ -335,10 +336,10 @@ def test_stick_slip_agrees_with_reference() -> None:
 def test_regularised_run_matches_standard_run() -> None:
     prog = [Segment(1e-6, 10.0), Segment(1e-5, 30.0)]
     te = np.linspace(0, 40, 81)
-    a = simulate_rsf(lab(), SpringSlider(prog, stiffness=1e3),
-                     output=RSFOutput(rtol=1e-10, t_eval=te))
-    b = simulate_rsf(lab(regularized=True), SpringSlider(prog, stiffness=1e3),
-                     output=RSFOutput(rtol=1e-10, t_eval=te))
+    a = simulate(lab(), SpringSlider(prog, stiffness=1e3),
+                 output=RSFOutput(rtol=1e-10, t_eval=te))
+    b = simulate(lab(regularized=True), SpringSlider(prog, stiffness=1e3),
+                 output=RSFOutput(rtol=1e-10, t_eval=te))
     assert np.max(np.abs(a.mu - b.mu)) < 1e-9
 
 
@@ -348,7 +349,7 @@ def test_result_and_mapping_round_trip() -> None:
     assert RateState.from_mapping(p.to_dict()) == p
     q = RateState.from_mapping({"law": "rsf", "a": A, "b": B, "dc": DC, "mu0": MU0, "v0": V0})
     assert q == lab()
-    r = simulate_rsf(q, SpringSlider([Segment(1e-6, 1.0)], stiffness=1e3))
+    r = simulate(q, SpringSlider([Segment(1e-6, 1.0)], stiffness=1e3))
     d = r.to_dict()
     assert d["params"]["a"] == A and len(d["t"]) == len(r.t)
     with pytest.raises(ValueError):
@@ -403,21 +404,21 @@ ONE = _segs((1e-6, 1.0))
         (lambda: SpringSlider(ONE, damping=0.5), r"damping = 0.5 is not allowed on the kinem"),
         (lambda: SpringSlider(ONE, mass=1.0), r"mass = 1 is not allowed on the kinematic"),
         (lambda: RSFOutput(rtol=0.5), r"rtol = 0.5 is out of range"),
-        (lambda: simulate_rsf(lab(), SpringSlider(_segs((1e-6, 1.0), (0.0, 1.0)))),
+        (lambda: simulate(lab(), SpringSlider(_segs((1e-6, 1.0), (0.0, 1.0)))),
          r"segments\[1\].velocity = 0 m/s .* regularized"),
         (lambda: SpringSlider(_segs((1e-6, 1.0), (-1e-6, 1.0)), stiffness=1e3),
          r"segments\[1\].velocity = -1e-06"),
-        (lambda: simulate_rsf(lab(), SpringSlider(_segs((0.0, 1.0)), stiffness=1e3)),
+        (lambda: simulate(lab(), SpringSlider(_segs((0.0, 1.0)), stiffness=1e3)),
          r"starts with load velocity 0 m/s: give v_init"),
         (lambda: RSFInitial(v=0.0), r"v_init = 0 is out of range"),
         (lambda: RSFInitial(theta=-1.0), r"theta_init = -1 is out of range"),
-        (lambda: simulate_rsf(lab(), SpringSlider(ONE), RSFInitial(theta2=1.0)),
+        (lambda: simulate(lab(), SpringSlider(ONE), RSFInitial(theta2=1.0)),
          r"theta2_init is given"),
-        (lambda: simulate_rsf(lab(), SpringSlider(ONE), output=RSFOutput(t_eval=[0.5, 2.0])),
+        (lambda: simulate(lab(), SpringSlider(ONE), output=RSFOutput(t_eval=[0.5, 2.0])),
          r"t_eval = 2 is out of range"),
         (lambda: RSFOutput(max_steps=0), r"max_steps = 0 is out of range"),
         (lambda: RSFOutput(every=1.0, t_eval=[0.5]), r"at most one of every"),
-        (lambda: simulate_rsf(lab(), SpringSlider(ONE), "initial"), r"is not an RSFInitial"),
+        (lambda: simulate(lab(), SpringSlider(ONE), "initial"), r"is not an RSFInitial"),
     ],
 )
 def test_bad_driver_input(make: object, match: str) -> None:
@@ -431,8 +432,8 @@ def test_old_keyword_form_still_works_and_warns() -> None:
     te = np.linspace(0.0, 40.0, 81)
     with pytest.warns(DeprecationWarning, match="SpringSlider"):
         old = simulate_rsf(lab(), prog, stiffness=1e3, v_init=1.01e-6, rtol=1e-9, t_eval=te)
-    new = simulate_rsf(lab(), SpringSlider(prog, 1e3), RSFInitial(v=1.01e-6),
-                       RSFOutput(t_eval=te, rtol=1e-9))
+    new = simulate(lab(), SpringSlider(prog, 1e3), RSFInitial(v=1.01e-6),
+                   RSFOutput(t_eval=te, rtol=1e-9))
     assert np.array_equal(old.mu, new.mu) and np.array_equal(old.x, new.x)
     with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="stiffness = -1"):
         simulate_rsf(lab(), prog, stiffness=-1.0)
@@ -442,8 +443,8 @@ def test_old_keyword_form_still_works_and_warns() -> None:
 
 def test_step_budget_is_a_clear_error() -> None:
     with pytest.raises(SolverError, match="max_steps = 5"):
-        simulate_rsf(lab(), SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 30.0)], stiffness=1e3),
-                     output=RSFOutput(max_steps=5))
+        simulate(lab(), SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 30.0)], stiffness=1e3),
+                 output=RSFOutput(max_steps=5))
 
 
 # ----------------------------------------------------------------------------- CLI
@@ -522,8 +523,8 @@ def test_two_state_hold_peak_matches_simulate_rsf() -> None:
     p = lab(b2=0.004, dc2=1e-4, regularized=True)
     v = 1e-5
     for th in (10.0, 1000.0):
-        r = simulate_rsf(p, SpringSlider([Segment(v, 50.0), Segment(0.0, th), Segment(v, 5.0)]),
-                         RSFInitial(theta=DC / v, theta2=1e-4 / v), RSFOutput(rtol=1e-11))
+        r = simulate(p, SpringSlider([Segment(v, 50.0), Segment(0.0, th), Segment(v, 5.0)]),
+                     RSFInitial(theta=DC / v, theta2=1e-4 / v), RSFOutput(rtol=1e-11))
         i = np.searchsorted(r.t, 50.0 + th, side="right") - 1  # start of the reload
         assert r.theta2 is not None
         assert r.theta2[i] == pytest.approx(1e-4 / v + th, rel=1e-9)
@@ -541,8 +542,8 @@ def test_spring_outputs_are_consistent_with_the_velocity() -> None:
     p = lab()
     eta = 200.0
     te = np.linspace(0.0, 60.0, 60001)
-    r = simulate_rsf(p, SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 50.0)], stiffness=1e3,
-                                     damping=eta), output=RSFOutput(rtol=1e-10, t_eval=te))
+    r = simulate(p, SpringSlider([Segment(1e-6, 10.0), Segment(1e-5, 50.0)], stiffness=1e3,
+                                 damping=eta), output=RSFOutput(rtol=1e-10, t_eval=te))
     np.testing.assert_allclose(r.stress, r.mu + eta * r.v, rtol=0, atol=1e-12)
     dx = np.concatenate([[0.0], np.cumsum(0.5 * (r.v[1:] + r.v[:-1]) * np.diff(r.t))])
     span = float(r.x[-1] - r.x[0])
@@ -577,7 +578,7 @@ def test_start_beside_an_unstable_steady_state_grows_like_the_reference() -> Non
     drive = SpringSlider([Segment(vl, total)], stiffness=k, damping=eta)
     v_init = vl * (1 + 1e-9)
     with pytest.warns(RuntimeWarning, match="linearly unstable.*growth rate 0.249"):
-        r = simulate_rsf(p, drive, RSFInitial(v=v_init), RSFOutput(rtol=1e-9))
+        r = simulate(p, drive, RSFInitial(v=v_init), RSFOutput(rtol=1e-9))
     u = np.log(r.v) - math.log(10 * vl)
     events = int(np.sum((u[:-1] < 0) & (u[1:] >= 0)))
     assert events == _lsoda_events(a, b, dc, k, eta, vl, total, v_init)
@@ -588,9 +589,9 @@ def test_start_beside_an_unstable_steady_state_grows_like_the_reference() -> Non
     # a start away from the steady state is no news; a stable spring neither
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        simulate_rsf(p, drive, RSFInitial(v=1.01 * vl), RSFOutput(rtol=1e-6))
+        simulate(p, drive, RSFInitial(v=1.01 * vl), RSFOutput(rtol=1e-6))
         stiff = SpringSlider([Segment(vl, 10.0)], stiffness=2e3, damping=eta)
-        assert "unstable_start" not in simulate_rsf(p, stiff).summary()
+        assert "unstable_start" not in simulate(p, stiff).summary()
 
 
 @pytest.mark.parametrize("name", ["a", "b", "b2"])

@@ -13,6 +13,7 @@ import xarray as xr
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.stability import rightmost_root, steady_response
 from sweep_protocols import spring_sweep
 
@@ -79,7 +80,7 @@ def test_readme_linear_sweep_has_every_point_and_units(tmp_path, recwarn):
 def test_rightmost_root_survives_a_seed_that_runs_away(u, K):
     # the two points of the README sweep that raised; both stiffnesses are above K_c
     # (0.030 at u = 1, 0.056 at u = 0.1), so the root the other seeds find is stable
-    resp = steady_response(u, 0.04)
+    resp = steady_response(u, TrapModel(eps=0.04))
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no RuntimeWarning either
         root = rightmost_root(resp, K)
@@ -144,10 +145,10 @@ def test_readme_linear_sweep_growth_rates_are_the_spectrum_supremum(u):
     -1.79/tau_d at u = 0.1, K = 0.1 where a root sits at -1.62/tau_d) or returns NaN where the
     rightmost roots lie at |lambda| tau_d ~ 1000."""
     from dryfriction.analysis.linear import GROWTH_KINDS, growth_rate
-    from dryfriction.theory.stability import critical_stiffness
+    from dryfriction.theory.linear_stability import critical_stiffness
 
-    resp = steady_response(u, 0.04)
-    k_c = critical_stiffness(u, 0.04).critical_stiffness
+    resp = steady_response(u, TrapModel(eps=0.04))
+    k_c = critical_stiffness(u, TrapModel(eps=0.04)).critical_stiffness
     tau = resp.tau_d
     for K in (0.025, 0.05, 0.1):
         rate, code, root = growth_rate(resp, K)

@@ -16,7 +16,8 @@ import dryfriction.sweeps.sweep as sweep_mod
 import sweep_runners
 from dryfriction.analysis.linear import linear_summary
 from dryfriction.sweeps.sweep import MAX_POINTS, load_sweep, parse_sweep, point_key, run_sweep
-from dryfriction.theory.stability import critical_stiffness
+from dryfriction.theory.linear_stability import critical_stiffness
+from dryfriction.theory.model import TrapModel
 from sweep_protocols import spring_sweep
 
 cloudpickle.register_pickle_by_value(sweep_runners)
@@ -107,7 +108,7 @@ def test_linear_stability_runner_on_a_grid(tmp_path):
              "sweep": {"drive.segments.0.velocity": [0.01, 0.1]}}
     ds = run_sweep(parse_sweep(proto), linear_summary, tmp_path / "out", n_workers=1)
     for u in (0.01, 0.1):
-        ref = critical_stiffness(u, 0.04, mass=1.0, damping=0.05).critical_stiffness
+        ref = critical_stiffness(u, TrapModel(eps=0.04), mass=1.0, damping=0.05).critical_stiffness
         assert float(ds["K_c"].sel({"drive.segments.0.velocity": u})) == pytest.approx(ref)
 
 

@@ -26,12 +26,8 @@ from dryfriction.ensemble.driving import (
 from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.theory.direct import instantaneous_jump, junction_log_slope, junction_strength
-from dryfriction.theory.direct_stability import (
-    critical_stiffness_direct,
-    direct_response,
-    effective_rsf_direct,
-)
-from dryfriction.theory.stability import critical_stiffness, effective_rsf, rightmost_root
+from dryfriction.theory.linear_stability import critical_stiffness, effective_rsf, linear_response
+from dryfriction.theory.stability import rightmost_root, rsf_from_response, steady_response
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import (
     steady_death_point,
@@ -91,17 +87,22 @@ def test_zero_direct_is_bit_for_bit_the_athermal_model() -> None:
     T = np.geomspace(1e-2, 1e4, 7)
     np.testing.assert_array_equal(static_friction(T, EPS, direct=0.0, pull_velocity=3.0),
                                   static_friction(T, EPS))
-    assert effective_rsf_direct(0.1, EPS)["a"] == effective_rsf(0.1, EPS)["a"]
+    # A = 0 is the athermal analysis bit for bit: the population's own response, no g factor
+    athermal = rsf_from_response(steady_response(0.1, TrapModel(eps=EPS)))
+    assert effective_rsf(0.1, TrapModel(eps=EPS, direct=0.0))["a"] == athermal["a"]
     prog = VelocityProgram([{"velocity": 1.0, "slip": 0.6}, {"velocity": 0.0, "duration": 30.0},
                             {"velocity": 1.0, "slip": 1.5}])
     runs = [
-        (Initial("steady", velocity=1.0), VelocityDrive(prog), Output(every_slip=0.01)),
-        (Initial("steady", velocity=0.1), SpringDrive(0.05, 0.0, prog), Output(every_slip=0.02)),
-        (Initial("rest"), ForceDrive(rate=0.5, hold=10.0), Output(every_slip=0.02)),
+        (Initial("steady", velocity=1.0, track=Track(150.0)), VelocityDrive(prog),
+         Output(every_slip=0.01)),
+        (Initial("steady", velocity=0.1, track=Track(150.0)), SpringDrive(0.05, 0.0, prog),
+         Output(every_slip=0.02)),
+        (Initial("rest", track=Track(150.0)), ForceDrive(rate=0.5, hold=10.0),
+         Output(every_slip=0.02)),
     ]
     for init, drive, out in runs:
-        a = simulate(TrapModel(eps=EPS), Track(150.0), init, drive, out)
-        b = simulate(TrapModel(eps=EPS, direct=0.0, v_ref=5.0), Track(150.0), init, drive, out)
+        a = simulate(TrapModel(eps=EPS), drive, init, out)
+        b = simulate(TrapModel(eps=EPS, direct=0.0, v_ref=5.0), drive, init, out)
         for k, col in a.columns().items():
             np.testing.assert_array_equal(col, b.columns()[k], err_msg=k)
         assert a.info["parameters"] == b.info["parameters"]
@@ -158,7 +159,7 @@ def test_effective_rsf_a_is_A_times_the_friction_level() -> None:
     """a = g a_0 + A_u mu_d: the direct part is A mu_d (the instantaneous jump per e-fold),
     b and Dc come from the population as before (b scaled by g)."""
     A, u = 0.01, 1.0
-    e0, e = effective_rsf(u, EPS), effective_rsf_direct(u, EPS, direct=A)
+    e0, e = effective_rsf(u, TrapModel(eps=EPS)), effective_rsf(u, TrapModel(eps=EPS, direct=A))
     mu = float(steady_friction(u, EPS))
     assert e["a_direct"] == pytest.approx(A * mu, rel=1e-12)
     assert e["a"] - e0["a"] == pytest.approx(A * mu, rel=1e-12)  # g(u = v_ref) = 1
@@ -178,19 +179,17 @@ def test_velocity_step_jumps_by_a_ln_ratio_then_relaxes() -> None:
     A, lam, m, u1, u2, s0 = 0.02, 500.0, 8, 1.0, 10.0, 0.5
     d = 1 / (m * lam)
     model = TrapModel(eps=EPS, direct=A)
-    step = simulate(model, Track(lam), Initial("steady", velocity=u1),
-                    VelocityDrive(VelocityProgram([{"velocity": u1, "slip": s0},
-                                                   {"velocity": u2, "slip": 4.0}])),
-                    Output(every_slip=d))
+    step = simulate(model, VelocityDrive(VelocityProgram([{"velocity": u1, "slip": s0},
+                                                          {"velocity": u2, "slip": 4.0}])),
+                    Initial("steady", velocity=u1, track=Track(lam)), Output(every_slip=d))
     i = int(np.flatnonzero(step.x > s0 + 1e-12)[0])
     granular = float(np.max(np.abs(np.diff(step.mu[i - 40: i]))))
     mu1 = float(steady_friction(u1, EPS, direct=A))
     predicted = A * mu1 * math.log(u2 / u1)
     assert step.mu[i] - step.mu[i - 1] == pytest.approx(predicted, abs=granular)
     assert granular < 0.05 * predicted
-    ref = simulate(model, Track(lam), Initial("steady", velocity=u2),
-                   VelocityDrive(VelocityProgram([{"velocity": u2, "slip": s0 + 4.0}])),
-                   Output(every_slip=d))
+    ref = simulate(model, VelocityDrive(VelocityProgram([{"velocity": u2, "slip": s0 + 4.0}])),
+                   Initial("steady", velocity=u2, track=Track(lam)), Output(every_slip=d))
     diff = np.abs(step.mu[1:] - ref.mu[1:])  # same slider positions (same every_slip)
     memory = float(step.x[1:][np.flatnonzero(diff > 1e-9)[-1] + 1] - s0)
     p_d2 = float(steady_death_point(u2, EPS))
@@ -205,10 +204,10 @@ def test_static_peak_after_hold_scales_with_the_pull_velocity() -> None:
     """Rest, hold, kinematic pull at u: the peak is g(u) mu_s(T) (the pull is fast: u = 1e3)."""
     A, T, lam = 0.02, 10.0, 1000.0
     for u in (1e3, 1e5):
-        r = simulate(TrapModel(eps=EPS, direct=A), Track(lam), Initial("rest"),
+        r = simulate(TrapModel(eps=EPS, direct=A),
                      VelocityDrive(VelocityProgram([{"velocity": 0.0, "duration": T},
                                                     {"velocity": u, "slip": 2.9}])),
-                     Output(every_slip=2e-4))
+                     Initial("rest", track=Track(lam)), Output(every_slip=2e-4))
         mu_s = float(static_friction(T, EPS, direct=A, pull_velocity=u))
         assert r.summary()["peak_mu"] == pytest.approx(mu_s, rel=1e-3)
         assert np.all(r.mu[(r.t > 0) & (r.t <= T)] == 0.0)  # a kinematic hold: g(0) = 0
@@ -219,9 +218,9 @@ def test_force_drive_holding_the_steady_force_slides_at_that_velocity() -> None:
     (velocity strengthening, A mu > 3 eps/2) the slider creeps at u on average, and force
     balance mu = applied holds at every sample (the implicit creep step)."""
     u, A, lam = 1.0, 0.1, 400.0
-    r = simulate(TrapModel(eps=EPS, direct=A, v_ref=u), Track(lam),
-                 Initial("steady", velocity=u), ForceDrive(rate=1.0, hold=3.0, max_force=1.1),
-                 Output(every=1 / (8 * lam)))
+    r = simulate(TrapModel(eps=EPS, direct=A, v_ref=u),
+                 ForceDrive(rate=1.0, hold=3.0, max_force=1.1),
+                 Initial("steady", velocity=u, track=Track(lam)), Output(every=1 / (8 * lam)))
     hold = (r.t > 0) & (r.t <= 3.0)
     assert np.mean(r.v[hold]) == pytest.approx(u, rel=0.02)
     np.testing.assert_allclose(r.mu[1:], r.f_applied[1:], atol=1e-9)
@@ -230,9 +229,8 @@ def test_force_drive_holding_the_steady_force_slides_at_that_velocity() -> None:
 def test_stiff_spring_is_the_kinematic_limit() -> None:
     u, A, lam, K = 1.0, 0.1, 400.0, 200.0
     model = TrapModel(eps=EPS, direct=A, v_ref=0.3)
-    r = simulate(model, Track(lam), Initial("steady", velocity=u),
-                 SpringDrive(K, 0.0, VelocityProgram([{"velocity": u, "slip": 2.0}])),
-                 Output(every_slip=1 / (8 * lam)))
+    r = simulate(model, SpringDrive(K, 0.0, VelocityProgram([{"velocity": u, "slip": 2.0}])),
+                 Initial("steady", velocity=u, track=Track(lam)), Output(every_slip=1 / (8 * lam)))
     np.testing.assert_allclose(r.x_pull - r.x, r.mu / K, atol=1e-9)
     half = r.t > r.t[-1] / 4
     assert np.mean(r.mu[half]) == pytest.approx(
@@ -244,10 +242,9 @@ def test_junction_strength_follows_the_slider_not_the_load_point() -> None:
     the slider velocity stays near u at first (g(slider velocity) is continuous); a force
     taken at the load point's velocity would jump by A ln 10 and stop the slider."""
     u, A = 1.0, 0.1
-    r = simulate(TrapModel(eps=EPS, direct=A, v_ref=u), Track(300.0),
-                 Initial("steady", velocity=u),
+    r = simulate(TrapModel(eps=EPS, direct=A, v_ref=u),
                  SpringDrive(0.05, 0.0, VelocityProgram([{"velocity": 10 * u, "slip": 0.2}])),
-                 Output(every_slip=0.005))
+                 Initial("steady", velocity=u, track=Track(300.0)), Output(every_slip=0.005))
     assert np.all(np.abs(r.v[1:6] / u - 1.0) < 0.05)
 
 
@@ -261,13 +258,13 @@ def test_critical_stiffness_is_finite_without_mass_and_matches_simulation() -> N
     (granular noise and the backward-Euler step). The fit is of the spring force, which the
     slider integrates."""
     u, A = 0.1, 0.02
-    res = critical_stiffness_direct(u, EPS, direct=A)
+    res = critical_stiffness(u, TrapModel(eps=EPS, direct=A))
     assert not res.supremum_at_infinity and 0 < res.critical_stiffness < 1.0
     assert np.isfinite(res.omega)
-    resp = direct_response(u, EPS, direct=A)
+    resp = linear_response(u, TrapModel(eps=EPS, direct=A))
     print(f"REPORT K_c(M = eta = 0, u = {u}, eps = {EPS}, A = {A}) = "
           f"{res.critical_stiffness:.5f}, omega = {res.omega:.5f}; athermal "
-          f"{critical_stiffness(u, EPS).critical_stiffness:.5f}")
+          f"{critical_stiffness(u, TrapModel(eps=EPS)).critical_stiffness:.5f}")
     for f, kick in ((0.8, 1e-3), (1.2, 5e-3)):
         K = f * res.critical_stiffness
         lam = rightmost_root(resp, K)  # type: ignore[arg-type]
@@ -318,7 +315,7 @@ def test_cli_direct_options() -> None:
     r = run.invoke(app, ["stability", "--eps", "0.04", "--u", "0.1", "--direct", "0.02",
                          "--json"])
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
-        critical_stiffness_direct(0.1, EPS, direct=0.02).critical_stiffness, rel=1e-9)
+        critical_stiffness(0.1, TrapModel(eps=EPS, direct=0.02)).critical_stiffness, rel=1e-9)
     # the option typed, not the library's name (outside24)
     for args, word in ((["steady", "--eps", "0.04", "--u", "1", "--direct", "2"], "--direct"),
                        (["static", "--eps", "0.04", "--T", "1", "--direct", "0.1"],

@@ -28,8 +28,9 @@ from dryfriction.theory.direct import (
     strength_ratio,
     strength_slope,
 )
-from dryfriction.theory.direct_stability import direct_response, effective_rsf_direct
-from dryfriction.theory.stability import effective_rsf, steady_response
+from dryfriction.theory.linear_stability import effective_rsf, linear_response
+from dryfriction.theory.model import TrapModel
+from dryfriction.theory.stability import steady_response
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import steady_friction, steady_log_slope
 
@@ -72,8 +73,8 @@ def test_direct_twin_against_the_steady_curve_away_from_v_ref(u: float) -> None:
     ``u/v_ref`` = 3.7, 111, 1111 (``g`` = 1.03-1.14). And ``b = g b_0``, ``Dc`` unchanged,
     ``a_d = (d g/d ln u) mu_d``. Mistakes: ``a = a_0 + A mu_d`` without ``g`` (invisible at
     ``u = v_ref``, 1.2e-3 here), ``b`` not scaled."""
-    tw = effective_rsf_direct(u, EPS, direct=A, v_ref=V_REF)
-    base = effective_rsf(u, EPS)
+    tw = effective_rsf(u, TrapModel(eps=EPS, direct=A, v_ref=V_REF))
+    base = effective_rsf(u, TrapModel(eps=EPS))
     slope = _dlog(lambda x: steady_friction(x, EPS, direct=A, v_ref=V_REF), u)
     assert tw["a"] - tw["b"] == pytest.approx(slope, abs=1e-7)
     assert tw["b"] == pytest.approx(_g(u) * base["b"], rel=1e-12)
@@ -90,8 +91,8 @@ def test_direct_response_matches_its_twin_at_small_rates() -> None:
     lambda Dc))`` agree to third order in ``lambda`` (they were matched there): at ``lambda``
     = 1e-2 and 2e-2 ``u/Dc`` the difference is below 1e-6 of ``|Z|`` and falls by ~2^4."""
     u = 0.3
-    tw = effective_rsf_direct(u, EPS, direct=A, v_ref=V_REF)
-    resp = direct_response(u, EPS, direct=A, v_ref=V_REF)
+    tw = effective_rsf(u, TrapModel(eps=EPS, direct=A, v_ref=V_REF))
+    resp = linear_response(u, TrapModel(eps=EPS, direct=A, v_ref=V_REF))
     diffs = []
     for s in (2e-2, 1e-2):
         lam = s * u / tw["dc"]
@@ -116,7 +117,7 @@ def test_athermal_response_derivative_is_the_steady_slope() -> None:
     """``Z'(0) = d mu_d/du`` (a steady velocity change is a slow perturbation): the response's
     first derivative at 0 against the curve's finite difference, at u = 0.45."""
     u = 0.45
-    resp = steady_response(u, EPS)
+    resp = steady_response(u, TrapModel(eps=EPS))
     h = 1e-4
     fd = float((steady_friction(u + h, EPS) - steady_friction(u - h, EPS)) / (2 * h))
     assert resp.derivative_at_zero(1) == pytest.approx(fd, rel=1e-5)
@@ -251,11 +252,12 @@ def test_athermal_critical_stiffness_is_where_the_rightmost_root_crosses() -> No
     characteristic function (:func:`rightmost_root`): at ``K_c`` the rightmost root has real
     part ~0 and imaginary part the onset ``omega``; 3 % either side it changes sign. Generic
     ``u``, mass and damping on."""
-    from dryfriction.theory.stability import critical_stiffness, rightmost_root
+    from dryfriction.theory.linear_stability import critical_stiffness
+    from dryfriction.theory.stability import rightmost_root
 
     u, mass, damping = 0.37, 0.6, 0.05
-    res = critical_stiffness(u, EPS, mass=mass, damping=damping)
-    resp = steady_response(u, EPS)
+    res = critical_stiffness(u, TrapModel(eps=EPS), mass=mass, damping=damping)
+    resp = steady_response(u, TrapModel(eps=EPS))
     lam = rightmost_root(resp, res.critical_stiffness, mass, damping)
     assert abs(lam.real) < 1e-4 * abs(lam.imag)
     assert abs(lam.imag) == pytest.approx(res.omega, rel=1e-3)

@@ -5,8 +5,9 @@ import pytest
 from scipy.integrate import quad
 
 from dryfriction.theory.creep import LogCreep
+from dryfriction.theory.linear_stability import critical_stiffness
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.stability import (
-    critical_stiffness,
     rightmost_root,
     shift_stiffness,
     steady_response,
@@ -20,7 +21,7 @@ from dryfriction.theory.trap import Trap, force_forward
 @pytest.mark.parametrize("u", [0.01, 0.3, 10.0])
 def test_zero_frequency_limits(alpha, creep, u):
     eps = 0.04
-    resp = steady_response(u, eps, alpha, creep)
+    resp = steady_response(u, TrapModel(alpha=alpha, eps=eps, creep=creep))
     # a constant shift is a relabelling of the traps
     assert abs(resp.Z(0.0)) < 1e-11
     # Z'(0) is the slope of the steady friction law (independent quadrature of eq. 34)
@@ -33,13 +34,13 @@ def test_zero_frequency_limits(alpha, creep, u):
 
 
 def test_conjugate_symmetry_and_no_ageing():
-    resp = steady_response(0.2, 0.03)
+    resp = steady_response(0.2, TrapModel(eps=0.03))
     lam = np.array([0.3 + 2j, 1.0 - 0.5j, 5j])
     np.testing.assert_allclose(resp.Z(lam.conj()), resp.Z(lam).conj(), rtol=1e-13)
     # eps = 0: friction is rate-independent, the response vanishes at every frequency
-    el = steady_response(0.2, 0.0)
+    el = steady_response(0.2, TrapModel(eps=0.0))
     np.testing.assert_allclose(el.Z(np.array([0.1, 1j, 3 + 4j, 100.0])), 0.0, atol=1e-12)
-    fwd, bwd = shift_stiffness(0.2, 0.0)
+    fwd, bwd = shift_stiffness(0.2, TrapModel(eps=0.0))
     trap = Trap(0.13)
     assert fwd == pytest.approx(0.0, abs=1e-12)
     # backward: every trap stiffens, int f_+' dy = f_+(y_c) - f_+(-1) (closed form)
@@ -75,7 +76,7 @@ def _shifted_force(delta, u, eps, alpha=0.13):
 @pytest.mark.parametrize("u", [0.05, 1.0])
 def test_shift_stiffness_against_shifted_population(u):
     eps = 0.04
-    fwd, bwd = shift_stiffness(u, eps)
+    fwd, bwd = shift_stiffness(u, TrapModel(eps=eps))
     d = 1e-5
     base = float(steady_friction(u, eps))
     assert _shifted_force(0.0, u, eps) == pytest.approx(base, rel=1e-9)
@@ -87,9 +88,9 @@ def test_shift_stiffness_against_shifted_population(u):
 @pytest.mark.parametrize("u, mass, damping", [(0.1, 0.0, 0.05), (0.01, 0.0, 0.5),
                                               (0.1, 1.0, 0.05), (1.0, 0.5, 0.01)])
 def test_critical_stiffness_separates_growth_from_decay(u, mass, damping):
-    res = critical_stiffness(u, 0.04, mass=mass, damping=damping)
+    res = critical_stiffness(u, TrapModel(eps=0.04), mass=mass, damping=damping)
     assert res.critical_stiffness > 0 and np.isfinite(res.omega)
-    resp = steady_response(u, 0.04)
+    resp = steady_response(u, TrapModel(eps=0.04))
     below = rightmost_root(resp, 0.9 * res.critical_stiffness, mass, damping)
     above = rightmost_root(resp, 1.1 * res.critical_stiffness, mass, damping)
     assert below.real > 0 > above.real
@@ -98,18 +99,18 @@ def test_critical_stiffness_separates_growth_from_decay(u, mass, damping):
 
 def test_velocity_strengthening_with_enough_damping_is_stable():
     # zero-frequency slope d mu_d/du + eta > 0 and no crossing: stable for every K
-    res = critical_stiffness(1.0, 0.04, damping=1.0)
+    res = critical_stiffness(1.0, TrapModel(eps=0.04), damping=1.0)
     assert res.velocity_slope + 1.0 > 0
     assert res.critical_stiffness == 0.0
 
 
 def test_bad_input():
     with pytest.raises(ValueError, match="u"):
-        steady_response(0.0, 0.04)
+        steady_response(0.0, TrapModel(eps=0.04))
     with pytest.raises(ValueError, match="mass"):
-        critical_stiffness(1.0, 0.04, mass=-1.0)
+        critical_stiffness(1.0, TrapModel(eps=0.04), mass=-1.0)
     with pytest.raises(ValueError, match="stiffness"):
-        rightmost_root(steady_response(1.0, 0.04), 0.0)
+        rightmost_root(steady_response(1.0, TrapModel(eps=0.04)), 0.0)
 
 
 def test_cli_stability_json_matches_library():
@@ -123,7 +124,7 @@ def test_cli_stability_json_matches_library():
                                    "--damping", "0.05", "--json"])
     assert res.exit_code == 0, res.output
     out = json.loads(res.output)
-    lib = critical_stiffness(0.01, 0.04, damping=0.05)
+    lib = critical_stiffness(0.01, TrapModel(eps=0.04), damping=0.05)
     assert out["K_c"][1] == pytest.approx(lib.critical_stiffness, rel=1e-12)
     bad = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "0"])
     assert bad.exit_code == 2 and "u = 0" in bad.output
@@ -131,11 +132,11 @@ def test_cli_stability_json_matches_library():
 
 @pytest.mark.parametrize("u", [0.01, 1.0])
 def test_effective_rsf_from_moments(u):
-    from dryfriction.theory.stability import effective_rsf
+    from dryfriction.theory.linear_stability import effective_rsf
 
     eps = 0.04
-    p = effective_rsf(u, eps)
-    resp = steady_response(u, eps)
+    p = effective_rsf(u, TrapModel(eps=eps))
+    resp = steady_response(u, TrapModel(eps=eps))
     # the moment formulas against finite differences of Z itself (independent route)
     h = 2e-3 / resp.tau_d
     z = [resp.Z(k * h).real for k in (-2, -1, 0, 1, 2)]
@@ -159,7 +160,7 @@ def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
     from dryfriction.theory.stability import nyquist_crossings
 
     u = 0.1
-    p = rsf_stability_prediction(u, 0.04, mass=mass, damping=damping)
+    p = rsf_stability_prediction(u, TrapModel(eps=0.04), mass=mass, damping=damping)
     a, b, dc = p["a"], p["b"], p["dc"]
 
     def z_rsf(lam):
@@ -174,7 +175,7 @@ def test_nyquist_reproduces_rice_ruina_for_rate_and_state(mass, damping):
     # with damping (which tames the model's delay-induced high-frequency crossings, see the
     # module doc) the trap model is less unstable than its rate-and-state twin predicts
     if damping > 0:
-        model = critical_stiffness(u, 0.04, mass=mass, damping=damping).critical_stiffness
+        model = critical_stiffness(u, TrapModel(eps=0.04), mass, damping).critical_stiffness
         assert model < p["K_c"]
 
 
@@ -246,7 +247,7 @@ def _independent_Z(u: float, eps: float, alpha: float, omega: float) -> complex:
 def test_response_against_independent_linearisation_at_every_frequency(u, x):
     # issue 14: the 96-node quadrature was 9 % off at omega tau_d = 200; the exact response
     # must hold up to omega tau_d = 1e4 (the panels, and the endpoint expansion beyond)
-    resp = steady_response(u, 0.04)
+    resp = steady_response(u, TrapModel(eps=0.04))
     omega = x / resp.tau_d
     ref = _independent_Z(u, 0.04, 0.13, omega)
     assert abs(complex(resp.Z(1j * omega)) - ref) < 1e-7 * max(1.0, abs(ref))
@@ -255,24 +256,25 @@ def test_response_against_independent_linearisation_at_every_frequency(u, x):
 def test_critical_stiffness_is_the_supremum_of_the_delay_circles():
     # issue 14, independent values (eps = 0.04, alpha = 0.13, M = eta = 0): at u = 0.01 the
     # supremum is only approached as omega -> inf, at u = 0.1 it is a finite crossing
-    low = critical_stiffness(0.01, 0.04)
+    low = critical_stiffness(0.01, TrapModel(eps=0.04))
     assert 0.0750 <= low.critical_stiffness <= 0.0752
     assert low.supremum_at_infinity and low.omega == np.inf
-    resp = steady_response(0.01, 0.04)
+    resp = steady_response(0.01, TrapModel(eps=0.04))
     assert low.critical_stiffness == pytest.approx(-resp.Z_inf + resp.delay_amplitude, rel=1e-12)
-    mid = critical_stiffness(0.1, 0.04)
+    mid = critical_stiffness(0.1, TrapModel(eps=0.04))
     assert mid.critical_stiffness == pytest.approx(0.05565, abs=1e-5)
     assert not mid.supremum_at_infinity and np.isfinite(mid.omega)
     # the issue's wider range no longer finds a spurious crossing (it gave 0.0849)
-    wide = critical_stiffness(0.01, 0.04, omega_max=2000 / resp.tau_d, n_omega=40000)
+    wide = critical_stiffness(0.01, TrapModel(eps=0.04), omega_max=2000 / resp.tau_d, n_omega=40000)
     assert wide.critical_stiffness == pytest.approx(low.critical_stiffness, rel=1e-9)
 
 
 def test_critical_stiffness_is_continuous_as_damping_vanishes():
     # with damping the crossings stop at a finite frequency; as eta -> 0 they reach further up
     # the delay circles and K_c(eta) rises to the undamped supremum (it stalled for eta <= 0.01)
-    k0 = critical_stiffness(0.01, 0.04).critical_stiffness
-    ks = [critical_stiffness(0.01, 0.04, damping=e).critical_stiffness for e in (0.03, 0.01, 0.003)]
+    k0 = critical_stiffness(0.01, TrapModel(eps=0.04)).critical_stiffness
+    ks = [critical_stiffness(0.01, TrapModel(eps=0.04), damping=e).critical_stiffness
+          for e in (0.03, 0.01, 0.003)]
     assert ks[0] < ks[1] < ks[2] < k0
     assert k0 - ks[2] < 0.5 * (k0 - ks[1]) and k0 - ks[2] < 0.02 * k0
 
@@ -287,7 +289,7 @@ def _kicked_spring_echoes(u: float, K: float, lam: float, n_delays: int, kick: f
     from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
     from dryfriction.program import Segment, VelocityProgram
 
-    tau = steady_response(u, 0.04).tau_d
+    tau = steady_response(u, TrapModel(eps=0.04)).tau_d
     dur = (n_delays + 0.2) * tau
     ens = Ensemble(TrapModel(eps=0.04), Track(lam), Initial("steady", velocity=u),
                    age_horizon=2 * dur)
@@ -320,8 +322,8 @@ def test_critical_stiffness_at_infinity_against_direct_simulation(runslow):
     simulation brackets K_c within [0.978, 1.04] K_c. (A K_c from the finite crossings up to
     omega tau_d = 2000, 0.07504, is 0.15 % lower: no simulation tells them apart.)"""
     u = 0.01
-    resp = steady_response(u, 0.04)
-    Kc = critical_stiffness(u, 0.04).critical_stiffness
+    resp = steady_response(u, TrapModel(eps=0.04))
+    Kc = critical_stiffness(u, TrapModel(eps=0.04)).critical_stiffness
     n = 6 if runslow else 3
     rows = {}
     for f in (0.978, 1.04, 1.1) if runslow else (0.978, 1.04):

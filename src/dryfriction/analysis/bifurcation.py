@@ -4,7 +4,7 @@ every definition here is ours).
 Reduced units as in :mod:`.stickslip`: lengths ``a0``, times ``t0``, velocities ``a0/t0``,
 forces ``F_el`` (the spring force is reported as friction, ``mu_el = 1``), stiffness
 ``F_el/a0``. The slider is quasi-static (``M = eta = 0``), where ``K_c`` is finite only with
-the direct effect (:func:`~dryfriction.theory.direct_stability.critical_stiffness_direct`).
+the direct effect (:func:`~dryfriction.theory.linear_stability.critical_stiffness`).
 
 The perturbation: a *state kick*
 ---------------------------------
@@ -58,9 +58,10 @@ from ..ensemble.driving import Output, SpringDrive, continue_spring
 from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..program import Segment, VelocityProgram
 from ..theory.direct import junction_strength
-from ..theory.direct_stability import critical_stiffness_direct, direct_response
+from ..theory.linear_stability import critical_stiffness, linear_response
+from ..theory.model import TRAPS_PER_A0, TRAPS_PER_A0_COARSE
 from ..theory.stability import rightmost_root
-from ..validation import check_direct, check_scalar
+from ..validation import check_scalar
 from .stickslip import fit_growth
 
 __all__ = ["kicked_ensemble", "growth_check", "continuation", "classify"]
@@ -68,46 +69,45 @@ __all__ = ["kicked_ensemble", "growth_check", "continuation", "classify"]
 _SAMPLES = 50  # samples per linear period (ours: resolves the oscillation, cheap to analyse)
 
 
-def kicked_ensemble(u: float, eps: float, alpha: float, direct: float, v_ref: float,
-                    traps_per_a0: float, state_kick: float,
+def kicked_ensemble(u: float, model: TrapModel, traps_per_a0: float, state_kick: float,
                     horizon: float) -> tuple[Ensemble, float]:
     """Steady population of velocity ``(1 + state_kick) u`` (module docstring) and the spring
     force that balances its friction at ``g(u)``, ``F_el``."""
-    model = TrapModel(alpha, eps, direct=direct, v_ref=v_ref)
     ens = Ensemble(model, Track(traps_per_a0), Initial("steady", velocity=(1 + state_kick) * u),
                    age_horizon=horizon)
-    return ens, ens.observe().force * float(junction_strength(u, direct, v_ref))
+    return ens, ens.observe().force * float(junction_strength(u, model.direct, model.v_ref))
 
 
-def _checked(u: float, eps: float, direct: float, v_ref: float,
-             traps_per_a0: float, state_kick: float) -> tuple[float, float]:
+def _checked(u: float, model: TrapModel, traps_per_a0: float, state_kick: float) -> None:
+    # the model was checked when built; what this analysis needs beyond that:
     check_scalar("u", u, 0.0, lo_open=True)
-    check_scalar("eps", eps, 0.0, lo_open=True)
-    check_scalar("traps_per_a0", traps_per_a0, 1.0)
+    if model.eps == 0.0:
+        raise ValueError("eps = 0 is not allowed here: without ageing there is no instability; "
+                         "allowed 0 < eps <= 1")
+    TRAPS_PER_A0.check(traps_per_a0)
     check_scalar("state_kick", state_kick, -0.5, 0.5)
-    direct, v_ref = check_direct(direct, v_ref)
-    if direct == 0.0:
+    if model.direct == 0.0:
         raise ValueError("direct = 0 is not allowed here: K_c of the quasi-static slider is "
                          "finite only with the direct effect; allowed 0 < direct <= 1")
-    return direct, v_ref
 
 
 def growth_check(
-    u: float, eps: float, stiffness_factor: float, *, direct: float, v_ref: float = 1.0,
-    alpha: float = 0.13, traps_per_a0: float = 100.0, state_kick: float = 0.03,
-    periods: float = 4.0, linear_limit: float = 1.0,
+    u: float, model: TrapModel, stiffness_factor: float, *,
+    traps_per_a0: float = TRAPS_PER_A0_COARSE, state_kick: float = 0.03, periods: float = 4.0,
+    linear_limit: float = 1.0,
 ) -> dict[str, Any]:
     """Simulated growth rate of a state kick at ``K = stiffness_factor K_c`` against the
     linear theory's rightmost root (module docstring).
 
     Parameters
     ----------
-    u, eps, alpha : float
-        Pulling velocity (``a0/t0``, ``> 0``), creep parameter, trap stiffness.
+    u : float
+        Pulling velocity (``a0/t0``, ``> 0``).
+    model : TrapModel
+        The trap model, with ``eps > 0`` and the direct effect ``0 < A <= 1`` (``v_ref`` in
+        ``a0/t0``).
     stiffness_factor : float
         ``K/K_c``, ``> 0``.
-    direct, v_ref : float
-        Direct effect ``0 < A <= 1`` and its reference velocity (``a0/t0``).
     traps_per_a0 : float
         Density of the regular track.
     state_kick : float
@@ -127,18 +127,17 @@ def growth_check(
         than two oscillations, as in a fast decay); ``ptp``, the peak-to-peak spring force
         of each period.
     """
-    direct, v_ref = _checked(u, eps, direct, v_ref, traps_per_a0, state_kick)
+    _checked(u, model, traps_per_a0, state_kick)
     check_scalar("stiffness_factor", stiffness_factor, 0.0, lo_open=True)
     check_scalar("periods", periods, 2.0)
-    Kc = critical_stiffness_direct(u, eps, alpha, direct=direct, v_ref=v_ref).critical_stiffness
+    Kc = critical_stiffness(u, model).critical_stiffness
     K = stiffness_factor * Kc
-    lam = rightmost_root(direct_response(u, eps, alpha, direct=direct, v_ref=v_ref), K)
+    lam = rightmost_root(linear_response(u, model), K)
     if lam.imag == 0.0:
         raise ValueError(f"stiffness_factor = {stiffness_factor:g}: the rightmost root is real "
                          "(no oscillation to fit); allowed a K with an oscillatory mode")
     period = 2 * math.pi / abs(lam.imag)
-    ens, f0 = kicked_ensemble(u, eps, alpha, direct, v_ref, traps_per_a0, state_kick,
-                              4 * periods * period)
+    ens, f0 = kicked_ensemble(u, model, traps_per_a0, state_kick, 4 * periods * period)
     r = continue_spring(ens, SpringDrive(K, 0.0, VelocityProgram(
         [Segment(u, duration=periods * period)])), Output(every=period / _SAMPLES),
         spring_force=f0)
@@ -160,16 +159,16 @@ def growth_check(
 
 
 def continuation(
-    u: float, eps: float, distances: Sequence[float], *, direct: float, v_ref: float = 1.0,
-    alpha: float = 0.13, traps_per_a0: float = 100.0, state_kick: float = 0.05,
-    periods: float = 15.0, measure: float = 4.0, rekick: bool = False,
+    u: float, model: TrapModel, distances: Sequence[float], *,
+    traps_per_a0: float = TRAPS_PER_A0_COARSE, state_kick: float = 0.05, periods: float = 15.0,
+    measure: float = 4.0, rekick: bool = False,
 ) -> dict[str, Any]:
     """Continuation in ``K = K_c (1 - d)`` down then up, the amplitude at each ``d`` (module
     docstring).
 
     Parameters
     ----------
-    u, eps, alpha, direct, v_ref, traps_per_a0, state_kick
+    u, model, traps_per_a0, state_kick
         As :func:`growth_check`.
     distances : sequence of float
         ``d = (K_c - K)/K_c`` of the way down, in increasing order (decreasing ``K``), each
@@ -193,16 +192,16 @@ def continuation(
         below 1 the oscillation is still decaying; ``v_min`` the smallest sampled slider
         velocity of the measured stretch, in units of ``u``: near 0 means stick-slip).
     """
-    direct, v_ref = _checked(u, eps, direct, v_ref, traps_per_a0, state_kick)
+    _checked(u, model, traps_per_a0, state_kick)
     ds = [check_scalar("distance", d, -1.0, 1.0, hi_open=True) for d in distances]
     if len(ds) < 2 or any(b <= a for a, b in zip(ds, ds[1:], strict=False)):
         raise ValueError("distances must hold at least two values in increasing order")
     if not 0 < measure < periods:
         raise ValueError(f"measure = {measure:g} is not allowed: 0 < measure < periods "
                          f"= {periods:g}")
-    lin = critical_stiffness_direct(u, eps, alpha, direct=direct, v_ref=v_ref)
+    lin = critical_stiffness(u, model)
     Kc = lin.critical_stiffness
-    resp = direct_response(u, eps, alpha, direct=direct, v_ref=v_ref)
+    resp = linear_response(u, model)
 
     def period(K: float) -> float:
         lam = rightmost_root(resp, K)
@@ -210,9 +209,8 @@ def continuation(
         return 2 * math.pi / om
 
     total = 2 * len(ds) * periods * max(period(Kc * (1 - d)) for d in ds)
-    ens, force = kicked_ensemble(u, eps, alpha, direct, v_ref, traps_per_a0, state_kick,
-                                 2 * total)
-    out: dict[str, Any] = {"K_c": Kc, "omega_c": lin.omega, "u": u, "direct": direct,
+    ens, force = kicked_ensemble(u, model, traps_per_a0, state_kick, 2 * total)
+    out: dict[str, Any] = {"K_c": Kc, "omega_c": lin.omega, "u": u, "direct": model.direct,
                            "traps_per_a0": traps_per_a0, "rekick": rekick, "down": [],
                            "up": []}
     for leg, order in (("down", ds), ("up", ds[::-1][1:])):
@@ -221,8 +219,7 @@ def continuation(
             p = period(K)
             if rekick and leg == "down" and out["down"] and (
                     out["down"][-1]["amplitude"] < 5.0 * out["down"][0]["amplitude"]):
-                ens, force = kicked_ensemble(u, eps, alpha, direct, v_ref, traps_per_a0,
-                                             state_kick, 2 * total)
+                ens, force = kicked_ensemble(u, model, traps_per_a0, state_kick, 2 * total)
             r = continue_spring(ens, SpringDrive(K, 0.0, VelocityProgram(
                 [Segment(u, duration=periods * p)])), Output(every=p / _SAMPLES),
                 spring_force=force)

@@ -2,7 +2,7 @@
 
 :func:`linear_summary` reads a sweep point through :func:`dryfriction.io.protocol.spring_point`
 (the one parser of protocol dictionaries) and evaluates the linear theory of
-:mod:`dryfriction.theory.stability` there.
+:mod:`dryfriction.theory.linear_stability` there.
 """
 
 from __future__ import annotations
@@ -12,13 +12,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..io.protocol import pulling_velocity, spring_point
-from ..theory.stability import (
-    SteadyResponse,
-    critical_stiffness,
-    delay_chain_limit,
-    rightmost_root,
-    steady_response,
-)
+from ..theory.linear_stability import DirectResponse, critical_stiffness, linear_response
+from ..theory.stability import SteadyResponse, delay_chain_limit, rightmost_root
 
 __all__ = ["linear_summary", "growth_rate", "SWEEP_VARIABLES", "GROWTH_KINDS"]
 
@@ -52,8 +47,9 @@ SWEEP_VARIABLES: dict[str, dict[str, str]] = {
 def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     """Sweep runner: linear stability of the spring slider described by a protocol dict.
 
-    Uses ``model.alpha``, ``model.eps``, ``model.creep``, ``drive.stiffness``, ``drive.mass``,
-    ``drive.damping`` and the pulling velocity of the last segment (reduced units).
+    Uses the protocol's trap model (its direct effect included), ``drive.stiffness``,
+    ``drive.mass``, ``drive.damping`` and the pulling velocity of the last segment (reduced
+    units).
 
     Returns
     -------
@@ -66,9 +62,9 @@ def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     proto, _ = spring_point(protocol, analysis="linear")
     m, drive = proto.model, proto.drive
     u = pulling_velocity(drive)
-    res = critical_stiffness(u, m.eps, m.alpha, m.creep, drive.mass, drive.damping)
-    rate, kind, _ = growth_rate(steady_response(u, m.eps, m.alpha, m.creep),
-                                drive.stiffness, drive.mass, drive.damping)
+    res = critical_stiffness(u, m, drive.mass, drive.damping)
+    rate, kind, _ = growth_rate(linear_response(u, m), drive.stiffness, drive.mass,
+                                drive.damping)
     return {
         "K_c": res.critical_stiffness,
         "omega_c": res.omega,
@@ -78,7 +74,7 @@ def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     }
 
 
-def growth_rate(resp: SteadyResponse, stiffness: float, mass: float = 0.0,
+def growth_rate(resp: SteadyResponse | DirectResponse, stiffness: float, mass: float = 0.0,
                 damping: float = 0.0) -> tuple[float, int, complex]:
     """Supremum of ``Re lambda`` over the roots of the spring slider's characteristic
     function, what it is (a code of :data:`GROWTH_KINDS`) and the rightmost root found

@@ -1,5 +1,5 @@
 """Direct simulation of the rate-and-state Hopf point's nature (issue 28), with the package's
-solver (:func:`dryfriction.rsf.driving.simulate_rsf`), to check :mod:`.rsf_hopf` (every
+solver (:func:`dryfriction.rsf.driving.simulate`), to check :mod:`.rsf_hopf` (every
 procedure here is ours).
 
 * **Supercritical** (:func:`settled_amplitude`, :func:`amplitude_exponent`): below ``k_c``
@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from ..program import Segment
-from ..rsf.driving import SolverError, simulate_rsf
+from ..rsf.driving import SolverError, simulate
 from ..rsf.law import RateState
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 from .rsf_hopf import RSFHopf
@@ -76,10 +76,10 @@ def period_amplitudes(model: RateState, hopf: RSFHopf, k: float, delta: float, p
     v = hopf.velocity
     period = 2 * math.pi / hopf.frequency
     t = np.linspace(0.0, periods * period, periods * _SAMPLES + 1)
-    r = simulate_rsf(model, SpringSlider([Segment(v, duration=t[-1])], k, damping, mass),
-                     RSFInitial(v=v * math.exp(delta), theta=model.dc / v,
-                                theta2=None if model.dc2 is None else model.dc2 / v),
-                     RSFOutput(t_eval=t, rtol=rtol))
+    r = simulate(model, SpringSlider([Segment(v, duration=t[-1])], k, damping, mass),
+                 RSFInitial(v=v * math.exp(delta), theta=model.dc / v,
+                            theta2=None if model.dc2 is None else model.dc2 / v),
+                 RSFOutput(t_eval=t, rtol=rtol))
     lnv = np.log(r.v / v)[1:].reshape(periods, _SAMPLES)
     return 0.5 * np.ptp(lnv, axis=1)
 

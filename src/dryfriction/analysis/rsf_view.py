@@ -32,8 +32,9 @@ What the trap model is expected to show (and :func:`trap_model_as_rsf` measures)
   ``x99/x90 = 2`` for an exponential, close to 1 for a transient that ends;
 * the steady state: ``a - b`` from the fit equals the slope of the exact steady friction
   :func:`dryfriction.theory.steady.steady_friction` (eq. 34) over the steps, ``u dmu_d/du``;
-* the independent **linear prediction** :func:`dryfriction.theory.stability.effective_rsf`: the
-  ``a``, ``b``, ``Dc`` that match the model's slow linear response (``Z(lambda)`` to third order).
+* the independent **linear prediction**
+  :func:`dryfriction.theory.linear_stability.effective_rsf`: the ``a``, ``b``, ``Dc`` that
+  match the model's slow linear response (``Z(lambda)`` to third order).
 """
 
 from __future__ import annotations
@@ -50,9 +51,12 @@ from ..ensemble.population import Initial, Track, TrapModel
 from ..fit import FitResult, RSFModel, fit
 from ..program import Segment, VelocityProgram
 from ..records.data import SeriesData, StaticData
-from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider, simulate_rsf
+from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider
+from ..rsf.driving import simulate as simulate_rate_state
 from ..rsf.law import RateState
-from ..theory.stability import effective_rsf, shift_stiffness
+from ..theory.linear_stability import effective_rsf
+from ..theory.model import TRAPS_PER_A0
+from ..theory.stability import shift_stiffness
 from ..theory.steady import steady_friction
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales
@@ -111,7 +115,7 @@ def trap_series(model: TrapModel, track: Track, u_init: float,
         ``v_load`` in m/s, ``mu = F/F_el``), with the velocity changes on samples.
     """
     prog = _program(program)
-    res = simulate(model, track, Initial("steady", velocity=u_init), VelocityDrive(prog),
+    res = simulate(model, VelocityDrive(prog), Initial("steady", velocity=u_init, track=track),
                    Output(every_slip=every_slip))
     vl = prog.velocity(res.t)  # right-continuous: a change is on the sample at the boundary
     data = SeriesData(res.t * SCALES.t0, vl * SCALES.velocity_scale, res.mu / model.mu_el,
@@ -129,10 +133,9 @@ def hold_peaks(model: TrapModel, track: Track, u0: float, holds: Sequence[float]
     yc = Trap(model.alpha).y_c
     out = []
     for th in holds:
-        res = simulate(model, track, Initial("steady", velocity=u0),
-                       VelocityDrive([Segment(0.0, float(th)),
-                                      Segment(u0, slip=2.0 * (1.0 + yc))]),
-                       Output(every_slip=every_slip))
+        res = simulate(model, VelocityDrive([Segment(0.0, float(th)),
+                                             Segment(u0, slip=2.0 * (1.0 + yc))]),
+                       Initial("steady", velocity=u0, track=track), Output(every_slip=every_slip))
         out.append(float(np.max(res.mu)) / model.mu_el)
     return np.asarray(out)
 
@@ -235,7 +238,7 @@ def rsf_twin_series(params: RateState, program: VelocityProgram, t: Array,
     kinematic machine the slider does not move, the ageing law's state grows by the hold time
     (``dtheta/dt = 1`` at ``V = 0``; Dieterich 1979), the slip law's does not change (Ruina
     1983), and the friction, ``ln V`` at ``V = 0``, is undefined: NaN there. Sliding stretches
-    run through :func:`dryfriction.rsf.driving.simulate_rsf`.
+    run through :func:`dryfriction.rsf.driving.simulate`.
     """
     t = np.asarray(t, float)
     out = np.full(t.shape, np.nan)
@@ -254,9 +257,9 @@ def rsf_twin_series(params: RateState, program: VelocityProgram, t: Array,
         if seg.velocity < 0.0:
             raise ValueError("backward motion is not supported by the rate-and-state twin")
         te = np.clip(t[inside] - t0, 0.0, t1 - t0)
-        res = simulate_rsf(params, SpringSlider([Segment(seg.velocity, t1 - t0)]),
-                           RSFInitial(theta=theta),
-                           RSFOutput(t_eval=np.union1d(te, [t1 - t0]), rtol=1e-9))
+        res = simulate_rate_state(params, SpringSlider([Segment(seg.velocity, t1 - t0)]),
+                                  RSFInitial(theta=theta),
+                                  RSFOutput(t_eval=np.union1d(te, [t1 - t0]), rtol=1e-9))
         if te.size:
             out[inside] = np.interp(te, res.t, res.mu)
         theta = float(res.theta[-1])
@@ -330,7 +333,7 @@ def trap_model_as_rsf(
     u0: float = 0.1,
     factor: float = 10.0,
     holds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0, 10000.0),
-    traps_per_a0: float = 1000.0,
+    traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
     creep: str = "log",
     every_slip: float = 0.02,
 ) -> RSFView:
@@ -359,7 +362,7 @@ def trap_model_as_rsf(
         Fits with the ageing law (steps; steps + hold peaks) and the slip law (steps), their
         residuals, the transient shapes, the hold peaks against the laws' predictions, the
         steady slope of eq. 34 and the linear prediction of
-        :func:`dryfriction.theory.stability.effective_rsf`.
+        :func:`dryfriction.theory.linear_stability.effective_rsf`.
     """
     eps = check_scalar("eps", eps, 0.0, lo_open=True)
     u0 = check_scalar("u0", u0, 0.0, lo_open=True)
@@ -388,7 +391,7 @@ def trap_model_as_rsf(
     peak_data = StaticData(np.asarray(holds) * SCALES.t0, peaks, source="hold peaks")
     twins["ageing_with_holds"] = fit_rsf_twin(series, u0, "ageing", peak_data)
 
-    lin = effective_rsf(u0, eps, alpha, creep)
+    lin = effective_rsf(u0, model)
     lin_twin = RateState(lin["a"], lin["b"], lin["dc"], float(steady_friction(u0, eps, alpha,
                                                                                  creep)), u0)
     for name, u1, res, _data in runs:
@@ -434,7 +437,7 @@ def trap_model_as_rsf(
                    - steady_friction(u0 / factor, eps, alpha, creep)) / (2 * math.log(factor)))
     steady = {"mu_d_u0": mu_u0, "u_dmu_du_at_u0": slope, "chord_slope_over_steps": chord,
               "eq35_slope": -1.5 * eps}
-    fwd, bwd = shift_stiffness(u0, eps, alpha, creep)
+    fwd, bwd = shift_stiffness(u0, TrapModel(alpha, eps, creep))
     linear = {"a": lin["a"], "b": lin["b"], "dc": lin["dc"], "a_minus_b": lin["a"] - lin["b"],
               "forward_shift_stiffness": fwd, "backward_shift_stiffness": bwd}
     memory = {"one_plus_yc": 1.0 + yc}

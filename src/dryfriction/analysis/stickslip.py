@@ -67,8 +67,9 @@ from ..ensemble.population import Ensemble, Initial, Track, TrapModel
 from ..io.protocol import pulling_velocity, spring_point
 from ..program import Segment, VelocityProgram
 from ..theory.direct import junction_strength
-from ..theory.direct_stability import critical_stiffness_direct
-from ..theory.stability import critical_stiffness, rightmost_root, steady_response
+from ..theory.linear_stability import critical_stiffness, linear_response
+from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0_COARSE
+from ..theory.stability import rightmost_root, steady_response
 from ..validation import Array, check_scalar
 
 __all__ = [
@@ -279,21 +280,18 @@ def analyse(
                           mean_force, h)
 
 
-def granular_floor(traps_per_a0: float, u: float, eps: float, alpha: float = 0.13,
-                   creep: str = "log", mu_el: float = 1.0, factor: float = 3.0) -> float:
+def granular_floor(traps_per_a0: float, u: float, model: TrapModel,
+                   factor: float = 3.0) -> float:
     """Default event floor: ``factor`` times the force lost when one trap dies (ours).
 
     One death at the spinodal removes ``r_d^2 f_+(y_c)`` (eq. 23) of a total normalised by
     ``n H0`` (eq. 12), ``n`` traps per ``a0``; ``r_d`` is the radius at the steady death age at
     velocity ``u`` (eq. 32). Friction units.
     """
-    from ..theory.creep import creep_law
-    from ..theory.trap import Trap
-
-    trap = Trap(alpha)
-    tau_d = steady_response(u, eps, alpha, creep).tau_d
-    r2 = float(creep_law(creep, eps).radius(np.array([tau_d]))[0]) ** 2
-    return factor * mu_el * trap.f_c * r2 / (trap.H0 * traps_per_a0)
+    trap = model.trap
+    tau_d = steady_response(u, model).tau_d
+    r2 = float(model.law.radius(np.array([tau_d]))[0]) ** 2
+    return factor * model.mu_el * trap.f_c * r2 / (trap.H0 * traps_per_a0)
 
 
 # ---------------------------------------------------------------- the sweep runner
@@ -319,7 +317,7 @@ def stick_slip_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     function), so :func:`dryfriction.sweeps.sweep.run_sweep` can ship it to workers.
     """
     proto, opts = spring_point(protocol)
-    res = simulate(proto.model, proto.track, proto.initial, proto.drive, proto.output)
+    res = simulate(proto.model, proto.drive, proto.initial, proto.output)
     return summarise(res, proto.drive, proto.model, proto.track,
                      **{k: v for k, v in opts.items() if k != "follow_velocity"})
 
@@ -342,8 +340,7 @@ def summarise(res: SimulationResult, drive: SpringDrive, model: TrapModel, track
         raise ValueError(f"stickslip.transient = {transient:g} a0 is not allowed: less than "
                          f"the load-point travel {float(travel[-1]):g}")
     if floor is None:
-        floor = granular_floor(track.traps_per_a0, u, model.eps, model.alpha, model.creep,
-                               model.mu_el)
+        floor = granular_floor(track.traps_per_a0, u, model)
     t_start = float(np.interp(transient, travel, res.t))
     st = analyse(res.t, res.x, res.v, spring_force(res, drive, model.mu_el), u=u,
                  t_start=t_start, floor=floor, rel_threshold=rel_threshold,
@@ -396,13 +393,12 @@ def fit_growth(t: ArrayLike, y: ArrayLike) -> tuple[float, float]:
 
 def linear_check(
     u: float,
-    eps: float,
+    model: TrapModel,
     stiffness_factors: Sequence[float],
     *,
     mass: float,
     damping: float,
-    alpha: float = 0.13,
-    traps_per_a0: float = 100.0,
+    traps_per_a0: float = TRAPS_PER_A0_COARSE,
     kick: float = 0.03,
     duration: float = 1500.0,
     skip: float = 50.0,
@@ -411,8 +407,10 @@ def linear_check(
 
     Parameters
     ----------
-    u, eps, alpha : float
-        Pulling velocity (``a0/t0``), creep parameter, trap stiffness.
+    u : float
+        Pulling velocity (``a0/t0``).
+    model : TrapModel
+        The trap model.
     stiffness_factors : sequence of float
         ``K / K_c`` of the runs.
     mass, damping : float
@@ -434,12 +432,11 @@ def linear_check(
     """
     if not mass > 0:
         raise ValueError(f"mass = {mass!r} is not allowed: > 0 (the inertial case)")
-    res = critical_stiffness(u, eps, alpha, mass=mass, damping=damping)
+    res = critical_stiffness(u, model, mass, damping)
     Kc = res.critical_stiffness
-    resp = steady_response(u, eps, alpha)
-    model = TrapModel(alpha, eps)
+    resp = linear_response(u, model)
     track = Track(traps_per_a0)
-    floor = granular_floor(traps_per_a0, u, eps, alpha)
+    floor = granular_floor(traps_per_a0, u, model)
     rows = []
     for f in stiffness_factors:
         K = float(f) * Kc
@@ -482,28 +479,29 @@ def linear_check(
 
 def bifurcation_scan(
     u: float,
-    eps: float,
+    model: TrapModel,
     stiffnesses: Sequence[float],
     *,
     mass: float = 0.0,
     damping: float = 0.0,
-    alpha: float = 0.13,
-    traps_per_a0: float = 100.0,
+    traps_per_a0: float = TRAPS_PER_A0_COARSE,
     travel: float = 20.0,
     transient: float = 10.0,
     kick: float = 0.03,
     force_kick: float = 1e-3,
     samples_per_a0: float = 50.0,
-    direct: float = 0.0,
-    v_ref: float = 1.0,
     progress: Callable[[int, int], None] | None = None,
 ) -> dict[str, Any]:
     """Continuation in ``K``: stick-slip amplitude and period down then up (module doc).
 
     Parameters
     ----------
-    u, eps, alpha : float
-        Pulling velocity (``a0/t0``), creep parameter, trap stiffness.
+    u : float
+        Pulling velocity (``a0/t0``).
+    model : TrapModel
+        The trap model; with the direct effect (``A > 0``, which needs ``M = 0``) ``K_c`` is
+        that of :func:`~dryfriction.theory.linear_stability.critical_stiffness` and the force
+        kick is added to the friction ``g(u) F``.
     stiffnesses : sequence of float
         ``K`` values (``F_el/a0``) in the order of the way down (largest first); the way up
         runs them in reverse from the end state of the way down.
@@ -521,10 +519,6 @@ def bifurcation_scan(
     samples_per_a0 : float
         Output samples per ``a0`` of load-point travel (and at least 20 per period of the
         mass on the spring when ``M > 0``).
-    direct, v_ref : float
-        Direct effect ``A`` and its reference velocity (``a0/t0``); ``A > 0`` needs ``M = 0``
-        and takes ``K_c`` from :func:`~dryfriction.theory.direct_stability.
-        critical_stiffness_direct`; the force kick is added to the friction ``g(u) F``.
     progress : callable, optional
         ``progress(done, total)`` after each stiffness (``2 len(stiffnesses) - 1`` runs of
         equal load-point travel).
@@ -540,19 +534,14 @@ def bifurcation_scan(
         raise ValueError("stiffnesses is empty")
     if transient >= travel:
         raise ValueError(f"transient = {transient:g} must be less than travel = {travel:g}")
-    if direct:
-        lin = critical_stiffness_direct(u, eps, alpha, mass=mass, damping=damping,
-                                        direct=direct, v_ref=v_ref)
-    else:
-        lin = critical_stiffness(u, eps, alpha, mass=mass, damping=damping)
-    model = TrapModel(alpha, eps, direct=direct, v_ref=v_ref)
+    lin = critical_stiffness(u, model, mass, damping)
     track = Track(traps_per_a0)
-    floor = granular_floor(traps_per_a0, u, eps, alpha)
+    floor = granular_floor(traps_per_a0, u, model)
     ens = Ensemble(model, track, Initial("steady", velocity=u),
                    age_horizon=4 * len(ks) * travel / u)
     f0 = ens.observe().force
-    if direct:
-        f0 *= float(junction_strength(u, direct, v_ref))
+    if model.direct:
+        f0 *= float(junction_strength(u, model.direct, model.v_ref))
     velocity = (1 + kick) * u if mass > 0 else 0.0
     force: float | None = None if mass > 0 else f0 + force_kick
     out: dict[str, Any] = {"K_c": lin.critical_stiffness, "omega_c": lin.omega, "u": u,
@@ -599,9 +588,10 @@ def phase_axes(spec: Any) -> tuple[str, str]:
 def critical_line(base: Mapping[str, Any], u: ArrayLike) -> Array:
     """``K_c(u)`` of the linear analysis for the model and spring of a protocol dict."""
     m, d = base.get("model", {}), base.get("drive", {})
+    # every model key, the direct effect too; the defaults are the model's own
+    model = TrapModel(**{k: v for k, v in m.items() if k in TRAP_PARAMETERS})
     return np.array([
-        critical_stiffness(float(uu), float(m["eps"]), float(m.get("alpha", 0.13)),
-                           str(m.get("creep", "log")), float(d.get("mass", 0.0)),
+        critical_stiffness(float(uu), model, float(d.get("mass", 0.0)),
                            float(d.get("damping", 0.0))).critical_stiffness
         for uu in np.asarray(u, float).ravel()
     ])

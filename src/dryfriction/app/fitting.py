@@ -92,7 +92,7 @@ def parse_fix(items: Sequence[str] | dict[str, float] | None) -> dict[str, float
 def fit(data: Sequence[str | Path] | str | Path, out: str | Path, *,
         progress: Progress | None = None, report: Callable[[str], None] | None = None,
         on_start: Callable[[], None] | None = None, bar: Any = None,
-        on_program: Callable[[list[Any]], None] | None = None,
+        on_program: Callable[[list[Any], Any], None] | None = None,
         **options: Any) -> FitOutcome | RecordFitOutcome:
     """Fit measured friction and write fit.json (and its figures) into ``out``
     (``dryfriction fit``).

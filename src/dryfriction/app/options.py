@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from ..theory.model import TRAPS_PER_A0
+
 __all__ = ["Option", "OPTIONS", "FIGURE", "SWEEP", "defaults"]
 
 
@@ -90,8 +92,9 @@ OPTIONS: dict[str, dict[str, Option]] = {
 }
 """Workflow -> option name (the keyword of its function) -> :class:`Option`."""
 
-CSV_TRAPS_PER_A0 = 1000.0
-"""``--traps-per-a0`` of a trap-model fit of the project's CSV files when not given."""
+CSV_TRAPS_PER_A0: float = TRAPS_PER_A0.default
+"""``--traps-per-a0`` of a trap-model fit of the project's CSV files when not given: the trap
+model's own default (:data:`dryfriction.theory.model.TRAPS_PER_A0`)."""
 
 
 def defaults(workflow: str) -> dict[str, Any]:

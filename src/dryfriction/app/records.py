@@ -90,7 +90,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
                initial: str = _D["initial_state"], bar: Bar | None = None,
                report: Callable[[str], None] | None = None,
                on_start: Callable[[], None] | None = None,
-               on_program: Callable[[list[Any]], None] | None = None) -> RecordFitOutcome:
+               on_program: Callable[[list[Any], Any], None] | None = None) -> RecordFitOutcome:
     """Read one laboratory record, detect its load program, cut it into steps, fit each with
     rate-and-state on an elastic machine with a trend, and write fit.json, steps.csv and the
     figures (``dryfriction fit RECORD``; module docstring).
@@ -120,7 +120,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
     on_start : callable, optional
         Called after every check, before the record is read.
     on_program : callable, optional
-        ``on_program(segments)``: the load program, before the fit (the command prints it).
+        ``on_program(segments, record)``: the load program, before the fit (the command
+        prints it).
     model, columns, segments, joint, profile, run_cv, alpha, creep, force, fmt, dpi, figure,
     errors, direct, v_ref, traps_per_a0, drive
         As :func:`dryfriction.app.fitting.fit` (:data:`dryfriction.app.options.OPTIONS`).
@@ -181,7 +182,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
                          "constant velocity (give it with --segments if it is not)")
     if on_program is not None:
-        on_program(segs)
+        on_program(segs, rec)
     profile, profile_note = default_profile(len(wins), profile)  # many steps: HAC unless asked
     if model == "cv" and not run_cv:  # the trap model is not run unasked (issue 10)
         # the estimate is one trap-model run: made only when the trap model was asked for

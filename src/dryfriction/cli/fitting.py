@@ -174,8 +174,8 @@ def fit_command(
         raise typer.Exit(1)
 
 
-def _print_program(segments: Any) -> None:
-    """A record's load program, printed before its fit."""
+def _print_program(segments: Any, record: Any) -> None:
+    """A record's load program, printed before its fit (the normal load in its own unit)."""
     from ..records import lab
 
-    out.print(lab.segments_table(segments), highlight=False, markup=False)
+    out.print(lab.segments_table(segments, record.normal_unit), highlight=False, markup=False)

@@ -237,28 +237,23 @@ def stability(
 ) -> None:
     """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
     from ..analysis.rsf_stability import rsf_stability_prediction
-    from ..theory.direct_stability import critical_stiffness_direct
-    from ..theory.stability import critical_stiffness
+    from ..theory.linear_stability import critical_stiffness
+    from ..theory.model import TrapModel
     from ..theory.steady import check_steady_inputs
-    from ..validation import check_direct, check_scalar
+    from ..validation import check_scalar
 
     check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
     check_scalar("mass", mass, 0.0, LOAD_MAX)
     check_scalar("damping", damping, 0.0, LOAD_MAX)
-    check_direct(direct, v_ref)
+    model = TrapModel(alpha, eps, creep, direct=direct, v_ref=v_ref)
     if mass > 0 and damping == 0 and not direct:  # the direct effect damps like eta (A mu/u)
         raise ValueError(
             f"--mass {mass:g} without --damping is ill posed: with inertia and no damping the "
             "delay at the spinodal edge makes K_c grow with the highest frequency considered, "
             "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or --direct > 0, or "
             "drop --mass")
-    if direct:
-        res = [critical_stiffness_direct(v, eps, alpha, creep, mass, damping, direct, v_ref)
-               for v in u]
-    else:
-        res = [critical_stiffness(v, eps, alpha, creep, mass, damping) for v in u]
-    twins = ([rsf_stability_prediction(v, eps, alpha, creep, mass, damping, direct, v_ref)
-              for v in u] if eps > 0 else [])
+    res = [critical_stiffness(v, model, mass, damping) for v in u]
+    twins = [rsf_stability_prediction(v, model, mass, damping) for v in u] if eps > 0 else []
     params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep,
               **_direct_params(direct, v_ref)}
     cols = {

@@ -105,7 +105,7 @@ def record_command(
         unit = rec.units.get(role, "") or ("-" if role == "mu" else "none: read as SI")
         print(f"  {role:<9} {h!r:<32} unit {unit}")
     print(f"\nload program ({report['segments_from']}):")
-    print(segments_table(segs))
+    print(segments_table(segs, rec.normal_unit))
     print(f"as --segments: {report['segments_option']}")
     for key, what in (("resets_s", "displacement resets taken out"),
                       ("rate_changes_s", "sampling-rate changes"), ("gaps_s", "gaps"),

@@ -102,7 +102,7 @@ def rsf(
 
     from ..io.files import check_output_dir, output_directory, write_csv
     from ..program import Segment
-    from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate_rsf
+    from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate
     from ..rsf.law import RateState
     from ..validation import check_choice, check_figure_format, check_scalar
 
@@ -153,7 +153,7 @@ def rsf(
     compile_notice(rsf=True)
     start = time.perf_counter()
     try:
-        res = simulate_rsf(params, drive, init, output)
+        res = simulate(params, drive, init, output)
     except SolverError as exc:
         raise ValueError(str(exc)) from None
     context = {"case": case, "wall_s": time.perf_counter() - start}

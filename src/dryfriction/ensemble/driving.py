@@ -4,11 +4,12 @@
 Reduced units: lengths ``a0``, times ``t0``, forces ``F_el``; stiffness ``F_el/a0``, mass
 ``F_el t0^2/a0``, damping ``F_el t0/a0``. The reported friction is ``mu = mu_el F/F_el``.
 
-One orchestrating call, :func:`simulate`, composes small frozen objects: a
-:class:`~dryfriction.ensemble.population.TrapModel`, a
-:class:`~dryfriction.ensemble.population.Track`, an
-:class:`~dryfriction.ensemble.population.Initial` population, a drive (:class:`VelocityDrive`,
-:class:`ForceDrive` or :class:`SpringDrive`) and an :class:`Output` sampling.
+One orchestrating call, ``simulate(model, drive, initial, output)`` (the shape of both laws,
+:mod:`dryfriction.simulation`), composes small frozen objects: a
+:class:`~dryfriction.ensemble.population.TrapModel`, a drive (:class:`VelocityDrive`,
+:class:`ForceDrive` or :class:`SpringDrive`, :mod:`.drives`), an
+:class:`~dryfriction.ensemble.population.Initial` population on its
+:class:`~dryfriction.ensemble.population.Track`, and an :class:`Output` sampling.
 
 Integrators (ours)
 ------------------
@@ -64,20 +65,24 @@ the last completed step and the result is marked ``partial``.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import time as _time
+import warnings
 from collections.abc import Callable, Iterator
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, replace
 from typing import Any
 
 import numpy as np
 
-from ..program import VelocityProgram
 from ..results import check_physical
-from ..validation import U_MAX, U_MIN, check_choice, check_scalar
+from ..simulation import OldSimulatorFormWarning, check_parts
+from ..validation import check_choice, check_scalar
 from .balance import add_events, equilibrate, events
+from .drives import MASS_MIN, STIFFNESS_MAX, Drive, ForceDrive, SpringDrive, VelocityDrive
 from .population import Ensemble, Initial, Track, TrapModel
-from .resources import CLOCK_MAX, check_run
+from .resources import check_run
 from .result import (
     COLUMNS,
     Output,
@@ -98,6 +103,9 @@ from .thermal import (
 )
 
 __all__ = [
+    "Drive",
+    "MASS_MIN",
+    "STIFFNESS_MAX",
     "VelocityDrive",
     "ForceDrive",
     "SpringDrive",
@@ -111,124 +119,11 @@ __all__ = [
 Progress = Callable[[float], None]
 
 
-@dataclass(frozen=True)
-class VelocityDrive:
-    """Prescribed slider motion: the slider follows ``program`` (``a0/t0``, ``t0``, ``a0``)."""
-
-    program: VelocityProgram
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.program, VelocityProgram):
-            object.__setattr__(self, "program", VelocityProgram(self.program))
-        self.program.check_speeds(U_MIN, U_MAX, "a0/t0")
-
-
-@dataclass(frozen=True)
-class ForceDrive:
-    """Force control: hold the initial force for ``hold``, then ramp it up at ``rate``.
-
-    Parameters
-    ----------
-    rate : float
-        Loading rate of the tangential force, units ``F_el/t0``, ``> 0`` (a threshold is asked,
-        so the force must grow).
-    hold : float
-        Wait at constant force before the ramp, units ``t0``, ``>= 0``.
-    max_force : float
-        Safety stop, units ``F_el``: the run ends if the force reaches it without a runaway.
-    """
-
-    rate: float
-    hold: float = 0.0
-    max_force: float = 10.0
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "rate", check_scalar("rate", self.rate, 0.0, lo_open=True))
-        object.__setattr__(self, "hold", check_scalar("hold", self.hold, 0.0))
-        object.__setattr__(
-            self, "max_force", check_scalar("max_force", self.max_force, 0.0, lo_open=True)
-        )
-        # the contacts age through the hold and the ramp: past CLOCK_MAX the clock no longer
-        # resolves their ages (at rate = 1e-300 it overflowed: a threshold of 8e-17)
-        if self.hold > CLOCK_MAX:
-            raise ValueError(f"hold = {self.hold:g} is out of range: allowed <= "
-                             f"{CLOCK_MAX:.3g} t0 (2^46, within which the clock resolves the "
-                             "contacts' ages)")
-        end = self.hold + self.max_force / self.rate
-        if not end <= CLOCK_MAX:
-            lowest = self.max_force / (CLOCK_MAX - self.hold)
-            lowest = float(f"{lowest * 1.01:.3g}")  # shown rounded up: it is allowed
-            raise ValueError(
-                f"rate = {self.rate:g} is out of range with max_force = {self.max_force:g} "
-                f"and hold = {self.hold:g}: the ramp could last until t = {end:.1e} t0, "
-                f"beyond the {CLOCK_MAX:.3g} t0 (2^46) within which the clock resolves the "
-                f"contacts' ages; allowed rate >= {lowest:g} F_el/t0 (or a lower max_force)")
-
-
 RAMP_FORCE_STEP: float = 0.005
 """Largest increase of the applied force (``F_el``) between two equilibria of a force ramp
 (ours): a coarser sampling is stepped internally. The threshold then no longer depends on the
 sampling: with the static-threshold example it agrees to 3e-8 with the sampling's force step
 0.0035 F_el (every_slip = 0.005)."""
-
-
-
-STIFFNESS_MAX: float = 1e6
-"""Stiffest spring accepted, ``F_el/a0`` (a million times a trap population's contact stiffness,
-about 0.7 ``F_el/a0``): stiffer is the velocity drive (``kind = "velocity"``), without the
-spring's ever smaller steps."""
-
-MASS_MIN: float = 1e-6
-"""Smallest nonzero slider mass accepted, ``F_el t0^2/a0``: below it the inertial time
-``sqrt(M/K)`` makes the steps vanish while the motion is the quasi-static one (``mass = 0``)."""
-
-
-@dataclass(frozen=True)
-class SpringDrive:
-    """A slider of mass ``mass`` pulled through a spring ``stiffness`` by a load point.
-
-    ``M X'' = K (X_pull - X) - F - eta X'``; the load point follows ``program`` and starts where
-    the spring balances the initial friction force, ``X_pull(0) = X(0) + F(0)/K``.
-
-    Parameters
-    ----------
-    stiffness : float
-        ``K``, units ``F_el/a0``, ``> 0``.
-    mass : float
-        ``M``, units ``F_el t0^2/a0``, ``>= 0``; 0 is the quasi-static limit (slips are jumps
-        between equilibria with ageing frozen during the jump).
-    damping : float
-        ``eta``, units ``F_el t0/a0``, ``>= 0``; must be 0 when ``mass = 0`` (the quasi-static
-        jumps have no time scale).
-    program : VelocityProgram
-        Load-point velocity program.
-    """
-
-    stiffness: float
-    mass: float
-    program: VelocityProgram
-    damping: float = 0.0
-
-    def __post_init__(self) -> None:
-        k = check_scalar("stiffness", self.stiffness, 0.0, STIFFNESS_MAX, lo_open=True)
-        object.__setattr__(self, "stiffness", k)
-        object.__setattr__(self, "mass", check_scalar("mass", self.mass, 0.0))
-        if 0.0 < self.mass < MASS_MIN:
-            raise ValueError(f"mass = {self.mass:g} is out of range: allowed 0 (the quasi-static "
-                             f"slider) or >= {MASS_MIN:g} (the inertial time sqrt(M/K) sets the "
-                             "step: a smaller mass is the quasi-static limit, only slower)")
-        object.__setattr__(self, "damping", check_scalar("damping", self.damping, 0.0))
-        if self.mass == 0.0 and self.damping != 0.0:
-            raise ValueError(
-                f"damping = {self.damping:g} is not allowed with mass = 0: the quasi-static "
-                "slider jumps between equilibria; allowed damping = 0"
-            )
-        if not isinstance(self.program, VelocityProgram):
-            object.__setattr__(self, "program", VelocityProgram(self.program))
-        self.program.check_speeds(U_MIN, U_MAX, "a0/t0")
-
-
-Drive = VelocityDrive | ForceDrive | SpringDrive
 
 
 # ---------------------------------------------------------------- helpers
@@ -474,22 +369,24 @@ def _count_slips(rec: Recorder, thr: float) -> int:
 
 def simulate(
     model: TrapModel,
-    track: Track,
-    initial: Initial,
     drive: Drive,
+    initial: Initial,
     output: Output,
     *,
     progress: Progress | None = None,
     on_interrupt: str = "raise",
 ) -> SimulationResult:
-    """Run the trap ensemble under a drive and sample it.
+    """Run the trap ensemble under a drive and sample it (the trap model's
+    ``dryfriction.simulate``, :mod:`dryfriction.simulation`).
 
     Parameters
     ----------
-    model, track, initial : TrapModel, Track, Initial
-        Traps and creep law; pair positions; initial population (made at ``t = 0``, ``X = 0``).
+    model : TrapModel
+        Traps, creep law, direct effect.
     drive : VelocityDrive, ForceDrive or SpringDrive
         What moves the slider.
+    initial : Initial
+        Initial population (made at ``t = 0``, ``X = 0``) and its ``track`` (pair positions).
     output : Output
         Sampling.
     progress : callable, optional
@@ -508,7 +405,22 @@ def simulate(
     ValueError
         Bad input, or a run whose samples, pairs and snapshots would not fit the memory limit
         (:func:`dryfriction.validation.memory_limit`), before any work.
+
+    Notes
+    -----
+    The old form ``simulate(model, track, initial, drive, output)`` still works for one
+    release and warns (:class:`~dryfriction.simulation.OldSimulatorFormWarning`).
     """
+    check_parts("cv", drive=drive, initial=initial, output=output)
+    if not isinstance(initial, Initial):
+        raise ValueError(f"initial = {initial!r} is not allowed: an Initial (the population "
+                         "and its track)")
+    if initial.track is None:
+        raise ValueError("initial.track is missing: the run needs the pairs' positions, e.g. "
+                         "Initial('rest', track=Track(traps_per_a0=100))")
+    if not isinstance(output, Output):
+        raise ValueError(f"output = {output!r} is not allowed: an Output (every or every_slip)")
+    track = initial.track
     check_choice("on_interrupt", on_interrupt, ("raise", "partial"))
     if isinstance(drive, ForceDrive):
         horizon = drive.hold + drive.max_force / drive.rate
@@ -569,11 +481,61 @@ def simulate(
         del model_d["direct"], model_d["v_ref"]
     info["parameters"] = {
         "model": model_d,
-        "track": asdict(track),
-        "initial": asdict(initial),
+        "track": asdict(track),  # on its own, as before the track moved into the initial
+        "initial": {k: v for k, v in asdict(initial).items() if k != "track"},
         "drive": _describe(drive),
     }
     return res
+
+
+def _old_form(model: TrapModel, track: Track, initial: Initial, drive: Drive, output: Output,
+              *, progress: Progress | None = None, on_interrupt: str = "raise") -> None:
+    """The signature of the old form (before issue 26), to bind a call against."""
+
+
+_NEW_FORM, _OLD_FORM = inspect.signature(simulate), inspect.signature(_old_form)
+
+
+def _accepting_old_form(run: Callable[..., SimulationResult]) -> Callable[..., SimulationResult]:
+    """``run`` that also takes the old form ``(model, track, initial, drive, output)``, in any
+    mix of positions and keywords, and warns (one release, CHANGELOG.md)."""
+
+    @functools.wraps(run)
+    def simulate(*args: Any, **kwargs: Any) -> SimulationResult:
+        try:
+            _NEW_FORM.bind(*args, **kwargs)
+        except TypeError as exc:
+            try:
+                old = _OLD_FORM.bind(*args, **kwargs).arguments
+            except TypeError:
+                raise TypeError(f"simulate(): {exc}") from None
+            warnings.warn(
+                "simulate(model, track, initial, drive, output) is deprecated and will be "
+                "removed in the next release: use simulate(model, drive, Initial(..., "
+                "track=track), output), or dryfriction.simulate for either law",
+                OldSimulatorFormWarning, stacklevel=2)
+            initial = old["initial"]
+            if isinstance(initial, Initial):
+                initial = initial_with_track(initial, old["track"])
+            options = {k: old[k] for k in ("progress", "on_interrupt") if k in old}
+            return run(old["model"], old["drive"], initial, old["output"], **options)
+        return run(*args, **kwargs)
+
+    return simulate
+
+
+simulate = _accepting_old_form(simulate)
+
+
+def initial_with_track(initial: Initial, track: Track) -> Initial:
+    """``initial`` on ``track`` (the old form's separate track); a different track already
+    set is refused rather than silently replaced."""
+    if initial.track is None:
+        return replace(initial, track=track)
+    if initial.track != track:
+        raise ValueError(f"track = {track!r} is given twice, differently: initial.track = "
+                         f"{initial.track!r}; give it once, in Initial(..., track=...)")
+    return initial
 
 
 def continue_spring(

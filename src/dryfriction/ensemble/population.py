@@ -45,23 +45,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 
+from .. import simulation
 from ..interrupts import deferred
-from ..theory.creep import CREEP_LAWS, CreepLaw, creep_law
+from ..theory.model import TRAPS_PER_A0, TrapModel
 from ..theory.static import loaded_edge
-from ..theory.trap import Regime, Trap
+from ..theory.trap import Regime
 from ..validation import (
-    ALPHA_MIN,
-    EPS_MAX,
-    FRICTION_MAX,
     U_MAX,
     U_MIN,
     Array,
     check_choice,
-    check_direct,
     check_scalar,
 )
 from .kernel import FREE_FAR, FREE_NEAR, MINUS, OUT_SIZE, PLUS, advance_window, radius_table
@@ -80,64 +77,14 @@ __all__ = [
 
 
 LAYOUTS: tuple[str, ...] = ("regular", "random")
-TRAPS_PER_A0_MIN = 1e-6
-"""Sparsest track accepted (pairs per ``a0``)."""
+TRAPS_PER_A0_MIN: float = TRAPS_PER_A0.lo  # type: ignore[assignment]
+"""Sparsest track accepted (pairs per ``a0``): :data:`dryfriction.theory.model.TRAPS_PER_A0`."""
 INITIAL_KINDS: tuple[str, ...] = ("rest", "loaded", "steady")
 _BLOCK = 1024  # pairs per random block
 _CHUNK = 1 << 16
 """Pairs placed at once by ``Ensemble._place_initial``: its temporaries (about 50 bytes a
 pair for a steady population) are then bounded, and the start-up peak is the 17 bytes a pair
 the buffer holds (position, birth, state) plus a few MB."""
-
-
-@dataclass(frozen=True)
-class TrapModel:
-    """Physical parameters of the traps.
-
-    Parameters
-    ----------
-    alpha : float
-        Reduced trap stiffness ``kappa a^2 / (6 Phi0)``, ``0 < alpha < 1`` (0.13 in the paper).
-    eps : float
-        Creep parameter ``S/Y``, ``>= 0`` (0: no ageing).
-    creep : {"log", "eyring-nabarro"}
-        Ageing law (eq. 17 or eqs. 15-16).
-    mu_el : float
-        Friction coefficient of the purely elastic model, ``F_el / N``: the reported
-        ``mu = mu_el F/F_el``. ``0 < mu_el <= FRICTION_MAX`` (10), default 1.
-    direct : float
-        Direct-effect coefficient ``A``, ``0 <= A <= 1`` (:mod:`dryfriction.theory.direct`):
-        the friction force is ``g(V) x`` the population's force, ``V`` the slider's present
-        velocity (ours: the trap dynamics are unchanged). 0: the athermal model.
-    v_ref : float
-        Reference velocity of the junction rheology, ``a0/t0``, ``> 0``.
-    """
-
-    alpha: float = 0.13
-    eps: float = 0.0
-    creep: str = "log"
-    mu_el: float = 1.0
-    direct: float = 0.0
-    v_ref: float = 1.0
-
-    def __post_init__(self) -> None:
-        a = check_scalar("alpha", self.alpha, ALPHA_MIN, 1.0, hi_open=True)
-        object.__setattr__(self, "alpha", a)
-        object.__setattr__(self, "eps", check_scalar("eps", self.eps, 0.0, EPS_MAX))
-        check_choice("creep", self.creep, CREEP_LAWS)
-        object.__setattr__(self, "mu_el", check_scalar("mu_el", self.mu_el, 0.0, FRICTION_MAX,
-                                                                   lo_open=True))
-        direct, v_ref = check_direct(self.direct, self.v_ref)
-        object.__setattr__(self, "direct", direct)
-        object.__setattr__(self, "v_ref", v_ref)
-
-    @property
-    def trap(self) -> Trap:
-        return Trap(self.alpha)
-
-    @property
-    def law(self) -> CreepLaw:
-        return creep_law(self.creep, self.eps)
 
 
 @dataclass(frozen=True)
@@ -207,8 +154,16 @@ class Track:
 
 
 @dataclass(frozen=True)
-class Initial:
-    """Initial population.
+class Initial(simulation.Initial):
+    """The contact population at ``t = 0``: which pairs are in contact, how old, and where
+    the pairs sit on the track.
+
+    The track belongs here, not to the :class:`TrapModel`: the model is the law of one trap
+    (stiffness, creep, direct effect), which the theory (:mod:`dryfriction.theory`) uses for
+    the continuum of traps, where the pairs have no positions; the track is one realisation
+    of the population (a density, a layout, a seed), as the state is for rate-and-state
+    (:class:`dryfriction.rsf.spring.RSFInitial`). So the same model serves the theory and
+    every run, and two runs on the same track differ only in how they start.
 
     Parameters
     ----------
@@ -220,13 +175,23 @@ class Initial:
         ``0 <= force < 1``.
     velocity : float, optional
         ``steady`` only: the reduced sliding velocity ``u > 0`` (units ``a0/t0``).
+    track : Track
+        Positions of the asperity pairs, required by a run
+        (:func:`dryfriction.ensemble.driving.simulate`); ``None`` only for the old form of the
+        call, which passes the track on its own, and for an :class:`Ensemble`, which takes it
+        as its own argument.
     """
 
+    law: ClassVar[str] = "cv"
     kind: str = "rest"
     force: float | None = None
     velocity: float | None = None
+    track: Track | None = None
 
     def __post_init__(self) -> None:
+        if self.track is not None and not isinstance(self.track, Track):
+            raise ValueError(f"track = {self.track!r} is not allowed: a Track (the pairs' "
+                             "density traps_per_a0, layout and seed)")
         check_choice("initial", self.kind, INITIAL_KINDS)
         if self.kind == "loaded":
             if self.force is None:

@@ -24,20 +24,13 @@ import math
 from dataclasses import dataclass
 
 from ..validation import check_memory, check_time
+from .drives import CLOCK_MAX, ForceDrive, SpringDrive
 from .population import Initial, Track, TrapModel
 from .result import FORCE_HOLD_LOG_STEP, Output, sample_interval
+from .thermal import SUBSTEP_SLIP
 
 __all__ = ["BYTES_PER_SAMPLE", "BYTES_PER_TRAP", "CLOCK_MAX", "RunEstimate", "check_run",
            "estimate_run", "estimate_work"]
-
-CLOCK_MAX = 2.0**46
-"""Longest run, ``t0`` (ours; issue 24). The kernel's times are floats: near ``t`` their
-spacing is ``t 2^-52``, and an age (a difference of two times, under the kernel's reassociating
-fast math) carries an error of a few spacings. At ``2^46 t0`` (7.0e13) that is ``1/64 t0``,
-far from the ``1 t0`` at which ``ln(1 + age)`` fails. Measured: a spring drive at ``1e-15
-a0/t0`` reached ``t = 9.0e15 t0 > 2^53 t0`` (spacing ``2 t0``), where the kernel's force turned
-NaN and the jump then searched ``1e9 a0`` for an equilibrium, event by event, for hours
-without a line."""
 
 SECONDS_PER_CALL = 15e-6
 """Seconds of one call of the compiled kernel with the Python around it, without its pairs
@@ -128,8 +121,6 @@ def estimate_run(model: TrapModel, track: Track, initial: Initial, drive: object
     -------
     RunEstimate
     """
-    from .driving import ForceDrive  # driving imports this module
-
     D = max(1.0, model.trap.y_c)
     step_slip = 0.0
     if isinstance(drive, ForceDrive):
@@ -178,9 +169,6 @@ def estimate_work(model: TrapModel, track: Track, drive: object, est: RunEstimat
     (``est.active``); placing the initial population adds :data:`SECONDS_PER_PLACED_PAIR` per
     pair of the buffer (``est.traps``). Floats throughout.
     """
-    from .driving import ForceDrive, SpringDrive  # driving imports this module
-    from .thermal import SUBSTEP_SLIP
-
     lam = track.traps_per_a0
     # the sampling steps: the estimate's samples less its allowance for the first and last
     # sample, the snapshots and a part step per segment
@@ -243,8 +231,6 @@ def check_run(model: TrapModel, track: Track, initial: Initial, drive: object, o
         One line with the estimate, the limit and the key to change; the key named is that of
         the largest part of the estimate.
     """
-    from .driving import ForceDrive  # driving imports this module
-
     if isinstance(drive, ForceDrive) and output.every_slip is not None:
         # the ramp's time step; below the rounding of the run's clock the ramp cannot advance
         dt = float(output.every_slip) * model.trap.contact_stiffness / drive.rate

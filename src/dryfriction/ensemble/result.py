@@ -10,12 +10,13 @@ import bisect
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
+from .. import simulation
 from ..program import VelocityProgram
-from ..results import records, summarize, to_dataframe
+from ..results import summarize
 from ..validation import Array, check_range, check_scalar
 from .population import Ensemble, Observables
 
@@ -25,7 +26,7 @@ __all__ = ["COLUMNS", "UNITS", "Output", "Recorder", "SimulationResult", "sample
 
 
 @dataclass(frozen=True)
-class Output:
+class Output(simulation.Output):
     """Sampling of the time series: exactly one of ``every`` (``t0``) or ``every_slip`` (``a0``).
 
     Parameters
@@ -44,6 +45,7 @@ class Output:
         time) a snapshot is taken at the first sample at or after the requested time.
     """
 
+    law: ClassVar[str] = "cv"
     every: float | None = None
     every_slip: float | None = None
     snapshots: tuple[float, ...] = ()
@@ -105,7 +107,7 @@ UNITS: dict[str, str] = {
 
 
 @dataclass
-class SimulationResult:
+class SimulationResult(simulation.Result):
     """Time series of a run (NumPy arrays, reduced units) and what happened.
 
     Attributes
@@ -130,6 +132,7 @@ class SimulationResult:
         Drive-specific scalars (threshold, runaway, ...), and ``partial``.
     """
 
+    law: ClassVar[str] = "cv"
     t: Array
     x: Array
     v: Array
@@ -151,14 +154,6 @@ class SimulationResult:
     def to_dict(self) -> dict[str, Array]:
         """The time series as ``{column: array}``: the same as :meth:`columns`."""
         return self.columns()
-
-    def to_records(self) -> np.ndarray:
-        """The time series as a NumPy structured array (one record per sample)."""
-        return records(self.columns())
-
-    def to_dataframe(self) -> Any:
-        """A ``pandas.DataFrame`` of the time series (needs pandas, not a dependency)."""
-        return to_dataframe(self.columns())
 
     def columns(self) -> dict[str, Array]:
         """The time series as ``{column: array}`` (the shared names of

@@ -29,7 +29,7 @@ Models (SI units; friction coefficients ``F/W``):
   :meth:`dryfriction.rsf.RateState.hold_peak_friction` (``mu0 + b ln(1 + t_w V0/Dc)``, ageing
   law, reload at ``V0``; Beeler, Tullis & Weeks 1994; Marone 1998) and nothing about ``a``;
   time series (velocity steps, slide-hold-slide) give ``a, b, Dc, mu0`` through
-  :func:`dryfriction.rsf.driving.simulate_rsf`.
+  :func:`dryfriction.rsf.driving.simulate`.
 
 Time-series models are callables ``(values, data) -> predicted friction``
 (:data:`SeriesModel`); the rate-and-state one is :func:`rsf_series`, the trap model's is

@@ -21,7 +21,8 @@ import numpy as np
 from ..program import Segment
 from ..records.data import SeriesData
 from ..theory.direct import junction_strength
-from ..theory.stability import effective_rsf
+from ..theory.linear_stability import effective_rsf
+from ..theory.model import TRAPS_PER_A0, TrapModel
 from ..theory.steady import steady_friction
 from ..theory.units import PhysicalScales
 from ..validation import Array
@@ -50,7 +51,8 @@ def _key(values: Mapping[str, float], *options: Any) -> tuple[Any, ...]:
 
 
 def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13,
-              creep: str = "log", traps_per_a0: float = 1000.0, every_slip: float = 0.01,
+              creep: str = "log", traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
+              every_slip: float = 0.01,
               max_samples: int = 200_000, stiffness: float = math.inf,
               sample_slip: float | None = None, steady_tail: bool = False) -> Array:
     """The trap model's friction along a measured load program (the CV time-series model).
@@ -143,9 +145,8 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
                 res = spring_series(model, Track(traps_per_a0), prog, drive.stiffness,
                                     float(output.every_slip))  # type: ignore[arg-type]
             else:
-                res = simulate(model, Track(traps_per_a0), Initial("steady",
-                                                                   velocity=float(u[0])),
-                               drive, output)
+                res = simulate(model, drive, Initial("steady", velocity=float(u[0]),
+                                                     track=Track(traps_per_a0)), output)
         except ValueError as exc:
             if "DRYFRICTION_MEMORY_LIMIT" not in str(exc):
                 raise
@@ -168,7 +169,7 @@ def cv_start_from_rsf(rsf: Mapping[str, float], v0: float, alpha: float = 0.13,
     """A trap-model start from a rate-and-state fit at ``v0``, through the twin (ours).
 
     The twin of steady sliding at reduced velocity ``u = v0 t0/a0``
-    (:func:`dryfriction.theory.direct_stability.effective_rsf_direct`: ``a = g a_0 + a_d``,
+    (:func:`dryfriction.theory.linear_stability.effective_rsf`: ``a = g a_0 + a_d``,
     ``b = g b_0``, ``Dc`` unchanged, ``a_0, b_0`` in ``F_el``, ``Dc`` in ``a0``, ``g`` the
     junction strength at ``u``, ``a_d ~ A mu_d``) is matched to the fitted ``b``, ``dc``,
     ``mu0`` (and ``a`` with the direct effect): ``mu_el = mu0 / (g mu_d(u))``, ``eps`` scaled
@@ -187,7 +188,7 @@ def cv_start_from_rsf(rsf: Mapping[str, float], v0: float, alpha: float = 0.13,
     eps, mu_el, A, g = 0.02, float(rsf["mu0"]), 0.0, 1.0
     u_ref = v_ref * u / v0  # v_ref in units a0/t0 = v0/u
     for _ in range(4):
-        tw = effective_rsf(u, eps, alpha, creep)
+        tw = effective_rsf(u, TrapModel(alpha, eps, creep))
         mu_d = float(steady_friction(u, eps, alpha, creep))
         g = float(junction_strength(u, A, u_ref)) if A else 1.0
         mu_el = float(rsf["mu0"]) / (g * mu_d)

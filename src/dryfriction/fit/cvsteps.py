@@ -22,6 +22,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from ..records.data import SeriesData
+from ..theory.model import TRAPS_PER_A0_COARSE
 from .cvseries import cv_start_from_rsf
 from .engine import fit
 from .models import CVModel
@@ -31,7 +32,7 @@ __all__ = ["fit_cv_steps", "record_cv_model", "search_step", "RECORD_TRAPS_PER_A
            "RECORD_SAMPLE_SLIP", "RECORD_MAX_NFEV", "RECORD_DIFF_STEP", "SEARCH_MAX_ITER",
            "SEARCH_STOP", "SEARCH_TRIALS"]
 
-RECORD_TRAPS_PER_A0 = 100.0
+RECORD_TRAPS_PER_A0 = TRAPS_PER_A0_COARSE
 """Track density for a record (measured on the shared sepiolite step, at the rate-and-state
 start: rms difference from a 1000-trap track 1.0e-3 with ``A = 0`` and 2.8e-4 with
 ``A = 0.03``, below the record's steady noise 1.5e-3; a forward run 0.3 s and 1 s CPU)."""

@@ -19,10 +19,11 @@ from typing import Any
 import numpy as np
 
 from ..records.data import Dataset, SeriesData, StaticData, SteadyData
-from ..rsf.driving import RSFOutput, SpringSlider, simulate_rsf
+from ..rsf.driving import RSFOutput, SpringSlider, simulate
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
+from ..theory.model import TRAPS_PER_A0
 from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
@@ -211,7 +212,7 @@ class CVModel:
     alpha: float = 0.13
     creep: str = "log"
     series: SeriesModel | None = None
-    traps_per_a0: float = 1000.0
+    traps_per_a0: float = TRAPS_PER_A0.default  # type: ignore[assignment]
     diff_step: float = 0.03
     direct: float = 0.0
     v_ref: float = 1e-6
@@ -416,7 +417,7 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     piecewise-constant ``v_load`` (:meth:`SeriesData.segments`), or the measured load point's
     where the data carry one (``data.drive``, :mod:`.loadpoint`); the returned friction is the
     spring force per unit normal force (what a load cell measures), at the data's times,
-    from :func:`dryfriction.rsf.simulate_rsf` with the model's stiffness
+    from :func:`dryfriction.rsf.simulate` with the model's stiffness
     (``values["stiffness"]`` where it is fitted), damping and state law, plus the linear trend
     ``values["trend"] * x_lp`` in the load-point displacement ``x_lp`` from the first sample
     (:func:`load_point_displacement`) where the model has one (``trend=True``). A program
@@ -426,9 +427,9 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     prog, te, hold = load_program(data)
     params = rate_state(model.state_law, values, model.v0, model.regularized or hold)
     k = machine_stiffness(model.stiffness, values)
-    res = simulate_rsf(params, SpringSlider(prog, k, model.damping),
-                       initial_state(model.initial, values, float(prog.velocities[0])),
-                       output=RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
+    res = simulate(params, SpringSlider(prog, k, model.damping),
+                   initial_state(model.initial, values, float(prog.velocities[0])),
+                   RSFOutput(t_eval=te, rtol=1e-9, max_steps=200_000))
     mu = np.asarray(res.stress, float)
     if model.trend:
         mu = mu + values["trend"] * load_point_displacement(data)

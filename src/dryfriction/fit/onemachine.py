@@ -4,8 +4,11 @@ fit identifies it (:func:`.identify.record_stiffness`: the inverse-variance weig
 ``ln k``, steps that disagree flagged ``k_inconsistent`` and left out), and every step is then
 refitted with ``k`` held at that value.
 
-The per-step intervals of ``a``, ``b``, ``Dc`` then hold ``k`` exact: the record's ``k`` is
-known to its own interval (in ``fit.json``'s ``record_stiffness``), which they do not carry.
+The per-step intervals of ``a``, ``b``, ``Dc`` carry the record's ``k``'s own error (its
+interval in ``fit.json``'s ``record_stiffness``): a two-step estimator, whose second step's
+covariance gains ``G var(ln k) G^T`` and the cross term of the step's own share in ``k``
+(Murphy & Topel 1985; :func:`.statistics.held_parameter_covariance`), ``G`` how ``a, b, Dc``
+move with the held ``k``. The elastic loadings are taken as independent of the windows.
 """
 
 from __future__ import annotations
@@ -16,7 +19,37 @@ from typing import Any
 from .identify import join_flags, split_flags
 from .steps import StepsResult, fit_steps
 
-__all__ = ["fit_steps_one_machine"]
+__all__ = ["fit_steps_one_machine", "held_stiffness"]
+
+Z = 1.96
+"""The quantile :func:`.identify.record_stiffness` reads standard errors of ``ln k`` with."""
+
+
+def held_stiffness(rec: dict[str, Any], rows: list[dict[str, Any]]) -> list[tuple[float, float]]:
+    """Per step, ``(var ln k, share)`` of the record's stiffness ``rec``
+    (:func:`.identify.record_stiffness`; standard errors from the 95 % intervals as it reads
+    them): the variance of its ``ln k``, and the step's inverse-variance weight in it (its
+    free fit's, from ``rows``; 0 for a step left out of it).
+
+    Parameters
+    ----------
+    rec : dict
+        The record's stiffness (``lo``, ``hi``: its 95 % interval, 1/m; ``steps``).
+    rows : list of dict
+        The free fits' rows (``stiffness_lo``, ``stiffness_hi``, 1/m).
+
+    Returns
+    -------
+    list of (float, float)
+        Per row, ``(var ln k, share)`` for :func:`.steps.fit_steps`'s ``held``.
+    """
+    var = (math.log(rec["hi"] / rec["lo"]) / (2.0 * Z)) ** 2
+    out = []
+    for i, r in enumerate(rows):
+        own = (math.log(r["stiffness_hi"] / r["stiffness_lo"]) / (2.0 * Z)) ** 2 \
+            if i in rec["steps"] else math.inf
+        out.append((var, min(var / own, 1.0) if own > 0 else 0.0))
+    return out
 
 
 def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None,
@@ -36,7 +69,8 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
             "fewer than two estimates of k (steps that identify it, elastic loadings)") +
             ", so each step keeps its own fitted stiffness")
         return free
-    fixed = fit_steps(record, windows, segments, stiffness=float(rec["value"]), **kwargs)
+    fixed = fit_steps(record, windows, segments, stiffness=float(rec["value"]),
+                      held=held_stiffness(rec, free.rows), **kwargs)
     for row, own, f in zip(fixed.rows, free.rows, free.fits, strict=True):
         words = split_flags(row["flags"])
         carried = [n for n in own["notes"][len(f.notes):] if n.startswith("k_inconsistent")]
@@ -48,7 +82,8 @@ def fit_steps_one_machine(record: Any, windows: Any = None, segments: Any = None
         row["notes"] += carried + [
             f"k = {rec['value']:.4g} /m [{rec['lo']:.4g}, {rec['hi']:.4g}] held: the record's "
             f"one machine (steps {', '.join(map(str, rec['steps']))}); this step's own free "
-            f"fit gave k = {own['stiffness']:.4g} /m"]
+            f"fit gave k = {own['stiffness']:.4g} /m; the intervals of a, b, Dc carry the "
+            "record's k's error"]
     fixed.stiffness = rec
     used = [ld for ld in rec.get("loadings", []) if ld["used"]]
     at = ", ".join(f"{ld['t_start']:.6g}" for ld in used)

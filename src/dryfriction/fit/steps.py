@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -53,7 +53,7 @@ from .laws import FIT_LAWS, INITIAL_STATES
 from .machine import hold_remnant
 from .models import ParamSpec, RSFModel, rsf_series
 from .results import FitResult
-from .statistics import Covariance, quantile_95
+from .statistics import Covariance, held_parameter_covariance, quantile_95, with_stderr
 
 __all__ = ["StepsResult", "fit_steps", "series_windows", "step_data",
            "write_steps_csv",
@@ -201,13 +201,11 @@ class StepCovariance:
     white : Covariance
         ``s^2 (J^T J)^-1``, independent noise (``s^2 = RSS/dof``).
     robust : Covariance or None
-        The autocorrelation-robust sandwich (:func:`.statistics.hac_covariance`); ``None``
-        with ``errors="white"``.
+        The autocorrelation-robust one (:func:`step_covariance`); ``None`` for ``"white"``.
     rho1 : float
         Lag-1 autocorrelation of the residuals.
     lags : int
-        The robust estimate's Bartlett bandwidth, on the prewhitened scores (0 for
-        ``"white"``).
+        The score HAC's Bartlett bandwidth, on the prewhitened scores (0 for ``"white"``).
     """
 
     specs: tuple[ParamSpec, ...]
@@ -235,26 +233,22 @@ class StepCovariance:
         return r / w if w > 0 and math.isfinite(r) else math.inf
 
 
-def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCovariance:
+def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac",
+                    held: tuple[float, float] | None = None) -> StepCovariance:
     """The covariance of a window's fit ``r`` on data ``d`` (ours): rate-and-state, or the
     trap model (:mod:`.cvsteps`), parameters held fixed in the fit held fixed here.
 
     ``"white"``: ``s^2 (J^T J)^-1`` with ``s^2 = RSS/(n - p)``, as the engine gives.
-    ``"hac"``: also the autocorrelation-robust sandwich. A measured record's residuals are
-    correlated over many samples (apparatus fluctuations, slow drifts the model has no term
-    for; on the shared sepiolite record the lag-1 autocorrelation is near 1), so the white
-    intervals are far too narrow there; the robust ones count the correlated residuals as the
-    fewer independent samples they are.
+    ``"hac"``: also the autocorrelation-robust sandwich: a measured record's residuals are
+    correlated over many samples (apparatus fluctuations, slow drifts), so the white intervals
+    are far too narrow there. Rate-and-state: :func:`.statistics.local_covariance` and the
+    drive's change time (:func:`.loadpoint.change_time_effect`); the trap model: the score
+    HAC. ``held``: ``(var ln k, this window's share in it)``, the stiffness held at the
+    record's: its error carried (:func:`.statistics.held_parameter_covariance`).
     """
     from .loadpoint import change_time_effect
     from .problem import Problem
-    from .statistics import (
-        covariance,
-        hac_covariance,
-        lag1_autocorrelation,
-        time_hac_covariance,
-        with_stderr,
-    )
+    from .statistics import covariance, hac_covariance, lag1_autocorrelation, local_covariance
 
     check_choice("errors", errors, ERRORS)
     m = r.fitted_model
@@ -269,20 +263,26 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac") -> StepCov
     J = prob.jacobian(theta)
     white = covariance(J, 2.0 * cost / dof)
     rho1 = float(lag1_autocorrelation(res)[0])
-    if errors == "white":
-        return StepCovariance(specs, theta, cost, dof, white, None, rho1, 0)
-    robust, lags = hac_covariance(J, res)
-    names = [s.name for s in specs]
-    if "stiffness" in names and not robust.singular and isinstance(m, RSFModel):
-        # k is fixed by ~0.2 s after the change: its variance from the noise's autocovariance
-        # on a time lag (statistics.time_hac_covariance; the score HAC's where larger, ours)
-        # and the measured drive's change time (loadpoint.change_time_effect); measured on
-        # rate-and-state only (a trap-model fit keeps the score HAC); correlations kept
-        j = names.index("stiffness")
-        se = max(float(time_hac_covariance(J, res, np.asarray(d.t, float))[0].stderr[j]),
-                 float(robust.stderr[j]))
+    rsf, robust, lags = isinstance(m, RSFModel), None, 0
+    if errors == "hac" and not rsf:
+        robust, lags = hac_covariance(J, res)
+    elif errors == "hac":
+        robust, lags = local_covariance(J, res, d.t)
         tc = change_time_effect(lambda x: Problem(m, [x], specs, fixed).residuals(theta), d, J)
-        robust = with_stderr(robust, j, se if tc is None else math.hypot(se, float(tc[j])))
+        for j in range(len(specs) if tc is not None and not robust.singular else 0):
+            robust = with_stderr(robust, j, math.hypot(robust.stderr[j], tc[j]))  # independent
+    base = white if robust is None else robust
+    if held is not None and rsf and not isinstance(m.stiffness, str) and not base.singular:
+        mk = replace(m, stiffness="fit")  # k free at its held value: how the others move with it
+        sk = tuple(s for s in mk.parameters(frozenset({"series"})) if s.name not in fixed)
+        tk = np.array([s.to_internal({**val, "stiffness": m.stiffness}[s.name]) for s in sk])
+        pk, jk = Problem(mk, [d], sk, fixed), [s.name for s in sk].index("stiffness")
+        Jk, rk = pk.jacobian(tk), pk.residuals(tk)
+        ck = covariance(Jk, 2.0 * cost / dof) if robust is None else \
+            local_covariance(Jk, rk, d.t)[0]
+        mat = base.matrix + held_parameter_covariance(Jk, ck.matrix, jk, *held)
+        base = Covariance(mat, np.sqrt(np.abs(np.diag(mat))), False)
+        white, robust = (base, None) if robust is None else (white, base)
     return StepCovariance(specs, theta, cost, dof, white, robust, rho1, lags)
 
 
@@ -290,7 +290,6 @@ def robust_estimates(sc: StepCovariance) -> dict[str, dict[str, float]]:
     """Each free parameter's standard error and 95 % Wald interval from ``sc``'s robust
     covariance (the white one for ``"white"``), in its own units (delta method for ``log``
     parameters), and the inflation over the white standard error."""
-    from .statistics import quantile_95
 
     z = quantile_95(False, sc.dof)
     out: dict[str, dict[str, float]] = {}
@@ -323,7 +322,6 @@ def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED,
     up or the root does not grow keeps its Wald limit.
     """
     from .problem import Problem
-    from .statistics import quantile_95
 
     sc = step_covariance(r, d, "white") if cov is None else cov
     specs, theta, cost = list(sc.specs), sc.theta, sc.cost
@@ -367,7 +365,6 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
     """One row of the table: values, standard errors and 95 % intervals from ``sc`` (the
     robust covariance where there is one; delta method for ``log`` parameters and ``a - b``),
     the profile limits where ``profiles`` has them."""
-    from .statistics import quantile_95
 
     est = {p.name: p for p in r.parameters}
     names = [s.name for s in sc.specs]
@@ -517,6 +514,7 @@ def fit_steps(
     drive: str = "program",
     initial: str = "steady",
     warm: Sequence[Mapping[str, float]] | None = None,
+    held: Sequence[tuple[float, float]] | None = None,
 ) -> StepsResult:
     """Fit rate-and-state friction to each step window of a record (module docstring).
 
@@ -562,6 +560,8 @@ def fit_steps(
     warm : sequence of mappings, optional
         Starting values per window (e.g. a fit of the same window with another initial
         state, :mod:`.lawchoice`); default: the previous window's optimum.
+    held : sequence of (float, float), optional
+        Per window, the held stiffness's ``(var ln k, share)`` (:func:`step_covariance`).
 
     Returns
     -------
@@ -606,7 +606,7 @@ def fit_steps(
             r2 = fit(d, model, profile=False, progress=tick)
             r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
         fits.append(r)
-        sc = step_covariance(r, d, errors)
+        sc = step_covariance(r, d, errors, None if held is None else held[i])
         prof = quick_profile(r, d, cov=sc) if profile and r.success else None
         rows.append(_row(w, d, r, model, sc, prof))
         if not r.success:

@@ -121,7 +121,8 @@ _REQUIRED_DRIVE = {
 
 @dataclass(frozen=True)
 class Protocol:
-    """A validated protocol: everything :func:`dryfriction.ensemble.driving.simulate` needs."""
+    """A validated protocol: everything :func:`dryfriction.ensemble.driving.simulate` needs
+    (``track`` is ``initial.track``, kept on its own for the readers of the protocol)."""
 
     model: TrapModel
     track: Track
@@ -138,13 +139,14 @@ class Protocol:
         """Run the simulation (see :func:`dryfriction.ensemble.driving.simulate`)."""
         from ..ensemble.driving import simulate
 
-        return simulate(self.model, self.track, self.initial, self.drive, self.output,
-                        progress=progress, on_interrupt=on_interrupt)
+        return simulate(self.model, self.drive, self.initial, self.output, progress=progress,
+                        on_interrupt=on_interrupt)
 
 
 @dataclass(frozen=True)
 class RSFProtocol:
-    """A validated rate-and-state protocol (SI units): what :func:`simulate_rsf` needs.
+    """A validated rate-and-state protocol (SI units): what
+    :func:`dryfriction.rsf.driving.simulate` needs.
 
     Attributes
     ----------
@@ -185,12 +187,12 @@ class RSFProtocol:
         return self.drive.mass
 
     def run(self) -> RSFResult:
-        """Run :func:`dryfriction.rsf.driving.simulate_rsf`; a failed integration is a
+        """Run :func:`dryfriction.rsf.driving.simulate`; a failed integration is a
         ``ValueError`` naming the protocol file and the cause."""
-        from ..rsf.driving import SolverError, simulate_rsf
+        from ..rsf.driving import SolverError, simulate
 
         try:
-            return simulate_rsf(self.params, self.drive, self.initial, self.output)
+            return simulate(self.params, self.drive, self.initial, self.output)
         except (SolverError, ValueError) as exc:
             raise ValueError(f"{self.source}: {exc}") from None
 
@@ -336,6 +338,7 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         kind=e.string("initial", required=True),
         force=e.number("initial_force"),
         velocity=e.number("initial_velocity"),
+        track=track,
     )
 
     d = _Table(source, "drive", doc["drive"])

@@ -1,8 +1,9 @@
 """The artifacts of a laboratory record that are not velocity changes (issue 23).
 
 Displacement resets (a transducer re-zeroed: a jump in one sample that neither neighbouring
-velocity explains), sampling-rate changes and gaps, and normal-stress changes (a segment
-boundary). Found here, reported by :func:`.detection.detect_program`; every criterion is ours.
+velocity explains; or, too small for that, a short excursion that a jump fits as well),
+sampling-rate changes and gaps, and normal-stress changes (a segment boundary). Found here,
+reported by :func:`.detection.detect_program`; every criterion is ours.
 """
 
 from __future__ import annotations
@@ -10,8 +11,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..validation import Array
+from .segmentation import line_fit
 
-__all__ = ["find_resets", "normal_changes", "sampling_changes"]
+__all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
 
 _RESET_K = 15.0  # a reset's jump, in robust scales of the increments' scatter
 _NORMAL_REL = 0.03  # a normal-stress change: at least 3 % of the level ...
@@ -82,6 +84,79 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         A = np.column_stack([np.ones(b - a), tt, (np.arange(a, b) > i).astype(float)])
         fix[i + 1:] -= np.linalg.lstsq(A, x[a:b], rcond=None)[0][2]
     return x + fix, [int(i) for i in jump]
+
+
+JUMP_REL = 0.1
+"""An excursion is a jump of the displacement when a line with a step fits within this fraction
+of the three stretches' residual sum of squares (ours; zoo record 123, a 3-um re-zeroing at 20
+Hz under a 0.12-um quantum: 6 %)."""
+
+
+def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: float, m: int
+             ) -> list[tuple[int, int, float]]:
+    """Excursions (a stretch between two of the same velocity) that one line with a jump of
+    the displacement fits as well: ``(j, k, jump)``, ``j`` the excursion's first boundary
+    (index in ``bounds``), ``k`` the first sample after the jump, ``jump`` in m.
+
+    Ours: a velocity excursion is a ramp of the displacement, a re-zeroing a jump. The line
+    plus a step at the best sample ``k`` (its gain over one line from cumulative sums of the
+    line's residuals) is compared with the three stretches' own lines near the excursion; it
+    stands in for them when its residual sum of squares exceeds theirs by less than
+    :data:`JUMP_REL` of theirs (relative: the residuals are mostly the red wander, not the
+    white noise), with three parameters fewer.
+
+    Parameters
+    ----------
+    t, x : Array
+        Times, s, and load-point displacement, m (every sample).
+    bounds : list of int
+        Stretch boundaries (samples, from 0 to ``len(t)``).
+    v : Array
+        Velocity of each stretch, m/s.
+    rel_tol : float
+        Velocities within this fraction are the same (an excursion returns to it).
+    m : int
+        Samples either side of the excursion's boundaries where the jump may lie.
+    """
+    out: list[tuple[int, int, float]] = []
+    for j in range(1, len(bounds) - 2):
+        if out and out[-1][0] >= j - 1:
+            continue
+        va, vb = v[j - 1], v[j + 1]
+        if abs(vb - va) > rel_tol * max(abs(va), abs(vb)) or abs(v[j] - va) <= rel_tol * abs(
+                va):
+            continue
+        # near the excursion only (twice its length and m samples each side): the
+        # neighbours' own wander far from it is no evidence either way
+        w = 2 * (bounds[j + 1] - bounds[j]) + m
+        a, c = max(bounds[j - 1], bounds[j] - w), min(bounds[j + 2], bounds[j + 1] + w)
+        tt, y = t[a:c], x[a:c]
+        slope, mean, sxx = line_fit(tt, y)
+        tc = tt - tt.mean()
+        r = y - mean - slope * tc
+        n = c - a
+        # gain of a step starting at sample i (a-relative): (sum_{>=i} r)**2 / |step|**2, the
+        # step projected off the line: n_i - n_i**2 / n - (sum_{>=i} tc)**2 / sxx
+        ks = np.arange(max(1, bounds[j] - m - a), min(n - 1, bounds[j + 1] + m - a))
+        if ks.size == 0 or sxx <= 0:
+            continue
+        rs = np.cumsum(r[::-1])[::-1]
+        ts = np.cumsum(tc[::-1])[::-1]
+        ni = (n - ks).astype(float)
+        den = ni - ni**2 / n - ts[ks] ** 2 / sxx
+        with np.errstate(divide="ignore", invalid="ignore"):
+            gain = np.where(den > 0, rs[ks] ** 2 / den, -np.inf)
+        i = int(np.argmax(gain))
+        rss_jump = float(r @ r) - float(gain[i])
+        rss3 = 0.0
+        for p, q in zip([a, bounds[j], bounds[j + 1]], [bounds[j], bounds[j + 1], c],
+                        strict=True):
+            sl, mu, _ = line_fit(t[p:q], x[p:q])
+            e = x[p:q] - mu - sl * (t[p:q] - t[p:q].mean())
+            rss3 += float(e @ e)
+        if rss_jump - rss3 < JUMP_REL * rss3:
+            out.append((j, a + int(ks[i]), float(rs[ks[i]] / den[i])))
+    return out
 
 
 def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float]]:

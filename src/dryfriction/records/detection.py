@@ -17,7 +17,9 @@ autocorrelation-aware error of a slope over ``T``, estimated without a model of 
 part proportional to the velocity (a servo's wander: on the shared record 6 % of the velocity
 over 10-s windows at both 0.2 and 2 um/s) and one that is not (a wobble or a drift, seen in a
 hold), beside the white noise of the transducer. Beyond the longest scale measured they fall as
-``T**-0.5`` (a random-walk wander; conservative for a bounded one).
+``T**-0.5`` (a random-walk wander; conservative for a bounded one), the relative part at most
+``sqrt(12) lag / T`` (:meth:`Fluctuations.relative_at`: no wander of the measured rms
+position error can tilt a longer stretch more).
 
 Steps (:func:`detect_program`): candidates are the slope changes of a continuous broken line
 (:func:`.segmentation.hinge_segments`, white-noise criterion, the 80 largest gains: too many
@@ -38,7 +40,8 @@ fit being against time. A record longer than ``MAX_POINTS`` samples is searched 
 means and each change then moved to the best hinge on the samples between its neighbours
 (the hinge search is compiled: :mod:`.hinge_kernel`); a change of confidence below
 ``LOCAL_Z`` is finally placed by the maximum-likelihood hinge under the record's own wander
-(:mod:`.placement`: a slow wander bends the kink of the whole stretches).
+(:mod:`.placement`: a slow wander bends the kink of the whole stretches), with the periods of
+a machine oscillation found in the record as free regressors.
 """
 
 from __future__ import annotations
@@ -48,9 +51,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..validation import Array
-from .artifacts import find_resets, normal_changes, sampling_changes
+from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
 from .labsteps import Segment, make_segments
-from .placement import place_changes
+from .placement import oscillation_periods, place_changes
 from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
 
@@ -113,8 +116,20 @@ class Fluctuations:
         return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)
 
     def relative_at(self, durations: Array) -> Array:
-        """``r(T)`` (1) at these durations (s)."""
-        return self._at(self.relative, durations)
+        """``r(T)`` (1) at these durations (s); beyond the longest scale measured, at most
+        ``sqrt(12) lag / T``.
+
+        The bound (ours, Cauchy-Schwarz): a least-squares slope over ``T`` of a wander ``e``
+        is ``sum (t - tbar) e / Sxx``, so ``slope**2 <= sum e**2 / Sxx = 12 rms(e)**2 / T**2``
+        for samples spread evenly over ``T``; a servo's position error of rms ``lag`` times the
+        speed can tilt a stretch by no more, whatever its spectrum (a machine oscillation of
+        22-45 s, which the ``T**-0.5`` extrapolation takes for a random walk, included)."""
+        d = np.maximum(np.asarray(durations, float), 1e-300)
+        out = self._at(self.relative, d)
+        if np.isfinite(self.lag):
+            out = np.where(d > self.scales[-1], np.minimum(out, np.sqrt(12.0) * self.lag / d),
+                           out)
+        return out
 
     def absolute_at(self, durations: Array) -> Array:
         """``a(T)`` (m/s) at these durations (s)."""
@@ -126,7 +141,7 @@ class Fluctuations:
         v = np.asarray(velocities, float)
         return np.sqrt(self.sigma**2 / np.maximum(sxx, 1e-300)
                        + self._at(self.absolute, durations) ** 2
-                       + (self._at(self.relative, durations) * v) ** 2)
+                       + (self.relative_at(durations) * v) ** 2)
 
 
 @dataclass(frozen=True)
@@ -465,15 +480,39 @@ def detect_program(
     xs = (x - x[0]) / sigma
     fits = _Fits(t, x)
     given = hold_velocity is not None
-    for _ in range(6):  # the wander about the boundaries left, until they settle
-        v_now = fits.table(bounds)[0]
-        fl = measure_fluctuations(t, x, sigma, bounds, v_now)
-        vmax = float(np.max(np.abs(v_now)))
-        floor = hold_velocity if given else 1e-4 * vmax
-        new = _prune(t, x, xs, bounds, fl, fits, rel_tol, z_min, floor, given, m)
-        if new == bounds:
+    jumps: list[int] = []
+    for _ in range(2):
+        for _ in range(6):  # the wander about the boundaries left, until they settle
+            v_now = fits.table(bounds)[0]
+            fl = measure_fluctuations(t, x, sigma, bounds, v_now)
+            vmax = float(np.max(np.abs(v_now)))
+            floor = hold_velocity if given else 1e-4 * vmax
+            new = _prune(t, x, xs, bounds, fl, fits, rel_tol, z_min, floor, given, m)
+            if new == bounds:
+                break
+            bounds = new
+        # an excursion that a jump of the displacement explains as well is a reset too small
+        # for find_resets (a few quanta): taken out, and the boundaries searched again
+        # (on the samples: a block mean smears a jump into a ramp)
+        full = [b * blk for b in bounds[:-1]] + [n]
+        off = jump_excursions(t_all, x_all, full, fits.table(bounds)[0], rel_tol, m * blk) if (
+            record.load_point is not None) else []
+        if not off:
             break
-        bounds = new
+        x_all = x_all.copy()
+        for _j, k, step in off:
+            x_all[k:] -= step
+            jumps.append(k - 1)
+        _, x = _blocks(t_all, x_all, blk)
+        drop = {j for j, _, _ in off} | {j + 1 for j, _, _ in off}
+        bounds = [q for i, q in enumerate(bounds) if i not in drop]
+        xs = (x - x[0]) / sigma
+        fits = _Fits(t, x)
+    resets = sorted(resets + jumps)
+    # the oscillation's periods on the searched signal (block means of a long record): only
+    # where some change is placed by the hinge under the wander
+    weak_now = _z(fits, fl, bounds) < LOCAL_Z
+    periods = _periods(t, x, bounds, fits) if weak_now.any() else ()
     if blk > 1:
         # each change found on block means moved to the best hinge on the samples between
         # its neighbours (one vectorised pass per change: O(n) each, few changes)
@@ -485,7 +524,8 @@ def detect_program(
         fits = _Fits(t, x)
     bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
                            sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
-                           fl.absolute, m, weak=_z(fits, fl, bounds) < LOCAL_Z)
+                           fl.absolute, m, weak=_z(fits, fl, bounds) < LOCAL_Z,
+                           periods=periods)
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
     hold = [bool(h) for h in _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)]
@@ -520,6 +560,18 @@ MAX_POINTS = 2_000
 """Longest signal searched sample by sample; a longer one is searched on block means."""
 MAX_CANDIDATES = 80
 """Most candidate stretches (the largest white-noise gains) judged against the fluctuations."""
+
+
+def _periods(t: Array, x: Array, bounds: list[int], fits: _Fits) -> tuple[float, ...]:
+    """Periods (s) of a machine oscillation in the displacement about the broken line
+    (:func:`.placement.oscillation_periods`)."""
+    v = fits.table(bounds)[0]
+    cnt = np.diff(np.asarray(bounds))
+    seg = np.repeat(np.arange(len(cnt)), cnt)
+    b0 = np.asarray(bounds[:-1])
+    tc = t - (np.add.reduceat(t, b0) / cnt)[seg]
+    res = x - (np.add.reduceat(x, b0) / cnt)[seg] - v[seg] * tc
+    return oscillation_periods(t, res, np.abs(v)[seg])
 
 
 def _blocks(t: Array, x: Array, blk: int) -> tuple[Array, Array]:

@@ -130,21 +130,32 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
     return tuple(segs)
 
 
-def segments_table(segments: tuple[Segment, ...] | list[Segment]) -> str:
+def _normal_column(normal_unit: str) -> tuple[str, str, float]:
+    """What the normal column holds, its unit and the factor from the record's SI value:
+    stress in Pa -> MPa, force in N -> kN (the record's ``normal_unit``, "Pa" or "N")."""
+    if normal_unit == "N":
+        return "normal force", "kN", 1e-3
+    return "normal stress", "MPa", 1e-6
+
+
+def segments_table(segments: tuple[Segment, ...] | list[Segment],
+                   normal_unit: str = "Pa") -> str:
     """The load program as a fixed-width table (times in s, velocities in m/s and um/s, the
-    confidence of the change at each start, the mean normal stress in MPa or force in kN)."""
+    confidence of the change at each start, the mean normal stress in MPa or, for a record
+    whose ``normal_unit`` is "N", the normal force in kN)."""
+    what, nu, scale = _normal_column(normal_unit)
     lines = [f"{'#':>3} {'t_start (s)':>13} {'t_end (s)':>13} {'duration (s)':>12} "
              f"{'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} {'confidence':>10} "
-             f"{'normal':>9}"]
+             f"{'normal (' + nu + ')':>12}"]
     for j, s in enumerate(segments):
         kind = "  hold" if s.velocity == 0.0 else ""
         conf = "-" if not np.isfinite(s.confidence) else f"{s.confidence:.3g}"
-        normal = "-" if not np.isfinite(s.normal) else f"{s.normal / 1e6:.4g}"
+        normal = "-" if not np.isfinite(s.normal) else f"{s.normal * scale:.4g}"
         lines.append(f"{j:>3} {s.t_start:>13.6g} {s.t_end:>13.6g} {s.duration:>12.6g} "
                      f"{s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
-                     f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>9}{kind}")
+                     f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>12}{kind}")
     lines.append("confidence: the velocity change at the segment's start over the scatter the "
-                 "apparatus' fluctuations give it; normal: mean normal stress, MPa (force: kN)")
+                 f"apparatus' fluctuations give it; normal: mean {what}, {nu}")
     return "\n".join(lines)
 
 
@@ -167,8 +178,7 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
                        normal_unit: str = "Pa") -> None:
     """Write the load program as CSV, one row per segment, units in the headers; the
     ``--segments`` form of the whole program in a comment line on top."""
-    nu, scale = ("MPa", 1e-6) if normal_unit != "N" else ("kN", 1e-3)
-    what = "normal stress" if normal_unit != "N" else "normal force"
+    what, nu, scale = _normal_column(normal_unit)
     rows = [f"# --segments {segments_spec(segments, t0)}",
             f"segment,kind,t_start [s],t_end [s],t_start from first sample [s],duration [s],"
             f"velocity [m/s],velocity [um/s],i_start,i_end,samples,confidence [-],"

@@ -1,6 +1,7 @@
 """Rate-and-state friction in SI units: the laws (:mod:`.law`), what a run is asked to do
 (:mod:`.spring`: :class:`SpringSlider`, :class:`RSFInitial`, :class:`RSFOutput`), the
-integrator (:mod:`.driving`: :func:`simulate_rsf`) and what it returns (:mod:`.result`).
+integrator (:mod:`.driving`: :func:`simulate`, :func:`simulate_rsf` its old name) and what
+it returns (:mod:`.result`); the linear stability of steady sliding (:mod:`.stability`).
 
 The solver's kernels - the RODAS4 stepper, its growth-rate step limit and the right-hand side of
 the RSF equations, in :mod:`.stepper` (run interpreted for a small job, compiled by Numba for a
@@ -9,7 +10,7 @@ first-class functions (passing the equations to the stepper) were 5-17 % slower,
 inlining compiled functions across files breaks Numba's cache invalidation (a changed
 equation in one file would not recompile the stepper cached from the other).
 
-``dryfriction.rsf.RateState`` and ``dryfriction.rsf.simulate_rsf`` are the public names; they are
+``dryfriction.rsf.RateState`` and ``dryfriction.rsf.simulate`` are the public names; they are
 loaded on first use, so importing the law does not import the compiled solver.
 """
 
@@ -20,7 +21,8 @@ from typing import Any
 
 _PUBLIC = {
     "RateState": "law", "STATE_LAWS": "law",
-    "simulate_rsf": "driving", "RSFResult": "result", "SolverError": "driving",
+    "simulate": "driving", "simulate_rsf": "driving", "RSFResult": "result",
+    "SolverError": "driving", "linear_stability": "stability",
     "SpringSlider": "spring", "RSFInitial": "spring", "RSFOutput": "spring",
 }
 __all__ = sorted(_PUBLIC)

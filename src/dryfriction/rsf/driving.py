@@ -40,11 +40,11 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..program import Segment, VelocityProgram
 from ..results import check_physical
-from ..validation import Array, check_scalar
+from ..simulation import OldSimulatorFormWarning, check_parts
+from ..validation import Array
 from .growth import unstable_start, warn_unstable
 from .law import RateState
 from .resources import check_rsf_run
@@ -55,11 +55,12 @@ from .result import (
     hermite,
     slip_by_quadrature,
 )
-from .spring import RSFInitial, RSFOutput, SpringSlider, check_spring
-from .stepper import INERTIAL, KINEMATIC, QUASISTATIC, integrate, param_vector, rhs_at
+from .spring import RSFInitial, RSFOutput, SpringSlider
+from .stability import linear_stability
+from .stepper import INERTIAL, KINEMATIC, QUASISTATIC, integrate, param_vector
 
-__all__ = ["RSFInitial", "RSFOutput", "RSFResult", "SolverError", "SpringSlider", "simulate_rsf",
-           "linear_stability"]
+__all__ = ["RSFInitial", "RSFOutput", "RSFResult", "SolverError", "SpringSlider", "simulate",
+           "simulate_rsf", "linear_stability"]
 
 
 class SolverError(RuntimeError):
@@ -83,29 +84,26 @@ _LEGACY = ("stiffness", "damping", "mass", "v_init", "theta_init", "theta2_init"
            "max_steps")
 
 
-def simulate_rsf(
+def simulate(
     model: RateState,
-    drive: SpringSlider | VelocityProgram | Iterable[Segment | Mapping[str, float]],
+    drive: SpringSlider,
     initial: RSFInitial | None = None,
     output: RSFOutput | None = None,
-    **legacy: Any,
 ) -> RSFResult:
-    """Run rate-and-state friction on a spring slider through a load-point velocity program.
+    """Run rate-and-state friction on a spring slider through a load-point velocity program
+    (the rate-and-state ``dryfriction.simulate``, :mod:`dryfriction.simulation`).
 
     Parameters
     ----------
     model : RateState
         Friction law and parameters.
     drive : SpringSlider
-        Load-point program, stiffness (``inf``: kinematic machine), damping and mass.
+        Load-point program (m/s, s), stiffness (1/m; ``inf``: kinematic machine), damping and
+        mass.
     initial : RSFInitial, optional
         Initial slip velocity and state; default steady sliding at the first load velocity.
     output : RSFOutput, optional
         Output times, tolerance and step budget; default every accepted step, ``rtol = 1e-7``.
-    **legacy
-        Deprecated: the old form ``simulate_rsf(params, program, stiffness=..., damping=...,
-        mass=..., v_init=..., theta_init=..., theta2_init=..., rtol=..., t_eval=...,
-        max_steps=...)`` still works for one release and warns (``DeprecationWarning``).
 
     Returns
     -------
@@ -119,8 +117,10 @@ def simulate_rsf(
         The integration failed (step-size underflow: e.g. an unbounded slip velocity below
         the critical stiffness without damping; or the step budget ran out).
     """
-    if not isinstance(drive, SpringSlider) or legacy:
-        drive, initial, output = _from_legacy(drive, initial, output, legacy)
+    check_parts("rsf", drive=drive, initial=initial, output=output)
+    if not isinstance(drive, SpringSlider):
+        raise ValueError(f"drive = {drive!r} is not allowed: a SpringSlider (load-point program "
+                         "in m/s and s; stiffness inf for the kinematic machine)")
     if not isinstance(model, RateState):
         raise ValueError(f"model = {model!r} is not a RateState")
     initial = RSFInitial() if initial is None else initial
@@ -196,6 +196,30 @@ def simulate_rsf(
     return res
 
 
+def simulate_rsf(
+    model: RateState,
+    drive: SpringSlider | VelocityProgram | Iterable[Segment | Mapping[str, float]],
+    initial: RSFInitial | None = None,
+    output: RSFOutput | None = None,
+    **legacy: Any,
+) -> RSFResult:
+    """Deprecated (issue 26): the old name of :func:`simulate`, for one release.
+
+    ``simulate_rsf(model, drive, initial, output)`` is :func:`simulate` with a warning
+    (:class:`~dryfriction.simulation.OldSimulatorFormWarning`); so is the older keyword form
+    ``simulate_rsf(params, program, stiffness=..., damping=..., mass=..., v_init=...,
+    theta_init=..., theta2_init=..., rtol=..., t_eval=..., max_steps=...)``.
+    """
+    if not isinstance(drive, SpringSlider) or legacy:
+        drive, initial, output = _from_legacy(drive, initial, output, legacy)
+    else:
+        warnings.warn(
+            "simulate_rsf(model, drive, initial, output) is deprecated and will be removed in "
+            "the next release: use simulate(model, drive, initial, output) (dryfriction.simulate "
+            "for either law)", OldSimulatorFormWarning, stacklevel=2)
+    return simulate(model, drive, initial, output)
+
+
 def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None,
                   quad_rounding: float = 0.0) -> None:
     """:func:`dryfriction.results.check_physical` for a rate-and-state run: on a spring the
@@ -239,9 +263,9 @@ def _from_legacy(program: Any, initial: Any, output: Any, legacy: dict[str, Any]
         )
     warnings.warn(
         "simulate_rsf(params, program, stiffness=..., ...) is deprecated and will be removed "
-        "in the next release: use simulate_rsf(model, SpringSlider(program, stiffness, "
+        "in the next release: use simulate(model, SpringSlider(program, stiffness, "
         "damping, mass), RSFInitial(v, theta, theta2), RSFOutput(every|t_eval, rtol, "
-        "max_steps))", DeprecationWarning, stacklevel=3)
+        "max_steps))", OldSimulatorFormWarning, stacklevel=3)
     g = legacy.get
     te = g("t_eval")
     return (
@@ -268,41 +292,3 @@ def _failure_message(status: int, mode: int, t: float, y: Array, params: RateSta
             "above it (Gu, Rice, Ruina & Tse 1984) - add damping (eta/sigma, s/m) or mass"
         )
     return msg
-
-
-def linear_stability(params: RateState, v: float, stiffness: float, damping: float = 0.0,
-                     mass: float = 0.0) -> NDArray[np.complex128]:
-    """Eigenvalues (1/s) of the spring slider linearised about steady sliding at ``v``.
-
-    Computed from the exact Jacobian of the log-variable system above at steady state (the
-    method of Rice & Ruina 1983; any number of state variables, either law, standard or
-    regularised friction). Steady sliding is linearly stable iff every real part is < 0.
-    With inertia the eigenvalues of ``(ln V, ln theta_i, tau)`` are returned.
-
-    Parameters
-    ----------
-    params : RateState
-    v : float
-        Steady sliding (= load) velocity, m/s, ``> 0``.
-    stiffness : float
-        Spring stiffness per unit normal force, 1/m, ``> 0`` (finite).
-    damping : float
-        Radiation damping ``eta/sigma``, s/m, ``>= 0``.
-    mass : float
-        Mass per unit normal force, s^2/m, ``>= 0``.
-    """
-    v = check_scalar("v", v, 0.0, lo_open=True)
-    stiffness, damping, mass = check_spring(stiffness, damping, mass)
-    if math.isinf(stiffness):
-        raise ValueError("stiffness = inf is out of range: the linearisation needs a finite "
-                         "spring, allowed > 0 (1/m)")
-    mode = INERTIAL if mass > 0.0 else QUASISTATIC
-    p = param_vector(params, stiffness, damping, mass, mode, load_velocity=v)
-    ns = params.n_state
-    lnth = [math.log(params.dc / v)] + ([math.log(params.dc2 / v)] if ns == 2 else [])
-    y = [math.log(v), *lnth]
-    if mode == INERTIAL:
-        th2 = None if ns == 1 else params.dc2 / v
-        y.append(float(params.friction(v, params.dc / v, th2)) + damping * v)
-    _, jac = rhs_at(np.array(y), p)
-    return np.linalg.eigvals(jac).astype(np.complex128)

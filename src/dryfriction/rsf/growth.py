@@ -18,6 +18,7 @@ import numpy as np
 
 from .law import RateState
 from .spring import SpringSlider
+from .stability import linear_stability
 from .stepper import EFOLD, below, growth_limit
 
 __all__ = ["EFOLD", "NEAR_STEADY", "UnstableStartWarning", "below", "growth_limit",
@@ -47,8 +48,6 @@ def unstable_start(model: RateState, drive: SpringSlider, v: float, theta: float
         off.append(abs(math.log(theta2 * vl / model.dc2)))
     if max(off) > NEAR_STEADY:
         return None
-    from .driving import linear_stability  # driving imports this module
-
     try:
         growth = float(np.max(linear_stability(model, vl, drive.stiffness, drive.damping,
                                                drive.mass).real))

@@ -64,9 +64,18 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..validation import FRICTION_MAX, Array, check_choice, check_range, check_scalar
+from ..validation import (
+    FRICTION_MAX,
+    REQUIRED,
+    Array,
+    Parameter,
+    check_range,
+    check_scalar,
+    declared,
+)
 
-__all__ = ["RateState", "STATE_LAWS", "V_MAX", "V_MIN"]
+__all__ = ["RateState", "RateStateModel", "RATE_STATE_PARAMETERS", "STATE_LAWS", "V_MAX",
+           "V_MIN"]
 
 V_MAX: float = 1e3
 """Largest reference or load velocity accepted, m/s: far above seismic slip rates (~1 m/s);
@@ -100,6 +109,28 @@ def asinh_exp(lnz: ArrayLike) -> Array:
     )
 
 
+RATE_STATE_PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
+    Parameter("a", lo=0.0, hi=MU_MAX, lo_open=True, meaning="direct-effect coefficient"),
+    Parameter("b", lo=0.0, hi=MU_MAX, meaning="evolution coefficient, first state variable"),
+    Parameter("dc", lo=0.0, lo_open=True, meaning="characteristic slip, first state variable, m"),
+    Parameter("mu0", lo=-FRICTION_MAX, hi=FRICTION_MAX, meaning="friction at V0 in steady state"),
+    Parameter("v0", lo=0.0, hi=V_MAX, lo_open=True, meaning="reference velocity, m/s"),
+    Parameter("state_law", "ageing", choices=STATE_LAWS, meaning="evolution law of the state"),
+    Parameter("b2", 0.0, 0.0, MU_MAX, meaning="evolution coefficient, second state variable"),
+    Parameter("dc2", None, 0.0, lo_open=True,
+              meaning="characteristic slip of the second state variable, m (None: one state "
+                      "variable)"),
+    Parameter("regularized", False, boolean=True, meaning="the asinh form, defined at V <= 0"),
+    Parameter("c", 0.0, 0.0, MU_MAX, meaning="Nagata's stress-rate coefficient (nagata only)"),
+)}
+"""Rate-and-state parameters, in :class:`RateState`'s field order: every default and range
+declared once (the fields and :meth:`RateState.from_mapping` read them from here)."""
+
+
+def _default(name: str) -> Any:
+    return declared(RATE_STATE_PARAMETERS, name)
+
+
 @dataclass(frozen=True)
 class RateState:
     """Rate-and-state friction parameters (validated at construction).
@@ -131,35 +162,23 @@ class RateState:
         ``state_law = "nagata"`` (which needs ``b > 0``).
     """
 
-    a: float
-    b: float
-    dc: float
-    mu0: float
-    v0: float
-    state_law: StateLaw = "ageing"
-    b2: float = 0.0
-    dc2: float | None = None
-    regularized: bool = False
-    c: float = 0.0
+    a: float = _default("a")
+    b: float = _default("b")
+    dc: float = _default("dc")
+    mu0: float = _default("mu0")
+    v0: float = _default("v0")
+    state_law: StateLaw = _default("state_law")
+    b2: float = _default("b2")
+    dc2: float | None = _default("dc2")
+    regularized: bool = _default("regularized")
+    c: float = _default("c")
 
     def __post_init__(self) -> None:
-        set_ = object.__setattr__
-        set_(self, "a", check_scalar("a", self.a, 0.0, MU_MAX, lo_open=True))
-        set_(self, "b", check_scalar("b", self.b, 0.0, MU_MAX))
-        set_(self, "dc", check_scalar("dc", self.dc, 0.0, lo_open=True))
-        set_(self, "mu0", check_scalar("mu0", self.mu0, -FRICTION_MAX, FRICTION_MAX))
-        set_(self, "v0", check_scalar("v0", self.v0, 0.0, V_MAX, lo_open=True))
-        check_choice("state_law", self.state_law, STATE_LAWS)
-        set_(self, "b2", check_scalar("b2", self.b2, 0.0, MU_MAX))
-        if self.dc2 is None:
-            if self.b2 != 0.0:
-                raise ValueError(f"b2 = {self.b2:g} needs dc2 (a second state variable)")
-        else:
-            set_(self, "dc2", check_scalar("dc2", self.dc2, 0.0, lo_open=True))
-        if not isinstance(self.regularized, (bool, np.bool_)):
-            raise ValueError(f"regularized = {self.regularized!r} is not allowed: true or false")
-        set_(self, "regularized", bool(self.regularized))
-        set_(self, "c", check_scalar("c", self.c, 0.0, MU_MAX))
+        # every field against its declared range, once (RATE_STATE_PARAMETERS)
+        for name, p in RATE_STATE_PARAMETERS.items():
+            object.__setattr__(self, name, p.check(getattr(self, name)))
+        if self.dc2 is None and self.b2 != 0.0:
+            raise ValueError(f"b2 = {self.b2:g} needs dc2 (a second state variable)")
         if self.state_law != "nagata" and self.c != 0.0:
             raise ValueError(f"c = {self.c:g} is Nagata's stress-rate coefficient: it needs "
                              "state_law = 'nagata'")
@@ -176,8 +195,7 @@ class RateState:
         ``dc2``, ``regularized``); ``law = "rsf"`` is accepted and ignored. Unknown keys and
         missing required keys are errors.
         """
-        allowed = {"a", "b", "dc", "mu0", "v0", "state_law", "b2", "dc2", "regularized", "law",
-                   "c"}
+        allowed = {*RATE_STATE_PARAMETERS, "law"}
         unknown = set(m) - allowed
         if unknown:
             raise ValueError(
@@ -186,7 +204,8 @@ class RateState:
             )
         if "law" in m and m["law"] != "rsf":
             raise ValueError(f"law = {m['law']!r} is not allowed here: rate-and-state needs 'rsf'")
-        missing = [k for k in ("a", "b", "dc", "mu0", "v0") if k not in m]
+        missing = [k for k, p in RATE_STATE_PARAMETERS.items()
+                   if p.default is REQUIRED and k not in m]
         if missing:
             raise ValueError(f"missing rate-and-state key(s): {', '.join(missing)}")
         kwargs = {k: v for k, v in m.items() if k != "law"}
@@ -290,7 +309,7 @@ class RateState:
         1998, *Annu. Rev. Earth Planet. Sci.* 26, 643, the healing law with ``d mu_s/d ln t -> b``
         at long holds). The slip law does not evolve at rest, so it gives ``mu_ss(v)`` for every
         hold. With a finite machine stiffness the measured peak is lower (the slider creeps
-        during reloading); that case needs :func:`dryfriction.rsf.driving.simulate_rsf`.
+        during reloading); that case needs :func:`dryfriction.rsf.driving.simulate`.
 
         Parameters
         ----------
@@ -309,7 +328,7 @@ class RateState:
         if self.state_law == "nagata":
             raise ValueError("hold_peak_friction is for a truly stationary contact on a "
                              "kinematic machine; Nagata's law needs the spring's stress rate: "
-                             "use simulate_rsf")
+                             "use dryfriction.simulate on a spring")
         heal = {"ageing": 1.0, "prz": 0.5, "slip": 0.0}[self.state_law] * t_hold
         th2 = None if self.dc2 is None else self.dc2 / v + heal
         return self.friction(v, self.dc / v + heal, th2)
@@ -320,7 +339,7 @@ class RateState:
             raise ValueError(
                 f"the closed-form {what} is for one state variable, the standard law and "
                 "the ageing, slip or PRZ law (their linearisations agree): "
-                "use dryfriction.rsf.driving.linear_stability for these parameters"
+                "use dryfriction.rsf.stability.linear_stability for these parameters"
             )
 
     def critical_stiffness(self, v: float = 1.0, damping: float = 0.0, mass: float = 0.0) -> float:
@@ -362,3 +381,9 @@ class RateState:
                 "stiffness and there is no Hopf bifurcation"
             )
         return v / self.dc * math.sqrt((self.b - ap) / ap)
+
+
+RateStateModel = RateState
+"""The rate-and-state model object (issue 26): :class:`RateState` is it, frozen and checked
+once at construction against :data:`RATE_STATE_PARAMETERS`; the two names are one class.
+Not to be confused with :class:`dryfriction.fit.models.RSFModel`, a fit's parameter spec."""

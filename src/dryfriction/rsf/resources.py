@@ -1,6 +1,6 @@
 """How much memory a rate-and-state run will hold, estimated before any work (issue 13).
 
-The solver (:func:`~dryfriction.rsf.driving.simulate_rsf`) records every accepted step, at most
+The solver (:func:`~dryfriction.rsf.driving.simulate`) records every accepted step, at most
 ``max_steps`` plus one per segment, in buffers that double when full: at the moment of a
 doubling the old and the new buffer coexist, three times the steps' own size. Each step stores
 its time, segment and the state and derivative vectors (``ny <= 4`` floats each). The output

@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import simulation
 from ..program import VelocityProgram
-from ..results import records, summarize, to_dataframe
+from ..results import summarize
 from ..validation import Array
 from .law import RateState
 
@@ -27,7 +28,7 @@ UNITS: dict[str, str] = {
 
 
 @dataclass(frozen=True)
-class RSFResult:
+class RSFResult(simulation.Result):
     """A rate-and-state run (arrays read-only, one entry per output time).
 
     Attributes
@@ -52,6 +53,7 @@ class RSFResult:
         Accepted and rejected steps and right-hand-side evaluations.
     """
 
+    law: ClassVar[str] = "rsf"
     t: Array
     x: Array
     v: Array
@@ -85,14 +87,6 @@ class RSFResult:
         cols.update(stress=self.stress, x_load=self.load, v_load=self.load_velocity)
         return cols
 
-    def to_records(self) -> np.ndarray:
-        """The time series (:meth:`columns`) as a NumPy structured array, one record per sample."""
-        return records(self.columns())
-
-    def to_dataframe(self) -> Any:
-        """A ``pandas.DataFrame`` of :meth:`columns` (needs pandas, not a dependency)."""
-        return to_dataframe(self.columns())
-
     def critical_stiffness(self) -> float | None:
         """``k_c`` (1/m) at the final load velocity (the initial slip velocity if that is 0)
         with this damping and mass, where the closed form applies (finite spring, one state
@@ -119,7 +113,7 @@ class RSFResult:
         k_c = self.critical_stiffness()
         if k_c is not None:
             extra["critical_stiffness_per_m"] = k_c
-        if "unstable_start" in self.meta:  # set by simulate_rsf: started beside an unstable
+        if "unstable_start" in self.meta:  # set by simulate: started beside an unstable
             extra["unstable_start"] = dict(self.meta["unstable_start"])  # steady state
         extra["params"] = self.params.to_dict()
         return summarize("rsf", self.t, self.x, self.v, self.mu,

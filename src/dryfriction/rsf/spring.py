@@ -1,6 +1,6 @@
 """What a rate-and-state run is asked to do: the drive, the initial state and the output.
 
-Frozen, validated at construction, so that :func:`~dryfriction.rsf.driving.simulate_rsf`, the
+Frozen, validated at construction, so that :func:`~dryfriction.rsf.driving.simulate`, the
 protocol files and the fits share one set of checks (this module is the only place the
 spring, damping, mass and load-velocity checks live):
 
@@ -12,6 +12,9 @@ spring, damping, mass and load-velocity checks live):
   first load velocity);
 * :class:`RSFOutput` - output times (``every`` or ``t_eval``; default every solver step), the
   solver tolerance and step budget.
+
+Each is the rate-and-state (``law = "rsf"``, SI) :class:`~dryfriction.simulation.Drive`,
+:class:`~dryfriction.simulation.Initial` or :class:`~dryfriction.simulation.Output`.
 """
 
 from __future__ import annotations
@@ -19,10 +22,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
+from .. import simulation
 from ..program import Segment, VelocityProgram
 from ..validation import Array, check_range, check_scalar
 from .law import V_MAX, V_MIN, RateState
@@ -76,7 +80,7 @@ def check_spring(stiffness: Any, damping: Any = 0.0, mass: Any = 0.0) -> tuple[f
 
 
 @dataclass(frozen=True)
-class SpringSlider:
+class SpringSlider(simulation.Drive):
     """A rate-and-state slider pulled through a spring by a load point following ``program``.
 
     ``k (x_load(t) - x) = mu(V, theta) + eta V + m dV/dt``; see :func:`check_spring` for the
@@ -90,6 +94,7 @@ class SpringSlider:
         Spring (1/m), radiation damping (s/m) and mass (s^2/m), per unit normal force.
     """
 
+    law: ClassVar[str] = "rsf"
     program: VelocityProgram
     stiffness: float = math.inf
     damping: float = 0.0
@@ -143,7 +148,7 @@ class SpringSlider:
 
 
 @dataclass(frozen=True)
-class RSFInitial:
+class RSFInitial(simulation.Initial):
     """Initial slip velocity (m/s) and state (s); ``None``: the defaults below.
 
     Parameters
@@ -155,6 +160,7 @@ class RSFInitial:
         Initial state, ``> 0``; default steady state ``Dc/v`` (``Dc2/v``).
     """
 
+    law: ClassVar[str] = "rsf"
     v: float | None = None
     theta: float | None = None
     theta2: float | None = None
@@ -195,7 +201,7 @@ class RSFInitial:
 
 
 @dataclass(frozen=True, eq=False)
-class RSFOutput:
+class RSFOutput(simulation.Output):
     """Output times and solver settings of a rate-and-state run.
 
     Parameters
@@ -212,6 +218,7 @@ class RSFOutput:
         Step budget, ``>= 1``.
     """
 
+    law: ClassVar[str] = "rsf"
     every: float | None = None
     t_eval: Array | None = None
     rtol: float = 1e-7

@@ -60,8 +60,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import gamma
 
-from ..validation import Array, check_choice, check_scalar
-from .creep import CREEP_LAWS, CreepLaw, creep_law
+from ..validation import Array, check_scalar
+from .creep import CreepLaw
+from .direct import junction_strength
+from .model import TrapModel
 from .steady import death_clock
 from .trap import Trap, force_minus, force_plus
 
@@ -71,10 +73,10 @@ __all__ = [
     "shift_stiffness",
     "characteristic",
     "StabilityResult",
-    "critical_stiffness",
+    "nyquist_stiffness",
     "rightmost_root",
     "delay_chain_limit",
-    "effective_rsf",
+    "rsf_from_response",
     "nyquist_crossings",
 ]
 
@@ -327,40 +329,35 @@ def _pieces(law: CreepLaw, u: float, alpha: float) -> SteadyResponse:
     return resp
 
 
-def steady_response(
-    u: float, eps: float, alpha: float = 0.13, creep: str = "log"
-) -> SteadyResponse:
-    """Linear response ``Z(lambda)`` of steady sliding at reduced velocity ``u`` (module doc).
+def steady_response(u: float, model: TrapModel) -> SteadyResponse:
+    """Linear response ``Z(lambda)`` of the trap population in steady sliding at reduced
+    velocity ``u`` (module doc): the ageing part only; the friction's response, with the
+    direct effect of ``model``, is :func:`dryfriction.theory.linear_stability.linear_response`.
 
     Parameters
     ----------
     u : float
         Reduced velocity ``V t0 / a0``, ``> 0``.
-    eps : float
-        Creep parameter, ``>= 0``.
-    alpha : float
-        Reduced trap stiffness, ``0 < alpha < 1``.
-    creep : {"log", "eyring-nabarro"}
-        Ageing law.
+    model : TrapModel
+        ``eps``, ``alpha`` and the creep law (checked when the model was built).
     """
     u = check_scalar("u", u, 0.0, lo_open=True)
-    eps = check_scalar("eps", eps, 0.0)
-    alpha = check_scalar("alpha", alpha, 0.0, 1.0, lo_open=True, hi_open=True)
-    check_choice("creep", creep, CREEP_LAWS)
-    return _pieces(creep_law(creep, eps), u, alpha)
+    return _pieces(model.law, u, model.alpha)
 
 
 def shift_stiffness(
-    u: float, eps: float, alpha: float = 0.13, creep: str = "log"
+    u: float, model: TrapModel
 ) -> tuple[float, float]:
     """Stiffness (units ``F_el/a0``) met by a sudden small shift of the steady population.
 
     Returns ``(forward, backward)``: ``forward = Z(inf)``, where the traps killed at the edge
     offset the stiffening of the others (zero without ageing, negative with it);
-    ``backward = int u g_y dtau / H0``, the full elastic stiffness (no trap dies).
+    ``backward = int u g_y dtau / H0``, the full elastic stiffness (no trap dies). Both times
+    the junction strength ``g(u)`` of ``model``'s direct effect (a shift is no slip rate).
     """
-    resp = steady_response(u, eps, alpha, creep)
-    return (resp.A + resp.edge) / resp.H0, resp.A / resp.H0
+    resp = steady_response(u, model)
+    g = float(junction_strength(u, model.direct, model.v_ref)) if model.direct else 1.0
+    return g * (resp.A + resp.edge) / resp.H0, g * resp.A / resp.H0
 
 
 def characteristic(
@@ -480,17 +477,16 @@ def _high_scan(
     return best_K, best_om
 
 
-def critical_stiffness(
-    u: float,
-    eps: float,
-    alpha: float = 0.13,
-    creep: str = "log",
+def nyquist_stiffness(
+    resp: SteadyResponse,
     mass: float = 0.0,
     damping: float = 0.0,
     omega_max: float | None = None,
     n_omega: int = 4000,
 ) -> StabilityResult:
-    """Critical stiffness ``K_c(u; eps, alpha, M, eta)`` and the frequency at onset.
+    """Critical stiffness ``K_c(u; eps, alpha, M, eta)`` of one population response ``resp``
+    and the frequency at onset (the athermal analysis; the model's entry point, which adds the
+    direct effect, is :func:`dryfriction.theory.linear_stability.critical_stiffness`).
 
     Finds the zeros of ``eta omega + Im Z(i omega)`` by bracketing and returns the largest
     ``K = M omega^2 - Re Z(i omega)`` among them. The grid is logarithmic (``n_omega``
@@ -507,7 +503,6 @@ def critical_stiffness(
     """
     mass = check_scalar("mass", mass, 0.0)
     damping = check_scalar("damping", damping, 0.0)
-    resp = steady_response(u, eps, alpha, creep)
     top_log = _LOG_TOP / resp.tau_d
     if omega_max is not None:
         top = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
@@ -626,10 +621,10 @@ def rightmost_root(
     return best
 
 
-def effective_rsf(
-    u: float, eps: float, alpha: float = 0.13, creep: str = "log"
-) -> dict[str, float]:
-    """Rate-and-state parameters that reproduce the model's slow linear response (ours).
+def rsf_from_response(resp: Any) -> dict[str, float]:
+    """Rate-and-state parameters that reproduce a linear response ``resp`` at small ``lambda``
+    (ours; ``resp`` a :class:`SteadyResponse` or any object with its ``u`` and
+    ``derivative_at_zero``).
 
     Linearised rate-and-state friction (ageing or slip law, Ruina 1983; Rice & Ruina 1983)
     responds to a slip perturbation ``xi ~ e^{lambda t}`` at velocity ``V`` with
@@ -641,7 +636,7 @@ def effective_rsf(
     the model's response tends to the finite, negative ``Z(inf)`` (:func:`shift_stiffness`),
     not to rate-and-state's ``a lambda / V``.
     """
-    resp = steady_response(u, eps, alpha, creep)
+    u = resp.u
     z1, z2, z3 = (resp.derivative_at_zero(n) for n in (1, 2, 3))
     if z2 == 0.0:
         raise ValueError("eps = 0: the response vanishes, no rate-and-state parameters")

@@ -1,7 +1,9 @@
-"""Linear stability and rate-and-state twin of steady sliding with the direct effect (ours).
+"""Linear stability and rate-and-state twin of steady sliding of a :class:`.model.TrapModel`:
+the model's entry points (:func:`critical_stiffness`, :func:`effective_rsf`,
+:func:`linear_response`), the direct effect included when the model has one (ours).
 
-Kept apart from :mod:`.stability` (which it only calls) so that the athermal analysis there is
-untouched. Units as there: lengths ``a0``, times ``t0``, forces ``F_el``, stiffness
+The population's response and its Nyquist scan live in :mod:`.stability` (which this module
+only calls). Units as there: lengths ``a0``, times ``t0``, forces ``F_el``, stiffness
 ``F_el/a0``.
 
 **Linear response.** With the direct effect (:mod:`.direct`) the friction is
@@ -18,7 +20,7 @@ at a finite frequency, so ``K_c`` with ``M = eta = 0`` becomes finite (no suprem
 infinity), as in quasi-static rate-and-state, whose ``K_c = (b - a)/Dc`` it parallels.
 
 **Rate-and-state twin.** Matching the Taylor series of ``Z_A`` at 0 as in
-:func:`.stability.effective_rsf`: ``Z_A`` has derivatives ``g Z_1 + a_d/u``, ``g Z_2``,
+:func:`.stability.rsf_from_response`: ``Z_A`` has derivatives ``g Z_1 + a_d/u``, ``g Z_2``,
 ``g Z_3``, so ``Dc`` is unchanged, ``b -> g b`` and ``a -> g a + a_d``.
 
 A :class:`DirectResponse` has the ``Z`` and ``tau_d`` of a :class:`.stability.SteadyResponse`,
@@ -32,20 +34,21 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..validation import check_direct, check_scalar
+from ..validation import check_scalar
 from .direct import junction_log_slope, junction_strength
+from .model import TrapModel
 from .stability import (
     CArray,
     StabilityResult,
     SteadyResponse,
-    effective_rsf,
     nyquist_crossings,
+    nyquist_stiffness,
+    rsf_from_response,
     steady_response,
 )
 from .steady import steady_friction
 
-__all__ = ["DirectResponse", "direct_response", "critical_stiffness_direct",
-           "effective_rsf_direct"]
+__all__ = ["DirectResponse", "linear_response", "critical_stiffness", "effective_rsf"]
 
 
 @dataclass(frozen=True)
@@ -88,40 +91,49 @@ class DirectResponse:
         return self.g * (float(np.sum(np.abs(b.b))) + abs(b.edge * b.edge_delay)) / b.H0
 
 
-def direct_response(u: float, eps: float, alpha: float = 0.13, creep: str = "log",
-                    direct: float = 0.0, v_ref: float = 1.0) -> DirectResponse:
-    """Linear response of steady sliding at ``u`` with the direct effect (module docstring)."""
-    direct, v_ref = check_direct(direct, v_ref)
-    base = steady_response(u, eps, alpha, creep)
-    mu_d = float(steady_friction(u, eps, alpha, creep))
-    g = float(junction_strength(u, direct, v_ref))
-    a_d = float(junction_log_slope(u, direct, v_ref)) * mu_d
+def linear_response(u: float, model: TrapModel) -> SteadyResponse | DirectResponse:
+    """Linear response of the friction in steady sliding at ``u``: the population's
+    :class:`.stability.SteadyResponse` for an athermal model (``direct = 0``, the same object
+    bit for bit), else ``Z_A = g Z + (a_d/u) lambda`` (module docstring)."""
+    base = steady_response(u, model)
+    if model.direct == 0.0:
+        return base
+    mu_d = float(steady_friction(u, model.eps, model.alpha, model.creep))
+    g = float(junction_strength(u, model.direct, model.v_ref))
+    a_d = float(junction_log_slope(u, model.direct, model.v_ref)) * mu_d
     return DirectResponse(base=base, g=g, a_direct=a_d)
 
 
-def critical_stiffness_direct(
-    u: float, eps: float, alpha: float = 0.13, creep: str = "log", mass: float = 0.0,
-    damping: float = 0.0, direct: float = 0.0, v_ref: float = 1.0, n_omega: int = 20000,
+def critical_stiffness(
+    u: float, model: TrapModel, mass: float = 0.0, damping: float = 0.0,
+    omega_max: float | None = None, n_omega: int | None = None,
 ) -> StabilityResult:
-    """Critical stiffness with the direct effect (``direct > 0``; module docstring).
+    """Critical stiffness ``K_c`` of a spring-slider of mass ``mass`` (``F_el t0^2/a0``) and
+    damping ``damping`` (``F_el t0/a0``) pulled at ``u`` over ``model``, and the frequency at
+    onset.
 
-    The frequency scan reaches ``omega_max = max(200/tau_d, 2 u B/(eta u + a_d))`` with ``B``
-    the bound :meth:`DirectResponse.im_bound`: beyond it ``(eta + a_d/u) omega`` exceeds
-    ``|g Im Z|`` and no crossing exists, so the largest crossing found is ``K_c`` (finite even
-    with ``M = eta = 0``).
+    Athermal model: :func:`.stability.nyquist_stiffness` (``n_omega`` default 4000), where
+    ``K_c`` with ``M = eta = 0`` may be a supremum at infinite frequency. With the direct effect
+    (module docstring) the scan reaches ``omega_max = max(200/tau_d, 2 u B/(eta u + a_d))``
+    (unless given) with ``B`` the bound :meth:`DirectResponse.im_bound`: beyond it
+    ``(eta + a_d/u) omega`` exceeds ``|g Im Z|`` and no crossing exists, so the largest
+    crossing found is ``K_c`` (finite even with ``M = eta = 0``; ``n_omega`` default 20000).
     """
     mass = check_scalar("mass", mass, 0.0)
     damping = check_scalar("damping", damping, 0.0)
-    direct, v_ref = check_direct(direct, v_ref)
-    if direct == 0.0:
-        raise ValueError("direct = 0 is not allowed here: use stability.critical_stiffness "
-                         "(the athermal analysis); allowed 0 < direct <= 1")
-    resp = direct_response(u, eps, alpha, creep, direct, v_ref)
+    resp = linear_response(u, model)
+    if not isinstance(resp, DirectResponse):
+        return nyquist_stiffness(resp, mass, damping, omega_max,
+                                 4000 if n_omega is None else n_omega)
     visc = damping + resp.a_direct / resp.u
-    omega_max = 200.0 / resp.tau_d
-    if visc > 0.0:
-        omega_max = max(omega_max, 2.0 * resp.im_bound() / visc)
-    best_K, best_om = nyquist_crossings(resp.Z, mass, damping, omega_max, n_omega)
+    if omega_max is None:
+        omega_max = 200.0 / resp.tau_d
+        if visc > 0.0:
+            omega_max = max(omega_max, 2.0 * resp.im_bound() / visc)
+    else:
+        omega_max = check_scalar("omega_max", omega_max, 0.0, lo_open=True)
+    best_K, best_om = nyquist_crossings(resp.Z, mass, damping, omega_max,
+                                        20000 if n_omega is None else n_omega)
     h = 1e-6 * max(1.0, 1.0 / resp.tau_d)
     slope = float((resp.Z(h) - resp.Z(-h)).real / (2 * h))
     b = resp.base
@@ -134,17 +146,11 @@ def critical_stiffness_direct(
         velocity_slope=slope, supremum_at_infinity=False)
 
 
-def effective_rsf_direct(u: float, eps: float, alpha: float = 0.13, creep: str = "log",
-                         direct: float = 0.0, v_ref: float = 1.0) -> dict[str, float]:
-    """Effective rate-and-state ``a``, ``b`` (units ``F_el``), ``Dc`` (``a0``) with the direct
-    effect: ``a = g a_0 + a_d``, ``b = g b_0``, ``Dc`` unchanged (module docstring); also the
-    direct part ``a_direct = a_d ~ A mu_d``."""
-    direct, v_ref = check_direct(direct, v_ref)
-    base = effective_rsf(u, eps, alpha, creep)
-    if direct == 0.0:
-        return {**base, "a_direct": 0.0}
-    mu_d = float(steady_friction(u, eps, alpha, creep))
-    g = float(junction_strength(u, direct, v_ref))
-    a_d = float(junction_log_slope(u, direct, v_ref)) * mu_d
-    return {"a": g * base["a"] + a_d, "b": g * base["b"], "dc": base["dc"], "u": u,
-            "a_direct": a_d}
+def effective_rsf(u: float, model: TrapModel) -> dict[str, float]:
+    """Effective rate-and-state ``a``, ``b`` (units ``F_el``), ``Dc`` (``a0``) of ``model`` at
+    ``u``: the Taylor matching of :func:`.stability.rsf_from_response` applied to the friction's
+    response, so with the direct effect ``a = g a_0 + a_d``, ``b = g b_0``, ``Dc`` unchanged
+    (module docstring); also the direct part ``a_direct = a_d ~ A mu_d`` (0 when athermal)."""
+    resp = linear_response(check_scalar("u", u, 0.0, lo_open=True), model)
+    out = rsf_from_response(resp)
+    return {**out, "a_direct": resp.a_direct if isinstance(resp, DirectResponse) else 0.0}
