@@ -12,9 +12,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ..theory.model import TRAPS_PER_A0
+from ..rsf.law import RATE_STATE_PARAMETERS as _RSF
+from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0
 
 __all__ = ["Option", "OPTIONS", "FIGURE", "SWEEP", "defaults"]
+
+_TRAP = TRAP_PARAMETERS
+"""The trap model's own declared defaults (:data:`dryfriction.theory.model.TRAP_PARAMETERS`):
+an option that sets one of its parameters takes the default from there, not a copy."""
 
 
 @dataclass(frozen=True)
@@ -55,6 +60,22 @@ SWEEP: dict[str, Option] = {
 }
 """The options both sweeps share."""
 
+_THEORY: dict[str, Option] = {
+    "alpha": Option("--alpha", _TRAP["alpha"].default, "ALPHA_MIN <= alpha < 1"),
+    "creep": Option("--creep", _TRAP["creep"].default, "log or eyring-nabarro"),
+    "direct": Option("--direct", _TRAP["direct"].default, "0 <= A <= DIRECT_MAX"),
+    "v_ref": Option("--v-ref", _TRAP["v_ref"].default, "U_MIN to U_MAX a0/t0"),
+}
+"""The trap model's options of the closed-form workflows (``static``, ``steady``,
+``stability``), defaults from the model's own table."""
+
+_SI: dict[str, Option] = {
+    "a0": Option("--a0", None, "> 0 m; with --t0, velocities in m/s"),
+    "t0": Option("--t0", None, "> 0 s; with it, times in seconds"),
+    "mu_el": Option("--mu-el", None, "0 < mu_el <= 10; with it, friction is F/W"),
+}
+"""The SI scales of the closed-form workflows (none: reduced units)."""
+
 OPTIONS: dict[str, dict[str, Option]] = {
     "simulate": {**FIGURE},
     "compare": {**FIGURE, "state_law": Option("--state-law", "ageing", "ageing or slip")},
@@ -65,8 +86,10 @@ OPTIONS: dict[str, dict[str, Option]] = {
     "fit": {
         **FIGURE,
         "model": Option("--model", "cv", "cv (trap model) or rsf (rate-and-state)"),
-        "alpha": Option("--alpha", 0.13, "ALPHA_MIN <= alpha < 1 (trap stiffness, fixed)"),
-        "creep": Option("--creep", "log", "a creep law of dryfriction.theory.creep"),
+        "alpha": Option("--alpha", _TRAP["alpha"].default,
+                        "ALPHA_MIN <= alpha < 1 (trap stiffness, fixed)"),
+        "creep": Option("--creep", _TRAP["creep"].default,
+                        "a creep law of dryfriction.theory.creep"),
         "fix": Option("--fix", None, "name=value pairs (SI), CSV files only"),
         "v0": Option("--v0", None, "V_MIN to V_MAX m/s; required for static rsf data"),
         "state_law": Option("--state-law", "ageing", "a fitted law, or auto (record)"),
@@ -83,12 +106,52 @@ OPTIONS: dict[str, dict[str, Option]] = {
         "regularized": Option("--regularized", False, "the regularised rsf law"),
         "traps_per_a0": Option("--traps-per-a0", None, ">= TRAPS_PER_A0_MIN; default 1000 "
                                "for CSV files, RECORD_TRAPS_PER_A0 (100) for a record"),
-        "direct": Option("--direct", 0.0, "0 <= A <= DIRECT_MAX (start of the fit)"),
+        "direct": Option("--direct", _TRAP["direct"].default,
+                         "0 <= A <= DIRECT_MAX (start of the fit)"),
         "v_ref": Option("--v-ref", 1e-6, "V_MIN to V_MAX m/s"),
         "profile": Option("--profile/--no-profile", None, "default on, for a record up to "
                           "6 steps"),
         "compare": Option("--compare/--no-compare", True, "also fit the other model (CSV)"),
     },
+    "trap": {"alpha": Option("--alpha", _TRAP["alpha"].default, "ALPHA_MIN <= alpha "
+                             "(>= 1: no pinning)")},
+    "static": {**_THEORY, "load": Option("--load", 0.0, "-1 < f_w < 1 (F_el)"),
+               "hold": Option("--hold", "position", "position or force"),
+               "t0": _SI["t0"], "mu_el": _SI["mu_el"],
+               "pull_velocity": Option("--pull-velocity", None, "> 0 a0/t0; required with "
+                                       "--direct > 0")},
+    "steady": {**_THEORY, **_SI},
+    "stability": {**_THEORY, "mass": Option("--mass", 0.0, "0 to LOAD_MAX F_el t0^2/a0"),
+                  "damping": Option("--damping", 0.0, "0 to LOAD_MAX F_el t0/a0")},
+    "rsf": {
+        **FIGURE,
+        "case": Option("--case", "step", "step, shs or stick-slip"),
+        "a": Option("--a", 0.005, "> 0"), "b": Option("--b", 0.01, ">= 0"),
+        "dc": Option("--dc", 1e-5, "> 0 m"), "mu0": Option("--mu0", 0.6, "-10 to 10"),
+        "v0": Option("--v0", 1e-6, "> 0 m/s"),
+        "state_law": Option("--state-law", _RSF["state_law"].default, "ageing or slip"),
+        "regularized": Option("--regularized", _RSF["regularized"].default,
+                              "the regularised asinh law"),
+        "stiffness": Option("--stiffness", 1e3, "> 0 1/m, or inf"),
+        "damping": Option("--damping", 0.0, "0 to LOAD_MAX s/m"),
+        "mass": Option("--mass", 0.0, "0 to LOAD_MAX s^2/m"),
+        "v1": Option("--v1", 1e-6, "0 or V_MIN <= |v1| <= V_MAX m/s"),
+        "v2": Option("--v2", 1e-5, "0 or V_MIN <= |v2| <= V_MAX m/s"),
+        "t1": Option("--t1", 10.0, "0 < t1 <= LOAD_MAX s"),
+        "t2": Option("--t2", None, "0 < t2 <= LOAD_MAX s; default 30 s for step, past the "
+                     "reload peak for shs"),
+        "hold": Option("--hold", 100.0, "0 < hold <= LOAD_MAX s"),
+        "v_init": Option("--v-init", None, "0 < v_init <= V_MAX m/s; default v1 (1.01 v1 "
+                         "for stick-slip)"),
+        "rtol": Option("--rtol", 1e-7, "0 < rtol <= 0.1"),
+    },
+    "record": {"columns": Option("--columns", None, "a column map"),
+               "segments": Option("--segments", None, "the load program; default detected"),
+               "out": Option("--out", None, "a folder for record.png and segments.csv"),
+               "force": FIGURE["force"]},
+    "bifurcation": {"check": Option("--check", False, "check each nature by simulation "
+                                    "(at most MAX_CHECKED velocities)"),
+                    "figure": FIGURE["figure"], "force": FIGURE["force"]},
 }
 """Workflow -> option name (the keyword of its function) -> :class:`Option`."""
 

@@ -12,27 +12,12 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["comparison_figure", "preload", "rsf_figure", "rsf_timeseries_figure",
-           "timeseries_figure"]
+__all__ = ["preload", "rsf_figure"]
 
 
 def preload() -> None:
     """Import the figure modules (the painter's first work, while the command solves)."""
     from ..plots import runs  # noqa: F401
-
-
-def timeseries_figure(result: Any) -> tuple[Any, Any]:
-    """:func:`dryfriction.plots.runs.timeseries_figure` (the trap model's run)."""
-    from ..plots.runs import timeseries_figure as build
-
-    return build(result)
-
-
-def rsf_timeseries_figure(result: Any) -> tuple[Any, Any]:
-    """:func:`dryfriction.plots.runs.rsf_timeseries_figure` (a rate-and-state protocol run)."""
-    from ..plots.runs import rsf_timeseries_figure as build
-
-    return build(result)
 
 
 def rsf_figure(result: Any, title: str) -> tuple[Any, Any]:
@@ -41,9 +26,3 @@ def rsf_figure(result: Any, title: str) -> tuple[Any, Any]:
 
     return build(result, title)
 
-
-def comparison_figure(c: Any, title: str = "") -> tuple[Any, Any]:
-    """:func:`dryfriction.plots.runs.comparison_figure` (the ``compare`` command's figure)."""
-    from ..plots.runs import comparison_figure as build
-
-    return build(c, title)
