@@ -9,13 +9,22 @@ result object; :mod:`dryfriction.cli` parses, calls one of them and prints.
 * :func:`sweep`, :func:`phase_diagram` - a protocol's ``[sweep]`` grid on Dask (``sweep``,
   ``phase-diagram``);
 * :func:`fit` - measured friction: the project's CSV files (:func:`fit_data`) or one laboratory
-  record (:func:`fit_record`) (``fit``).
+  record (:func:`fit_record`) (``fit``);
+* :func:`rsf` - rate-and-state through a step, slide-hold-slide or stick-slip (``rsf``);
+* :func:`record` - a laboratory record as read, its load program and steps (``record``);
+* :func:`bifurcation` - the Hopf point of steady sliding by normal form (``bifurcation``);
+* :func:`trap`, :func:`static`, :func:`steady`, :func:`stability` - the closed-form theory
+  (the commands of the same names), returning a :class:`TableOutcome`.
 
 Example::
 
     from dryfriction import app
     run = app.simulate("examples/rsf_velocity_step.toml", "out", figure=False)
     run.summary["mu_final"], run.files
+
+The modules are named apart from the functions (``ratestate`` holds :func:`rsf`, ``reading``
+:func:`record`, ``hopf`` :func:`bifurcation`): importing a submodule sets it as an attribute of
+the package, which would hide a function of the same name.
 
 Names are loaded on first use: ``import dryfriction.app`` imports nothing heavy.
 """
@@ -29,7 +38,10 @@ _WHERE = {"simulate": "runs", "compare": "runs", "reproduce": "runs", "RunOutcom
           "FitOutcome": "outcome", "fit": "fitting", "fit_data": "fitting",
           "fit_record": "records", "RecordFitOutcome": "outcome", "OPTIONS": "options",
           "Option": "options", "sweep": "sweeps", "phase_diagram": "sweeps",
-          "SweepOutcome": "sweeps"}
+          "SweepOutcome": "sweeps", "rsf": "ratestate", "trap": "theory", "static": "theory",
+          "steady": "theory", "stability": "theory", "TableOutcome": "theory",
+          "record": "reading", "RecordOutcome": "reading", "bifurcation": "hopf",
+          "BifurcationOutcome": "hopf"}
 
 __all__ = sorted(_WHERE)
 

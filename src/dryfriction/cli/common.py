@@ -301,17 +301,6 @@ def print_whole(table: Table) -> None:
         Console(width=natural).print(table, crop=False)
 
 
-def write_summary(path: Any, result: Any, context: dict[str, Any]) -> dict[str, Any]:
-    """Write ``result.summary()`` plus the run's ``context`` (protocol, wall time, ...) as
-    ``path`` (JSON): the one summary.json writer of ``rsf`` and ``simulate`` (both laws).
-    Returns what was written."""
-    from ..io.files import write_json
-
-    summary = {**result.summary(), **context}
-    write_json(path, summary)
-    return summary
-
-
 class _ManyValues(typer.core.TyperCommand):
     """A command whose list options take several values after one flag: ``--T 1 10 100``.
 

@@ -1,0 +1,92 @@
+"""The ``bifurcation`` workflow: the nature of the onset of stick-slip by normal form
+(:func:`bifurcation`, :mod:`dryfriction.analysis.hopf_table`). Moved here from the command
+line (issue 26)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .options import OPTIONS
+
+__all__ = ["bifurcation", "BifurcationOutcome"]
+
+_O = {k: o.default for k, o in OPTIONS["bifurcation"].items()}
+
+
+@dataclass
+class BifurcationOutcome:
+    """The Hopf point of steady sliding at each velocity (``dryfriction bifurcation``).
+
+    Attributes
+    ----------
+    out : Path
+        The results folder.
+    files : list of str
+        bifurcation.csv, bifurcation.json (and bifurcation.png with the figure).
+    report : dict
+        What bifurcation.json holds: ``rows`` (one per velocity: ``K_c``, the frequency, the
+        first Lyapunov coefficient ``l1`` and the nature), ``units``, ``law``, ``protocol``.
+    """
+
+    out: Path
+    files: list[str]
+    report: dict[str, Any]
+
+
+def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | Path, *,
+                check: bool = _O["check"], figure: bool = _O["figure"],
+                force: bool = _O["force"],
+                report: Callable[[str], None] | None = None) -> BifurcationOutcome:
+    """Critical stiffness, frequency and first Lyapunov coefficient ``l1`` of steady sliding
+    at each load velocity (m/s) of a rate-and-state protocol: the Hopf bifurcation's nature
+    (supercritical ``l1 < 0``, subcritical ``l1 > 0``, degenerate ``l1 = 0``;
+    :func:`dryfriction.analysis.hopf_table.bifurcation_table`).
+
+    Parameters
+    ----------
+    protocol : path
+        A rate-and-state protocol (``model.law = "rsf"``): its law, damping and mass are used.
+    velocities : str or list of float
+        Load velocities, m/s: ``"1e-6,1e-5"`` as ``--velocities`` takes them, or a list.
+    out : path
+        Folder for bifurcation.csv, bifurcation.json and bifurcation.png (whole or not at
+        all).
+    check : bool
+        Check each nature by direct simulation (at most ``MAX_CHECKED`` velocities).
+    figure, force, report : as :func:`dryfriction.app.simulate`.
+    """
+    from ..analysis.hopf_table import MAX_CHECKED, bifurcation_table, parse_velocities
+    from ..io.files import check_output_dir, output_directory, write_csv, write_json
+    from ..io.protocol import RSFProtocol, load_protocol
+
+    if not isinstance(velocities, str):
+        velocities = ",".join(repr(float(v)) for v in velocities)
+    vs = parse_velocities(velocities)
+    if check and len(vs) > MAX_CHECKED:
+        raise ValueError(f"--velocities: {len(vs)} values with --check: allowed at most "
+                         f"{MAX_CHECKED}")
+    proto = load_protocol(protocol)
+    if not isinstance(proto, RSFProtocol):
+        raise ValueError(f"{protocol}: model.law = 'cv' is not allowed here: the normal form "
+                         "is computed for rate-and-state (law = 'rsf'); the trap model's is "
+                         "not done (docs/hopf.md)")
+    check_output_dir(out, force=force)
+    rep = bifurcation_table(proto, vs, check)
+    rep["protocol"] = str(protocol)
+    rows = rep["rows"]
+    files = ["bifurcation.csv", "bifurcation.json"]
+    with output_directory(out, command="bifurcation", force=force, inputs=[protocol],
+                          report=report) as tmp:
+        write_csv(tmp / "bifurcation.csv", {k: [r[k] for r in rows] for k in rows[0]})
+        write_json(tmp / "bifurcation.json", rep)
+        if figure:
+            from ..plots.hopf import plot_bifurcation
+            from ..plots.style import save_figure
+
+            fig, _ = plot_bifurcation(rep, f"{rep['law']} law, {protocol}")
+            save_figure(fig, tmp / "bifurcation.png", "png")
+            files.append("bifurcation.png")
+    return BifurcationOutcome(Path(out), files, rep)

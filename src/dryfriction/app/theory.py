@@ -1,0 +1,240 @@
+"""The closed-form workflows: :func:`trap`, :func:`static`, :func:`steady`, :func:`stability`
+(the commands of the same names). Each checks its input (one line naming the option as typed),
+evaluates the theory and returns a :class:`TableOutcome`: the parameters and the columns with
+their units, which the command line prints as a table or JSON. Moved here from the command line
+(issue 26)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .options import OPTIONS
+
+__all__ = ["TableOutcome", "trap", "static", "steady", "stability", "LOAD_MAX"]
+
+LOAD_MAX = 1e12
+"""Largest mass, damping (reduced units) or duration (s) the workflows accept: far beyond any
+experiment, and small enough that products with the other inputs stay finite."""
+
+_TRAP, _STA, _STE, _STB = (OPTIONS[k] for k in ("trap", "static", "steady", "stability"))
+
+
+@dataclass
+class TableOutcome:
+    """The values of a closed-form workflow.
+
+    Attributes
+    ----------
+    title : str
+        The table's title.
+    params : dict
+        The inputs (and, for ``trap``, every constant of the trap).
+    columns : dict
+        Column name -> values (one per velocity or waiting time); empty for ``trap``.
+    units : dict
+        Column name -> unit.
+    """
+
+    title: str
+    params: dict[str, Any]
+    columns: dict[str, Any] = field(default_factory=dict)
+    units: dict[str, str] = field(default_factory=dict)
+
+    def as_dict(self) -> dict[str, Any]:
+        """The parameters and the columns in one mapping (the ``--json`` output)."""
+        return {**self.params, **self.columns}
+
+
+def trap(alpha: float = _TRAP["alpha"].default) -> TableOutcome:
+    """All single-trap constants and the pinning regime (``dryfriction trap``,
+    :meth:`dryfriction.theory.trap.Trap.summary`). ``alpha >= 1``: no pinning; the constants
+    that do not exist are ``inf``/``nan`` (``null`` in JSON)."""
+    from ..theory.trap import Trap
+
+    return TableOutcome(f"trap, alpha = {alpha:g}", Trap(alpha).summary())
+
+
+def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
+    # given only with the direct effect, so the athermal output is unchanged
+    return {"direct": direct, "v_ref": v_ref} if direct else {}
+
+
+def _scales(si_values: str, a0: float | None, t0: float | None, mu_el: float | None,
+            need_a0: bool) -> Any:
+    """The SI scales of ``--t0``/``--a0``/``--mu-el`` (None when none is given), each checked
+    against the reduced or SI values that were given (``si_values``: the SI option, or "")."""
+    from ..theory.units import PhysicalScales
+
+    given = [f"--{n}" for n, v in (("a0", a0), ("t0", t0)) if v is not None]
+    if not si_values:
+        if given:
+            raise ValueError(f"{' and '.join(given)} convert(s) SI inputs: give the values in "
+                             "SI units (see --help) or drop it")
+        return None
+    missing = [f"--{n}" for n, v in (("t0", t0), ("a0", a0 if need_a0 else 0.0)) if v is None]
+    if missing:
+        raise ValueError(f"{si_values} is in SI units: give {' and '.join(missing)} "
+                         "(the model's scales) too")
+    if a0 is not None and not need_a0:
+        raise ValueError("--a0 is not used here (times only need --t0): drop it")
+    return PhysicalScales(a0=1.0 if a0 is None else a0, t0=float(t0),  # type: ignore[arg-type]
+                          mu_el=1.0 if mu_el is None else mu_el)
+
+
+def _one_of(reduced: Any, si: Any, names: str) -> None:
+    """Exactly one of the reduced and the SI values (``names``: "--T or --t-w")."""
+    if (reduced is None) == (si is None):
+        raise ValueError(f"give one of {names}: " + ("both were given" if reduced is not None
+                                                      else "neither was given"))
+
+
+def _friction_unit(mu_el: float | None) -> str:
+    return "F_el" if mu_el is None else "F/W"
+
+
+def static(eps: float, T: list[float] | None = None, t_w: list[float] | None = None, *,
+           alpha: float = _STA["alpha"].default, load: float = _STA["load"].default,
+           hold: str = _STA["hold"].default, creep: str = _STA["creep"].default,
+           t0: float | None = _STA["t0"].default, mu_el: float | None = _STA["mu_el"].default,
+           direct: float = _STA["direct"].default, v_ref: float = _STA["v_ref"].default,
+           pull_velocity: float | None = _STA["pull_velocity"].default) -> TableOutcome:
+    """Static friction ``mu_s = F_s/F_el`` after waiting ``T = t_w/t0`` (eq. 27, our reading;
+    ``dryfriction static``): :func:`dryfriction.theory.static.static_friction`; with ``t_w``
+    (s) and ``t0`` (and ``mu_el``) in SI units, ``mu_s = F_s/W``
+    (:func:`dryfriction.theory.units.static_friction_si`). Exactly one of ``T``, ``t_w``."""
+    from ..theory.static import static_friction
+    from ..theory.units import static_friction_si
+
+    _one_of(T, t_w, "--T or --t-w")
+    scales = _scales("--t-w" if t_w is not None else "", None, t0, mu_el, need_a0=False)
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "load": load, "hold": hold,
+                              "creep": creep, **_direct_params(direct, v_ref)}
+    if direct:
+        params["pull_velocity"] = pull_velocity
+    if scales is None:
+        if mu_el is not None:
+            raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "
+                             "or drop it")
+        mu = static_friction(np.asarray(T, float), eps, alpha, creep, load, direct, v_ref,
+                             pull_velocity, hold)
+        cols: dict[str, Any] = {"T": list(T or []), "mu_s": mu}
+    elif direct:
+        raise ValueError("--direct takes reduced inputs (--T, --v-ref and --pull-velocity in "
+                         "a0/t0); in SI use dryfriction.theory.units.static_friction_si")
+    else:
+        mu = static_friction_si(np.asarray(t_w, float), eps, scales, alpha, creep, load)
+        params.update(t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
+        cols = {"t_w": list(t_w or []), "mu_s": mu}
+    units = {"T": "t0", "t_w": "s", "mu_s": _friction_unit(mu_el)}
+    return TableOutcome("static friction", params, cols, units)
+
+
+def _velocities_in_range(V: np.ndarray, a0: float, t0: float) -> None:
+    """``--V`` within the reduced range ``U_MIN <= V t0/a0 <= U_MAX``, refused naming --V
+    (and --a0/--t0 when they leave no range): the core's message names ``u``, which the user
+    of --V never typed."""
+    from ..validation import U_MAX, U_MIN
+
+    vstar = a0 / t0
+    if not (np.isfinite(vstar) and vstar > 0.0):
+        raise ValueError(f"--a0 {a0:g} m and --t0 {t0:g} s give V* = a0/t0 = {vstar:g} m/s: "
+                         "allowed a finite positive ratio")
+    u = V / vstar
+    bad = ~((u >= U_MIN) & (u <= U_MAX))
+    if bad.any():
+        v = float(V[np.argmax(bad)])
+        raise ValueError(f"--V {v:g} m/s is out of range: with --a0 {a0:g} m and --t0 {t0:g} s "
+                         f"allowed {U_MIN * vstar:g} to {U_MAX * vstar:g} m/s "
+                         f"(u = V t0/a0 from {U_MIN:g} to {U_MAX:g})")
+
+
+def steady(eps: float, u: list[float] | None = None, V: list[float] | None = None, *,
+           alpha: float = _STE["alpha"].default, creep: str = _STE["creep"].default,
+           a0: float | None = _STE["a0"].default, t0: float | None = _STE["t0"].default,
+           mu_el: float | None = _STE["mu_el"].default, direct: float = _STE["direct"].default,
+           v_ref: float = _STE["v_ref"].default) -> TableOutcome:
+    """Steady dynamic friction ``mu_d = F_d/F_el`` at reduced velocity ``u = V/V*`` (eq. 34;
+    ``dryfriction steady``): :func:`dryfriction.theory.steady.steady_friction`; with ``V``
+    (m/s), ``a0`` and ``t0`` (and ``mu_el``) in SI units, ``mu_d = F_d/W``
+    (:func:`dryfriction.theory.units.steady_friction_si`). Exactly one of ``u``, ``V``."""
+    from ..theory.steady import steady_friction
+    from ..theory.units import steady_friction_si
+
+    _one_of(u, V, "--u or --V")
+    scales = _scales("--V" if V is not None else "", a0, t0, mu_el, need_a0=True)
+    params: dict[str, Any] = {"eps": eps, "alpha": alpha, "creep": creep,
+                              **_direct_params(direct, v_ref)}
+    if scales is None:
+        if mu_el is not None:
+            raise ValueError("--mu-el converts the friction of SI inputs: give --V, --a0 and "
+                             "--t0, or drop it")
+        mu = steady_friction(np.asarray(u, float), eps, alpha, creep, direct, v_ref)
+        cols: dict[str, Any] = {"u": list(u or []), "mu_d": mu}
+    elif direct:
+        raise ValueError("--direct takes reduced inputs (--u and --v-ref in a0/t0); in SI use "
+                         "dryfriction.theory.units.steady_friction_si")
+    else:
+        _velocities_in_range(np.asarray(V, float), scales.a0, scales.t0)
+        mu = steady_friction_si(np.asarray(V, float), eps, scales, alpha, creep)
+        params.update(a0=scales.a0, t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
+        cols = {"V": list(V or []), "mu_d": mu}
+    units = {"u": "a0/t0", "V": "m/s", "mu_d": _friction_unit(mu_el)}
+    return TableOutcome("steady friction", params, cols, units)
+
+
+def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].default,
+              mass: float = _STB["mass"].default, damping: float = _STB["damping"].default,
+              creep: str = _STB["creep"].default, direct: float = _STB["direct"].default,
+              v_ref: float = _STB["v_ref"].default) -> TableOutcome:
+    """Critical stiffness ``K_c`` (F_el/a0) and onset frequency (1/t0) of steady sliding at
+    each reduced velocity ``u`` (``dryfriction stability``:
+    :func:`dryfriction.theory.linear_stability.critical_stiffness`), and for ``eps > 0`` the
+    rate-and-state twin's ``K_c`` (Rice & Ruina 1983, with the model's effective a, b, Dc:
+    :func:`dryfriction.analysis.rsf_stability.rsf_stability_prediction`)."""
+    from ..analysis.rsf_stability import rsf_stability_prediction
+    from ..theory.linear_stability import critical_stiffness
+    from ..theory.model import TrapModel
+    from ..theory.steady import check_steady_inputs
+    from ..validation import check_scalar
+
+    check_steady_inputs(np.asarray(u, float), eps, alpha, creep)
+    check_scalar("mass", mass, 0.0, LOAD_MAX)
+    check_scalar("damping", damping, 0.0, LOAD_MAX)
+    model = TrapModel(alpha, eps, creep, direct=direct, v_ref=v_ref)
+    if mass > 0 and damping == 0 and not direct:  # the direct effect damps like eta (A mu/u)
+        raise ValueError(
+            f"--mass {mass:g} without --damping is ill posed: with inertia and no damping the "
+            "delay at the spinodal edge makes K_c grow with the highest frequency considered, "
+            "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or --direct > 0, or "
+            "drop --mass")
+    res = [critical_stiffness(v, model, mass, damping) for v in u]
+    twins = [rsf_stability_prediction(v, model, mass, damping) for v in u] if eps > 0 else []
+    params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep,
+              **_direct_params(direct, v_ref)}
+    cols = {
+        "u": list(u),
+        "K_c": [r.critical_stiffness for r in res],
+        "omega_c": [r.omega for r in res],
+        "forward_stiffness": [r.forward_stiffness for r in res],
+        "backward_stiffness": [r.backward_stiffness for r in res],
+        "dmu_d_du": [r.velocity_slope for r in res],
+    }
+    if twins:  # rate-and-state with the model's effective a, b, Dc (Rice & Ruina 1983)
+        cols["K_c_rsf"] = [t["K_c"] for t in twins]
+    units = {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "1/t0",
+             "forward_stiffness": "F_el/a0", "backward_stiffness": "F_el/a0",
+             "dmu_d_du": "F_el t0/a0", "K_c_rsf": "F_el/a0"}
+    return TableOutcome("linear stability of steady sliding", params, cols, units)
+
+
+def no_pinning_display(summary: dict[str, Any]) -> dict[str, Any]:
+    """``trap``'s constants for a table: with ``alpha >= 1`` (no pinning, module
+    :mod:`dryfriction.theory.trap`) there is no spinodal, no jump, no friction; a NaN or inf in
+    the table would read as a failed computation (JSON keeps null)."""
+    return {k: ("none (no pinning: alpha >= 1)"
+                if isinstance(v, float) and not math.isfinite(v) else v)
+            for k, v in summary.items()}
