@@ -147,8 +147,10 @@ def test_fit_refuses_as_the_command_does(tmp_path: Path, capsys: pytest.CaptureF
 
 
 def test_the_command_line_takes_its_defaults_from_the_app_layer() -> None:
-    """No option default of ``fit``, ``simulate``, ``compare``, ``reproduce`` is written in
-    the command line: each is the one declared in :data:`dryfriction.app.options.OPTIONS`."""
+    """No option default of a command with a workflow in :mod:`dryfriction.app` is written in
+    the command line: each is the one declared in :data:`dryfriction.app.options.OPTIONS`,
+    and every option with a default is declared there (but ``--json``, how to print,
+    ``--out`` where it is optional, and the values of the closed forms)."""
     import typer.main
 
     from dryfriction.cli import app as cli_app
@@ -162,3 +164,161 @@ def test_the_command_line_takes_its_defaults_from_the_app_layer() -> None:
             assert params[key].default == option.default, (workflow, name)
             assert option.flag.split("/")[0] in params[key].opts or name == "regularized" \
                 or name == "compare", (workflow, name, params[key].opts)
+        own = {n for n, p in params.items() if not p.required and p.param_type_name == "option"}
+        # --T/--t-w, --u/--V: the inputs themselves (one of the two is required)
+        assert own - set(options) <= {"json_out", "out_dir", "out", "T", "t_w", "u", "V"}, \
+            (workflow, own - set(options))
+
+
+# ------------------------------------------------- rsf, record, bifurcation, the closed forms
+
+RSF_PROTOCOL = """
+[model]
+law = "rsf"
+state_law = "ageing"
+a = 0.0083
+b = 0.0121
+dc = 6.1e-6
+mu0 = 0.6
+v0 = 1.3e-6
+
+[drive]
+kind = "spring"
+stiffness = 400.0
+damping = 0.0
+mass = 0.0
+segments = [{velocity = 2e-6, duration = 10.0}]
+"""
+
+
+def test_rsf_slide_hold_slide(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A generic slide-hold-slide (no unit factor: a, b, Dc, k, v1 all off 1), with a t2
+    short of the reload peak so that the note is said both ways."""
+    opts = {"case": "shs", "a": 0.0071, "b": 0.0093, "dc": 7.3e-6, "stiffness": 2.7e3,
+            "v1": 3.1e-6, "t1": 4.0, "hold": 23.0, "t2": 0.7}
+    argv = [x for k, v in opts.items() for x in (app.OPTIONS["rsf"][k].flag, str(v))]
+    assert run("rsf", *argv, "--out", tmp_path / "cli", "--format", "svg") == 0
+    said = capsys.readouterr().err
+    done = app.rsf(**opts, out=tmp_path / "py", fmt="svg")  # type: ignore[arg-type]
+    assert done.units == "SI" and done.files == ["series.csv", "summary.json", "rsf.svg"]
+    same_folders(tmp_path / "cli", tmp_path / "py", done.files)
+    assert done.summary["case"] == "shs"
+    assert done.notes and done.notes[0] in " ".join(said.split())
+    # without a folder: the same numbers, nothing written
+    bare = app.rsf(**opts)  # type: ignore[arg-type]
+    assert bare.out is None and bare.files == []
+    assert {k: v for k, v in bare.summary.items() if k != "wall_s"} == \
+        _json(tmp_path / "py" / "summary.json")
+
+
+@pytest.mark.parametrize("options, line", [
+    ({"v1": -1e-6}, "--v1 -1e-06 is out of range"),
+    ({"t1": 0.0}, "--t1 = 0 is out of range"),
+    ({"v1": 0.0}, "--v-init is needed when --v1 is 0"),
+])
+def test_rsf_refuses_as_the_command_does(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                         options: dict[str, Any], line: str) -> None:
+    flags = [x for k, v in options.items() for x in (app.OPTIONS["rsf"][k].flag, str(v))]
+    assert run("rsf", *flags, "--out", tmp_path / "cli") == 2
+    said = capsys.readouterr().err
+    with pytest.raises(ValueError) as exc:
+        app.rsf(**options, out=tmp_path / "py")
+    assert line in str(exc.value) and str(exc.value) in " ".join(said.split())
+    assert not (tmp_path / "cli").exists() and not (tmp_path / "py").exists()
+
+
+def test_record(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import records_zoo as zoo  # tests/ (the shared generators)
+    path = zoo.write(zoo.make_record(1, "shs", (), "tab_um"), tmp_path)
+    assert run("record", path, "--json", "--out", tmp_path / "cli") == 0
+    printed = json.loads(capsys.readouterr().out)
+    done = app.record(path, out=tmp_path / "py")
+    assert isinstance(done, app.RecordOutcome) and done.files == ["record.png", "segments.csv"]
+    same_folders(tmp_path / "cli", tmp_path / "py", done.files)
+    from dryfriction.io.files import to_jsonable
+
+    assert printed == json.loads(json.dumps(to_jsonable(done.report)))
+    assert done.report["segments_from"] == "detected" and len(done.steps) >= 2
+    # the detected program given back as --segments reads the same steps
+    given = app.record(path, segments=done.report["segments_option"])
+    assert given.report["segments_from"] == "--segments" and given.out is None
+    assert [w.t_change for w in given.steps] == pytest.approx(
+        [w.t_change for w in done.steps], rel=1e-9)
+
+
+def test_bifurcation(tmp_path: Path) -> None:
+    proto = tmp_path / "ageing.toml"
+    proto.write_text(RSF_PROTOCOL)
+    assert run("bifurcation", proto, "--velocities", "2.1e-6,3.7e-5", "--out",
+               tmp_path / "cli") == 0
+    done = app.bifurcation(proto, [2.1e-6, 3.7e-5], tmp_path / "py")
+    assert done.files == ["bifurcation.csv", "bifurcation.json", "bifurcation.png"]
+    same_folders(tmp_path / "cli", tmp_path / "py", done.files)
+    assert [r["velocity"] for r in done.report["rows"]] == pytest.approx([2.1e-6, 3.7e-5])
+    with pytest.raises(ValueError, match="allowed at most"):
+        app.bifurcation(proto, [1e-6] * 13, tmp_path / "py2", check=True)
+    assert not (tmp_path / "py2").exists()
+
+
+@pytest.mark.parametrize("command, argv, call", [
+    ("trap", ["--alpha", "0.21"], lambda: app.trap(0.21)),
+    ("static", ["--eps", "0.037", "--T", "3.3", "170", "--load", "0.27"],
+     lambda: app.static(0.037, [3.3, 170.0], load=0.27)),
+    ("static", ["--eps", "0.037", "--t-w", "2.3", "70", "--t0", "0.013", "--mu-el", "0.47"],
+     lambda: app.static(0.037, t_w=[2.3, 70.0], t0=0.013, mu_el=0.47)),
+    ("steady", ["--eps", "0.041", "--u", "0.07", "3.1", "--direct", "0.023"],
+     lambda: app.steady(0.041, [0.07, 3.1], direct=0.023)),
+    ("steady", ["--eps", "0.041", "--V", "3e-6", "2e-5", "--a0", "1.7e-6", "--t0", "0.011"],
+     lambda: app.steady(0.041, V=[3e-6, 2e-5], a0=1.7e-6, t0=0.011)),
+    ("stability", ["--eps", "0.043", "--u", "0.3", "2.2", "--mass", "0.6", "--damping",
+                   "0.17"], lambda: app.stability(0.043, [0.3, 2.2], mass=0.6, damping=0.17)),
+])
+def test_closed_forms(capsys: pytest.CaptureFixture[str], command: str, argv: list[str],
+                      call: Any) -> None:
+    """The command's --json is the Python call's values, to the last digit."""
+    capsys.readouterr()
+    assert run(command, *argv, "--json") == 0
+    printed = json.loads(capsys.readouterr().out)
+    done = call()
+    from dryfriction.io.files import to_jsonable
+
+    assert printed == json.loads(json.dumps(to_jsonable(done.as_dict())))
+    assert done.columns or command == "trap"
+    assert set(done.columns) <= set(done.units)
+
+
+@pytest.mark.parametrize("command, argv, call, line", [
+    ("static", ["--eps", "0.04"], lambda: app.static(0.04), "give one of --T or --t-w"),
+    ("steady", ["--eps", "0.04", "--u", "0.1", "--a0", "1e-6"],
+     lambda: app.steady(0.04, [0.1], a0=1e-6), "--a0 convert(s) SI inputs"),
+    ("stability", ["--eps", "0.04", "--u", "0.1", "--mass", "1"],
+     lambda: app.stability(0.04, [0.1], mass=1.0), "--mass 1 without --damping is ill posed"),
+])
+def test_closed_forms_refuse_as_the_commands_do(capsys: pytest.CaptureFixture[str],
+                                               command: str, argv: list[str], call: Any,
+                                               line: str) -> None:
+    assert run(command, *argv) == 2
+    said = " ".join(capsys.readouterr().err.split())
+    with pytest.raises(ValueError) as exc:
+        call()
+    assert line in str(exc.value) and str(exc.value) in said
+
+
+def test_the_trap_model_defaults_are_the_models_own() -> None:
+    """An option that sets a trap-model parameter defaults to the model's declared value
+    (:data:`dryfriction.theory.model.TRAP_PARAMETERS`), not a copy; likewise the rsf law's
+    (:data:`dryfriction.rsf.law.RATE_STATE_PARAMETERS`)."""
+    from dryfriction.rsf.law import RATE_STATE_PARAMETERS
+    from dryfriction.theory.model import TRAP_PARAMETERS
+
+    checked = 0
+    for workflow in ("fit", "trap", "static", "steady", "stability"):
+        for name in ("alpha", "creep", "direct", "v_ref"):
+            option = app.OPTIONS[workflow].get(name)
+            if option is None or (workflow == "fit" and name == "v_ref"):  # fit's is SI, m/s
+                continue
+            assert option.default == TRAP_PARAMETERS[name].default, (workflow, name)
+            checked += 1
+    assert checked == 16
+    for name in ("state_law", "regularized"):
+        assert app.OPTIONS["rsf"][name].default == RATE_STATE_PARAMETERS[name].default
