@@ -122,3 +122,14 @@ def test_sigma_of_a_minus_b_from_the_covariance() -> None:
     assert abs(cov_ab) > 0.2 * math.sqrt(var_a * var_b)
     want = math.sqrt(var_a + var_b - 2.0 * cov_ab)
     assert row["sigma_a_minus_b"] == pytest.approx(want, rel=1e-6)
+
+
+def test_parameter_table_carries_identifiability(fits) -> None:
+    """The parameter table (to_records, the CSV/dataframe) has each parameter's
+    identifiability next to its value, the same word as the estimate's (mutant
+    results_no_identifiability_column: the column dropped)."""
+    _, r = fits["plain"]
+    rec = r.to_records()
+    assert "identifiability" in rec.dtype.names
+    got = {str(row["name"]): str(row["identifiability"]) for row in rec}
+    assert got == {p.name: p.identifiability for p in r.parameters}
