@@ -2,7 +2,7 @@
 
 Goal on one core: the sepiolite step (examples/data/lab/sepiolite_velstep_0.2-2um_s.txt)
 fitted with the trap model on the rsf fit's machine in <= 5 min CPU, with and without the
-direct effect; the CLI's estimate (``cli.records.cv_cost``) within a factor 3 of the measured
+direct effect; the CLI's estimate (``app.records.cv_cost``) within a factor 3 of the measured
 CPU time. Prints, for A = 0 and A free: forward runs, CPU time, the estimate and their ratio.
 
 Run: ``python -m benchmarks bench_cv_record`` (about 3-5 min CPU).
@@ -17,7 +17,7 @@ from pathlib import Path
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from dryfriction.cli.records import cv_cost  # noqa: E402
+from dryfriction.app.records import cv_cost  # noqa: E402
 from dryfriction.fit.cvsteps import fit_cv_steps  # noqa: E402
 from dryfriction.fit.steps import fit_steps, step_data  # noqa: E402
 from dryfriction.records import lab  # noqa: E402

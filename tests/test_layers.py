@@ -28,6 +28,7 @@ LAYERS: list[set[str]] = [
     {"fit"},
     {"analysis"},
     {"plots"},
+    {"app"},  # the workflows as library functions (issue 26)
     {"cli", "warm"},  # warm: the install step's entry point (python -m dryfriction.warm)
 ]
 

@@ -21,12 +21,12 @@ HEAVY = ("matplotlib", "scipy.optimize", "scipy.signal", "scipy.linalg", "numba"
          "distributed")
 
 
-def _loaded_after(code: str, cwd: Path) -> dict[str, object]:
-    """Run ``code`` in a fresh interpreter; return which HEAVY modules it imported and the
-    exit status of the command it ran (``rc``, if the code set one)."""
+def _loaded_after(code: str, cwd: Path, modules: tuple[str, ...] = HEAVY) -> dict[str, object]:
+    """Run ``code`` in a fresh interpreter; return which of ``modules`` (default HEAVY) it
+    imported and the exit status of the command it ran (``rc``, if the code set one)."""
     probe = (
         "import json, sys\nrc = None\n" + code + "\n"
-        f"print(json.dumps({{'loaded': [m for m in {HEAVY!r} if m in sys.modules], "
+        f"print(json.dumps({{'loaded': [m for m in {modules!r} if m in sys.modules], "
         "'rc': rc}))"
     )
     import dryfriction
@@ -70,6 +70,38 @@ def test_rsf_protocol_without_figure_imports_nothing_heavy(tmp_path: Path) -> No
     assert got["loaded"] == []
     assert sorted(p.name for p in (tmp_path / "r").iterdir()) == [
         "dryfriction.json", "summary.json", "timeseries.csv"]
+
+
+def test_a_json_run_loads_neither_rich_nor_the_other_commands(tmp_path: Path) -> None:
+    """Issue 26: ``simulate --json --no-figure`` prints JSON only, so it needs no Rich (a
+    tenth of rsfmodel's whole velocity step), and only its own command module is registered
+    (:data:`dryfriction.cli.COMMAND_MODULES`): not the fit's, the record's or the sweeps'."""
+    proto = EXAMPLES / "rsf_velocity_step.toml"
+    others = ("rich", "dryfriction.cli.fitting", "dryfriction.cli.records",
+              "dryfriction.cli.record", "dryfriction.cli.sweeps", "dryfriction.cli.examples",
+              "dryfriction.records.labsteps", "dryfriction.cli.runs")
+    got = _loaded_after(
+        "import contextlib, io\nfrom dryfriction.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    rc = main(['simulate', {str(proto)!r}, '--out', 'r', '--no-figure', '--json'])",
+        tmp_path, others)
+    assert got["rc"] == 0, got["stderr"]
+    assert got["loaded"] == ["dryfriction.cli.runs"]
+
+
+def test_every_command_is_registered_by_the_module_the_map_names() -> None:
+    """:data:`dryfriction.cli.COMMAND_MODULES` names, for every command of the full app, the
+    module that registers it (a command missing from the map, or mapped to another module,
+    would be unknown to a command line that loads only that module)."""
+    import typer.main
+
+    from dryfriction.cli import COMMAND_MODULES, app
+
+    commands = typer.main.get_command(app).commands  # type: ignore[attr-defined]
+    assert set(commands) == set(COMMAND_MODULES)
+    for name, command in commands.items():
+        module = command.callback.__wrapped__.__module__
+        assert module == f"dryfriction.cli.{COMMAND_MODULES[name]}", name
 
 
 def test_trap_protocol_without_figure_needs_no_scipy_optimizers(tmp_path: Path) -> None:

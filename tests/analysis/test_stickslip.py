@@ -273,11 +273,11 @@ def test_continue_spring_keeps_the_state_between_runs():
 
 
 def test_sweep_examples_are_valid_at_every_point(tmp_path):
-    from dryfriction.cli.sweeps import _prepare_sweep
+    from dryfriction.app.sweeps import prepare_sweep
 
     examples = [p for p in (Path(__file__).parents[2] / "examples").glob("*.toml")
                 if "\n[sweep]" in p.read_text()]
     assert examples
     for p in examples:
-        spec = _prepare_sweep(str(p), str(tmp_path / "o"), False, None)
+        spec = prepare_sweep(str(p), str(tmp_path / "o"), False, None)
         assert 1 < spec.size <= 16  # small enough to run as an example

@@ -438,12 +438,12 @@ class _Accepted(Exception):
 def test_sweep_tables_either_pass_the_checks_or_give_one_error_line(
         tmp_path: Path, capsys: pytest.CaptureFixture[str],
         monkeypatch: pytest.MonkeyPatch) -> None:
-    import dryfriction.cli.sweeps as sweeps_cli
+    import dryfriction.app.sweeps as sweeps_app
 
     def accepted(*args: Any, **kwargs: Any) -> None:
         raise _Accepted
 
-    monkeypatch.setattr(sweeps_cli, "_run_with_bar", accepted)
+    monkeypatch.setattr(sweeps_app, "_run_sweep", accepted)
     counter = [0]
     outcomes: set[str] = set()
 

@@ -13,7 +13,19 @@ first, and ``app`` (Typer, Rich, every command) is imported on first use.
 import sys
 from typing import Any
 
-__all__ = ["app", "main"]
+__all__ = ["app", "main", "COMMAND_MODULES"]
+
+COMMAND_MODULES: dict[str, str] = {
+    "examples": "examples", "model": "examples",
+    "trap": "model", "static": "model", "steady": "model", "stability": "model",
+    "fit": "fitting", "record": "record",
+    "reproduce": "runs", "rsf": "runs", "simulate": "runs", "compare": "runs",
+    "sweep": "sweeps", "phase-diagram": "sweeps", "bifurcation": "bifurcation",
+}
+"""Command name -> the module that registers it on :data:`.common.app`: :func:`main` imports
+only the one a command line names (issue 26: the other command modules and what they import
+were a third of a ``simulate --no-figure``'s start-up); help, ``--version`` and an unknown name
+get every command (:mod:`.commands`). Kept complete by ``tests/test_startup.py``."""
 
 
 def __getattr__(name: str) -> Any:
@@ -113,7 +125,7 @@ def _run(argv: list[str] | None) -> int:
 
     from .common import error_line
 
-    app = sys.modules[__name__].app  # the module's attribute: loaded on first use, or a stand-in
+    app = _app_for(sys.argv[1:] if argv is None else argv)
     try:
         rv = app(args=argv, prog_name="dryfriction", standalone_mode=False)
     except typer.Abort:  # Ctrl-C, as Click reports it: main() says the one line
@@ -130,6 +142,22 @@ def _run(argv: list[str] | None) -> int:
         return int(getattr(exc, "exit_code", 1))
     # without standalone mode a command's typer.Exit(code) comes back as its code
     return rv if isinstance(rv, int) else 0
+
+
+def _app_for(argv: list[str]) -> Any:
+    """The app to run ``argv`` (without the program name): a stand-in set as this module's
+    ``app`` (a test's), else the app with at least the command ``argv`` names registered."""
+    if "app" in globals():  # loaded in full already, or a stand-in
+        return globals()["app"]
+    module = COMMAND_MODULES.get(argv[0]) if argv else None
+    if module is None:  # help, --version, a name that is no command: every command
+        return sys.modules[__name__].app
+    import importlib
+
+    importlib.import_module(f"{__name__}.{module}")
+    from .common import app
+
+    return app
 
 
 def _said_interrupted() -> bool:

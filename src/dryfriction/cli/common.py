@@ -9,13 +9,13 @@ import time
 import warnings
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
 import typer.core
-from rich.console import Console
-from rich.table import Table
-from rich.text import Text
+
+if TYPE_CHECKING:
+    from rich.table import Table
 
 from ..io.files import to_jsonable
 
@@ -29,8 +29,26 @@ app = typer.Typer(
     context_settings={"help_option_names": ["-h", "--help"]},
     help="The Caroli-Velicky elasto-plastic model of dry friction (reduced units: a0, t0, F_el).",
 )
-err = Console(stderr=True)
-out = Console()
+
+
+class _Console:
+    """A Rich console made at its first use: a command that prints only JSON (``simulate
+    --json``) does not import Rich (a tenth of rsfmodel's whole velocity step, issue 26)."""
+
+    def __init__(self, **options: Any) -> None:
+        self._options = options
+
+    def __getattr__(self, name: str) -> Any:
+        console = self.__dict__.get("_console")
+        if console is None:
+            from rich.console import Console
+
+            console = self.__dict__["_console"] = Console(**self._options)
+        return getattr(console, name)
+
+
+err: Any = _Console(stderr=True)
+out: Any = _Console()
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -161,6 +179,24 @@ an estimate may grow) and what is being done now."""
 
 
 @contextmanager
+def lazy_progress_bar(label: str, total: float | None = None,
+                      unit: str = "") -> Iterator[Update]:
+    """:func:`progress_bar`, opened at the first update only: a run that reports no progress
+    (a rate-and-state protocol) does not import Rich's progress machinery."""
+    from contextlib import ExitStack
+
+    with ExitStack() as stack:
+        bar: list[Update] = []
+
+        def update(done: float, new_total: float | None = None, what: str | None = None) -> None:
+            if not bar:
+                bar.append(stack.enter_context(progress_bar(label, total, unit)))
+            bar[0](done, new_total, what)
+
+        yield update
+
+
+@contextmanager
 def progress_bar(label: str, total: float | None = None, unit: str = "",
                  delay: float = 1.0) -> Iterator[Update]:
     """Progress with the elapsed time and an estimate of the time left, on standard error.
@@ -244,6 +280,9 @@ def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
     if as_json:
         print(json.dumps(to_jsonable(result), indent=2))
         return
+    from rich.table import Table
+    from rich.text import Text
+
     table = Table(title=Text(title), show_header=False)
     for k, v in result.items():
         table.add_row(Text(k), Text(f"{v:.10g}" if isinstance(v, float) else str(v)))
@@ -257,6 +296,8 @@ def print_whole(table: Table) -> None:
     if natural <= out.width:
         out.print(table)
     else:  # ``print(width=...)`` cannot go beyond the console's width: a wider console can
+        from rich.console import Console
+
         Console(width=natural).print(table, crop=False)
 
 
@@ -338,6 +379,9 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
     units = units or {}
     out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()),
               markup=False, highlight=False, soft_wrap=True)
+    from rich.table import Table
+    from rich.text import Text
+
     table = Table()
     for name in cols:
         header = f"{name} [{units[name]}]" if name in units else name

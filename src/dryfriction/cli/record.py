@@ -128,20 +128,9 @@ def record_command(
 def write_record_outputs(out_dir: Path, rec: Any, segs: Any, det: Any, *, force: bool,
                          given: bool, command: str = "record", inputs: Any = None) -> None:
     """Write record.png and segments.csv into ``out_dir`` (whole or not at all)."""
+    from ..app.records import write_record_files
     from ..io.files import output_directory
 
     with output_directory(out_dir, command=command, force=force,
                           inputs=inputs or [rec.source], report=say) as tmp:
         write_record_files(tmp, rec, segs, det, given=given)
-
-
-def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bool,
-                       fmt: str = "png", dpi: int | None = None) -> None:
-    """record.{fmt} and segments.csv into ``folder`` (a staging folder)."""
-    from ..plots.record import plot_record
-    from ..plots.style import save_figure
-    from ..records.lab import write_segments_csv
-
-    write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)
-    fig, _ = plot_record(rec, segs, det, given=given)
-    save_figure(fig, folder / f"record.{fmt}", fmt, dpi)

@@ -10,6 +10,7 @@ from typing import Annotated, Any
 import typer
 import typer.core
 
+from ..app.options import OPTIONS
 from . import figures
 from .common import (
     DPI_HELP,
@@ -20,6 +21,7 @@ from .common import (
     cli_errors,
     compile_notice,
     emit,
+    lazy_progress_bar,
     many,
     out,
     progress_bar,
@@ -30,25 +32,24 @@ from .common import (
 from .model import LOAD_MAX
 from .painter import draw_figure
 
+_REP, _SIM, _CMP = OPTIONS["reproduce"], OPTIONS["simulate"], OPTIONS["compare"]
+
 
 @app.command(cls=many())
 @cli_errors
 def reproduce(
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: new, empty, or one "
                                           "this program wrote before.")],
-    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
-    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
+    force: bool = typer.Option(_REP["force"].default, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option(_REP["fmt"].default, "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(_REP["dpi"].default, "--dpi", help=DPI_HELP),
 ) -> None:
     """The paper's six figures, the data behind them, summary.json and report.html."""
-    from ..io.files import check_output_dir
-    from ..plots.report import reproduce as run
-    from ..validation import check_figure_format
+    from ..app.runs import reproduce as run
 
-    fmt, dpi = check_figure_format(fmt, dpi)
-    check_output_dir(out_dir, force=force)  # fail on a bad --out before importing matplotlib
     with progress_bar("reproduce", unit="steps") as update:
-        summary = run(out_dir, update, force=force, report=say, fmt=fmt, dpi=dpi)
+        summary = run(out_dir, force=force, fmt=fmt, dpi=dpi, progress=update,
+                      report=say).summary
     out.print(
         f"wrote {out_dir}/: fig1-6.{fmt}, static_friction.csv, steady_friction.csv, "
         f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
@@ -205,10 +206,11 @@ def simulate(
     out: str = typer.Option(..., "--out", help="Results folder (written whole or not at all; "
                             "new, empty, or written by this program before)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
-    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
-    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
-    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
+    force: bool = typer.Option(_SIM["force"].default, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option(_SIM["fmt"].default, "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(_SIM["dpi"].default, "--dpi", help=DPI_HELP),
+    figure: bool = typer.Option(_SIM["figure"].default, "--figure/--no-figure",
+                                help=FIGURE_HELP),
 ) -> None:
     """Run a protocol (trap ensemble, §6 of `dryfriction model`, or rate-and-state with
     ``model.law = "rsf"``):
@@ -218,41 +220,21 @@ def simulate(
     ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
     nothing.
     """
-    from pathlib import Path
+    from ..app.runs import simulate as run
 
-    from ..io.files import check_output_dir, output_directory, write_csv
-    from ..io.protocol import RSFProtocol, load_protocol
-    from ..validation import check_figure_format
+    def on_start(proto: Any) -> None:
+        compile_notice(rsf=type(proto).__name__ == "RSFProtocol")
 
-    fmt, dpi = check_figure_format(fmt, dpi)
-    proto = load_protocol(protocol)  # every check before any work
-    check_output_dir(out, force=force)
-    compile_notice(rsf=isinstance(proto, RSFProtocol))
-    if isinstance(proto, RSFProtocol):
-        _simulate_rsf_protocol(proto, protocol, out, json_out, force, fmt, dpi, figure)
-        return
-
-    with progress_bar("simulate", 100.0, unit="%") as update:
-        result = proto.run(progress=lambda fraction: update(100.0 * fraction),
-                           on_interrupt="partial")
-    with output_directory(out, command="simulate", force=force, inputs=[protocol],
-                          report=say) as tmp:
-        write_csv(tmp / "timeseries.csv", result.columns())
-        summary = write_summary(tmp / "summary.json", result,
-                                {"protocol": str(Path(protocol))})
-        if figure:
-            draw_figure(figures.timeseries_figure, result,
-                        path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
-        for i, snap in enumerate(result.snapshots):
-            cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
-            write_csv(tmp / f"snapshot_{i:03d}_t{snap['t']:.6g}.csv", cols)
-    brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
-    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out}")
-    late = result.info.get("snapshots_not_reached")
-    if late:
-        say(f"note: the run ended at t = {float(result.t[-1]):g} t0 (runaway), before the "
-            f"snapshot time(s) {', '.join(f'{s:g}' for s in late)}: not written")
-    if result.partial:
+    with lazy_progress_bar("simulate", 100.0, unit="%") as update:
+        done = run(protocol, out, force=force, fmt=fmt, dpi=dpi, figure=figure,
+                   progress=update, report=say, draw=draw_figure, on_start=on_start)
+    title = (f"simulate {protocol} -> {out}" + (" (rate-and-state, SI: t s, x m, v m/s, "
+                                                 "theta s)" if done.units == "SI" else ""))
+    brief = {k: v for k, v in done.summary.items() if not isinstance(v, dict)}
+    emit(done.summary if json_out else brief, json_out, title)
+    for note in done.notes:
+        say(note)
+    if done.partial:
         say_interrupted("partial result written")
         raise typer.Exit(130)
 
@@ -264,13 +246,14 @@ def compare(
                                    "drive."),
     out: str = typer.Option(..., "--out", help="Results folder: compare.png, compare.json "
                             "(written whole or not at all)."),
-    state_law: str = typer.Option("ageing", "--state-law", help="Twin's state law: ageing or "
-                                  "slip."),
+    state_law: str = typer.Option(_CMP["state_law"].default, "--state-law",
+                                  help="Twin's state law: ageing or slip."),
     json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
-    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option("png", "--format", help=FORMAT_HELP),
-    dpi: int = typer.Option(None, "--dpi", help=DPI_HELP),
-    figure: bool = typer.Option(True, "--figure/--no-figure", help=FIGURE_HELP),
+    force: bool = typer.Option(_CMP["force"].default, "--force", help=FORCE_HELP),
+    fmt: str = typer.Option(_CMP["fmt"].default, "--format", help=FORMAT_HELP),
+    dpi: int = typer.Option(_CMP["dpi"].default, "--dpi", help=DPI_HELP),
+    figure: bool = typer.Option(_CMP["figure"].default, "--figure/--no-figure",
+                                help=FIGURE_HELP),
 ) -> None:
     """Run a trap-model protocol and its fitted rate-and-state twin; draw both on one figure.
 
@@ -278,50 +261,12 @@ def compare(
     and never holds, otherwise taken from the standard calibration (velocity steps and
     slide-hold-slide at the first sliding velocity). Reduced units.
     """
-    from ..analysis.rsf_view import compare_protocol
-    from ..io.files import check_output_dir, output_directory, write_json
-    from ..io.protocol import load_protocol
-    from ..validation import check_choice, check_figure_format
+    from ..app.runs import compare as run
 
-    check_choice("state_law", state_law, ("ageing", "slip"))
-    fmt, dpi = check_figure_format(fmt, dpi)
-    proto = load_protocol(protocol)
-    check_output_dir(out, force=force)
-    compile_notice()
-    c = compare_protocol(proto, state_law)
-    report = {"protocol": protocol, **c.to_dict()}
-
-    with output_directory(out, command="compare", force=force, inputs=[protocol],
-                          report=say) as tmp:
-        write_json(tmp / "compare.json", report)
-        if figure:
-            draw_figure(figures.comparison_figure, c, Path(protocol).name,
-                        path=tmp / f"compare.{fmt}", fmt=fmt, dpi=dpi)
+    done = run(protocol, out, state_law=state_law, force=force, fmt=fmt, dpi=dpi,
+               figure=figure, report=say, draw=draw_figure,
+               on_start=lambda proto: compile_notice())
+    report = done.summary
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
-    brief.update({f"misfit_{k}": v for k, v in c.misfit.items()})
+    brief.update({f"misfit_{k}": v for k, v in done.result.misfit.items()})
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
-
-
-def _simulate_rsf_protocol(proto: Any, protocol: str, out: str, json_out: bool,
-                           force: bool, fmt: str = "png", dpi: int | None = None,
-                           figure: bool = True) -> None:
-    """``simulate`` for ``model.law = "rsf"``: the same three files, SI units."""
-    import time
-    from pathlib import Path
-
-    from ..io.files import output_directory, write_csv
-
-    start = time.perf_counter()
-    res = proto.run()
-    context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
-
-    with output_directory(out, command="simulate", force=force, inputs=[protocol],
-                          report=say) as tmp:
-        write_csv(tmp / "timeseries.csv", res.columns())
-        summary = write_summary(tmp / "summary.json", res, context)
-        if figure:
-            draw_figure(figures.rsf_timeseries_figure, res,
-                        path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
-    brief = {k2: v2 for k2, v2 in summary.items() if not isinstance(v2, dict)}
-    emit(brief if not json_out else summary, json_out, f"simulate {protocol} -> {out} "
-         "(rate-and-state, SI: t s, x m, v m/s, theta s)")
