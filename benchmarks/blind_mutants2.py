@@ -328,6 +328,11 @@ def resolve(mut: tuple[str, str, str, str, str, list[str]]
     if not (SRC / rel).exists():
         hits = sorted(p.relative_to(SRC).as_posix() for p in SRC.rglob(Path(rel).name))
         rel = hits[0] if len(hits) == 1 else rel
+    if (SRC / rel).exists() and (SRC / rel).read_text().count(orig) == 0:
+        # the code moved to another module (the CLI's checks went to app/ after af8a8af)
+        hits = sorted(p.relative_to(SRC).as_posix() for p in SRC.rglob("*.py")
+                      if p.read_text().count(orig) == 1)
+        rel = hits[0] if len(hits) == 1 else rel
     new: list[str] = []
     for t in tests:
         if (ROOT / t).exists():

@@ -1,0 +1,76 @@
+"""What the figures show, read back from their artists (line data, labels, title), against
+the numbers computed here from the fit's predictions and the record's columns. Written for
+the survivors of the second blind mutant review (benchmarks/blind_mutants2.py): each test
+names the mutant it was seen to kill."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from dryfriction.fit import fit_steady
+from dryfriction.plots.fits import plot_fit
+from dryfriction.plots.record import plot_record
+from dryfriction.records.data import SteadyData
+from dryfriction.records.detection import detect_program
+from dryfriction.records.lab import read_record
+from dryfriction.theory.units import PhysicalScales, steady_friction_si
+
+SHARED = (Path(__file__).resolve().parents[2] / "examples" / "data" / "lab"
+          / "sepiolite_velstep_0.2-2um_s.txt")
+V = np.geomspace(2e-8, 3e-5, 14)
+
+
+@pytest.fixture(scope="module")
+def fitted() -> tuple[SteadyData, object]:
+    rng = np.random.default_rng(8)
+    y = steady_friction_si(V, 0.037, PhysicalScales(1.3e-6, 1.0, 0.41))
+    d = SteadyData(V, y + rng.normal(0.0, 0.002, V.size), None, "steady-8")
+    r = fit_steady(d, "cv", profile=False)
+    assert r.success, r.message
+    return d, r
+
+
+def _data_line(ax, n: int) -> np.ndarray:  # type: ignore[no-untyped-def]
+    lines = [ln for ln in ax.get_lines() if np.asarray(ln.get_ydata()).size == n]
+    assert len(lines) == 1, [np.asarray(ln.get_ydata()).size for ln in ax.get_lines()]
+    return np.asarray(lines[0].get_xdata(), float), np.asarray(lines[0].get_ydata(), float)
+
+
+def test_fit_figure_residuals_are_data_minus_model(fitted) -> None:
+    """fit.png's residual panel draws data - model at each datum (mutant
+    plot_fit_residual_sign: model - data)."""
+    d, r = fitted
+    fig, axes = plot_fit(r, [d])
+    x, y = _data_line(axes[1, 0], d.y.size)
+    order = np.argsort(d.x)
+    want = d.y[order] - r.predict(d)[order]
+    assert np.max(np.abs(want)) > 1e-4  # residuals of either sign, not all zero
+    np.testing.assert_allclose(x, d.x[order])
+    np.testing.assert_allclose(y, want, rtol=1e-9, atol=1e-12)
+
+
+def test_fit_figure_title_says_not_converged(fitted) -> None:
+    """A fit that did not converge says so in the figure's title; a converged one does not
+    (mutant plot_fit_no_status: the words dropped)."""
+    d, r = fitted
+    title = plot_fit(r, [d])[0]._suptitle.get_text()
+    assert "NOT CONVERGED" not in title and "eps" in title
+    bad = dataclasses.replace(r, success=False)
+    assert "[NOT CONVERGED]" in plot_fit(bad, [d])[0]._suptitle.get_text()
+
+
+def test_record_figure_normal_stress_in_mpa() -> None:
+    """record.png's normal panel: a stress read in Pa drawn in MPa (x 1e-6) under an MPa label
+    (mutant plot_record_normal_scale: x 1e-3, kPa under the MPa label)."""
+    rec = read_record(SHARED)
+    assert rec.normal_unit == "Pa" and rec.normal_stress is not None
+    fig, info = plot_record(rec, detect_program(rec).segments, detect_program(rec))
+    ax = fig.axes[info.panels.index("normal")]
+    assert "[MPa]" in ax.get_ylabel()
+    _, y = _data_line(ax, len(rec.time))
+    np.testing.assert_allclose(y, np.asarray(rec.normal_stress) / 1e6, rtol=1e-12)
+    assert 0.1 < float(np.median(y)) < 500.0  # a lab normal stress, in MPa
