@@ -306,9 +306,9 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "scale, shown = (1e-3, \"kN\") if unit == \"N\" else (1e-6, \"MPa\")",
      "scale, shown = (1e-6, \"kN\") if unit == \"N\" else (1e-3, \"MPa\")",
      "scale factors of the normal column swapped between force and stress", T_CLI),
-    ("cli_rsf_v0_default", "cli/runs.py",
-     "v0: float = typer.Option(1e-6, help=\"Reference velocity V0, m/s, > 0.\"),",
-     "v0: float = typer.Option(1e-5, help=\"Reference velocity V0, m/s, > 0.\"),",
+    ("cli_rsf_v0_default", "app/options.py",  # the rsf command's defaults moved to app/
+     "\"v0\": Option(\"--v0\", 1e-6, \"> 0 m/s\"),",
+     "\"v0\": Option(\"--v0\", 1e-5, \"> 0 m/s\"),",
      "wrong default reference velocity of the rsf command", T_CLI),
     ("cli_record_vbefore_mm", "cli/record.py",
      "{w.v_before * 1e6:>16.4g}",

@@ -308,10 +308,10 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "                  soft_wrap=True)\n        raise typer.Exit(1)",
      "                  soft_wrap=True)",
      "a fit that did not converge exits 0", T_CLIFIT),
-    ("cli_rsf_out_checked_late", "cli/runs.py",
-     "    if out_dir is not None:\n        check_output_dir(out_dir, force=force)\n"
-     "    compile_notice(rsf=True)",
-     "    compile_notice(rsf=True)",
+    ("cli_rsf_out_checked_late", "app/ratestate.py",  # the rsf workflow moved to app/
+     "    if out is not None:\n        check_output_dir(out, force=force)\n"
+     "    if on_start is not None:\n        on_start()",
+     "    if on_start is not None:\n        on_start()",
      "rsf: a bad --out refused only after the run (work done first)", T_CLIRUN),
 ]
 
