@@ -259,7 +259,7 @@ def test_figures_are_drawn_and_saved_without_pyplot():
     # alive in its global registry
     code = (
         "import sys, io\n"
-        f"sys.path.insert(0, {str(Path(__file__).resolve().parents[1])!r})\n"
+        f"sys.path.insert(0, {str(Path(__file__).resolve().parent)!r})\n"
         "import test_plots\n"
         "from dryfriction.plots import report\n"
         "from dryfriction.plots.style import save_png\n"
