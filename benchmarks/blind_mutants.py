@@ -196,8 +196,9 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "stick_frac = float(np.sum(dt[slow[:-1]]) / span)",
      "each step weighted by the sample that starts it instead of the one that ends it", T_SS),
     ("stickslip_floor_radius_not_squared", "analysis/stickslip.py",
-     "r2 = float(creep_law(creep, eps).radius(np.array([tau_d]))[0]) ** 2",
-     "r2 = float(creep_law(creep, eps).radius(np.array([tau_d]))[0])",
+     # the same line after issue 26's model objects (the model carries its creep law)
+     "r2 = float(model.law.radius(np.array([tau_d]))[0]) ** 2",
+     "r2 = float(model.law.radius(np.array([tau_d]))[0])",
      "radius ratio used where its square (the area) is meant", T_SS),
     # --- fit/statistics.py
     ("stat_runs_var_n_plus_1", "fit/statistics.py",
@@ -265,8 +266,9 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
      "mad = float(np.median(np.abs(d2 - np.median(d2))))",
      "MAD not scaled to a Gaussian sigma (hidden by the max with the trimmed RMS?)", T_SEG),
     ("labsteps_kN_scale", "records/labsteps.py",
-     "nu, scale = (\"MPa\", 1e-6) if normal_unit != \"N\" else (\"kN\", 1e-3)",
-     "nu, scale = (\"MPa\", 1e-6) if normal_unit != \"N\" else (\"kN\", 1e3)",
+     # the same factor after the table and segments.csv took it from one helper
+     "return \"normal force\", \"kN\", 1e-3",
+     "return \"normal force\", \"kN\", 1e3",
      "segments.csv normal force column in the wrong unit factor (force records only)", T_LAB),
     ("files_stale_tmp_of_live_pid", "io/files.py",
      "if m is None or int(m.group(1)) == os.getpid() or _pid_alive(int(m.group(1))):",
