@@ -36,10 +36,11 @@ def _say(report: Callable[[str], None] | None, line: str) -> None:
 CV_CALLS_PER_STEP = 91
 """Forward runs of the trap model for one step of a record
 (:func:`dryfriction.fit.cvsteps.fit_cv_steps`: the batched search of
-:func:`~dryfriction.fit.cvsteps.search_step`, then one evaluation for the result and
-covariance, runs read back from the memory of past runs not counted), for the cost estimate; counted on the shared sepiolite record with the direct effect
-free (91 runs; 74 with A = 0: ``python -m benchmarks bench_cv_record``). It was 130 before the
-search of issue 30, when the estimate ran 2.2 times over the measured CPU."""
+:func:`~dryfriction.fit.cvsteps.search_step`, then one evaluation for the result and covariance,
+runs read back from the memory of past runs not counted), for the cost estimate; counted on the
+shared sepiolite record with the direct effect free (91 runs; 74 with A = 0: ``python -m
+benchmarks bench_cv_record``). It was 130 before the search of issue 30, when the estimate ran
+2.2 times over the measured CPU."""
 
 
 def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
