@@ -19,7 +19,7 @@ __all__ = ["fit_record", "cv_cost", "CV_CALLS_PER_STEP", "write_record_files"]
 
 _D = {k: o.default for k, o in OPTIONS["fit"].items()}
 Bar = Callable[..., Any]
-"""A progress-bar factory: ``bar(label, total, unit)`` -> a context manager yielding
+"""A progress-bar factory. ``bar(label, total, unit)`` gives a context manager yielding
 ``update(done, total=None, what=None)``."""
 
 
@@ -34,12 +34,13 @@ def _say(report: Callable[[str], None] | None, line: str) -> None:
 
 
 CV_CALLS_PER_STEP = 91
-"""Forward runs of the trap model for one step of a record (:func:`dryfriction.fit.cvsteps.
-fit_cv_steps`: the batched search of :func:`~dryfriction.fit.cvsteps.search_step`, then one
-evaluation for the result and covariance, runs read back from the memory of past runs not
-counted), for the cost estimate; counted on the shared sepiolite record with the direct effect
-free (91 runs; 74 with A = 0: ``python -m benchmarks bench_cv_record``). It was 130 before the
-search of issue 30, when the estimate ran 2.2 times over the measured CPU."""
+"""Forward runs of the trap model for one step of a record
+(:func:`dryfriction.fit.cvsteps.fit_cv_steps`: the batched search of
+:func:`~dryfriction.fit.cvsteps.search_step`, then one evaluation for the result and covariance,
+runs read back from the memory of past runs not counted), for the cost estimate; counted on the
+shared sepiolite record with the direct effect free (91 runs; 74 with A = 0: ``python -m
+benchmarks bench_cv_record``). It was 130 before the search of issue 30, when the estimate ran
+2.2 times over the measured CPU."""
 
 
 def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
@@ -122,8 +123,9 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
     on_program : callable, optional
         ``on_program(segments, record)``: the load program, before the fit (the command
         prints it).
-    model, columns, segments, joint, profile, run_cv, alpha, creep, force, fmt, dpi, figure,
-    errors, direct, v_ref, traps_per_a0, drive
+    model, columns, segments, joint, profile, run_cv, alpha, creep, force
+        As :func:`dryfriction.app.fitting.fit` (:data:`dryfriction.app.options.OPTIONS`).
+    fmt, dpi, figure, errors, direct, v_ref, traps_per_a0, drive
         As :func:`dryfriction.app.fitting.fit` (:data:`dryfriction.app.options.OPTIONS`).
 
     Returns

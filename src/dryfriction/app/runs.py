@@ -14,9 +14,9 @@ from .outcome import RunOutcome
 __all__ = ["simulate", "compare", "reproduce", "draw_here", "Draw", "Progress"]
 
 Draw = Callable[..., None]
-"""``draw(builder, *args, path=..., fmt=..., dpi=...)``: build a figure with ``builder(*args)``
-(a function returning ``(fig, axes)``) and save it; the command line passes its
-painter's (:func:`dryfriction.cli.painter.draw_figure`), which draws in a process forked
+"""A figure drawer. ``draw(builder, *args, path=path, fmt=fmt, dpi=dpi)`` builds a figure
+with ``builder(*args)`` (a function returning ``(fig, axes)``) and saves it; the command line
+passes its painter's (:func:`dryfriction.cli.painter.draw_figure`), which draws in a process forked
 before the command's imports."""
 Progress = Callable[..., None]
 Report = Callable[[str], None]
@@ -155,8 +155,8 @@ def compare(protocol: str | Path, out: str | Path, *,
             draw: Draw | None = None,
             on_start: Callable[[Any], None] | None = None) -> RunOutcome:
     """Run a trap-model protocol and its fitted rate-and-state twin; write compare.json and
-    compare.{fmt} (``dryfriction compare``; :func:`dryfriction.analysis.rsf_view.
-    compare_protocol`).
+    compare.{fmt} (``dryfriction compare``;
+    :func:`dryfriction.analysis.rsf_view.compare_protocol`).
 
     Parameters
     ----------
