@@ -4,6 +4,7 @@ files are whole, bad input is one line and exit 2 before any work."""
 from __future__ import annotations
 
 import csv
+import math
 import json
 from pathlib import Path
 
@@ -117,3 +118,18 @@ def test_extreme_velocities_are_said_not_crashed(tmp_path: Path) -> None:
     rows = json.loads(r.stdout)["rows"]
     assert rows[0]["nature"] == "degenerate" and rows[0]["note"] == ""
     assert "closed form" in rows[1]["note"]
+
+
+def test_frequency_is_in_the_unit_the_files_say(tmp_path: Path) -> None:
+    """The mistake this is for: the files labelled the frequency Hz while the numbers were the
+    angular frequency. Quasi-static ageing law at K_c: omega = (V/Dc) sqrt((b - a)/a) in rad/s
+    (Rice & Ruina 1983), i.e. f = omega/(2 pi) in Hz; the number must match the unit the
+    JSON gives it."""
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "ageing"), "--velocities", "3.3e-6", "--out", str(out), "--json")
+    assert r.exit_code == 0, r.output
+    doc = json.loads((out / "bifurcation.json").read_text())
+    omega = 3.3e-6 / 6.1e-6 * math.sqrt((0.0121 - 0.0083) / 0.0083)
+    unit = doc["units"]["frequency"]
+    expected = {"rad/s": omega, "Hz": omega / (2 * math.pi)}[unit]
+    assert doc["rows"][0]["frequency"] == pytest.approx(expected, rel=1e-8), unit

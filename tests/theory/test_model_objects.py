@@ -17,7 +17,7 @@ from dryfriction.theory.model import (
     TrapModel,
 )
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "dryfriction"
+SRC = Path(__file__).resolve().parents[2] / "src" / "dryfriction"
 
 
 def test_the_object_lives_in_theory_and_the_simulator_uses_the_same_one():
@@ -70,7 +70,9 @@ def test_the_track_density_has_one_default_and_one_minimum():
     # mistake caught: a literal default (1000, 100, 20) left in one signature, or a second
     # minimum (bifurcation's 1.0) beside the track's
     literal = []
-    for path in SRC.rglob("*.py"):
+    sources = sorted(SRC.rglob("*.py"))
+    assert len(sources) > 50, SRC  # the scan reads the package (it once read no file at all)
+    for path in sources:
         tree = ast.parse(path.read_text())
         for node in ast.walk(tree):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
@@ -197,3 +199,11 @@ def test_the_direct_effect_enters_every_linear_quantity_of_the_model():
     assert (fwd, bwd) == pytest.approx((g * fwd0, g * bwd0), rel=1e-12)
     res = critical_stiffness(u, m)
     assert (res.forward_stiffness, res.backward_stiffness) == pytest.approx((fwd, bwd), rel=1e-12)
+
+
+def test_alpha_one_is_refused():
+    """alpha = 1 is no pinning at all (no hysteresis, no friction): the model's range is open
+    there. The mistake this is for: the bound closed, so TrapModel(alpha=1.0) was accepted."""
+    with pytest.raises(ValueError, match=r"^alpha = 1"):
+        TrapModel(alpha=1.0)
+    assert TrapModel(alpha=0.97).alpha == 0.97
