@@ -4,8 +4,8 @@ files are whole, bad input is one line and exit 2 before any work."""
 from __future__ import annotations
 
 import csv
-import math
 import json
+import math
 from pathlib import Path
 
 import pytest
