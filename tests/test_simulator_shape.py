@@ -156,6 +156,9 @@ def test_a_part_of_the_other_law_is_refused_naming_its_units(law: str, part: str
     assert msg.startswith(f"{part} = {type(parts[part]).__name__}(...) is ") and "\n" not in msg
     other = "SI units" if units == "reduced units" else "reduced units"
     assert msg.index(units) < msg.index(other)  # its own units, then those the model needs
+    # and it names the law the part belongs to (a blind mutant named the model's law there)
+    owner = "the trap model's" if units == "reduced units" else "rate-and-state's"
+    assert f"is {owner}, in {units}" in msg, msg
 
 
 def test_every_part_names_its_law_and_units() -> None:

@@ -24,3 +24,19 @@ def test_steady_velocity_refusal_states_a_range_that_excludes_it(V: float) -> No
     assert not (lo <= V <= hi), msg
     from dryfriction.validation import U_MAX, U_MIN
     assert (lo, hi) == pytest.approx((U_MIN * a0 / t0, U_MAX * a0 / t0), rel=1e-3)
+
+
+def test_bifurcation_checks_at_most_max_checked_velocities(tmp_path) -> None:
+    """Exactly MAX_CHECKED velocities with check=True are allowed, one more is refused, both
+    before any work (a missing protocol shows which refusal came first). The mistake this
+    is for: ``>=`` for ``>``, which refused 12 with "allowed at most 12"."""
+    from dryfriction.analysis.hopf_table import MAX_CHECKED
+    from dryfriction.app.hopf import bifurcation
+
+    missing = tmp_path / "missing.toml"
+    for n, refused in ((MAX_CHECKED, False), (MAX_CHECKED + 1, True)):
+        vs = [1.3e-6 * 1.7 ** i for i in range(n)]
+        with pytest.raises((ValueError, OSError)) as info:
+            bifurcation(missing, vs, tmp_path / "out", check=True)
+        assert ("allowed at most" in str(info.value)) is refused, str(info.value)
+    assert not (tmp_path / "out").exists()
