@@ -22,19 +22,17 @@ the whole default suite. The first failing test of each kill is rerun on the unm
 Results are appended to ``$TMPDIR/blind_mutants2_results.jsonl``.
 
 Measured at af8a8af with its flat ``tests/`` layout; after the merge that moved the records
-modules and put the tests in a folder per package, :func:`resolve` maps each mutant to the
-new paths (a test file gone under its old name: its package's test folder).
+modules and put the tests in a folder per package, :func:`benchmarks.blind_mutants.resolve`
+maps each mutant to the new paths (a test file gone under its old name: its package's test
+folder).
 """
 
 from __future__ import annotations
 
-import json
 import sys
-import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-SRC = ROOT / "src" / "dryfriction"
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
@@ -317,89 +315,10 @@ MUTANTS: list[tuple[str, str, str, str, str, list[str]]] = [
 
 
 # ----------------------------------------------------------------------------- the runner
-def resolve(mut: tuple[str, str, str, str, str, list[str]]
-            ) -> tuple[str, str, str, str, str, list[str]]:
-    """The mutant at today's paths. The list was measured at af8a8af, before the modules moved
-    (``io/lab.py`` -> ``records/lab.py``) and the tests went into a folder per package: a
-    moved source is found by its file name; a test file that no longer exists under its flat
-    name is found by its name in a package folder, else replaced by the test folder of the
-    mutant's package (``tests/<package>/``)."""
-    name, rel, orig, mutated, why, tests = mut
-    if not (SRC / rel).exists():
-        hits = sorted(p.relative_to(SRC).as_posix() for p in SRC.rglob(Path(rel).name))
-        rel = hits[0] if len(hits) == 1 else rel
-    if (SRC / rel).exists() and (SRC / rel).read_text().count(orig) == 0:
-        # the code moved to another module (the CLI's checks went to app/ after af8a8af)
-        hits = sorted(p.relative_to(SRC).as_posix() for p in SRC.rglob("*.py")
-                      if p.read_text().count(orig) == 1)
-        rel = hits[0] if len(hits) == 1 else rel
-    new: list[str] = []
-    for t in tests:
-        if (ROOT / t).exists():
-            new.append(t)
-            continue
-        hits = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "tests").rglob(Path(t).name))
-        pkg = f"tests/{rel.split('/')[0]}" if "/" in rel else "tests"
-        own = [h for h in hits if h.startswith(pkg + "/")]
-        new += own or hits[:1] or [pkg]
-    return name, rel, orig, mutated, why, list(dict.fromkeys(new))
-
-
-def check() -> list[str]:
-    """Each original occurs exactly once; each test file exists; names unique."""
-    bad = []
-    names = [m[0] for m in MUTANTS]
-    if len(set(names)) != len(names):
-        bad.append("duplicate names")
-    for name, rel, orig, mut, _why, tests in map(resolve, MUTANTS):
-        text = (SRC / rel).read_text()
-        n = text.count(orig)
-        if n != 1:
-            bad.append(f"{name}: original occurs {n} times in {rel}")
-        if orig == mut:
-            bad.append(f"{name}: no change")
-        for t in tests:
-            if not (ROOT / t).exists():
-                bad.append(f"{name}: {t} missing")
-    return bad
-
-
 def main(argv: list[str]) -> int:
-    from benchmarks.blind_mutants import _pytest, run_one  # the previous set's runner
+    from benchmarks.blind_mutants import run_set  # the runner all sets share
 
-    bad = check()
-    if bad:
-        print("\n".join(bad))
-        return 2
-    if "--check" in argv:
-        print(f"{len(MUTANTS)} mutants, all originals unique")
-        return 0
-    whole = "--no-whole" not in argv
-    skip_chosen = "--whole-only" in argv
-    wanted = [a for a in argv if not a.startswith("--")]
-    by_name = {m[0]: resolve(m) for m in MUTANTS}
-    unknown = [w for w in wanted if w not in by_name]
-    if unknown:
-        print(f"unknown mutant(s): {', '.join(unknown)}")
-        return 2
-    todo = [by_name[w] for w in wanted] if wanted else list(by_name.values())  # order given
-    log = Path(tempfile.gettempdir()) / "blind_mutants2_results.jsonl"
-    results = []
-    for m in todo:
-        r = run_one(m, whole_timeout=1800, whole=whole, skip_chosen=skip_chosen)
-        if r["status"].startswith("killed"):  # the kill must be the mutant's
-            node = r.get("whole_failing") or r.get("failing")
-            if node:
-                r["baseline_of_failing"] = _pytest([node], timeout=900)[0]
-        results.append(r)
-        print(f"{r['name']:<36} {r['status']:<14} {r['seconds']:>7.1f}s "
-              f"{r.get('failing', '')} [unmutated: {r.get('baseline_of_failing', '')}]",
-              flush=True)
-        with open(log, "a") as fh:
-            fh.write(json.dumps(r) + "\n")
-    killed = sum(r["status"].startswith(("killed", "timeout")) for r in results)
-    print(f"\nkilled {killed}/{len(results)} = {100.0 * killed / len(results):.1f} %")
-    return 0
+    return run_set(argv, MUTANTS, "blind_mutants2_results.jsonl")
 
 
 if __name__ == "__main__":

@@ -31,13 +31,10 @@ failing test passes unmutated. No survivor is equivalent; none was run against t
 
 from __future__ import annotations
 
-import json
 import sys
-import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-SRC = ROOT / "src" / "dryfriction"
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
@@ -269,62 +266,10 @@ WIDER: dict[str, list[str]] = {
 
 
 # ----------------------------------------------------------------------------- the runner
-def check() -> list[str]:
-    """Each original occurs exactly once; each test file exists; names unique."""
-    from benchmarks.blind_mutants2 import resolve
-
-    bad = []
-    names = [m[0] for m in MUTANTS]
-    if len(set(names)) != len(names):
-        bad.append("duplicate names")
-    for name, rel, orig, mut, _why, tests in map(resolve, MUTANTS):
-        n = (SRC / rel).read_text().count(orig)
-        if n != 1:
-            bad.append(f"{name}: original occurs {n} times in {rel}")
-        if orig == mut:
-            bad.append(f"{name}: no change")
-        bad += [f"{name}: {t} missing" for t in tests if not (ROOT / t).exists()]
-    return bad
-
-
 def main(argv: list[str]) -> int:
-    from benchmarks.blind_mutants import _pytest, run_one  # the first set's runner
-    from benchmarks.blind_mutants2 import resolve
+    from benchmarks.blind_mutants import run_set  # the runner all sets share
 
-    bad = check()
-    if bad:
-        print("\n".join(bad))
-        return 2
-    if "--check" in argv:
-        print(f"{len(MUTANTS)} mutants, all originals unique")
-        return 0
-    whole = "--no-whole" not in argv
-    wanted = [a for a in argv if not a.startswith("--")]
-    by_name = {m[0]: resolve(m) for m in MUTANTS}
-    unknown = [w for w in wanted if w not in by_name]
-    if unknown:
-        print(f"unknown mutant(s): {', '.join(unknown)}")
-        return 2
-    todo = [by_name[w] for w in wanted] if wanted else list(by_name.values())
-    if "--wider" in argv:  # the second pass: survivors of the first against WIDER
-        todo = [(*m[:5], WIDER[m[0]]) for m in todo if m[0] in WIDER]
-    log = Path(tempfile.gettempdir()) / "blind_mutants3_results.jsonl"
-    results = []
-    for m in todo:
-        r = run_one(m, whole_timeout=1800, whole=whole)
-        if r["status"].startswith("killed"):  # the kill must be the mutant's
-            node = r.get("whole_failing") or r.get("failing")
-            if node:
-                r["baseline_of_failing"] = _pytest([node], timeout=900)[0]
-        results.append(r)
-        print(f"{r['name']:<30} {r['status']:<14} {r['seconds']:>7.1f}s "
-              f"{r.get('failing', '')} [unmutated: {r.get('baseline_of_failing', '')}]",
-              flush=True)
-        with open(log, "a") as fh:
-            fh.write(json.dumps(r) + "\n")
-    killed = sum(r["status"].startswith(("killed", "timeout")) for r in results)
-    print(f"\nkilled {killed}/{len(results)} = {100.0 * killed / len(results):.1f} %")
-    return 0
+    return run_set(argv, MUTANTS, "blind_mutants3_results.jsonl", wider=WIDER)
 
 
 if __name__ == "__main__":
