@@ -74,3 +74,20 @@ def test_record_figure_normal_stress_in_mpa() -> None:
     _, y = _data_line(ax, len(rec.time))
     np.testing.assert_allclose(y, np.asarray(rec.normal_stress) / 1e6, rtol=1e-12)
     assert 0.1 < float(np.median(y)) < 500.0  # a lab normal stress, in MPa
+
+
+def test_bifurcation_panel_ticks_are_few_and_points_inside() -> None:
+    """The l1 panel of bifurcation.png: with values from 1e-6 to -0.77 the default symmetric
+    log axis put 21 labels a few pixels apart and the last point on the spine."""
+    from dryfriction.plots.hopf import plot_bifurcation
+
+    vals = [1.44e-6, 1.44e-4, 1.28e-2, -0.7696]
+    rows = [{"velocity": v, "K_c": 623.0 * (1 + i), "relative_l1": y,
+             "nature": "subcritical" if y > 0 else "supercritical"}
+            for i, (v, y) in enumerate(zip([1e-6, 1e-5, 1e-4, 1e-3], vals, strict=True))]
+    fig, axes = plot_bifurcation({"rows": rows}, "generic")
+    lo, hi = axes[1].get_ylim()
+    ticks = [t for t in axes[1].get_yticks() if lo <= t <= hi]
+    assert 3 <= len(ticks) <= 9, ticks
+    for y in vals:  # strictly inside, not on a spine
+        assert lo < y < hi and abs(y) < 0.9 * max(abs(lo), abs(hi))

@@ -36,8 +36,7 @@ def plot_bifurcation(report: dict[str, Any], title: str = "") -> tuple[Any, Any]
         axes[0].set_yscale("log")
     axes[0].set_ylabel(r"critical stiffness $K_c$  [1/m]")
     axes[0].legend(fontsize=LEGEND_SIZE)
-    axes[1].set_yscale("symlog", linthresh=1e-8)
-    axes[1].axhline(0.0, color="k", lw=0.6)
+    _symlog_panel(axes[1], [r["relative_l1"] for r in rows])
     axes[1].set_ylabel(r"$\ell_1$ / largest term  [1]")
     axes[1].set_xlabel(VELOCITY_SI)
     vs = [r["velocity"] for r in rows]
@@ -46,3 +45,25 @@ def plot_bifurcation(report: dict[str, Any], title: str = "") -> tuple[Any, Any]
     if title:
         fig.suptitle(title, fontsize=TITLE_SIZE)
     return fig, axes
+
+
+def _symlog_panel(ax: Any, values: list[float], linthresh: float = 1e-8) -> None:
+    """A symmetric-log axis whose ticks do not collide: at most four decades a side (every
+    k-th decade from ``linthresh`` to the largest ``|value|``), 0, and limits a factor 3
+    beyond the largest ``|value|`` so that no point sits on a spine."""
+    import numpy as np
+    from matplotlib.ticker import NullLocator
+
+    ys = np.asarray([y for y in values if math.isfinite(y)], float)
+    top = 3.0 * max(float(np.max(np.abs(ys))) if ys.size else 0.0, linthresh)
+    lo, hi = round(math.log10(linthresh)), math.ceil(math.log10(top))
+    step = max(1, math.ceil((hi - lo) / 4))
+    decades = [10.0 ** e for e in range(hi - 1, lo - 1, -step) if 10.0 ** e <= top]
+    ticks = ([-d for d in decades] if ys.size and np.any(ys < 0) else []) + [0.0] + (
+        decades if ys.size and np.any(ys > 0) else [])
+    ax.set_yscale("symlog", linthresh=linthresh)
+    ax.set_ylim(-top if ys.size and np.any(ys < 0) else -linthresh,
+                top if ys.size and np.any(ys > 0) else linthresh)
+    ax.set_yticks(sorted(ticks))
+    ax.yaxis.set_minor_locator(NullLocator())
+    ax.axhline(0.0, color="k", lw=0.6)
