@@ -71,10 +71,10 @@ class InterfaceResult:
         Field name -> unit (:data:`INTERFACE_UNITS`).
     energy : dict of ndarray
         Cumulative energy terms at every sample, ``F_el a0``: ``work_load`` (work of the loading
-        springs on the chain), ``elastic_energy`` (loading and coupling springs), ``kinetic_energy``,
-        ``work_friction`` (work done against the contacts), ``work_damping``. The balance
-        ``work_load = delta(elastic + kinetic) + work_friction + work_damping`` holds to the
-        integrator's order (:meth:`energy_residual`).
+        springs on the chain), ``elastic_energy`` (loading and coupling springs),
+        ``kinetic_energy``, ``work_friction`` (work done against the contacts),
+        ``work_damping``. The balance ``work_load = delta(elastic + kinetic) + work_friction +
+        work_damping`` holds to the integrator's order (:meth:`energy_residual`).
     info : dict
         Run scalars: step count, trap updates, wall time, ``partial``.
     """
