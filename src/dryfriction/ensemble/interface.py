@@ -63,6 +63,7 @@ from typing import ClassVar
 
 import numba
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import simulation
 from ..interrupts import deferred
@@ -70,7 +71,15 @@ from ..program import VelocityProgram
 from ..simulation import check_parts
 from ..theory.model import TrapModel
 from ..theory.trap import Regime
-from ..validation import U_MAX, U_MIN, check_choice, check_memory, check_scalar, check_time
+from ..validation import (
+    U_MAX,
+    U_MIN,
+    check_choice,
+    check_memory,
+    check_range,
+    check_scalar,
+    check_time,
+)
 from .drives import MASS_MIN, STIFFNESS_MAX
 from .interface_kernel import OUT_SIZE, advance_chain
 from .interface_result import INTERFACE_UNITS, InterfaceResult
@@ -94,6 +103,9 @@ BYTES_PER_PAIR: float = 17.0
 SECONDS_PER_TRAP_UPDATE: float = 2.5e-8
 """One core's time per pair of a contact window in a step (ours, a lower bound measured on the
 development machine: ``benchmarks/interface_speed.py``)."""
+PARALLEL_MIN_ELEMENTS: int = 16
+"""Fewest blocks whose windows are updated in parallel (ours): below it opening and joining a
+parallel region every step costs more than the blocks' work."""
 _SEED_SPREAD = 1 << 32  # the spreads' stream, apart from every block's (i < 2**20)
 
 
@@ -347,6 +359,7 @@ def simulate_interface(
     initial: Initial,
     output: Output,
     *,
+    velocity: ArrayLike = 0.0,
     threads: int | None = None,
     on_interrupt: str = "raise",
 ) -> InterfaceResult:
@@ -364,6 +377,11 @@ def simulate_interface(
     output : Output
         Sampling (``every`` in ``t0`` or ``every_slip`` of the load point in ``a0``); no
         snapshots.
+    velocity : float or array_like of shape (N,)
+        Initial velocity of the blocks, ``a0/t0`` (default at rest, as the single slider's
+        spring drive): a steady population sliding at ``u`` with a velocity pattern seeds the
+        chain's modes. The load point then starts where its springs balance the friction and
+        the damping of the mean velocity.
     threads : int, optional
         Numba threads for the parallel loop over blocks (default: Numba's).
     on_interrupt : {"raise", "partial"}
@@ -396,6 +414,11 @@ def simulate_interface(
     check_choice("on_interrupt", on_interrupt, ("raise", "partial"))
     if threads is not None:
         threads = int(check_scalar("threads", threads, 1, numba.config.NUMBA_NUM_THREADS))
+    v_start = check_range("velocity", velocity, -U_MAX, U_MAX)
+    if v_start.ndim and v_start.shape != (model.n_elements,):
+        raise ValueError(f"velocity has shape {v_start.shape}: allowed one number or one per "
+                         f"element, shape ({model.n_elements},)")
+    v_start = np.broadcast_to(v_start, (model.n_elements,))
     tracks, normal = element_tracks(model, initial.track)
     est = check_interface(model, drive, initial, output)
     t_wall = _time.perf_counter()
@@ -430,7 +453,12 @@ def simulate_interface(
     trap = tm.trap
     kp, ks, kc = drive.stiffness, drive.edge_stiffness, model.coupling
     side = drive.loading == "side"
-    load0 = float(np.sum(f)) / ks if side else float(f.sum() / n) / kp
+    v_mean = float(np.mean(v_start))
+    if v_mean == 0.0:  # the single slider's X_pull(0) = F(0)/K, bit for bit at N = 1
+        load0 = float(np.sum(f)) / ks if side else float(f.sum() / n) / kp
+    else:
+        damp = n * model.damping * v_mean
+        load0 = (float(np.sum(f)) + damp) / ks if side else (float(f.sum() + damp) / n) / kp
     # the sampling of the single slider's spring drive
     lam_min = min(t.traps_per_a0 for t in tracks)
     regular = initial.track.layout == "regular"
@@ -447,11 +475,12 @@ def simulate_interface(
         return load0 + (float(p_pos[i]) + float(p_vel[i]) * (t - float(p_times[i]))) - x0
 
     x = np.zeros(n)
-    v = np.zeros(n)
+    v = np.array(v_start, dtype=float)
     l_start = load_at(0.0)
     a = (kp * ((0.0 if side else l_start) - x) - f - model.damping * v) / model.mass
     if side:
-        a[0] = (kp * (0.0 - x[0]) + ks * (l_start - x[0]) - f[0]) / model.mass
+        a[0] = (kp * (0.0 - x[0]) + ks * (l_start - x[0]) - f[0]
+                - model.damping * v[0]) / model.mass
     dt_osc = _step(model, drive, float(np.max(normal)))
     dx_max = 0.25 * (1.0 / max(t.traps_per_a0 for t in tracks))  # the single slider's form
     outs = np.zeros((n, OUT_SIZE))
@@ -486,13 +515,14 @@ def simulate_interface(
 
     if threads is not None:
         numba.set_num_threads(threads)
+    serial = numba.get_num_threads() == 1 or n < PARALLEL_MIN_ELEMENTS
     record(0, 0.0)
     j_done = 0
     partial = False
     t = 0.0
     args_fixed = (model.mass, model.damping, kp, kc, ks, side, 0.0, load0, p_times, p_pos, p_vel,
                   x0, tm.alpha, trap.y_c, trap.regime is Regime.STRONG, h, s_tab,
-                  ds_tab, outs, wfric, wdamp, acc)
+                  ds_tab, outs, wfric, wdamp, acc, serial)
     try:
         for j in range(1, n_t):
             t1 = float(grid[j])
@@ -521,7 +551,7 @@ def simulate_interface(
         "steps": int(acc[1]),
         "trap_updates": float(acc[2]),
         "wall_s": _time.perf_counter() - t_wall,
-        "threads": int(numba.get_num_threads()),
+        "threads": 1 if serial else int(numba.get_num_threads()),
         "dt_max": dt_osc,
         "cover_a0": [lo_cov, hi_cov],
         "regime": trap.regime.value,

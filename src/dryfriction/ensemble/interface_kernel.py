@@ -43,10 +43,26 @@ def load_position(t, p_times, p_pos, p_vel):  # pragma: no cover - compiled
     return p_pos[i] + p_vel[i] * (t - p_times[i])
 
 
+@numba.njit(cache=True)
+def _block(i, c, state, birth, off, lo, hi, x, x_new, f_new, fscale, t, t_new, alpha, yc,
+           strong, h, s_tab, ds_tab, outs):  # pragma: no cover - compiled
+    """Block ``i``'s window from ``x[i]`` at ``t`` to ``x_new[i]`` at ``t_new`` and its new
+    friction ``f_new[i]`` (:func:`.kernel.advance_window` on its stretch of the pairs)."""
+    s0 = off[i]
+    s1 = off[i + 1]
+    direction = 1 if x_new[i] >= x[i] else -1
+    lo_i, hi_i = advance_window(c[s0:s1], state[s0:s1], birth[s0:s1], lo[i], hi[i], x[i],
+                                x_new[i], t, t_new, direction, alpha, yc, strong, h, s_tab,
+                                ds_tab, True, False, outs[i])
+    lo[i] = lo_i
+    hi[i] = hi_i
+    f_new[i] = outs[i, 0] * fscale[i]
+
+
 @numba.njit(cache=True, parallel=True)
 def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc, dx_max,
                   mass, eta, kp, kc, ks, side, plate_fixed, load0, p_times, p_pos, p_vel, p_x0,
-                  alpha, yc, strong, h, s_tab, ds_tab, outs, wfric, wdamp, acc
+                  alpha, yc, strong, h, s_tab, ds_tab, outs, wfric, wdamp, acc, serial
                   ):  # pragma: no cover - compiled
     """Step the chain from time ``t`` to ``t1`` (arrays updated in place).
 
@@ -60,6 +76,8 @@ def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_os
     program(t) - p_x0`` moves the top plate (``side = False``; ``kp`` on every block) or the edge
     spring (``side = True``; ``ks`` on block 0, the plate fixed at ``plate_fixed``). ``acc``
     accumulates ``[work_load, steps, trap updates, overflow]``; ``wfric``, ``wdamp`` per element.
+    ``serial`` updates the windows in a plain loop (one thread); else in a ``prange``, the same
+    numbers either way (each block's update touches only its own arrays).
 
     Returns the time reached (``t1``, or the step where a window reached its buffer's end).
     """
@@ -80,16 +98,14 @@ def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_os
         t_new = t1 if dt == t1 - t else t + dt
         for i in range(n):
             x_new[i] = x[i] + v[i] * dt + 0.5 * a[i] * dt * dt
-        for i in numba.prange(n):
-            s0 = off[i]
-            s1 = off[i + 1]
-            direction = 1 if x_new[i] >= x[i] else -1
-            lo_i, hi_i = advance_window(c[s0:s1], state[s0:s1], birth[s0:s1], lo[i], hi[i],
-                                        x[i], x_new[i], t, t_new, direction, alpha, yc, strong,
-                                        h, s_tab, ds_tab, True, False, outs[i])
-            lo[i] = lo_i
-            hi[i] = hi_i
-            f_new[i] = outs[i, 0] * fscale[i]
+        if serial:  # one thread: no parallel region to open and join every step
+            for i in range(n):
+                _block(i, c, state, birth, off, lo, hi, x, x_new, f_new, fscale, t, t_new,
+                       alpha, yc, strong, h, s_tab, ds_tab, outs)
+        else:
+            for i in numba.prange(n):
+                _block(i, c, state, birth, off, lo, hi, x, x_new, f_new, fscale, t, t_new,
+                       alpha, yc, strong, h, s_tab, ds_tab, outs)
         # the driver's position and its springs' force on the chain, before and after
         l_old = load0 + load_position(t, p_times, p_pos, p_vel) - p_x0
         l_new = load0 + load_position(t_new, p_times, p_pos, p_vel) - p_x0
