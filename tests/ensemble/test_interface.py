@@ -37,9 +37,8 @@ def test_one_block_is_the_single_slider_bit_for_bit(case: str) -> None:
     """N = 1 under uniform loading is the single slider's inertial spring drive on the same
     track: the same samples, slip, velocity and friction to the last bit (the block runs the
     same window update and the same step rules). Mistakes caught: the coupling's stiffest mode
-    ``4 k_c`` counted for a lone block (the step, hence every number, changes), the load point
-    started off the single slider's ``F(0)/K``, the damping at the current instead of the
-    predicted velocity."""
+    ``4 k_c`` counted for a lone block (the step, hence every number, changes), the damping at
+    the current instead of the predicted velocity."""
     if case == "random-steady":
         model = TrapModel(alpha=0.13, eps=EPS, mu_el=0.6)
         initial = Initial("steady", velocity=0.02, track=Track(60.0, "random", seed=7))
@@ -158,8 +157,7 @@ def test_reproducible_from_a_seed_and_threads() -> None:
     the same statistics: the mean friction of the second half, 1.099, 1.152, 1.181, 1.079
     ``F_el`` for seeds 3 to 6 (the steady ``mu_d(0.1) = 1.176``), within 10 % of one another.
     Mistakes caught: an unseeded draw of the
-    blocks' tracks, every block on the same track when asked independent ones, a reduction
-    across threads in the forces."""
+    blocks' tracks, every block on the same track when asked independent ones."""
     model = TrapModel(eps=EPS)
     runs = {}
     for key, seed, threads in (("a1", 3, 1), ("a2", 3, 2), ("b", 4, 1)):

@@ -280,14 +280,18 @@ class InterfaceEstimate:
 
 def _cover(model: InterfaceModel, drive: InterfaceDrive, initial: Initial) -> tuple[float, float]:
     """Slip range ``[lo, hi]`` (``a0``) every block's pairs are placed for (ours): twice the
-    load point's reach (its start, a spring stretch, plus the program's travel) and 20 ``a0``
-    ahead, 10 ``a0`` behind. A block that leaves it stops the run (never silently)."""
+    load point's reach, ``2 (L(0) + travel) + 20 a0`` ahead, ``10 a0`` behind. ``L(0)`` is
+    estimated from the initial friction (``rest``: 0.05, ``loaded``: its force, ``steady``: 1.5
+    ``F_el`` per block) over the loading spring. A block that leaves the range stops the run
+    with one line (never silently)."""
     prog = drive.program
     travel = float(np.max(np.abs(prog.positions - prog.x0)))
-    k = drive.stiffness if drive.loading == "uniform" else drive.edge_stiffness
-    n = 1 if drive.loading == "uniform" else model.n_elements
-    stretch = 2.0 * n / k  # the spring at twice the chain's elastic friction
-    return -10.0, 2.0 * (stretch + travel) + 20.0
+    f0 = {"rest": 0.05, "loaded": abs(float(initial.force or 0.0)), "steady": 1.5}[initial.kind]
+    if drive.loading == "uniform":
+        start = f0 / drive.stiffness
+    else:
+        start = model.n_elements * f0 / drive.edge_stiffness
+    return -10.0, 2.0 * (start + travel) + 20.0
 
 
 def estimate_interface(model: InterfaceModel, drive: InterfaceDrive, initial: Initial,
