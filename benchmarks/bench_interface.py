@@ -1,0 +1,78 @@
+"""Speed of the extended interface (issue 29): trap updates per second, cost against the number
+of blocks, one thread against two.
+
+Run ``python benchmarks/bench_interface.py [--quick]``. A trap update is one pair of a block's
+contact window processed in one step (the pairs in contact and the free ones between them).
+Uniform steady sliding at ``u = 1`` of blocks with 100 pairs per ``a0`` (about 250 pairs in
+each window), ``k_c = 1``, ``m = 1``: the step is the slip limit ``1/(4 lambda)``, so every
+run of the same duration takes the same steps and the cost per step should grow linearly with
+``N``. The thread comparison runs 1 and 2 threads alternately (the machine may be shared: the
+load average is printed with every line, and the median of the alternating runs is compared).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import sys
+
+from dryfriction.ensemble.interface import InterfaceDrive, InterfaceModel, simulate_interface
+from dryfriction.ensemble.population import Initial, Track
+from dryfriction.ensemble.result import Output
+from dryfriction.program import Segment, VelocityProgram
+from dryfriction.theory.model import TrapModel
+
+
+def run(n: int, duration: float, threads: int, lam: float = 100.0) -> dict[str, float]:
+    """One run: ``N`` blocks in uniform steady sliding at ``u = 1`` for ``duration`` t0."""
+    r = simulate_interface(
+        InterfaceModel(TrapModel(eps=0.04), n, 1.0, 1.0, 0.1),
+        InterfaceDrive("uniform", 0.5, VelocityProgram([Segment(1.0, duration=duration)])),
+        Initial("steady", velocity=1.0, track=Track(lam, "random", seed=1)),
+        Output(every=duration / 4), velocity=1.0, threads=threads)
+    info = r.info
+    return {"steps": info["steps"], "updates": info["trap_updates"], "wall": info["wall_s"],
+            "threads": info["threads"]}
+
+
+def _load() -> str:
+    one, five, fifteen = os.getloadavg()
+    return f"load {one:.1f} {five:.1f} {fifteen:.1f}"
+
+
+def cost_against_n(sizes: tuple[int, ...], duration: float) -> None:
+    """Seconds per step and per block, and trap updates per second, one thread."""
+    run(2, 0.1, 1)  # load the compiled kernel
+    print(f"cost against N (one thread, {duration:g} t0 of sliding, 100 pairs/a0)")
+    print(f"{'N':>6} {'steps':>7} {'updates':>10} {'wall s':>8} {'us/step/block':>14} "
+          f"{'updates/s':>10}")
+    for n in sizes:
+        r = run(n, duration, 1)
+        per = r["wall"] / r["steps"] / n * 1e6
+        print(f"{n:>6} {r['steps']:>7.0f} {r['updates']:>10.3g} {r['wall']:>8.2f} {per:>14.2f} "
+              f"{r['updates'] / r['wall']:>10.3g}   {_load()}")
+
+
+def threads(n: int, duration: float, repeats: int) -> None:
+    """One thread against two, alternately, the medians compared."""
+    run(n, 0.1, 2)
+    walls: dict[int, list[float]] = {1: [], 2: []}
+    print(f"threads: N = {n}, {duration:g} t0, {repeats} alternating runs each")
+    for _ in range(repeats):
+        for th in (1, 2):
+            r = run(n, duration, th)
+            walls[th].append(r["wall"])
+            print(f"  threads={r['threads']:.0f} wall {r['wall']:.2f} s, "
+                  f"{r['updates'] / r['wall']:.3g} updates/s   {_load()}")
+    m1, m2 = statistics.median(walls[1]), statistics.median(walls[2])
+    print(f"  median one thread {m1:.2f} s, two threads {m2:.2f} s: speed-up {m1 / m2:.2f}x")
+
+
+def main() -> None:
+    quick = "--quick" in sys.argv
+    cost_against_n((16, 64, 256) if quick else (16, 64, 256, 1024), 2.0 if quick else 5.0)
+    threads(256, 2.0 if quick else 5.0, 2 if quick else 3)
+
+
+if __name__ == "__main__":
+    main()
