@@ -255,3 +255,16 @@ def test_rupture_front_runs_at_the_chain_sound_speed(kc: float, mass: float) -> 
     assert np.all(np.diff(arrival[mid]) >= 0)  # one front, from the kicked end
     assert np.min(r.slip[-1]) > 0.3  # a rupture, not a sound wave
     assert speed == pytest.approx(cs, rel=0.05)
+
+
+def test_the_package_simulate_runs_an_interface() -> None:
+    """``dryfriction.simulate(model, drive, initial, output)`` dispatches an InterfaceModel to
+    the chain (the same numbers as :func:`simulate_interface`)."""
+    import dryfriction
+
+    args = (InterfaceModel(TrapModel(eps=EPS), 3, 1.5, 1.0, 0.1),
+            InterfaceDrive("side", 0.0, _program(0.1, slip=0.5), edge_stiffness=0.3),
+            Initial("rest", track=Track(20.0, "random", seed=4)), Output(every=1.0))
+    a, b = dryfriction.simulate(*args), simulate_interface(*args)
+    assert isinstance(a, dryfriction.InterfaceResult)
+    assert np.array_equal(a.slip, b.slip) and np.array_equal(a.stress, b.stress)

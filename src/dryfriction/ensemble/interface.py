@@ -425,7 +425,7 @@ def simulate_interface(
     v_start = np.broadcast_to(v_start, (model.n_elements,))
     tracks, normal = element_tracks(model, initial.track)
     est = check_interface(model, drive, initial, output)
-    t_wall = _time.perf_counter()
+    t_wall, t_cpu = _time.perf_counter(), _time.process_time()
     n = model.n_elements
     tm = model.trap
     prog = drive.program
@@ -555,6 +555,7 @@ def simulate_interface(
         "steps": int(acc[1]),
         "trap_updates": float(acc[2]),
         "wall_s": _time.perf_counter() - t_wall,
+        "cpu_s": _time.process_time() - t_cpu,  # every thread of the process
         "threads": 1 if serial else int(numba.get_num_threads()),
         "dt_max": dt_osc,
         "cover_a0": [lo_cov, hi_cov],
