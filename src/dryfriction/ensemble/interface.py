@@ -49,9 +49,15 @@ block pulled uniformly is the single slider's spring drive bit for bit. Every bl
 placed once, covering the slip it can reach (:func:`estimate_interface`); a block that slides
 past that cover stops the run with one line.
 
-Not modelled (said where a user reads it): the direct effect (``direct > 0`` is refused), the
-quasi-static (``mass = 0``) limit and an event-driven quasi-static loading between events, a
-long-range elastic kernel.
+Threads: the blocks' windows are updated in a ``prange`` from 16 blocks on, with Numba's
+threads, except by default on a machine already busy (one-minute load average at least its
+cores), where each step's join of the threads waits for a time slice; the numbers are the same
+with any number of threads (tests/ensemble/test_interface.py).
+
+Not modelled (refused or absent, and said so): the direct effect (``direct > 0`` is refused),
+the quasi-static (``mass = 0``) limit, an event-driven quasi-static loading between events (the
+chain is stepped dynamically throughout, holds included), a long-range (thin-slab) elastic
+kernel, snapshots of the populations.
 """
 
 from __future__ import annotations
