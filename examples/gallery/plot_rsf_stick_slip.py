@@ -20,7 +20,7 @@ r = df.simulate(law, SpringSlider(program, stiffness=400.0, damping=1e-2),
 
 fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True, layout="constrained")
 ax1.plot(r.t, r.mu)
-ax1.set_ylabel("friction mu")
+ax1.set_ylabel("friction μ = τ/σ_n")
 ax1.set_title("Spring slider, k = 400 /m < k_c = 500 /m")
 ax2.semilogy(r.t, r.v)
 ax2.set_xlabel("time (s)")
