@@ -1,6 +1,6 @@
 """
-The Hopf bifurcation of rate-and-state sliding: the first Lyapunov coefficient
-=============================================================================
+The Hopf bifurcation of sliding: the first Lyapunov coefficient l1
+==================================================================
 
 At the critical stiffness ``k_c`` steady sliding of a spring slider loses stability through a
 Hopf bifurcation. Its first Lyapunov coefficient ``l1`` (computed from the normal form, in

@@ -18,7 +18,7 @@ from dryfriction.analysis.stickslip import spring_force
 from dryfriction.ensemble.driving import Initial, Output, SpringDrive, Track
 
 model = df.TrapModel(eps=0.04)
-u = np.logspace(-2, 1, 13)
+u = np.logspace(-2, 1, 7)  # each K_c is a Nyquist scan: about 0.4 s
 k_c = np.array([df.critical_stiffness(x, model).critical_stiffness for x in u])
 
 u_run = 0.01
