@@ -33,6 +33,7 @@ FIGURES = {
     "fig5": lambda: paper.fig5_steady_friction(n=81)[0],
     "fig6": lambda: paper.fig6_dieterich(n=81)[0],
     "extra_loaded": lambda: paper.extra_loaded_static(n=81)[0],
+    "extra_creep": lambda: paper.extra_creep_laws(n=81)[0],
     "extra_dieterich_C": lambda: paper.extra_local_dieterich_constant(n=41)[0],
 }
 

@@ -8,8 +8,10 @@
   ``eps`` = 0.01 ... 0.05, ``T`` and ``u`` log-spaced over 0.01 ... 100 (201 points);
 * ``summary.json``: single-trap constants, Dieterich constants, slopes, creep-law difference,
   the loaded protocol;
-* ``report.html``: one self-contained page (figures embedded as base64 PNG) with the key
-  numbers beside the paper's own values where the paper states one.
+* ``report.html``: one self-contained page (figures embedded as base64 PNG; a figure of two
+  panels side by side as its two panels, one under the other, so that a window 800 px wide
+  does not shrink its text: :func:`panel_pngs`) with the key numbers beside the paper's own
+  values where the paper states one.
 
 All numbers come from the library; nothing is fitted to the paper.
 
