@@ -132,7 +132,7 @@ def option_named(message: str) -> str:
 
 
 FORMAT_HELP = "Figure file format: png, pdf or svg (vector)."
-DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 110; 300 for print)."
+DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 150; 300 for print)."
 FIGURE_HELP = ("Draw the figure; --no-figure skips it, and matplotlib's start-up with it "
                "(a previous run's figure in --out is removed, like any file it no longer "
                "writes).")
