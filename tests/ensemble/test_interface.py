@@ -268,3 +268,31 @@ def test_the_package_simulate_runs_an_interface() -> None:
     a, b = dryfriction.simulate(*args), simulate_interface(*args)
     assert isinstance(a, dryfriction.InterfaceResult)
     assert np.array_equal(a.slip, b.slip) and np.array_equal(a.stress, b.stress)
+
+
+@pytest.mark.slow
+def test_front_speed_converges_as_the_chain_is_refined_at_fixed_length() -> None:
+    """One bar of length L cut into N = 32, 64, 128 blocks (``k_c = k0 N^2``: the per-block
+    equation with ``m``, ``K_p`` and the friction per block fixed is the continuum's
+    ``m x_tt = k0 L^2 x_ss - ...``), prestressed at a slow creep's friction and kicked at one
+    end: the rupture's speed across the middle half, in L/t0, converges to the continuum's
+    ``L sqrt(k0/m)`` (measured 0.1126, 0.1019, 0.1007 against 0.1: errors 13 %, 1.9 %,
+    0.7 %). No mistake beyond those the sound-speed test catches is known to fail it only
+    here; it checks the discrete chain's continuum limit (10 s on a loaded machine)."""
+    u, k0, T = 1e-3, 0.01, 15.0
+    errors = []
+    for N in (32, 64, 128):
+        v0 = np.full(N, u)
+        v0[0] = 2.0
+        r = simulate_interface(
+            InterfaceModel(TrapModel(eps=EPS), N, k0 * N * N, 1.0, 0.05, disorder="identical"),
+            InterfaceDrive("uniform", 0.05, _program(u, duration=T)),
+            Initial("steady", velocity=u, track=Track(50.0, "random", seed=1)),
+            Output(every=T / 1000), velocity=v0, threads=1)
+        fast = r.slip_rate > 0.1
+        assert fast.any(axis=0).all()
+        arrival = r.t[np.argmax(fast, axis=0)]
+        at = np.interp([0.25, 0.75], (np.arange(N) + 0.5) / N, arrival)
+        errors.append(abs(0.5 / (at[1] - at[0]) / np.sqrt(k0) - 1.0))
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[2] < 0.02
