@@ -296,3 +296,14 @@ def test_front_speed_converges_as_the_chain_is_refined_at_fixed_length() -> None
         errors.append(abs(0.5 / (at[1] - at[0]) / np.sqrt(k0) - 1.0))
     assert errors[0] > errors[1] > errors[2]
     assert errors[2] < 0.02
+
+
+def test_a_block_past_its_placed_pairs_stops_the_run_in_one_line() -> None:
+    """A kicked block that flies past the slip its pairs were placed for stops the run with one
+    line naming the block and the range (never a silent run on a track that has ended)."""
+    with pytest.raises(RuntimeError, match=r"element 0 slid to .* past the -10\.\.") as err:
+        simulate_interface(InterfaceModel(TrapModel(), 2, 1.0, 1.0),
+                           InterfaceDrive("uniform", 0.5, _program(0.1, duration=10.0)),
+                           Initial("rest", track=Track(20.0)), Output(every=1.0),
+                           velocity=[100.0, 0.0])
+    assert "\n" not in str(err.value)

@@ -563,7 +563,8 @@ def simulate_interface(
                 raise RuntimeError(
                     f"element {worst} slid to {x[worst]:.3g} a0 at t = {t:.6g} t0, past the "
                     f"{lo_cov:g}..{hi_cov:g} a0 its pairs were placed for (the cover bound of "
-                    "dryfriction.ensemble.interface); shorten the drive")
+                    "dryfriction.ensemble.interface: twice the load point's reach), a kick or a "
+                    "runaway it did not foresee; lower the initial velocity or shorten the drive")
             record(j, t1)
             j_done = j
     except KeyboardInterrupt:
