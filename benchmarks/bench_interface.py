@@ -3,7 +3,8 @@ of blocks, one thread against two.
 
 Run ``python benchmarks/bench_interface.py [--full]`` (``--full``: N up to 1024 and the
 stick-slip run at N = 256 over 100 a0, the issue's scale; an hour on a loaded machine).
-A trap update is one pair of a block's contact window processed in one step (the pairs in contact and the free ones between them).
+A trap update is one pair of a block's contact window processed in one step (the pairs in
+contact and the free ones between them).
 Uniform steady sliding at ``u = 1`` of blocks with 100 pairs per ``a0`` (about 250 pairs in
 each window), ``k_c = 1``, ``m = 1``: the step is the slip limit ``1/(4 lambda)``, so every
 run of the same duration takes the same steps and the cost per step should grow linearly with
