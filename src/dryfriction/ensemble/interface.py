@@ -405,8 +405,10 @@ def simulate_interface(
         Numba threads for the parallel loop over blocks. Default: Numba's, unless the machine
         is already busy (its one-minute load average at least its cores), where one thread:
         every step joins the threads, and on a shared machine each join waits for a time slice
-        (measured: two threads 9x slower than one at a load of 13 on 2 cores). The numbers are
-        the same either way.
+        (measured on 2 cores, N = 256: two threads 9x slower than one at a load of 13, 5x at
+        7.4 with Numba's default OpenMP layer, whose waiting threads spin; at that load
+        ``OMP_WAIT_POLICY=PASSIVE`` gave 0.8x and ``NUMBA_THREADING_LAYER=workqueue`` 1.0x).
+        The numbers are the same either way.
     on_interrupt : {"raise", "partial"}
         On ``KeyboardInterrupt``: re-raise, or return the samples so far marked partial.
 
