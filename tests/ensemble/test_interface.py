@@ -32,25 +32,33 @@ def _program(v: float, **length: float) -> VelocityProgram:
     return VelocityProgram([Segment(v, **length)])
 
 
-@pytest.mark.parametrize("case", ["random-steady", "regular-loaded-eyring"])
+@pytest.mark.parametrize("case", ["random-steady", "regular-loaded-eyring", "side-rest"])
 def test_one_block_is_the_single_slider_bit_for_bit(case: str) -> None:
-    """N = 1 under uniform loading is the single slider's inertial spring drive on the same
-    track: the same samples, slip, velocity and friction to the last bit (the block runs the
-    same window update and the same step rules). Mistakes caught: the coupling's stiffest mode
-    ``4 k_c`` counted for a lone block (the step, hence every number, changes), the damping at
-    the current instead of the predicted velocity."""
+    """N = 1 under uniform loading, or side loading with no top-plate spring, is the single
+    slider's inertial spring drive on the same track: the same samples, slip, velocity and
+    friction to the last bit (the block runs the same window update and the same step rules).
+    Mistakes caught: the coupling's stiffest mode ``4 k_c`` counted for a lone block (the step,
+    hence every number, changes), the damping at the current instead of the predicted
+    velocity."""
     if case == "random-steady":
         model = TrapModel(alpha=0.13, eps=EPS, mu_el=0.6)
         initial = Initial("steady", velocity=0.02, track=Track(60.0, "random", seed=7))
         prog, out, K, M, eta = _program(0.02, slip=2.0), Output(every=2.5), 0.07, 0.8, 0.03
-    else:
+    elif case == "regular-loaded-eyring":
         model = TrapModel(alpha=0.2, eps=0.05, creep="eyring-nabarro", mu_el=0.45)
         initial = Initial("loaded", force=0.3, track=Track(70.0))
         prog, out, K, M, eta = _program(0.3, duration=8.0), Output(every=0.4), 0.3, 1.7, 0.0
+    else:
+        model = TrapModel(alpha=0.13, eps=0.03, mu_el=0.8)
+        initial = Initial("rest", track=Track(40.0, "random", seed=12))
+        prog = VelocityProgram([Segment(0.0, duration=30.0), Segment(0.05, slip=4.0)])
+        out, K, M, eta = Output(every=1.5), 0.15, 0.6, 0.02
     single = simulate(model, SpringDrive(stiffness=K, mass=M, damping=eta, program=prog),
                       initial, out)
+    drive = (InterfaceDrive("side", 0.0, prog, edge_stiffness=K) if case == "side-rest"
+             else InterfaceDrive("uniform", K, prog))
     chain = simulate_interface(InterfaceModel(model, 1, coupling=2.5, mass=M, damping=eta),
-                               InterfaceDrive("uniform", K, prog), initial, out)
+                               drive, initial, out)
     assert np.array_equal(chain.t, single.t)
     assert np.array_equal(chain.slip[:, 0], single.x)
     assert np.array_equal(chain.slip_rate[:, 0], single.v)
