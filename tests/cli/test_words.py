@@ -47,7 +47,7 @@ def test_stability_table_is_whole_at_80_columns_with_units():
                "--damping", "0.1")
     assert r.exit_code == 0, r.output
     assert "…" not in r.stdout
-    for header in ("u [a0/t0]", "K_c [F_el/a0]", "omega_c [1/t0]", "dmu_d_du [F_el t0/a0]"):
+    for header in ("u[a0/t0]", "K_c[F_el/a0]", "omega_c[1/t0]", "dmu_d_du[F_el t0/a0]"):
         assert header in r.stdout
     as_json = json.loads(invoke("stability", "--eps", "0.04", "--u", "0.01", "0.1", "--mass",
                                 "10", "--damping", "0.1", "--json").stdout)
@@ -86,7 +86,7 @@ def test_steady_in_m_per_s_is_the_reduced_result_at_v_t0_over_a0():
     red = _json("steady", "--eps", "0.04", "--u", "0.1", "1")
     assert si["mu_d"] == pytest.approx([0.5 * m for m in red["mu_d"]], rel=1e-12)
     r = invoke("steady", "--eps", "0.04", "--V", "1e-5", "--a0", "1e-6", "--t0", "0.01")
-    assert "V [m/s]" in r.stdout and "mu_d [F_el]" in r.stdout
+    assert "V[m/s]" in r.stdout and "mu_d[F_el]" in r.stdout
     r = invoke("steady", "--eps", "0.04", "--V", "1e-5", "--a0", "1e-6", "--t0", "0.01",
                "--mu-el", "0.5")
     assert "mu_d [F/W]" in r.stdout

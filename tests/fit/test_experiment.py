@@ -7,7 +7,6 @@ of the whole process."""
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import os
@@ -34,6 +33,7 @@ from dryfriction.fit.experiment import (
     summary_points,
 )
 from dryfriction.fit.identify import split_flags
+from dryfriction.io.units import read_rows
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from experiment_zoo import LEVELS, make_experiment  # noqa: E402
@@ -177,7 +177,7 @@ def test_a_whole_experiment_in_one_command(experiment: tuple[Path, object],
     finally:
         mp.undo()
     assert r.exit_code == 0, r.output
-    rows = list(csv.DictReader((out / "steps.csv").open()))
+    rows = read_rows(out / "steps.csv")
     steps = [c for c in rows if c["kind"] == "step"]
     assert len(steps) == 20 and sum(c["kind"] == "shs" for c in rows) == 3
     # each step's level and normal stress (Pa, unit in its column) are the truth's

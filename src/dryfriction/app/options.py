@@ -85,7 +85,9 @@ OPTIONS: dict[str, dict[str, Option]] = {
     "phase-diagram": {**SWEEP, "fmt": FIGURE["fmt"], "dpi": FIGURE["dpi"]},
     "fit": {
         **FIGURE,
-        "model": Option("--model", "cv", "cv (trap model) or rsf (rate-and-state)"),
+        "model": Option("--model", None, "cv (trap model) or rsf (rate-and-state); default "
+                        "chosen by the input: rsf for a laboratory record (--run-cv adds the "
+                        "trap model), cv for the project's CSV files"),
         "alpha": Option("--alpha", _TRAP["alpha"].default,
                         "ALPHA_MIN <= alpha < 1 (trap stiffness, fixed)"),
         "creep": Option("--creep", _TRAP["creep"].default,

@@ -56,6 +56,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
         (and ``files`` empty) without ``out``.
     """
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
+    from ..io.units import SUMMARY_UNITS, with_units
     from ..program import Segment
     from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate
     from ..rsf.law import V_MAX, V_MIN, RateState
@@ -111,11 +112,11 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
     except SolverError as exc:
         raise ValueError(str(exc)) from None
     context = {"case": case, "wall_s": time.perf_counter() - start}
-    summary = {**res.summary(), **context}
+    summary = with_units({**res.summary(), **context}, SUMMARY_UNITS["rsf"])
     files: list[str] = []
     if out is not None:
         with output_directory(out, command="rsf", force=force, report=report) as tmp:
-            write_csv(tmp / "series.csv", res.columns())
+            write_csv(tmp / "series.csv", res.columns(), summary["units"])
             write_json(tmp / "summary.json", summary)
             files = ["series.csv", "summary.json"]
             if figure:

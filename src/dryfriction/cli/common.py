@@ -275,17 +275,24 @@ def progress_bar(label: str, total: float | None = None, unit: str = "",
             bar["p"].stop()
 
 
-def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
-    """Print ``result`` as JSON (``--json``) or as a table."""
+def emit(result: dict[str, Any], as_json: bool, title: str,
+         units: dict[str, str | None] | None = None) -> None:
+    """Print ``result`` as JSON (``--json``) or as a table, each number's name with its unit
+    from ``units`` as ``name[unit]`` (:mod:`dryfriction.io.units`)."""
     if as_json:
         print(json.dumps(to_jsonable(result), indent=2))
         return
     from rich.table import Table
     from rich.text import Text
 
+    from ..io.units import header
+
+    units = units or {}
     table = Table(title=Text(title), show_header=False)
     for k, v in result.items():
-        table.add_row(Text(k), Text(f"{v:.10g}" if isinstance(v, float) else str(v)))
+        number = isinstance(v, (int, float)) and not isinstance(v, bool)
+        name = header(k, units[k]) if number and units.get(k) is not None else k
+        table.add_row(Text(name), Text(f"{v:.10g}" if isinstance(v, float) else str(v)))
     print_whole(table)
 
 
@@ -363,8 +370,11 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
     cols : dict
         Column name -> values (equal lengths).
     units : dict, optional
-        Column name -> unit, shown in the header as ``name [unit]``.
+        Column name -> unit, shown in the header as ``name[unit]`` (the CSV headers'
+        convention, :mod:`dryfriction.io.units`).
     """
+    from ..io.units import header
+
     units = units or {}
     out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()),
               markup=False, highlight=False, soft_wrap=True)
@@ -373,9 +383,8 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
 
     table = Table()
     for name in cols:
-        header = f"{name} [{units[name]}]" if name in units else name
         # a Text header: ``[a0/t0]`` is a unit, not Rich markup
-        table.add_column(Text(header), justify="right", no_wrap=True)
+        table.add_column(Text(header(name, units.get(name))), justify="right", no_wrap=True)
     for row in zip(*cols.values(), strict=True):
         table.add_row(*(f"{float(v):.10g}" for v in row))
     print_whole(table)

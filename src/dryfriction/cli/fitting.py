@@ -45,8 +45,12 @@ def fit_command(
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: fit.json, fit.png "
                                           "(written whole or not at all; new, empty, or "
                                           "written by this program before).")],
-    model: str = typer.Option(_FIT["model"].default, "--model",
-                              help="cv (trap model) or rsf (rate-and-state)."),
+    model: str | None = typer.Option(_FIT["model"].default, "--model",
+                                     click_type=click.Choice(["cv", "rsf"]),
+                                     help="cv (trap model) or rsf (rate-and-state); default "
+                                     "chosen by the input: rsf for a laboratory record "
+                                     "(--run-cv adds the trap model), cv for the project's "
+                                     "CSV files.", show_default=False),
     alpha: float = typer.Option(_FIT["alpha"].default, "--alpha",
                                 help="Trap stiffness (cv), fixed."),
     creep: str = typer.Option(_FIT["creep"].default, "--creep", help=CREEP_HELP),

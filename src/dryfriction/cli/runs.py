@@ -113,7 +113,8 @@ def rsf(
                on_start=lambda: compile_notice(rsf=True))
     summary = done.summary
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
-    emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
+    emit(summary if json_out else brief, json_out, f"rate-and-state, {case}",
+         summary["units"])
     for note in done.notes:
         say(note)
 
@@ -150,7 +151,7 @@ def simulate(
     title = (f"simulate {protocol} -> {out}" + (" (rate-and-state, SI: t s, x m, v m/s, "
                                                  "theta s)" if done.units == "SI" else ""))
     brief = {k: v for k, v in done.summary.items() if not isinstance(v, dict)}
-    emit(done.summary if json_out else brief, json_out, title)
+    emit(done.summary if json_out else brief, json_out, title, done.summary["units"])
     for note in done.notes:
         say(note)
     if done.partial:
@@ -188,4 +189,6 @@ def compare(
     report = done.summary
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in done.result.misfit.items()})
-    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
+    units = {**report["units"], **{f"misfit_{k}": report["units"].get(k)
+                                   for k in done.result.misfit}}
+    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}", units)

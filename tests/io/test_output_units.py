@@ -1,0 +1,99 @@
+"""Every number a user keeps carries its unit: each CSV column of every writer has a header
+``name[unit]`` (or is a label declared so), each JSON number a unit in the document's
+``units`` object or its own ``unit`` (dryfriction.io.units). sweep.nc's ``units`` attributes:
+tests/sweeps/test_cf.py. The results folder's manifest (dryfriction.json: hashes, times) and a
+sweep's resume records (points/*.json, read back by the sweep only) are bookkeeping, not
+results."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from dryfriction.cli import app
+from dryfriction.io import units as U
+from dryfriction.io.files import write_csv
+from lab_synth import Truth, synth_record, write_lab_file
+from output_units import check_folder
+
+EXAMPLES = Path(__file__).parents[2] / "examples"
+def _run(*args: str) -> None:
+    r = CliRunner().invoke(app, list(args))
+    assert r.exit_code == 0, r.output
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    t, _, mu, x = synth_record(Truth(), [1.3e-6, 4.1e-6], duration_slip=300e-6)
+    return write_lab_file(tmp_path_factory.mktemp("rec") / "rec.txt", t, x, mu)
+
+
+SHS = EXAMPLES / "slide_hold_slide.toml"
+
+
+@pytest.mark.parametrize("args", [
+    ("simulate", str(EXAMPLES / "velocity_step.toml"), "--no-figure"),
+    ("simulate", str(EXAMPLES / "rsf_velocity_step.toml"), "--no-figure"),
+    ("rsf", "--no-figure"),
+    ("rsf", "--case", "shs", "--no-figure"),
+    ("bifurcation", str(EXAMPLES / "rsf_stick_slip.toml"), "--velocities", "1e-6,3e-6",
+     "--no-figure"),
+    ("fit", str(EXAMPLES / "data" / "synthetic_velocity_step_rsf.csv"), "--model", "rsf",
+     "--no-figure", "--no-compare", "--no-profile"),
+], ids=["simulate-cv", "simulate-rsf", "rsf-step", "rsf-shs", "bifurcation", "fit-csv"])
+def test_every_column_has_a_unit(tmp_path: Path, args: tuple[str, ...]) -> None:
+    out = tmp_path / "out"
+    _run(*args, "--out", str(out))
+    assert check_folder(out) == []
+
+
+def test_snapshots_have_units(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    _run("simulate", str(SHS), "--out", str(out), "--no-figure")
+    assert any(p.name.startswith("snapshot_") for p in out.iterdir())
+    assert check_folder(out) == []
+
+
+def test_record_fit_and_segments_have_units(tmp_path: Path, record: Path) -> None:
+    out = tmp_path / "out"
+    _run("fit", str(record), "--model", "rsf", "--out", str(out))
+    assert {"steps.csv", "segments.csv", "fit.json"} <= {p.name for p in out.iterdir()}
+    assert check_folder(out) == []
+    rows = U.read_rows(out / "steps.csv")
+    head = (out / "steps.csv").read_text().splitlines()[0].split(",")
+    assert {"dc[m]", "stiffness[1/m]", "trend[1/m]", "t_change[s]", "a[1]"} <= set(head)
+    assert float(rows[0]["dc"]) == pytest.approx(20e-6, rel=0.1)
+
+
+def test_compare_has_units(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    _run("compare", str(EXAMPLES / "velocity_step.toml"), "--out", str(out), "--no-figure")
+    assert check_folder(out) == []
+    doc = json.loads((out / "compare.json").read_text())
+    assert doc["units"]["dc_a0"] == "a0" and doc["unit_system"].startswith("reduced")
+
+
+def test_the_check_catches_a_column_without_unit(tmp_path: Path) -> None:
+    # the check itself can fail: a bare quantity, an empty unit, an undeclared JSON number
+    (tmp_path / "a.csv").write_text("t[s],dc,kind,mu[]\n1,2,step,3\n")
+    (tmp_path / "b.json").write_text('{"units": {"t": "s"}, "t": 1, "peak_x": 2, '
+                                     '"p": {"value": 1, "unit": "m"}}')
+    assert check_folder(tmp_path) == ["a.csv: dc", "a.csv: mu[]", "b.json: peak_x"]
+
+
+def test_a_writer_refuses_a_column_without_unit(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="no unit declared for the column.*dc"):
+        write_csv(tmp_path / "x.csv", {"t": [1.0], "dc": [2.0]}, {"t": "s"})
+    assert not (tmp_path / "x.csv").exists()
+
+
+def test_headers_read_back_new_and_old(tmp_path: Path) -> None:
+    write_csv(tmp_path / "new.csv", {"t": [1.5], "mu": [0.6], "kind": ["step"]},
+              {"t": "s", "mu": "", "kind": None})
+    assert (tmp_path / "new.csv").read_text().splitlines()[0] == "t[s],mu[1],kind"
+    (tmp_path / "old.csv").write_text("# a comment\nt,mu,kind\n1.5,0.6,step\n")
+    assert U.read_rows(tmp_path / "new.csv") == U.read_rows(tmp_path / "old.csv") == [
+        {"t": "1.5", "mu": "0.6", "kind": "step"}]
