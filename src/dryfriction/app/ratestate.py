@@ -68,7 +68,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
         t2 = reload_time(a, b, dc, v1, hold, stiffness) if case == "shs" else 30.0
     # durations and velocities a run can reach in floating point (a 1e308 s first segment
     # would leave the later ones at t = inf, silently dropped)
-    for name, value in (("--t1", t1), ("--t2", t2), ("--hold", hold)):
+    for name, value in (("--t1", t1), ("--t2", t2), ("--hold-time", hold)):
         check_scalar(name, value, 0.0, LOAD_MAX, lo_open=True)
     for name, value in (("--v1", v1), ("--v2", v2)):
         check_scalar(name, value, -V_MAX, V_MAX)

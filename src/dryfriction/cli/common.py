@@ -125,13 +125,37 @@ def option_named(message: str) -> str:
     ctx = get_current_context(silent=True)
     if match is None or ctx is None:
         return message
-    option = "--" + match.group(1).replace("_", "-")
+    from ..app.options import OPTIONS
+
+    declared = OPTIONS.get(ctx.info_name or "", {}).get(match.group(1))
+    # the flag the option table gives the parameter (--u-ref for v_ref in static), else the
+    # parameter's name as a flag
+    option = (declared.flag.split("/")[0] if declared is not None
+              else "--" + match.group(1).replace("_", "-"))
     if not any(option in param.opts for param in ctx.command.params):
         return message
     return option + message[match.end():]
 
 
 FORMAT_HELP = "Figure file format: png, pdf or svg (vector)."
+FORMAT_CHOICES = "[png|pdf|svg]"
+
+
+def one_of(choices: tuple[str, ...]) -> str:
+    """The metavar that lists an option's choices in ``--help``: ``[cv|rsf]``."""
+    return "[" + "|".join(choices) + "]"
+
+
+def renamed(old: str, new: str, why: str, old_value: Any, value: Any, default: Any) -> Any:
+    """The value of an option renamed in this release: ``new``'s, or the deprecated ``old``
+    name's (with a warning on standard error; kept for one release, CHANGELOG.md)."""
+    if old_value is None:
+        return value
+    if value != default:
+        raise ValueError(f"{old} and {new} are one option: give {new} only")
+    say(f"warning: {old} is deprecated here, use {new} ({why}); {old} will be removed in the "
+        "next release")
+    return old_value
 DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 110; 300 for print)."
 FIGURE_HELP = ("Draw the figure; --no-figure skips it, and matplotlib's start-up with it "
                "(a previous run's figure in --out is removed, like any file it no longer "
