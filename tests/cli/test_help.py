@@ -129,3 +129,18 @@ def test_a_refusal_names_the_new_option() -> None:
     assert r.exit_code == 2 and r.stderr.count("\n") == 1 and "--M" in r.stderr, r.output
     r = runner.invoke(app, ["rsf", "--hold-time", "-1"])
     assert r.exit_code == 2 and "--hold-time" in r.stderr, r.output
+
+
+def test_reproduce_lists_every_file_it_wrote(tmp_path, monkeypatch) -> None:
+    # the files from the workflow, extra_*.png included; no unexplained C_inf/C_LS
+    from dryfriction.app import runs
+    from dryfriction.app.outcome import RunOutcome
+    from dryfriction.plots.report import DATA_FILES, EXTRA_FILES, FIGURE_FILES
+
+    files = [*FIGURE_FILES, *EXTRA_FILES, *DATA_FILES]
+    monkeypatch.setattr(runs, "reproduce", lambda out, **kw: RunOutcome(out, files, {}))
+    r = runner.invoke(app, ["reproduce", "--out", str(tmp_path / "o")], terminal_width=300)
+    assert r.exit_code == 0, r.output
+    text = " ".join(r.stdout.split())
+    assert all(f in text for f in files) and "extra_*" in text
+    assert "C_inf" not in text and "C_LS" not in text

@@ -57,9 +57,15 @@ def test_snapshots_have_units(tmp_path: Path) -> None:
     assert check_folder(out) == []
 
 
-def test_record_fit_and_segments_have_units(tmp_path: Path, record: Path) -> None:
+def test_record_fit_chooses_rsf_and_has_units(tmp_path: Path, record: Path) -> None:
     out = tmp_path / "out"
-    _run("fit", str(record), "--model", "rsf", "--out", str(out))
+    # no --model: a record is fitted with rate-and-state (the default cv was refused: exit 2)
+    r = CliRunner().invoke(app, ["fit", str(record), "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    # the table: units in its headers, mu0, which machine parameters were fitted, the law
+    for word in ("dc[m]", "stiffness[1/m]", "mu0[1]", "fitted", "k, trend", "ageing",
+                 "v0 = v_before"):
+        assert word in r.stdout, word
     assert {"steps.csv", "segments.csv", "fit.json"} <= {p.name for p in out.iterdir()}
     assert check_folder(out) == []
     rows = U.read_rows(out / "steps.csv")
@@ -68,10 +74,19 @@ def test_record_fit_and_segments_have_units(tmp_path: Path, record: Path) -> Non
     assert float(rows[0]["dc"]) == pytest.approx(20e-6, rel=0.1)
 
 
-def test_compare_has_units(tmp_path: Path) -> None:
+def test_compare_has_units_and_reports_progress(tmp_path: Path) -> None:
+    from dryfriction.app.runs import compare
+
     out = tmp_path / "out"
-    _run("compare", str(EXAMPLES / "velocity_step.toml"), "--out", str(out), "--no-figure")
+    calls: list[tuple[float, float, str]] = []
+    compare(EXAMPLES / "velocity_step.toml", out, figure=False,
+            progress=lambda d, n, w: calls.append((d, n, w)))
     assert check_folder(out) == []
+    # progress through the trap model's run, then the twin's stage (compare took 6-14 s silent)
+    done = [c[0] for c in calls]
+    assert done == sorted(done) and all(c[1] == 100.0 for c in calls)
+    assert calls[0][2] == "trap model" and calls[-1] == (30.0, 100.0, "rate-and-state twin")
+    assert len(calls) > 5
     doc = json.loads((out / "compare.json").read_text())
     assert doc["units"]["dc_a0"] == "a0" and doc["unit_system"].startswith("reduced")
 

@@ -519,7 +519,8 @@ class Comparison:
         }
 
 
-def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
+def compare_protocol(proto: Any, state_law: str = "ageing",
+                     progress: Any = None) -> Comparison:
     """Run a trap-model protocol and its rate-and-state twin on the same program.
 
     The twin is fitted to the run itself when the protocol starts in steady sliding at its
@@ -557,7 +558,15 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
     if not np.any(vel > 0):
         raise ValueError(f"{proto.source}: drive.segments: the program never slides")
     model = proto.model
-    res = proto.run()
+
+    def step(done: float, what: str) -> None:
+        if progress is not None:
+            progress(done, 100.0, what)
+
+    # progress(percent, 100, stage): the trap model's run to 30 %, the twin from there (a fit
+    # of unknown length: its stage is named, its share a guess)
+    res = proto.run(progress=lambda f: step(30.0 * f, "trap model"))
+    step(30.0, "rate-and-state twin")
     init = proto.initial
     u_first = float(vel[vel > 0][0])
     notes: list[str] = []

@@ -157,8 +157,8 @@ def compare(protocol: str | Path, out: str | Path, *,
             state_law: str = _CMP["state_law"].default, force: bool = _CMP["force"].default,
             fmt: str = _CMP["fmt"].default, dpi: int | None = _CMP["dpi"].default,
             figure: bool = _CMP["figure"].default, report: Report | None = None,
-            draw: Draw | None = None,
-            on_start: Callable[[Any], None] | None = None) -> RunOutcome:
+            draw: Draw | None = None, on_start: Callable[[Any], None] | None = None,
+            progress: Progress | None = None) -> RunOutcome:
     """Run a trap-model protocol and its fitted rate-and-state twin; write compare.json and
     compare.{fmt} (``dryfriction compare``;
     :func:`dryfriction.analysis.rsf_view.compare_protocol`).
@@ -172,6 +172,8 @@ def compare(protocol: str | Path, out: str | Path, *,
     state_law : str
         The twin's state law: ageing or slip (``--state-law``).
     force, fmt, dpi, figure, report, draw, on_start : as :func:`simulate`.
+    progress : callable, optional
+        ``progress(percent, 100, stage)``: the trap model's run, then its twin.
 
     Returns
     -------
@@ -190,7 +192,7 @@ def compare(protocol: str | Path, out: str | Path, *,
     check_output_dir(out, force=force)
     if on_start is not None:
         on_start(proto)
-    c = compare_protocol(proto, state_law)
+    c = compare_protocol(proto, state_law, progress=progress)
     comparison = c.to_dict()
     # the words of the unit system beside the units object (dryfriction.io.units)
     summary = with_units({"protocol": str(protocol), "unit_system": comparison.pop("units"),
