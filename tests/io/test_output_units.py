@@ -112,3 +112,17 @@ def test_headers_read_back_new_and_old(tmp_path: Path) -> None:
     (tmp_path / "old.csv").write_text("# a comment\nt,mu,kind\n1.5,0.6,step\n")
     assert U.read_rows(tmp_path / "new.csv") == U.read_rows(tmp_path / "old.csv") == [
         {"t": "1.5", "mu": "0.6", "kind": "step"}]
+
+
+def test_fit_figure_title_gives_units() -> None:
+    # the title printed bare numbers (a0 = 8.266e-07): each value now carries its unit
+    from dryfriction.fit import fit
+    from dryfriction.plots.fits import plot_fit
+    from dryfriction.records.data import read_csv
+
+    data = read_csv(EXAMPLES / "data" / "synthetic_velocity_step_rsf.csv")
+    result = fit([data], "rsf", profile=False, consistency=False)
+    fig, _ = plot_fit(result, [data])
+    title = fig._suptitle.get_text()
+    dc = next(p for p in result.parameters if p.name == "dc")
+    assert f"dc = {dc.value:.4g} m" in title, title

@@ -14,7 +14,8 @@ The convention:
   (``doc["dc"]``), and the unit is metadata beside the name, as NetCDF's ``units`` attribute
   and the ``units`` object summary.json has always carried for its time series' columns.
 * **NetCDF** (sweep.nc): a ``units`` attribute on every variable (CF).
-* **Tables and figure titles**: ``name[unit]``, as the CSV header (:func:`header`).
+* **Tables**: ``name[unit]`` in the header, as the CSV header (:func:`header`); a figure's
+  title that prints a value gives it with its unit (``a0 = 8.266e-07 m``).
 
 A unit string may carry a short reading after it in parentheses (``"1/m (per unit normal
 force)"``); a CSV header takes the unit alone (:func:`csv_unit`).
