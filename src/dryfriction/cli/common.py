@@ -39,12 +39,17 @@ class _Console:
         self._options = options
 
     def __getattr__(self, name: str) -> Any:
+        return getattr(self.real(), name)
+
+    def real(self) -> Any:
+        """The Rich console itself: what Rich's own machinery takes (a progress bar enters
+        it as a context manager, which this stand-in is not)."""
         console = self.__dict__.get("_console")
         if console is None:
             from rich.console import Console
 
             console = self.__dict__["_console"] = Console(**self._options)
-        return getattr(console, name)
+        return console
 
 
 err: Any = _Console(stderr=True)
@@ -272,7 +277,7 @@ def progress_bar(label: str, total: float | None = None, unit: str = "",
                     return
                 p = Progress(TextColumn("{task.description}"), BarColumn(),
                              TextColumn(counts), TimeElapsedColumn(), TextColumn("left"),
-                             TimeRemainingColumn(), console=err, transient=True)
+                             TimeRemainingColumn(), console=err.real(), transient=True)
                 p.start()
                 bar["p"], bar["task"] = p, p.add_task(label, total=tot)
             desc = f"{label}: {state['what']}" if state["what"] else label
