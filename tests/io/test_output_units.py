@@ -85,8 +85,9 @@ def test_compare_has_units_and_reports_progress(tmp_path: Path) -> None:
     # progress through the trap model's run, then the twin's stage (compare took 6-14 s silent)
     done = [c[0] for c in calls]
     assert done == sorted(done) and all(c[1] == 100.0 for c in calls)
-    assert calls[0][2] == "trap model" and calls[-1] == (30.0, 100.0, "rate-and-state twin")
-    assert len(calls) > 5
+    assert calls[0][2] == "trap model" and calls[-1] == (100.0, 100.0, "done")
+    assert any(w.startswith("rate-and-state twin, start") for _, _, w in calls)
+    assert len(calls) > 20
     doc = json.loads((out / "compare.json").read_text())
     assert doc["units"]["dc_a0"] == "a0" and doc["unit_system"].startswith("reduced")
 
