@@ -127,3 +127,18 @@ def test_fit_figure_title_gives_units() -> None:
     title = fig._suptitle.get_text()
     dc = next(p for p in result.parameters if p.name == "dc")
     assert f"dc = {dc.value:.4g} m" in title, title
+
+
+@pytest.mark.parametrize("args", [
+    ("trap",),
+    ("static", "--eps", "0.04", "--T", "1", "10", "--direct", "0.01", "--pull-velocity", "1"),
+    ("static", "--eps", "0.04", "--t-w", "1", "--t0", "0.1", "--mu-el", "0.5", "--load", "0.3"),
+    ("steady", "--eps", "0.04", "--V", "1e-6", "--a0", "1e-6", "--t0", "1"),
+    ("stability", "--eps", "0.04", "--u", "0.1", "--M", "1", "--eta", "1", "--direct", "0.01"),
+    ("rsf",),
+], ids=["trap", "static", "static-si", "steady-si", "stability", "rsf"])
+def test_printed_json_has_units(args: tuple[str, ...]) -> None:
+    # --json on standard output is JSON a user keeps too (it had no units object)
+    r = CliRunner().invoke(app, [*args, "--json"])
+    assert r.exit_code == 0, r.output
+    assert U.undeclared(json.loads(r.stdout)) == []

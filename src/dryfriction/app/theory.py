@@ -45,8 +45,11 @@ class TableOutcome:
     units: dict[str, str] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
-        """The parameters and the columns in one mapping (the ``--json`` output)."""
-        return {**self.params, **self.columns}
+        """The parameters and the columns in one mapping (the ``--json`` output), with the
+        ``units`` of every number (:mod:`dryfriction.io.units`)."""
+        from ..io.units import THEORY_UNITS, with_units
+
+        return with_units({**self.params, **self.columns}, THEORY_UNITS, self.units)
 
 
 def trap(alpha: float = _TRAP["alpha"].default) -> TableOutcome:

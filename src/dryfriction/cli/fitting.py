@@ -144,6 +144,7 @@ def fit_command(
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
     fit.png (data, fitted curve, residuals)."""
     from ..app.fitting import fit as run
+    from ..io.units import header
 
     options = dict(model=model, alpha=alpha, creep=creep, fix=fix, v0=v0, state_law=state_law,
                    initial_state=initial_state, stiffness=stiffness, trend=trend,
@@ -165,14 +166,16 @@ def fit_command(
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
-        table = Table(title=f"{model} fit of {', '.join(str(p) for p in data)}")
+        words = {"cv": "trap model (cv)", "rsf": "rate-and-state (rsf)"}
+        table = Table(title=f"{words.get(done.report.get('model'), 'fit')} fit of "
+                            f"{', '.join(str(p) for p in data)}")
         for col in ("parameter", "value", "+-", "95 % interval", "identifiability"):
             table.add_column(col)
         for p in result.parameters:
             iv = p.profile_95 or p.interval_95
             ivs = "" if iv is None else ("[" + ", ".join("open" if x is None else f"{x:.4g}"
                                                           for x in iv) + "]")
-            cells = (f"{p.name} [{p.unit}]" if p.unit else p.name, f"{p.value:.6g}",
+            cells = (header(p.name, p.unit or "1"), f"{p.value:.6g}",
                      "" if p.stderr is None else f"{p.stderr:.2g}", ivs, p.identifiability)
             table.add_row(*(Text(c) for c in cells))  # "[open, 0.2]" is no Rich markup
         print_whole(table)

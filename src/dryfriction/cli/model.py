@@ -36,10 +36,10 @@ def trap(
     from ..app.theory import trap as run
 
     done = run(alpha)
-    summary = done.params
+    summary = done.as_dict() if json_out else done.params
     if not json_out and alpha >= 1.0:
         summary = no_pinning_display(summary)
-    emit(summary, json_out, done.title)
+    emit(summary, json_out, done.title, done.as_dict()["units"])
 
 
 CREEP_HELP = "Creep law: log (eq. 17) or eyring-nabarro (exact, eqs. 15-16)."

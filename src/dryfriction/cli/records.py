@@ -53,6 +53,13 @@ def _steps_table(rows: list[dict[str, Any]], title: str, fits: list[Any]) -> Tab
     return table
 
 
+LEGEND = ("rms: the residuals' root mean square; noise: the friction's scatter about a line "
+          "in the steady part; peak_residual: data minus model at the transient's peak; "
+          "stiffness: the machine's, per unit normal force; trend: friction per metre of "
+          "load-point travel. Intervals: profile likelihood, or (--errors hac) allowing "
+          "for correlated residuals.")
+"""What the record table's less common columns mean, printed under it."""
+
 INTERVALS = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
 """The 95 % intervals the terminal shows (columns ``<name>_lo``, ``<name>_hi`` of steps.csv)."""
 
@@ -102,6 +109,7 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                                 "v_before, mu0 the steady friction at v0; fitted: the "
                                 "machine's parameters left free)", res.fits))
         wide.print(_intervals_table(res.rows))
+        out.print(LEGEND, highlight=False, soft_wrap=True)
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
             for note in row["notes"][len(f.notes):]:
                 out.print(f"- step {row['index']}: {note}", highlight=False, soft_wrap=True)

@@ -275,6 +275,15 @@ REPRODUCE_UNITS: dict[str, str | None] = {
 }
 """reproduce: static_friction.csv, steady_friction.csv and summary.json (reduced units)."""
 
+THEORY_UNITS: dict[str, str | None] = {
+    **{k: v for k, v in REPRODUCE_UNITS.items() if k not in ("mu_s", "mu_d")},
+    "mass": "F_el t0^2/a0", "damping": "F_el t0/a0", "direct": DIMENSIONLESS,
+    "v_ref": "a0/t0 (the option --u-ref)", "load": "F_el", "t0": "s", "a0": "m",
+    "mu_el": "1 (F_el/W)", "pull_velocity": "a0/t0",
+}
+"""The inputs of trap, static, steady and stability (``--json``; their columns carry their
+own units: :class:`dryfriction.app.theory.TableOutcome`) and the trap's constants."""
+
 BIFURCATION_UNITS: dict[str, str | None] = {
     "nature": LABEL, "note": LABEL, "check": LABEL, "damping": "s/m", "mass": "s^2/m",
     "velocity": "m/s", "K_c": "1/m", "frequency": "rad/s",
