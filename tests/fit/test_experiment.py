@@ -201,7 +201,7 @@ def test_a_whole_experiment_in_one_command(experiment: tuple[Path, object],
         want = rec.machine / LEVELS[lv["level"]].sn  # type: ignore[attr-defined]
         assert lv["stiffness"]["value"] == pytest.approx(want, rel=0.15)
     assert any("--profile" in n for n in rep["notes"])
-    assert "3 normal-stress levels" in r.stdout and "normal [MPa]" in r.stdout
+    assert "3 normal-stress levels" in r.stdout and "normal[MPa]" in r.stdout
     # the figure: one group per level, one point per reported value of a velocity step
     panels = drawn["panels"]
     assert "HAC" in drawn["title"] and "3 slide-hold-slide" in drawn["title"]  # type: ignore[operator]
