@@ -142,3 +142,10 @@ def test_printed_json_has_units(args: tuple[str, ...]) -> None:
     r = CliRunner().invoke(app, [*args, "--json"])
     assert r.exit_code == 0, r.output
     assert U.undeclared(json.loads(r.stdout)) == []
+
+
+def test_record_json_has_units(record: Path) -> None:
+    r = CliRunner().invoke(app, ["record", str(record), "--json"])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    assert U.undeclared(doc) == [] and doc["units"]["t_change"] == "s"

@@ -35,7 +35,8 @@ from typing import Any
 __all__ = ["DIMENSIONLESS", "LABEL", "Units", "header", "split_header", "csv_unit",
            "labelled", "with_units", "read_rows", "undeclared", "STEP_UNITS", "RECORD_FIT_UNITS",
            "SUMMARY_UNITS", "FIT_UNITS", "COMPARE_UNITS", "SEGMENT_UNITS",
-           "REPRODUCE_UNITS", "BIFURCATION_UNITS", "SNAPSHOT_UNITS"]
+           "REPRODUCE_UNITS", "BIFURCATION_UNITS", "SNAPSHOT_UNITS",
+           "RECORD_UNITS", "THEORY_UNITS"]
 
 DIMENSIONLESS = "1"
 """The unit of a dimensionless number (a friction coefficient, a count, a ratio)."""
@@ -192,6 +193,12 @@ RECORD_FIT_UNITS: dict[str, str | None] = {
 }
 """fit.json of a laboratory record: the rows of steps.csv, the segments, the measured drive's
 changes, the one machine's stiffness (``value``, ``lo``, ``hi``, 1/m)."""
+
+RECORD_UNITS: dict[str, str | None] = {
+    **RECORD_FIT_UNITS, "rows": DIMENSIONLESS, "first_line": LABEL, "time_span_s": "s",
+    "resets_s": "s", "rate_changes_s": "s", "gaps_s": "s", "normal_changes_s": "s",
+}
+"""``record --json``: the record as read, its load program and its steps (SI)."""
 
 SUMMARY_UNITS: dict[str, dict[str, str | None]] = {
     "cv": {"samples": DIMENSIONLESS, "duration": "t0", "peak_mu": DIMENSIONLESS,
