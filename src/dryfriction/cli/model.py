@@ -30,8 +30,8 @@ def trap(
                                 "no friction)."),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
-    """All single-trap constants and the pinning regime (dryfriction model prints the
-    equations: section 1)."""
+    """All single-trap constants and the pinning regime (see dryfriction model,
+    section 1)."""
     from ..app.theory import no_pinning_display
     from ..app.theory import trap as run
 

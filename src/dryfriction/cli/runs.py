@@ -146,9 +146,9 @@ def simulate(
     figure: bool = typer.Option(_SIM["figure"].default, "--figure/--no-figure",
                                 help=FIGURE_HELP),
 ) -> None:
-    """Run a protocol file: the trap model's ensemble (reduced units), or rate-and-state
-    where the file says model.law = "rsf" (SI units); writes timeseries.csv,
-    summary.json and timeseries.png.
+    """Run a protocol file (see dryfriction model, section 6): the trap model's ensemble
+    (reduced units), or rate-and-state where the file says model.law = "rsf" (SI units);
+    writes timeseries.csv, summary.json and timeseries.png.
 
     Ctrl-C stops a trap-model run and writes the samples so far as a complete result marked
     "partial": true in summary.json (exit code 130); an interrupt while writing leaves
