@@ -43,7 +43,10 @@ SHS = EXAMPLES / "slide_hold_slide.toml"
      "--no-figure"),
     ("fit", str(EXAMPLES / "data" / "synthetic_velocity_step_rsf.csv"), "--model", "rsf",
      "--no-figure", "--no-compare", "--no-profile"),
-], ids=["simulate-cv", "simulate-rsf", "rsf-step", "rsf-shs", "bifurcation", "fit-csv"])
+    ("fit", str(EXAMPLES / "data" / "synthetic_static_paper.csv"),
+     str(EXAMPLES / "data" / "synthetic_steady_paper.csv"), "--no-figure", "--no-profile"),
+], ids=["simulate-cv", "simulate-rsf", "rsf-step", "rsf-shs", "bifurcation", "fit-csv",
+        "fit-csv-cv"])
 def test_every_column_has_a_unit(tmp_path: Path, args: tuple[str, ...]) -> None:
     out = tmp_path / "out"
     _run(*args, "--out", str(out))

@@ -13,6 +13,8 @@ The convention:
   declares its numbers itself. Not ``name[unit]`` keys: a key is how a program reads JSON
   (``doc["dc"]``), and the unit is metadata beside the name, as NetCDF's ``units`` attribute
   and the ``units`` object summary.json has always carried for its time series' columns.
+  Where both speak, the ``units`` object is the declaration (an elastic loading's ``t_start``
+  is in s beside its ``unit`` 1/m, that of its stiffness).
 * **NetCDF** (sweep.nc): a ``units`` attribute on every variable (CF).
 * **Tables**: ``name[unit]`` in the header, as the CSV header (:func:`header`); a figure's
   title that prints a value gives it with its unit (``a0 = 8.266e-07 m``).
@@ -184,15 +186,15 @@ RECORD_FIT_UNITS: dict[str, str | None] = {
                                                       "i_start", "i_end", "confidence",
                                                       "duration")},
     "t_given": "s", "sigma_t_change": "s",
-    "displacement_noise": "m", "level": LABEL, "steps": LABEL, "step": LABEL, "value": "1/m",
-    "lo": "1/m", "hi": "1/m", "used": LABEL, "mean_normal": "Pa",
+    "displacement_noise": "m", "level": LABEL, "steps": LABEL, "step": LABEL,
+    "rise": "1 (friction)", "mean_normal": "Pa",
     "aicc": DIMENSIONLESS, "delta_aic": DIMENSIONLESS, "delta_bic": DIMENSIONLESS,
     "resid_rho1": DIMENSIONLESS, "velocity": "m/s", "normal_level": LABEL,
     "alpha": DIMENSIONLESS, "eps": DIMENSIONLESS, "t0": "s", "a0": "m", "direct": DIMENSIONLESS,
     "v_ref": "m/s", "traps_per_a0": "1/a0",
 }
 """fit.json of a laboratory record: the rows of steps.csv, the segments, the measured drive's
-changes, the one machine's stiffness (``value``, ``lo``, ``hi``, 1/m)."""
+changes (the one machine's stiffness carries its own ``unit``)."""
 
 RECORD_UNITS: dict[str, str | None] = {
     **RECORD_FIT_UNITS, "rows": DIMENSIONLESS, "first_line": LABEL, "time_span_s": "s",
@@ -242,6 +244,7 @@ FIT_UNITS: dict[str, str | None] = {
     "delta_aic": DIMENSIONLESS, "delta_bic": DIMENSIONLESS, "weight": DIMENSIONLESS,
     "akaike_weight": DIMENSIONLESS, "statistic": DIMENSIONLESS, "df": DIMENSIONLESS,
     "p": DIMENSIONLESS, "evidence_ratio": DIMENSIONLESS, "lr": DIMENSIONLESS,
+    "delta_chi2": DIMENSIONLESS, "separate_chi2": DIMENSIONLESS,
 }
 """fit.json of the project's CSV files (``fit DATA.csv``), beyond the fitted parameters (each
 of which carries its ``unit``: the table is completed with them, :func:`fit_units`)."""
