@@ -193,7 +193,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
         cost = cv_cost(step_data(rec, wins, segs), alpha, creep, direct, v_ref, traps_per_a0)
         raise ValueError(f"{path}: the trap model (cv) on this record would take about "
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
-                         "run --model rsf --run-cv [--direct A] to fit both and compare")
+                         "drop --model (a record is fitted with rsf) and add --run-cv "
+                         "[--direct A] to fit both and compare")
     with bar("fitting steps", len(wins), unit="steps") as update:
         # one machine (stiffness "record"), the law (or every law: auto) and the initial state
         res = fit_steps_laws(rec, wins, segs, law=law, initial=initial, stiffness=stiffness,
