@@ -161,7 +161,9 @@ def renamed(old: str, new: str, why: str, old_value: Any, value: Any, default: A
     say(f"warning: {old} is deprecated here, use {new} ({why}); {old} will be removed in the "
         "next release")
     return old_value
-DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 110; 300 for print)."
+
+
+DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 150; 300 for print)."
 FIGURE_HELP = ("Draw the figure; --no-figure skips it, and matplotlib's start-up with it "
                "(a previous run's figure in --out is removed, like any file it no longer "
                "writes).")
