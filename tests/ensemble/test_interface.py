@@ -94,12 +94,13 @@ def test_rigid_chain_is_one_slider_of_n_times_the_contacts() -> None:
 @pytest.mark.parametrize("loading", ["uniform", "side"])
 def test_energy_balance_per_step_and_per_event(loading: str) -> None:
     """Work of the moving load point = change of the springs' and kinetic energy + work against
-    the contacts + damping, over every sample (about one step each) and over the largest slip
-    event, independent blocks in stick-slip. The energy is the chain's own function
-    (``k_c/2 sum (x_{i+1} - x_i)^2`` with free ends), the forces the kernel's: measured
-    residuals 1.7e-4 (uniform) and 8.8e-4 (side) over the run against a work of 22 and 15.
-    Mistakes caught: periodic ends in the kernel, a halved or one-sided coupling force, the
-    damping left out of the dissipation."""
+    the contacts + damping, over every step (sampled every 0.05 t0, under the step bound of
+    about 0.09 t0, so each sample is one step) and over the largest slip event, independent
+    blocks in stick-slip. The energy is the chain's own function (``k_c/2 sum (x_{i+1} -
+    x_i)^2`` with free ends), the forces the kernel's: measured residuals 1.7e-4 (uniform) and
+    8.8e-4 (side) over the run against a work of 22 and 15. Mistakes caught: periodic ends in
+    the kernel, a halved or one-sided coupling force, the damping left out of the
+    dissipation."""
     model = TrapModel(eps=EPS)
     kp, ks = (0.1, 0.0) if loading == "uniform" else (0.02, 0.6)
     r = simulate_interface(

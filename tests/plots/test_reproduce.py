@@ -29,6 +29,7 @@ from dryfriction.theory.static import (
 )
 from dryfriction.theory.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
 from dryfriction.theory.trap import Trap
+from output_units import check_folder
 
 ALPHA = 0.13
 EPS = (0.01, 0.02, 0.03, 0.04, 0.05)
@@ -64,6 +65,12 @@ def test_every_file_is_written(run):
         assert data.startswith(PNG_MAGIC) and len(data) > 10_000
 
 
+def test_every_number_has_a_unit(run):
+    # the CSV headers name[unit], summary.json's units object (dryfriction.io.units)
+    out, _, _ = run
+    assert check_folder(out) == []
+
+
 def test_no_temporary_leftovers(run):
     out, _, _ = run
     assert [p.name for p in out.parent.iterdir()] == [out.name]
@@ -82,8 +89,8 @@ def test_progress_reports_every_step_in_order(run):
 
 @pytest.mark.parametrize(
     "name, header, fn",
-    [("static_friction.csv", ["eps", "T", "mu_s"], static_friction),
-     ("steady_friction.csv", ["eps", "u", "mu_d"], steady_friction)],
+    [("static_friction.csv", ["eps[1]", "T[t0]", "mu_s[1]"], static_friction),
+     ("steady_friction.csv", ["eps[1]", "u[a0/t0]", "mu_d[1]"], steady_friction)],
 )
 def test_csv_header_grid_and_values(run, name, header, fn):
     out, _, _ = run

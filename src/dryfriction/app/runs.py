@@ -59,8 +59,12 @@ def comparison_figure(c: Any, title: str = "") -> tuple[Any, Any]:
 
 
 def _summary(result: Any, context: dict[str, Any]) -> dict[str, Any]:
-    """What summary.json holds: the run's own summary plus its context (protocol, wall time)."""
-    return {**result.summary(), **context}
+    """What summary.json holds: the run's own summary plus its context (protocol, wall time),
+    its ``units`` declaring every number (:mod:`dryfriction.io.units`)."""
+    from ..io.units import SUMMARY_UNITS, with_units
+
+    summary = {**result.summary(), **context}
+    return with_units(summary, SUMMARY_UNITS[summary["law"]])
 
 
 def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force"].default,
@@ -102,6 +106,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     """
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
     from ..io.protocol import InterfaceProtocol, RSFProtocol, load_protocol
+    from ..io.units import SNAPSHOT_UNITS
     from ..validation import check_figure_format
 
     fmt, dpi = check_figure_format(fmt, dpi)
@@ -130,7 +135,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     summary = _summary(result, context)
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=report) as tmp:
-        write_csv(tmp / "timeseries.csv", result.columns())
+        write_csv(tmp / "timeseries.csv", result.columns(), summary["units"])
         write_json(tmp / "summary.json", summary)
         if figure:
             draw(builder, result, path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
@@ -138,7 +143,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
         for i, snap in enumerate(getattr(result, "snapshots", ())):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             name = f"snapshot_{i:03d}_t{snap['t']:.6g}.csv"
-            write_csv(tmp / name, cols)
+            write_csv(tmp / name, cols, SNAPSHOT_UNITS)
             files.append(name)
     late = getattr(result, "info", {}).get("snapshots_not_reached")
     if late:
@@ -163,11 +168,12 @@ def _simulate_interface(proto: Any, protocol: str | Path, out: str | Path, *, fo
     import numpy as np
 
     from ..io.files import output_directory, write_csv, write_json
+    from ..io.units import INTERFACE_LOAD_UNITS, INTERFACE_SUMMARY_UNITS, with_units
 
     start = time.perf_counter()
     result = proto.run(on_interrupt="partial")
     context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
-    summary = {**result.summary(), **context}
+    summary = with_units({**result.summary(), **context}, INTERFACE_SUMMARY_UNITS)
     files = list(INTERFACE_FILES)
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=report) as tmp:
@@ -181,7 +187,8 @@ def _simulate_interface(proto: Any, protocol: str | Path, out: str | Path, *, fo
                                      "mean_slip": result.slip.mean(axis=1),
                                      "max_slip_rate": result.slip_rate.max(axis=1),
                                      **result.energy,
-                                     "energy_residual": result.energy_residual()})
+                                     "energy_residual": result.energy_residual()},
+                  INTERFACE_LOAD_UNITS)
         write_json(tmp / "summary.json", summary)
     notes = ["note: the fields are in fields.npz (units in summary.json); the front "
              "catalogue and figures are not written by this version"]
@@ -193,8 +200,8 @@ def compare(protocol: str | Path, out: str | Path, *,
             state_law: str = _CMP["state_law"].default, force: bool = _CMP["force"].default,
             fmt: str = _CMP["fmt"].default, dpi: int | None = _CMP["dpi"].default,
             figure: bool = _CMP["figure"].default, report: Report | None = None,
-            draw: Draw | None = None,
-            on_start: Callable[[Any], None] | None = None) -> RunOutcome:
+            draw: Draw | None = None, on_start: Callable[[Any], None] | None = None,
+            progress: Progress | None = None) -> RunOutcome:
     """Run a trap-model protocol and its fitted rate-and-state twin; write compare.json and
     compare.{fmt} (``dryfriction compare``;
     :func:`dryfriction.analysis.rsf_view.compare_protocol`).
@@ -208,6 +215,8 @@ def compare(protocol: str | Path, out: str | Path, *,
     state_law : str
         The twin's state law: ageing or slip (``--state-law``).
     force, fmt, dpi, figure, report, draw, on_start : as :func:`simulate`.
+    progress : callable, optional
+        ``progress(percent, 100, stage)``: the trap model's run, then its twin.
 
     Returns
     -------
@@ -217,6 +226,7 @@ def compare(protocol: str | Path, out: str | Path, *,
     from ..analysis.rsf_view import compare_protocol
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.protocol import load_protocol
+    from ..io.units import COMPARE_UNITS, with_units
     from ..validation import check_choice, check_figure_format
 
     check_choice("--state-law", state_law, ("ageing", "slip"))
@@ -225,8 +235,11 @@ def compare(protocol: str | Path, out: str | Path, *,
     check_output_dir(out, force=force)
     if on_start is not None:
         on_start(proto)
-    c = compare_protocol(proto, state_law)
-    summary = {"protocol": str(protocol), **c.to_dict()}
+    c = compare_protocol(proto, state_law, progress=progress)
+    comparison = c.to_dict()
+    # the words of the unit system beside the units object (dryfriction.io.units)
+    summary = with_units({"protocol": str(protocol), "unit_system": comparison.pop("units"),
+                          **comparison}, COMPARE_UNITS)
     files = ["compare.json"]
     with output_directory(out, command="compare", force=force, inputs=[protocol],
                           report=report) as tmp:

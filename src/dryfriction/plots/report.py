@@ -37,6 +37,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..io.files import atomic_write_text, output_directory, to_jsonable, write_csv, write_json
+from ..io.units import REPRODUCE_UNITS, with_units
 from ..theory.creep import creep_law_difference, radius
 from ..theory.dieterich import (
     dieterich_constant_asymptotic,
@@ -501,13 +502,15 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         # the figures first: in parallel they are drawn while the data below is computed
         drawn = figure_map(_draw, [(i, tmp, fmt, dpi) for i in order])
         done = 0
-        write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"))
+        write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"),
+                  REPRODUCE_UNITS)
         done += 1
         tick(done, "static_friction.csv")
-        write_csv(tmp / "steady_friction.csv", _grid_columns(steady_friction, "u", "mu_d"))
+        write_csv(tmp / "steady_friction.csv", _grid_columns(steady_friction, "u", "mu_d"),
+                  REPRODUCE_UNITS)
         done += 1
         tick(done, "steady_friction.csv")
-        summary = compute_summary()
+        summary = with_units(compute_summary(), REPRODUCE_UNITS)
         write_json(tmp / "summary.json", summary)
         done += 1
         tick(done, "summary.json")
