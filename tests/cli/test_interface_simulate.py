@@ -12,6 +12,7 @@ from typer.testing import CliRunner
 
 from dryfriction.cli import app
 from dryfriction.io.protocol import InterfaceProtocol, parse_protocol
+from dryfriction.io.units import undeclared
 
 runner = CliRunner()
 
@@ -63,7 +64,9 @@ def test_simulate_writes_the_fields_and_the_summary(tmp_path: Path) -> None:
     assert summary["kind"] == "interface" and summary["n_elements"] == 5
     assert summary["units"]["stress"].startswith("F_el")
     assert summary["params"]["drive"]["loading"] == "side"
-    assert (out / "load.csv").read_text().startswith("t,load,load_point")
+    assert (out / "load.csv").read_text().startswith("t[t0],load[F_el],load_point[a0]")
+    assert undeclared(summary) == []  # every number of summary.json has its unit
+    assert summary["units"]["x"] == "element" and summary["units"]["coupling"] == "F_el/a0"
 
 
 @pytest.mark.parametrize("edit, words", [
