@@ -56,6 +56,29 @@ Rate-and-state friction runs through the same files, in SI units, with
     every = 0.01                 # optional, s: sampling interval (default: every solver step)
     rtol = 1e-7                  # optional: the solver's local tolerance
 
+An extended interface (issue 29: a chain of trap-model blocks,
+:mod:`dryfriction.ensemble.interface`) adds an ``[interface]`` table to the trap model's
+``[model]`` and ``[ensemble]`` (every block's track and initial population), with drive kinds
+of its own::
+
+    [interface]                  # InterfaceModel
+    n_elements = 64              # required, integer >= 1
+    coupling = 4.0               # required, k_c between neighbours, F_el/a0, >= 0
+    mass = 1.0                   # required, per block, F_el t0^2/a0, >= 1e-6
+    damping = 0.1                # optional, per block, F_el t0/a0, >= 0
+    disorder = "independent"     # optional: "independent" | "identical" (all on block 0's)
+    normal_spread = 0.1          # optional, 0 <= s < 1: per-block normal load 1 +- s
+    density_spread = 0.0         # optional, 0 <= s < 1: per-block trap density 1 +- s
+
+    [drive]                      # InterfaceDrive
+    kind = "side"                # required: "uniform" (top plate) | "side" (edge spring)
+    edge_stiffness = 0.5         # side: required, F_el/a0, > 0
+    stiffness = 0.0              # uniform: required (> 0); side: optional, to a fixed plate
+    segments = [{velocity = 0.01, slip = 20.0}]   # the moving load point's program
+
+    [output]
+    every = 0.5                  # exactly one of every (t0) and every_slip (a0); no snapshots
+
 Every error names the file, the table and key (``table.key``), and what is allowed, and is
 raised before any work starts. (Errors avoid square brackets around names, which the terminal's
 markup would swallow.)
