@@ -5,10 +5,12 @@ Reduced units as the single slider (:mod:`.driving`): lengths along the slip ``a
 ``mu_d(u) ~ 1``), stiffness ``F_el/a0``, mass ``F_el t0^2/a0``, damping ``F_el t0/a0``; positions
 along the interface in element spacings (``element``).
 
-Model (Burridge & Knopoff, BSSA 57, 341 (1967); with every block carrying its own population of
-the trap model, as the spring-block models of Trømborg et al., PNAS 111, 8764 (2014) and PRE 92,
-012408 (2015) give each block an explicit population of junctions; the choices are ours)
------------------------------------------------------------------------------------------------
+Model
+-----
+Burridge & Knopoff (BSSA 57, 341 (1967)), every block carrying its own population of the trap
+model, as the spring-block models of Trømborg et al. (PNAS 111, 8764 (2014); PRE 92, 012408
+(2015)) give each block an explicit population of junctions; the choices are ours.
+
 * ``N`` blocks of mass ``m`` along the interface, block ``i`` at slip ``x_i``, each with the
   single slider's population (:mod:`.population`: ageing by creep, eq. 19; the pair positions of
   its own :class:`~.population.Track`), damping ``eta`` per block, nearest-neighbour springs
