@@ -1,0 +1,209 @@
+"""The event catalogue of an extended interface, its precursor curve and its magnitude-frequency
+distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.analysis.fronts`.
+
+* **Catalogue**: one row per event, columns named ``name[unit]`` (units from the fields': e.g.
+  ``t_start[t0]``, ``extent[a0]``, ``moment[a0^2]``; ``[1]`` a pure number or a flag 0/1).
+  :func:`catalogue_columns` gives the columns; ``dryfriction.io.files.write_csv`` writes them.
+* **Precursors** (Rubinstein, Cohen & Fineberg, PRL 98, 226103, 2007: under side loading, fronts
+  from the loaded edge arrest at lengths that grow with the applied shear before the
+  system-spanning slip): each arrested event's extent against the load-to-normal ratio
+  ``load(t_arrest) / normal_load`` at its arrest time (the last arrival, the tips' stop),
+  the load linearly interpolated between samples.
+* **Magnitude-frequency**: the number ``N(>= M)`` of events of moment at least ``M``
+  (complementary cumulative count), and the exponent of a power law ``p(M) ~ M^-alpha`` above
+  ``M_min`` by maximum likelihood, ``alpha = 1 + n / sum ln(M_i / M_min)`` with standard error
+  ``(alpha - 1)/sqrt(n)`` (Clauset, Shalizi & Newman, SIAM Rev. 51, 661, 2009, eqs. 3.1 and 3.2);
+  ``N(>= M) ~ M^-(alpha - 1)``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..validation import Array, check_choice, check_scalar
+from .fronts import Event, SpaceTime, moment_unit, speed_unit
+
+__all__ = ["catalogue_columns", "Precursors", "precursors", "MagnitudeFrequency",
+           "magnitude_frequency"]
+
+
+def catalogue_columns(events: Sequence[Event], st: SpaceTime, threshold: float
+                      ) -> dict[str, Array]:
+    """The catalogue as columns ``name[unit]`` -> values, one row per event.
+
+    Columns: ``event[1]`` (index), ``t_start``, ``t_arrest``, ``t_end``, ``duration`` [time],
+    ``x_nucleation``, ``x_min``, ``x_max``, ``extent`` [length], ``n_elements[1]``,
+    ``mean_slip`` [slip], ``moment`` [slip x length], ``spanning[1]`` (1 system-spanning, 0
+    arrested), ``cut[1]`` (1: the event touches the record's first or last sample, so its
+    duration, extent and slip are lower bounds), ``speed_left``/``speed_right`` with their 95 %
+    bounds ``_low``/``_high`` [length/time] (mean speed of each front; NaN for a front of fewer
+    than 3 elements, an upper bound ``inf`` when the fit cannot exclude an instantaneous front),
+    the load at start and arrest [load unit] when the fields have a load, and
+    ``threshold[slip-rate unit]``, the slip-rate threshold the events were found with.
+    """
+    u = st.units
+    T, L, V = u["t"], u["x"], speed_unit(u)
+    cols: dict[str, list[float]] = {}
+
+    def put(name: str, unit: str, values: list[float]) -> None:
+        cols[f"{name}[{unit}]"] = values
+
+    put("event", "1", [e.index for e in events])
+    for name in ("t_start", "t_arrest", "t_end"):
+        put(name, T, [getattr(e, name) for e in events])
+    put("duration", T, [e.duration for e in events])
+    for name in ("x_nucleation", "x_min", "x_max", "extent"):
+        put(name, L, [getattr(e, name) for e in events])
+    put("n_elements", "1", [e.n_elements for e in events])
+    put("mean_slip", u["slip"], [e.mean_slip for e in events])
+    put("moment", moment_unit(u), [e.moment for e in events])
+    put("spanning", "1", [int(e.spanning) for e in events])
+    put("cut", "1", [int(e.cut) for e in events])
+    for side, k in (("left", 0), ("right", 1)):
+        put(f"speed_{side}", V, [e.fronts[k].mean_speed for e in events])
+        put(f"speed_{side}_low", V, [e.fronts[k].mean_speed_low for e in events])
+        put(f"speed_{side}_high", V, [e.fronts[k].mean_speed_high for e in events])
+    if st.load is not None:
+        put("load_start", u["load"], [e.load_start for e in events])
+        put("load_arrest", u["load"], [e.load_arrest for e in events])
+    put("threshold", u["slip_rate"], [float(threshold)] * len(events))
+    return {k: np.asarray(v) for k, v in cols.items()}
+
+
+@dataclass(frozen=True)
+class Precursors:
+    """The precursor curve (module doc).
+
+    Attributes
+    ----------
+    ratio, length, t_arrest : ndarray
+        Load-to-normal ratio [1] at each arrested event's arrest, its extent [length unit] and
+        arrest time [time unit], in order of arrest.
+    events : ndarray of int
+        Their indices in the catalogue.
+    spanning_ratio, spanning_t : ndarray
+        Ratio and time at the start of each system-spanning event (the global slips).
+    """
+
+    ratio: Array
+    length: Array
+    t_arrest: Array
+    events: np.ndarray
+    spanning_ratio: Array
+    spanning_t: Array
+
+
+def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
+               edge: str | None = None) -> Precursors:
+    """Arrested-front lengths against the load-to-normal ratio at their arrest (module doc).
+
+    Parameters
+    ----------
+    events : sequence of Event
+        From :func:`~dryfriction.analysis.fronts.detect_events` on ``st``.
+    st : SpaceTime
+        The fields; they must hold the load.
+    normal_load : float
+        The normal load, in the load's unit (> 0).
+    edge : {"left", "right"}, optional
+        Keep only the events that include the first ("left") or last ("right") element: the
+        loaded edge of a side-loaded interface.
+
+    Returns
+    -------
+    Precursors
+    """
+    if st.load is None:
+        raise ValueError("the precursor curve needs the load: give load to space_time")
+    normal = check_scalar("normal_load", normal_load, 0.0, lo_open=True)
+    if edge is not None:
+        check_choice("edge", edge, ("left", "right"))
+    n_x = st.x.size
+
+    def touches(e: Event) -> bool:
+        if edge is None:
+            return True
+        return bool(e.elements[0] == 0) if edge == "left" else bool(e.elements[-1] == n_x - 1)
+
+    arrested = sorted((e for e in events if not e.spanning and touches(e)),
+                      key=lambda e: e.t_arrest)
+    spanning = [e for e in events if e.spanning]
+    return Precursors(
+        ratio=np.array([e.load_arrest / normal for e in arrested]),
+        length=np.array([e.extent for e in arrested]),
+        t_arrest=np.array([e.t_arrest for e in arrested]),
+        events=np.array([e.index for e in arrested], dtype=int),
+        spanning_ratio=np.array([e.load_start / normal for e in spanning]),
+        spanning_t=np.array([e.t_start for e in spanning]),
+    )
+
+
+@dataclass(frozen=True)
+class MagnitudeFrequency:
+    """Complementary cumulative count of the moments and a power-law fit (module doc).
+
+    Attributes
+    ----------
+    moment : ndarray
+        The moments in decreasing order [moment unit].
+    count : ndarray
+        ``N(>= moment)``: 1, 2, ... (ties share the largest count).
+    m_min : float
+        Smallest moment of the fit.
+    alpha, alpha_err : float
+        Exponent of ``p(M) ~ M^-alpha`` and its standard error; NaN with fewer than 2 moments
+        above ``m_min`` or all equal.
+    n_fit : int
+        Number of moments in the fit.
+    """
+
+    moment: Array
+    count: Array
+    m_min: float
+    alpha: float
+    alpha_err: float
+    n_fit: int
+
+
+def magnitude_frequency(moments: ArrayLike, m_min: float | None = None) -> MagnitudeFrequency:
+    """The magnitude-frequency distribution of event moments (module doc).
+
+    Parameters
+    ----------
+    moments : array_like
+        Moments of the events (> 0; events with zero or negative slip are dropped from the
+        fit only).
+    m_min : float, optional
+        Lower end of the power-law fit (default: the smallest positive moment).
+
+    Returns
+    -------
+    MagnitudeFrequency
+    """
+    m = np.asarray(moments, dtype=float)
+    if m.ndim != 1:
+        raise ValueError(f"moments must be one-dimensional, got shape {m.shape}")
+    if not np.all(np.isfinite(m)):
+        raise ValueError("moments must be finite: they hold NaN or infinity")
+    desc = np.sort(m)[::-1]
+    # N(>= M): the position of the last element equal to M in the decreasing order
+    count = np.searchsorted(-desc, -desc, side="right").astype(float)
+    positive = m[m > 0]
+    if m_min is None:
+        lo = float(positive.min()) if positive.size else math.nan
+    else:
+        lo = check_scalar("m_min", m_min, 0.0, lo_open=True)
+    fit = positive[positive >= lo] if math.isfinite(lo) else positive[:0]
+    logs = np.log(fit / lo) if fit.size else fit
+    if fit.size >= 2 and logs.sum() > 0:
+        alpha = 1.0 + fit.size / float(logs.sum())
+        err = (alpha - 1.0) / math.sqrt(fit.size)
+    else:
+        alpha = err = math.nan
+    return MagnitudeFrequency(moment=desc, count=count, m_min=lo, alpha=alpha, alpha_err=err,
+                              n_fit=int(fit.size))
