@@ -181,3 +181,6 @@ def test_one_element_needs_its_length():
     st = space_time(np.arange(5.0), [1.0], [[0], [2], [2], [0], [0]], element_length=0.3)
     (e,) = detect_events(st, 1.0)
     assert e.spanning and e.extent == pytest.approx(0.3)
+    # the event's slip runs from the last sample below the threshold to the first one after
+    # (the trapezoidal slip of [0, 2, 2, 0] is 4; from the first sample above, 3)
+    assert e.mean_slip == pytest.approx(4.0) and e.moment == pytest.approx(1.2)
