@@ -184,3 +184,69 @@ def test_one_element_needs_its_length():
     # the event's slip runs from the last sample below the threshold to the first one after
     # (the trapezoidal slip of [0, 2, 2, 0] is 4; from the first sample above, 3)
     assert e.mean_slip == pytest.approx(4.0) and e.moment == pytest.approx(1.2)
+
+
+def test_precursor_trend():
+    # mistake: "grows" from the sign of rho alone, whatever its p-value
+    from dryfriction.analysis.catalogue import Precursors, precursor_trend
+
+    def pre(ratio, length):
+        z = np.zeros(len(ratio))
+        return Precursors(np.array(ratio, float), np.array(length, float), z, z.astype(int),
+                          np.array([]), np.array([]))
+
+    assert precursor_trend(pre([0.1, 0.2, 0.3, 0.4, 0.5], [2, 3, 5, 8, 13])).grows == "yes"
+    assert precursor_trend(pre([0.1, 0.2, 0.3, 0.4, 0.5], [13, 8, 5, 3, 2])).grows == "no"
+    weak = precursor_trend(pre([0.1, 0.2, 0.3], [2, 5, 3]))  # rho = 0.5, p = 0.67
+    assert weak.rho == pytest.approx(0.5) and weak.grows == "no"
+    assert precursor_trend(pre([0.1, 0.2], [2, 5])).grows == "undetermined"
+
+
+def test_front_regimes_against_the_sound_speed():
+    # mistakes: the speed not divided by the sound speed; a front of under 3 elements classed
+    from dryfriction.analysis.catalogue import front_regimes
+
+    t, x = grid(n_x=30, dx=0.5, t_end=14.0, dt=0.013)
+    # a slow front keeps the elements behind it slipping (h = 2 > dx/c): one connected event
+    pulses = [Pulse(0, 0, 5, 1.0, 0.4, h=2.0), Pulse(15, 10, 29, 9.0, 9.0),
+              Pulse(29, 28, 29, 12.0, 2.0)]
+    st = space_time(t, x, *fields(t, x, pulses))
+    reg = front_regimes(detect_events(st, THR), sound_speed=10.0)
+    assert reg.regime == ["slow", "fast", "fast"] and reg.count("slow") == 1
+    assert list(reg.event) == [0, 1, 1] and list(reg.direction) == [1, -1, 1]
+    assert reg.ratio == pytest.approx([0.04, 0.9, 0.9])
+    with pytest.raises(ValueError, match="sound_speed"):
+        front_regimes([], sound_speed=0.0)
+
+
+def test_interface_result_is_read_with_its_units():
+    # the simulator's contract (ensemble/interface_result.py): positions in element spacings,
+    # each element 1 long; the load's unit without its remark; side loading from block 0
+    from dryfriction.analysis.fronts import (
+        from_result,
+        interface_loaded_edge,
+        interface_normal_load,
+        interface_sound_speed,
+    )
+    from dryfriction.ensemble.interface_result import InterfaceResult
+
+    t, x = grid(n_x=12, dx=1.0, x0=0.5, t_end=6.0)
+    v, s = fields(t, x, [Pulse(0, 0, 7, 1.0, 2.0)])
+    res = InterfaceResult(t=t, x=x, slip=s, slip_rate=v, stress=np.zeros_like(v),
+                          load=0.2 * t, load_point=0.01 * t,
+                          params={"model": {"mu_el": 0.4}, "interface": {"coupling": 8.0,
+                                  "mass": 0.5}, "drive": {"loading": "side"}})
+    st = from_result(res)
+    assert st.units["x"] == "element" and st.units["load"] == "F_el per element"
+    (e,) = detect_events(st, THR)
+    assert e.extent == pytest.approx(8.0) and e.fronts[1].mean_speed == pytest.approx(2.0)
+    assert interface_normal_load(res) == pytest.approx(12 / 0.4)
+    assert interface_loaded_edge(res) == "left" and interface_sound_speed(res) == 4.0
+    cols = catalogue_columns([e], st, THR)
+    assert "moment[a0*element]" in cols and "speed_right[element/t0]" in cols
+    assert "load_arrest[F_el per element]" in cols
+    # N = 1 (the single slider): its one element is one spacing long
+    one = InterfaceResult(t=t, x=x[:1], slip=s[:, :1], slip_rate=v[:, :1],
+                          stress=np.zeros_like(v[:, :1]), load=0.2 * t, load_point=0.01 * t,
+                          params={})
+    assert from_result(one).lengths == pytest.approx([1.0])

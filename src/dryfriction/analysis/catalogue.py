@@ -9,6 +9,12 @@ distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.ana
   system-spanning slip): each arrested event's extent against the load-to-normal ratio
   ``load(t_arrest) / normal_load`` at its arrest time (the last arrival, the tips' stop),
   the load linearly interpolated between samples.
+* **Trend** of the precursors (the question of issue 29, part 5: do they arrest at lengths that
+  grow with the applied shear?): Spearman's rank correlation ``rho`` of length against ratio and
+  its two-sided p-value (``scipy.stats.spearmanr``); they *grow* when ``rho > 0`` and
+  ``p < TREND_LEVEL``, and the answer is *undetermined* with fewer than 3 precursors.
+* **Front regimes** (part 5: slow fronts): each front's mean speed against the sound speed
+  ``c_s`` of the chain, classified by its whole 95 % interval (:data:`SLOW_FRACTION`).
 * **Magnitude-frequency**: the number ``N(>= M)`` of events of moment at least ``M``
   (complementary cumulative count), and the exponent of a power law ``p(M) ~ M^-alpha`` above
   ``M_min`` by maximum likelihood, ``alpha = 1 + n / sum ln(M_i / M_min)`` with standard error
@@ -29,7 +35,16 @@ from ..validation import Array, check_choice, check_scalar
 from .fronts import Event, SpaceTime, moment_unit, speed_unit
 
 __all__ = ["catalogue_columns", "Precursors", "precursors", "MagnitudeFrequency",
-           "magnitude_frequency"]
+           "magnitude_frequency", "Trend", "precursor_trend", "FrontRegimes", "front_regimes",
+           "SLOW_FRACTION", "TREND_LEVEL"]
+
+SLOW_FRACTION = 0.1
+"""A front is *slow* when its whole 95 % speed interval lies below this fraction of the sound
+speed, *fast* when the whole interval lies above (ours: Rubinstein, Cohen & Fineberg, Nature
+430, 1005, 2004, saw slow fronts an order of magnitude below the Rayleigh speed)."""
+
+TREND_LEVEL = 0.05
+"""Largest p-value of the rank correlation for which the precursor lengths are said to grow."""
 
 
 def catalogue_columns(events: Sequence[Event], st: SpaceTime, threshold: float
@@ -207,3 +222,73 @@ def magnitude_frequency(moments: ArrayLike, m_min: float | None = None) -> Magni
         alpha = err = math.nan
     return MagnitudeFrequency(moment=desc, count=count, m_min=lo, alpha=alpha, alpha_err=err,
                               n_fit=int(fit.size))
+
+
+@dataclass(frozen=True)
+class Trend:
+    """Rank correlation of precursor length with the load ratio (module doc): ``rho``,
+    ``p_value`` (NaN with fewer than 3 points or a constant series), ``n`` points, and the
+    answer ``grows``: ``"yes"``, ``"no"`` or ``"undetermined"``."""
+
+    rho: float
+    p_value: float
+    n: int
+    grows: str
+
+
+def precursor_trend(pre: Precursors) -> Trend:
+    """Whether the arrested-front lengths grow with the load ratio (module doc)."""
+    from scipy.stats import spearmanr
+
+    n = int(pre.length.size)
+    if n < 3 or np.ptp(pre.length) == 0 or np.ptp(pre.ratio) == 0:
+        return Trend(math.nan, math.nan, n, "undetermined")
+    res = spearmanr(pre.ratio, pre.length)
+    rho, p = float(res.statistic), float(res.pvalue)
+    return Trend(rho, p, n, "yes" if rho > 0 and p < TREND_LEVEL else "no")
+
+
+@dataclass(frozen=True)
+class FrontRegimes:
+    """Fronts classified against the sound speed (module doc).
+
+    Attributes
+    ----------
+    event, direction : ndarray of int
+        The event index and direction of each front with a speed (3 elements or more).
+    ratio, ratio_low, ratio_high : ndarray
+        Mean speed and its 95 % interval over the sound speed [1].
+    regime : list of str
+        ``"slow"``, ``"fast"`` or ``"undetermined"`` (the interval straddles the fraction).
+    fraction : float
+        The fraction of the sound speed that separates them.
+    """
+
+    event: np.ndarray
+    direction: np.ndarray
+    ratio: Array
+    ratio_low: Array
+    ratio_high: Array
+    regime: list[str]
+    fraction: float
+
+    def count(self, regime: str) -> int:
+        """Number of fronts of that regime."""
+        return sum(r == regime for r in self.regime)
+
+
+def front_regimes(events: Sequence[Event], sound_speed: float,
+                  fraction: float = SLOW_FRACTION) -> FrontRegimes:
+    """Slow and fast fronts: each front's mean speed over ``sound_speed`` (same unit as the
+    speeds, > 0), slow or fast by its whole 95 % interval (module doc)."""
+    c = check_scalar("sound_speed", sound_speed, 0.0, lo_open=True)
+    frac = check_scalar("fraction", fraction, 0.0, 1.0, lo_open=True)
+    rows = [(e.index, f.direction, f.mean_speed / c, f.mean_speed_low / c,
+             f.mean_speed_high / c) for e in events for f in e.fronts
+            if math.isfinite(f.mean_speed)]
+    ev, dr, r, lo, hi = (np.array(col) for col in zip(*rows, strict=True)) if rows else (
+        np.array([], int), np.array([], int), np.array([]), np.array([]), np.array([]))
+    regime = ["slow" if h < frac else "fast" if lo_ > frac else "undetermined"
+              for lo_, h in zip(lo, hi, strict=True)]
+    return FrontRegimes(event=ev.astype(int), direction=dr.astype(int), ratio=r, ratio_low=lo,
+                        ratio_high=hi, regime=regime, fraction=frac)

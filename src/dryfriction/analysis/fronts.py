@@ -63,6 +63,9 @@ __all__ = [
     "Event",
     "space_time",
     "from_result",
+    "interface_normal_load",
+    "interface_loaded_edge",
+    "interface_sound_speed",
     "element_lengths",
     "slipping",
     "detect_events",
@@ -206,12 +209,45 @@ def space_time(t: ArrayLike, x: ArrayLike, slip_rate: ArrayLike, slip: ArrayLike
                      lengths=element_lengths(x, element_length), units=merged)
 
 
+def _short_unit(unit: str) -> str:
+    """A unit without its parenthesised remark (``"F_el per element (sum over ...)"`` ->
+    ``"F_el per element"``), for a header ``name[unit]``."""
+    return unit.split(" (", 1)[0].strip()
+
+
 def from_result(result: Any, *, element_length: float | None = None) -> SpaceTime:
-    """:func:`space_time` of a result object with attributes ``t``, ``x``, ``slip_rate``, ``slip``
-    and optionally ``load`` and ``units`` (the interface simulator's result)."""
+    """:func:`space_time` of a result with attributes ``t``, ``x``, ``slip_rate``, ``slip`` and
+    optionally ``load`` and ``units``: the interface simulator's
+    :class:`~dryfriction.ensemble.interface_result.InterfaceResult` (positions in element
+    spacings, ``element``: each element is 1 long unless ``element_length`` says otherwise).
+    """
+    units = {k: _short_unit(str(v)) for k, v in (getattr(result, "units", None) or {}).items()}
+    if element_length is None and units.get("x") == "element":
+        element_length = 1.0
     return space_time(result.t, result.x, result.slip_rate, getattr(result, "slip", None),
-                      getattr(result, "load", None), getattr(result, "units", None),
-                      element_length=element_length)
+                      getattr(result, "load", None), units, element_length=element_length)
+
+
+def interface_normal_load(result: Any) -> float:
+    """Total normal load of an interface run in its load unit, ``N F_el / mu_el``: each element
+    carries ``W = F_el / mu_el`` (``mu_el = F_el/W``, docs/model.md), so ``load / normal`` is the
+    applied shear as a friction coefficient, ``mu_el load / (N F_el)``."""
+    mu_el = float(result.params.get("model", {}).get("mu_el", 1.0))
+    return float(np.asarray(result.x).size) / mu_el
+
+
+def interface_loaded_edge(result: Any) -> str | None:
+    """``"left"`` for a side-loaded run (block 0 carries the edge spring), ``None`` for uniform
+    loading."""
+    return "left" if result.params.get("drive", {}).get("loading") == "side" else None
+
+
+def interface_sound_speed(result: Any) -> float:
+    """The chain's long-wave speed ``sqrt(k_c / m)`` [element/t0] from the run's parameters
+    (NaN without coupling or mass)."""
+    p = result.params.get("interface", {})
+    k, m = float(p.get("coupling", math.nan)), float(p.get("mass", math.nan))
+    return math.sqrt(k / m) if k >= 0 and m > 0 else math.nan
 
 
 def speed_unit(units: Mapping[str, str]) -> str:
