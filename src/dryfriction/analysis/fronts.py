@@ -66,6 +66,9 @@ __all__ = [
     "interface_normal_load",
     "interface_loaded_edge",
     "interface_sound_speed",
+    "THRESHOLD_FACTOR",
+    "default_threshold",
+    "check_threshold",
     "element_lengths",
     "slipping",
     "detect_events",
@@ -258,6 +261,26 @@ def speed_unit(units: Mapping[str, str]) -> str:
 def moment_unit(units: Mapping[str, str]) -> str:
     """Unit of the moment: slip unit x length unit (``a0^2`` when both are ``a0``)."""
     return f"{units['x']}^2" if units["slip"] == units["x"] else f"{units['slip']}*{units['x']}"
+
+
+THRESHOLD_FACTOR = 10.0
+"""Default slip-rate threshold of an interface run, in multiples of the largest loading
+velocity of its program (ours: above the creep of a stuck interface, which stays below the
+loading velocity on average, and far below the slip rate inside a front)."""
+
+
+def default_threshold(result: Any) -> float:
+    """:data:`THRESHOLD_FACTOR` times the largest velocity of the run's loading program
+    (``params['drive']['segments']``) [slip-rate unit]; NaN where the program has none."""
+    segments = result.params.get("drive", {}).get("segments", [])
+    speeds = [abs(float(s["velocity"])) for s in segments if s.get("velocity") is not None]
+    top = max(speeds, default=0.0)
+    return THRESHOLD_FACTOR * top if top > 0 else math.nan
+
+
+def check_threshold(threshold: float, unit: str = DEFAULT_UNITS["slip_rate"]) -> float:
+    """``threshold`` as a float, or one ``ValueError`` line: a slip rate, finite and > 0."""
+    return _threshold(threshold, {"slip_rate": unit})
 
 
 def _threshold(threshold: float, units: Mapping[str, str]) -> float:
