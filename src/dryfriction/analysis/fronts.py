@@ -54,7 +54,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..validation import Array, check_scalar
+from ..validation import Array, check_memory, check_scalar
 
 __all__ = [
     "DEFAULT_UNITS",
@@ -473,6 +473,8 @@ def detect_events(st: SpaceTime, threshold: float, *, min_elements: int = 1,
         raise ValueError(f"min_elements = {min_elements!r} is out of range: a whole number >= 1")
     if int(half_window) != half_window or half_window < 1:
         raise ValueError(f"half_window = {half_window!r} is out of range: a whole number >= 1")
+    # the mask (1 byte) and the labels (4 bytes) of every sample, besides the fields themselves
+    check_memory("finding the events", 5.0 * st.slip_rate.size, "record fewer samples")
     mask = st.slip_rate > thr
     labels, n = ndimage.label(mask, structure=np.ones((3, 3), dtype=bool))
     n_t, n_x = st.shape
