@@ -84,3 +84,21 @@ def test_precursor_and_magnitude_figures(run):
     assert np.allclose(step.get_xdata(), sorted((e.moment for e in events), reverse=True))
     assert "[a0^2]" in ax.get_xlabel() and "alpha" in ax.get_legend().get_texts()[-1].get_text()
     _png(fig)
+
+
+def test_long_record_is_pooled_by_its_largest_values():
+    # mistake: every k-th sample kept (a short slip between two kept samples vanishes)
+    from dryfriction.plots.fronts import MAP_ROWS, space_time_figure
+
+    t = np.arange(3 * MAP_ROWS + 7) * 0.01
+    x = np.arange(3.0)
+    v = np.zeros((t.size, 3))
+    v[1001, 1] = 5.0  # one sample, not a multiple of the pooling factor
+    v[-1, 2] = 7.0  # the last, incomplete block
+    st = space_time(t, x, v)
+    fig, ax = space_time_figure(st, [], 1.0)
+    (mesh,) = ax.collections
+    shown = np.asarray(mesh.get_array()).reshape(-1, 3)
+    assert shown.shape[0] <= MAP_ROWS + 1
+    assert shown[:, 1].max() == pytest.approx(np.log10(5.0))
+    assert shown[-1, 2] == pytest.approx(np.log10(7.0))

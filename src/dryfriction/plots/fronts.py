@@ -26,19 +26,43 @@ def _title(fig: Any, ax: Any, title: str) -> None:
         ax.set_title(title, fontsize=TITLE_SIZE)
 
 
+MAP_ROWS = 1500
+"""Most time rows the space-time map draws (about the figure's pixel height at 300 dpi)."""
+
+
+def _pooled(t: np.ndarray, rate: np.ndarray, rows: int = MAP_ROWS) -> tuple[np.ndarray,
+                                                                              np.ndarray]:
+    """The slip rate over at most ``rows`` time rows: the largest value of each block of
+    consecutive samples (so no front or event vanishes from the map), at the block's first
+    time."""
+    k = -(-t.size // rows)  # samples per row, rounded up
+    if k <= 1:
+        return t, rate
+    n = t.size // k * k
+    pooled = rate[:n].reshape(-1, k, rate.shape[1]).max(axis=1)
+    times = t[:n:k]
+    if n < t.size:
+        pooled = np.vstack([pooled, rate[n:].max(axis=0)])
+        times = np.append(times, t[n])
+    return times, pooled
+
+
 def space_time_figure(st: SpaceTime, events: Sequence[Event], threshold: float,
                       title: str = "") -> tuple[Any, Any]:
     """The slip rate over (position, time), log colour scale, with every front's arrival times
     drawn over it (one line per front, coloured by direction; a circle at each nucleation).
 
     Slip rates at or below ``threshold / 100`` (and any negative back-slip) are drawn at that
-    floor; the colour bar's label says so and gives the threshold.
+    floor; the colour bar's label says so and gives the threshold. A record of more than
+    :data:`MAP_ROWS` samples is drawn as the largest slip rate of each block of samples; the
+    fronts are drawn at their exact arrival times.
     """
     fig, ax = new_figure((RUN_WIDTH, 5.0))
     u = st.units
     floor = threshold / 100.0
-    rate = np.log10(np.maximum(st.slip_rate, floor))
-    mesh = ax.pcolormesh(st.x, st.t, rate, shading="nearest", cmap="magma", rasterized=True)
+    t, rate = _pooled(st.t, st.slip_rate)
+    rate = np.log10(np.maximum(rate, floor))
+    mesh = ax.pcolormesh(st.x, t, rate, shading="nearest", cmap="magma", rasterized=True)
     bar = fig.colorbar(mesh, ax=ax, pad=0.02)
     bar.set_label(rf"$\log_{{10}}$ slip rate [{u['slip_rate']}] (floor {floor:.3g}; "
                   f"threshold {threshold:.3g})", fontsize=LEGEND_SIZE)
