@@ -96,14 +96,18 @@ def test_pure_noise_has_no_event():
 
 
 def test_arrested_precursors_of_known_length():
-    # mistakes: the ratio read at the event's start, not at its arrest; the length in elements
+    # mistakes: the ratio read at the event's start, not at its arrest; the length in
+    # elements; an event cut by the record's end taken as arrested
     t, x = grid(n_x=40, dx=0.5, t_end=20.0, dt=0.013)
-    pulses = [Pulse(0, 0, 7, 1.0, 2.0), Pulse(0, 0, 15, 4.0, 2.0), Pulse(0, 0, 39, 8.0, 2.0)]
+    # three precursors from the loaded edge, a global slip, and a front the record cuts
+    pulses = [Pulse(0, 0, 7, 1.0, 2.0), Pulse(0, 0, 15, 4.0, 2.0), Pulse(0, 0, 39, 8.0, 2.0),
+              Pulse(0, 0, 20, 19.0, 2.0)]
     v, s = fields(t, x, pulses)
     load = 0.3 + 0.05 * t
     st = space_time(t, x, v, s, load)
     events = detect_events(st, THR)
-    assert [e.spanning for e in events] == [False, False, True]
+    assert [(e.spanning, e.cut) for e in events] == [(False, False), (False, False),
+                                                    (True, False), (False, True)]
     pre = precursors(events, st, normal_load=2.5, edge="left")
     assert pre.length == pytest.approx([4.0, 8.0])
     arrest = [p.t_nuc + (x[p.hi] - x[0]) / p.c + _crossing_delay(p) for p in pulses[:2]]

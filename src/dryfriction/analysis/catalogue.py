@@ -8,7 +8,8 @@ distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.ana
   from the loaded edge arrest at lengths that grow with the applied shear before the
   system-spanning slip): each arrested event's extent against the load-to-normal ratio
   ``load(t_arrest) / normal_load`` at its arrest time (the last arrival, the tips' stop),
-  the load linearly interpolated between samples.
+  the load linearly interpolated between samples. An event cut by the record's first or last
+  sample is left out (it may not have arrested).
 * **Trend** of the precursors (the question of issue 29, part 5: do they arrest at lengths that
   grow with the applied shear?): Spearman's rank correlation ``rho`` of length against ratio and
   its two-sided p-value (``scipy.stats.spearmanr``); they *grow* when ``rho > 0`` and
@@ -145,7 +146,8 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
             return True
         return bool(e.elements[0] == 0) if edge == "left" else bool(e.elements[-1] == n_x - 1)
 
-    arrested = sorted((e for e in events if not e.spanning and touches(e)),
+    # an event cut by the record's end may still be growing: not known to have arrested
+    arrested = sorted((e for e in events if not (e.spanning or e.cut) and touches(e)),
                       key=lambda e: e.t_arrest)
     spanning = [e for e in events if e.spanning]
     return Precursors(
