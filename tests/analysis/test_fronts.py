@@ -254,3 +254,13 @@ def test_interface_result_is_read_with_its_units():
                           stress=np.zeros_like(v[:, :1]), load=0.2 * t, load_point=0.01 * t,
                           params={})
     assert from_result(one).lengths == pytest.approx([1.0])
+
+
+def test_simultaneous_slip_is_an_instantaneous_front():
+    # mistake: a zero slowness read as "no front" (NaN) instead of an infinite speed
+    t = np.linspace(0.0, 4.0, 401)
+    x = np.arange(8.0)
+    v = np.where((t > 1.0) & (t < 2.0), 3.0, 0.0)[:, None] * np.ones((1, 8))
+    (e,) = detect_events(space_time(t, x, v), 1.0)
+    assert e.spanning and e.fronts[1].mean_speed == math.inf
+    assert e.fronts[0].mean_speed == math.inf and np.all(np.isinf(e.fronts[1].speed))

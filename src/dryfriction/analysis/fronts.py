@@ -22,7 +22,8 @@ Slipping, events and fronts
   threshold upwards, linearly interpolated between the last sample below and the first above
   (sub-sample precision; at the record's first sample, that sample's time). The **end** of the
   event at element ``i`` is the downward crossing, interpolated the same way.
-* **Nucleation**: the element with the earliest arrival time; ``t_start`` is that time. The
+* **Nucleation**: the element with the earliest arrival time (the middle one of several reached
+  at the same time); ``t_start`` is that time. The
   event's ``t_end`` is its last downward crossing, ``duration = t_end - t_start``; its
   ``t_arrest`` is the last arrival time (when the tips stopped advancing).
 * **Slip of the event** at element ``i``: ``s`` at the first sample after the element stopped
@@ -313,7 +314,8 @@ class Front:
         Arrival time at each of them [time unit].
     speed, speed_low, speed_high : ndarray
         Local front speed at each position and its 95 % interval [length/time]; NaN where the
-        window holds fewer than 3 elements.
+        window holds fewer than 3 elements or the arrivals run back towards the nucleation,
+        ``inf`` where they are simultaneous.
     mean_speed, mean_speed_low, mean_speed_high : float
         Speed fitted over the whole front and its 95 % interval; NaN for fewer than 3 elements.
     """
@@ -398,6 +400,8 @@ def _speed_from_slowness(slope: float, low: float, high: float, direction: int
     """Speed and interval from the slope dT/dx and its interval along ``direction``."""
     s, lo, hi = direction * slope, direction * low, direction * high
     lo, hi = min(lo, hi), max(lo, hi)
+    if s == 0:  # every element reached at once: an instantaneous front
+        return math.inf, (1.0 / hi if hi > 0 else math.inf), math.inf
     if not s > 0:  # the front does not move away from the nucleation there
         return math.nan, math.nan, math.nan
     return 1.0 / s, (1.0 / hi if hi > 0 else math.nan), (1.0 / lo if lo > 0 else math.inf)
@@ -502,7 +506,9 @@ def detect_events(st: SpaceTime, threshold: float, *, min_elements: int = 1,
         before = np.maximum(first - 1, 0)
         after = np.minimum(last + 1, n_t - 1)
         ds = s[after, elements] - s[before, elements]
-        k0 = int(np.argmin(arrival))
+        # the earliest element; among several reached at the same time, the middle one
+        tied = np.flatnonzero(arrival == arrival.min())
+        k0 = int(tied[tied.size // 2])
         i0 = int(elements[k0])
         lengths = st.lengths[elements]
         fronts = tuple(
