@@ -74,6 +74,9 @@ def test_two_events_of_known_extents():
     assert (ea.x_min, ea.x_max, eb.x_min, eb.x_max) == pytest.approx(
         (x[5], x[14], x[20], x[39]))
     assert not (ea.spanning or eb.spanning or ea.cut or eb.cut)
+    # min_elements keeps an event of exactly that many elements
+    assert len(detect_events(st, THR, min_elements=10)) == 2
+    assert [e.n_elements for e in detect_events(st, THR, min_elements=11)] == [20]
     # slip of each element: the pulse A (r + h), plus the creep v_bg over the window, which
     # starts one sample before the upward crossing and ends one after the downward one
     for e, p in ((ea, a), (eb, b)):

@@ -71,8 +71,8 @@ def _draw_here(builder: Callable[..., Any], *args: Any, path: Any, fmt: str,
 
 def interface_outputs(result: Any, folder: str | Path, *, threshold: float | None = None,
                       figure: bool = True, fmt: str = "png", dpi: int | None = None,
-                      draw: Callable[..., None] | None = None, half_window: int = 3
-                      ) -> tuple[list[str], list[str], dict[str, Any]]:
+                      draw: Callable[..., None] | None = None, half_window: int = 3,
+                      min_elements: int = 1) -> tuple[list[str], list[str], dict[str, Any]]:
     """Analyse an interface run and write its files into ``folder`` (module doc).
 
     Parameters
@@ -87,6 +87,9 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     figure, fmt, dpi, draw : as :func:`dryfriction.app.runs.simulate`.
     half_window : int
         Half-width of the local front-speed fit, in elements.
+    min_elements : int
+        Smallest event kept, in elements (2 drops the one-element slips of a block ringing
+        on its own).
 
     Returns
     -------
@@ -126,7 +129,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     draw = draw or _draw_here
     st = from_result(result)
     u = st.units
-    events = detect_events(st, thr, half_window=half_window)
+    events = detect_events(st, thr, half_window=half_window, min_elements=min_elements)
     files: list[str] = []
     notes: list[str] = []
 

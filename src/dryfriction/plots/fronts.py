@@ -50,7 +50,8 @@ def _pooled(t: np.ndarray, rate: np.ndarray, rows: int = MAP_ROWS) -> tuple[np.n
 def space_time_figure(st: SpaceTime, events: Sequence[Event], threshold: float,
                       title: str = "") -> tuple[Any, Any]:
     """The slip rate over (position, time), log colour scale, with every front's arrival times
-    drawn over it (one line per front, coloured by direction; a circle at each nucleation).
+    drawn over it (one line per front, coloured by direction; a circle at the nucleation of each
+    event of more than one element).
 
     Slip rates at or below ``threshold / 100`` (and any negative back-slip) are drawn at that
     floor; the colour bar's label says so and gives the threshold. A record of more than
@@ -75,7 +76,8 @@ def space_time_figure(st: SpaceTime, events: Sequence[Event], threshold: float,
             ax.plot(f.x, f.t, "-", color=colour, lw=LINE,
                     label=None if f.direction in seen else f"front {label}")
             seen.add(f.direction)
-        ax.plot([e.x_nucleation], [e.t_start], "o", mfc="none", color="w", ms=5)
+        if e.n_elements > 1:  # a one-element slip has no front to start
+            ax.plot([e.x_nucleation], [e.t_start], "o", mfc="none", color="w", ms=5)
     ax.set_xlabel(f"position $x$  [{u['x']}]")
     ax.set_ylabel(f"time $t$  [{u['t']}]")
     ax.set_xlim(st.x[0] - st.lengths[0] / 2, st.x[-1] + st.lengths[-1] / 2)  # cell edges
