@@ -118,6 +118,9 @@ def test_arrested_precursors_of_known_length():
     t0 = pulses[2].t_nuc + _crossing_delay(pulses[2])
     assert pre.spanning_ratio == pytest.approx([(0.3 + 0.05 * t0) / 2.5])
     assert len(precursors(events, st, 2.5, edge="right").length) == 0
+    # an initial transient left out: the first precursor starts at t = 1.0 + delay
+    late = precursors(events, st, 2.5, edge="left", after=1.5)
+    assert late.length == pytest.approx([8.0]) and late.spanning_ratio.size == 1
 
 
 def _header(tmp_path, st, events):

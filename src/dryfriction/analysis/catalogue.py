@@ -115,7 +115,7 @@ class Precursors:
 
 
 def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
-               edge: str | None = None) -> Precursors:
+               edge: str | None = None, after: float | None = None) -> Precursors:
     """Arrested-front lengths against the load-to-normal ratio at their arrest (module doc).
 
     Parameters
@@ -129,6 +129,8 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
     edge : {"left", "right"}, optional
         Keep only the events that include the first ("left") or last ("right") element: the
         loaded edge of a side-loaded interface.
+    after : float, optional
+        Leave out the events that start before this time [time unit] (an initial transient).
 
     Returns
     -------
@@ -140,6 +142,8 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
     if edge is not None:
         check_choice("edge", edge, ("left", "right"))
     n_x = st.x.size
+    start = -math.inf if after is None else check_scalar("after", after)
+    events = [e for e in events if e.t_start >= start]
 
     def touches(e: Event) -> bool:
         if edge is None:

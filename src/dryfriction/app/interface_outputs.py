@@ -72,7 +72,8 @@ def _draw_here(builder: Callable[..., Any], *args: Any, path: Any, fmt: str,
 def interface_outputs(result: Any, folder: str | Path, *, threshold: float | None = None,
                       figure: bool = True, fmt: str = "png", dpi: int | None = None,
                       draw: Callable[..., None] | None = None, half_window: int = 3,
-                      min_elements: int = 1) -> tuple[list[str], list[str], dict[str, Any]]:
+                      min_elements: int = 1, transient: float = 0.0
+                      ) -> tuple[list[str], list[str], dict[str, Any]]:
     """Analyse an interface run and write its files into ``folder`` (module doc).
 
     Parameters
@@ -90,6 +91,9 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     min_elements : int
         Smallest event kept, in elements (2 drops the one-element slips of a block ringing
         on its own).
+    transient : float
+        Events that start before this time [``t0``] are left out of the precursor curve (the
+        relaxation of the initial state); the catalogue keeps them.
 
     Returns
     -------
@@ -120,9 +124,10 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     )
     from ..io.files import write_csv
     from ..io.spacetime import write_fields
-    from ..validation import check_figure_format
+    from ..validation import check_figure_format, check_scalar
 
     fmt, dpi = check_figure_format(fmt, dpi)
+    transient = check_scalar("transient", transient, 0.0)
     thr = default_threshold(result) if threshold is None else threshold
     thr = check_threshold(thr, result.units.get("slip_rate", "a0/t0"))
     folder = Path(folder)
@@ -175,14 +180,15 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     edge = interface_loaded_edge(result)
     pre = None
     if edge is not None:
-        pre = precursors(events, st, interface_normal_load(result), edge=edge)
+        pre = precursors(events, st, interface_normal_load(result), edge=edge,
+                         after=transient)
         write_csv(folder / "precursors.csv", {
             "event[1]": pre.events, "load_ratio[1]": pre.ratio,
             f"length[{u['x']}]": pre.length, f"t_arrest[{u['t']}]": pre.t_arrest})
         files.append("precursors.csv")
         trend = precursor_trend(pre)
-        summary["precursors"] = {"n": trend.n, "rho": trend.rho, "p_value": trend.p_value,
-                                 "grow_with_load": trend.grows}
+        summary["precursors"] = {"after_t0": transient, "n": trend.n, "rho": trend.rho,
+                                 "p_value": trend.p_value, "grow_with_load": trend.grows}
     mf = magnitude_frequency([e.moment for e in events])
     summary["moment_exponent"] = {"alpha": mf.alpha, "alpha_err": mf.alpha_err, "n": mf.n_fit}
     if figure:
