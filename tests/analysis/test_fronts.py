@@ -206,9 +206,10 @@ def test_precursor_trend():
                           np.array([]), np.array([]))
 
     assert precursor_trend(pre([0.1, 0.2, 0.3, 0.4, 0.5], [2, 3, 5, 8, 13])).grows == "yes"
-    assert precursor_trend(pre([0.1, 0.2, 0.3, 0.4, 0.5], [13, 8, 5, 3, 2])).grows == "no"
+    down = precursor_trend(pre([0.1, 0.2, 0.3, 0.4, 0.5], [13, 8, 5, 3, 2]))
+    assert down.grows == "decreasing" and down.rho == pytest.approx(-1.0)
     weak = precursor_trend(pre([0.1, 0.2, 0.3], [2, 5, 3]))  # rho = 0.5, p = 0.67
-    assert weak.rho == pytest.approx(0.5) and weak.grows == "no"
+    assert weak.rho == pytest.approx(0.5) and weak.grows == "not significant"
     assert precursor_trend(pre([0.1, 0.2], [2, 5])).grows == "undetermined"
 
 

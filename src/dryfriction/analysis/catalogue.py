@@ -12,8 +12,10 @@ distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.ana
   sample is left out (it may not have arrested).
 * **Trend** of the precursors (the question of issue 29, part 5: do they arrest at lengths that
   grow with the applied shear?): Spearman's rank correlation ``rho`` of length against ratio and
-  its two-sided p-value (``scipy.stats.spearmanr``); they *grow* when ``rho > 0`` and
-  ``p < TREND_LEVEL``, and the answer is *undetermined* with fewer than 3 precursors.
+  its two-sided p-value (``scipy.stats.spearmanr``). The answer is ``"yes"`` (they grow) when
+  ``rho > 0`` and ``p < TREND_LEVEL``, ``"decreasing"`` when ``rho < 0`` and ``p <
+  TREND_LEVEL``, ``"not significant"`` otherwise, and ``"undetermined"`` with fewer than 3
+  precursors (or a constant length or ratio).
 * **Front regimes** (part 5: slow fronts): each front's mean speed against the sound speed
   ``c_s`` of the chain, classified by its whole 95 % interval (:data:`SLOW_FRACTION`).
 * **Magnitude-frequency**: the number ``N(>= M)`` of events of moment at least ``M``
@@ -234,7 +236,8 @@ def magnitude_frequency(moments: ArrayLike, m_min: float | None = None) -> Magni
 class Trend:
     """Rank correlation of precursor length with the load ratio (module doc): ``rho``,
     ``p_value`` (NaN with fewer than 3 points or a constant series), ``n`` points, and the
-    answer ``grows``: ``"yes"``, ``"no"`` or ``"undetermined"``."""
+    answer ``grows``: ``"yes"``, ``"decreasing"``, ``"not significant"`` or
+    ``"undetermined"``."""
 
     rho: float
     p_value: float
@@ -251,7 +254,9 @@ def precursor_trend(pre: Precursors) -> Trend:
         return Trend(math.nan, math.nan, n, "undetermined")
     res = spearmanr(pre.ratio, pre.length)
     rho, p = float(res.statistic), float(res.pvalue)
-    return Trend(rho, p, n, "yes" if rho > 0 and p < TREND_LEVEL else "no")
+    if not p < TREND_LEVEL:
+        return Trend(rho, p, n, "not significant")
+    return Trend(rho, p, n, "yes" if rho > 0 else "decreasing")
 
 
 @dataclass(frozen=True)
