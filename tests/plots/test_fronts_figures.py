@@ -9,7 +9,7 @@ import io
 import numpy as np
 import pytest
 
-from dryfriction.analysis.catalogue import magnitude_frequency, precursors
+from dryfriction.analysis.catalogue import magnitude_frequency, precursor_trend, precursors
 from dryfriction.analysis.fronts import detect_events, space_time
 from dryfriction.plots.fronts import (
     front_speed_figure,
@@ -72,8 +72,11 @@ def test_speed_figure_puts_each_speed_at_its_position(run):
 def test_precursor_and_magnitude_figures(run):
     st, events = run
     pre = precursors(events, st, normal_load=2.0, edge="left")
-    fig, ax = precursor_figure(pre, st)
+    fig, ax = precursor_figure(pre, st, precursor_trend(pre))
     (pts,) = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    # two precursors: the trend is not judged, and the legend says so
+    assert "grow with the load: undetermined (2 points)" in [
+        t.get_text() for t in ax.get_legend().get_texts()]
     assert np.allclose(pts.get_xdata(), pre.ratio) and np.allclose(pts.get_ydata(), [3.0, 6.0])
     assert "[1]" in ax.get_xlabel() and "[a0]" in ax.get_ylabel()
     _png(fig)

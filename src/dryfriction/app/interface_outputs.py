@@ -178,7 +178,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
         reg = front_regimes(events, c_s)
         summary["fronts"] = {r: reg.count(r) for r in ("slow", "fast", "undetermined")}
     edge = interface_loaded_edge(result)
-    pre = None
+    pre = trend = None
     if edge is not None:
         pre = precursors(events, st, interface_normal_load(result), edge=edge,
                          after=transient)
@@ -198,7 +198,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
             ("magnitude_frequency", magnitude_frequency_figure, (mf, st)),
         ]
         if pre is not None:
-            jobs.append(("precursors", precursor_figure, (pre, st)))
+            jobs.append(("precursors", precursor_figure, (pre, st, trend)))
         for name, builder, args in jobs:
             draw(builder, *args, path=folder / f"{name}.{fmt}", fmt=fmt, dpi=dpi)
             files.append(f"{name}.{fmt}")

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis.catalogue import MagnitudeFrequency, Precursors
+from ..analysis.catalogue import MagnitudeFrequency, Precursors, Trend
 from ..analysis.fronts import Event, SpaceTime, moment_unit, speed_unit
 from .style import LEGEND_SIZE, LINE, PANEL, RUN_WIDTH, THIN, TITLE_SIZE, new_figure
 
@@ -139,13 +139,20 @@ def front_speed_figure(st: SpaceTime, events: Sequence[Event], *,
     return fig, ax
 
 
-def precursor_figure(pre: Precursors, st: SpaceTime, *, title: str = "") -> tuple[Any, Any]:
+def precursor_figure(pre: Precursors, st: SpaceTime, trend: Trend | None = None, *,
+                     title: str = "") -> tuple[Any, Any]:
     """Arrested-front length against the load-to-normal ratio at arrest (points), the ratios of
-    the system-spanning events (dashed vertical lines) and the interface's length (dotted)."""
+    the system-spanning events (dashed vertical lines) and the interface's length (dotted);
+    with ``trend`` (:func:`~dryfriction.analysis.catalogue.precursor_trend`), the legend says
+    whether the lengths grow, with Spearman's rho and its p-value."""
     fig, ax = new_figure(PANEL)
     u = st.units
     ax.plot(pre.ratio, pre.length, "o", color="tab:blue", ms=5,
             label=f"arrested fronts ({pre.length.size})")
+    if trend is not None:
+        stats = (f"rho = {trend.rho:.2f}, p = {trend.p_value:.2g}"
+                 if math.isfinite(trend.rho) else f"{trend.n} points")
+        ax.plot([], [], " ", label=f"grow with the load: {trend.grows} ({stats})")
     for k, r in enumerate(pre.spanning_ratio):
         ax.axvline(r, color="tab:red", ls="--", lw=THIN,
                    label="system-spanning events" if k == 0 else None)
