@@ -11,7 +11,9 @@ import pytest
 
 from dryfriction.app.interface_outputs import interface_outputs
 from dryfriction.ensemble.interface_result import INTERFACE_UNITS, InterfaceResult
+from dryfriction.io.units import undeclared
 from fronts_synth import Pulse, fields, grid
+from output_units import check_folder
 
 
 def _result(pulses, noise=False):
@@ -59,6 +61,9 @@ def test_side_loaded_run_writes_catalogue_fronts_precursors_and_figures(tmp_path
         "undetermined")
     assert summary["fronts"] == {"slow": 0, "fast": 3, "undetermined": 0}  # c_s = 2 element/t0
     json.dumps(summary)
+    # every CSV column and every number of the summary carries its unit (io/units.py)
+    assert check_folder(tmp_path) == [] and undeclared(summary) == []
+    assert summary["units"]["threshold"] == "a0/t0"
 
 
 def test_quiet_run_says_no_event_and_default_threshold(tmp_path):

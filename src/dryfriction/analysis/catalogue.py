@@ -1,9 +1,10 @@
 """The event catalogue of an extended interface, its precursor curve and its magnitude-frequency
 distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.analysis.fronts`.
 
-* **Catalogue**: one row per event, columns named ``name[unit]`` (units from the fields': e.g.
-  ``t_start[t0]``, ``extent[a0]``, ``moment[a0^2]``; ``[1]`` a pure number or a flag 0/1).
-  :func:`catalogue_columns` gives the columns; ``dryfriction.io.files.write_csv`` writes them.
+* **Catalogue**: one row per event, written with headers ``name[unit]`` (units from the
+  fields': e.g. ``t_start[t0]``, ``extent[a0]``, ``moment[a0^2]``; ``[1]`` a pure number, an
+  index or a flag 0/1). :func:`catalogue_columns` gives the columns and their units;
+  ``dryfriction.io.files.write_csv`` writes them.
 * **Precursors** (Rubinstein, Cohen & Fineberg, PRL 98, 226103, 2007: under side loading, fronts
   from the loaded edge arrest at lengths that grow with the applied shear before the
   system-spanning slip): each arrested event's extent against the load-to-normal ratio
@@ -51,27 +52,30 @@ TREND_LEVEL = 0.05
 
 
 def catalogue_columns(events: Sequence[Event], st: SpaceTime, threshold: float
-                      ) -> dict[str, Array]:
-    """The catalogue as columns ``name[unit]`` -> values, one row per event.
+                      ) -> tuple[dict[str, Array], dict[str, str]]:
+    """The catalogue as columns (bare name -> values, one row per event) and their units
+    (name -> unit, for ``dryfriction.io.files.write_csv``, which writes ``name[unit]``).
 
-    Columns: ``event[1]`` (index), ``t_start``, ``t_arrest``, ``t_end``, ``duration`` [time],
-    ``x_nucleation``, ``x_min``, ``x_max``, ``extent`` [length], ``n_elements[1]``,
-    ``mean_slip`` [slip], ``moment`` [slip x length], ``spanning[1]`` (1 system-spanning, 0
-    arrested), ``cut[1]`` (1: the event touches the record's first or last sample, so its
+    Columns: ``event`` (index) [1], ``t_start``, ``t_arrest``, ``t_end``, ``duration`` [time],
+    ``x_nucleation``, ``x_min``, ``x_max``, ``extent`` [length], ``n_elements`` [1],
+    ``mean_slip`` [slip], ``moment`` [slip x length], ``spanning`` [1] (1 system-spanning, 0
+    arrested), ``cut`` [1] (1: the event touches the record's first or last sample, so its
     duration, extent and slip are lower bounds), ``speed_left``/``speed_right`` with their 95 %
     bounds ``_low``/``_high`` [length/time] (mean speed of each front; NaN for a front of fewer
     than 3 elements, an upper bound ``inf`` when the fit cannot exclude an instantaneous front),
-    the load at start and arrest [load unit] when the fields have a load, and
-    ``threshold[slip-rate unit]``, the slip-rate threshold the events were found with.
+    the load at start and arrest [load unit] when the fields have a load, and ``threshold``
+    [slip-rate unit], the slip-rate threshold the events were found with.
     """
     u = st.units
     T, L, V = u["t"], u["x"], speed_unit(u)
-    cols: dict[str, list[float]] = {}
+    cols: dict[str, Array] = {}
+    units: dict[str, str] = {}
 
     def put(name: str, unit: str, values: list[float]) -> None:
-        cols[f"{name}[{unit}]"] = values
+        cols[name] = np.asarray(values)
+        units[name] = unit
 
-    put("event", "1", [e.index for e in events])
+    put("event", "1 (index)", [e.index for e in events])
     for name in ("t_start", "t_arrest", "t_end"):
         put(name, T, [getattr(e, name) for e in events])
     put("duration", T, [e.duration for e in events])
@@ -80,8 +84,8 @@ def catalogue_columns(events: Sequence[Event], st: SpaceTime, threshold: float
     put("n_elements", "1", [e.n_elements for e in events])
     put("mean_slip", u["slip"], [e.mean_slip for e in events])
     put("moment", moment_unit(u), [e.moment for e in events])
-    put("spanning", "1", [int(e.spanning) for e in events])
-    put("cut", "1", [int(e.cut) for e in events])
+    put("spanning", "1 (1 system-spanning, 0 arrested)", [int(e.spanning) for e in events])
+    put("cut", "1 (1 cut by the record's ends)", [int(e.cut) for e in events])
     for side, k in (("left", 0), ("right", 1)):
         put(f"speed_{side}", V, [e.fronts[k].mean_speed for e in events])
         put(f"speed_{side}_low", V, [e.fronts[k].mean_speed_low for e in events])
@@ -90,7 +94,7 @@ def catalogue_columns(events: Sequence[Event], st: SpaceTime, threshold: float
         put("load_start", u["load"], [e.load_start for e in events])
         put("load_arrest", u["load"], [e.load_arrest for e in events])
     put("threshold", u["slip_rate"], [float(threshold)] * len(events))
-    return {k: np.asarray(v) for k, v in cols.items()}
+    return cols, units
 
 
 @dataclass(frozen=True)

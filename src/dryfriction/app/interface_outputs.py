@@ -103,7 +103,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
         One line each for the user (the fields written as .npz, no event found, ...).
     summary : dict
         Counts and answers for summary.json: events, spanning, threshold, precursor trend,
-        front regimes.
+        front regimes, and a ``units`` object declaring every number's unit.
     """
     from ..analysis.catalogue import (
         catalogue_columns,
@@ -146,7 +146,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     files.append(written.path.name)
     if written.note:
         notes.append(written.note)
-    write_csv(folder / "events.csv", catalogue_columns(events, st, thr))
+    write_csv(folder / "events.csv", *catalogue_columns(events, st, thr))
     files.append("events.csv")
     rows: dict[str, list[float]] = {k: [] for k in ("event", "direction", "x", "t", "speed",
                                                     "low", "high")}
@@ -158,18 +158,23 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
                     rows[key].append(val)
     v = speed_unit(u)
     write_csv(folder / "fronts.csv", {
-        "event[1]": np.asarray(rows["event"], int),
-        "direction[1]": np.asarray(rows["direction"], int),
-        f"x[{u['x']}]": np.asarray(rows["x"]), f"t_arrival[{u['t']}]": np.asarray(rows["t"]),
-        f"speed[{v}]": np.asarray(rows["speed"]), f"speed_low[{v}]": np.asarray(rows["low"]),
-        f"speed_high[{v}]": np.asarray(rows["high"])})
+        "event": np.asarray(rows["event"], int), "direction": np.asarray(rows["direction"], int),
+        "x": np.asarray(rows["x"]), "t_arrival": np.asarray(rows["t"]),
+        "speed": np.asarray(rows["speed"]), "speed_low": np.asarray(rows["low"]),
+        "speed_high": np.asarray(rows["high"])},
+        {"event": "1 (index)", "direction": "1 (+1 or -1)", "x": u["x"], "t_arrival": u["t"],
+         "speed": v, "speed_low": v, "speed_high": v})
     files.append("fronts.csv")
 
     c_s = interface_sound_speed(result)
     summary: dict[str, Any] = {
         "events": len(events), "spanning": sum(e.spanning for e in events),
-        "threshold": thr, "threshold_units": u["slip_rate"],
-        "sound_speed": c_s, "sound_speed_units": v,
+        "threshold": thr, "sound_speed": c_s,
+        # every number's unit, by key (the JSON convention of dryfriction.io.units)
+        "units": {"events": "1", "spanning": "1", "threshold": u["slip_rate"],
+                  "sound_speed": v, "slow": "1", "fast": "1", "undetermined": "1",
+                  "after": u["t"], "n": "1", "rho": "1", "p_value": "1", "alpha": "1",
+                  "alpha_err": "1"},
     }
     if not events:
         notes.append(f"no slip event: no element's slip rate exceeded the threshold {thr:g} "
@@ -182,12 +187,14 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     if edge is not None:
         pre = precursors(events, st, interface_normal_load(result), edge=edge,
                          after=transient)
-        write_csv(folder / "precursors.csv", {
-            "event[1]": pre.events, "load_ratio[1]": pre.ratio,
-            f"length[{u['x']}]": pre.length, f"t_arrest[{u['t']}]": pre.t_arrest})
+        write_csv(folder / "precursors.csv",
+                  {"event": pre.events, "load_ratio": pre.ratio, "length": pre.length,
+                   "t_arrest": pre.t_arrest},
+                  {"event": "1 (index)", "load_ratio": "1", "length": u["x"],
+                   "t_arrest": u["t"]})
         files.append("precursors.csv")
         trend = precursor_trend(pre)
-        summary["precursors"] = {"after_t0": transient, "n": trend.n, "rho": trend.rho,
+        summary["precursors"] = {"after": transient, "n": trend.n, "rho": trend.rho,
                                  "p_value": trend.p_value, "grow_with_load": trend.grows}
     mf = magnitude_frequency([e.moment for e in events])
     summary["moment_exponent"] = {"alpha": mf.alpha, "alpha_err": mf.alpha_err, "n": mf.n_fit}
