@@ -68,7 +68,9 @@ def test_side_loaded_run_writes_catalogue_fronts_precursors_and_figures(tmp_path
 
 def test_quiet_run_says_no_event_and_default_threshold(tmp_path):
     # the default threshold is 10 x the loading velocity (0.1 a0/t0), above this creep
-    files, notes, summary = interface_outputs(_result([], noise=True), tmp_path, figure=False)
+    files, notes, summary = interface_outputs(_result([], noise=True), tmp_path, figure=False,
+                                              fields=False)
+    assert files == ["events.csv", "fronts.csv", "precursors.csv"]
     assert summary["events"] == 0 and summary["threshold"] == pytest.approx(0.1)
     assert any(n.startswith("no slip event") for n in notes)
     head, rows = _csv(tmp_path / "events.csv")

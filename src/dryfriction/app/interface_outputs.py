@@ -72,7 +72,7 @@ def _draw_here(builder: Callable[..., Any], *args: Any, path: Any, fmt: str,
 def interface_outputs(result: Any, folder: str | Path, *, threshold: float | None = None,
                       figure: bool = True, fmt: str = "png", dpi: int | None = None,
                       draw: Callable[..., None] | None = None, half_window: int = 3,
-                      min_elements: int = 1, transient: float = 0.0
+                      min_elements: int = 1, transient: float = 0.0, fields: bool = True
                       ) -> tuple[list[str], list[str], dict[str, Any]]:
     """Analyse an interface run and write its files into ``folder`` (module doc).
 
@@ -94,6 +94,8 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     transient : float
         Events that start before this time [``t0``] are left out of the precursor curve (the
         relaxation of the initial state); the catalogue keeps them.
+    fields : bool
+        Write ``fields.nc`` (False where the caller writes the fields itself).
 
     Returns
     -------
@@ -138,14 +140,15 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     files: list[str] = []
     notes: list[str] = []
 
-    fields = {"slip_rate": result.slip_rate, "slip": result.slip, "stress": result.stress,
-              "load": result.load}
-    written = write_fields(folder / "fields.nc", result.t, result.x, fields,
-                           {**u, "stress": u.get("stress", "F_el per element")},
-                           attrs={"threshold": thr, "threshold_units": u["slip_rate"]})
-    files.append(written.path.name)
-    if written.note:
-        notes.append(written.note)
+    if fields:
+        arrays = {"slip_rate": result.slip_rate, "slip": result.slip, "stress": result.stress,
+                  "load": result.load}
+        written = write_fields(folder / "fields.nc", result.t, result.x, arrays,
+                               {**u, "stress": u.get("stress", "F_el per element")},
+                               attrs={"threshold": thr, "threshold_units": u["slip_rate"]})
+        files.append(written.path.name)
+        if written.note:
+            notes.append(written.note)
     write_csv(folder / "events.csv", *catalogue_columns(events, st, thr))
     files.append("events.csv")
     rows: dict[str, list[float]] = {k: [] for k in ("event", "direction", "x", "t", "speed",
