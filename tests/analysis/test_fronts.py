@@ -118,6 +118,14 @@ def test_arrested_precursors_of_known_length():
     t0 = pulses[2].t_nuc + _crossing_delay(pulses[2])
     assert pre.spanning_ratio == pytest.approx([(0.3 + 0.05 * t0) / 2.5])
     assert len(precursors(events, st, 2.5, edge="right").length) == 0
+    # events that start one element in (the loaded block creeping below the threshold): kept
+    # with edge_gap = 1, their length measured from the interface's edge
+    inner = [Pulse(1, 1, 7, 1.0, 2.0), Pulse(1, 1, 15, 4.0, 2.0)]
+    st2 = space_time(t, x, *fields(t, x, inner), load)
+    ev2 = detect_events(st2, THR)
+    assert len(precursors(ev2, st2, 2.5, edge="left").length) == 0
+    assert precursors(ev2, st2, 2.5, edge="left", edge_gap=1).length == pytest.approx([4.0, 8.0])
+    assert [e.extent for e in ev2] == pytest.approx([3.5, 7.5])
     # an initial transient left out: the first precursor starts at t = 1.0 + delay
     late = precursors(events, st, 2.5, edge="left", after=1.5)
     assert late.length == pytest.approx([8.0]) and late.spanning_ratio.size == 1

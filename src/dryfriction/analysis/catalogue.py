@@ -121,7 +121,8 @@ class Precursors:
 
 
 def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
-               edge: str | None = None, after: float | None = None) -> Precursors:
+               edge: str | None = None, edge_gap: int = 0,
+               after: float | None = None) -> Precursors:
     """Arrested-front lengths against the load-to-normal ratio at their arrest (module doc).
 
     Parameters
@@ -133,8 +134,15 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
     normal_load : float
         The normal load, in the load's unit (> 0).
     edge : {"left", "right"}, optional
-        Keep only the events that include the first ("left") or last ("right") element: the
-        loaded edge of a side-loaded interface.
+        The loaded edge of a side-loaded interface: keep only the events that reach within
+        ``edge_gap`` elements of the first ("left") or last ("right") element, and measure
+        each length from that edge of the interface to the far end of the event (the arrest
+        position; the event's extent when it includes the edge element). Without ``edge``,
+        every arrested event, its length its extent.
+    edge_gap : int
+        Elements between the edge and an event's near end that may stay below the threshold
+        (>= 0): the loaded block can creep slower than the threshold while the events start
+        next to it.
     after : float, optional
         Leave out the events that start before this time [time unit] (an initial transient).
 
@@ -147,6 +155,8 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
     normal = check_scalar("normal_load", normal_load, 0.0, lo_open=True)
     if edge is not None:
         check_choice("edge", edge, ("left", "right"))
+    if int(edge_gap) != edge_gap or edge_gap < 0:
+        raise ValueError(f"edge_gap = {edge_gap!r} is out of range: a whole number >= 0")
     n_x = st.x.size
     start = -math.inf if after is None else check_scalar("after", after)
     events = [e for e in events if e.t_start >= start]
@@ -154,7 +164,17 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
     def touches(e: Event) -> bool:
         if edge is None:
             return True
-        return bool(e.elements[0] == 0) if edge == "left" else bool(e.elements[-1] == n_x - 1)
+        if edge == "left":
+            return bool(e.elements[0] <= edge_gap)
+        return bool(e.elements[-1] >= n_x - 1 - edge_gap)
+
+    def length(e: Event) -> float:
+        if edge is None:
+            return e.extent
+        # from the interface's edge to the far end of the event: the elements' lengths
+        span = (slice(0, e.elements[-1] + 1) if edge == "left"
+                else slice(e.elements[0], n_x))
+        return float(np.sum(st.lengths[span]))
 
     # an event cut by the record's end may still be growing: not known to have arrested
     arrested = sorted((e for e in events if not (e.spanning or e.cut) and touches(e)),
@@ -162,7 +182,7 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
     spanning = [e for e in events if e.spanning]
     return Precursors(
         ratio=np.array([e.load_arrest / normal for e in arrested]),
-        length=np.array([e.extent for e in arrested]),
+        length=np.array([length(e) for e in arrested]),
         t_arrest=np.array([e.t_arrest for e in arrested]),
         events=np.array([e.index for e in arrested], dtype=int),
         spanning_ratio=np.array([e.load_start / normal for e in spanning]),

@@ -72,7 +72,8 @@ def _draw_here(builder: Callable[..., Any], *args: Any, path: Any, fmt: str,
 def interface_outputs(result: Any, folder: str | Path, *, threshold: float | None = None,
                       figure: bool = True, fmt: str = "png", dpi: int | None = None,
                       draw: Callable[..., None] | None = None, half_window: int = 3,
-                      min_elements: int = 1, transient: float = 0.0, fields: bool = True
+                      min_elements: int = 1, transient: float = 0.0, edge_gap: int = 1,
+                      fields: bool = True
                       ) -> tuple[list[str], list[str], dict[str, Any]]:
     """Analyse an interface run and write its files into ``folder`` (module doc).
 
@@ -94,6 +95,10 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     transient : float
         Events that start before this time [``t0``] are left out of the precursor curve (the
         relaxation of the initial state); the catalogue keeps them.
+    edge_gap : int
+        Elements next to the loaded edge that may creep below the threshold while an event
+        starts beside them (:func:`~dryfriction.analysis.catalogue.precursors`; 1: the edge
+        block, which the edge spring keeps creeping).
     fields : bool
         Write ``fields.nc`` (False where the caller writes the fields itself).
 
@@ -176,8 +181,8 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
         # every number's unit, by key (the JSON convention of dryfriction.io.units)
         "units": {"events": "1", "spanning": "1", "threshold": u["slip_rate"],
                   "sound_speed": v, "slow": "1", "fast": "1", "undetermined": "1",
-                  "after": u["t"], "n": "1", "rho": "1", "p_value": "1", "alpha": "1",
-                  "alpha_err": "1"},
+                  "after": u["t"], "edge_gap": "1", "n": "1", "rho": "1", "p_value": "1",
+                  "alpha": "1", "alpha_err": "1"},
     }
     if not events:
         notes.append(f"no slip event: no element's slip rate exceeded the threshold {thr:g} "
@@ -189,7 +194,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
     pre = trend = None
     if edge is not None:
         pre = precursors(events, st, interface_normal_load(result), edge=edge,
-                         after=transient)
+                         edge_gap=edge_gap, after=transient)
         write_csv(folder / "precursors.csv",
                   {"event": pre.events, "load_ratio": pre.ratio, "length": pre.length,
                    "t_arrest": pre.t_arrest},
@@ -197,8 +202,9 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
                    "t_arrest": u["t"]})
         files.append("precursors.csv")
         trend = precursor_trend(pre)
-        summary["precursors"] = {"after": transient, "n": trend.n, "rho": trend.rho,
-                                 "p_value": trend.p_value, "grow_with_load": trend.grows}
+        summary["precursors"] = {"after": transient, "edge_gap": edge_gap, "n": trend.n,
+                                 "rho": trend.rho, "p_value": trend.p_value,
+                                 "grow_with_load": trend.grows}
     mf = magnitude_frequency([e.moment for e in events])
     summary["moment_exponent"] = {"alpha": mf.alpha, "alpha_err": mf.alpha_err, "n": mf.n_fit}
     if figure:
