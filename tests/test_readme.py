@@ -132,3 +132,16 @@ def test_python_blocks_run(page: Path) -> None:
     for i, code in enumerate(blocks):
         name = f"{page.relative_to(ROOT)} python block {i + 1}"
         exec(compile(code, name, "exec"), {})  # noqa: S102
+
+
+def test_how_to_cite_names_this_version() -> None:
+    """The README's citation and CITATION.cff name the version pyproject.toml builds (a release
+    that forgets them would have users cite the wrong one)."""
+    version = re.search(r'^version = "([^"]+)"', (ROOT / "pyproject.toml").read_text(), re.M)
+    assert version, "no version in pyproject.toml"
+    readme = README.read_text()
+    assert f"version {version.group(1)}" in readme
+    assert f"version = {{{version.group(1)}}}" in readme
+    cff = (ROOT / "CITATION.cff").read_text()
+    assert re.search(rf"^version: {re.escape(version.group(1))}$", cff, re.M)
+    assert "doi: 10.1051/jp1:1997137" in cff and "doi:10.1051/jp1:1997137" in readme
