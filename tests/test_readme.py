@@ -87,6 +87,12 @@ def test_pages_name_only_files_a_clone_has() -> None:
             for word in line.split():
                 if word.startswith("examples/") and "." in word.rsplit("/", 1)[-1]:
                     assert (ROOT / word).exists(), f"{page.name}: {word} is not in the clone"
+        # a Markdown link to a file of the repository leads to one (GitHub shows the README
+        # and the pages with these links; the site's build checks its own)
+        for target in re.findall(r"\]\(([^)#:\s]+)(?:#[^)]*)?\)", text):
+            path = (page.parent / target).resolve()
+            if target.endswith((".rst", ".md", ".png")) and "auto_examples" not in target:
+                assert path.exists(), f"{page.relative_to(ROOT)} links to {target}: not there"
 
 
 def test_readme_fits_a_screen_and_pages_carry_no_tracker_numbers() -> None:
