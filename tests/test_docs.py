@@ -2,8 +2,9 @@
 gallery script ran and drew its figure, and its pages render in headless Chromium (screenshots
 not blank, every gallery image loaded).
 
-The build copies ``docs/``, ``examples/gallery/`` and the changelog into a temporary folder, so
-the source tree is not written to (the package is imported from ``src/``). Without Sphinx (the
+The build copies ``docs/``, ``examples/gallery/`` and the files the pages include (the changelog,
+the model's description) into a temporary folder, so the source tree is not written to (the
+package is imported from ``src/``). Without Sphinx (the
 ``docs`` extra) or Chromium the test skips with the reason, except under ``CI`` where both are
 installed by ``.ci/run`` and a missing one fails. ``DRYFRICTION_DOCS_HTML=docs/_build/html``
 checks a site built by ``make docs`` instead of building again (``.ci/run`` does so).
@@ -91,7 +92,12 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
                                                   "__pycache__"))
     shutil.copytree(ROOT / "examples" / "gallery", tmp / "examples" / "gallery",
                     ignore=shutil.ignore_patterns("__pycache__"))
+    # the files the pages include: the changelog and the model's description (shipped in
+    # the package, so it lives under src/)
     shutil.copy(ROOT / "CHANGELOG.md", tmp / "CHANGELOG.md")
+    (tmp / "src" / "dryfriction" / "docs").mkdir(parents=True)
+    shutil.copy(ROOT / "src" / "dryfriction" / "docs" / "model.md",
+                tmp / "src" / "dryfriction" / "docs" / "model.md")
     # document the code under test, from where it is (Numba's cache is kept per source path)
     path = os.pathsep.join(filter(None, [str(ROOT / "src"), os.environ.get("PYTHONPATH")]))
     env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": path}
