@@ -1,4 +1,4 @@
-"""A whole experiment in one record (issue 23 item 4; ours): the steps of a record grouped by
+"""A whole experiment in one record (ours): the steps of a record grouped by
 the normal stress they were run at, what the summary figure draws of them, and what it leaves
 out and why.
 

@@ -1,5 +1,5 @@
 """A record's steps with the state law chosen per step and a free initial state where the
-data say the window starts inside a transient (issue 30 items 4 and 5; ours).
+data say the window starts inside a transient (ours).
 
 :func:`fit_steps_laws` runs :func:`.steps.fit_steps` (or, with ``stiffness="record"``,
 :func:`.onemachine.fit_steps_one_machine`) once per state law, then:
