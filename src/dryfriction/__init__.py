@@ -70,7 +70,7 @@ def simulate(*args: Any, **kwargs: Any) -> Any:
     * a ``TrapModel`` runs :func:`dryfriction.ensemble.driving.simulate` (reduced units;
       ``initial`` is an ``Initial`` with its ``track``; keywords ``progress``,
       ``on_interrupt``) and returns a ``SimulationResult``;
-    * an ``InterfaceModel`` (issue 29: a chain of trap-model blocks) runs
+    * an ``InterfaceModel`` (a chain of trap-model blocks) runs
       :func:`dryfriction.ensemble.interface.simulate_interface` with an ``InterfaceDrive`` and
       returns an ``InterfaceResult`` (space-time fields);
     * a ``RateState`` runs :func:`dryfriction.rsf.driving.simulate` (SI; ``initial`` and

@@ -156,7 +156,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
 
 
 INTERFACE_FILES: tuple[str, ...] = ("fields.npz", "load.csv", "summary.json")
-"""What ``simulate`` writes for an ``[interface]`` protocol (issue 29): the space-time fields
+"""What ``simulate`` writes for an ``[interface]`` protocol: the space-time fields
 (``t``, ``x``, ``slip``, ``slip_rate``, ``stress``, ``load``, ``load_point`` and the energy
 terms, NumPy's ``.npz``), the loading and the energy balance over time as CSV, and the summary
 (units of every field in ``summary.json``'s ``units``)."""

@@ -1,4 +1,4 @@
-"""An extended frictional interface: a chain of trap-model blocks (issue 29).
+"""An extended frictional interface: a chain of trap-model blocks.
 
 Reduced units as the single slider (:mod:`.driving`): lengths along the slip ``a0``, times
 ``t0``, forces ``F_el`` *per element* (one element's population at steady sliding carries

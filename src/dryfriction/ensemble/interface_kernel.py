@@ -1,5 +1,5 @@
 """The extended interface's compiled kernel: a chain of trap-model blocks stepped in time, the
-contact windows of all elements updated in one parallel loop (issue 29; the model is in
+contact windows of all elements updated in one parallel loop (the model is in
 :mod:`.interface`).
 
 Each element owns a stretch ``[off[i], off[i+1])`` of the flat pair arrays (positions ``c``,

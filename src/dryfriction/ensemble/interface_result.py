@@ -1,4 +1,4 @@
-"""What an extended-interface run returns (issue 29): :class:`InterfaceResult`, space-time fields
+"""What an extended-interface run returns: :class:`InterfaceResult`, space-time fields
 of a chain of trap-model blocks (:mod:`dryfriction.ensemble.interface`).
 
 The contract the analysis of the fields (fronts, events, precursors) is written against:

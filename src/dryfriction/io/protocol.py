@@ -56,7 +56,7 @@ Rate-and-state friction runs through the same files, in SI units, with
     every = 0.01                 # optional, s: sampling interval (default: every solver step)
     rtol = 1e-7                  # optional: the solver's local tolerance
 
-An extended interface (issue 29: a chain of trap-model blocks,
+An extended interface (a chain of trap-model blocks,
 :mod:`dryfriction.ensemble.interface`) adds an ``[interface]`` table to the trap model's
 ``[model]`` and ``[ensemble]`` (every block's track and initial population), with drive kinds
 of its own::
@@ -439,7 +439,7 @@ _INTERFACE_DRIVE_KEYS = {
 
 @dataclass(frozen=True)
 class InterfaceProtocol:
-    """A validated extended-interface protocol (issue 29): a chain of trap-model blocks
+    """A validated extended-interface protocol: a chain of trap-model blocks
     (:mod:`dryfriction.ensemble.interface`), reduced units.
 
     Tables: ``[model]`` (the traps' law), ``[ensemble]`` (every block's track density, layout,

@@ -314,7 +314,7 @@ INTERFACE_LOAD_UNITS: dict[str, str | None] = {
     "work_load": _WORK, "elastic_energy": _WORK, "kinetic_energy": _WORK,
     "work_friction": _WORK, "work_damping": _WORK, "energy_residual": _WORK,
 }
-"""load.csv of ``simulate`` for an ``[interface]`` protocol (issue 29): the loading and the
+"""load.csv of ``simulate`` for an ``[interface]`` protocol: the loading and the
 energy balance over time (reduced; ``F_el`` is one block's)."""
 
 INTERFACE_SUMMARY_UNITS: dict[str, str | None] = {
@@ -327,5 +327,5 @@ INTERFACE_SUMMARY_UNITS: dict[str, str | None] = {
     "trap_updates": DIMENSIONLESS, "cpu_s": "s", "threads": DIMENSIONLESS, "dt_max": "t0",
     "cover_a0": "a0", "x": "element",
 }
-"""summary.json of ``simulate`` for an ``[interface]`` protocol (issue 29; reduced units,
+"""summary.json of ``simulate`` for an ``[interface]`` protocol (reduced units,
 ``F_el`` one block's)."""
