@@ -67,6 +67,10 @@ def test_simulate_writes_the_fields_and_the_summary(tmp_path: Path) -> None:
     assert (out / "load.csv").read_text().startswith("t[t0],load[F_el],load_point[a0]")
     assert undeclared(summary) == []  # every number of summary.json has its unit
     assert summary["units"]["x"] == "element" and summary["units"]["coupling"] == "F_el/a0"
+    # the catalogue and the figures come with the fields (side loading: the precursors too)
+    for name in ("events.csv", "fronts.csv", "precursors.csv", "spacetime.png"):
+        assert (out / name).is_file(), (name, sorted(p.name for p in out.iterdir()))
+    assert "events" in summary["fronts"] and "threshold" in summary["fronts"]
 
 
 @pytest.mark.parametrize("edit, words", [

@@ -115,7 +115,8 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     if on_start is not None:
         on_start(proto)
     if isinstance(proto, InterfaceProtocol):
-        return _simulate_interface(proto, protocol, out, force=force, report=report)
+        return _simulate_interface(proto, protocol, out, force=force, report=report,
+                                   fmt=fmt, dpi=dpi, figure=figure, draw=draw)
     draw = draw or draw_here
     context: dict[str, Any] = {"protocol": str(Path(protocol))}
     notes: list[str] = []
@@ -156,19 +157,24 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
 
 
 INTERFACE_FILES: tuple[str, ...] = ("fields.npz", "load.csv", "summary.json")
-"""What ``simulate`` writes for an ``[interface]`` protocol: the space-time fields
-(``t``, ``x``, ``slip``, ``slip_rate``, ``stress``, ``load``, ``load_point`` and the energy
-terms, NumPy's ``.npz``), the loading and the energy balance over time as CSV, and the summary
-(units of every field in ``summary.json``'s ``units``)."""
+"""What ``simulate`` writes for an ``[interface]`` protocol besides the catalogue and the
+figures of :func:`dryfriction.app.interface_outputs.interface_outputs` (``events.csv``,
+``fronts.csv``, ``precursors.csv`` under side loading, the space-time map and the other
+figures): the space-time fields (``t``, ``x``, ``slip``, ``slip_rate``, ``stress``, ``load``,
+``load_point`` and the energy terms, NumPy's ``.npz``), the loading and the energy balance over
+time as CSV, and the summary (units of every field in ``summary.json``'s ``units``; the
+catalogue's counts and answers under ``fronts``)."""
 
 
 def _simulate_interface(proto: Any, protocol: str | Path, out: str | Path, *, force: bool,
-                        report: Report | None) -> RunOutcome:
+                        report: Report | None, fmt: str, dpi: int | None, figure: bool,
+                        draw: Draw | None) -> RunOutcome:
     """The ``simulate`` workflow of an ``[interface]`` protocol (:data:`INTERFACE_FILES`)."""
     import numpy as np
 
     from ..io.files import output_directory, write_csv, write_json
     from ..io.units import INTERFACE_LOAD_UNITS, INTERFACE_SUMMARY_UNITS, with_units
+    from .interface_outputs import interface_outputs
 
     start = time.perf_counter()
     result = proto.run(on_interrupt="partial")
@@ -189,9 +195,14 @@ def _simulate_interface(proto: Any, protocol: str | Path, out: str | Path, *, fo
                                      **result.energy,
                                      "energy_residual": result.energy_residual()},
                   INTERFACE_LOAD_UNITS)
+        more, notes, fronts = interface_outputs(result, tmp, fmt=fmt, dpi=dpi, figure=figure,
+                                                draw=draw, fields=False)
+        files += more
+        # the catalogue's counts and answers, their units declared beside the run's own
+        summary = {**summary, "fronts": {k: v for k, v in fronts.items() if k != "units"},
+                   "units": {**fronts.get("units", {}), **summary["units"]}}
         write_json(tmp / "summary.json", summary)
-    notes = ["note: the fields are in fields.npz (units in summary.json); the front "
-             "catalogue and figures are not written by this version"]
+    notes = ["note: the fields are in fields.npz (units in summary.json)", *notes]
     return RunOutcome(Path(out), files, summary, result, notes, partial=result.partial,
                       units="reduced")
 
