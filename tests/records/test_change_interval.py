@@ -176,3 +176,46 @@ def test_shared_record_interval_holds_its_time() -> None:
     assert s.start_lo <= s.t_start <= s.start_hi
     assert s.t_start - s.start_lo < 2.0 and s.start_hi - s.t_start < 1.0
     assert not s.start_placed
+
+
+def _stop_record(seed: int, v: float, fs: float) -> LabRecord:
+    """``v`` for 120 s, then a hold for 120 s, sampled at ``fs``, with the zoo's servo position
+    error (``records_zoo.servo_error``: it relaxes after the stop), 0.17 um white noise and
+    a 20 nm quantum."""
+    from records_zoo import servo_error
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 240.0, 1.0 / fs)
+    vl = np.where(t < 120.0, v, 0.0)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (vl[1:] + vl[:-1]) * np.diff(t))])
+    x = x + servo_error(t, vl, rng) + rng.normal(0.0, 0.17e-6, t.size)
+    x = np.round((1e-3 + x) / 2e-8) * 2e-8
+    return LabRecord("stop.txt", t + 50.0, x, None, np.full(t.size, 0.6), None, "", {}, 2)
+
+
+def _stops_placed(v: float, fs: float, seeds: int) -> int:
+    ok = 0
+    for seed in range(seeds):
+        segs = detect_program(_stop_record(seed, v, fs)).segments
+        ok += len(segs) == 2 and abs(segs[1].t_start - 170.0) <= max(1.0 / fs, 0.5)
+    return ok
+
+
+def test_a_fast_stop_is_placed_with_the_servo_relaxation(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """20 um/s to a hold at 50 Hz, 12 seeds: every stop within 0.5 s (measured within 0.08
+    s). Mistake: the hinge alone (no relaxation regressor, RELAX_STOP = 0): 3 of the 12 placed
+    4.8-4.9 s late, where the load point's relaxation ends (measured)."""
+    assert _stops_placed(20e-6, 50.0, 12) == 12
+    monkeypatch.setattr(placement, "RELAX_STOP", 0.0)
+    assert _stops_placed(20e-6, 50.0, 12) <= 10
+
+
+def test_a_slow_stop_is_placed_without_it(monkeypatch: pytest.MonkeyPatch) -> None:
+    """0.4 um/s to a hold at 5 Hz, 16 seeds: the position error (~0.06 um) is below the white
+    noise, so no relaxation is fitted and every stop is within 0.5 s (measured 16). Mistake:
+    the relaxation fitted whatever its size (RELAX_ABOVE = 0): 10 of 16 (measured; it pulls
+    the hinge 1-2.2 s early)."""
+    assert _stops_placed(0.4e-6, 5.0, 16) == 16
+    monkeypatch.setattr(placement, "RELAX_ABOVE", 0.0)
+    assert _stops_placed(0.4e-6, 5.0, 16) <= 13

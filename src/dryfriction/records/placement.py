@@ -13,7 +13,10 @@ wander's parameters are those of the record's own fluctuation model
 process: its periods are found in the record (:func:`oscillation_periods`) and, for a small
 step (:data:`OSC_RATIO`), each enters the hinge as two free regressors, ``int sin(2 pi t /
 P)`` and ``int cos(2 pi t / P)`` (amplitude and phase free, one amplitude for both sides;
-ours).
+ours). At a stop, the servo's position error relaxes after the command (:data:`RELAX_STOP`):
+``(1 - exp(-(t - t_c) / tau))+`` enters as a free regressor beside the hinge. Each change's
+95 % interval is its profile likelihood's (:func:`profile_interval`), widened
+(:data:`WIDEN`).
 
 Integrated Ornstein-Uhlenbeck covariance (standard; e.g. Gardiner, *Stochastic Methods*,
 section 3.8): with ``C(u) = s**2 exp(-|u| / tau)``,
@@ -214,6 +217,22 @@ class Placement:
 
 LEVEL = 0.95
 """Probability of the change-time interval (:func:`change_profile`)."""
+RELAX_STOP = 0.01
+"""A change to a speed below this fraction of the one before is a *stop* (ours): after it a
+servo's position error relaxes with nothing driving it (a type-1 position loop tracks a ramp
+with a bounded error, which decays once the command stops: e.g. Ogata, *Modern Control
+Engineering*, 5th ed., ch. 5), a slow continued motion of the load point that the hinge alone
+takes for a later stop (zoo records 184, 220, 244, 274, 424, 436 of 150-449: 3.4-5.5 s late).
+The stop is placed with ``(1 - exp(-(t - t_c) / tau))+`` as a further free regressor
+(amplitude free, ``tau`` profiled over :data:`RELAX_TAUS`)."""
+RELAX_ABOVE = 3.0
+"""The relaxation is looked for only where the position error before the stop (the relative
+wander's rms times its correlation time times the speed) is at least this many white-noise
+standard deviations (ours): a free regressor below the noise only pulls the hinge (zoo
+records 250 and 322, stops from 0.4-0.5 um/s, placed 0.7 and 2.6 s early without this)."""
+RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
+"""The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
+not the zoo's 3 s)."""
 WIDEN = 2.0
 """Each side of the change-time interval is this many times the profile's (ours, empirical):
 the profile is that of the model (an OU velocity wander, white noise, a machine oscillation);
@@ -280,8 +299,8 @@ def profile_interval(times: Array, gain: Array, scale: float, left: float, right
 
 def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2: float,
                    sigma: float, rel: tuple[float, float], ab: tuple[float, float],
-                   search: float = 5.0, periods: tuple[float, ...] = (), move: bool = True
-                   ) -> Placement:
+                   search: float = 5.0, periods: tuple[float, ...] = (), move: bool = True,
+                   stop: bool = False) -> Placement:
     """The sample where the velocity changes: the generalised-least-squares hinge (module
     docstring) on the samples ``lo:hi`` around ``guess``, and the 95 % interval of its time
     (:func:`profile_interval`, scaled by the generalised residual variance at the best
@@ -310,6 +329,10 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     move : bool
         ``False``: the boundary stays at ``guess`` (placed otherwise); only the interval is
         computed.
+    stop : bool
+        A stop (:data:`RELAX_STOP`): the hinge is fitted with the servo's relaxation after it,
+        ``(1 - exp(-(t - t_c) / tau))+``, amplitude free, the gain the best over ``tau`` in
+        :data:`RELAX_TAUS`.
 
     Returns
     -------
@@ -379,9 +402,28 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
         Hb[beta, np.arange(cand.size)] = (cs[e] - cs[cand] - c * (e - cand)) / cnt[beta]
         Hw = solve_triangular(L, Hb, lower=True, check_finite=False)
         Hp = Hw - Qb @ (Qb.T @ Hw)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            gain = (Hp.T @ yp) ** 2 / np.einsum("ij,ij->j", Hp, Hp)
-        return np.where(np.isfinite(gain), gain, -np.inf)
+        if not stop:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                gain = (Hp.T @ yp) ** 2 / np.einsum("ij,ij->j", Hp, Hp)
+            return np.where(np.isfinite(gain), gain, -np.inf)
+        # with the servo's relaxation after the stop, (1 - exp(-(t - t_c) / tau))+, its
+        # amplitude free: the gain of the two columns together (2 x 2 normal equations)
+        hh = np.einsum("ij,ij->j", Hp, Hp)
+        u = Hp.T @ yp
+        best = np.full(cand.size, -np.inf)
+        for tau_r in RELAX_TAUS:  # the loop's time constant, profiled on a grid
+            Rb = -np.expm1(-np.maximum(tb[:, None] - c[None, :], 0.0) / tau_r)
+            Rw = solve_triangular(L, Rb, lower=True, check_finite=False)
+            Rp = Rw - Qb @ (Qb.T @ Rw)
+            rr = np.einsum("ij,ij->j", Rp, Rp)
+            hr = np.einsum("ij,ij->j", Hp, Rp)
+            w = Rp.T @ yp
+            with np.errstate(divide="ignore", invalid="ignore"):
+                det = hh * rr - hr * hr
+                gain = (rr * u * u - 2.0 * hr * u * w + hh * w * w) / det
+            best = np.maximum(best, np.where(np.isfinite(gain) & (det > 1e-12 * hh * rr),
+                                             gain, -np.inf))
+        return best
 
     # candidates: the samples within `search` s (>= 10 samples) of the guess, coarse first
     c_lo = max(3 * k, min(int(np.searchsorted(tt, tg - search)), guess - a - 10))
@@ -465,8 +507,13 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         move = weak is None or bool(weak[j - 1])
         lo = out[-1] + m
         hi = bounds[j + 1] - m
-        pl = change_profile(t, x, bounds[j], lo, hi, float(velocity[j - 1]),
-                            float(velocity[j]), sigma, rel, ab, periods=periods, move=move)
+        v1, v2 = float(velocity[j - 1]), float(velocity[j])
+        # a stop whose position error (the wander's displacement over its correlation time
+        # at the speed before) stands above the white noise
+        stop = (abs(v2) <= RELAX_STOP * abs(v1)
+                and rel[0] * rel[1] * abs(v1) >= RELAX_ABOVE * sigma)
+        pl = change_profile(t, x, bounds[j], lo, hi, v1, v2, sigma, rel, ab, periods=periods,
+                            move=move, stop=stop)
         if not lo < pl.index < hi:
             pl = Placement(bounds[j], pl.lo, pl.hi, pl.edge)
         out.append(pl.index)
