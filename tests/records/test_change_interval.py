@@ -145,7 +145,7 @@ def test_table_and_segments_csv_show_the_interval(tmp_path: Path) -> None:
     assert float(table[1]["t_start_lo[s]"]) == 299.5
     assert float(table[1]["t_start_hi[s]"]) == 300.25
     assert table[1]["t_start_placed"] == "yes" and table[2]["t_start_placed"] == "no"
-    assert float(table[2]["normal stress [MPa]"]) == 30.0
+    assert float(table[2]["normal_stress[MPa]"]) == 30.0
 
 
 def test_step_windows_carry_the_interval_of_their_change() -> None:

@@ -202,16 +202,20 @@ def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float) -> s
 
 def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
                        normal_unit: str = "Pa") -> None:
-    """Write the load program as CSV, one row per segment, units in the headers; the
-    ``--segments`` form of the whole program in a comment line on top. ``t_start_lo[s]`` and
-    ``t_start_hi[s]`` are the 95 % interval of the change at the segment's start (record time;
-    empty where none was computed), ``t_start_placed`` whether it lies within the larger of one
-    sample and 0.5 s of ``t_start`` (:class:`Segment`)."""
-    what, nu, scale = _normal_column(normal_unit)
+    """Write the load program as CSV, one row per segment, units in the headers
+    (``name[unit]``, :mod:`dryfriction.io.units`); the ``--segments`` form of the whole
+    program in a comment line on top. ``t_start_lo[s]`` and ``t_start_hi[s]`` are the 95 %
+    interval of the change at the segment's start (record time; empty where none was
+    computed), ``t_start_placed`` whether it lies within the larger of one sample and 0.5 s
+    of ``t_start`` (:class:`Segment`)."""
+    from ..io.units import SEGMENT_UNITS, header
+
+    what, _, scale = _normal_column(normal_unit)
+    names = ("segment", "kind", "t_start", "t_end", "t_from_first", "duration", "velocity",
+             "velocity_um", "i_start", "i_end", "samples", "confidence", "t_start_lo",
+             "t_start_hi", "t_start_placed", what.replace(" ", "_"))
     rows = [f"# --segments {segments_spec(segments, t0)}",
-            f"segment,kind,t_start [s],t_end [s],t_start from first sample [s],duration [s],"
-            f"velocity [m/s],velocity [um/s],i_start,i_end,samples,confidence [-],"
-            f"t_start_lo[s],t_start_hi[s],t_start_placed,{what} [{nu}]"]
+            ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
     for j, s in enumerate(segments):
         prev = segments[j - 1].velocity if j else None
         kind = ("hold" if s.velocity == 0.0 else "start" if j == 0 else
