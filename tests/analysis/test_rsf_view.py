@@ -24,23 +24,24 @@ EPS, ALPHA, U0 = 0.04, 0.13, 0.1
 
 @pytest.fixture(scope="module")
 def view():  # type: ignore[no-untyped-def]
-    return trap_model_as_rsf(EPS, ALPHA, U0)
+    return trap_model_as_rsf(TrapModel(alpha=ALPHA, eps=EPS), u0=U0)
 
 
 def test_the_ensemble_is_accurate_enough(view) -> None:  # type: ignore[no-untyped-def]
     """Steady levels of the runs against eq. 34 (closed-form quadrature) to 1e-3."""
+    model = TrapModel(alpha=ALPHA, eps=EPS)
     for entry in view.steps.values():
-        assert entry["mu_before"] == pytest.approx(float(steady_friction(U0, EPS, ALPHA)),
-                                                   abs=1e-3)
-        assert entry["mu_end"] == pytest.approx(float(steady_friction(entry["u_after"], EPS,
-                                                                      ALPHA)), abs=1e-3)
+        assert entry["mu_before"] == pytest.approx(float(steady_friction(model, U0)), abs=1e-3)
+        assert entry["mu_end"] == pytest.approx(float(steady_friction(model, entry["u_after"])),
+                                                abs=1e-3)
 
 
 def test_velocity_weakening_and_the_steady_slope(view) -> None:  # type: ignore[no-untyped-def]
     """b > a > 0 and a - b equals the steady slope of eq. 34 over the steps (chord of the
     exact steady friction), to 10 % (the fit also weighs the transients)."""
-    chord = (float(steady_friction(10 * U0, EPS, ALPHA))
-             - float(steady_friction(U0 / 10, EPS, ALPHA))) / (2 * math.log(10.0))
+    chord = (float(steady_friction(TrapModel(alpha=ALPHA, eps=EPS), 10 * U0))
+             - float(steady_friction(TrapModel(alpha=ALPHA, eps=EPS),
+                                     U0 / 10))) / (2 * math.log(10.0))
     for key in ("ageing", "slip", "ageing_with_holds"):
         tw = view.twins[key]
         assert tw.b > tw.a > 0.0

@@ -86,7 +86,7 @@ def test_start_from_rsf_inverts_the_twin() -> None:
     tw = effective_rsf(1.0, TrapModel(eps=eps, direct=A, v_ref=u_ref))
     g = float(junction_strength(1.0, A, u_ref))
     rsf = {"a": mu_el * tw["a"], "b": mu_el * tw["b"], "dc": tw["dc"] * a0,
-           "mu0": mu_el * g * float(steady_friction(1.0, eps)), "stiffness": 2000.0,
+           "mu0": mu_el * g * float(steady_friction(TrapModel(eps=eps), 1.0)), "stiffness": 2000.0,
            "trend": -3.0}
     s = cv_start_from_rsf(rsf, v0, direct=0.01, v_ref=v_ref)
     assert s["eps"] == pytest.approx(eps, rel=0.02)

@@ -21,6 +21,7 @@ from dryfriction.theory.dieterich import (
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import (
     pull_force,
     static_friction,
@@ -174,20 +175,23 @@ def test_summary_agrees_with_library(run):
     trap = Trap(ALPHA)
     for k, v in trap.summary().items():
         assert s[k] == v, k
-    assert s["dieterich_C_asymptotic"] == dieterich_constant_asymptotic(ALPHA)
-    assert s["dieterich_C_least_squares"] == dieterich_constant_least_squares(0.04, ALPHA)
+    assert s["dieterich_C_asymptotic"] == dieterich_constant_asymptotic(TrapModel(alpha=ALPHA))
+    assert s["dieterich_C_least_squares"] == dieterich_constant_least_squares(
+        TrapModel(alpha=ALPHA, eps=0.04))
     assert s["static_slope_per_eps"] == static_slope_per_eps(ALPHA)
     assert s["dynamic_slope_per_eps"] == DYNAMIC_SLOPE_PER_EPS
     u = np.array([0.01, 0.1, 1.0, 10.0, 100.0])
     np.testing.assert_allclose(list(s["dieterich_C_local"].values()),
-                               dieterich_constant_local(u, 0.04, ALPHA), rtol=1e-12)
+                               dieterich_constant_local(TrapModel(alpha=ALPHA, eps=0.04),
+                                                        u), rtol=1e-12)
     r = s["fig2"]["radius_ratio"]
     assert r == pytest.approx(math.sqrt(1 + 0.04 * math.log(26.0)), rel=1e-14)
     assert s["fig2"]["threshold_shift_p_c"] == pytest.approx(float(threshold_shift(r)), rel=1e-15)
-    assert s["fig2"]["mu_s"] == float(static_friction(25.0, 0.04, ALPHA))
+    assert s["fig2"]["mu_s"] == float(static_friction(TrapModel(alpha=ALPHA, eps=0.04), 25.0))
     assert s["fig4"]["death_point_p_d"] == float(steady_death_point(0.1, 0.04, ALPHA))
     for d in s["loaded_protocol"]:
-        m = static_friction(np.array([1.0, 100.0]), 0.04, ALPHA, load=d["load"])
+        m = static_friction(TrapModel(alpha=ALPHA, eps=0.04), np.array([1.0, 100.0]),
+                            load=d["load"])
         assert [d["mu_s_T_1"], d["mu_s_T_100"]] == m.tolist()
 
 
