@@ -25,10 +25,15 @@ from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import (
     pull_force,
     static_friction,
+    static_friction_over_eps,
     static_slope_per_eps,
     threshold_shift,
 )
-from dryfriction.theory.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
+from dryfriction.theory.steady import (
+    DYNAMIC_SLOPE_PER_EPS,
+    steady_death_point,
+    steady_friction_over_eps,
+)
 from dryfriction.theory.trap import Trap
 
 ALPHA = 0.13
@@ -83,8 +88,8 @@ def test_progress_reports_every_step_in_order(run):
 
 @pytest.mark.parametrize(
     "name, header, fn",
-    [("static_friction.csv", ["eps", "T", "mu_s"], static_friction),
-     ("steady_friction.csv", ["eps", "u", "mu_d"], steady_friction)],
+    [("static_friction.csv", ["eps", "T", "mu_s"], static_friction_over_eps),
+     ("steady_friction.csv", ["eps", "u", "mu_d"], steady_friction_over_eps)],
 )
 def test_csv_header_grid_and_values(run, name, header, fn):
     out, _, _ = run
@@ -98,7 +103,7 @@ def test_csv_header_grid_and_values(run, name, header, fn):
         assert np.all(eps[block] == e)  # exactly 0.01, 0.02, ... as written
         np.testing.assert_array_equal(x[block], grid)
     assert x[0] == 0.01 and x[200] == 100.0
-    np.testing.assert_array_equal(mu, fn(x, eps, ALPHA))  # full precision round trip
+    np.testing.assert_array_equal(mu, fn(TrapModel(ALPHA), x, eps))  # full precision round trip
 
 
 def test_static_csv_starts_at_one_within_first_order_bound(run):
