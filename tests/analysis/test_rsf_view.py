@@ -134,3 +134,30 @@ def test_transient_shape_of_an_exponential() -> None:
     assert s["x50"] == pytest.approx(math.log(2.0), rel=1e-4)
     assert s["x90_over_x50"] == pytest.approx(math.log(10.0) / math.log(2.0), rel=1e-3)
     assert s["x99_over_x90"] == pytest.approx(2.0, rel=1e-3)
+
+
+def test_compare_calibrates_the_protocols_whole_model(tmp_path, monkeypatch) -> None:
+    # mistake caught: the standard calibration rebuilding an athermal model from eps, alpha and
+    # creep (the old form's call), so a protocol's direct effect was dropped
+    from dryfriction.analysis import rsf_view
+    from dryfriction.io.protocol import load_protocol
+
+    f = tmp_path / "hold.toml"
+    f.write_text("[model]\neps = 0.03\nalpha = 0.11\ncreep = \"eyring-nabarro\"\n"
+                 "direct = 0.02\nv_ref = 0.4\nmu_el = 0.5\n"
+                 "[ensemble]\ntraps_per_a0 = 20\ninitial = \"steady\"\n"
+                 "initial_velocity = 0.2\n[drive]\nkind = \"velocity\"\n"
+                 "segments = [{velocity = 0.0, duration = 1.0}, {velocity = 0.2, slip = 0.2}]\n"
+                 "[output]\nevery_slip = 0.05\n")
+    proto = load_protocol(f)
+    seen = []
+
+    def stop(model, u0, *args, **kwargs):
+        seen.append((model, u0))
+        raise RuntimeError("stop")
+
+    monkeypatch.setattr(rsf_view, "trap_model_as_rsf", stop)
+    with pytest.raises(RuntimeError, match="stop"):
+        rsf_view.compare_protocol(proto)
+    assert seen == [(proto.model, 0.2)]
+    assert proto.model == TrapModel(0.11, 0.03, "eyring-nabarro", 0.5, 0.02, 0.4)

@@ -53,6 +53,19 @@ def test_static_load_and_creep_are_passed_through():
     assert got["load"] == 0.4 and got["creep"] == "eyring-nabarro"
 
 
+def test_static_in_si_computes_the_hold_it_reports():
+    # before: --t-w with --hold force printed "hold": "force" and the position hold's numbers
+    got = {h: json.loads(invoke("static", "--eps", "0.04", "--t-w", "10", "1000", "--t0", "2",
+                                "--load", "0.4", "--hold", h, "--json").stdout)
+           for h in ("position", "force")}
+    model = TrapModel(eps=0.04)
+    for h, out in got.items():
+        assert out["hold"] == h
+        want = static_friction(model, np.array([5.0, 500.0]), load=0.4, hold=h)
+        np.testing.assert_allclose(out["mu_s"], want, rtol=1e-14)
+    assert got["force"]["mu_s"][1] < got["position"]["mu_s"][1] - 1e-4
+
+
 def test_steady_json_matches_library():
     r = invoke("steady", "--eps", "0.05", "--u", "0.01", "0.1", "1", "100", "--json")
     assert r.exit_code == 0, r.output
