@@ -164,7 +164,6 @@ def takes_model(old: Callable[..., Any], old_form: str, new_form: str) -> Callab
                           "with a dryfriction.TrapModel", OldTheoryFormWarning, stacklevel=2)
             return old(*args, **kwargs)
 
-        dispatch.__wrapped_old__ = old  # type: ignore[attr-defined]
         return dispatch  # type: ignore[return-value]
 
     return wrap
