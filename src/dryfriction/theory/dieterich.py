@@ -27,8 +27,8 @@ from ..validation import (
 )
 from .creep import CREEP_LAWS, PER_EPS_CHUNK, per_eps
 from .model import TrapModel, takes_model
-from .static import _at_radius_loose, _static_friction_loose, static_slope_per_eps
-from .steady import _steady_friction_loose
+from .static import static_friction, static_friction_at_radius, static_slope_per_eps
+from .steady import steady_friction, steady_friction_over_eps
 from .trap import Trap, z_plus
 
 __all__ = [
@@ -109,11 +109,11 @@ def _least_squares_loose(
     u_max = check_scalar("u_max", u_max, u_min, lo_open=True)
     check_choice("creep", creep, CREEP_LAWS)
     u = np.logspace(np.log10(u_min), np.log10(u_max), int(n))
-    mu_d = _steady_friction_loose(u, eps, alpha, creep)
+    model = TrapModel(alpha, eps, creep)
+    mu_d = steady_friction(model, u)
 
     def cost(log_c: float) -> float:
-        mu_s = _static_friction_loose(np.exp(log_c) / u, eps, alpha, creep)
-        return float(np.sum((mu_d - mu_s) ** 2))
+        return float(np.sum((mu_d - static_friction(model, np.exp(log_c) / u)) ** 2))
 
     from scipy.optimize import minimize_scalar  # lazily: slow to import
 
@@ -151,7 +151,7 @@ def _local_loose(
     check_broadcast(u=u, eps=eps)
 
     u_b, eps_b = np.broadcast_arrays(u, eps)
-    tgt = np.asarray(_steady_friction_loose(u_b, eps_b, alpha, creep), float)
+    tgt = np.asarray(steady_friction_over_eps(TrapModel(alpha, creep=creep), u_b, eps_b), float)
     # mu_s(r) does not depend on eps: one bisection for every point, in bounded chunks
     flat = np.atleast_1d(tgt).ravel()
     r = np.empty(flat.size)
@@ -186,13 +186,14 @@ def dieterich_constant_local_over_eps(model: TrapModel, u: ArrayLike, eps: Array
 def _radius_at_static_friction(tgt: Array, alpha: float) -> Array:
     """Aged radius ratio ``r >= 1`` with ``mu_s(r) = tgt`` (bisection; ``mu_s`` increases
     with ``r``); tends to 1 where ``tgt <= 1``."""
+    model = TrapModel(alpha)
     lo = np.ones_like(tgt)
     hi = np.full_like(tgt, 2.0)
-    while np.any(_at_radius_loose(hi, alpha) < tgt):
-        hi = np.where(_at_radius_loose(hi, alpha) < tgt, 2.0 * hi, hi)
+    while np.any(static_friction_at_radius(model, hi) < tgt):
+        hi = np.where(static_friction_at_radius(model, hi) < tgt, 2.0 * hi, hi)
     for _ in range(80):
         mid = 0.5 * (lo + hi)
-        below = _at_radius_loose(mid, alpha) < tgt
+        below = static_friction_at_radius(model, mid) < tgt
         lo = np.where(below, mid, lo)
         hi = np.where(below, hi, mid)
     return 0.5 * (lo + hi)

@@ -18,8 +18,8 @@ from numpy.typing import ArrayLike
 
 from ..validation import FRICTION_MAX, Array, check_broadcast, check_range, check_scalar
 from .model import TRAP_PARAMETERS, TrapModel, takes_model
-from .static import _static_friction_loose
-from .steady import _steady_friction_loose
+from .static import static_friction, static_friction_over_eps
+from .steady import steady_friction, steady_friction_over_eps
 
 __all__ = ["PhysicalScales", "friction_level", "static_friction_si", "steady_friction_si"]
 
@@ -124,8 +124,9 @@ def _static_si_loose(
         if pull_velocity is not None:
             u_pull = float(scales.reduced_velocity(
                 check_scalar("pull_velocity", pull_velocity, 0.0, lo_open=True)))
+    model = TrapModel(alpha, creep=creep, direct=direct, v_ref=u_ref)
     with _in_reduced_units(f"T = t_w/t0, t0 = {scales.t0:g} s"):
-        mu = _static_friction_loose(T, eps, alpha, creep, load, direct, u_ref, u_pull)
+        mu = static_friction_over_eps(model, T, eps, load=load, pull_velocity=u_pull)
     return scales.friction_coefficient(mu)
 
 
@@ -144,8 +145,9 @@ def _steady_si_loose(
     u_ref = 1.0
     if direct:
         u_ref = float(scales.reduced_velocity(check_scalar("v_ref", v_ref, 0.0, lo_open=True)))
+    model = TrapModel(alpha, creep=creep, direct=direct, v_ref=u_ref)
     with _in_reduced_units(f"u = V/V*, V* = a0/t0 = {scales.velocity_scale:g} m/s"):
-        mu = _steady_friction_loose(u, eps, alpha, creep, direct, u_ref)
+        mu = steady_friction_over_eps(model, u, eps)
     return scales.friction_coefficient(mu)
 
 
@@ -204,8 +206,7 @@ def static_friction_si(model: TrapModel, t_w: ArrayLike, scales: PhysicalScales,
         u_pull = float(scales.reduced_velocity(
             check_scalar("pull_velocity", pull_velocity, 0.0, lo_open=True)))
     with _in_reduced_units(f"T = t_w/t0, t0 = {scales.t0:g} s"):
-        mu = _static_friction_loose(T, model.eps, model.alpha, model.creep, load, model.direct,
-                                    model.v_ref, u_pull, hold)
+        mu = static_friction(model, T, load=load, pull_velocity=u_pull, hold=hold)
     return mu_el * mu
 
 
@@ -224,6 +225,5 @@ def steady_friction_si(model: TrapModel, V: ArrayLike, scales: PhysicalScales) -
     mu_el = friction_level(model, scales)
     u = scales.reduced_velocity(V)
     with _in_reduced_units(f"u = V/V*, V* = a0/t0 = {scales.velocity_scale:g} m/s"):
-        mu = _steady_friction_loose(u, model.eps, model.alpha, model.creep, model.direct,
-                                    model.v_ref)
+        mu = steady_friction(model, u)
     return mu_el * mu
