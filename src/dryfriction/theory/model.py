@@ -134,7 +134,7 @@ class TrapModel:
 class OldTheoryFormWarning(FutureWarning):
     """A theory, analysis or fit function called in its old form, with the trap model's
     parameters loose (``steady_friction(u, eps, alpha, creep, direct, v_ref)``) instead of a
-    :class:`TrapModel` first (issue 26, item 1). The old form still works, for one release
+    :class:`TrapModel` first. The old form still works, for one release
     (CHANGELOG.md).
 
     A ``FutureWarning`` (shown to every user, not only to developers); its own class so that the
