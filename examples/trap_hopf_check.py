@@ -65,7 +65,7 @@ def reduced_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
                     return True, np.array([s])
                 return bool(a[-1] > a[1]), a
 
-            r = threshold(grows, 0.5 * pred, 2.0 * pred, steps=7)
+            r = threshold(grows, 0.6 * pred, 1.6 * pred, steps=5)
         r.update({"d": d, "K": K, "predicted": pred, "cpu_s": time.process_time() - t})
         out["rows"].append(r)
         print(json.dumps(r), flush=True)

@@ -95,16 +95,21 @@ def figure(rows: list[dict], path: str, title: str) -> None:
 
     V = np.array([r["velocity_um_s"] for r in rows])
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True)
-    colour = {"subcritical": "tab:red", "supercritical": "tab:blue", "degenerate": "k",
-              "none": "0.7"}
-    for key, mark, lab in (("k_c_per_load_1_m", "o", "trap model"),):
-        for nat, c in colour.items():
-            sel = [r["nature"] == nat for r in rows]
-            if any(sel):
-                ax1.plot(V[sel], np.array([r[key] for r in rows])[sel], mark, color=c,
-                         label=f"{lab}: {nat}")
-    kt = np.array([r["twin_K_c"] for r in rows]) * rows[0]["k_c_per_load_1_m"] / rows[0]["K_c"]
-    ax1.plot(V, kt, "--", color="0.4", label="ageing-law twin K_c")
+    colour = {"subcritical": "tab:red", "supercritical": "tab:blue", "degenerate": "k"}
+    k = np.array([r["k_c_per_load_1_m"] for r in rows])
+    kt = np.array([r["twin_K_c"] for r in rows]) * np.nanmax(k / np.array(
+        [r["K_c"] for r in rows]))  # the same F_el/a0 -> 1/m factor
+    for nat, c in colour.items():
+        sel = np.array([r["nature"] == nat for r in rows])
+        if sel.any():
+            ax1.plot(V[sel], k[sel], "o", color=c, label=f"trap model: {nat}")
+        sel = np.array([r["twin_nature"] == nat for r in rows])
+        if sel.any():
+            ax1.plot(V[sel], kt[sel], "x", color=c, label=f"ageing-law twin: {nat}")
+    none = np.array([r["nature"] == "none" for r in rows])
+    if none.any():
+        ax1.axvspan(V[none].min(), V[none].max(), color="0.9",
+                    label="stable at every K (trap model)")
     ax1.set_xscale("log")
     ax1.set_yscale("log")
     ax1.set_ylabel("k_c / N (1/m)")
