@@ -91,3 +91,38 @@ def test_bifurcation_panel_ticks_are_few_and_points_inside() -> None:
     assert 3 <= len(ticks) <= 9, ticks
     for y in vals:  # strictly inside, not on a spine
         assert lo < y < hi and abs(y) < 0.9 * max(abs(lo), abs(hi))
+
+
+def test_bifurcation_lower_panel_draws_the_relative_l1() -> None:
+    """The lower panel, labelled ``l1 / largest term``, draws each row's ``relative_l1``, not
+    its dimensional ``l1`` (blind set 3's mutant plothopf_l1_absolute)."""
+    from dryfriction.plots.hopf import plot_bifurcation
+
+    rows = [{"velocity": v, "K_c": 410.0 + 37.0 * i, "l1": l1, "relative_l1": rel,
+             "nature": "subcritical" if rel > 0 else "supercritical"}
+            for i, (v, l1, rel) in enumerate([(2.3e-6, 4.1e3, 3.2e-3), (7.9e-6, -6.6e2, -0.41),
+                                              (3.1e-5, 9.7e1, 2.2e-2)])]
+    fig, axes = plot_bifurcation({"rows": rows}, "generic")
+    drawn = sorted((float(x), float(y)) for ln in axes[1].get_lines()
+                   if ln.get_marker() not in ("None", None, "")  # not the zero line
+                   for x, y in zip(ln.get_xdata(), ln.get_ydata(), strict=True))
+    want = sorted((r["velocity"], r["relative_l1"]) for r in rows)
+    np.testing.assert_allclose(np.array(drawn), np.array(want), rtol=1e-12)
+
+
+def test_record_figure_velocity_in_um_per_s() -> None:
+    """record.png's velocity panel: the smoothed load-point velocity (m/s) drawn in µm/s under
+    a µm/s label, at the level of the program's segments (blind set 3's mutant
+    plotrecord_velocity_mm: drawn in mm/s)."""
+    rec = read_record(SHARED)
+    det = detect_program(rec)
+    fig, info = plot_record(rec, det.segments, det)
+    ax = fig.axes[info.panels.index("velocity")]
+    assert "[µm/s]" in ax.get_ylabel()
+    lines = [ln for ln in ax.get_lines() if np.asarray(ln.get_ydata()).size > 50]
+    assert len(lines) == 1
+    y = np.asarray(lines[0].get_ydata(), float)
+    seg = sorted(abs(s.velocity) * 1e6 for s in det.segments if s.velocity != 0.0)
+    # the record steps 0.2 -> 2 µm/s: the drawn median lies between its slowest and fastest
+    assert seg[0] / 2 < float(np.median(np.abs(y))) < seg[-1] * 2, (np.median(y), seg)
+    assert 0.05 < seg[0] and seg[-1] < 20.0  # the program itself in µm/s
