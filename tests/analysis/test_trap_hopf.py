@@ -79,6 +79,8 @@ def test_refusals_name_the_parameter() -> None:
     with pytest.raises(ValueError, match="alpha = 0.2"):
         TrapField(0.1, TrapModel(alpha=0.2, eps=0.04, direct=0.02), **RES)
     assert ALPHA0 == pytest.approx(3 - 2 * math.sqrt(2))
+    with pytest.raises(ValueError, match="n = 3"):
+        TrapField(0.1, MODEL, n=3)
     with pytest.raises(ValueError, match="direct_form"):
         TrapField(0.1, MODEL, direct_form="log", **RES)
 

@@ -135,6 +135,11 @@ class TrapField:
         check_scalar("u", self.u, 0.0, lo_open=True)
         check_scalar("mass", self.mass, 0.0)
         check_scalar("damping", self.damping, 0.0)
+        if int(self.n) != self.n or self.n < 4:
+            raise ValueError(f"n = {self.n} is not allowed: an integer >= 4")
+        check_scalar("stretch", self.stretch, 1.0, lo_open=True)
+        if int(self.panels) != self.panels or self.panels < 1:
+            raise ValueError(f"panels = {self.panels} is not allowed: an integer >= 1")
         if self.model.direct == 0.0:
             raise ValueError("direct = 0 is not allowed here: the quasi-static slider has no "
                              "finite K_c without the direct effect; allowed 0 < direct <= 1")
@@ -390,7 +395,7 @@ def trap_hopf(u: float, model: TrapModel, mass: float = 0.0, damping: float = 0.
 
 
 def simulate(fld: TrapField, K: float, x_start: Array, t_end: float, *,
-             samples: int = 4000, rtol: float = 1e-8) -> tuple[Array, Array]:
+             samples: int = 4000, rtol: float = 1e-7) -> tuple[Array, Array]:
     """Integrate the reduced field (Radau, the Jacobian of steady sliding) from ``x_start``
     to ``t_end`` (``t0``): times and states."""
     from scipy.integrate import solve_ivp

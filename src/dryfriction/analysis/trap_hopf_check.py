@@ -13,9 +13,10 @@ The amplitude is the half peak-to-peak spring force of each linear period ``2 pi
 (``F_el``). *Supercritical* check: below ``K_c``, at ``K = K_c (1 - d)``, a run long enough
 that the amplitude changes by less than :data:`SETTLE_TOL` over :data:`SETTLE_PERIODS`
 periods; exponent of ``amplitude ∝ d^beta`` by least squares. *Subcritical* check: above
-``K_c``, ``K = K_c (1 + d)``, bisection of the size of a start between decaying and growing
-runs; the unstable cycle's amplitude is the last decaying run's amplitude where it changes
-least.
+``K_c``, ``K = K_c (1 + d)``, starts on the critical eigenspace bracketing the predicted
+unstable cycle (``examples/trap_hopf_check.py``: 0.8 and 1.25 times it, then bisection steps)
+must decay below and grow above it; the unstable cycle's amplitude is the last decaying run's
+amplitude where it changes least.
 """
 
 from __future__ import annotations
