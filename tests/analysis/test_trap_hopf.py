@@ -97,3 +97,30 @@ def test_settled_cycle_has_the_normal_form_amplitude() -> None:
     r = settled(lambda s, p: reduced_amplitudes(fld, h, K, s, p), pred, 120)
     assert r["settled"]
     assert r["amplitude"] == pytest.approx(pred, rel=0.03)
+
+
+def test_check_helpers_settle_bracket_and_fit() -> None:
+    """The check's logic on synthetic runs: a relaxing amplitude settles once its change over
+    50 periods is below 1e-3 (doubling the run), a threshold is bracketed where growth starts,
+    and the exponent of a c d^0.5 law is 0.5."""
+    from dryfriction.analysis.trap_hopf_check import amplitude_exponent, settled, threshold
+
+    calls: list[int] = []
+
+    def run(start: float, periods: int) -> np.ndarray:
+        calls.append(periods)
+        k = np.arange(periods)
+        return 1.0 + (start - 1.0) * np.exp(-0.025 * k)  # relaxes onto 1 at 0.025/period
+
+    r = settled(run, 1.3, 100)
+    # at 200 periods the change over 50 is 5e-3: settled for a 1e-2 tolerance, not for 1e-3
+    assert r["settled"] and calls == [100, 200, 400] and r["amplitude"] == pytest.approx(1.0, 1e-3)
+
+    def grows(s: float) -> tuple[bool, np.ndarray]:
+        return s > 0.37, np.array([s, s * (1.1 if s > 0.37 else 0.9)])
+
+    t = threshold(grows, 0.1, 1.0, steps=8)
+    assert t["bracketed"] and t["lo"] < 0.37 < t["hi"] and t["hi"] - t["lo"] < 0.004
+    assert not threshold(grows, 0.5, 1.0)["bracketed"]  # both grow: no bracket
+    beta, err = amplitude_exponent([0.01, 0.02, 0.04], [0.3, 0.3 * 2**0.5, 0.6])
+    assert beta == pytest.approx(0.5, abs=1e-12) and err < 1e-9
