@@ -18,7 +18,7 @@ for eps in (0.02, 0.04, 0.06):
     line, = ax.semilogx(T, df.static_friction(T, eps=eps), label=f"eps = {eps}, at rest")
     ax.semilogx(T, df.static_friction(T, eps=eps, load=0.5), "--", color=line.get_color(),
                 label=f"eps = {eps}, under load 0.5 F_el")
-ax.set_xlabel("waiting time T / t0")
-ax.set_ylabel("static friction F_s / F_el")
+ax.set_xlabel("waiting time T = t_w/t0  [t0]")
+ax.set_ylabel("static friction F_s  [F_el]")
 ax.set_title("Static friction after a hold (eq. 27)")
 ax.legend(fontsize="small")

@@ -20,7 +20,7 @@ low = u < 1
 ax.semilogx(u[low], df.steady_friction_low_velocity(u[low], eps), "--",
             label="low-velocity law (eq. 35)")
 ax.axhline(1.0, color="0.6", lw=0.8, label="saturation F_el")
-ax.set_xlabel("velocity u = V t0 / a0")
-ax.set_ylabel("dynamic friction F_d / F_el")
+ax.set_xlabel("velocity u = V t0/a0  [a0/t0]")
+ax.set_ylabel("dynamic friction F_d  [F_el]")
 ax.set_title(f"Steady sliding, eps = {eps}")
 ax.legend(fontsize="small")

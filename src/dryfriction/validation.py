@@ -162,7 +162,8 @@ def check_choice(name: str, value: str, choices: tuple[str, ...]) -> str:
 FIGURE_FORMATS: tuple[str, ...] = ("png", "pdf", "svg")
 """File formats of the figures (``--format``); pdf and svg are vector graphics."""
 DPI_RANGE: tuple[int, int] = (50, 1200)
-"""Resolutions a figure may be rendered at (``--dpi``): about 110 on screen, 300-600 in print."""
+"""Resolutions a figure may be rendered at (``--dpi``): 150 by default (screen, slides),
+300-600 in print."""
 
 
 def check_figure_format(fmt: str, dpi: float | None = None) -> tuple[str, int | None]:

@@ -3,7 +3,6 @@ files are whole, bad input is one line and exit 2 before any work."""
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 from pathlib import Path
@@ -12,6 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
+from dryfriction.io.units import read_rows
 
 runner = CliRunner()
 
@@ -49,8 +49,7 @@ def test_ageing_quasistatic_is_degenerate_and_checked(tmp_path: Path) -> None:
     doc = json.loads(r.stdout)
     assert [row["nature"] for row in doc["rows"]] == ["degenerate", "degenerate"]
     assert all("every kick" in row["check"] for row in doc["rows"])
-    with open(out / "bifurcation.csv") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(out / "bifurcation.csv")
     assert list(rows[0])[:5] == ["velocity", "K_c", "frequency", "l1", "relative_l1"]
     assert float(rows[0]["K_c"]) == pytest.approx((0.0121 - 0.0083) / 6.1e-6, rel=1e-10)
     assert (out / "bifurcation.png").stat().st_size > 1000
@@ -103,8 +102,7 @@ def test_supercritical_check_columns(tmp_path: Path) -> None:
     assert row["nature"] == "supercritical" and row["check"] == "settled cycles below K_c"
     assert abs(row["check_exponent"] - 0.5) < 0.03 and row["check_exponent_err"] < 0.02
     assert row["check_amp_ratio"] == pytest.approx(1.0, abs=0.03)
-    with open(out / "bifurcation.csv") as f:
-        assert "check_exponent" in next(csv.reader(f))
+    assert "check_exponent[1]" in (out / "bifurcation.csv").read_text().splitlines()[0]
 
 
 def test_extreme_velocities_are_said_not_crashed(tmp_path: Path) -> None:

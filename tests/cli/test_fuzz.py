@@ -290,12 +290,12 @@ def argvs(draw: st.DrawFn) -> list[str]:
         opts = {"--eps": ["0", "0.04"], "--u": ["0.1", "1", "10"], "--alpha": alpha,
                 "--creep": creep}
         if cmd == "stability":
-            opts |= {"--mass": ["0", "1"], "--damping": ["0", "1"]}
+            opts |= {"--M": ["0", "1"], "--eta": ["0", "1"]}
         return [cmd, *_opts(draw, opts)]
     return [cmd, *_opts(draw, {
         "--case": ["step", "shs", "stick-slip"], "--a": ["0.005"], "--b": ["0.01", "0.002"],
         "--dc": ["1e-5"], "--v1": ["1e-6"], "--v2": ["1e-5"], "--t1": ["1", "2"],
-        "--t2": ["1", "3"], "--hold": ["1", "5"], "--stiffness": ["1e3", "inf"],
+        "--t2": ["1", "3"], "--hold-time": ["1", "5"], "--stiffness": ["1e3", "inf"],
         "--state-law": ["ageing", "slip"], "--rtol": ["1e-6"]})]
 
 

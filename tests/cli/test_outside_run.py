@@ -19,8 +19,8 @@ def _one_error_line(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
 
 
 @pytest.mark.parametrize(("argv", "option"), [
-    (["static", "--eps", "0.04", "--T", "10", "--v-ref", "-1"], "--v-ref = -1"),
-    (["stability", "--eps", "0.04", "--u", "0.3", "--v-ref", "nan"], "--v-ref = nan"),
+    (["static", "--eps", "0.04", "--T", "10", "--u-ref", "-1"], "--u-ref = -1"),
+    (["stability", "--eps", "0.04", "--u", "0.3", "--u-ref", "nan"], "--u-ref = nan"),
     (["static", "--eps", "0.04", "--T", "3", "--direct", "0.1"], "--pull-velocity is required"),
     (["rsf", "--mu0", "inf"], "--mu0 = inf"),
 ])
@@ -180,7 +180,7 @@ def test_the_athermal_model_with_mass_and_damping_is_stable_not_refused(
     res = critical_stiffness(0.1, TrapModel(eps=0.0), mass=1.0, damping=0.1)
     assert res.critical_stiffness == 0.0
     capsys.readouterr()
-    assert main(["stability", "--eps", "0", "--u", "0.1", "--mass", "1", "--damping", "0.1",
+    assert main(["stability", "--eps", "0", "--u", "0.1", "--M", "1", "--eta", "0.1",
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["K_c"] == [0.0]
 

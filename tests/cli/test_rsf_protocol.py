@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 from pathlib import Path
@@ -13,6 +12,7 @@ from typer.testing import CliRunner
 
 from dryfriction.cli import app
 from dryfriction.io.protocol import Protocol, RSFProtocol, load_protocol, parse_protocol
+from dryfriction.io.units import read_rows
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -63,7 +63,7 @@ def test_kinematic_step_against_closed_forms(tmp_path: Path) -> None:
     assert r.exit_code == 0, r.output
     assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json",
                                                "timeseries.png", "dryfriction.json"}
-    rows = list(csv.DictReader((out / "timeseries.csv").open()))
+    rows = read_rows(out / "timeseries.csv")
     assert {"t", "x", "v", "mu", "theta"} <= set(rows[0])
     t = np.array([float(r_["t"]) for r_ in rows])
     mu = np.array([float(r_["mu"]) for r_ in rows])

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import signal
 import subprocess
@@ -13,6 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
+from dryfriction.io.units import read_rows
 
 runner = CliRunner()
 
@@ -45,7 +45,7 @@ def test_simulate_writes_the_results(tmp_path: Path) -> None:
     names = {p.name for p in out.iterdir()}
     assert {"timeseries.csv", "summary.json", "timeseries.png"} <= names
     assert any(n.startswith("snapshot_000") for n in names)
-    rows = list(csv.DictReader((out / "timeseries.csv").open()))
+    rows = read_rows(out / "timeseries.csv")
     assert {"t", "x", "v", "mu", "n_active", "mean_age"} <= set(rows[0])
     # t=0, hold split by the snapshot, 2 a0 every 0.01: 200 steps of exactly one lattice
     # spacing (1/100) would alias the lattice, so the slide gets one more (issue 14)
@@ -183,7 +183,7 @@ def test_ctrl_c_writes_a_complete_partial_result(tmp_path: Path) -> None:
     assert "partial result written" in err
     s = json.loads((out / "summary.json").read_text())
     assert s["partial"] is True
-    rows = list(csv.DictReader((out / "timeseries.csv").open()))
+    rows = read_rows(out / "timeseries.csv")
     assert len(rows) == s["samples"] >= 2
     assert float(rows[-1]["x"]) < 5000.0  # stopped early
     assert (out / "timeseries.png").stat().st_size > 0

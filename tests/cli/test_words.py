@@ -43,23 +43,23 @@ def test_flags_are_not_shown_as_taking_a_value():
 def test_stability_table_is_whole_at_80_columns_with_units():
     # CliRunner's output is no terminal: Rich's width is 80, where the table was cut to
     # "0.072482…" and the headers to "forward_…"
-    r = invoke("stability", "--eps", "0.04", "--u", "0.01", "0.1", "--mass", "10",
-               "--damping", "0.1")
+    r = invoke("stability", "--eps", "0.04", "--u", "0.01", "0.1", "--M", "10",
+               "--eta", "0.1")
     assert r.exit_code == 0, r.output
     assert "…" not in r.stdout
-    for header in ("u [a0/t0]", "K_c [F_el/a0]", "omega_c [1/t0]", "dmu_d_du [F_el t0/a0]"):
+    for header in ("u[a0/t0]", "K_c[F_el/a0]", "omega_c[1/t0]", "dmu_d_du[F_el t0/a0]"):
         assert header in r.stdout
-    as_json = json.loads(invoke("stability", "--eps", "0.04", "--u", "0.01", "0.1", "--mass",
-                                "10", "--damping", "0.1", "--json").stdout)
+    as_json = json.loads(invoke("stability", "--eps", "0.04", "--u", "0.01", "0.1", "--M",
+                                "10", "--eta", "0.1", "--json").stdout)
     for k in as_json["K_c"]:
         assert f"{k:.10g}" in r.stdout  # every digit printed
 
 
 def test_stability_with_mass_and_no_damping_is_refused_as_ill_posed():
-    r = invoke("stability", "--eps", "0.04", "--u", "0.1", "--mass", "10")
+    r = invoke("stability", "--eps", "0.04", "--u", "0.1", "--M", "10")
     assert r.exit_code == 2
-    assert "ill posed" in r.output and "--damping" in r.output and "K_c" in r.output
-    assert invoke("stability", "--eps", "0.04", "--u", "0.1", "--mass", "10", "--damping",
+    assert "ill posed" in r.output and "--eta" in r.output and "K_c" in r.output
+    assert invoke("stability", "--eps", "0.04", "--u", "0.1", "--M", "10", "--eta",
                   "0.1").exit_code == 0
 
 
@@ -86,10 +86,10 @@ def test_steady_in_m_per_s_is_the_reduced_result_at_v_t0_over_a0():
     red = _json("steady", "--eps", "0.04", "--u", "0.1", "1")
     assert si["mu_d"] == pytest.approx([0.5 * m for m in red["mu_d"]], rel=1e-12)
     r = invoke("steady", "--eps", "0.04", "--V", "1e-5", "--a0", "1e-6", "--t0", "0.01")
-    assert "V [m/s]" in r.stdout and "mu_d [F_el]" in r.stdout
+    assert "V[m/s]" in r.stdout and "mu_d[F_el]" in r.stdout
     r = invoke("steady", "--eps", "0.04", "--V", "1e-5", "--a0", "1e-6", "--t0", "0.01",
                "--mu-el", "0.5")
-    assert "mu_d [F/W]" in r.stdout
+    assert "mu_d[F/W]" in r.stdout
 
 
 @pytest.mark.parametrize(("args", "word"), [

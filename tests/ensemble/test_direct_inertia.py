@@ -312,7 +312,7 @@ def test_stability_cli_takes_mass_without_damping_with_the_direct_effect() -> No
 
     from dryfriction.cli import app
 
-    r = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "1", "--mass", "0.2",
+    r = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "1", "--M", "0.2",
                                  "--direct", "0.02", "--json"])
     assert r.exit_code == 0, r.output
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(

@@ -7,7 +7,6 @@ of the whole process."""
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import os
@@ -34,6 +33,7 @@ from dryfriction.fit.experiment import (
     summary_points,
 )
 from dryfriction.fit.identify import split_flags
+from dryfriction.io.units import read_rows
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from experiment_zoo import LEVELS, make_experiment  # noqa: E402
@@ -177,7 +177,7 @@ def test_a_whole_experiment_in_one_command(experiment: tuple[Path, object],
     finally:
         mp.undo()
     assert r.exit_code == 0, r.output
-    rows = list(csv.DictReader((out / "steps.csv").open()))
+    rows = read_rows(out / "steps.csv")
     steps = [c for c in rows if c["kind"] == "step"]
     assert len(steps) == 20 and sum(c["kind"] == "shs" for c in rows) == 3
     # each step's level and normal stress (Pa, unit in its column) are the truth's
@@ -201,7 +201,7 @@ def test_a_whole_experiment_in_one_command(experiment: tuple[Path, object],
         want = rec.machine / LEVELS[lv["level"]].sn  # type: ignore[attr-defined]
         assert lv["stiffness"]["value"] == pytest.approx(want, rel=0.15)
     assert any("--profile" in n for n in rep["notes"])
-    assert "3 normal-stress levels" in r.stdout and "normal [MPa]" in r.stdout
+    assert "3 normal-stress levels" in r.stdout and "normal[MPa]" in r.stdout
     # the figure: one group per level, one point per reported value of a velocity step
     panels = drawn["panels"]
     assert "HAC" in drawn["title"] and "3 slide-hold-slide" in drawn["title"]  # type: ignore[operator]

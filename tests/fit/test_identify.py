@@ -9,7 +9,6 @@ transient lost in the noise).
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import sys
@@ -23,6 +22,7 @@ from dryfriction.cli import app
 from dryfriction.fit.identify import judge_step, split_flags
 from dryfriction.fit.models import ParamSpec
 from dryfriction.fit.steps import fit_steps
+from dryfriction.io.units import read_rows
 from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -188,7 +188,7 @@ def test_csv_json_table_and_figures_agree(tmp_path: Path):
     finally:
         mp.undo()
     assert r.exit_code == 0, r.output
-    rows = list(csv.DictReader((out / "steps.csv").open()))
+    rows = read_rows(out / "steps.csv")
     rep = json.loads((out / "fit.json").read_text())["steps"]
     assert len(rows) == len(rep) == len(titles) == 2
     table = _table_rows(r.stdout)

@@ -129,3 +129,18 @@ def test_progress_is_silent_for_a_quick_job_without_a_terminal(
             update(i + 1)
     captured = capsys.readouterr()
     assert captured.err == "" and captured.out == ""
+
+
+def test_progress_bar_draws_on_a_terminal(monkeypatch: pytest.MonkeyPatch) -> None:
+    """On a terminal the Rich bar is drawn: it was given the lazy console stand-in, which is
+    no context manager, and every command's bar raised TypeError (seen running compare under
+    a terminal)."""
+    import io
+
+    buf = io.StringIO()
+    monkeypatch.setattr(common, "err", common._Console(file=buf, force_terminal=True,
+                                                       width=100))
+    with common.progress_bar("job", 10, "steps", delay=0.0) as update:
+        for i in range(10):
+            update(i + 1, what="stage")
+    assert "job: stage" in buf.getvalue()

@@ -12,7 +12,6 @@ assumes), a sample every 0.1 um of load travel and every 0.5 s in a hold.
 
 from __future__ import annotations
 
-import csv
 import math
 import sys
 from functools import cache
@@ -26,6 +25,7 @@ from dryfriction.cli import app
 from dryfriction.fit.machine import hold_remnant
 from dryfriction.fit.models import RSFModel, rsf_series
 from dryfriction.fit.steps import PEAK_SAMPLES, StepsResult, fit_steps
+from dryfriction.io.units import read_rows
 from dryfriction.records import lab
 from dryfriction.records.data import SeriesData
 
@@ -260,8 +260,7 @@ def test_cli_record_and_fit_on_an_shs_file(tmp_path: Path):
     out = tmp_path / "fit"
     r = runner.invoke(app, ["fit", str(path), "--model", "rsf", "--out", str(out)])
     assert r.exit_code == 0, r.output
-    with open(out / "steps.csv", encoding="utf-8") as fh:
-        rows = list(csv.DictReader(row for row in fh if not row.startswith("#")))
+    rows = read_rows(out / "steps.csv")
     t, vl, _, _ = record(Truth(x_noise=0.02e-6))
     starts = t[np.flatnonzero(np.diff(vl) != 0.0) + 1][::2]
     assert [row["kind"] for row in rows] == ["shs"] * 3

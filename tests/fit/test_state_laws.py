@@ -18,6 +18,7 @@ import pytest
 from dryfriction import simulate as df_simulate
 from dryfriction.fit.lawchoice import fit_steps_laws
 from dryfriction.fit.models import RSFModel, rsf_series
+from dryfriction.io.units import read_rows
 from dryfriction.program import Segment
 from dryfriction.records.data import SeriesData
 from dryfriction.rsf.driving import RSFOutput, SpringSlider
@@ -204,7 +205,6 @@ def test_cli_state_law_auto_writes_the_comparison_everywhere(tmp_path: Path):
     each step's ``law_comparison`` over the five laws (its chosen law of least AIC, agreeing with
     the CSV), and the terminal the table's ``state_law`` column and the note naming the law
     (48 s wall: slow)."""
-    import csv
     import json
 
     from typer.testing import CliRunner
@@ -219,8 +219,7 @@ def test_cli_state_law_auto_writes_the_comparison_everywhere(tmp_path: Path):
     r = CliRunner().invoke(app, ["fit", str(path), "--model", "rsf", "--state-law", "auto",
                                  "--no-profile", "--no-figure", "--out", str(out)])
     assert r.exit_code == 0, r.output
-    with open(out / "steps.csv", encoding="utf-8") as fh:
-        rows = list(csv.DictReader(row for row in fh if not row.startswith("#")))
+    rows = read_rows(out / "steps.csv")
     steps = json.loads((out / "fit.json").read_text())["steps"]
     assert len(rows) == len(steps) >= 2
     for row, st in zip(rows, steps, strict=True):

@@ -26,6 +26,7 @@ from dryfriction.fit.models import (
     rsf_series,
 )
 from dryfriction.fit.steps import fit_steps, series_windows, steady_noise, white_noise
+from dryfriction.io.units import read_rows
 from dryfriction.records.data import SeriesData
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -283,10 +284,9 @@ def test_command_record_writes_steps(tmp_path: Path):
     _one_line_exit_2(r, out, "--run-cv", "would take about")
     r = runner.invoke(app, ["fit", str(rec), "--model", "rsf", "--out", str(out)])
     assert r.exit_code == 0, r.output
-    import csv
     import json
 
-    rows = list(csv.DictReader((out / "steps.csv").open()))
+    rows = read_rows(out / "steps.csv")
     assert len(rows) == 2
     for col in ("v_before", "v_after", "a", "b", "a_minus_b", "dc", "stiffness", "trend",
                 "rms", "sigma_a", "sigma_b", "sigma_dc"):

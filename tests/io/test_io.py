@@ -83,7 +83,7 @@ def test_manifest_lists_every_file_with_its_hash(tmp_path):
 
 def test_csv_rejects_ragged_columns(tmp_path):
     with pytest.raises(ValueError, match="different lengths"):
-        write_csv(tmp_path / "x.csv", {"a": [1.0, 2.0], "b": [1.0]})
+        write_csv(tmp_path / "x.csv", {"a": [1.0, 2.0], "b": [1.0]}, {"a": "s", "b": "m"})
     assert not (tmp_path / "x.csv").exists()
 
 

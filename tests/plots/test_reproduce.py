@@ -29,6 +29,7 @@ from dryfriction.theory.static import (
 )
 from dryfriction.theory.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
 from dryfriction.theory.trap import Trap
+from output_units import check_folder
 
 ALPHA = 0.13
 EPS = (0.01, 0.02, 0.03, 0.04, 0.05)
@@ -64,6 +65,12 @@ def test_every_file_is_written(run):
         assert data.startswith(PNG_MAGIC) and len(data) > 10_000
 
 
+def test_every_number_has_a_unit(run):
+    # the CSV headers name[unit], summary.json's units object (dryfriction.io.units)
+    out, _, _ = run
+    assert check_folder(out) == []
+
+
 def test_no_temporary_leftovers(run):
     out, _, _ = run
     assert [p.name for p in out.parent.iterdir()] == [out.name]
@@ -82,8 +89,8 @@ def test_progress_reports_every_step_in_order(run):
 
 @pytest.mark.parametrize(
     "name, header, fn",
-    [("static_friction.csv", ["eps", "T", "mu_s"], static_friction),
-     ("steady_friction.csv", ["eps", "u", "mu_d"], steady_friction)],
+    [("static_friction.csv", ["eps[1]", "T[t0]", "mu_s[1]"], static_friction),
+     ("steady_friction.csv", ["eps[1]", "u[a0/t0]", "mu_d[1]"], steady_friction)],
 )
 def test_csv_header_grid_and_values(run, name, header, fn):
     out, _, _ = run
@@ -224,7 +231,10 @@ def test_report_is_self_contained_with_figures_and_numbers(run):
     page = (out / "report.html").read_text()
     assert page.startswith("<!DOCTYPE html>") and page.rstrip().endswith("</html>")
     images = re.findall(r'<img alt="([^"]+)" src="data:image/png;base64,', page)
-    assert set(images) == set(figures.FIGURE_FILES) | set(figures.EXTRA_FILES)
+    # the two-panel figures one panel at a time (readable in a narrow window)
+    two = {"fig1.png", "fig2.png"}
+    assert set(images) == ((set(figures.FIGURE_FILES) | set(figures.EXTRA_FILES)) - two
+                           | {f"{n} ({k})" for n in two for k in "ab"})
     assert "http://" not in page and "https://" not in page
     for text in [f"{s['y_c']:.8g}", f"{s['H0']:.10g}", f"{s['dieterich_C_asymptotic']:.6g}",
                  f"{s['dieterich_C_least_squares']:.6g}", "2.45", "0.13",

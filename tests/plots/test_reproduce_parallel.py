@@ -37,7 +37,7 @@ def _reproduce(tmp_path: Path, cores: int, monkeypatch: pytest.MonkeyPatch
     monkeypatch.setattr(figures, "_plots", lambda: _cheap_plots(log))
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cores)), raising=False)
     monkeypatch.setattr(figures, "compute_summary", lambda: {"C": 1.0})
-    monkeypatch.setattr(figures, "report_html", lambda tmp, summary, images: repr(
+    monkeypatch.setattr(figures, "report_html", lambda tmp, summary, images, panels: repr(
         [(k, v[0], v[1], len(v[2])) for k, v in images.items()]))
     steps: list[str] = []
     out = tmp_path / f"out_{cores}"

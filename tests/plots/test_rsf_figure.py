@@ -19,8 +19,8 @@ T1, HOLD = 10.0, 100.0
 
 
 def _shs(*extra: str):
-    return CliRunner().invoke(app, ["rsf", "--case", "shs", "--t1", str(T1), "--hold",
-                                    str(HOLD), "--json", *extra])
+    return CliRunner().invoke(app, ["rsf", "--case", "shs", "--t1", str(T1),
+                                    "--hold-time", str(HOLD), "--json", *extra])
 
 
 def test_shs_default_reload_passes_the_peak_and_relaxes():

@@ -334,8 +334,8 @@ def test_record_command_writes_the_figure_and_the_table(tmp_path: Path) -> None:
         rows = list(csv.DictReader(fh))
     assert comment.startswith("# --segments 0:")
     assert [row["kind"] for row in rows] == ["start", "step"]
-    assert "velocity [m/s]" in rows[0] and "normal stress [MPa]" in rows[0]
-    assert float(rows[1]["confidence [-]"]) == pytest.approx(rep["segments"][1]["confidence"],
+    assert "velocity[m/s]" in rows[0] and "normal_stress[MPa]" in rows[0]
+    assert float(rows[1]["confidence[1]"]) == pytest.approx(rep["segments"][1]["confidence"],
                                                             rel=1e-3)
     # the figure the command drew, rebuilt: its panels and one shading per step and hold
     rec = read_record(SHARED)

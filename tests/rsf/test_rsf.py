@@ -466,7 +466,7 @@ def test_cli_rsf_writes_whole_results(tmp_path: Path) -> None:
     assert summary["law"] == "rsf" and summary["case"] == "stick-slip"
     assert (out / "rsf.png").stat().st_size > 0
     header = (out / "series.csv").read_text().splitlines()[0]
-    assert header.startswith("t,x,v,mu,theta,stress,x_load,v_load")
+    assert header.startswith("t[s],x[m],v[m/s],mu[1],theta[s],stress[1],x_load[m],v_load[m/s]")
     # runaway without damping: one line, exit 2, the old results left untouched
     res = runner.invoke(app, ["rsf", "--case", "stick-slip", "--stiffness", "250", "--t1",
                               "1000", "--out", str(out)])

@@ -302,7 +302,7 @@ def test_cli_direct_options() -> None:
 
     run = CliRunner()
     r = run.invoke(app, ["steady", "--eps", "0.04", "--u", "0.1", "10", "--direct", "0.02",
-                         "--v-ref", "0.5", "--json"])
+                         "--u-ref", "0.5", "--json"])
     assert r.exit_code == 0, r.output
     np.testing.assert_allclose(json.loads(r.stdout)["mu_d"], steady_friction(
         np.array([0.1, 10.0]), EPS, direct=0.02, v_ref=0.5), rtol=1e-12)
@@ -320,8 +320,8 @@ def test_cli_direct_options() -> None:
     for args, word in ((["steady", "--eps", "0.04", "--u", "1", "--direct", "2"], "--direct"),
                        (["static", "--eps", "0.04", "--T", "1", "--direct", "0.1"],
                         "--pull-velocity"),
-                       (["steady", "--eps", "0.04", "--u", "1", "--direct", "0.1", "--v-ref",
-                         "0"], "--v-ref")):
+                       (["steady", "--eps", "0.04", "--u", "1", "--direct", "0.1", "--u-ref",
+                         "0"], "--u-ref")):
         r = run.invoke(app, args)
         assert r.exit_code == 2 and word in r.output and len(r.output.strip().splitlines()) == 1
 

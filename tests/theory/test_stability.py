@@ -121,7 +121,7 @@ def test_cli_stability_json_matches_library():
     from dryfriction.cli import app
 
     res = CliRunner().invoke(app, ["stability", "--eps", "0.04", "--u", "0.1", "0.01",
-                                   "--damping", "0.05", "--json"])
+                                   "--eta", "0.05", "--json"])
     assert res.exit_code == 0, res.output
     out = json.loads(res.output)
     lib = critical_stiffness(0.01, TrapModel(eps=0.04), damping=0.05)

@@ -204,7 +204,7 @@ def _twin_from_fit(r: FitResult, law: str, what: str, u0: float) -> RSFTwin:
 
 
 def fit_rsf_twin(series: Sequence[SeriesData], u0: float, state_law: str = "ageing",
-                 peaks: StaticData | None = None) -> RSFTwin:
+                 peaks: StaticData | None = None, progress: Any = None) -> RSFTwin:
     """Fit rate-and-state (kinematic machine, ``V0 = u0``) to trap-model transients.
 
     Parameters
@@ -217,6 +217,8 @@ def fit_rsf_twin(series: Sequence[SeriesData], u0: float, state_law: str = "agei
     state_law : {"ageing", "slip"}
     peaks : StaticData, optional
         Slide-hold-slide peaks against hold time (s), ageing law only.
+    progress : callable, optional
+        The fit's ``progress(done, total, what)`` (:data:`dryfriction.fit.progress.FitProgress`).
 
     Returns
     -------
@@ -226,7 +228,7 @@ def fit_rsf_twin(series: Sequence[SeriesData], u0: float, state_law: str = "agei
     u0 = check_scalar("u0", u0, 0.0, lo_open=True)
     ds: list[Any] = list(series) + ([peaks] if peaks is not None else [])
     r = fit(ds, RSFModel(v0=u0 * SCALES.velocity_scale, state_law=state_law),
-            profile=False, consistency=False)
+            profile=False, consistency=False, progress=progress)
     return _twin_from_fit(r, state_law, "steps+holds" if peaks is not None else "steps", u0)
 
 
@@ -519,7 +521,8 @@ class Comparison:
         }
 
 
-def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
+def compare_protocol(proto: Any, state_law: str = "ageing",
+                     progress: Any = None) -> Comparison:
     """Run a trap-model protocol and its rate-and-state twin on the same program.
 
     The twin is fitted to the run itself when the protocol starts in steady sliding at its
@@ -557,7 +560,20 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
     if not np.any(vel > 0):
         raise ValueError(f"{proto.source}: drive.segments: the program never slides")
     model = proto.model
-    res = proto.run()
+
+    shown = [0.0]
+
+    def step(done: float, what: str) -> None:
+        # never backwards: the fit's estimate of its total grows as it goes
+        shown[0] = max(shown[0], done)
+        if progress is not None:
+            progress(shown[0], 100.0, what)
+
+    # progress(percent, 100, stage): the trap model's run to 20 %, the twin's fit to 95 % (its
+    # evaluations over the fit's own estimate of their total), the twin's run to 100 %: the
+    # shares measured on examples/velocity_step.toml (0.7 s, 4-5 s, 0.3 s)
+    res = proto.run(progress=lambda f: step(20.0 * f, "trap model"))
+    step(20.0, "rate-and-state twin")
     init = proto.initial
     u_first = float(vel[vel > 0][0])
     notes: list[str] = []
@@ -566,7 +582,8 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
         u0 = float(vel[0])
         data = SeriesData(res.t * SCALES.t0, prog.velocity(res.t) * SCALES.velocity_scale,
                           res.mu / model.mu_el, source=proto.source)
-        twin = fit_rsf_twin([data], u0, state_law)
+        twin = fit_rsf_twin([data], u0, state_law, progress=lambda d, n, w: step(
+            20.0 + 75.0 * min(d / max(n, 1), 1.0), f"rate-and-state twin, {w}"))
         calibration = "own program"
     else:
         u0 = float(init.velocity) if init.kind == "steady" else u_first
@@ -583,6 +600,8 @@ def compare_protocol(proto: Any, state_law: str = "ageing") -> Comparison:
         notes.append("during holds on a kinematic machine rate-and-state friction (ln V) is "
                      "undefined: the twin is not drawn there; its state ages (ageing law) or "
                      "not (slip law) and the reload starts from there")
+    step(95.0, "the twin's run")
     mu_rsf = model.mu_el * rsf_twin_series(twin.params, prog, res.t, u_init=u0)
+    step(100.0, "done")
     return Comparison(res.t, res.x, res.mu, mu_rsf, twin, calibration, model.mu_el,
                       tuple(notes))

@@ -135,13 +135,16 @@ def fit(data: Sequence[str | Path] | str | Path, out: str | Path, *,
         raise TypeError(f"fit() got unknown option(s) {', '.join(sorted(unknown))}")
     o = {**_D, **options}
     paths = [Path(data)] if isinstance(data, (str, Path)) else [Path(p) for p in data]
-    check_choice("--model", o["model"], ("cv", "rsf"))
+    if o["model"] is not None:
+        check_choice("--model", o["model"], ("cv", "rsf"))
     check_drive(o["drive"])
     o["fmt"], o["dpi"] = check_figure_format(o["fmt"], o["dpi"])
     check_fit_options(alpha=o["alpha"], creep=o["creep"], v0=o["v0"], state_law=o["state_law"],
                       errors=o["errors"], traps_per_a0=o["traps_per_a0"], direct=o["direct"],
                       v_ref=o["v_ref"])
     record = len(paths) == 1 and not is_project_csv(paths[0])
+    if o["model"] is None:  # chosen by the input (OPTIONS["fit"]["model"])
+        o["model"] = "rsf" if record else "cv"
     if record:
         # the mirror of the CSV files' refusal of the record's options below: a record's fit
         # reads neither, and an option silently ignored looks obeyed (outside24: --fix a=nan
@@ -203,6 +206,7 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     from ..fit import CVModel, compare_models
     from ..fit import fit as run_fit
     from ..io.files import check_output_dir, output_directory, write_json
+    from ..io.units import DIMENSIONLESS, FIT_UNITS, with_units
     from ..records.data import read_csv
     from ..validation import check_figure_format
 
@@ -251,6 +255,9 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
             report_["comparison"] = compare_models([result, alt])
         except (ValueError, NotImplementedError) as exc:
             report_["comparison"] = {"not_run": f"{other}: {exc}"}
+    # every number's unit (dryfriction.io.units): the fixed table, the model's parameters
+    report_ = with_units(report_, FIT_UNITS,
+                         {p.name: p.unit or DIMENSIONLESS for p in result.parameters})
     files = ["fit.json"]
     with output_directory(out, command="fit", force=o["force"], inputs=paths,
                           report=report) as tmp:

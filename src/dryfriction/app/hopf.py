@@ -61,6 +61,7 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
     from ..analysis.hopf_table import MAX_CHECKED, bifurcation_table, parse_velocities
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
     from ..io.protocol import RSFProtocol, load_protocol
+    from ..io.units import BIFURCATION_UNITS, with_units
 
     if not isinstance(velocities, str):
         velocities = ",".join(repr(float(v)) for v in velocities)
@@ -75,12 +76,13 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
                          "not done (docs/hopf.md)")
     check_output_dir(out, force=force)
     rep = bifurcation_table(proto, vs, check)
-    rep["protocol"] = str(protocol)
+    rep = with_units({**rep, "protocol": str(protocol)}, BIFURCATION_UNITS)
     rows = rep["rows"]
     files = ["bifurcation.csv", "bifurcation.json"]
     with output_directory(out, command="bifurcation", force=force, inputs=[protocol],
                           report=report) as tmp:
-        write_csv(tmp / "bifurcation.csv", {k: [r[k] for r in rows] for k in rows[0]})
+        write_csv(tmp / "bifurcation.csv", {k: [r[k] for r in rows] for k in rows[0]},
+                  rep["units"])
         write_json(tmp / "bifurcation.json", rep)
         if figure:
             from ..plots.hopf import plot_bifurcation

@@ -56,6 +56,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
         (and ``files`` empty) without ``out``.
     """
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
+    from ..io.units import SUMMARY_UNITS, with_units
     from ..program import Segment
     from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate
     from ..rsf.law import V_MAX, V_MIN, RateState
@@ -67,7 +68,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
         t2 = reload_time(a, b, dc, v1, hold, stiffness) if case == "shs" else 30.0
     # durations and velocities a run can reach in floating point (a 1e308 s first segment
     # would leave the later ones at t = inf, silently dropped)
-    for name, value in (("--t1", t1), ("--t2", t2), ("--hold", hold)):
+    for name, value in (("--t1", t1), ("--t2", t2), ("--hold-time", hold)):
         check_scalar(name, value, 0.0, LOAD_MAX, lo_open=True)
     for name, value in (("--v1", v1), ("--v2", v2)):
         check_scalar(name, value, -V_MAX, V_MAX)
@@ -111,11 +112,11 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
     except SolverError as exc:
         raise ValueError(str(exc)) from None
     context = {"case": case, "wall_s": time.perf_counter() - start}
-    summary = {**res.summary(), **context}
+    summary = with_units({**res.summary(), **context}, SUMMARY_UNITS["rsf"])
     files: list[str] = []
     if out is not None:
         with output_directory(out, command="rsf", force=force, report=report) as tmp:
-            write_csv(tmp / "series.csv", res.columns())
+            write_csv(tmp / "series.csv", res.columns(), summary["units"])
             write_json(tmp / "summary.json", summary)
             files = ["series.csv", "summary.json"]
             if figure:

@@ -86,6 +86,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         with ``segments``); a bad column map, program or folder.
     """
     from ..io.files import check_output_dir, output_directory
+    from ..io.units import RECORD_UNITS, with_units
     from ..records.lab import (
         apparatus_note,
         detect_program,
@@ -136,6 +137,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         rep["gaps_s"] = list(det.gaps)
         rep["normal_changes_s"] = list(det.normal_changes)
     rep["segments_option"] = segments_spec(segs, float(t[0]))
+    rep = with_units(rep, RECORD_UNITS, {"normal": rec.normal_unit or "Pa"})
     files: list[str] = []
     if out_dir is not None:
         with output_directory(out_dir, command="record", force=force, inputs=[rec.source],

@@ -78,7 +78,7 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
     save_figure(fig, folder / f"record.{fmt}", fmt, dpi)
 
 
-def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
+def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                columns: str | None = _D["columns"], segments: str | None = _D["segments"],
                stiffness: float | str = "record", trend: bool = True,
                law: str = _D["state_law"], joint: bool = _D["joint"],
@@ -160,6 +160,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
         write_steps_csv,
     )
     from ..io.files import output_directory, write_json
+    from ..io.units import RECORD_FIT_UNITS, with_units
     from ..records import lab
     from ..validation import check_choice
 
@@ -192,7 +193,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
         cost = cv_cost(step_data(rec, wins, segs), alpha, creep, direct, v_ref, traps_per_a0)
         raise ValueError(f"{path}: the trap model (cv) on this record would take about "
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
-                         "run --model rsf --run-cv [--direct A] to fit both and compare")
+                         "drop --model (a record is fitted with rsf) and add --run-cv "
+                         "[--direct A] to fit both and compare")
     with bar("fitting steps", len(wins), unit="steps") as update:
         # one machine (stiffness "record"), the law (or every law: auto) and the initial state
         res = fit_steps_laws(rec, wins, segs, law=law, initial=initial, stiffness=stiffness,
@@ -222,6 +224,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = _D["model"],
                               **res.to_dict()}
     if note:
         doc["apparatus_note"] = note.removeprefix("note: ")
+    normal = next((r["normal_unit"] for r in res.rows if r.get("normal_unit")), "Pa")
+    doc = with_units(doc, RECORD_FIT_UNITS, {"normal": normal})
     cv_results: dict[int, Any] = {}  # step -> the trap model's fit (--run-cv), for the figures
     if run_cv:
         comp: list[dict[str, Any]] = []

@@ -59,8 +59,12 @@ def comparison_figure(c: Any, title: str = "") -> tuple[Any, Any]:
 
 
 def _summary(result: Any, context: dict[str, Any]) -> dict[str, Any]:
-    """What summary.json holds: the run's own summary plus its context (protocol, wall time)."""
-    return {**result.summary(), **context}
+    """What summary.json holds: the run's own summary plus its context (protocol, wall time),
+    its ``units`` declaring every number (:mod:`dryfriction.io.units`)."""
+    from ..io.units import SUMMARY_UNITS, with_units
+
+    summary = {**result.summary(), **context}
+    return with_units(summary, SUMMARY_UNITS[summary["law"]])
 
 
 def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force"].default,
@@ -102,6 +106,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     """
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
     from ..io.protocol import RSFProtocol, load_protocol
+    from ..io.units import SNAPSHOT_UNITS
     from ..validation import check_figure_format
 
     fmt, dpi = check_figure_format(fmt, dpi)
@@ -128,7 +133,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     summary = _summary(result, context)
     with output_directory(out, command="simulate", force=force, inputs=[protocol],
                           report=report) as tmp:
-        write_csv(tmp / "timeseries.csv", result.columns())
+        write_csv(tmp / "timeseries.csv", result.columns(), summary["units"])
         write_json(tmp / "summary.json", summary)
         if figure:
             draw(builder, result, path=tmp / f"timeseries.{fmt}", fmt=fmt, dpi=dpi)
@@ -136,7 +141,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
         for i, snap in enumerate(getattr(result, "snapshots", ())):
             cols = {k: v for k, v in snap.items() if k not in ("t", "x")}
             name = f"snapshot_{i:03d}_t{snap['t']:.6g}.csv"
-            write_csv(tmp / name, cols)
+            write_csv(tmp / name, cols, SNAPSHOT_UNITS)
             files.append(name)
     late = getattr(result, "info", {}).get("snapshots_not_reached")
     if late:
@@ -152,8 +157,8 @@ def compare(protocol: str | Path, out: str | Path, *,
             state_law: str = _CMP["state_law"].default, force: bool = _CMP["force"].default,
             fmt: str = _CMP["fmt"].default, dpi: int | None = _CMP["dpi"].default,
             figure: bool = _CMP["figure"].default, report: Report | None = None,
-            draw: Draw | None = None,
-            on_start: Callable[[Any], None] | None = None) -> RunOutcome:
+            draw: Draw | None = None, on_start: Callable[[Any], None] | None = None,
+            progress: Progress | None = None) -> RunOutcome:
     """Run a trap-model protocol and its fitted rate-and-state twin; write compare.json and
     compare.{fmt} (``dryfriction compare``;
     :func:`dryfriction.analysis.rsf_view.compare_protocol`).
@@ -167,6 +172,8 @@ def compare(protocol: str | Path, out: str | Path, *,
     state_law : str
         The twin's state law: ageing or slip (``--state-law``).
     force, fmt, dpi, figure, report, draw, on_start : as :func:`simulate`.
+    progress : callable, optional
+        ``progress(percent, 100, stage)``: the trap model's run, then its twin.
 
     Returns
     -------
@@ -176,6 +183,7 @@ def compare(protocol: str | Path, out: str | Path, *,
     from ..analysis.rsf_view import compare_protocol
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.protocol import load_protocol
+    from ..io.units import COMPARE_UNITS, with_units
     from ..validation import check_choice, check_figure_format
 
     check_choice("--state-law", state_law, ("ageing", "slip"))
@@ -184,8 +192,11 @@ def compare(protocol: str | Path, out: str | Path, *,
     check_output_dir(out, force=force)
     if on_start is not None:
         on_start(proto)
-    c = compare_protocol(proto, state_law)
-    summary = {"protocol": str(protocol), **c.to_dict()}
+    c = compare_protocol(proto, state_law, progress=progress)
+    comparison = c.to_dict()
+    # the words of the unit system beside the units object (dryfriction.io.units)
+    summary = with_units({"protocol": str(protocol), "unit_system": comparison.pop("units"),
+                          **comparison}, COMPARE_UNITS)
     files = ["compare.json"]
     with output_directory(out, command="compare", force=force, inputs=[protocol],
                           report=report) as tmp:

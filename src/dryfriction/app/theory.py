@@ -45,8 +45,11 @@ class TableOutcome:
     units: dict[str, str] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
-        """The parameters and the columns in one mapping (the ``--json`` output)."""
-        return {**self.params, **self.columns}
+        """The parameters and the columns in one mapping (the ``--json`` output), with the
+        ``units`` of every number (:mod:`dryfriction.io.units`)."""
+        from ..io.units import THEORY_UNITS, with_units
+
+        return with_units({**self.params, **self.columns}, THEORY_UNITS, self.units)
 
 
 def trap(alpha: float = _TRAP["alpha"].default) -> TableOutcome:
@@ -123,7 +126,7 @@ def static(eps: float, T: list[float] | None = None, t_w: list[float] | None = N
                              pull_velocity, hold)
         cols: dict[str, Any] = {"T": list(T or []), "mu_s": mu}
     elif direct:
-        raise ValueError("--direct takes reduced inputs (--T, --v-ref and --pull-velocity in "
+        raise ValueError("--direct takes reduced inputs (--T, --u-ref and --pull-velocity in "
                          "a0/t0); in SI use dryfriction.theory.units.static_friction_si")
     else:
         mu = static_friction_si(np.asarray(t_w, float), eps, scales, alpha, creep, load)
@@ -175,7 +178,7 @@ def steady(eps: float, u: list[float] | None = None, V: list[float] | None = Non
         mu = steady_friction(np.asarray(u, float), eps, alpha, creep, direct, v_ref)
         cols: dict[str, Any] = {"u": list(u or []), "mu_d": mu}
     elif direct:
-        raise ValueError("--direct takes reduced inputs (--u and --v-ref in a0/t0); in SI use "
+        raise ValueError("--direct takes reduced inputs (--u and --u-ref in a0/t0); in SI use "
                          "dryfriction.theory.units.steady_friction_si")
     else:
         _velocities_in_range(np.asarray(V, float), scales.a0, scales.t0)
@@ -207,10 +210,10 @@ def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].defaul
     model = TrapModel(alpha, eps, creep, direct=direct, v_ref=v_ref)
     if mass > 0 and damping == 0 and not direct:  # the direct effect damps like eta (A mu/u)
         raise ValueError(
-            f"--mass {mass:g} without --damping is ill posed: with inertia and no damping the "
+            f"--M {mass:g} without --eta is ill posed: with inertia and no damping the "
             "delay at the spinodal edge makes K_c grow with the highest frequency considered, "
-            "so no K_c exists; give --damping > 0 (e.g. --damping 0.1) or --direct > 0, or "
-            "drop --mass")
+            "so no K_c exists; give --eta > 0 (e.g. --eta 0.1) or --direct > 0, or "
+            "drop --M")
     res = [critical_stiffness(v, model, mass, damping) for v in u]
     twins = [rsf_stability_prediction(v, model, mass, damping) for v in u] if eps > 0 else []
     params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep,

@@ -47,9 +47,10 @@ def bifurcation(
         print(json.dumps(to_jsonable(report), indent=2))
         return
     table = Table(title=Text(f"Hopf point of steady sliding, {report['law']} law"))
+    from ..io.units import header
+
     for col in rows[0]:
-        unit = report["units"][col]
-        table.add_column(Text(f"{col} [{unit.split(' ')[0]}]" if unit else col))
+        table.add_column(Text(header(col, report["units"][col])))
     for r in rows:
         table.add_row(*(Text(f"{v:.5g}" if isinstance(v, float) else str(v))
                         for v in r.values()))

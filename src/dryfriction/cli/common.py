@@ -39,12 +39,17 @@ class _Console:
         self._options = options
 
     def __getattr__(self, name: str) -> Any:
+        return getattr(self.real(), name)
+
+    def real(self) -> Any:
+        """The Rich console itself: what Rich's own machinery takes (a progress bar enters
+        it as a context manager, which this stand-in is not)."""
         console = self.__dict__.get("_console")
         if console is None:
             from rich.console import Console
 
             console = self.__dict__["_console"] = Console(**self._options)
-        return getattr(console, name)
+        return console
 
 
 err: Any = _Console(stderr=True)
@@ -125,14 +130,40 @@ def option_named(message: str) -> str:
     ctx = get_current_context(silent=True)
     if match is None or ctx is None:
         return message
-    option = "--" + match.group(1).replace("_", "-")
+    from ..app.options import OPTIONS
+
+    declared = OPTIONS.get(ctx.info_name or "", {}).get(match.group(1))
+    # the flag the option table gives the parameter (--u-ref for v_ref in static), else the
+    # parameter's name as a flag
+    option = (declared.flag.split("/")[0] if declared is not None
+              else "--" + match.group(1).replace("_", "-"))
     if not any(option in param.opts for param in ctx.command.params):
         return message
     return option + message[match.end():]
 
 
 FORMAT_HELP = "Figure file format: png, pdf or svg (vector)."
-DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 110; 300 for print)."
+FORMAT_CHOICES = "[png|pdf|svg]"
+
+
+def one_of(choices: tuple[str, ...]) -> str:
+    """The metavar that lists an option's choices in ``--help``: ``[cv|rsf]``."""
+    return "[" + "|".join(choices) + "]"
+
+
+def renamed(old: str, new: str, why: str, old_value: Any, value: Any, default: Any) -> Any:
+    """The value of an option renamed in this release: ``new``'s, or the deprecated ``old``
+    name's (with a warning on standard error; kept for one release, CHANGELOG.md)."""
+    if old_value is None:
+        return value
+    if value != default:
+        raise ValueError(f"{old} and {new} are one option: give {new} only")
+    say(f"warning: {old} is deprecated here, use {new} ({why}); {old} will be removed in the "
+        "next release")
+    return old_value
+
+
+DPI_HELP = "Resolution of the figures in dots per inch, 50-1200 (default 150; 300 for print)."
 FIGURE_HELP = ("Draw the figure; --no-figure skips it, and matplotlib's start-up with it "
                "(a previous run's figure in --out is removed, like any file it no longer "
                "writes).")
@@ -248,7 +279,7 @@ def progress_bar(label: str, total: float | None = None, unit: str = "",
                     return
                 p = Progress(TextColumn("{task.description}"), BarColumn(),
                              TextColumn(counts), TimeElapsedColumn(), TextColumn("left"),
-                             TimeRemainingColumn(), console=err, transient=True)
+                             TimeRemainingColumn(), console=err.real(), transient=True)
                 p.start()
                 bar["p"], bar["task"] = p, p.add_task(label, total=tot)
             desc = f"{label}: {state['what']}" if state["what"] else label
@@ -275,17 +306,24 @@ def progress_bar(label: str, total: float | None = None, unit: str = "",
             bar["p"].stop()
 
 
-def emit(result: dict[str, Any], as_json: bool, title: str) -> None:
-    """Print ``result`` as JSON (``--json``) or as a table."""
+def emit(result: dict[str, Any], as_json: bool, title: str,
+         units: dict[str, str | None] | None = None) -> None:
+    """Print ``result`` as JSON (``--json``) or as a table, each number's name with its unit
+    from ``units`` as ``name[unit]`` (:mod:`dryfriction.io.units`)."""
     if as_json:
         print(json.dumps(to_jsonable(result), indent=2))
         return
     from rich.table import Table
     from rich.text import Text
 
+    from ..io.units import header
+
+    units = units or {}
     table = Table(title=Text(title), show_header=False)
     for k, v in result.items():
-        table.add_row(Text(k), Text(f"{v:.10g}" if isinstance(v, float) else str(v)))
+        number = isinstance(v, (int, float)) and not isinstance(v, bool)
+        name = header(k, units[k]) if number and units.get(k) is not None else k
+        table.add_row(Text(name), Text(f"{v:.10g}" if isinstance(v, float) else str(v)))
     print_whole(table)
 
 
@@ -363,8 +401,11 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
     cols : dict
         Column name -> values (equal lengths).
     units : dict, optional
-        Column name -> unit, shown in the header as ``name [unit]``.
+        Column name -> unit, shown in the header as ``name[unit]`` (the CSV headers'
+        convention, :mod:`dryfriction.io.units`).
     """
+    from ..io.units import header
+
     units = units or {}
     out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()),
               markup=False, highlight=False, soft_wrap=True)
@@ -373,9 +414,8 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
 
     table = Table()
     for name in cols:
-        header = f"{name} [{units[name]}]" if name in units else name
         # a Text header: ``[a0/t0]`` is a unit, not Rich markup
-        table.add_column(Text(header), justify="right", no_wrap=True)
+        table.add_column(Text(header(name, units.get(name))), justify="right", no_wrap=True)
     for row in zip(*cols.values(), strict=True):
         table.add_row(*(f"{float(v):.10g}" for v in row))
     print_whole(table)

@@ -17,12 +17,14 @@ from .common import (
     DPI_HELP,
     FIGURE_HELP,
     FORCE_HELP,
+    FORMAT_CHOICES,
     FORMAT_HELP,
     app,
     cli_errors,
     compile_notice,
     err,
     lazy_progress_bar,
+    one_of,
     out,
     print_whole,
     progress_bar,
@@ -45,28 +47,36 @@ def fit_command(
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: fit.json, fit.png "
                                           "(written whole or not at all; new, empty, or "
                                           "written by this program before).")],
-    model: str = typer.Option(_FIT["model"].default, "--model",
-                              help="cv (trap model) or rsf (rate-and-state)."),
+    model: str | None = typer.Option(_FIT["model"].default, "--model",
+                                     metavar=one_of(_FIT["model"].choices),
+                                     help="cv (trap model) or rsf (rate-and-state); default "
+                                     "chosen by the input: rsf for a laboratory record "
+                                     "(--run-cv adds the trap model), cv for the project's "
+                                     "CSV files.", show_default=False),
     alpha: float = typer.Option(_FIT["alpha"].default, "--alpha",
-                                help="Trap stiffness (cv), fixed."),
-    creep: str = typer.Option(_FIT["creep"].default, "--creep", help=CREEP_HELP),
+                                help="Trap stiffness (cv), dimensionless, fixed."),
+    creep: str = typer.Option(_FIT["creep"].default, "--creep",
+                              metavar=one_of(_FIT["creep"].choices), help=CREEP_HELP),
     fix: Annotated[list[str] | None, typer.Option(
         "--fix", help="Hold a parameter fixed: --fix t0=0.01 (SI units; repeatable).")] = None,
     v0: float = typer.Option(_FIT["v0"].default, "--v0",
                              help="rsf: reference velocity V0, m/s (for static "
                              "data: the hold tests' sliding velocity; required then)."),
     state_law: str = typer.Option(_FIT["state_law"].default, "--state-law",
+                                  metavar=one_of(_FIT["state_law"].choices),
                                   help="rsf: ageing, slip, prz "
                                   "(Perrin-Rice-Zheng), nagata (ageing with a stress-rate "
                                   "term c, fitted) or ageing2 (two state variables: b2, dc2 "
                                   "fitted); record: also auto (every law per step, the least "
                                   "AIC chosen; the comparison in fit.json and the notes)."),
     initial_state: str = typer.Option(_FIT["initial_state"].default, "--initial-state",
+                                      metavar=one_of(_FIT["initial_state"].choices),
                                       help="Record: each step's "
                                       "fit starts in steady sliding (steady), from a fitted "
                                       "state ln(theta0 V/Dc) (free), or free only where the "
                                       "step is flagged not_steady_before (auto)."),
     stiffness: str = typer.Option(_FIT["stiffness"].default, "--stiffness",
+                                  metavar="[K|inf|fit|slope|record]",
                                   help="rsf time series: machine "
                                   "stiffness per unit normal force: a number (1/m; inf: "
                                   "kinematic, the default for CSV), fit (a free parameter "
@@ -88,12 +98,14 @@ def fit_command(
                                help="Record: also fit all steps with one "
                                "a, b, Dc and one stiffness."),
     drive: str = typer.Option(_FIT["drive"].default, "--drive",
+                              metavar=one_of(_FIT["drive"].choices),
                               help="Record: what drives the fitted "
                               "machine: measured (default: the record's load-point "
                               "displacement, denoised, its change times placed from it, so "
                               "that the stiffness does not hang on a given change time) or "
                               "program (the idealised piecewise-constant program)."),
     errors: str = typer.Option(_FIT["errors"].default, "--errors",
+                               metavar=one_of(_FIT["errors"].choices),
                                help="Record: uncertainties that allow for "
                                "autocorrelated residuals (hac, default) or that assume "
                                "independent noise (white)."),
@@ -105,13 +117,13 @@ def fit_command(
                                      help="rsf: regularised law (holds, kinematic)."),
     traps_per_a0: float | None = typer.Option(_FIT["traps_per_a0"].default, "--traps-per-a0",
                                               help="cv time series: "
-                                       "density of the simulated ensemble (accuracy about its "
-                                       "inverse; cost grows with it; default 1000, 100 for a "
-                                       "record)."),
+                                       "density of the simulated ensemble, traps per a0 "
+                                       "(1/a0; accuracy about its inverse; cost grows with "
+                                       "it; default 1000, 100 for a record)."),
     direct: float = typer.Option(_FIT["direct"].default, "--direct",
                                  help="cv: fit the direct effect A "
-                                 "(0 <= A <= 1), started from this value; 0: the athermal "
-                                 "model. Hold it with --fix direct=A."),
+                                 "(dimensionless, 0 <= A <= 1), started from this value; 0: "
+                                 "the athermal model. Hold it with --fix direct=A."),
     v_ref: float = typer.Option(_FIT["v_ref"].default, "--v-ref",
                                 help="cv with --direct: reference velocity "
                                 "of the direct effect, m/s, fixed."),
@@ -123,7 +135,8 @@ def fit_command(
                                  help="Also fit the other model and compare (AIC/BIC)."),
     json_out: bool = typer.Option(False, "--json", help="Print fit.json to standard output."),
     force: bool = typer.Option(_FIT["force"].default, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option(_FIT["fmt"].default, "--format", help=FORMAT_HELP),
+    fmt: str = typer.Option(_FIT["fmt"].default, "--format", metavar=FORMAT_CHOICES,
+                     help=FORMAT_HELP),
     dpi: int = typer.Option(_FIT["dpi"].default, "--dpi", help=DPI_HELP),
     figure: bool = typer.Option(_FIT["figure"].default, "--figure/--no-figure", help=FIGURE_HELP),
 ) -> None:
@@ -131,6 +144,7 @@ def fit_command(
     (values, uncertainties, correlations, identifiability, goodness of fit, AIC/BIC) and
     fit.png (data, fitted curve, residuals)."""
     from ..app.fitting import fit as run
+    from ..io.units import header
 
     options = dict(model=model, alpha=alpha, creep=creep, fix=fix, v0=v0, state_law=state_law,
                    initial_state=initial_state, stiffness=stiffness, trend=trend,
@@ -152,14 +166,16 @@ def fit_command(
     if json_out:
         print(json.dumps(to_jsonable(report), indent=2))
     else:
-        table = Table(title=f"{model} fit of {', '.join(str(p) for p in data)}")
+        words = {"cv": "trap model (cv)", "rsf": "rate-and-state (rsf)"}
+        table = Table(title=f"{words.get(done.report.get('model'), 'fit')} fit of "
+                            f"{', '.join(str(p) for p in data)}")
         for col in ("parameter", "value", "+-", "95 % interval", "identifiability"):
             table.add_column(col)
         for p in result.parameters:
             iv = p.profile_95 or p.interval_95
             ivs = "" if iv is None else ("[" + ", ".join("open" if x is None else f"{x:.4g}"
                                                           for x in iv) + "]")
-            cells = (f"{p.name} [{p.unit}]" if p.unit else p.name, f"{p.value:.6g}",
+            cells = (header(p.name, p.unit or "1"), f"{p.value:.6g}",
                      "" if p.stderr is None else f"{p.stderr:.2g}", ivs, p.identifiability)
             table.add_row(*(Text(c) for c in cells))  # "[open, 0.2]" is no Rich markup
         print_whole(table)

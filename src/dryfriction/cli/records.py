@@ -23,30 +23,56 @@ def _cell(x: Any) -> str:
     return str(x)
 
 
-def _steps_table(rows: list[dict[str, Any]], title: str) -> Table:
+def _fitted(fit: Any) -> str:
+    """Which of the machine's parameters a step's fit had free: ``k``, ``trend``."""
+    free = {p.name for p in fit.parameters if not getattr(p, "fixed", False)}
+    words = [w for n, w in (("stiffness", "k"), ("trend", "trend")) if n in free]
+    return ", ".join(words) or "—"
+
+
+def _steps_table(rows: list[dict[str, Any]], title: str, fits: list[Any]) -> Table:
+    from rich.text import Text
+
+    from ..io.units import STEP_UNITS, header
+
     table = Table(title=title)
     cols = ("index", "kind", "v_before", "v_after", "normal", "a", "b", "a_minus_b", "dc",
-            "stiffness", "trend", "rms", "noise", "peak_residual", "flags", "state_law")
+            "stiffness", "trend", "rms", "noise", "peak_residual", "flags", "state_law", "mu0",
+            "fitted")
     unit = next((r.get("normal_unit") for r in rows if r.get("normal_unit")), "")
     scale, shown = (1e-3, "kN") if unit == "N" else (1e-6, "MPa")
+    units = {**STEP_UNITS, "normal": shown, "fitted": None}
     for c in cols:
-        table.add_column(f"normal [{shown}]" if c == "normal" else c,
-                         justify="left" if c in ("flags", "state_law") else "right")
-    for r in rows:
+        # the unit of each column, as in steps.csv (a Text: "[m/s]" is no Rich markup)
+        table.add_column(Text(header(c, units[c])),
+                         justify="left" if c in ("flags", "state_law", "fitted") else "right")
+    for r, f in zip(rows, fits, strict=True):
         table.add_row(*(_cell(float(r[c]) * scale) if c == "normal" else
+                        _fitted(f) if c == "fitted" else
                         _cell(r[c]) if c != "flags" else (r[c] or "—") for c in cols))
     return table
 
+
+LEGEND = ("rms: the residuals' root mean square; noise: the friction's scatter about a line "
+          "in the steady part; peak_residual: data minus model at the transient's peak; "
+          "stiffness: the machine's, per unit normal force; trend: friction per metre of "
+          "load-point travel. Intervals: profile likelihood, or (--errors hac) allowing "
+          "for correlated residuals.")
+"""What the record table's less common columns mean, printed under it."""
 
 INTERVALS = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
 """The 95 % intervals the terminal shows (columns ``<name>_lo``, ``<name>_hi`` of steps.csv)."""
 
 
 def _intervals_table(rows: list[dict[str, Any]]) -> Table:
+    from rich.text import Text
+
+    from ..io.units import STEP_UNITS, header
+
     table = Table(title="95 % intervals (— : not given by the data)")
     table.add_column("index", justify="right")
     for c in INTERVALS:
-        table.add_column(c, justify="right")
+        table.add_column(Text(header(c, STEP_UNITS[c])), justify="right")
     for r in rows:
         table.add_row(str(r["index"]), *(f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]"
                                          for c in INTERVALS))
@@ -78,9 +104,12 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
         err.print(flagged_line(res.rows), highlight=False)  # stdout stays one JSON document
     else:
         # one row per step in full, flags included: a console's width would squash them
-        wide = Console(width=max(out.width, 190 + max(len(r["flags"]) for r in res.rows)))
-        wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI)"))
+        wide = Console(width=max(out.width, 260 + max(len(r["flags"]) for r in res.rows)))
+        wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI; v0 = "
+                                "v_before, mu0 the steady friction at v0; fitted: the "
+                                "machine's parameters left free)", res.fits))
         wide.print(_intervals_table(res.rows))
+        out.print(LEGEND, highlight=False, soft_wrap=True)
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
             for note in row["notes"][len(f.notes):]:
                 out.print(f"- step {row['index']}: {note}", highlight=False, soft_wrap=True)

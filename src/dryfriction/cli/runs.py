@@ -14,6 +14,7 @@ from .common import (
     DPI_HELP,
     FIGURE_HELP,
     FORCE_HELP,
+    FORMAT_CHOICES,
     FORMAT_HELP,
     app,
     cli_errors,
@@ -21,8 +22,10 @@ from .common import (
     emit,
     lazy_progress_bar,
     many,
+    one_of,
     out,
     progress_bar,
+    renamed,
     say,
     say_interrupted,
 )
@@ -38,36 +41,39 @@ def reproduce(
     out_dir: Annotated[Path, typer.Option("--out", help="Results folder: new, empty, or one "
                                           "this program wrote before.")],
     force: bool = typer.Option(_REP["force"].default, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option(_REP["fmt"].default, "--format", help=FORMAT_HELP),
+    fmt: str = typer.Option(_REP["fmt"].default, "--format", metavar=FORMAT_CHOICES,
+                     help=FORMAT_HELP),
     dpi: int = typer.Option(_REP["dpi"].default, "--dpi", help=DPI_HELP),
 ) -> None:
-    """The paper's six figures, the data behind them, summary.json and report.html."""
+    """The paper's six figures, three extra figures, the data behind them (CSV), summary.json
+    and report.html."""
     from ..app.runs import reproduce as run
 
     with progress_bar("reproduce", unit="steps") as update:
-        summary = run(out_dir, force=force, fmt=fmt, dpi=dpi, progress=update,
-                      report=say).summary
-    out.print(
-        f"wrote {out_dir}/: fig1-6.{fmt}, static_friction.csv, steady_friction.csv, "
-        f"summary.json, report.html (C_inf = {summary['dieterich_C_asymptotic']:.4f}, "
-        f"C_LS = {summary['dieterich_C_least_squares']:.4f})",
-        highlight=False, soft_wrap=True,
-    )
+        done = run(out_dir, force=force, fmt=fmt, dpi=dpi, progress=update, report=say)
+    # every file it wrote, in words a reader of the paper knows
+    out.print(f"wrote {out_dir}/: {', '.join(done.files)}", highlight=False, soft_wrap=True)
+    out.print("fig1-6: the paper's figures; extra_*: loaded waiting, the two creep laws "
+              "compared, and the Dieterich constant C over velocity; report.html shows them "
+              "all with the key numbers (summary.json)", highlight=False, soft_wrap=True)
 
 
 @app.command()
 @cli_errors
 def rsf(
-    case: str = typer.Option(_RSF["case"].default, help="step (v1 for t1, then v2 for t2), shs "
-                             "(slide-hold-slide: v1 for t1, hold for --hold, v1 for t2) or "
-                             "stick-slip (v1 for t1)."),
-    a: float = typer.Option(_RSF["a"].default, help="Direct effect a, > 0."),
-    b: float = typer.Option(_RSF["b"].default, help="Evolution effect b, >= 0."),
+    case: str = typer.Option(_RSF["case"].default, metavar=one_of(_RSF["case"].choices),
+                             help="step (v1 for t1, then v2 for t2), shs "
+                             "(slide-hold-slide: v1 for t1, a hold of --hold-time, v1 for t2) "
+                             "or stick-slip (v1 for t1)."),
+    a: float = typer.Option(_RSF["a"].default, help="Direct effect a, dimensionless, > 0."),
+    b: float = typer.Option(_RSF["b"].default, help="Evolution effect b, dimensionless, >= 0."),
     dc: float = typer.Option(_RSF["dc"].default, help="Characteristic slip Dc, m, > 0."),
-    mu0: float = typer.Option(_RSF["mu0"].default, help="Reference friction at V0, -10 to 10."),
+    mu0: float = typer.Option(_RSF["mu0"].default, help="Reference friction at V0, dimensionless, "
+                              "-10 to 10."),
     v0: float = typer.Option(_RSF["v0"].default, help="Reference velocity V0, m/s, > 0."),
-    state_law: str = typer.Option(_RSF["state_law"].default, help="ageing (Dieterich) or slip "
-                                  "(Ruina)."),
+    state_law: str = typer.Option(_RSF["state_law"].default,
+                                  metavar=one_of(_RSF["state_law"].choices),
+                                  help="ageing (Dieterich) or slip (Ruina)."),
     regularized: bool = typer.Option(_RSF["regularized"].default, help="Regularised asinh law "
                                      "(needed for holds with --stiffness inf)."),
     stiffness: float = typer.Option(_RSF["stiffness"].default, help="Spring stiffness k per "
@@ -85,19 +91,24 @@ def rsf(
     t2: float = typer.Option(_RSF["t2"].default, help="Duration of the last segment, s "
                              "(default: 30 for step; for shs long enough to pass the reload "
                              "peak and slide 10 Dc beyond)."),
-    hold: float = typer.Option(_RSF["hold"].default, help="Hold time (case shs), s."),
+    hold: float = typer.Option(_RSF["hold"].default, "--hold-time",
+                               help="Hold time (case shs), s, > 0 (was --hold, the name "
+                               "static gives its position|force choice)."),
+    hold_old: float | None = typer.Option(None, "--hold", hidden=True,
+                                          help="Deprecated: --hold-time."),
     v_init: float = typer.Option(_RSF["v_init"].default, help="Initial slip velocity, m/s, "
                                  "with the state at steady state for v_init (default v1; "
                                  "1.01 v1 for stick-slip, since exact steady state never "
                                  "leaves)."),
-    rtol: float = typer.Option(_RSF["rtol"].default, help="Local error tolerance (relative in "
-                               "V and theta)."),
+    rtol: float = typer.Option(_RSF["rtol"].default, help="Local error tolerance, dimensionless "
+                               "(relative in V and theta)."),
     out_dir: str = typer.Option(None, "--out", help="Write series.csv, summary.json and "
                                 "rsf.png into this folder (whole or not at all; new, empty, or "
                                 "written by this program before)."),
     force: bool = typer.Option(_RSF["force"].default, "--force", help=FORCE_HELP),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
-    fmt: str = typer.Option(_RSF["fmt"].default, "--format", help=FORMAT_HELP),
+    fmt: str = typer.Option(_RSF["fmt"].default, "--format", metavar=FORMAT_CHOICES,
+                     help=FORMAT_HELP),
     dpi: int = typer.Option(_RSF["dpi"].default, "--dpi", help=DPI_HELP),
     figure: bool = typer.Option(_RSF["figure"].default, "--figure/--no-figure",
                                 help=FIGURE_HELP),
@@ -106,6 +117,8 @@ def rsf(
     stick-slip, on a spring with optional radiation damping and inertia."""
     from ..app.ratestate import rsf as run
 
+    hold = renamed("--hold", "--hold-time", "seconds; --hold is position|force in static",
+                   hold_old, hold, _RSF["hold"].default)
     done = run(case=case, a=a, b=b, dc=dc, mu0=mu0, v0=v0, state_law=state_law,
                regularized=regularized, stiffness=stiffness, damping=damping, mass=mass,
                v1=v1, v2=v2, t1=t1, t2=t2, hold=hold, v_init=v_init, rtol=rtol, out=out_dir,
@@ -113,7 +126,8 @@ def rsf(
                on_start=lambda: compile_notice(rsf=True))
     summary = done.summary
     brief = {k: v for k, v in summary.items() if not isinstance(v, dict)}
-    emit(summary if json_out else brief, json_out, f"rate-and-state, {case}")
+    emit(summary if json_out else brief, json_out, f"rate-and-state, {case}",
+         summary["units"])
     for note in done.notes:
         say(note)
 
@@ -126,17 +140,18 @@ def simulate(
                             "new, empty, or written by this program before)."),
     json_out: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
     force: bool = typer.Option(_SIM["force"].default, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option(_SIM["fmt"].default, "--format", help=FORMAT_HELP),
+    fmt: str = typer.Option(_SIM["fmt"].default, "--format", metavar=FORMAT_CHOICES,
+                     help=FORMAT_HELP),
     dpi: int = typer.Option(_SIM["dpi"].default, "--dpi", help=DPI_HELP),
     figure: bool = typer.Option(_SIM["figure"].default, "--figure/--no-figure",
                                 help=FIGURE_HELP),
 ) -> None:
-    """Run a protocol (trap ensemble, §6 of `dryfriction model`, or rate-and-state with
-    ``model.law = "rsf"``):
-    timeseries.csv, summary.json, timeseries.png.
+    """Run a protocol file (see dryfriction model, section 6): the trap model's ensemble
+    (reduced units), or rate-and-state where the file says model.law = "rsf" (SI units);
+    writes timeseries.csv, summary.json and timeseries.png.
 
     Ctrl-C stops a trap-model run and writes the samples so far as a complete result marked
-    ``"partial": true`` in summary.json (exit code 130); an interrupt while writing leaves
+    "partial": true in summary.json (exit code 130); an interrupt while writing leaves
     nothing.
     """
     from ..app.runs import simulate as run
@@ -150,7 +165,7 @@ def simulate(
     title = (f"simulate {protocol} -> {out}" + (" (rate-and-state, SI: t s, x m, v m/s, "
                                                  "theta s)" if done.units == "SI" else ""))
     brief = {k: v for k, v in done.summary.items() if not isinstance(v, dict)}
-    emit(done.summary if json_out else brief, json_out, title)
+    emit(done.summary if json_out else brief, json_out, title, done.summary["units"])
     for note in done.notes:
         say(note)
     if done.partial:
@@ -166,10 +181,12 @@ def compare(
     out: str = typer.Option(..., "--out", help="Results folder: compare.png, compare.json "
                             "(written whole or not at all)."),
     state_law: str = typer.Option(_CMP["state_law"].default, "--state-law",
+                                  metavar=one_of(_CMP["state_law"].choices),
                                   help="Twin's state law: ageing or slip."),
     json_out: bool = typer.Option(False, "--json", help="Print compare.json."),
     force: bool = typer.Option(_CMP["force"].default, "--force", help=FORCE_HELP),
-    fmt: str = typer.Option(_CMP["fmt"].default, "--format", help=FORMAT_HELP),
+    fmt: str = typer.Option(_CMP["fmt"].default, "--format", metavar=FORMAT_CHOICES,
+                     help=FORMAT_HELP),
     dpi: int = typer.Option(_CMP["dpi"].default, "--dpi", help=DPI_HELP),
     figure: bool = typer.Option(_CMP["figure"].default, "--figure/--no-figure",
                                 help=FIGURE_HELP),
@@ -182,10 +199,13 @@ def compare(
     """
     from ..app.runs import compare as run
 
-    done = run(protocol, out, state_law=state_law, force=force, fmt=fmt, dpi=dpi,
-               figure=figure, report=say, draw=draw_figure,
-               on_start=lambda proto: compile_notice())
+    with progress_bar("compare", 100.0, unit="%") as update:
+        done = run(protocol, out, state_law=state_law, force=force, fmt=fmt, dpi=dpi,
+                   figure=figure, report=say, draw=draw_figure,
+                   on_start=lambda proto: compile_notice(), progress=update)
     report = done.summary
     brief = {k: v for k, v in report.items() if not isinstance(v, (dict, list))}
     brief.update({f"misfit_{k}": v for k, v in done.result.misfit.items()})
-    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}")
+    units = {**report["units"], **{f"misfit_{k}": report["units"].get(k)
+                                   for k in done.result.misfit}}
+    emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}", units)

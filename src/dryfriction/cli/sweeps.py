@@ -11,6 +11,7 @@ from ..app.options import FIGURE, OPTIONS
 from ..app.options import SWEEP as _SW
 from .common import (
     DPI_HELP,
+    FORMAT_CHOICES,
     FORMAT_HELP,
     app,
     cli_errors,
@@ -124,7 +125,8 @@ def phase_diagram(
                              help="Allow grids larger than the stated limit."),
     connect_timeout: float = typer.Option(_SW["connect_timeout"].default,
                                          "--connect-timeout", help=_TIMEOUT_HELP),
-    fmt: str = typer.Option(FIGURE["fmt"].default, "--format", help=FORMAT_HELP),
+    fmt: str = typer.Option(FIGURE["fmt"].default, "--format", metavar=FORMAT_CHOICES,
+                            help=FORMAT_HELP),
     dpi: int = typer.Option(FIGURE["dpi"].default, "--dpi", help=DPI_HELP),
 ) -> None:
     """The (K, V) stick-slip phase diagram: simulated classes over the linear K_c(V) line.

@@ -647,8 +647,14 @@ def fit_steps(
 
 
 def write_steps_csv(path: Any, rows: Sequence[Mapping[str, Any]]) -> None:
-    """Write the per-step table (:data:`STEP_COLUMNS`) atomically as CSV."""
-    write_csv(path, {c: [r[c] for r in rows] for c in STEP_COLUMNS})
+    """Write the per-step table (:data:`STEP_COLUMNS`) atomically as CSV, each header
+    ``name[unit]`` (:data:`dryfriction.io.units.STEP_UNITS`; ``normal`` in the record's
+    ``normal_unit``)."""
+    from ..io.units import STEP_UNITS
+
+    normal = next((r["normal_unit"] for r in rows if r.get("normal_unit")), "Pa")
+    write_csv(path, {c: [r[c] for r in rows] for c in STEP_COLUMNS},
+              {**STEP_UNITS, "normal": normal})
 
 
 COMPARED = ("a", "b", "dc", "stiffness")

@@ -117,9 +117,18 @@ def write_json(path: str | os.PathLike[str], obj: Any) -> Path:
 
 
 def write_csv(
-    path: str | os.PathLike[str], columns: Mapping[str, Sequence[float] | np.ndarray]
+    path: str | os.PathLike[str], columns: Mapping[str, Sequence[float] | np.ndarray],
+    units: Mapping[str, str | None],
 ) -> Path:
-    """Write equal-length columns as CSV with a header row, full float precision."""
+    """Write equal-length columns as CSV with a header row ``name[unit]``
+    (:mod:`dryfriction.io.units`), full float precision.
+
+    ``units`` gives each column's unit (``"1"``: dimensionless; ``None``: a label, written
+    bare); a column without one is refused (ValueError), before anything is written.
+    """
+    from .units import labelled
+
+    columns = labelled(columns, units)
     names = list(columns)
     arrays = [np.asarray(columns[n]) for n in names]
     n = {len(a) for a in arrays}

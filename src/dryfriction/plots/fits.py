@@ -121,8 +121,9 @@ def plot_fit(result: FitResult, datasets: Sequence[Dataset], path: Any = None,
         bot.set_ylabel("residual")
         bot.set_xlabel(f"{d.x_name} ({d.x_unit})")
     status = "" if result.success else "  [NOT CONVERGED]"
-    fig.suptitle(", ".join(f"{p.name} = {p.value:.4g}" for p in result.parameters) + status,
-                 fontsize=8)
+    # each value with its unit (a0 = 8.266e-07 m), as a user copies it
+    fig.suptitle(", ".join(f"{p.name} = {p.value:.4g}" + (f" {p.unit}" if p.unit else "")
+                           for p in result.parameters) + status, fontsize=8)
     if path is not None:
         save_png(fig, path)
     return fig, axes

@@ -83,9 +83,13 @@ def _label_curves(ax: Axes, x: Array, ys: Sequence[Array], where: float) -> None
     """Write the paper's curve numbers 1-5 next to each curve at abscissa ``where``."""
     i = int(np.argmin(np.abs(np.log(x) - np.log(where))))
     for k, y in enumerate(ys):
+        # above the curve on the side it falls away from: centred above it, a steep curve
+        # ran through its own number
+        rising = y[min(i + 1, len(y) - 1)] >= y[max(i - 1, 0)]
         ax.annotate(
-            str(k + 1), (x[i], y[i]), textcoords="offset points", xytext=(0, 4),
-            ha="center", fontsize=9, color=_COLORS[k % len(_COLORS)], fontweight="bold",
+            str(k + 1), (x[i], y[i]), textcoords="offset points",
+            xytext=(-2, 3) if rising else (2, 3), ha="right" if rising else "left",
+            va="bottom", fontsize=9, color=_COLORS[k % len(_COLORS)], fontweight="bold",
         )
 
 
@@ -127,23 +131,28 @@ def fig1_trap_hysteresis(alpha: float = 0.13, ax: Axes | None = None) -> tuple[F
     arrow = dict(arrowstyle="-|>", color="0.15", lw=1.2, shrinkA=0, shrinkB=0)
     ax.annotate("", xy=(yc, land), xytext=(yc, f_c), arrowprops=arrow)
     ax.annotate("", xy=(-yc, -land), xytext=(-yc, -f_c), arrowprops=arrow)
-    ax.plot([yc, -yc], [f_c, -f_c], "o", color="k", ms=5)
-    ax.annotate(f"C  ($y_c$ = {yc:.4f})", (yc, f_c), textcoords="offset points",
-                xytext=(-10, -2), ha="right", va="top", fontsize=9)
-    ax.annotate(f"C′  ($-y_c$ = {-yc:.4f})", (-yc, -f_c), textcoords="offset points",
-                xytext=(12, -4), va="top", fontsize=9)
+    # the spinodals' value in the legend and only their letters beside them, outside the
+    # branches: "C (y_c = ...)" written inside the loop was crossed by the (+) branch
+    ax.plot([yc, -yc], [f_c, -f_c], "o", color="k", ms=5,
+            label=rf"spinodals C, C′ at $\pm y_c$ = ±{yc:.4f}")
+    ax.annotate("C", (yc, f_c), textcoords="offset points", xytext=(6, 0), ha="left",
+                va="center", fontsize=9)
+    ax.annotate("C′", (-yc, -f_c), textcoords="offset points", xytext=(-6, 0), ha="right",
+                va="center", fontsize=9)
     # Maxwell plateau and its force jump
     f0p, f0m = float(force_plus(0.0, alpha)), float(force_minus(0.0, alpha))
     ax.plot([0, 0], [f0m, f0p], color="C2", lw=2.5, solid_capstyle="butt",
             label=rf"Maxwell plateau $y_M=0$, $\Delta f$ = {trap.maxwell_jump:.4f}")
     ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
-    ax.margins(y=0.1)
+    # room above the curves for the legend in two columns (in one, upper left, the (+)
+    # branch and the Maxwell plateau ran through it)
+    ax.set_ylim(-1.15 * f_c, 2.0 * f_c)
     ax.set_xlim(-span, span)
     ax.set_xlabel(r"configuration coordinate $p/a_0$")
     ax.set_ylabel(r"pinning force $f$  [$\Phi_{00}/a_0$]")
     ax.set_title(rf"Fig. 1a — elastic trap, $\alpha$ = {alpha:g} ({trap.regime.value})",
                  fontsize=TITLE_SIZE)
-    ax.legend(fontsize=LEGEND_SIZE, loc="upper left")
+    ax.legend(fontsize=LEGEND_SIZE, loc="upper center", ncol=2)
     return fig, ax
 
 
@@ -176,8 +185,9 @@ def fig1b_population_at_rest(alpha: float = 0.13, ax: Axes | None = None
     ax.plot([-1.0, 1.0], [0.0, 0.0], color="k", lw=4.0, solid_capstyle="butt",
             label=r"pairs in contact, density $1/(2a_0)$")
     ax.axvline(0.0, color="C2", lw=1.0, ls=":")
-    ax.text(0.03, 0.04, "Maxwell plateau $y_M = 0$:\nforces cancel, net force 0",
-            transform=ax.transAxes, fontsize=8, color="0.25")
+    # lower right, below the occupied (-) branch: lower left, the empty (-) branch crossed it
+    ax.text(0.97, 0.04, "Maxwell plateau $y_M = 0$:\nforces cancel, net force 0",
+            transform=ax.transAxes, fontsize=8, color="0.25", ha="right")
     _per_trap_axes(ax, rf"Fig. 1b — asperities at rest after contact, $\alpha$ = {alpha:g}")
     ax.set_xlim(-(max(yc, 1.0) + 0.6), max(yc, 1.0) + 0.6)
     return fig, ax
@@ -288,9 +298,12 @@ def fig2b_population_at_threshold(
     mu = float(pull_force(d, r, alpha))
     ax.axvline(-1.0 + d, color="0.5", lw=0.8, ls=":")
     ax.axvline(d, color="0.5", lw=0.8, ls=":")
-    top = ax.get_ylim()[1]
-    ax.text(-1.0 + d, top, r" $-a_0+p_c$", fontsize=8, va="top")
-    ax.text(d, top, r" $p_c(t_w)$", fontsize=8, va="top")
+    # at the foot of the lines, below the zero line where nothing is drawn, each on the side
+    # of its line that stays in the panel (right of p_c, the label was cut by the edge)
+    foot = ax.get_xaxis_transform()
+    ax.text(-1.0 + d, 0.02, r" $-a_0+p_c$", fontsize=8, va="bottom", ha="left",
+            transform=foot)
+    ax.text(d, 0.02, r"$p_c(t_w)$ ", fontsize=8, va="bottom", ha="right", transform=foot)
     _per_trap_axes(ax, rf"Fig. 2b — at the static threshold: $p_c$ = {d:.4f} $a_0$, "
                    rf"$\mu_s$ = {mu:.4f}")
     return fig, ax
@@ -400,8 +413,11 @@ def fig4_steady_pinning_curve(
     ax.plot([p_d], [f[-1]], "o", color="k", ms=5)
     ax.annotate("", xy=(p_d, 0.0), xytext=(p_d, f[-1]),
                 arrowprops=dict(arrowstyle="-|>", color="0.15", lw=1.2))
-    ax.annotate(rf"death point $p_d$ = {p_d:.4f} $a_0$", (p_d, f[-1]),
-                textcoords="offset points", xytext=(-10, -4), ha="right", va="top", fontsize=9)
+    # under the curves, left of the elastic spinodal's line, level with the arrow's middle
+    # (beside the point, the text ran over the curve and that line)
+    ax.annotate(rf"death point $p_d$ = {p_d:.4f} $a_0$ →", (trap.y_c, 0.35 * f[-1]),
+                textcoords="offset points", xytext=(-4, 0), ha="right", va="center",
+                fontsize=9)
     ax.axvline(trap.y_c, color="0.5", lw=0.8, ls=":")
     ax.text(trap.y_c, 0.05, r"elastic $y_c$ ", fontsize=8, color="0.3", ha="right")
     mu = float(steady_friction(u, eps, alpha, creep))
@@ -426,12 +442,15 @@ def fig6_dieterich(
     u = np.logspace(np.log10(u_range[0]), np.log10(u_range[1]), n)
     ax.plot(u, steady_friction(u, eps, alpha, creep), color="k", lw=2.2,
             label=r"$\mu_d(u)$")
-    # one legend entry per C, each its own colour: labels written on the curves were struck
-    # through by the neighbouring ones, which lie a few points apart
-    shades = ("#8c510a", "#d8b365", "#5ab4ac", "#01665e")
+    # one legend entry per C, each its own colour and its own dashes: labels written on the
+    # curves were struck through by the neighbouring ones, which lie a few points apart, and
+    # dotted lines (as before) carry too little ink for their colours to be told apart
+    shades = ("#b35806", "#7b3294", "#1b7837", "#c51b7d")
+    dashes = ((0, (7.0, 2.0)), (0, (3.0, 1.5)), (0, (7.0, 2.0, 2.0, 2.0)),
+              (0, (2.0, 1.2, 2.0, 1.2, 7.0, 1.2)))
     for k, C in enumerate(C_values):
         ax.plot(u, static_friction(C / u, eps, alpha, creep), color=shades[k % len(shades)],
-                lw=1.3, ls="-." if k == 0 else ":", label=rf"$\mu_s(C/u)$, $C$ = {C:g}")
+                lw=1.5, ls=dashes[k % len(dashes)], label=rf"$\mu_s(C/u)$, $C$ = {C:g}")
     ax.plot(u, static_friction(C_paper / u, eps, alpha, creep), color="0.35", lw=1.4,
             ls="--", label=rf"$C$ = {C_paper:g} (paper)")
     c_inf = dieterich_constant_asymptotic(alpha)

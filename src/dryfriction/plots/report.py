@@ -8,8 +8,10 @@
   ``eps`` = 0.01 ... 0.05, ``T`` and ``u`` log-spaced over 0.01 ... 100 (201 points);
 * ``summary.json``: single-trap constants, Dieterich constants, slopes, creep-law difference,
   the loaded protocol;
-* ``report.html``: one self-contained page (figures embedded as base64 PNG) with the key
-  numbers beside the paper's own values where the paper states one.
+* ``report.html``: one self-contained page (figures embedded as base64 PNG; a figure of two
+  panels side by side as its two panels, one under the other, so that a window 800 px wide
+  does not shrink its text: :func:`panel_pngs`) with the key numbers beside the paper's own
+  values where the paper states one.
 
 All numbers come from the library; nothing is fitted to the paper.
 
@@ -35,6 +37,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..io.files import atomic_write_text, output_directory, to_jsonable, write_csv, write_json
+from ..io.units import REPRODUCE_UNITS, with_units
 from ..theory.creep import creep_law_difference, radius
 from ..theory.dieterich import (
     dieterich_constant_asymptotic,
@@ -221,7 +224,8 @@ table{border-collapse:collapse;font-size:.92em;width:100%}
 td,th{border:1px solid #ccc;padding:.25em .6em;vertical-align:top;overflow-wrap:anywhere}
 th{background:#f3f3f3;text-align:left}
 td.num{font-family:ui-monospace,monospace;overflow-wrap:normal}
-figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #eee}
+figure{margin:1em 0}
+figure img{display:block;max-width:100%;height:auto;border:1px solid #eee;margin:0 0 .3em}
 figcaption{font-size:.9em;color:#444}.note{color:#555;font-size:.92em}
 .diff{color:#a40}.build{color:#666;font-size:.85em}
 math[display=block]{margin:.5em 0;padding:.2em 0;overflow-x:auto;overflow-y:hidden}
@@ -279,7 +283,8 @@ def _fmt(x: Any, digits: int = 6) -> str:
 
 
 def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = None,
-                images: dict[str, tuple[str, str, bytes]] | None = None) -> str:
+                images: dict[str, tuple[str, str, bytes]] | None = None,
+                panels: dict[str, tuple[tuple[str, str, bytes], ...]] | None = None) -> str:
     """The text of ``report.html``: key numbers beside the paper's, claims checked, readings,
     the loaded protocol and every figure of ``folder`` embedded (nothing fetched).
 
@@ -294,6 +299,9 @@ def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = 
     images : dict, optional
         PNG name (``"fig1.png"``) -> ``(file name, MIME type, bytes)`` of the image to embed;
         default: the PNGs in ``folder``.
+    panels : dict, optional
+        PNG name -> its panels (:func:`panel_pngs`), embedded one under the other in place of
+        the whole figure, so that a narrow window does not shrink two panels into one width.
     """
     e = html.escape
     b = build or build_info()
@@ -369,8 +377,10 @@ def report_html(folder: Path, s: dict[str, Any], build: dict[str, str] | None = 
     ]
     if images is None:
         images = {n: (n, "image/png", (folder / n).read_bytes()) for n, _ in figs}
+    panels = panels or {}
     fig_html = "".join(
-        f"<figure>{_img(*images[n])}<figcaption>{e(c)}</figcaption></figure>" for n, c in figs
+        f"<figure>{''.join(_img(*p) for p in panels.get(n, ())) or _img(*images[n])}"
+        f"<figcaption>{e(c)}</figcaption></figure>" for n, c in figs
     )
     ratio = s["static_slope_per_eps"] / abs(s["dynamic_slope_per_eps"])
     return f"""<!DOCTYPE html>
@@ -492,22 +502,28 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         # the figures first: in parallel they are drawn while the data below is computed
         drawn = figure_map(_draw, [(i, tmp, fmt, dpi) for i in order])
         done = 0
-        write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"))
+        write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"),
+                  REPRODUCE_UNITS)
         done += 1
         tick(done, "static_friction.csv")
-        write_csv(tmp / "steady_friction.csv", _grid_columns(steady_friction, "u", "mu_d"))
+        write_csv(tmp / "steady_friction.csv", _grid_columns(steady_friction, "u", "mu_d"),
+                  REPRODUCE_UNITS)
         done += 1
         tick(done, "steady_friction.csv")
-        summary = compute_summary()
+        summary = with_units(compute_summary(), REPRODUCE_UNITS)
         write_json(tmp / "summary.json", summary)
         done += 1
         tick(done, "summary.json")
-        images: dict[str, tuple[str, str, bytes]] = {}
-        for name, image in drawn:
+        images: dict[str, Image] = {}
+        panels: dict[str, tuple[Image, ...]] = {}
+        for name, image, cut in drawn:
             images[name] = image
+            if cut:
+                panels[name] = cut
             done += 1
             tick(done, image[0])
-        atomic_write_text(tmp / "report.html", report_html(tmp, summary, images=images))
+        atomic_write_text(tmp / "report.html",
+                          report_html(tmp, summary, images=images, panels=panels))
         done += 1
         tick(done, "report.html")
     return summary
@@ -523,19 +539,76 @@ _PRELOAD = ("scipy.optimize", "scipy.integrate")
 imported once before the pool forks rather than in every worker."""
 
 
-def _draw(job: tuple[int, Path, str, int]) -> tuple[str, tuple[str, str, bytes]]:
-    """Draw figure ``i`` of :func:`_plots` into the staging folder ``tmp``; return its name and
-    what the report embeds (file name, MIME type, bytes: a PNG beside a PDF)."""
+Image = tuple[str, str, bytes]
+"""What the report embeds for a figure: (file name, MIME type, bytes)."""
+
+
+def _draw(job: tuple[int, Path, str, int]) -> tuple[str, Image, tuple[Image, ...]]:
+    """Draw figure ``i`` of :func:`_plots` into the staging folder ``tmp``; return its name,
+    what the report embeds (file name, MIME type, bytes: a PNG beside a PDF) and, for a
+    figure of panels side by side, each panel as a PNG of its own (:func:`panel_pngs`)."""
     i, tmp, fmt, dpi = job
     name, draw = _plots()[i]
     fig = draw()
     target = tmp / name.replace(".png", f".{fmt}")
     save_figure(fig, target, fmt, dpi)
+    png = None
     if fmt in _MIME:
-        return name, (target.name, _MIME[fmt], target.read_bytes())
-    buf = io.BytesIO()
-    save_figure(fig, buf, "png")
-    return name, (target.name, "image/png", buf.getvalue())
+        image = (target.name, _MIME[fmt], target.read_bytes())
+        if fmt == "png":
+            png = image[2]
+    else:
+        buf = io.BytesIO()
+        save_figure(fig, buf, "png")
+        png = buf.getvalue()
+        image = (target.name, "image/png", png)
+    return name, image, panel_pngs(fig, png, target.name, dpi)
+
+
+def panel_pngs(fig: Figure, png: bytes | None, name: str, dpi: int | None = None
+               ) -> tuple[Image, ...]:
+    """The panels of a figure whose axes sit side by side in one row, each cut out of its PNG
+    as a PNG of its own (``()`` for a single panel or another layout).
+
+    A report read in a window 800 px wide shrinks a two-panel figure (11.2 in) to about 70
+    pixels an inch, and its 10-point ticks to 10 px; one panel at a time keeps them at
+    twice that. Each cut runs just right of a panel's axes, where nothing of the panel on
+    its right is drawn (its labels are left of its own axes).
+
+    Parameters
+    ----------
+    fig : Figure
+        The figure, laid out (its axes' positions are read).
+    png : bytes, optional
+        Its PNG at ``dpi``; ``None``: rendered here.
+    name : str
+        The figure's file name: the panels are named ``"<name> (a)"``, ``"(b)"``, ...
+    dpi : int, optional
+        Resolution of ``png`` (default :data:`.style.DPI`).
+    """
+    axes = sorted(fig.axes, key=lambda ax: ax.get_position().x0)
+    boxes = [ax.get_position() for ax in axes]
+    if len(axes) < 2 or any(abs(b.y0 - boxes[0].y0) > 1e-9 or abs(b.y1 - boxes[0].y1) > 1e-9
+                            for b in boxes):
+        return ()
+    from PIL import Image as PILImage
+
+    if png is None:
+        buf = io.BytesIO()
+        save_figure(fig, buf, "png", dpi)
+        png = buf.getvalue()
+    img = PILImage.open(io.BytesIO(png))
+    width, _ = img.size
+    pad = 0.1 / fig.get_figwidth()  # 0.1 in right of a panel's frame: its last tick label
+    cuts = [0] + [round(width * min(b.x1 + pad, nxt.x0))
+                  for b, nxt in zip(boxes[:-1], boxes[1:], strict=True)]
+    cuts.append(width)
+    out = []
+    for k, (lo, hi) in enumerate(zip(cuts[:-1], cuts[1:], strict=True)):
+        buf = io.BytesIO()
+        img.crop((lo, 0, hi, img.size[1])).save(buf, format="png", dpi=img.info.get("dpi"))
+        out.append((f"{name} ({chr(ord('a') + k)})", "image/png", buf.getvalue()))
+    return tuple(out)
 
 
 @contextlib.contextmanager

@@ -176,13 +176,17 @@ def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float) -> s
 
 def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
                        normal_unit: str = "Pa") -> None:
-    """Write the load program as CSV, one row per segment, units in the headers; the
-    ``--segments`` form of the whole program in a comment line on top."""
-    what, nu, scale = _normal_column(normal_unit)
+    """Write the load program as CSV, one row per segment, units in the headers
+    (``name[unit]``, :mod:`dryfriction.io.units`); the ``--segments`` form of the whole
+    program in a comment line on top."""
+    from ..io.units import SEGMENT_UNITS, header
+
+    what, _, scale = _normal_column(normal_unit)
+    names = ("segment", "kind", "t_start", "t_end", "t_from_first", "duration", "velocity",
+             "velocity_um", "i_start", "i_end", "samples", "confidence",
+             what.replace(" ", "_"))
     rows = [f"# --segments {segments_spec(segments, t0)}",
-            f"segment,kind,t_start [s],t_end [s],t_start from first sample [s],duration [s],"
-            f"velocity [m/s],velocity [um/s],i_start,i_end,samples,confidence [-],"
-            f"{what} [{nu}]"]
+            ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
     for j, s in enumerate(segments):
         prev = segments[j - 1].velocity if j else None
         kind = ("hold" if s.velocity == 0.0 else "start" if j == 0 else

@@ -22,7 +22,7 @@ __all__ = ["RSFResult", "UNITS", "build_result", "force_balance_is_ill_condition
 
 UNITS: dict[str, str] = {
     "t": "s", "x": "m", "v": "m/s", "mu": "", "theta": "s", "theta2": "s",
-    "stress": "spring force / normal force", "x_load": "m", "v_load": "m/s",
+    "stress": "1 (spring force / normal force)", "x_load": "m", "v_load": "m/s",
 }
 """Unit of every column of :meth:`RSFResult.columns`."""
 
