@@ -37,7 +37,8 @@ CASES = {
     "mass_u0.01": (0.01, 110.0, (0.01, 0.02)),
 }
 RES = {"n": 12, "panels": 10, "stretch": 2.0}  # l1 settled to 1e-6 there (docs/hopf.md)
-ENSEMBLE = {"qs_u1": (1.0, 0.0, (0.02, 0.01)), "qs_u0.01": (0.01, 0.0, (0.02, 0.04))}
+ENSEMBLE = {"qs_u1": (1.0, 0.0, (0.02, 0.01)), "qs_u0.01": (0.01, 0.0, (0.02, 0.04)),
+            "inertial_u1": (1.0, 0.845, (0.02, 0.01))}
 
 
 def reduced_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
@@ -85,7 +86,8 @@ def ensemble_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
         if hop.l1_x < 0:
             K = hop.K_c * (1 - d)
             r = settled(lambda s, p, K=K: ensemble_amplitudes(u, MODEL, hop, K, s, p, mass=mass),
-                        0.05, 150, max_periods=300)
+                        0.1 if mass > 0 else 0.05, 800 if mass > 0 else 150,
+                        max_periods=1600 if mass > 0 else 300)
         else:
             K = hop.K_c * (1 + d)
 
