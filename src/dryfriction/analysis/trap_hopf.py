@@ -356,7 +356,28 @@ def trap_hopf(u: float, model: TrapModel, mass: float = 0.0, damping: float = 0.
     (:func:`~dryfriction.theory.linear_stability.critical_stiffness`) meets the imaginary
     axis (bisection, relative ``1e-13``); ``l1`` by :func:`.theory.hopf.first_lyapunov`
     (Cauchy circle for the log law, real differences otherwise; ``scale`` in the state's
-    units: the spring force in ``A mu_d``, the slips in ``a0``).
+    units, ``a0`` for the stretch and the slips, 1 for ``ln V``; default 0.05 for the circle,
+    1 for differences, whose third differences are rounding-limited below ~0.5).
+
+    Parameters
+    ----------
+    u : float
+        Pulling velocity, ``a0/t0``.
+    model : TrapModel
+        With the direct effect and very strong pinning (:class:`TrapField`).
+    mass, damping : float
+        ``M`` (``F_el t0^2/a0``) and ``eta`` (``F_el t0/a0``).
+    n, stretch, panels, direct_form
+        As :class:`TrapField`.
+    method : {"complex", "fd"}, optional
+        How the second and third derivatives are taken.
+    scale : float, optional
+        As above.
+
+    Returns
+    -------
+    TrapHopf
+        ``nature == "none"`` (NaN values) when no stiffness destabilises steady sliding.
     """
     fld = TrapField(u, model, mass, damping, n, stretch, panels, direct_form)
     lin = critical_stiffness(u, model, mass=mass, damping=damping)
