@@ -38,7 +38,7 @@ CASES = {
 }
 RES = {"n": 12, "panels": 10, "stretch": 2.0}  # l1 settled to 1e-6 there (docs/hopf.md)
 ENSEMBLE = {"qs_u1": (1.0, 0.0, (0.02, 0.01)), "qs_u0.01": (0.01, 0.0, (0.02, 0.04)),
-            "inertial_u1": (1.0, 0.845, (0.02, 0.01))}
+            "inertial_u1": (1.0, 0.845, (0.02, 0.01, 0.05, 0.1))}
 
 
 def reduced_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
