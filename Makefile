@@ -9,10 +9,13 @@ DOCS_STAMP := $(VENV)/.installed-docs
 
 venv: $(STAMP)
 
+# pip's and setuptools' notices (the editable install's "Please be careful with folders" box)
+# read as failures: a successful install is silent, a failed one prints its log
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q -e '.[test]'
+	@echo "installing dryfriction and its dependencies into $(VENV)/ (a few minutes; log: $(VENV)/pip.log)"
+	@$(BIN)/python -m pip install -q --upgrade pip > $(VENV)/pip.log 2>&1 || { cat $(VENV)/pip.log; exit 1; }
+	@$(BIN)/python -m pip install -q -e '.[test]' > $(VENV)/pip.log 2>&1 || { cat $(VENV)/pip.log; exit 1; }
 	# compile the Numba kernels now (cached beside the sources), not in the user's first run
 	$(BIN)/python -m dryfriction.warm
 	touch $(STAMP)
@@ -37,7 +40,8 @@ lint: $(STAMP)
 # the documentation site (API reference, gallery run from examples/gallery), offline, into
 # docs/_build/html: open docs/_build/html/index.html
 $(DOCS_STAMP): $(STAMP)
-	$(BIN)/python -m pip install -q -e '.[test,docs]'
+	@echo "installing the docs extra (Sphinx) into $(VENV)/ (log: $(VENV)/pip.log)"
+	@$(BIN)/python -m pip install -q -e '.[test,docs]' > $(VENV)/pip.log 2>&1 || { cat $(VENV)/pip.log; exit 1; }
 	touch $(DOCS_STAMP)
 
 docs: $(DOCS_STAMP)

@@ -7,6 +7,7 @@ plain text by the local ``plainmath`` extension), no web fonts.
 from __future__ import annotations
 
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -71,7 +72,9 @@ sphinx_gallery_conf = {
 
 html_theme = "alabaster"
 html_title = f"dryfriction {release}"
-html_static_path: list[str] = []
+# custom.css (alabaster links it by that name): code wraps and wide tables scroll within
+# the page, so that every page reads in an 800 px window
+html_static_path = ["_static"]
 html_show_sourcelink = False
 html_theme_options = {
     "description": "The Caroli–Velický model of dry friction",
@@ -80,3 +83,31 @@ html_theme_options = {
     "font_family": "sans-serif",
     "head_font_family": "sans-serif",
 }
+
+
+# Some docstrings name the project's tracker ("issue 26", "issue 30 item 3") for developers
+# reading the source; a reader of this site has no tracker, so the API pages drop those
+# references (tests/test_docs.py checks that no page shows one).
+_BEFORE_ISSUE = re.compile(r"\bbefore issue\s+\d+")
+_TRAILING_ISSUE = re.compile(
+    r"[,;]\s*issues?\s+\d+(?:,?\s+items?\s+\d+(?:\s+and\s+\d+)?)?(?=\s*\))")
+_ISSUE = re.compile(
+    r"\bissues?\s+\d+(?:'s)?(?:,?\s+items?\s+\d+(?:\s+and\s+\d+)?)?(?:\s*[,;:]\s*|\s*(?=\)))")
+_EMPTY_PARENS = re.compile(r"\s*\(\s*\)")
+
+
+def strip_issue_numbers(text: str) -> str:
+    """``text`` without references to the project's issue tracker."""
+    text = _BEFORE_ISSUE.sub("in an earlier version", text)
+    text = _TRAILING_ISSUE.sub("", text)
+    text = _ISSUE.sub("", text)
+    return _EMPTY_PARENS.sub("", text)
+
+
+def _drop_issue_numbers(app, what, name, obj, options, lines: list[str]) -> None:
+    cleaned = strip_issue_numbers("\n".join(lines)).split("\n")
+    lines[:] = cleaned
+
+
+def setup(app) -> None:
+    app.connect("autodoc-process-docstring", _drop_issue_numbers)

@@ -1,4 +1,4 @@
-"""The trap model's l1 against simulations (issue 28; dryfriction.analysis.trap_hopf_check).
+"""The trap model's l1 against simulations (docs/hopf.md; dryfriction.analysis.trap_hopf_check).
 
 Usage: python examples/trap_hopf_check.py reduced|ensemble OUT.json [CASES]
   reduced : the Chebyshev reduction integrated by Radau (cheap; minutes)

@@ -1,6 +1,6 @@
 """The (K, V) phase diagram of a slider with mass on the trap model with parameters meant for
 paper on paper, the nature of the Hopf bifurcation along K_c(V), and its rate-and-state twin
-(issue 28; docs/hopf.md says where each number comes from).
+(docs/hopf.md says where each number comes from).
 
 Usage: python examples/trap_hopf_phase.py OUT_DIR [N_VELOCITIES] [MASS_FACTOR]
 writes OUT_DIR/trap_phase.csv and OUT_DIR/trap_phase.png (refuses an OUT_DIR holding them).
@@ -23,9 +23,9 @@ from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import static_friction
 
 G = 9.81  # m/s^2
-D0 = 1e-6  # m, memory length of paper on paper (issue 28's value for Heslot et al. 1994)
-SLOPE = 8e-3  # d mu_s / d ln t_w (issue 28: "a few 1e-3 to 1e-2")
-V_SAT = 30e-6  # m/s, saturation velocity (issue 28: "a few tens of um/s"), taken as a0/t0
+D0 = 1e-6  # m, memory length of paper on paper (the value quoted for Heslot et al. 1994)
+SLOPE = 8e-3  # d mu_s / d ln t_w (quoted range: "a few 1e-3 to 1e-2")
+V_SAT = 30e-6  # m/s, saturation velocity (quoted: "a few tens of um/s"), taken as a0/t0
 MU_EL = 0.4  # F_el/N (ours: paper on paper friction ~0.4, the package's synthetic paper)
 A = 0.02  # direct-effect coefficient (ours: the value of the earlier continuation)
 ALPHA = 0.13  # the paper's trap stiffness

@@ -1,7 +1,7 @@
 """The benchmarks stay runnable: they are not run here (they time things), but a benchmark that
 no longer imports, or whose probe no longer compiles, would print nothing but "failed" where
-the README quotes its figures (``bench_memory``'s probe once had a syntax error that hid two
-real faults for a whole session)."""
+docs/performance.md quotes its figures (``bench_memory``'s probe once had a syntax error that
+hid two real faults for a whole session)."""
 
 from __future__ import annotations
 

@@ -2,8 +2,9 @@
 gallery script ran and drew its figure, and its pages render in headless Chromium (screenshots
 not blank, every gallery image loaded).
 
-The build copies ``docs/``, ``examples/gallery/`` and the README into a temporary folder, so
-the source tree is not written to (the package is imported from ``src/``). Without Sphinx (the
+The build copies ``docs/``, ``examples/gallery/`` and the files the pages include (the changelog,
+the model's description) into a temporary folder, so the source tree is not written to (the
+package is imported from ``src/``). Without Sphinx (the
 ``docs`` extra) or Chromium the test skips with the reason, except under ``CI`` where both are
 installed by ``.ci/run`` and a missing one fails. ``DRYFRICTION_DOCS_HTML=docs/_build/html``
 checks a site built by ``make docs`` instead of building again (``.ci/run`` does so).
@@ -23,6 +24,14 @@ import pytest
 from matplotlib.image import imread
 
 ROOT = Path(__file__).resolve().parents[1]
+# the guide: install, quickstart, tutorials, how-to, explanation, reference
+GUIDE_PAGES = ("index.html", "install.html", "quickstart.html", "tutorials/index.html",
+               "tutorials/lab-record.html", "tutorials/trap-friction.html",
+               "tutorials/stick-slip.html", "tutorials/direct-effect.html", "howto/index.html",
+               "howto/units.html", "howto/protocols.html", "howto/sweeps.html",
+               "howto/record-formats.html", "explanation/index.html",
+               "explanation/readings.html", "explanation/rsf.html", "cli.html",
+               "performance.html", "quality.html", "layout.html")
 GALLERY = sorted((ROOT / "examples" / "gallery").glob("plot_*.py"))
 CHROMIUM_FLAGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -83,7 +92,12 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
                                                   "__pycache__"))
     shutil.copytree(ROOT / "examples" / "gallery", tmp / "examples" / "gallery",
                     ignore=shutil.ignore_patterns("__pycache__"))
-    shutil.copy(ROOT / "README.md", tmp / "README.md")
+    # the files the pages include: the changelog and the model's description (shipped in
+    # the package, so it lives under src/)
+    shutil.copy(ROOT / "CHANGELOG.md", tmp / "CHANGELOG.md")
+    (tmp / "src" / "dryfriction" / "docs").mkdir(parents=True)
+    shutil.copy(ROOT / "src" / "dryfriction" / "docs" / "model.md",
+                tmp / "src" / "dryfriction" / "docs" / "model.md")
     # document the code under test, from where it is (Numba's cache is kept per source path)
     path = os.pathsep.join(filter(None, [str(ROOT / "src"), os.environ.get("PYTHONPATH")]))
     env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": path}
@@ -104,17 +118,34 @@ def _pngs_of(page: Path) -> list[Path]:
 @pytest.mark.slow
 def test_site_builds_offline_with_every_gallery_figure(site: Path) -> None:
     pages = list(site.rglob("*.html"))
-    assert {"index.html", "api.html", "guide.html", "model.html"} <= {p.name for p in pages}
+    names = {p.relative_to(site).as_posix() for p in pages}
+    assert set(GUIDE_PAGES) | {"api.html", "model.html", "changelog.html"} <= names, names
+    tracker = re.compile(r"\bissues?\s+\d+", re.IGNORECASE)
     for page in pages:
         hit = FETCHING.search(page.read_text())
         assert hit is None, f"{page.relative_to(site)} fetches {hit.group(0)!r}"
+        # a reader has no tracker: no page names one of its issues (the highlighted source
+        # listings of _modules/ are the code itself)
+        if "_modules" not in page.parts:
+            ref = tracker.search(page.read_text())
+            assert ref is None, f"{page.relative_to(site)} names {ref.group(0)!r}"
     # the API reference is generated from the docstrings, down to the functions
     static = (site / "generated" / "dryfriction.theory.static.html").read_text()
     assert 'id="dryfriction.theory.static.static_friction"' in static
     assert "eq. 27" in static
-    # the spec and the README are part of the site, not links out of it
+    # the spec, the guide's pages and the changelog are part of the site, not links out of it
     assert "Very strong pinning" in (site / "model.html").read_text()
-    assert "Simulating any history" in (site / "guide.html").read_text()
+    assert "The trap ensemble" in (site / "howto" / "protocols.html").read_text()
+    assert "Model objects" in (site / "changelog.html").read_text()
+    # the landing page leads to every part of the guide: to each page, or to the index of
+    # the part that lists it
+    index = (site / "index.html").read_text()
+    for page in GUIDE_PAGES[1:]:
+        part = page.split("/")[0]
+        listed = f'href="{page}' in index or (
+            "/" in page and f'href="{page.split("/", 1)[1]}' in (site / part / "index.html")
+            .read_text() and f'href="{part}/index.html' in index)
+        assert listed, f"index.html does not lead to {page}"
     for script in GALLERY:
         page = site / "auto_examples" / f"{script.stem}.html"
         images = [p for p in _pngs_of(page) if "sphx_glr" in p.name]
@@ -161,3 +192,39 @@ def test_index_and_gallery_render_in_chromium(site: Path, tmp_path: Path) -> Non
     total, loaded = map(int, found.groups())
     assert total >= len(GALLERY) and loaded == total, f"{loaded} of {total} images loaded"
     probe.unlink()
+
+
+# pages with the widest code and tables
+NARROW_PAGES = ("index.html", "quickstart.html", "cli.html", "tutorials/lab-record.html",
+                "tutorials/direct-effect.html", "howto/sweeps.html", "performance.html")
+OVERFLOW_PROBE = (
+    "<script>window.addEventListener('load',function(){var w=window.innerWidth,bad=[];"
+    "if(document.documentElement.scrollWidth>w+1)bad.push('page:'+document.documentElement"
+    ".scrollWidth);var pre=document.querySelectorAll('pre');for(var i=0;i<pre.length;i++){"
+    "if(pre[i].scrollWidth>pre[i].clientWidth+1)bad.push('pre'+i+':'+pre[i].scrollWidth+'>'"
+    "+pre[i].clientWidth);}document.body.setAttribute('data-overflow',w+'|'+pre.length+'|'"
+    "+bad.join(','));});</script>")
+
+
+@pytest.mark.slow
+def test_pages_fit_an_800px_window_in_chromium(site: Path, tmp_path: Path) -> None:
+    """At 800 px no page is wider than the window and no code block is cut: long lines wrap
+    (docs/_static/custom.css), wide tables scroll inside their own box."""
+    browser = _chromium()
+    for name in NARROW_PAGES:
+        page = site / name
+        probe = page.with_name("_probe_" + page.name)
+        probe.write_text(page.read_text().replace("</body>", OVERFLOW_PROBE + "</body>"))
+        try:
+            r = subprocess.run(
+                [browser, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}",
+                 "--window-size=800,900", "--virtual-time-budget=10000", "--dump-dom",
+                 probe.as_uri()],
+                capture_output=True, text=True, timeout=120, check=False)
+        finally:
+            probe.unlink()
+        found = re.search(r'data-overflow="(\d+)\|(\d+)\|([^"]*)"', r.stdout)
+        assert found, f"the probe did not run on {name}: {r.stderr[-500:]}"
+        width, blocks, bad = found.groups()
+        assert int(width) <= 800, f"{name}: window {width} px"
+        assert bad == "", f"{name} at {width} px ({blocks} code blocks): {bad}"

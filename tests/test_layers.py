@@ -3,7 +3,7 @@ across), no module named in a string where this check cannot see it, no module r
 private names, and only ``plots/`` draws.
 
 Read from the source (AST), so an import inside a function (or under ``TYPE_CHECKING``) counts
-as much as one at the top. A module's size is a guide in the README's Layout section, not a
+as much as one at the top. A module's size is a guide in docs/layout.md, not a
 rule here: a limit on lines made splits by line count, and the cycles between the halves were
 hidden in function-level imports (issue 26 item 3).
 """

@@ -245,7 +245,7 @@ def _old_calls(tree: ast.AST, where: str, skip: set[str]) -> list[str]:
 
 def test_no_code_or_example_uses_an_old_form() -> None:
     # the runtime error (pyproject) sees what the tests run; this sees everything written:
-    # the package, benchmarks, examples, tests, and the Python in README.md and docs/
+    # the package, benchmarks, examples, tests, and the Python in README.md and docs/ (every page)
     found = []
     for path in sorted([*ROOT.glob("src/dryfriction/**/*.py"), *ROOT.glob("benchmarks/*.py"),
                         *ROOT.glob("examples/**/*.py"), *ROOT.glob("tests/**/*.py")]):
@@ -254,7 +254,7 @@ def test_no_code_or_example_uses_an_old_form() -> None:
             continue
         skip = {name for file, name in _OLD_FORM_TESTS if file == rel}
         found += _old_calls(ast.parse(path.read_text()), rel, skip)
-    for path in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+    for path in [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]:
         text = path.read_text()
         for block in re.findall(r"```python\n(.*?)```", text, flags=re.S):
             try:

@@ -49,7 +49,7 @@ r = subprocess.run([sys.executable, "-m", "dryfriction.cli", "sweep", "sweep.tom
                    cwd=work, capture_output=True, text=True, env={**os.environ, "COLUMNS": "80"})
 if r.returncode != 0:
     raise RuntimeError(f"dryfriction sweep failed:\n{r.stdout}{r.stderr}")
-print(r.stderr.splitlines()[-1])  # its last line: what it wrote
+print((r.stdout + r.stderr).strip().splitlines()[-1])  # its last line: what it wrote
 
 ds = load_sweep(work / "out" / "sweep.nc")
 print(ds["K_c"])

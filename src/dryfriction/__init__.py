@@ -43,6 +43,8 @@ _PUBLIC: dict[str, str] = {
     "dieterich_constant_local": "theory.dieterich",
     "critical_stiffness": "theory.linear_stability", "effective_rsf": "theory.linear_stability",
     "TrapModel": "theory.model",
+    "InterfaceModel": "ensemble.interface", "InterfaceDrive": "ensemble.interface",
+    "InterfaceResult": "ensemble.interface_result",
     "PhysicalScales": "theory.units", "static_friction_si": "theory.units",
     "steady_friction_si": "theory.units",
     # programs
@@ -68,6 +70,9 @@ def simulate(*args: Any, **kwargs: Any) -> Any:
     * a ``TrapModel`` runs :func:`dryfriction.ensemble.driving.simulate` (reduced units;
       ``initial`` is an ``Initial`` with its ``track``; keywords ``progress``,
       ``on_interrupt``) and returns a ``SimulationResult``;
+    * an ``InterfaceModel`` (a chain of trap-model blocks) runs
+      :func:`dryfriction.ensemble.interface.simulate_interface` with an ``InterfaceDrive`` and
+      returns an ``InterfaceResult`` (space-time fields);
     * a ``RateState`` runs :func:`dryfriction.rsf.driving.simulate` (SI; ``initial`` and
       ``output`` optional) and returns an ``RSFResult``.
 
@@ -87,12 +92,17 @@ def simulate(*args: Any, **kwargs: Any) -> Any:
     if isinstance(model, RateState):
         from .rsf.driving import simulate as run
     else:
+        from .ensemble.interface import InterfaceModel
         from .theory.model import TrapModel
 
-        if not isinstance(model, TrapModel):
+        if isinstance(model, InterfaceModel):
+            from .ensemble.interface import simulate_interface as run
+        elif not isinstance(model, TrapModel):
             raise ValueError(f"model = {model!r} is not allowed: a TrapModel (the trap model, "
-                             "reduced units) or a RateState (rate-and-state, SI)")
-        from .ensemble.driving import simulate as run
+                             "reduced units), an InterfaceModel (a chain of its blocks) or a "
+                             "RateState (rate-and-state, SI)")
+        else:
+            from .ensemble.driving import simulate as run
     return run(*args, **kwargs)
 
 

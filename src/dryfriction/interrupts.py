@@ -1,4 +1,4 @@
-"""Ctrl-C and SIGTERM never land inside a compiled (Numba) call (issue 24).
+"""Ctrl-C and SIGTERM never land inside a compiled (Numba) call.
 
 Why. Python runs a signal's handler in the main thread, between bytecodes. A compiled call
 runs no bytecode, except where Numba's wrapper calls back into Python: boxing a returned

@@ -124,7 +124,7 @@ def check_physical(what: str, t: ArrayLike, x: ArrayLike, v: ArrayLike, mu: Arra
                    unit: str, forward: bool = False, tol: float = 0.0,
                    slip_max: float | None = None, slip_integral: float | None = None,
                    mu_min: float | None = None, mu_why: str | None = None) -> None:
-    """Refuse a time series that breaks the bounds every run of either law obeys (issue 24).
+    """Refuse a time series that breaks the bounds every run of either law obeys.
 
     The one check of both simulators (:func:`dryfriction.ensemble.driving.simulate`,
     :func:`dryfriction.rsf.driving.simulate`), so every command that runs one (``rsf``,

@@ -52,6 +52,12 @@ WARM_PROTOCOLS: tuple[Mapping[str, Any], ...] = (
      "output": {"every": 1.0}},
     {"model": _TRAP_MODEL, "ensemble": _TRAP_ENSEMBLE,
      "drive": {"kind": "force", "rate": 0.5, "max_force": 0.3}, "output": {"every": 0.1}},
+    # the extended interface (issue 29): its chain kernel (one for both loadings)
+    {"model": _TRAP_MODEL, "ensemble": {**_TRAP_ENSEMBLE, "layout": "random", "seed": 1},
+     "interface": {"n_elements": 2, "coupling": 1.0, "mass": 1.0},
+     "drive": {"kind": "side", "edge_stiffness": 0.5,
+               "segments": [{"velocity": 0.1, "slip": 0.2}]},
+     "output": {"every": 1.0}},
     # rate-and-state: both laws, a second state variable, the regularised law, both machines,
     # sampled and every-step output
     {"model": _RSF_MODEL, "drive": {"kind": "velocity", "segments": _STEP}},

@@ -86,13 +86,13 @@ def test_continuation_refuses_bad_input(kwargs: dict, match: str) -> None:
 
 @pytest.mark.slow
 def test_reduced_continuation_reads_the_reported_bifurcations() -> None:
-    """The README's classification on a reduced continuation (fewer stiffnesses, 10 periods
-    each). u = 0.01: the stick-slip cycle reached at 0.55 K_c (slider stuck, v_min < 0.1 u)
-    survives at 1.05 K_c on the way up with a finite amplitude: subcritical. u = 1: the
-    oscillation (reached at 0.55 K_c, re-kicked on the way down) shrinks as K rises towards
-    K_c, and at 1.05 K_c it has decayed to a small fraction of the 0.55 K_c cycle (no finite
-    cycle above K_c). A wrong K_c, or a drive without the direct effect's damping, would move
-    or remove these."""
+    """The classification of docs/tutorials/direct-effect.md on a reduced continuation (fewer
+    stiffnesses, 10 periods each). u = 0.01: the stick-slip cycle reached at 0.55 K_c (slider stuck,
+    v_min < 0.1 u) survives at 1.05 K_c on the way up with a finite amplitude: subcritical. u = 1:
+    the oscillation (reached at 0.55 K_c, re-kicked on the way down) shrinks as K rises towards K_c,
+    and at 1.05 K_c it has decayed to a small fraction of the 0.55 K_c cycle (no finite cycle above
+    K_c). A wrong K_c, or a drive without the direct effect's damping, would move or remove
+    these."""
     low = continuation(0.01, MODEL, [-0.05, 0.45], periods=10.0, rekick=True)
     up = {r["d"]: r for r in low["up"]}
     print(f"REPORT u = 0.01: {low['type']}, up "

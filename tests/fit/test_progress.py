@@ -98,10 +98,10 @@ def test_fit_progress_estimate_is_close_once_a_profile_has_run() -> None:
 
 def test_cli_fit_prints_progress_with_time_left_on_stderr_and_clean_json(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """The README's joint trap-model fit (no terminal: plain lines) says what it is doing, how
-    many evaluations of about how many, and the time left, on standard error only: standard
-    output is the --json report and nothing else. (A time-series fit takes minutes; the lines
-    come from the same code, here every update instead of one per PROGRESS_EVERY_S.)"""
+    """The joint trap-model fit of docs/tutorials/lab-record.md (no terminal: plain lines) says what
+    it is doing, how many evaluations of about how many, and the time left, on standard error only:
+    standard output is the --json report and nothing else. (A time-series fit takes minutes; the
+    lines come from the same code, here every update instead of one per PROGRESS_EVERY_S.)"""
     monkeypatch.setattr(common, "PROGRESS_EVERY_S", 0.0)
     data = Path(__file__).parents[2] / "examples" / "data"
     r = runner.invoke(app, ["fit", str(data / "synthetic_static_paper.csv"),

@@ -43,7 +43,8 @@ def ramp(n: int = 12) -> list[list[float]]:
 # ----------------------------------------------------------------------------- reading
 def test_shared_record_reads_in_si() -> None:
     r = read_record(SHARED)
-    assert len(r) == 23790 and r.first_line == 2  # README: 23,790 rows under one header
+    # examples/data/lab/README.md and docs/tutorials/lab-record.md: 23,790 rows, one header
+    assert len(r) == 23790 and r.first_line == 2
     assert dict(r.columns) == {"time": "Time(s)", "disp": "Displ(microns)", "mu": "Friction",
                                "normal": "EffectiveNormalstress(MPa)"}
     # first data line: 8105.381000 1554.674000 0.536278 29.999476
@@ -52,7 +53,7 @@ def test_shared_record_reads_in_si() -> None:
     assert r.friction[0] == 0.536278
     assert r.normal_stress[0] == pytest.approx(29.999476e6, rel=1e-12)
     assert r.normal_unit == "Pa" and r.load_velocity is None
-    assert r.time[-1] - r.time[0] == pytest.approx(3226, abs=1)  # README: 3,226 s
+    assert r.time[-1] - r.time[0] == pytest.approx(3226, abs=1)  # the same: 3,226 s
     assert r.load_point[-1] - r.load_point[0] == pytest.approx(2.4e-3, rel=0.03)  # 2.4 mm
 
 

@@ -1,6 +1,6 @@
 """``sweep.nc`` is self-describing (CF): units and long names on every variable, the stick-slip
-class with its names, the protocol text; and the README's ``sweep --linear`` example runs
-without an OverflowError or a RuntimeWarning."""
+class with its names, the protocol text; and the ``sweep --linear`` example of
+docs/howto/sweeps.md runs without an OverflowError or a RuntimeWarning."""
 
 from __future__ import annotations
 
@@ -78,7 +78,7 @@ def test_readme_linear_sweep_has_every_point_and_units(tmp_path, recwarn):
 
 @pytest.mark.parametrize(("u", "K"), [(1.0, 0.05), (0.1, 0.1)])
 def test_rightmost_root_survives_a_seed_that_runs_away(u, K):
-    # the two points of the README sweep that raised; both stiffnesses are above K_c
+    # the two points of the docs' sweep that raised; both stiffnesses are above K_c
     # (0.030 at u = 1, 0.056 at u = 0.1), so the root the other seeds find is stable
     resp = steady_response(u, TrapModel(eps=0.04))
     with warnings.catch_warnings():
@@ -137,13 +137,13 @@ def _chain_root(resp, K: float, k: int) -> complex:
 
 @pytest.mark.parametrize("u", [0.01, 0.1, 1.0])
 def test_readme_linear_sweep_growth_rates_are_the_spectrum_supremum(u):
-    """The 9 points of the README's ``sweep --linear``: each growth rate finite, of the sign of
-    ``K_c - K``; no zero of chi to its right (argument principle, up to |lambda| tau_d = 40),
-    the rightmost root a zero of chi that the same count sees; never below a root of the
-    chain far out (the supremum includes the chain), and equal to its limit where it says
-    so. Catches a search that misses the low-frequency rightmost root (the old 24 starts gave
-    -1.79/tau_d at u = 0.1, K = 0.1 where a root sits at -1.62/tau_d) or returns NaN where the
-    rightmost roots lie at |lambda| tau_d ~ 1000."""
+    """The 9 points of the ``sweep --linear`` of docs/howto/sweeps.md: each growth rate finite, of
+    the sign of ``K_c - K``; no zero of chi to its right (argument principle, up to |lambda| tau_d =
+    40), the rightmost root a zero of chi that the same count sees; never below a root of the chain
+    far out (the supremum includes the chain), and equal to its limit where it says so. Catches a
+    search that misses the low-frequency rightmost root (the old 24 starts gave -1.79/tau_d at u =
+    0.1, K = 0.1 where a root sits at -1.62/tau_d) or returns NaN where the rightmost roots lie at
+    |lambda| tau_d ~ 1000."""
     from dryfriction.analysis.linear import GROWTH_KINDS, growth_rate
     from dryfriction.theory.linear_stability import critical_stiffness
 

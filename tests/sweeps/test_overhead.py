@@ -1,6 +1,6 @@
 """The local cluster's serial overhead and parasitic CPU (issue 12): what was cut stays cut.
 
-Each test checks the mechanism that removed a measured cost (README, "Precision and speed"):
+Each test checks the mechanism that removed a measured cost (docs/performance.md):
 Dask's diagnostic callbacks off or slowed in every process of the cluster, the fork server
 ended without its interpreter shutdown, and the sweep's result imports done while the fork
 server imports, so that ``assemble`` imports nothing.

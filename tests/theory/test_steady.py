@@ -25,7 +25,7 @@ def test_precision_against_mpmath():
     """<= 1e-9 relative over alpha in (0, 0.98], eps in [0, 0.2], u in [1e-4, 1e4].
 
     Beyond alpha ~ 0.98 the result is limited by rounding: H0 ~ (1 - alpha)^3 is a small
-    difference of O(1) integrals (see the precision note in the README).
+    difference of O(1) integrals (see the precision note in docs/quality.md).
     """
     n = 30
     alpha = np.concatenate([rng.uniform(0.005, ALPHA0, n // 2), rng.uniform(ALPHA0, 0.98, n // 2)])

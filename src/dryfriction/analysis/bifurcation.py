@@ -1,5 +1,5 @@
-"""The stick-slip bifurcation of the quasi-static spring-slider with the direct effect (issue 11;
-every definition here is ours).
+"""The stick-slip bifurcation of the quasi-static spring-slider with the direct effect (every
+definition here is ours).
 
 Reduced units as in :mod:`.stickslip`: lengths ``a0``, times ``t0``, velocities ``a0/t0``,
 forces ``F_el`` (the spring force is reported as friction, ``mu_el = 1``), stiffness

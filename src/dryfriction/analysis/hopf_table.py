@@ -1,5 +1,5 @@
 """``dryfriction bifurcation``: the nature of the onset of stick-slip of a rate-and-state
-protocol at a list of load velocities (issue 28; the table's layout is ours).
+protocol at a list of load velocities (the table's layout is ours).
 
 Each row is :func:`.rsf_hopf.rsf_hopf` at one velocity with the protocol's friction law,
 damping and mass (the protocol's own stiffness and program are not used: ``K_c`` is what is

@@ -1,5 +1,5 @@
-"""The nature of the Hopf bifurcation of steady sliding of a rate-and-state spring slider
-(issue 28): critical stiffness, frequency and first Lyapunov coefficient ``l1`` from the
+"""The nature of the Hopf bifurcation of steady sliding of a rate-and-state spring slider:
+critical stiffness, frequency and first Lyapunov coefficient ``l1`` from the
 equations (:func:`dryfriction.theory.hopf.first_lyapunov`), not from simulations.
 
 The slider (:mod:`dryfriction.rsf.driving`): ``k (x_load - x) = mu(V, theta) + eta V + m dV/dt``,

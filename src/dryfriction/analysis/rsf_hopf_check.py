@@ -1,4 +1,4 @@
-"""Direct simulation of the rate-and-state Hopf point's nature (issue 28), with the package's
+"""Direct simulation of the rate-and-state Hopf point's nature, with the package's
 solver (:func:`dryfriction.rsf.driving.simulate`), to check :mod:`.rsf_hopf` (every
 procedure here is ours).
 

@@ -1,6 +1,6 @@
-"""The nature of the Hopf bifurcation of steady sliding of the trap model with the direct effect
-(issue 28): a finite-dimensional reduction of the population, ``l1`` on it, refined until it
-settles (every formula here is ours unless cited).
+"""The nature of the Hopf bifurcation of steady sliding of the trap model with the direct
+effect: a finite-dimensional reduction of the population, ``l1`` on it, refined until it
+settles (every formula here is ours unless cited; results in docs/hopf.md).
 
 **The slider as a delay equation.** In steady forward sliding (very strong pinning,
 ``alpha < alpha0``, docs/model.md §1) a trap is labelled by its age ``tau``; the slip since its
@@ -117,7 +117,7 @@ class TrapField:
         Gauss-Legendre panels (16 points each) of the friction integral.
     direct_form : {"asinh", "linear"}
         The junction strength ``g(V)``: the package's (:mod:`.theory.direct`), or its tangent
-        at ``u``, ``g(u) + g'(u) (V - u)`` (an ingredient switch, issue 28 item 4: the same
+        at ``u``, ``g(u) + g'(u) (V - u)`` (an ingredient switch, docs/hopf.md: the same
         linear response, no curvature of the direct effect).
     """
 

@@ -1,4 +1,4 @@
-"""Direct simulation of the trap model's Hopf point (issue 28): the sign of ``l1`` from
+"""Direct simulation of the trap model's Hopf point (docs/hopf.md): the sign of ``l1`` from
 :mod:`.trap_hopf` against runs (every definition here is ours).
 
 Two simulators, both of the quasi-static or inertial spring-slider with the direct effect:

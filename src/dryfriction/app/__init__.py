@@ -1,4 +1,4 @@
-"""The workflows of the command line as library functions (issue 26): each takes the same
+"""The workflows of the command line as library functions: each takes the same
 options as its command, with the same defaults (:mod:`.options`), writes the same files, refuses
 the same input in the same one line (``ValueError`` naming the option as typed), and returns a
 result object; :mod:`dryfriction.cli` parses, calls one of them and prints.

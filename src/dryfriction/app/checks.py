@@ -9,8 +9,8 @@ __all__ = ["check_fit_options"]
 def check_fit_options(*, alpha: float, creep: str, v0: float | None, state_law: str,
                       errors: str, traps_per_a0: float | None, direct: float,
                       v_ref: float) -> None:
-    """Every value option of ``fit`` in its range, named as typed, before any work (issue 24:
-    ``--run-cv --direct -1`` fitted rsf for 6 s and reported the refusal inside fit.json).
+    """Every value option of ``fit`` in its range, named as typed, before any work (an
+    ``--run-cv --direct -1`` once fitted rsf for 6 s and reported the refusal inside fit.json).
 
     Raises
     ------

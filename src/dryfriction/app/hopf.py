@@ -1,6 +1,6 @@
 """The ``bifurcation`` workflow: the nature of the onset of stick-slip by normal form
 (:func:`bifurcation`, :mod:`dryfriction.analysis.hopf_table`). Moved here from the command
-line (issue 26)."""
+line."""
 
 from __future__ import annotations
 

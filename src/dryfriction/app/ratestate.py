@@ -1,6 +1,5 @@
 """The ``rsf`` workflow: rate-and-state friction (SI units) through a velocity step,
-slide-hold-slide or stick-slip on a spring (:func:`rsf`). Moved here from the command line
-(issue 26)."""
+slide-hold-slide or stick-slip on a spring (:func:`rsf`). Moved here from the command line."""
 
 from __future__ import annotations
 

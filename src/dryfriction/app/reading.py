@@ -1,6 +1,6 @@
 """The ``record`` workflow: what a laboratory record holds, as the reader and the step finder
 see it (:func:`record`); it writes only with ``out`` (record.png and segments.csv). Moved here
-from the command line (issue 26)."""
+from the command line."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
-"""``dryfriction fit RECORD.txt``: a laboratory record (issue 10) read as it comes, its load
+"""``dryfriction fit RECORD.txt``: a laboratory record read as it comes, its load
 program detected, cut into steps and each step fitted with rate-and-state friction on an
 elastic machine with a trend (:func:`dryfriction.fit.steps.fit_steps`); the trap model beside
-it on request (``run_cv``). Moved here from the command line (issue 26)."""
+it on request (``run_cv``). Moved here from the command line."""
 
 from __future__ import annotations
 
@@ -39,8 +39,9 @@ CV_CALLS_PER_STEP = 91
 :func:`~dryfriction.fit.cvsteps.search_step`, then one evaluation for the result and covariance,
 runs read back from the memory of past runs not counted), for the cost estimate; counted on the
 shared sepiolite record with the direct effect free (91 runs; 74 with A = 0: ``python -m
-benchmarks bench_cv_record``). It was 130 before the search of issue 30, when the estimate ran
-2.2 times over the measured CPU."""
+benchmarks bench_cv_record``). It was 130 before the windowed search
+(:func:`dryfriction.fit.cvsteps.search_step`), when the estimate ran 2.2 times over the
+measured CPU."""
 
 
 def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,

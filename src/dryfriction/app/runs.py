@@ -105,7 +105,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
         written, marked ``"partial": true`` in summary.json.
     """
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
-    from ..io.protocol import RSFProtocol, load_protocol
+    from ..io.protocol import InterfaceProtocol, RSFProtocol, load_protocol
     from ..io.units import SNAPSHOT_UNITS
     from ..validation import check_figure_format
 
@@ -114,6 +114,9 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     check_output_dir(out, force=force)
     if on_start is not None:
         on_start(proto)
+    if isinstance(proto, InterfaceProtocol):
+        return _simulate_interface(proto, protocol, out, force=force, report=report,
+                                   fmt=fmt, dpi=dpi, figure=figure, draw=draw)
     draw = draw or draw_here
     context: dict[str, Any] = {"protocol": str(Path(protocol))}
     notes: list[str] = []
@@ -151,6 +154,57 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
     return RunOutcome(Path(out), files, summary, result, notes,
                       partial=bool(getattr(result, "partial", False)),
                       units="SI" if isinstance(proto, RSFProtocol) else "reduced")
+
+
+INTERFACE_FILES: tuple[str, ...] = ("fields.npz", "load.csv", "summary.json")
+"""What ``simulate`` writes for an ``[interface]`` protocol besides the catalogue and the
+figures of :func:`dryfriction.app.interface_outputs.interface_outputs` (``events.csv``,
+``fronts.csv``, ``precursors.csv`` under side loading, the space-time map and the other
+figures): the space-time fields (``t``, ``x``, ``slip``, ``slip_rate``, ``stress``, ``load``,
+``load_point`` and the energy terms, NumPy's ``.npz``), the loading and the energy balance over
+time as CSV, and the summary (units of every field in ``summary.json``'s ``units``; the
+catalogue's counts and answers under ``fronts``)."""
+
+
+def _simulate_interface(proto: Any, protocol: str | Path, out: str | Path, *, force: bool,
+                        report: Report | None, fmt: str, dpi: int | None, figure: bool,
+                        draw: Draw | None) -> RunOutcome:
+    """The ``simulate`` workflow of an ``[interface]`` protocol (:data:`INTERFACE_FILES`)."""
+    import numpy as np
+
+    from ..io.files import output_directory, write_csv, write_json
+    from ..io.units import INTERFACE_LOAD_UNITS, INTERFACE_SUMMARY_UNITS, with_units
+    from .interface_outputs import interface_outputs
+
+    start = time.perf_counter()
+    result = proto.run(on_interrupt="partial")
+    context = {"wall_s": time.perf_counter() - start, "protocol": str(Path(protocol))}
+    summary = with_units({**result.summary(), **context}, INTERFACE_SUMMARY_UNITS)
+    files = list(INTERFACE_FILES)
+    with output_directory(out, command="simulate", force=force, inputs=[protocol],
+                          report=report) as tmp:
+        with open(tmp / "fields.npz", "wb") as fh:
+            np.savez_compressed(fh, t=result.t, x=result.x, slip=result.slip,
+                                slip_rate=result.slip_rate, stress=result.stress,
+                                load=result.load, load_point=result.load_point,
+                                **result.energy)
+        write_csv(tmp / "load.csv", {"t": result.t, "load": result.load,
+                                     "load_point": result.load_point,
+                                     "mean_slip": result.slip.mean(axis=1),
+                                     "max_slip_rate": result.slip_rate.max(axis=1),
+                                     **result.energy,
+                                     "energy_residual": result.energy_residual()},
+                  INTERFACE_LOAD_UNITS)
+        more, notes, fronts = interface_outputs(result, tmp, fmt=fmt, dpi=dpi, figure=figure,
+                                                draw=draw, fields=False)
+        files += more
+        # the catalogue's counts and answers, their units declared beside the run's own
+        summary = {**summary, "fronts": {k: v for k, v in fronts.items() if k != "units"},
+                   "units": {**fronts.get("units", {}), **summary["units"]}}
+        write_json(tmp / "summary.json", summary)
+    notes = ["note: the fields are in fields.npz (units in summary.json)", *notes]
+    return RunOutcome(Path(out), files, summary, result, notes, partial=result.partial,
+                      units="reduced")
 
 
 def compare(protocol: str | Path, out: str | Path, *,

@@ -5,7 +5,7 @@ of the trap model (``law = "cv"``, reduced units: ``a0``, ``t0``, forces ``F_el`
 ``F_el/a0``, mass ``F_el t0^2/a0``, damping ``F_el t0/a0``).
 
 Their own module so that both the driver (:mod:`.driving`) and the run's estimate
-(:mod:`.resources`) import them, neither importing the other for them (issue 26). The clock's
+(:mod:`.resources`) import them, neither importing the other for them. The clock's
 limit :data:`CLOCK_MAX` lives here, with the force ramp it bounds when the drive is made.
 """
 
@@ -22,7 +22,7 @@ __all__ = ["CLOCK_MAX", "MASS_MIN", "STIFFNESS_MAX", "Drive", "ForceDrive", "Spr
            "VelocityDrive"]
 
 CLOCK_MAX = 2.0**46
-"""Longest run, ``t0`` (ours; issue 24). The kernel's times are floats: near ``t`` their
+"""Longest run, ``t0`` (ours). The kernel's times are floats: near ``t`` their
 spacing is ``t 2^-52``, and an age (a difference of two times, under the kernel's reassociating
 fast math) carries an error of a few spacings. At ``2^46 t0`` (7.0e13) that is ``1/64 t0``,
 far from the ``1 t0`` at which ``ln(1 + age)`` fails. Measured: a spring drive at ``1e-15

@@ -490,7 +490,7 @@ def simulate(
 
 def _old_form(model: TrapModel, track: Track, initial: Initial, drive: Drive, output: Output,
               *, progress: Progress | None = None, on_interrupt: str = "raise") -> None:
-    """The signature of the old form (before issue 26), to bind a call against."""
+    """The signature of the old form (in an earlier version), to bind a call against."""
 
 
 _NEW_FORM, _OLD_FORM = inspect.signature(simulate), inspect.signature(_old_form)

@@ -409,6 +409,12 @@ class Ensemble:
         self.birth[sl] = win_birth
         self.lo, self.hi = g_lo - k0, g_hi - k0
 
+    def cover(self, x_lo: float, x_hi: float) -> None:
+        """Hold in the buffer every pair a slider anywhere in ``[x_lo, x_hi]`` (``a0``) can
+        touch: a caller that steps the compiled kernel itself (the extended interface,
+        :mod:`.interface`) places the pairs once for its whole run."""
+        self._ensure_cover(float(x_lo), float(x_hi))
+
     def _ensure_ages(self, t: float) -> None:
         if t - self._oldest_birth > self._age_cover:
             self._build_table(2.0 * (t - self._oldest_birth))

@@ -1,4 +1,4 @@
-"""How much memory a trap-ensemble run will hold, estimated before any work (issue 13).
+"""How much memory a trap-ensemble run will hold, estimated before any work.
 
 :func:`check_run` is called by :func:`~dryfriction.ensemble.driving.simulate` and by the protocol
 parser, so that a run that cannot fit is refused in one line before anything is allocated. All
@@ -14,7 +14,7 @@ The per-item costs were measured with :mod:`tracemalloc` (peak over a run, NumPy
   state (1). The initial population is placed in chunks and a move of the buffer carries over
   only the pairs in contact, so neither holds two buffers at once: the peak of a run is about
   16 bytes per pair of the estimate below (which counts a little more than the buffer holds);
-  it was 58 before issue 12 (68 bytes per pair at the start-up of a steady population);
+  it was 58 in an earlier version (68 bytes per pair at the start-up of a steady population);
 * a snapshot holds 6 float arrays over the traps in contact.
 """
 

@@ -266,7 +266,7 @@ def segment_grid(program: VelocityProgram, output: Output, spacing: float | None
 
     ``spacing`` (``a0``): the lattice spacing of a regular track. A sampling step in slip that
     is (nearly) a multiple of it would see the periodic force of steady sliding at one phase
-    only, so that the sampled mean is off by up to the sawtooth's amplitude (issue 14); such a
+    only, so that the sampled mean is off by up to the sawtooth's amplitude; such a
     segment (of at least 50 samples) gets the fewest extra samples that make the steps visit
     every phase evenly (:func:`_off_lattice`).
     """

@@ -1,4 +1,4 @@
-"""The direct effect in the ensemble drivers (issue 11; :mod:`dryfriction.theory.direct`).
+"""The direct effect in the ensemble drivers (:mod:`dryfriction.theory.direct`).
 
 The trap population (:mod:`dryfriction.ensemble.population`,
 :mod:`dryfriction.ensemble.kernel`) is the athermal one; the friction force is ``g(V)`` times

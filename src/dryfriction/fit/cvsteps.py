@@ -1,5 +1,5 @@
 """The trap model fitted to a laboratory record's steps, on the same machine as the
-rate-and-state fit (issue 11, ours): :func:`fit_cv_steps`.
+rate-and-state fit (ours): :func:`fit_cv_steps`.
 
 Each window of a :class:`.steps.StepsResult` is fitted with :class:`.models.CVModel` on a
 fitted spring with a linear trend (``stiffness="fit"``, ``trend=True``: the rate-and-state
@@ -9,8 +9,8 @@ multistart. The cost is held down by a coarse regular track (:data:`RECORD_TRAPS
 sampling the ensemble in slip rather than at the data's rate (:data:`RECORD_SAMPLE_SLIP`), by
 not simulating the steady tail of a segment (:mod:`.cvtail`), by the memory of runs
 (:mod:`.cvseries`: the trend's Jacobian column, the covariances' repeated points), and by a
-search that stops when its steps are a tenth of a standard error (:func:`search_step`; issue
-30: the basalt step took 445 s of CPU). The data are fitted whole (every sample), so the
+search that stops when its steps are a tenth of a standard error (:func:`search_step`;
+the basalt step took 445 s of CPU). The data are fitted whole (every sample), so the
 misfit and AIC compare with the rate-and-state fit's directly.
 """
 
@@ -51,7 +51,7 @@ SEARCH_MAX_ITER = RECORD_MAX_NFEV
 
 SEARCH_STOP = 0.1
 """The search stops when its last step moved every parameter by less than this fraction of
-its standard error (the Jacobian's, white noise; ours, issue 30): a least-squares fit on the
+its standard error (the Jacobian's, white noise; ours): a least-squares fit on the
 ensemble's staircase never meets scipy's relative tolerances, and went on to its cap of
 evaluations with steps of a thousandth of a standard error."""
 
@@ -138,7 +138,7 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
 
 def search_step(d: SeriesData, model: CVModel, start: dict[str, float]
                 ) -> tuple[dict[str, float], int, str, int]:
-    """The least-squares search of one window (ours, issue 30): scipy's trust-region
+    """The least-squares search of one window (ours): scipy's trust-region
     iterations (as :meth:`.problem.Problem.solve` runs them) a few trial points at a time
     (:data:`SEARCH_TRIALS`), each batch from where the last ended (the memory of runs makes the
     restart free), until a batch moves every free parameter by less than :data:`SEARCH_STOP`

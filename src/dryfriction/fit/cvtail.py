@@ -1,8 +1,8 @@
 """The trap model's series on a spring, with the steady tail of each segment not simulated
-(issue 30; ours): :func:`spring_series`.
+(ours): :func:`spring_series`.
 
-A velocity step of a laboratory record is held for many times its transient (the basalt step
-of issue 30: 113 ``a0`` of load-point travel, a transient of about 20), and the ensemble costs
+A velocity step of a laboratory record is held for many times its transient (a basalt step:
+113 ``a0`` of load-point travel, a transient of about 20), and the ensemble costs
 the same per ``a0`` in steady sliding as in the transient. Once the slider has reached steady
 sliding at the segment's load velocity ``u`` (a quasi-static spring, no inertia), its state is
 unique: the steady population of eq. 29 at ``u`` (spring force = friction, slider velocity =

@@ -1,4 +1,4 @@
-"""The machine stiffness from a record's elastic loading segments (issue 30 item 3, "one
+"""The machine stiffness from a record's elastic loading segments ("one
 machine"; ours): the reload after each hold, and the initial loading where the record starts
 from rest, read as the slope of friction against load-point displacement while the slider is
 still stuck, then combined with the steps' free fits (:func:`machine_stiffness_record`).

@@ -1,4 +1,4 @@
-"""A whole experiment in one record (issue 23 item 4; ours): the steps of a record grouped by
+"""A whole experiment in one record (ours): the steps of a record grouped by
 the normal stress they were run at, what the summary figure draws of them, and what it leaves
 out and why.
 
@@ -65,7 +65,8 @@ intervals the row's ``a``, ``b``, ``dc`` carry (``profile``, ``hac`` or ``white`
 PROFILE_MAX_STEPS = 6
 """A record with more windows than this gets the covariance's (HAC) intervals unless
 ``--profile`` is given: the profiles cost about three times the fits (measured on the
-20-step generated experiment, README "A whole experiment"); with fewer they are the default."""
+20-step generated experiment, docs/tutorials/lab-record.md "A whole experiment"); with
+fewer they are the default."""
 
 
 def default_profile(n_windows: int, given: bool | None) -> tuple[bool, str]:

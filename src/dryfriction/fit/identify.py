@@ -1,4 +1,4 @@
-"""What a step's fit can be trusted for (issue 30): per parameter identified or not, the
+"""What a step's fit can be trusted for: per parameter identified or not, the
 combinations the data do fix, and flags that travel with the step into ``steps.csv``,
 ``fit.json``, the terminal table and the figures.
 
@@ -438,7 +438,7 @@ def assess_step(row: dict[str, Any], notes: Sequence[str], specs: Sequence[Param
 
 
 def record_stiffness(rows: list[dict[str, Any]], z: float = 1.96) -> dict[str, Any] | None:
-    """One machine (issue 30 item 3, in part; ours): the record's stiffness from the steps
+    """One machine (in part; ours): the record's stiffness from the steps
     whose ``k`` is identified, the inverse-variance weighted mean of ``ln k`` (standard
     error of ``ln k_i`` from its 95 % interval: ``ln(hi/lo)/(2 z)``), with its 95 % interval.
 

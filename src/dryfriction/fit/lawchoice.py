@@ -1,5 +1,5 @@
 """A record's steps with the state law chosen per step and a free initial state where the
-data say the window starts inside a transient (issue 30 items 4 and 5; ours).
+data say the window starts inside a transient (ours).
 
 :func:`fit_steps_laws` runs :func:`.steps.fit_steps` (or, with ``stiffness="record"``,
 :func:`.onemachine.fit_steps_one_machine`) once per state law, then:
@@ -10,13 +10,12 @@ data say the window starts inside a transient (issue 30 items 4 and 5; ours).
   is the step's, whatever its AIC: the flag says the data contradict the steady start, and
   the free fit contains the steady one (``state0 = 0``). The flag stays (it describes the
   data); a note gives both fits' AIC and ``state0`` with its interval (or says it is not
-  identified). Automatic rather than an option a user must think of, because a steady start
-  inside a transient biases ``Dc`` silently (23.6 um for a true 20 um on a slide-hold-slide
-  record with short reslides: README), while a free start where the data were steady costs
-  one parameter and an identified ``state0`` near 0. ``initial="steady"`` or ``"free"``
-  forces one for every step. With a free stiffness per step, the record's stiffness and
-  ``k_inconsistent`` (:func:`.identify.record_stiffness`) are then found afresh from the
-  steps as finally fitted.
+  identified). Automatic rather than an option a user must think of, because a steady start inside a
+  transient biases ``Dc`` silently (23.6 um for a true 20 um on a slide-hold-slide record with short
+  reslides: docs/tutorials/lab-record.md), while a free start where the data were steady costs one
+  parameter and an identified ``state0`` near 0. ``initial="steady"`` or ``"free"`` forces one for
+  every step. With a free stiffness per step, the record's stiffness and ``k_inconsistent``
+  (:func:`.identify.record_stiffness`) are then found afresh from the steps as finally fitted.
 * **state law** (``law="auto"``): every law of :data:`.laws.FIT_LAWS` per step; the one of
   least AIC is the step's (``state_law`` column), and its row carries ``law_comparison``
   (AIC, BIC, their differences from the least, rms, success for each law; in fit.json) and a

@@ -1,5 +1,5 @@
-"""The per-step table's columns for the state law and the initial state (issue 30 items 4
-and 5): the law used, the values and 95 % intervals of the parameters that the law or the free
+"""The per-step table's columns for the state law and the initial state:
+the law used, the values and 95 % intervals of the parameters that the law or the free
 initial state add (:mod:`.laws`), whether each is identified, and the information criteria
 that :mod:`.lawchoice` compares.
 

@@ -1,5 +1,5 @@
-"""The state laws a rate-and-state fit of a time series can use, and its initial state
-(issue 30 items 4 and 5): the extra parameters each brings and the
+"""The state laws a rate-and-state fit of a time series can use, and its initial state: the
+extra parameters each brings and the
 :class:`~dryfriction.rsf.RateState` and :class:`~dryfriction.rsf.driving.RSFInitial` of a set
 of fitted values. :class:`.models.RSFModel` reads them; nothing here fits.
 

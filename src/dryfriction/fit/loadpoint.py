@@ -1,4 +1,4 @@
-"""Drive a record's fit with what the load point did (issue 30 item 3; ours): ``--drive
+"""Drive a record's fit with what the load point did (ours): ``--drive
 measured``.
 
 The idealised program (``--drive program``) changes the load velocity at a sample time, the
@@ -339,7 +339,7 @@ def load_program(data: SeriesData) -> tuple[VelocityProgram, Array, bool]:
 
 def change_time_effect(residuals: Any, d: SeriesData, J: Array) -> Array | None:
     """The fitted variables' standard errors from the measured drive's change times alone
-    (ours; issue 30): each change in the window, with its standard error ``sigma_c``
+    (ours): each change in the window, with its standard error ``sigma_c``
     (:func:`estimate_change`), moves the fit by ``-(J^T J)^-1 J^T dr``, ``dr`` the residuals'
     change when the drive moves by ``+-sigma_c`` in time (central difference, half of it):
     the delta method for an input known to its own error, independent of the friction noise,

@@ -1,4 +1,4 @@
-"""One machine for a whole record (issue 30 item 3, ``--stiffness record``; ours): the steps of
+"""One machine for a whole record (``--stiffness record``; ours): the steps of
 one record share one apparatus, so its stiffness is estimated once, from the steps whose free
 fit identifies it (:func:`.identify.record_stiffness`: the inverse-variance weighted mean of
 ``ln k``, steps that disagree flagged ``k_inconsistent`` and left out), and every step is then

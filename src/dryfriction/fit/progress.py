@@ -20,7 +20,8 @@ all (it changes as the stages finish), and the stage running (``start 2 of 3``).
 
 PROFILE_COST = 10.0
 """Before any profile has finished: the profiles of all free parameters together are taken to
-cost this many times the starts (the README's measured "about ten" for the trap model)."""
+cost this many times the starts (the measured "about ten" for the trap model,
+docs/tutorials/lab-record.md)."""
 
 
 class EvaluationTracker:

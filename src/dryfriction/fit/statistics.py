@@ -284,7 +284,7 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
 
 
 def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
-    """The covariance of a rate-and-state step fit (ours; issue 30): the time-lag sandwich
+    """The covariance of a rate-and-state step fit (ours): the time-lag sandwich
     :func:`time_hac_covariance`, each standard error floored at the score HAC's
     (:func:`hac_covariance`; the time-lag one's correlations kept, ``D C D`` with ``D``
     diagonal: positive semidefinite). The score HAC where the time-lag one is singular.

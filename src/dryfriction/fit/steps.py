@@ -71,6 +71,7 @@ STEP_COLUMNS: tuple[str, ...] = (
     "rms", "noise", "white_noise", "peak_residual", "n", "success", "errors", "resid_rho1",
     "hac_lags", "a_minus_b_lo", "a_minus_b_hi", "b_over_dc", "b_over_dc_lo", "b_over_dc_hi",
     "stiffness_lo", "stiffness_hi", "slip_before", "slip_after", "flags",
+    "t_change_lo", "t_change_hi",
     *EXPERIMENT_COLUMNS,
 ) + LAW_COLUMNS
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
@@ -79,7 +80,9 @@ the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covari
 ``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used;
 ``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
 record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
-:data:`.identify.FLAG_WORDS` separated by ``;``; then the normal stress, its level, the hold and
+:data:`.identify.FLAG_WORDS` separated by ``;``; ``t_change_lo``, ``t_change_hi`` the 95 %
+interval of the change time as detected (:class:`dryfriction.records.labsteps.Segment`; nan
+for a program given by hand); then the normal stress, its level, the hold and
 the intervals' kind: :data:`.experiment.EXPERIMENT_COLUMNS`; then the state law's,
 :data:`.lawcolumns.LAW_COLUMNS`). A parameter that is not identified
 (:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
@@ -409,6 +412,8 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
     row: dict[str, Any] = {
         "index": int(getattr(w, "index", 0)), "kind": str(getattr(w, "kind", "step")),
         "t_change": float(getattr(w, "t_change", math.nan)),
+        "t_change_lo": float(getattr(w, "t_change_lo", math.nan)),
+        "t_change_hi": float(getattr(w, "t_change_hi", math.nan)),
         "v_before": float(getattr(w, "v_before", d.v_load[0])),
         "v_after": float(getattr(w, "v_after", d.v_load[-1])),
         "a": val("a"), "b": val("b"), "a_minus_b": val("a") - val("b"), "dc": val("dc"),

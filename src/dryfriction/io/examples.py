@@ -3,7 +3,7 @@
 In a wheel they are the package data ``dryfriction/examples/``; in a source checkout (or an
 editable install) the repository's ``examples/`` folder. :func:`copy_examples` (the command
 ``dryfriction examples --copy DIR``) copies them into a folder of the user's, where the
-README's command lines run as written (``dryfriction simulate DIR/velocity_step.toml ...``).
+documentation's command lines run as written (``dryfriction simulate DIR/velocity_step.toml ...``).
 
 The model's description (the specification that docstrings cite as ``docs/model.md §N``) ships
 as the package data ``dryfriction/docs/model.md``: :func:`model_description`.

@@ -56,6 +56,29 @@ Rate-and-state friction runs through the same files, in SI units, with
     every = 0.01                 # optional, s: sampling interval (default: every solver step)
     rtol = 1e-7                  # optional: the solver's local tolerance
 
+An extended interface (a chain of trap-model blocks,
+:mod:`dryfriction.ensemble.interface`) adds an ``[interface]`` table to the trap model's
+``[model]`` and ``[ensemble]`` (every block's track and initial population), with drive kinds
+of its own::
+
+    [interface]                  # InterfaceModel
+    n_elements = 64              # required, integer >= 1
+    coupling = 4.0               # required, k_c between neighbours, F_el/a0, >= 0
+    mass = 1.0                   # required, per block, F_el t0^2/a0, >= 1e-6
+    damping = 0.1                # optional, per block, F_el t0/a0, >= 0
+    disorder = "independent"     # optional: "independent" | "identical" (all on block 0's)
+    normal_spread = 0.1          # optional, 0 <= s < 1: per-block normal load 1 +- s
+    density_spread = 0.0         # optional, 0 <= s < 1: per-block trap density 1 +- s
+
+    [drive]                      # InterfaceDrive
+    kind = "side"                # required: "uniform" (top plate) | "side" (edge spring)
+    edge_stiffness = 0.5         # side: required, F_el/a0, > 0
+    stiffness = 0.0              # uniform: required (> 0); side: optional, to a fixed plate
+    segments = [{velocity = 0.01, slip = 20.0}]   # the moving load point's program
+
+    [output]
+    every = 0.5                  # exactly one of every (t0) and every_slip (a0); no snapshots
+
 Every error names the file, the table and key (``table.key``), and what is allowed, and is
 raised before any work starts. (Errors avoid square brackets around names, which the terminal's
 markup would swallow.)
@@ -83,10 +106,13 @@ if TYPE_CHECKING:
     # rate-and-state solver imports Numba: each is imported where a run of its law needs it,
     # so that parsing a protocol of the other law (or a sweep's grid) does not pay for it
     from ..ensemble.driving import Drive, Output, SimulationResult, SpringDrive
+    from ..ensemble.interface import InterfaceDrive, InterfaceModel
+    from ..ensemble.interface_result import InterfaceResult
     from ..ensemble.population import Initial, Track, TrapModel
     from ..rsf.result import RSFResult
 
 __all__ = [
+    "InterfaceProtocol",
     "Protocol",
     "RSFProtocol",
     "STICKSLIP_KEYS",
@@ -276,7 +302,8 @@ def _segments(tab: _Table) -> VelocityProgram:
     return tab.build(VelocityProgram, segs)
 
 
-def parse_protocol(text: str, source: str = "<string>") -> Protocol | RSFProtocol:
+def parse_protocol(text: str, source: str = "<string>"
+                   ) -> Protocol | RSFProtocol | InterfaceProtocol:
     """Parse and validate a protocol given as TOML text; ``source`` names it in errors."""
     try:
         doc = tomllib.loads(text)
@@ -286,10 +313,11 @@ def parse_protocol(text: str, source: str = "<string>") -> Protocol | RSFProtoco
 
 
 def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
-                       ) -> Protocol | RSFProtocol:
+                       ) -> Protocol | RSFProtocol | InterfaceProtocol:
     """Validate a protocol already read into nested dicts (e.g. one point of a sweep).
 
-    ``model.law = "rsf"`` gives an :class:`RSFProtocol`, otherwise a :class:`Protocol`.
+    ``model.law = "rsf"`` gives an :class:`RSFProtocol`, an ``[interface]`` table an
+    :class:`InterfaceProtocol`, otherwise a :class:`Protocol`.
     """
     if not isinstance(doc, Mapping):
         raise ValueError(f"{source}: a protocol must be a table of tables")
@@ -300,8 +328,9 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
                          f"{', '.join(LAWS)}")
     if law == "rsf":
         return _rsf_protocol(doc, source)
+    if "interface" in doc:
+        return _interface_protocol(doc, source)
     from ..ensemble.driving import ForceDrive, Output, SpringDrive, VelocityDrive
-    from ..ensemble.population import Initial, Track, TrapModel
     from ..ensemble.resources import check_run
     from ..ensemble.result import check_snapshots
 
@@ -313,33 +342,8 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
         if t not in doc:
             raise ValueError(f"{source}: table '{t}' is missing")
 
-    m = _Table(source, "model", doc["model"])
-    m.allow(("law", "alpha", "eps", "creep", "mu_el", "direct", "v_ref"))
-    model = m.build(
-        TrapModel,
-        alpha=m.number("alpha", 0.13),
-        eps=m.number("eps", required=True),
-        creep=m.string("creep", "log"),
-        mu_el=m.number("mu_el", 1.0),
-        direct=m.number("direct", 0.0),
-        v_ref=m.number("v_ref", 1.0),
-    )
-
-    e = _Table(source, "ensemble", doc["ensemble"])
-    e.allow(("traps_per_a0", "layout", "seed", "initial", "initial_force", "initial_velocity"))
-    track = e.build(
-        Track,
-        traps_per_a0=e.number("traps_per_a0", required=True),
-        layout=e.string("layout", "regular"),
-        seed=e.integer("seed"),
-    )
-    initial = e.build(
-        Initial,
-        kind=e.string("initial", required=True),
-        force=e.number("initial_force"),
-        velocity=e.number("initial_velocity"),
-        track=track,
-    )
+    model = _trap_model(doc, source)
+    track, initial = _population(doc, source)
 
     d = _Table(source, "drive", doc["drive"])
     kind = _drive_kind(d, "cv")
@@ -383,6 +387,134 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
     except ValueError as exc:
         raise ValueError(f"{source}: {exc}") from None
     return Protocol(model, track, initial, drive, output, source)
+
+
+def _trap_model(doc: Mapping[str, Any], source: str) -> TrapModel:
+    """The ``[model]`` table of a trap-model protocol."""
+    from ..theory.model import TrapModel
+
+    m = _Table(source, "model", doc["model"])
+    m.allow(("law", "alpha", "eps", "creep", "mu_el", "direct", "v_ref"))
+    return m.build(  # type: ignore[no-any-return]
+        TrapModel,
+        alpha=m.number("alpha", 0.13),
+        eps=m.number("eps", required=True),
+        creep=m.string("creep", "log"),
+        mu_el=m.number("mu_el", 1.0),
+        direct=m.number("direct", 0.0),
+        v_ref=m.number("v_ref", 1.0),
+    )
+
+
+def _population(doc: Mapping[str, Any], source: str) -> tuple[Track, Initial]:
+    """The ``[ensemble]`` table: the track and the initial population on it."""
+    from ..ensemble.population import Initial, Track
+
+    e = _Table(source, "ensemble", doc["ensemble"])
+    e.allow(("traps_per_a0", "layout", "seed", "initial", "initial_force", "initial_velocity"))
+    track = e.build(
+        Track,
+        traps_per_a0=e.number("traps_per_a0", required=True),
+        layout=e.string("layout", "regular"),
+        seed=e.integer("seed"),
+    )
+    initial = e.build(
+        Initial,
+        kind=e.string("initial", required=True),
+        force=e.number("initial_force"),
+        velocity=e.number("initial_velocity"),
+        track=track,
+    )
+    return track, initial
+
+
+_INTERFACE_TABLES = ("model", "ensemble", "interface", "drive", "output")
+_INTERFACE_KEYS = ("n_elements", "coupling", "mass", "damping", "disorder", "normal_spread",
+                   "density_spread")
+_INTERFACE_DRIVE_KEYS = {
+    "uniform": ("kind", "stiffness", "segments"),
+    "side": ("kind", "stiffness", "edge_stiffness", "segments"),
+}
+
+
+@dataclass(frozen=True)
+class InterfaceProtocol:
+    """A validated extended-interface protocol: a chain of trap-model blocks
+    (:mod:`dryfriction.ensemble.interface`), reduced units.
+
+    Tables: ``[model]`` (the traps' law), ``[ensemble]`` (every block's track density, layout,
+    seed and initial population), ``[interface]`` (``n_elements``, ``coupling``, ``mass``,
+    ``damping``, ``disorder``, ``normal_spread``, ``density_spread``), ``[drive]`` (``kind =
+    "uniform"`` with ``stiffness`` and ``segments``, or ``kind = "side"`` with ``edge_stiffness``,
+    optional ``stiffness`` and ``segments``), ``[output]`` (``every`` or ``every_slip``).
+    """
+
+    model: InterfaceModel
+    initial: Initial
+    drive: InterfaceDrive
+    output: Output
+    source: str = "<string>"
+
+    @property
+    def track(self) -> Track:
+        assert self.initial.track is not None
+        return self.initial.track
+
+    def run(self, progress: Callable[[float], None] | None = None,
+            on_interrupt: str = "raise") -> InterfaceResult:
+        """Run :func:`dryfriction.ensemble.interface.simulate_interface`."""
+        from ..ensemble.interface import simulate_interface
+
+        return simulate_interface(self.model, self.drive, self.initial, self.output,
+                                  on_interrupt=on_interrupt)
+
+
+def _interface_protocol(doc: Mapping[str, Any], source: str) -> InterfaceProtocol:
+    """The branch of :func:`protocol_from_dict` for a file with an ``[interface]`` table."""
+    from ..ensemble.interface import InterfaceDrive, InterfaceModel, check_interface
+    from ..ensemble.result import Output
+
+    unknown = sorted(set(doc) - set(_INTERFACE_TABLES))
+    if unknown:
+        raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
+                         f"{', '.join(_INTERFACE_TABLES)}")
+    for t in _INTERFACE_TABLES:
+        if t not in doc:
+            raise ValueError(f"{source}: table '{t}' is missing (an [interface] protocol has "
+                             f"{', '.join(_INTERFACE_TABLES)})")
+    trap = _trap_model(doc, source)
+    _, initial = _population(doc, source)
+    i = _Table(source, "interface", doc["interface"])
+    i.allow(_INTERFACE_KEYS)
+    n = i.integer("n_elements")
+    if n is None:
+        i.fail("interface.n_elements is missing: an integer is required")
+    model = i.build(InterfaceModel, trap, n_elements=n,
+                    coupling=i.number("coupling", required=True),
+                    mass=i.number("mass", required=True), damping=i.number("damping", 0.0),
+                    disorder=i.string("disorder", "independent"),
+                    normal_spread=i.number("normal_spread", 0.0),
+                    density_spread=i.number("density_spread", 0.0))
+    d = _Table(source, "drive", doc["drive"])
+    kinds = ", ".join(repr(k) for k in _INTERFACE_DRIVE_KEYS)
+    kind = d.string("kind", required=True)
+    if kind not in _INTERFACE_DRIVE_KEYS:
+        d.fail(f"drive.kind = {kind!r} is not allowed with an [interface] table: choose one "
+               f"of {kinds} (uniform loading from the top plate, or side loading)")
+    assert kind is not None
+    d.allow(_INTERFACE_DRIVE_KEYS[kind])
+    drive = d.build(InterfaceDrive, kind,
+                    stiffness=d.number("stiffness", required=kind == "uniform") or 0.0,
+                    program=_segments(d),
+                    edge_stiffness=d.number("edge_stiffness", required=kind == "side") or 0.0)
+    o = _Table(source, "output", doc["output"])
+    o.allow(("every", "every_slip"))
+    output = o.build(Output, every=o.number("every"), every_slip=o.number("every_slip"))
+    try:  # memory, samples and time before any work
+        check_interface(model, drive, initial, output)
+    except ValueError as exc:
+        raise ValueError(f"{source}: {exc}") from None
+    return InterfaceProtocol(model, initial, drive, output, source)
 
 
 def _rsf_protocol(doc: Mapping[str, Any], source: str) -> RSFProtocol:
@@ -455,7 +587,7 @@ def _drive_kind(d: _Table, law: str) -> str:
     return kind
 
 
-def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol:
+def load_protocol(path: str | os.PathLike[str]) -> Protocol | RSFProtocol | InterfaceProtocol:
     """Read and validate a protocol file (TOML). Errors name the file and the key."""
     p = Path(path)
     try:

@@ -3,7 +3,7 @@
 Every reader of a user's text file (laboratory records, the project's CSV, protocols) calls
 :func:`check_text` on the file's first bytes before it decodes them, so that a compressed file
 or UTF-16 text is named as such ("FILE is gzip-compressed: decompress it first") instead of
-being read as Latin-1 and reported with NUL and binary bytes in the message (issue 24).
+being read as Latin-1 and reported with NUL and binary bytes in the message.
 """
 
 from __future__ import annotations

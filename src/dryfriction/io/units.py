@@ -38,7 +38,7 @@ __all__ = ["DIMENSIONLESS", "LABEL", "Units", "header", "split_header", "csv_uni
            "labelled", "with_units", "read_rows", "undeclared", "STEP_UNITS", "RECORD_FIT_UNITS",
            "SUMMARY_UNITS", "FIT_UNITS", "COMPARE_UNITS", "SEGMENT_UNITS",
            "REPRODUCE_UNITS", "BIFURCATION_UNITS", "SNAPSHOT_UNITS",
-           "RECORD_UNITS", "THEORY_UNITS"]
+           "RECORD_UNITS", "THEORY_UNITS", "INTERFACE_SUMMARY_UNITS", "INTERFACE_LOAD_UNITS"]
 
 DIMENSIONLESS = "1"
 """The unit of a dimensionless number (a friction coefficient, a count, a ratio)."""
@@ -162,6 +162,7 @@ STEP_UNITS: dict[str, str | None] = {
     "n": "1 (samples)", "success": LABEL, "errors": LABEL,
     "resid_rho1": "1 (lag-1 autocorrelation of the residuals)",
     "hac_lags": "1 (samples)", "slip_before": "m", "slip_after": "m", "flags": LABEL,
+    "t_change_lo": "s (95 % interval of t_change)", "t_change_hi": "s (95 % interval of t_change)",
     "normal": "Pa (N where the record gives a force: column normal_unit)",
     "normal_unit": LABEL, "normal_level": LABEL, "hold": "s", "intervals": LABEL,
     "state_law": LABEL, "initial": LABEL, "aic": DIMENSIONLESS, "bic": DIMENSIONLESS,
@@ -176,6 +177,9 @@ SEGMENT_UNITS: dict[str, str | None] = {
     "duration": "s", "velocity": "m/s", "velocity_um": "um/s", "i_start": LABEL,
     "i_end": LABEL, "samples": DIMENSIONLESS,
     "confidence": "1 (the velocity change over its scatter)",
+    "t_start_lo": "s (95 % interval of the change at the start, record time)",
+    "t_start_hi": "s (95 % interval of the change at the start, record time)",
+    "t_start_placed": LABEL,
     "normal_stress": "MPa", "normal_force": "kN",
 }
 """segments.csv (the load program of a record: ``record --out``, a record's ``fit``)."""
@@ -185,7 +189,7 @@ RECORD_FIT_UNITS: dict[str, str | None] = {
     **{k: v for k, v in SEGMENT_UNITS.items() if k in ("t_start", "t_end", "velocity",
                                                       "i_start", "i_end", "confidence",
                                                       "duration")},
-    "t_given": "s", "sigma_t_change": "s",
+    "t_given": "s", "sigma_t_change": "s", "start_lo": "s", "start_hi": "s",
     "displacement_noise": "m", "level": LABEL, "steps": LABEL, "step": LABEL,
     "rise": "1 (friction)", "mean_normal": "Pa",
     "aicc": DIMENSIONLESS, "delta_aic": DIMENSIONLESS, "delta_bic": DIMENSIONLESS,
@@ -306,3 +310,26 @@ SNAPSHOT_UNITS: dict[str, str | None] = {
     "radius": "a0", "force": "1 (the pair's share of the friction, as mu)",
 }
 """snapshot_*.csv of a trap-model run (the pairs in contact at the snapshot's time)."""
+
+
+_WORK = "F_el a0"
+INTERFACE_LOAD_UNITS: dict[str, str | None] = {
+    "t": "t0", "load": "F_el", "load_point": "a0", "mean_slip": "a0", "max_slip_rate": "a0/t0",
+    "work_load": _WORK, "elastic_energy": _WORK, "kinetic_energy": _WORK,
+    "work_friction": _WORK, "work_damping": _WORK, "energy_residual": _WORK,
+}
+"""load.csv of ``simulate`` for an ``[interface]`` protocol: the loading and the
+energy balance over time (reduced; ``F_el`` is one block's)."""
+
+INTERFACE_SUMMARY_UNITS: dict[str, str | None] = {
+    **SUMMARY_UNITS["cv"],
+    "n_elements": DIMENSIONLESS, "n_samples": DIMENSIONLESS, "t_end": "t0", "max_slip": "a0",
+    "max_slip_rate": "a0/t0", "final_load": "F_el", "energy_residual_max": _WORK,
+    "energy_work_load_max": _WORK, "coupling": "F_el/a0", "edge_stiffness": "F_el/a0",
+    "normal_spread": DIMENSIONLESS, "density_spread": DIMENSIONLESS, "slip": "a0",
+    "duration": "t0", "load_point_start": "a0", "steps": DIMENSIONLESS,
+    "trap_updates": DIMENSIONLESS, "cpu_s": "s", "threads": DIMENSIONLESS, "dt_max": "t0",
+    "cover_a0": "a0", "x": "element",
+}
+"""summary.json of ``simulate`` for an ``[interface]`` protocol (reduced units,
+``F_el`` one block's)."""

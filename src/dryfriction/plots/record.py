@@ -1,4 +1,4 @@
-"""The figure of a laboratory record as the step finder read it (``record.png``, issue 23):
+"""The figure of a laboratory record as the step finder read it (``record.png``):
 the load-point velocity (a smoothed estimate, light) with the load program drawn on it, friction
 and normal stress against time below; each step and hold shaded and numbered as in the table,
 sampling-rate changes, gaps, resets and normal-stress changes marked."""

@@ -1,4 +1,4 @@
-"""The summary figure of a whole experiment (issue 23 item 4): ``a - b``, ``a``, ``b`` and
+"""The summary figure of a whole experiment: ``a - b``, ``a``, ``b`` and
 ``Dc`` of every velocity step against the load-point velocity after the step (log axis), one
 colour and marker per normal-stress level, with the 95 % intervals of ``steps.csv``.
 

@@ -1,4 +1,4 @@
-"""The artifacts of a laboratory record that are not velocity changes (issue 23).
+"""The artifacts of a laboratory record that are not velocity changes.
 
 Displacement resets (a transducer re-zeroed: a jump in one sample that neither neighbouring
 velocity explains; or, too small for that, a short excursion that a jump fits as well),

@@ -3,7 +3,7 @@ the record's analysis takes (:mod:`.lab` reads it, :mod:`.detection` finds its l
 :mod:`.labsteps` slices it).
 
 It has a module of its own because the reader and the slicer both need it: in ``lab.py`` it
-made ``lab`` and ``labsteps`` import each other (issue 26).
+made ``lab`` and ``labsteps`` import each other.
 """
 
 from __future__ import annotations

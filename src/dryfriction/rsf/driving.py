@@ -203,7 +203,7 @@ def simulate_rsf(
     output: RSFOutput | None = None,
     **legacy: Any,
 ) -> RSFResult:
-    """Deprecated (issue 26): the old name of :func:`simulate`, for one release.
+    """Deprecated: the old name of :func:`simulate`, for one release.
 
     ``simulate_rsf(model, drive, initial, output)`` is :func:`simulate` with a warning
     (:class:`~dryfriction.simulation.OldSimulatorFormWarning`); so is the older keyword form

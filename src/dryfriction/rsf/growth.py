@@ -1,4 +1,4 @@
-"""The RSF driver beside an unstable steady state (issue 14; ours).
+"""The RSF driver beside an unstable steady state (ours).
 
 An L-stable method (RODAS4) stepping over an unstable mode damps it: started 1e-9 off an unstable
 steady state it took one 1000 s step and reported steady sliding. :func:`growth_limit` keeps every

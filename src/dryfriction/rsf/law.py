@@ -384,6 +384,6 @@ class RateState:
 
 
 RateStateModel = RateState
-"""The rate-and-state model object (issue 26): :class:`RateState` is it, frozen and checked
+"""The rate-and-state model object: :class:`RateState` is it, frozen and checked
 once at construction against :data:`RATE_STATE_PARAMETERS`; the two names are one class.
 Not to be confused with :class:`dryfriction.fit.models.RSFModel`, a fit's parameter spec."""

@@ -1,4 +1,4 @@
-"""How much memory a rate-and-state run will hold, estimated before any work (issue 13).
+"""How much memory a rate-and-state run will hold, estimated before any work.
 
 The solver (:func:`~dryfriction.rsf.driving.simulate`) records every accepted step, at most
 ``max_steps`` plus one per segment, in buffers that double when full: at the moment of a
@@ -8,7 +8,7 @@ its time, segment and the state and derivative vectors (``ny <= 4`` floats each)
 (interpolation temporaries and the result's columns). All arithmetic is in floats: an absurd
 input gives ``inf``, never an ``OverflowError``.
 
-Time (issue 24): the step budget ``max_steps`` bounds a run's work before it starts (a compiled
+Time: the step budget ``max_steps`` bounds a run's work before it starts (a compiled
 step costs about 1 us: the default 1e6 steps are about a second), and this memory check
 bounds ``max_steps``; a run that needs more steps stops with ``SolverError`` naming
 ``max_steps``, it never runs on silently.

@@ -168,7 +168,7 @@ def slip_by_quadrature(T: Array, Y: Array, F: Array, x0: float) -> Array:
     Gauss-Legendre. Its error is the solver's own, a relative ``rtol`` of the slip, whatever
     the spring; the force balance ``x = x_load - (stress - stress0)/k`` divides the error of the
     stress (``rtol (a + b)``, and the rounding of ``mu0``) by ``k``: 1e-4 m at ``k = 1e-12``/m,
-    -1.2e285 m at ``k = 1e-300``/m (issue 24).
+    -1.2e285 m at ``k = 1e-300``/m.
     """
     h = np.diff(T)
     y0, y1 = Y[:-1, 0], Y[1:, 0]

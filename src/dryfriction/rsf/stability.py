@@ -4,7 +4,7 @@ steady sliding, for any number of state variables, either law, standard or regul
 
 Beside the law (:mod:`.law`, whose :meth:`~.law.RateState.critical_stiffness` is the closed
 form for one state variable), and below both the driver (:mod:`.driving`) and the check of
-an unstable start (:mod:`.growth`), which both use it (issue 26: it was in the driver, which
+an unstable start (:mod:`.growth`), which both use it (it was in the driver, which
 the start check is part of).
 """
 

@@ -2,7 +2,7 @@
 
 The kernels below (state laws, friction, right-hand side and Jacobian, a small LU, the stepper)
 are plain Python on scalar floats and flat containers (a matrix ``m`` is ``m[i * n + j]``), so
-that the same source runs in two ways (issue 12):
+that the same source runs in two ways:
 
 * interpreted, on Python lists: no Numba (0.4 s to import, and SciPy's linear algebra with it,
   plus 0.3 s to load its cache), which is what a small job such as a velocity step wants -

@@ -1,0 +1,113 @@
+"""Speed of the extended interface (issue 29): trap updates per second, cost against the number
+of blocks, one thread against two.
+
+Run ``python benchmarks/bench_interface.py [--full]`` (``--full``: N up to 1024 and the
+stick-slip run at N = 256 over 100 a0, the issue's scale; an hour on a loaded machine).
+A trap update is one pair of a block's contact window processed in one step (the pairs in
+contact and the free ones between them).
+Uniform steady sliding at ``u = 1`` of blocks with 100 pairs per ``a0`` (about 250 pairs in
+each window), ``k_c = 1``, ``m = 1``: the step is the slip limit ``1/(4 lambda)``, so every
+run of the same duration takes the same steps and the cost per step should grow linearly with
+``N``. The thread comparison runs 1 and 2 threads alternately (the machine may be shared: the
+load average is printed with every line, and the median of the alternating runs is compared).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import sys
+
+from dryfriction.ensemble.interface import InterfaceDrive, InterfaceModel, simulate_interface
+from dryfriction.ensemble.population import Initial, Track
+from dryfriction.ensemble.result import Output
+from dryfriction.program import Segment, VelocityProgram
+from dryfriction.theory.model import TrapModel
+
+
+def run(n: int, duration: float, threads: int, lam: float = 100.0) -> dict[str, float]:
+    """One run: ``N`` blocks in uniform steady sliding at ``u = 1`` for ``duration`` t0."""
+    r = simulate_interface(
+        InterfaceModel(TrapModel(eps=0.04), n, 1.0, 1.0, 0.1),
+        InterfaceDrive("uniform", 0.5, VelocityProgram([Segment(1.0, duration=duration)])),
+        Initial("steady", velocity=1.0, track=Track(lam, "random", seed=1)),
+        Output(every=duration / 4), velocity=1.0, threads=threads)
+    info = r.info
+    return {"steps": info["steps"], "updates": info["trap_updates"], "wall": info["wall_s"],
+            "cpu": info["cpu_s"], "threads": info["threads"]}
+
+
+def _load() -> str:
+    one, five, fifteen = os.getloadavg()
+    return f"load {one:.1f} {five:.1f} {fifteen:.1f}"
+
+
+def cost_against_n(sizes: tuple[int, ...], duration: float) -> None:
+    """CPU microseconds per step and per block, and trap updates per CPU second, one
+    thread (CPU time, not wall: the machine may be shared)."""
+    run(2, 0.1, 1)  # load the compiled kernel
+    print(f"cost against N (one thread, {duration:g} t0 of sliding, 100 pairs/a0)")
+    print(f"{'N':>6} {'steps':>7} {'updates':>10} {'wall s':>8} {'cpu s':>7} "
+          f"{'us/step/block':>14} {'updates/cpu-s':>13}")
+    for n in sizes:
+        r = run(n, duration, 1)
+        per = r["cpu"] / r["steps"] / n * 1e6  # CPU time: the machine may be shared
+        print(f"{n:>6} {r['steps']:>7.0f} {r['updates']:>10.3g} {r['wall']:>8.2f} "
+              f"{r['cpu']:>7.2f} {per:>14.2f} {r['updates'] / r['cpu']:>13.3g}   {_load()}")
+
+
+def threads(n: int, duration: float, repeats: int) -> None:
+    """One thread against two, alternately, the medians compared."""
+    run(n, 0.1, 2)
+    walls: dict[int, list[float]] = {1: [], 2: []}
+    print(f"threads: N = {n}, {duration:g} t0, {repeats} alternating runs each")
+    for _ in range(repeats):
+        for th in (1, 2):
+            r = run(n, duration, th)
+            walls[th].append(r["wall"])
+            print(f"  threads={r['threads']:.0f} wall {r['wall']:.2f} s, "
+                  f"{r['updates'] / r['wall']:.3g} updates/s   {_load()}")
+    m1, m2 = statistics.median(walls[1]), statistics.median(walls[2])
+    print(f"  median one thread {m1:.2f} s, two threads {m2:.2f} s: speed-up {m1 / m2:.2f}x")
+
+
+def spanning_events(n: int, slip: float, threads: int | None = None) -> None:
+    """Stick-slip of the chain under uniform loading (the single slider's inertial example per
+    block: ``K_p = 0.05``, ``m = 1``, ``eta = 0.02``, ``V = 0.01``; ``k_c = 1``; 100 pairs/a0,
+    about 250 in a window): the events whose fast part (slip rate above ``10 V``) covers every
+    block, and the wall time per such event."""
+    V = 0.01
+    r = simulate_interface(
+        InterfaceModel(TrapModel(eps=0.04), n, 1.0, 1.0, 0.02),
+        InterfaceDrive("uniform", 0.05, VelocityProgram([Segment(V, slip=slip)])),
+        Initial("steady", velocity=V, track=Track(100.0, "random", seed=1)),
+        Output(every=1.0), threads=threads)
+    fast = r.slip_rate > 10.0 * V
+    on = fast.any(axis=1)
+    spanning = 0
+    j = 0
+    while j < on.size:
+        if on[j]:
+            k = j
+            while k < on.size and on[k]:
+                k += 1
+            spanning += int(fast[j:k].any(axis=0).all())
+            j = k
+        else:
+            j += 1
+    wall, cpu = r.info["wall_s"], r.info["cpu_s"]
+    print(f"events: N = {n}, {slip:g} a0 of plate travel: {spanning} system-spanning events, "
+          f"{r.info['steps']} steps, {r.info['trap_updates']:.3g} trap updates, wall {wall:.1f} "
+          f"s, CPU {cpu:.1f} s ({cpu / max(spanning, 1):.1f} CPU s per event), threads "
+          f"{r.info['threads']}   {_load()}")
+
+
+def main() -> None:
+    full = "--full" in sys.argv  # the issue's scale: N = 256 through ~20 events (long)
+    cost_against_n((16, 64, 256, 1024) if full else (16, 64, 256), 2.0)
+    threads(256, 2.0, 3 if full else 2)
+    spanning_events(256 if full else 64, 100.0 if full else 30.0)
+
+
+if __name__ == "__main__":
+    main()

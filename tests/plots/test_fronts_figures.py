@@ -1,0 +1,107 @@
+"""The figures of the extended interface draw what the analysis found, where it belongs: fronts
+on the space-time map at (position, arrival time), speeds at their positions, the precursor
+points and the magnitude-frequency steps, with the units on the axes."""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+import pytest
+
+from dryfriction.analysis.catalogue import magnitude_frequency, precursor_trend, precursors
+from dryfriction.analysis.fronts import detect_events, space_time
+from dryfriction.plots.fronts import (
+    front_speed_figure,
+    magnitude_frequency_figure,
+    precursor_figure,
+    space_time_figure,
+)
+from dryfriction.plots.style import save_png
+from fronts_synth import Pulse, fields, grid
+
+THR = 0.6
+
+
+@pytest.fixture(scope="module")
+def run():
+    t, x = grid(n_x=24, dx=0.5, t_end=16.0, dt=0.02)
+    pulses = [Pulse(0, 0, 5, 1.0, 2.0), Pulse(0, 0, 11, 4.0, 1.5),
+              Pulse(6, 0, 23, 9.0, 3.0, A=8.0)]
+    v, s = fields(t, x, pulses, v_bg=0.01)
+    st = space_time(t, x, v, s, 0.4 + 0.03 * t)
+    return st, detect_events(st, THR)
+
+
+def _png(fig) -> bytes:
+    buf = io.BytesIO()
+    save_png(fig, buf)
+    return buf.getvalue()
+
+
+def test_space_time_map_draws_each_front_at_its_arrivals(run):
+    # mistake: the front drawn as (t, x) on an (x, t) map, or one direction left out
+    st, events = run
+    fig, ax = space_time_figure(st, events, THR)
+    drawn = [(tuple(ln.get_xdata()), tuple(ln.get_ydata())) for ln in ax.get_lines()
+             if ln.get_linestyle() == "-"]
+    expected = [(tuple(f.x), tuple(f.t)) for e in events for f in e.fronts if f.x.size > 1]
+    assert len(drawn) == len(expected) == 4  # two edge events one way, the third both ways
+    for (dx, dt), (ex, et) in zip(drawn, expected, strict=True):
+        assert np.allclose(dx, ex) and np.allclose(dt, et)
+    assert "[a0]" in ax.get_xlabel() and "[t0]" in ax.get_ylabel()
+    assert _png(fig).startswith(b"\x89PNG")
+
+
+def test_speed_figure_puts_each_speed_at_its_position(run):
+    st, events = run
+    fig, ax = front_speed_figure(st, events, reference_speed=3.0, reference_label="c")
+    points = [ln for ln in ax.get_lines() if ln.get_marker() == "."]
+    xs = np.concatenate([ln.get_xdata() for ln in points])
+    vs = np.concatenate([ln.get_ydata() for ln in points])
+    for e, c in zip(events, (2.0, 1.5, 3.0), strict=True):
+        for f in e.fronts:
+            for xi, vi in zip(f.x, f.speed, strict=True):
+                if np.isfinite(vi):
+                    k = np.flatnonzero(np.isclose(xs, xi) & np.isclose(vs, vi))
+                    assert k.size and vi == pytest.approx(c, rel=1e-6)
+    assert "[a0/t0]" in ax.get_ylabel()
+    _png(fig)
+
+
+def test_precursor_and_magnitude_figures(run):
+    st, events = run
+    pre = precursors(events, st, normal_load=2.0, edge="left")
+    fig, ax = precursor_figure(pre, st, precursor_trend(pre))
+    (pts,) = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    # two precursors: the trend is not judged, and the legend says so
+    assert "grow with the load: undetermined (2 points)" in [
+        t.get_text() for t in ax.get_legend().get_texts()]
+    assert np.allclose(pts.get_xdata(), pre.ratio) and np.allclose(pts.get_ydata(), [3.0, 6.0])
+    assert "[1]" in ax.get_xlabel() and "[a0]" in ax.get_ylabel()
+    _png(fig)
+    mf = magnitude_frequency([e.moment for e in events])
+    fig, ax = magnitude_frequency_figure(mf, st)
+    step = ax.get_lines()[0]
+    assert np.allclose(step.get_ydata(), [1, 2, 3])
+    assert np.allclose(step.get_xdata(), sorted((e.moment for e in events), reverse=True))
+    assert "[a0^2]" in ax.get_xlabel() and "alpha" in ax.get_legend().get_texts()[-1].get_text()
+    _png(fig)
+
+
+def test_long_record_is_pooled_by_its_largest_values():
+    # mistake: every k-th sample kept (a short slip between two kept samples vanishes)
+    from dryfriction.plots.fronts import MAP_ROWS, space_time_figure
+
+    t = np.arange(3 * MAP_ROWS + 7) * 0.01
+    x = np.arange(3.0)
+    v = np.zeros((t.size, 3))
+    v[1001, 1] = 5.0  # one sample, not a multiple of the pooling factor
+    v[-1, 2] = 7.0  # the last, incomplete block
+    st = space_time(t, x, v)
+    fig, ax = space_time_figure(st, [], 1.0)
+    (mesh,) = ax.collections
+    shown = np.asarray(mesh.get_array()).reshape(-1, 3)
+    assert shown.shape[0] <= MAP_ROWS + 1
+    assert shown[:, 1].max() == pytest.approx(np.log10(5.0))
+    assert shown[-1, 2] == pytest.approx(np.log10(7.0))
