@@ -34,7 +34,8 @@ ALPHA = 0.13  # the paper's trap stiffness
 def parameters(mass_factor: float = 1.0) -> dict:
     """Reduced parameters from the SI ones above (ours: docs/hopf.md)."""
     T = np.array([1e2, 1e4])
-    per_eps = float(np.diff(static_friction(T, 0.01, ALPHA))[0] / np.log(100.0)) / 0.01
+    per_eps = float(np.diff(static_friction(TrapModel(alpha=ALPHA, eps=0.01), T))[0]
+                    / np.log(100.0)) / 0.01
     eps = SLOPE / (MU_EL * per_eps)
     model = TrapModel(alpha=ALPHA, eps=eps, direct=A)
     dc = effective_rsf(0.1, model)["dc"]  # a0, nearly constant below u ~ 1

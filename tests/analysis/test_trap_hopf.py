@@ -23,7 +23,7 @@ RES = {"n": 16, "panels": 12, "stretch": 1.5}
 @pytest.mark.parametrize("u", [0.013, 0.31])
 def test_steady_state_is_an_equilibrium_with_eq34_friction(u: float) -> None:
     fld = TrapField(u, MODEL, **RES)
-    mu = float(steady_friction(u, MODEL.eps, MODEL.alpha, MODEL.creep))
+    mu = float(steady_friction(MODEL.athermal, u))
     assert fld.mu_age_ss == pytest.approx(mu, rel=1e-10)
     assert np.max(np.abs(fld(fld.steady(), 0.037))) < 1e-12
     m = TrapField(u, MODEL, mass=2.7, damping=0.11, **RES)

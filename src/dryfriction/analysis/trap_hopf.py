@@ -178,7 +178,7 @@ class TrapField:
         self.g_slope = float(junction_log_slope(u, m.direct, m.v_ref)) / u  # g'(u)
         self.sigma_ss = u * self.tau[1:]
         self.mu_age_ss = float(np.real(self.mu_age(self.sigma_ss.astype(complex))))
-        self.mu_d = float(steady_friction(u, m.eps, m.alpha, m.creep))
+        self.mu_d = float(steady_friction(m.athermal, u))  # the aged population alone
         self.F_ss = self.g_u * self.mu_age_ss + self.damping * u
 
     # -- the population ------------------------------------------------------------------
