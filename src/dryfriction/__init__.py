@@ -64,7 +64,7 @@ __all__ = sorted([*_PUBLIC, *_RENAMED, "__version__", "simulate"])
 
 
 def simulate(*args: Any, **kwargs: Any) -> Any:
-    """Run either law: ``simulate(model, drive, initial, output) -> Result`` (issue 26).
+    """Run either law: ``simulate(model, drive, initial, output) -> Result``.
 
     Dispatches on the model's type (:mod:`dryfriction.simulation` lists the parts of each):
 

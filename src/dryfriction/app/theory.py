@@ -1,8 +1,7 @@
 """The closed-form workflows: :func:`trap`, :func:`static`, :func:`steady`, :func:`stability`
 (the commands of the same names). Each checks its input (one line naming the option as typed),
 evaluates the theory and returns a :class:`TableOutcome`: the parameters and the columns with
-their units, which the command line prints as a table or JSON. Moved here from the command line
-(issue 26)."""
+their units, which the command line prints as a table or JSON. Moved here from the command line."""
 
 from __future__ import annotations
 

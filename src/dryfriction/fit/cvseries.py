@@ -2,7 +2,7 @@
 kinematic or an elastic machine with a trend, and its start from a rate-and-state fit
 (:func:`cv_start_from_rsf`).
 
-The machine (issue 11, ours) is the one the rate-and-state record fit uses
+The machine is the one the rate-and-state record fit uses
 (:func:`.models.rsf_series`): a spring of stiffness ``k`` (per unit normal force, 1/m) between
 the load point, which follows the data's program, and the slider, which here is the trap
 ensemble's quasi-static slider (:class:`dryfriction.ensemble.driving.SpringDrive` with mass 0);

@@ -1,4 +1,4 @@
-"""Per-step fitting of a multi-step laboratory record (issue 10): each velocity step (or
+"""Per-step fitting of a multi-step laboratory record: each velocity step (or
 slide-hold-slide cycle) fitted on its own with rate-and-state friction on an elastic machine
 with a linear slip trend, optionally all steps together with one ``(a, b, Dc)``.
 
@@ -668,10 +668,9 @@ COMPARED = ("a", "b", "dc", "stiffness")
 
 def compare_with_program(pieces: list[SeriesData], fits: list[Any],
                          rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """How each step's values depend on the drive (issue 30 item 3: "report how k and a
-    depend on that choice"): every window refitted on the idealised program, started from
-    its measured-drive optimum (one local fit each), its ``a, b, dc, stiffness`` and rms
-    beside the measured drive's (the rows' values, NaN where not identified: the refit's
+    """How each step's values depend on the drive: every window refitted on the idealised
+    program, started from its measured-drive optimum (one local fit each), its
+    ``a, b, dc, stiffness`` and rms beside the measured drive's (the rows' values, NaN where not identified: the refit's
     are raw). One dict per step for ``fit.json``'s ``drive.comparison``."""
     out: list[dict[str, Any]] = []
     for d, r, row in zip(pieces, fits, rows, strict=True):

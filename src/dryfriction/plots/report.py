@@ -15,7 +15,7 @@
 
 All numbers come from the library; nothing is fitted to the paper.
 
-The figures are drawn in parallel where the machine has more than one core (issue 12: drawing
+The figures are drawn in parallel where the machine has more than one core (drawing
 was two thirds of the command): a pool of processes forked after the imports, each drawing
 whole figures into the staging folder, while this process computes the data and the summary;
 serially where ``fork`` is not available (or on one core). The files are the same either way.

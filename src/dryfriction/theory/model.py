@@ -1,4 +1,4 @@
-"""The trap model as one object: its parameters, their defaults and allowed ranges (issue 26).
+"""The trap model as one object: its parameters, their defaults and allowed ranges.
 
 Every default and every range of the model's parameters is declared once, as data, in
 :data:`TRAP_PARAMETERS` (and :data:`TRAPS_PER_A0` for the track density, which belongs to the
