@@ -670,8 +670,9 @@ def compare_with_program(pieces: list[SeriesData], fits: list[Any],
                          rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """How each step's values depend on the drive: every window refitted on the idealised
     program, started from its measured-drive optimum (one local fit each), its
-    ``a, b, dc, stiffness`` and rms beside the measured drive's (the rows' values, NaN where not identified: the refit's
-    are raw). One dict per step for ``fit.json``'s ``drive.comparison``."""
+    ``a, b, dc, stiffness`` and rms beside the measured drive's (the rows' values, NaN where
+    not identified: the refit's are raw). One dict per step for ``fit.json``'s
+    ``drive.comparison``."""
     out: list[dict[str, Any]] = []
     for d, r, row in zip(pieces, fits, rows, strict=True):
         plain = SeriesData(d.t, d.v_load, d.mu, d.sigma, d.source)
