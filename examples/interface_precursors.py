@@ -94,8 +94,8 @@ def main() -> None:
               f" at load ratios [1] {np.round(m['trig'].ratio, 3).tolist()}")
         print(f"  fronts: {fr.count('slow')} slow, {fr.count('fast')} fast, "
               f"{fr.count('undetermined')} undetermined (against {fr.fraction:g} x sound speed);"
-              f" speed / sound speed from {np.min(fr.ratio, initial=np.nan):.2f}"
-              f" to {np.max(fr.ratio, initial=np.nan):.2f}; run {m['wall']:.0f} s")
+              f" speed / sound speed from {np.min(fr.ratio, initial=np.inf):.2f}"
+              f" to {np.max(fr.ratio, initial=-np.inf):.2f}; run {m['wall']:.0f} s")
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     for k, (name, m) in enumerate(res.items()):
