@@ -28,14 +28,16 @@ def peak_kb():
 
 import time
 import numpy as np
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import steady_friction
 fn = {"static": static_friction, "steady": steady_friction}[sys.argv[1]]
+model = TrapModel(eps=0.04, creep=sys.argv[2])
 x = np.geomspace(1e-3, 1e3, 1_000_000)
-fn(x[:10], 0.04, creep=sys.argv[2])
+fn(model, x[:10])
 before = peak_kb()
 t = time.perf_counter()
-fn(x, 0.04, creep=sys.argv[2])
+fn(model, x)
 dt = time.perf_counter() - t
 after = peak_kb()
 print(f"{dt:.2f} {(after - before) / 1024:.0f} {after / 1024:.0f}")

@@ -19,12 +19,14 @@ from scipy.integrate import quad  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 
 from benchmarks.timing import best_time  # noqa: E402
+from dryfriction.theory.model import TrapModel  # noqa: E402
 from dryfriction.theory.static import static_friction  # noqa: E402
 from dryfriction.theory.steady import steady_friction  # noqa: E402
 from dryfriction.theory.trap import Trap, force_plus  # noqa: E402
 
 EPS, ALPHA = 0.04, 0.13
 GRID = np.logspace(-4, 4, 1000)
+MODEL = TrapModel(ALPHA, EPS)
 
 
 def quad_static(T: float) -> float:
@@ -53,8 +55,8 @@ def main() -> None:
     sub = GRID[::50]  # the naive route is timed on 20 points and scaled to 1000
     rows = []
     for name, fast, slow in (
-        ("static_friction", lambda: static_friction(GRID, EPS, ALPHA), quad_static),
-        ("steady_friction", lambda: steady_friction(GRID, EPS, ALPHA), quad_steady),
+        ("static_friction", lambda: static_friction(MODEL, GRID), quad_static),
+        ("steady_friction", lambda: steady_friction(MODEL, GRID), quad_steady),
     ):
         t_fast = best_time(fast)
         t0 = time.perf_counter()
@@ -67,8 +69,8 @@ def main() -> None:
     for name, tf, ts, diff in rows:
         print(f"  {name:16s} {tf * 1e3:8.3f} ms   quad per point {ts * 1e3:9.1f} ms   "
               f"speed-up {ts / tf:8.0f}x   max rel. diff vs quad {diff:.1e}")
-    t_en = best_time(lambda: steady_friction(GRID, EPS, ALPHA, creep="eyring-nabarro"), 3, 1)
-    t_strong = best_time(lambda: static_friction(GRID, EPS, 0.5), 3, 2)
+    t_en = best_time(lambda: steady_friction(MODEL.replace(creep="eyring-nabarro"), GRID), 3, 1)
+    t_strong = best_time(lambda: static_friction(MODEL.replace(alpha=0.5), GRID), 3, 2)
     print(f"  steady_friction, Eyring-Nabarro creep: {t_en * 1e3:.1f} ms")
     print("  static_friction, strong pinning (alpha = 0.5, interior search): "
           f"{t_strong * 1e3:.1f} ms")

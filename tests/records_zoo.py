@@ -103,6 +103,7 @@ class ZooRecord:
     normal_changes: list[float] = field(default_factory=list)
     normal_ramp: float = 0.0
     v: np.ndarray | None = None  # load-point velocity as a servo reports it, m/s
+    velocities: list[float] = field(default_factory=list)  # commanded, m/s, one per stretch
 
     @property
     def rows(self) -> int:
@@ -292,7 +293,7 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     v_read = np.round(vt * (1.0 + rng.normal(0.0, 0.02, t.size)) / QUANTUM) * QUANTUM
     return ZooRecord(f"zoo_{index:03d}_{program}_{'+'.join(artifacts) or 'plain'}",
                      program, artifacts, dialect, t + 100.0, x, mu, sn, changes,
-                     normal_changes, ramp, v_read)
+                     normal_changes, ramp, v_read, [v for _, v in prog])
 
 
 def specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:
@@ -370,6 +371,10 @@ class Score:
     cpu: float  # s, detection CPU time
     count_right: bool = False  # the right number of velocity and normal-stress changes
     note: str = ""
+    # per true change, where the number is right: (ratio of the faster to the slower velocity
+    # (inf at a hold), time error s, tolerance s, inside its 95 % interval or None where the
+    # detector gave none, placed (Segment.start_placed))
+    changes: list[tuple[float, float, float, bool | None, bool]] = field(default_factory=list)
 
 
 FALSE_WINDOW = 5.0  # s: a detected change farther than this from every true change is false
@@ -393,14 +398,23 @@ def score(rec: ZooRecord, det: object, cpu: float) -> Score:
     missed = sum(1 for c in truth if all(abs(f - c) > FALSE_WINDOW for f in found))
     right = len(found) == len(truth)
     worst = 0.0
+    per: list[tuple[float, float, float, bool | None, bool]] = []
     if right:
-        for f, c in zip(found, truth, strict=True):
+        segs_at = [s for p, s in zip(segs, segs[1:], strict=False) if s.velocity != p.velocity]
+        vel = rec.velocities or [float("nan")] * (len(truth) + 1)
+        for j, (f, c, sg) in enumerate(zip(found, truth, segs_at, strict=True)):
             worst = max(worst, abs(f - c))
-            right &= abs(f - c) <= tolerance(t, c)
+            tol = tolerance(t, c)
+            right &= abs(f - c) <= tol
+            lo, hi = getattr(sg, "start_lo", float("nan")), getattr(sg, "start_hi", float("nan"))
+            inside = None if not np.isfinite(lo) else bool(lo - t0 <= c <= hi - t0)
+            v1, v2 = abs(vel[j]), abs(vel[j + 1])
+            ratio = max(v1, v2) / min(v1, v2) if min(v1, v2) > 0 else float("inf")
+            per.append((ratio, f - c, tol, inside, bool(getattr(sg, "start_placed", True))))
     nfound = [x - t0 for x in det.normal_changes]  # type: ignore[attr-defined]
     nright = len(nfound) == len(rec.normal_changes) and all(
         abs(f - c) <= 0.5 * rec.normal_ramp + tolerance(t, c)
         for f, c in zip(nfound, rec.normal_changes, strict=True))
     note = "" if nright else f"normal changes {nfound} vs {rec.normal_changes}"
     count = len(found) == len(truth) and len(nfound) == len(rec.normal_changes)
-    return Score(right and nright, len(found), false, missed, worst, cpu, count, note)
+    return Score(right and nright, len(found), false, missed, worst, cpu, count, note, per)

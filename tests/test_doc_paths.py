@@ -130,3 +130,28 @@ def test_the_check_sees_an_old_path() -> None:
     assert not resolves("dryfriction.theory.stability.effective_rsf")  # moved (issue 26)
     assert resolves("dryfriction.rsf.RateState")  # a lazy public name
     assert not any(x.endswith(".steady.steady_frictions") for x in every_name())
+
+
+def test_no_docstring_names_the_tracker() -> None:
+    """What ``help()`` and the API pages show carries no issue number of the project's
+    tracker (a user cannot look it up); developer comments may."""
+    import ast
+
+    tracker = re.compile(r"\b[Ii]ssues? \d+")
+    found = []
+    for path in SRC.rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            body = getattr(node, "body", None)
+            if not isinstance(body, list):
+                continue
+            for prev, stmt in zip([None, *body], body, strict=False):
+                doc = (isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Constant)
+                       and isinstance(stmt.value.value, str))
+                first = prev is None and isinstance(node, (ast.Module, ast.ClassDef,
+                                                            ast.FunctionDef,
+                                                            ast.AsyncFunctionDef))
+                attr = isinstance(prev, (ast.Assign, ast.AnnAssign))
+                if doc and (first or attr) and tracker.search(stmt.value.value):
+                    found.append(f"{path.relative_to(SRC)}:{stmt.lineno}")
+    assert not found, found

@@ -58,7 +58,7 @@ def test_ensemble_and_rsf_results_as_records() -> None:
 
 def test_fit_result_parameter_table() -> None:
     tw = np.geomspace(0.01, 1e4, 12)
-    y = static_friction_si(tw, 0.03, PhysicalScales(1e-6, 1.0, 0.4))
+    y = static_friction_si(TrapModel(eps=0.03), tw, PhysicalScales(1e-6, 1.0, 0.4))
     y = y + np.random.default_rng(1).normal(0.0, 2e-3, tw.size)
     r = fit_static(StaticData(tw, y, np.full(tw.size, 2e-3), "s"), "cv", profile=False,
                    multistart=False)

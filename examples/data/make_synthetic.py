@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dryfriction import PhysicalScales, RateState, Segment, simulate
+from dryfriction import PhysicalScales, RateState, Segment, TrapModel, simulate
 from dryfriction.rsf import RSFOutput, SpringSlider
 from dryfriction.theory.units import static_friction_si, steady_friction_si
 
@@ -39,20 +39,21 @@ def main() -> None:
     rng = np.random.default_rng(SEED)
     cv = PhysicalScales(a0=1e-6, t0=1.0, mu_el=0.4)
     eps, noise = 0.03, 0.002
+    model = TrapModel(eps=eps)
     tw = np.geomspace(0.01, 1e4, 16)
-    mu = static_friction_si(tw, eps, cv) + rng.normal(0.0, noise, tw.size)
+    mu = static_friction_si(model, tw, cv) + rng.normal(0.0, noise, tw.size)
     _write("synthetic_static_paper.csv",
            ["trap model (eq. 27), alpha 0.13: eps 0.03, t0 1 s, mu_el 0.4; noise sd 0.002"],
            ["t_w[s]", "mu_s", "sigma_mu_s"], [tw, mu, np.full(tw.size, noise)])
     V = np.geomspace(1e-8, 1e-4, 13)
-    mu = steady_friction_si(V, eps, cv) + rng.normal(0.0, noise, V.size)
+    mu = steady_friction_si(model, V, cv) + rng.normal(0.0, noise, V.size)
     _write("synthetic_steady_paper.csv",
            ["trap model (eq. 34), alpha 0.13: eps 0.03, a0 1 um, t0 1 s (V* = 1 um/s), "
             "mu_el 0.4; noise sd 0.002"],
            ["V[um/s]", "mu_d", "sigma_mu_d"], [V * 1e6, mu, np.full(V.size, noise)])
     deg = PhysicalScales(a0=1e-6, t0=0.01, mu_el=0.4)
     tw = np.geomspace(1.0, 1e4, 16)
-    mu = static_friction_si(tw, eps, deg) + rng.normal(0.0, noise, tw.size)
+    mu = static_friction_si(model, tw, deg) + rng.normal(0.0, noise, tw.size)
     _write("synthetic_static_degenerate.csv",
            ["trap model (eq. 27), alpha 0.13: eps 0.03, t0 0.01 s (far below the shortest "
             "wait), mu_el 0.4; noise sd 0.002"],

@@ -20,10 +20,10 @@ fig, (left, right) = plt.subplots(1, 2, figsize=(9, 3.8), layout="constrained")
 for eps, color in ((0.01, "C0"), (0.05, "C3")):
     for law, ls in (("log", "-"), ("eyring-nabarro", "--")):
         left.semilogx(T, radius(T, eps, law), ls, color=color, label=f"eps = {eps}, {law}")
-        right.semilogx(T, df.static_friction(T, eps, 0.13, law), ls, color=color,
-                       label=f"eps = {eps}, {law}")
-    gap = np.abs(df.static_friction(T, eps, 0.13, "eyring-nabarro")
-                 - df.static_friction(T, eps, 0.13, "log"))
+        right.semilogx(T, df.static_friction(df.TrapModel(eps=eps, creep=law), T), ls,
+                       color=color, label=f"eps = {eps}, {law}")
+    gap = np.abs(df.static_friction(df.TrapModel(eps=eps, creep="eyring-nabarro"), T)
+                 - df.static_friction(df.TrapModel(eps=eps, creep="log"), T))
     print(f"eps = {eps}: largest difference in mu_s, T <= 100: {gap[T <= 100].max():.2e} F_el; "
           f"T <= 1e4: {gap.max():.2e} F_el")
 left.set_xlabel("waiting time T = t_w/t0  [t0]")

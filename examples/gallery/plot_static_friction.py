@@ -15,8 +15,9 @@ import dryfriction as df
 T = np.logspace(-2, 4, 200)  # waiting time / t0
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 for eps in (0.02, 0.04, 0.06):
-    line, = ax.semilogx(T, df.static_friction(T, eps=eps), label=f"eps = {eps}, at rest")
-    ax.semilogx(T, df.static_friction(T, eps=eps, load=0.5), "--", color=line.get_color(),
+    model = df.TrapModel(eps=eps)
+    line, = ax.semilogx(T, df.static_friction(model, T), label=f"eps = {eps}, at rest")
+    ax.semilogx(T, df.static_friction(model, T, load=0.5), "--", color=line.get_color(),
                 label=f"eps = {eps}, under load 0.5 F_el")
 ax.set_xlabel("waiting time T = t_w/t0  [t0]")
 ax.set_ylabel("static friction F_s  [F_el]")

@@ -13,11 +13,12 @@ import numpy as np
 import dryfriction as df
 
 eps = 0.04
+model = df.TrapModel(eps=eps)
 u = np.logspace(-3, 3, 200)
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
-ax.semilogx(u, df.steady_friction(u, eps), label="eq. 34 (exact in the model)")
+ax.semilogx(u, df.steady_friction(model, u), label="eq. 34 (exact in the model)")
 low = u < 1
-ax.semilogx(u[low], df.steady_friction_low_velocity(u[low], eps), "--",
+ax.semilogx(u[low], df.steady_friction_low_velocity(model, u[low]), "--",
             label="low-velocity law (eq. 35)")
 ax.axhline(1.0, color="0.6", lw=0.8, label="saturation F_el")
 ax.set_xlabel("velocity u = V t0/a0  [a0/t0]")

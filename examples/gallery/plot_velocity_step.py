@@ -21,7 +21,7 @@ r = df.simulate(TrapModel(eps=eps), VelocityDrive(program),
 fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
 ax.plot(r.x, r.mu, label="trap ensemble, 200 pairs per a0")
 for u in (1.0, 0.01):
-    ax.axhline(float(df.steady_friction(u, eps)), ls="--", color="0.5", lw=0.8)
+    ax.axhline(float(df.steady_friction(TrapModel(eps=eps), u)), ls="--", color="0.5", lw=0.8)
 ax.set_xlabel("slip x  [a0]")
 ax.set_ylabel("friction F  [F_el]")
 ax.set_title("Velocity step u = 1 → 0.01 at x = 1")

@@ -38,11 +38,12 @@ _PUBLIC: dict[str, str] = {
     "loaded_edge": "theory.static", "pull_force": "theory.static",
     "steady_friction": "theory.steady", "steady_friction_first_order": "theory.steady",
     "steady_friction_low_velocity": "theory.steady", "steady_profile": "theory.steady",
+    "static_friction_over_eps": "theory.static", "steady_friction_over_eps": "theory.steady",
     "dieterich_constant_asymptotic": "theory.dieterich",
     "dieterich_constant_least_squares": "theory.dieterich",
     "dieterich_constant_local": "theory.dieterich",
     "critical_stiffness": "theory.linear_stability", "effective_rsf": "theory.linear_stability",
-    "TrapModel": "theory.model",
+    "TrapModel": "theory.model", "OldTheoryFormWarning": "theory.model",
     "InterfaceModel": "ensemble.interface", "InterfaceDrive": "ensemble.interface",
     "InterfaceResult": "ensemble.interface_result",
     "PhysicalScales": "theory.units", "static_friction_si": "theory.units",
@@ -63,7 +64,7 @@ __all__ = sorted([*_PUBLIC, *_RENAMED, "__version__", "simulate"])
 
 
 def simulate(*args: Any, **kwargs: Any) -> Any:
-    """Run either law: ``simulate(model, drive, initial, output) -> Result`` (issue 26).
+    """Run either law: ``simulate(model, drive, initial, output) -> Result``.
 
     Dispatches on the model's type (:mod:`dryfriction.simulation` lists the parts of each):
 

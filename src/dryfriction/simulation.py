@@ -1,4 +1,4 @@
-"""One simulator shape for both laws (issue 26): ``simulate(model, drive, initial, output)``.
+"""One simulator shape for both laws: ``simulate(model, drive, initial, output)``.
 
 A run is one call that composes four frozen objects, validated when made, and returns a
 :class:`Result` - the shape diffrax gives ``diffeqsolve(terms, solver, ..., saveat=SaveAt(...))``
@@ -54,7 +54,7 @@ _MODELS = {"cv": "a TrapModel", "rsf": "a RateState"}
 
 
 class OldSimulatorFormWarning(DeprecationWarning):
-    """An old form of a simulator call (issue 26, item 4): it still works, for one release.
+    """An old form of a simulator call: it still works, for one release.
 
     A ``DeprecationWarning``; its own class so that the test suite can turn exactly this one
     into an error (pyproject.toml) and no internal code path can use an old form unnoticed."""

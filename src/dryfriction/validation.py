@@ -77,7 +77,7 @@ FRICTION_MAX: float = 10.0
 """Largest friction coefficient ``F/W`` a run's inputs may set (ours): ``mu_el = F_el/W`` of
 the trap model and ``|mu0|`` of rate-and-state. Measured coefficients of solids stay below
 about 5 (clean metals in vacuum), and the fits bound ``mu_el`` to 10 already; beyond it a run
-reports a friction no apparatus shows (issue 24, outside24: ``mu_el = 1e300`` gave
+reports a friction no apparatus shows (``mu_el = 1e300`` gave
 ``mu_s = 1.3e300`` with exit 0)."""
 
 

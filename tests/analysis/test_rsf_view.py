@@ -24,23 +24,24 @@ EPS, ALPHA, U0 = 0.04, 0.13, 0.1
 
 @pytest.fixture(scope="module")
 def view():  # type: ignore[no-untyped-def]
-    return trap_model_as_rsf(EPS, ALPHA, U0)
+    return trap_model_as_rsf(TrapModel(alpha=ALPHA, eps=EPS), u0=U0)
 
 
 def test_the_ensemble_is_accurate_enough(view) -> None:  # type: ignore[no-untyped-def]
     """Steady levels of the runs against eq. 34 (closed-form quadrature) to 1e-3."""
+    model = TrapModel(alpha=ALPHA, eps=EPS)
     for entry in view.steps.values():
-        assert entry["mu_before"] == pytest.approx(float(steady_friction(U0, EPS, ALPHA)),
-                                                   abs=1e-3)
-        assert entry["mu_end"] == pytest.approx(float(steady_friction(entry["u_after"], EPS,
-                                                                      ALPHA)), abs=1e-3)
+        assert entry["mu_before"] == pytest.approx(float(steady_friction(model, U0)), abs=1e-3)
+        assert entry["mu_end"] == pytest.approx(float(steady_friction(model, entry["u_after"])),
+                                                abs=1e-3)
 
 
 def test_velocity_weakening_and_the_steady_slope(view) -> None:  # type: ignore[no-untyped-def]
     """b > a > 0 and a - b equals the steady slope of eq. 34 over the steps (chord of the
     exact steady friction), to 10 % (the fit also weighs the transients)."""
-    chord = (float(steady_friction(10 * U0, EPS, ALPHA))
-             - float(steady_friction(U0 / 10, EPS, ALPHA))) / (2 * math.log(10.0))
+    chord = (float(steady_friction(TrapModel(alpha=ALPHA, eps=EPS), 10 * U0))
+             - float(steady_friction(TrapModel(alpha=ALPHA, eps=EPS),
+                                     U0 / 10))) / (2 * math.log(10.0))
     for key in ("ageing", "slip", "ageing_with_holds"):
         tw = view.twins[key]
         assert tw.b > tw.a > 0.0
@@ -133,3 +134,30 @@ def test_transient_shape_of_an_exponential() -> None:
     assert s["x50"] == pytest.approx(math.log(2.0), rel=1e-4)
     assert s["x90_over_x50"] == pytest.approx(math.log(10.0) / math.log(2.0), rel=1e-3)
     assert s["x99_over_x90"] == pytest.approx(2.0, rel=1e-3)
+
+
+def test_compare_calibrates_the_protocols_whole_model(tmp_path, monkeypatch) -> None:
+    # mistake caught: the standard calibration rebuilding an athermal model from eps, alpha and
+    # creep (the old form's call), so a protocol's direct effect was dropped
+    from dryfriction.analysis import rsf_view
+    from dryfriction.io.protocol import load_protocol
+
+    f = tmp_path / "hold.toml"
+    f.write_text("[model]\neps = 0.03\nalpha = 0.11\ncreep = \"eyring-nabarro\"\n"
+                 "direct = 0.02\nv_ref = 0.4\nmu_el = 0.5\n"
+                 "[ensemble]\ntraps_per_a0 = 20\ninitial = \"steady\"\n"
+                 "initial_velocity = 0.2\n[drive]\nkind = \"velocity\"\n"
+                 "segments = [{velocity = 0.0, duration = 1.0}, {velocity = 0.2, slip = 0.2}]\n"
+                 "[output]\nevery_slip = 0.05\n")
+    proto = load_protocol(f)
+    seen = []
+
+    def stop(model, u0, *args, **kwargs):
+        seen.append((model, u0))
+        raise RuntimeError("stop")
+
+    monkeypatch.setattr(rsf_view, "trap_model_as_rsf", stop)
+    with pytest.raises(RuntimeError, match="stop"):
+        rsf_view.compare_protocol(proto)
+    assert seen == [(proto.model, 0.2)]
+    assert proto.model == TrapModel(0.11, 0.03, "eyring-nabarro", 0.5, 0.02, 0.4)

@@ -10,6 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import steady_friction
 
@@ -28,7 +29,8 @@ def test_static_json_matches_library():
     assert got["T"] == [0.0, 1.0, 10.0, 100.0]
     assert got["eps"] == 0.04 and got["alpha"] == 0.13 and got["load"] == 0.0
     assert got["creep"] == "log"
-    assert got["mu_s"] == static_friction(np.array(got["T"]), 0.04, 0.13).tolist()
+    assert got["mu_s"] == static_friction(TrapModel(alpha=0.13, eps=0.04),
+                                          np.array(got["T"])).tolist()
     assert got["mu_s"][0] == 1.0
 
 
@@ -45,28 +47,43 @@ def test_static_load_and_creep_are_passed_through():
                "--creep", "eyring-nabarro", "--json")
     assert r.exit_code == 0, r.output
     got = json.loads(r.stdout)
-    want = static_friction(np.array([5.0, 50.0]), 0.03, 0.13, "eyring-nabarro", 0.4)
+    want = static_friction(TrapModel(alpha=0.13, eps=0.03, creep="eyring-nabarro"),
+                           np.array([5.0, 50.0]), load=0.4)
     assert got["mu_s"] == want.tolist()
     assert got["load"] == 0.4 and got["creep"] == "eyring-nabarro"
+
+
+def test_static_in_si_computes_the_hold_it_reports():
+    # before: --t-w with --hold force printed "hold": "force" and the position hold's numbers
+    got = {h: json.loads(invoke("static", "--eps", "0.04", "--t-w", "10", "1000", "--t0", "2",
+                                "--load", "0.4", "--hold", h, "--json").stdout)
+           for h in ("position", "force")}
+    model = TrapModel(eps=0.04)
+    for h, out in got.items():
+        assert out["hold"] == h
+        want = static_friction(model, np.array([5.0, 500.0]), load=0.4, hold=h)
+        np.testing.assert_allclose(out["mu_s"], want, rtol=1e-14)
+    assert got["force"]["mu_s"][1] < got["position"]["mu_s"][1] - 1e-4
 
 
 def test_steady_json_matches_library():
     r = invoke("steady", "--eps", "0.05", "--u", "0.01", "0.1", "1", "100", "--json")
     assert r.exit_code == 0, r.output
     got = json.loads(r.stdout)
-    assert got["mu_d"] == steady_friction(np.array(got["u"]), 0.05, 0.13).tolist()
+    assert got["mu_d"] == steady_friction(TrapModel(alpha=0.13, eps=0.05),
+                                          np.array(got["u"])).tolist()
     r2 = invoke("steady", "--eps", "0.05", "--u", "1", "--creep", "eyring-nabarro", "--json")
-    assert json.loads(r2.stdout)["mu_d"] == [float(steady_friction(1.0, 0.05, 0.13,
-                                                                    "eyring-nabarro"))]
+    en = TrapModel(alpha=0.13, eps=0.05, creep="eyring-nabarro")
+    assert json.loads(r2.stdout)["mu_d"] == [float(steady_friction(en, 1.0))]
 
 
 def test_tables_without_json():
     r = invoke("static", "--eps", "0.04", "--T", "25")
     assert r.exit_code == 0
-    assert f"{float(static_friction(25.0, 0.04)):.10g}" in r.stdout
+    assert f"{float(static_friction(TrapModel(eps=0.04), 25.0)):.10g}" in r.stdout
     r = invoke("steady", "--eps", "0.04", "--u", "0.1")
     assert r.exit_code == 0
-    assert f"{float(steady_friction(0.1, 0.04)):.10g}" in r.stdout
+    assert f"{float(steady_friction(TrapModel(eps=0.04), 0.1)):.10g}" in r.stdout
 
 
 @pytest.mark.parametrize(

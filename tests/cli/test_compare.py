@@ -9,6 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.steady import steady_friction
 
 runner = CliRunner()
@@ -41,9 +42,11 @@ def test_compare_own_program(tmp_path: Path) -> None:
     d = json.loads((out / "compare.json").read_text())
     assert d["calibration"] == "own program" and d["state_law"] == "ageing"
     # twin in friction-coefficient units (mu_el = 0.5): mu0 is the steady level at u0 (eq. 34)
-    assert d["mu0"] == pytest.approx(0.5 * float(steady_friction(0.1, 0.04)), abs=0.01)
+    assert d["mu0"] == pytest.approx(0.5 * float(steady_friction(TrapModel(eps=0.04), 0.1)),
+                                     abs=0.01)
     assert d["b"] > 10 * d["a"] > 0 and 0.25 < d["dc_a0"] < 1.5
-    change = 0.5 * float(steady_friction(0.1, 0.04) - steady_friction(1.0, 0.04))
+    change = 0.5 * float(steady_friction(TrapModel(eps=0.04),
+                                         0.1) - steady_friction(TrapModel(eps=0.04), 1.0))
     assert 0.0 < d["misfit"]["rms"] < 0.15 * change
 
 

@@ -144,3 +144,19 @@ def test_reproduce_lists_every_file_it_wrote(tmp_path, monkeypatch) -> None:
     text = " ".join(r.stdout.split())
     assert all(f in text for f in files) and "extra_*" in text
     assert "C_inf" not in text and "C_LS" not in text
+
+
+def test_stability_help_explains_every_column() -> None:
+    """Every column ``stability`` prints is explained in its help (a column such as
+    forward_stiffness reached users unexplained)."""
+    import json
+
+    out = runner.invoke(app, ["stability", "--eps", "0.03", "--u", "0.07", "--json"])
+    assert out.exit_code == 0, out.output
+    cols = [k for k, v in json.loads(out.output).items() if isinstance(v, list)]
+    assert {"K_c", "forward_stiffness", "backward_stiffness"} <= set(cols)
+    text = " ".join(runner.invoke(app, ["stability", "--help"],
+                                  env={"COLUMNS": "200"}).output.split())
+    words = text.split("Options:")[0]
+    for c in cols:
+        assert f"{c}," in words or f"{c} " in words, (c, words)

@@ -120,7 +120,7 @@ def test_stiff_spring_and_small_mass_follow_a_velocity_step_like_the_velocity_dr
 
     i = int(np.flatnonzero(kin.x > s0 + 1e-12)[0])
     granular = float(np.max(np.abs(np.diff(kin.mu[i - 40: i]))))
-    predicted = A * float(steady_friction(u1, EPS, direct=A)) * math.log(u2 / u1)
+    predicted = A * float(steady_friction(TrapModel(eps=EPS, direct=A), u1)) * math.log(u2 / u1)
     print(f"REPORT inertial kinematic limit: jump {jump(sp):.5f} (velocity drive "
           f"{jump(kin):.5f}, A mu1 ln 10 = {predicted:.5f}, granular {granular:.1e})")
     assert jump(sp) == pytest.approx(jump(kin), abs=2e-4)
@@ -182,7 +182,8 @@ def _chi(lam: complex, u: float, A: float, K: float, M: float, eta: float) -> co
 
     dg = (g(u * 1.0001) - g(u / 1.0001)) / (u * (1.0001 - 1 / 1.0001))
     Z = complex(steady_response(u, TrapModel(eps=EPS)).Z(lam))
-    return M * lam**2 + eta * lam + K + g(u) * Z + dg * float(steady_friction(u, EPS)) * lam
+    return M * lam**2 + eta * lam + K + g(u) * Z + dg * float(steady_friction(TrapModel(eps=EPS),
+                                                                              u)) * lam
 
 
 def _root_near(z: complex, *args: float) -> complex:
@@ -202,7 +203,8 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
     crossing is a root of the linearisation above."""
     u, A, K, M = 1.0, 0.05, 2.0, 0.2
     root = _root_near(complex(-0.1, 3.1), u, A, K, M, 0.0)
-    lib = rightmost_root(linear_response(u, TrapModel(eps=EPS, direct=A)), K, M, 0.0)  # type: ignore[arg-type]
+    lib = rightmost_root(linear_response(u, TrapModel(eps=EPS, direct=A)), K, M,
+                         0.0)  # type: ignore[arg-type]
     assert complex(lib.real, abs(lib.imag)) == pytest.approx(root, abs=1e-6)
     assert root.real < 0 < _root_near(complex(0.0, 3.1), u, 0.0, K, M, 0.0).real
     ens = Ensemble(TrapModel(eps=EPS, direct=A), Track(100.0), Initial("steady", velocity=u),
@@ -280,7 +282,7 @@ every_slip = 0.05
     assert r.exit_code == 0, r.output
     s = json.loads((tmp_path / "res" / "summary.json").read_text())
     # steady start at u = 1 with the spring balancing g(1) mu_d + eta u: it stays steady
-    mu = float(steady_friction(1.0, EPS, direct=0.02, v_ref=0.1))
+    mu = float(steady_friction(TrapModel(eps=EPS, direct=0.02, v_ref=0.1), 1.0))
     assert s["mean_mu"] == pytest.approx(mu, rel=0.01)
 
 
@@ -295,7 +297,7 @@ def test_a_loaded_slider_at_rest_creeps_with_friction_balancing_the_spring(A: fl
     u = 1.0
     ens = Ensemble(TrapModel(eps=EPS, direct=A), Track(100.0), Initial("steady", velocity=u),
                    age_horizon=20.0)
-    s0 = 0.5 * float(steady_friction(u, EPS))
+    s0 = 0.5 * float(steady_friction(TrapModel(eps=EPS), u))
     r = continue_spring(ens, SpringDrive(1.0, 0.01, VelocityProgram([Segment(0.0, duration=2.0)])),
                         Output(every=0.1), spring_force=s0)
     np.testing.assert_allclose(r.mu[1:], 1.0 * (r.x_pull - r.x)[1:], rtol=1e-9)

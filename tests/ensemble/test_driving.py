@@ -64,7 +64,7 @@ def test_steady_sliding_converges_to_eq34(u: float) -> None:
     r = _velocity([{"velocity": u, "slip": 1.0 + p_d + 1.0}], lam, every_slip=1 / (m * lam))
     means, xs = _period_means(r, lam, m)
     late = means[xs > 1.0 + p_d + 0.05]
-    mu_d = float(steady_friction(u, EPS))
+    mu_d = float(steady_friction(TrapModel(eps=EPS), u))
     err = np.max(np.abs(late / mu_d - 1.0))
     print(f"REPORT steady u={u:g}: period-mean rel. error {err:.2e} (lambda={lam:g})")
     assert err < 1e-4
@@ -112,7 +112,7 @@ def test_static_peak_after_hold_matches_eq27(T: float) -> None:
     Two routes: the velocity program (sampled peak) and force control (the quasi-static jump,
     whose peak is taken exactly at the spinodal's left limit)."""
     lam = 1000.0
-    mu_s = float(static_friction(T, EPS))
+    mu_s = float(static_friction(TrapModel(eps=EPS), T))
     r = _velocity([{"velocity": 0.0, "duration": T}, {"velocity": 1e6, "slip": 2.9}], lam,
                   every_slip=2e-4)
     peak_v = r.summary()["peak_mu"]
@@ -129,7 +129,7 @@ def test_static_peak_after_hold_matches_eq27(T: float) -> None:
 def test_static_threshold_converges_with_density(runslow: bool) -> None:
     lams = [125.0, 250.0, 500.0, 1000.0] + ([2000.0, 4000.0] if runslow else [])
     T = 10.0
-    mu_s = float(static_friction(T, EPS))
+    mu_s = float(static_friction(TrapModel(eps=EPS), T))
     errs = []
     for lam in lams:
         f = simulate(TrapModel(eps=EPS), ForceDrive(rate=1e6, hold=T),
@@ -154,7 +154,8 @@ def test_loaded_gives_larger_threshold_and_slope() -> None:
                           initial=ini, every_slip=2e-4)
             res[kind].append(r.summary()["peak_mu"])
     slope = {k: (v[1] - v[0]) / math.log(Ts[1] / Ts[0]) for k, v in res.items()}
-    theory = {k: [float(static_friction(T, EPS, load=0.0 if k == "rest" else f_w)) for T in Ts]
+    theory = {k: [float(static_friction(TrapModel(eps=EPS), T,
+                                        load=0.0 if k == "rest" else f_w)) for T in Ts]
               for k in res}
     print(f"REPORT loaded vs rest (f_w={f_w}, eps={EPS}, T={Ts}): mu_s rest={res['rest']} "
           f"loaded={res['loaded']}; slope rest={slope['rest']:.5f} loaded={slope['loaded']:.5f};"
@@ -240,7 +241,8 @@ def test_velocity_step_memory_length() -> None:
     s = step.x - s0
     memory_exact = float(s[np.flatnonzero(diff > 1e-9)[-1] + 1])
     means, xs = _period_means(step, lam, m)
-    mu1, mu2 = float(steady_friction(u1, EPS)), float(steady_friction(u2, EPS))
+    mu1, mu2 = float(steady_friction(TrapModel(eps=EPS),
+                                     u1)), float(steady_friction(TrapModel(eps=EPS), u2))
     assert means[xs - s0 < 0][-1] == pytest.approx(mu1, rel=2e-4)
     gap = np.abs(means - mu2) / abs(mu2 - mu1)
     memory = {}
@@ -257,7 +259,7 @@ def test_velocity_step_memory_length() -> None:
 def test_slide_hold_slide_peak_grows_with_hold() -> None:
     lam, u = 300.0, 1.0
     holds = [1.0, 10.0, 100.0, 1000.0]
-    mu_d = float(steady_friction(u, EPS))
+    mu_d = float(steady_friction(TrapModel(eps=EPS), u))
     peaks = []
     for T in holds:
         r = _velocity([{"velocity": u, "slip": 0.5}, {"velocity": 0.0, "duration": T},
@@ -285,7 +287,8 @@ def test_quasi_static_stiff_spring_follows_the_load_point() -> None:
                  Output(every_slip=1 / (m * lam)))
     np.testing.assert_allclose(r.x_pull - r.x, r.mu / K, atol=1e-9)  # force balance
     means, _ = _period_means(r, lam, m)
-    assert np.mean(means[2:]) == pytest.approx(float(steady_friction(u, EPS)), rel=1e-3)
+    assert np.mean(means[2:]) == pytest.approx(float(steady_friction(TrapModel(eps=EPS), u)),
+                                               rel=1e-3)
     assert r.info["slip_events"] == 0
 
 
@@ -310,7 +313,8 @@ def test_inertial_slider_tends_to_the_quasi_static_one() -> None:
                              damping=0.2),
                  Initial("steady", velocity=u, track=Track(lam)), Output(every_slip=1 / (4 * lam)))
     late = r.x > 1.0
-    assert np.mean(r.mu[late]) == pytest.approx(float(steady_friction(u, EPS)), rel=2e-3)
+    assert np.mean(r.mu[late]) == pytest.approx(float(steady_friction(TrapModel(eps=EPS), u)),
+                                                rel=2e-3)
     # the slider keeps up with the load point (the sampled v is phase-locked to the lattice,
     # so compare displacement rates)
     xl, tl = r.x[late], r.t[late]
@@ -461,7 +465,8 @@ def test_strong_pinning_steady_sliding_matches_eq34(alpha: float) -> None:
     xs = x0 + np.arange(1, m + 1) / (m * lam)
     mean = np.mean([e.advance(float(x), float(x) / u).force for x in xs])
     # m-point average of the sawtooth of height J/lambda: error well below 1/lambda
-    assert mean == pytest.approx(float(steady_friction(u, EPS, alpha)), rel=2e-3)
+    assert mean == pytest.approx(float(steady_friction(TrapModel(alpha=alpha, eps=EPS), u)),
+                                 rel=2e-3)
     # the kernel's jumps (w > y_c on (+), w > 1 on (-)) against eq. 32: the most advanced (+)
     # trap sits within one lattice spacing before the (+) exit p_d, the most advanced (-) one
     # before p_1, where w reaches 1
@@ -478,7 +483,7 @@ def test_strong_pinning_static_peak_matches_eq27(alpha: float) -> None:
     """Strong pinning: rest, hold T, fast pull; the peak is eq. 27 at this alpha. A trap that
     restarts its age when it jumps from (+) to (-) changes the pull-force curve and the peak."""
     lam, T = 1000.0, 100.0
-    mu_s = float(static_friction(T, EPS, alpha))
+    mu_s = float(static_friction(TrapModel(alpha=alpha, eps=EPS), T))
     r = _velocity_at(alpha, [{"velocity": 0.0, "duration": T}, {"velocity": 1e6, "slip": 2.5}],
                      lam, Initial("rest"), 2e-4)
     # first-order density error, at most one trap's force at its spinodal: r^2 f_c/(lambda H0)
@@ -536,8 +541,8 @@ def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
     creep = h.x[-1] - h.x[0]
     assert creep == pytest.approx(force_hold_shift(T, EPS, load=f_w), abs=1e-3)
     assert np.sign(creep) == -np.sign(f_w)
-    closed_pos = float(static_friction(T, EPS, load=f_w, hold="position"))
-    closed_force = float(static_friction(T, EPS, load=f_w, hold="force"))
+    closed_pos = float(static_friction(TrapModel(eps=EPS), T, load=f_w, hold="position"))
+    closed_force = float(static_friction(TrapModel(eps=EPS), T, load=f_w, hold="force"))
     assert pos == pytest.approx(closed_pos, abs=1e-3)
     assert float(pull.mu.max()) == pytest.approx(closed_force, abs=1.2e-3)
     if f_w < 0:
@@ -566,7 +571,8 @@ def test_force_hold_sampled_in_slip_follows_the_creep(f_w: float) -> None:
                                                          abs=1e-3)
     thr = slip.info["threshold_mu"]
     assert thr == pytest.approx(runs["time"].info["threshold_mu"], abs=3e-4)
-    assert thr == pytest.approx(float(static_friction(T, EPS, load=f_w, hold="force")), abs=1.5e-3)
+    assert thr == pytest.approx(float(static_friction(TrapModel(eps=EPS), T, load=f_w,
+                                                      hold="force")), abs=1.5e-3)
 
 
 def test_damped_inertial_oscillation_decays_at_the_linear_rate() -> None:

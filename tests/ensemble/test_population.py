@@ -124,7 +124,7 @@ def test_steady_initial_state_matches_eq34(u: float) -> None:
         f.append(e.probe(k / (m * lam)).force)
     # probes at frozen ages shift the population rigidly; their period average differs from
     # eq. 34 only by the slip 1/lam of ageing ignored (checked at the level below)
-    assert np.mean(f) == pytest.approx(float(steady_friction(u, 0.04)), rel=2e-3)
+    assert np.mean(f) == pytest.approx(float(steady_friction(TrapModel(eps=0.04), u)), rel=2e-3)
     snap = e.snapshot()
     p_d = float(steady_death_point(u, 0.04))
     assert snap["p"].max() <= p_d + 1e-12
@@ -196,4 +196,5 @@ def test_regular_lattice_sampling_does_not_alias(cells: int) -> None:
     n = round(3.0 * lam / cells)
     assert n < r.mu.size - 1 <= n + 64  # a few samples more, not a different sampling
     assert np.std(r.mu[1:]) > 1e-5  # the sawtooth is seen, not one phase of it
-    assert r.summary()["mean_mu"] == pytest.approx(float(steady_friction(u, eps)), abs=1e-5)
+    assert r.summary()["mean_mu"] == pytest.approx(float(steady_friction(TrapModel(eps=eps), u)),
+                                                   abs=1e-5)

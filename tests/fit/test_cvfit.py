@@ -14,10 +14,11 @@ import pytest
 from dryfriction.fit import fit
 from dryfriction.fit.cvseries import cv_series, cv_start_from_rsf
 from dryfriction.fit.models import CVModel
-from dryfriction.records.data import SeriesData
+from dryfriction.records.data import SeriesData, StaticData, SteadyData
 from dryfriction.theory.direct import junction_strength
 from dryfriction.theory.linear_stability import effective_rsf
 from dryfriction.theory.model import TrapModel
+from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import steady_friction
 
 A0, T0, MU_EL = 1e-6, 1.0, 0.5  # a0 (m), t0 (s): V* = 1 um/s
@@ -86,7 +87,7 @@ def test_start_from_rsf_inverts_the_twin() -> None:
     tw = effective_rsf(1.0, TrapModel(eps=eps, direct=A, v_ref=u_ref))
     g = float(junction_strength(1.0, A, u_ref))
     rsf = {"a": mu_el * tw["a"], "b": mu_el * tw["b"], "dc": tw["dc"] * a0,
-           "mu0": mu_el * g * float(steady_friction(1.0, eps)), "stiffness": 2000.0,
+           "mu0": mu_el * g * float(steady_friction(TrapModel(eps=eps), 1.0)), "stiffness": 2000.0,
            "trend": -3.0}
     s = cv_start_from_rsf(rsf, v0, direct=0.01, v_ref=v_ref)
     assert s["eps"] == pytest.approx(eps, rel=0.02)
@@ -186,3 +187,24 @@ def test_direct_effect_recovered_with_all_parameters_free() -> None:
     assert lo > 0.0
     assert est["a0"].value == pytest.approx(truth["a0"], rel=0.1)
     assert rms < 6e-4
+
+
+def test_the_fits_predictions_are_the_model_first_si_forms() -> None:
+    # mistake caught: CVModel handing its v_ref (m/s) to the model unconverted (the model's
+    # v_ref is reduced, a0/t0); the slow direct-effect fit test is the only other route
+    m = CVModel(alpha=0.11, creep="eyring-nabarro", direct=0.02, v_ref=1e-6)
+    V = np.array([3e-8, 2e-6, 5e-5])  # m/s, u = V/V* = 0.0075, 0.5, 12.5
+    v = {"eps": 0.03, "vstar": 4e-6, "mu_el": 0.45, "direct": 0.025}
+    got = m.predict(v, SteadyData(V, np.ones(3)))
+    want = 0.45 * steady_friction(TrapModel(0.11, 0.03, "eyring-nabarro", direct=0.025,
+                                            v_ref=0.25), V / 4e-6)
+    np.testing.assert_allclose(got, want, rtol=1e-14)
+    # the direct effect is the junction strength g(V/V_ref), a ratio of m/s (theory/direct.py)
+    athermal = 0.45 * steady_friction(TrapModel(0.11, 0.03, "eyring-nabarro"), V / 4e-6)
+    np.testing.assert_allclose(got / athermal, junction_strength(V / 1e-6, 0.025, 1.0),
+                               rtol=1e-13)
+    tw = np.array([0.5, 30.0])
+    got = CVModel(alpha=0.11).predict({"eps": 0.03, "t0": 0.2, "mu_el": 0.45},
+                                      StaticData(tw, np.ones(2)))
+    np.testing.assert_allclose(got, 0.45 * static_friction(TrapModel(0.11, 0.03), tw / 0.2),
+                               rtol=1e-14)

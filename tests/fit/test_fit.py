@@ -16,6 +16,7 @@ from dryfriction.cli import app
 from dryfriction.fit import CVModel, compare_models, fit, fit_joint, fit_static, fit_steady
 from dryfriction.records.data import SeriesData, StaticData, SteadyData
 from dryfriction.rsf import RSFOutput, SpringSlider
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "data"
@@ -29,7 +30,7 @@ def static_data(seed: int, t0: float = 1.0, tw: np.ndarray = TW, sigma: bool = T
                 eps: float = EPS) -> StaticData:
     rng = np.random.default_rng(seed)
     s = PhysicalScales(1e-6, t0, 0.4)
-    y = static_friction_si(tw, eps, s) + rng.normal(0.0, NOISE, tw.size)
+    y = static_friction_si(TrapModel(eps=eps), tw, s) + rng.normal(0.0, NOISE, tw.size)
     return StaticData(tw, y, np.full(tw.size, NOISE) if sigma else None, f"static-{seed}")
 
 
@@ -37,7 +38,7 @@ def steady_data(seed: int, V: np.ndarray = V, sigma: bool = True, eps: float = E
                 vstar: float = 1e-6) -> SteadyData:
     rng = np.random.default_rng(seed)
     s = PhysicalScales(vstar, 1.0, 0.4)
-    y = steady_friction_si(V, eps, s) + rng.normal(0.0, NOISE, V.size)
+    y = steady_friction_si(TrapModel(eps=eps), V, s) + rng.normal(0.0, NOISE, V.size)
     return SteadyData(V, y, np.full(V.size, NOISE) if sigma else None, f"steady-{seed}")
 
 
@@ -94,7 +95,8 @@ def test_degenerate_t0_is_only_bounded_above() -> None:
     # the data-fixed combination, the slope d mu_s/d ln t_w, matches the truth's
     slope = next(v["value"] for k, v in r.derived.items() if k.startswith("d mu_s/d ln t_w"))
     tc = math.exp(np.mean(np.log(np.geomspace(1.0, 1e4, 16))))
-    f = static_friction_si(np.array([tc / 1.01, tc * 1.01]), EPS, PhysicalScales(1e-6, 0.01, 0.4))
+    f = static_friction_si(TrapModel(eps=EPS), np.array([tc / 1.01, tc * 1.01]),
+                           PhysicalScales(1e-6, 0.01, 0.4))
     assert slope == pytest.approx((f[1] - f[0]) / (2 * math.log(1.01)), rel=0.15)
 
 

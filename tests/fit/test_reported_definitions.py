@@ -17,6 +17,7 @@ import pytest
 from dryfriction.fit import compare_models, fit_steady
 from dryfriction.fit.steps import fit_steps, step_covariance
 from dryfriction.records.data import SeriesData, SteadyData
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.units import PhysicalScales, steady_friction_si
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -28,7 +29,7 @@ V = np.geomspace(2e-8, 3e-5, 14)  # generic: no point at v* = 1e-6 m/s
 
 def steady(seed: int, sigma: bool) -> SteadyData:
     rng = np.random.default_rng(seed)
-    y = steady_friction_si(V, 0.037, PhysicalScales(1.3e-6, 1.0, 0.41))
+    y = steady_friction_si(TrapModel(eps=0.037), V, PhysicalScales(1.3e-6, 1.0, 0.41))
     y = y + rng.normal(0.0, NOISE, V.size)
     return SteadyData(V, y, np.full(V.size, 1.7 * NOISE) if sigma else None, f"steady-{seed}")
 

@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 
 from dryfriction.records.data import read_csv
 from dryfriction.records.lab import read_record
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.units import PhysicalScales, static_friction_si, steady_friction_si
 
 # SI value of each unit, written from the definitions (not imported)
@@ -113,20 +114,27 @@ def test_si_friction_depends_on_reduced_variables_only(a0: float, t0: float, c: 
                                                        direct: float) -> None:
     """``mu_d(V; a0, t0)`` depends on ``V t0/a0`` only, ``mu_s(t_w; t0)`` on ``t_w/t0`` only, and
     the direct effect on ``V/V_ref`` (rescale a0 by ``c``: V and V_ref by ``c``; t0 by ``c``:
-    t_w by ``c``, V and V_ref by ``1/c``). Mistakes: ``V* = t0/a0``; ``v_ref`` not converted."""
+    t_w by ``c``, V and V_ref by ``1/c``). Mistakes: ``V* = t0/a0``; ``v_ref`` not converted.
+    The model's ``v_ref`` is reduced (``a0/t0``): the SI reference velocity is converted by the
+    scales, as a user of the SI forms does."""
     eps, mu_el = 0.04, 0.37
     V, v_ref, t_w = 0.3 * a0 / t0, 0.05 * a0 / t0, 37.0 * t0
     s1 = PhysicalScales(a0, t0, mu_el)
     s2 = PhysicalScales(c * a0, t0, mu_el)
     s3 = PhysicalScales(a0, c * t0, mu_el)
-    m1 = float(steady_friction_si(V, eps, s1, direct=direct, v_ref=v_ref))
-    assert float(steady_friction_si(c * V, eps, s2, direct=direct, v_ref=c * v_ref)) == (
+
+    def model(s: PhysicalScales, v_ref_si: float) -> TrapModel:
+        return TrapModel(eps=eps, direct=direct, v_ref=float(s.reduced_velocity(v_ref_si)))
+
+    m1 = float(steady_friction_si(model(s1, v_ref), V, s1))
+    assert float(steady_friction_si(model(s2, c * v_ref), c * V, s2)) == (
         pytest.approx(m1, rel=1e-12))
-    assert float(steady_friction_si(V / c, eps, s3, direct=direct, v_ref=v_ref / c)) == (
+    assert float(steady_friction_si(model(s3, v_ref / c), V / c, s3)) == (
         pytest.approx(m1, rel=1e-12))
-    ms = float(static_friction_si(t_w, eps, s1))
-    assert float(static_friction_si(c * t_w, eps, s3)) == pytest.approx(ms, rel=1e-12)
-    assert float(static_friction_si(t_w, eps, s2)) == pytest.approx(ms, rel=1e-12)
+    athermal = TrapModel(eps=eps)
+    ms = float(static_friction_si(athermal, t_w, s1))
+    assert float(static_friction_si(athermal, c * t_w, s3)) == pytest.approx(ms, rel=1e-12)
+    assert float(static_friction_si(athermal, t_w, s2)) == pytest.approx(ms, rel=1e-12)
 
 
 def test_physical_scales_conversions_at_a_generic_point() -> None:

@@ -17,6 +17,7 @@ from dryfriction.plots.record import plot_record
 from dryfriction.records.data import SteadyData
 from dryfriction.records.detection import detect_program
 from dryfriction.records.lab import read_record
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.units import PhysicalScales, steady_friction_si
 
 SHARED = (Path(__file__).resolve().parents[2] / "examples" / "data" / "lab"
@@ -27,7 +28,7 @@ V = np.geomspace(2e-8, 3e-5, 14)
 @pytest.fixture(scope="module")
 def fitted() -> tuple[SteadyData, object]:
     rng = np.random.default_rng(8)
-    y = steady_friction_si(V, 0.037, PhysicalScales(1.3e-6, 1.0, 0.41))
+    y = steady_friction_si(TrapModel(eps=0.037), V, PhysicalScales(1.3e-6, 1.0, 0.41))
     d = SteadyData(V, y + rng.normal(0.0, 0.002, V.size), None, "steady-8")
     r = fit_steady(d, "cv", profile=False)
     assert r.success, r.message

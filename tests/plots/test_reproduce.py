@@ -21,13 +21,19 @@ from dryfriction.theory.dieterich import (
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import (
     pull_force,
     static_friction,
+    static_friction_over_eps,
     static_slope_per_eps,
     threshold_shift,
 )
-from dryfriction.theory.steady import DYNAMIC_SLOPE_PER_EPS, steady_death_point, steady_friction
+from dryfriction.theory.steady import (
+    DYNAMIC_SLOPE_PER_EPS,
+    steady_death_point,
+    steady_friction_over_eps,
+)
 from dryfriction.theory.trap import Trap
 from output_units import check_folder
 
@@ -89,8 +95,8 @@ def test_progress_reports_every_step_in_order(run):
 
 @pytest.mark.parametrize(
     "name, header, fn",
-    [("static_friction.csv", ["eps[1]", "T[t0]", "mu_s[1]"], static_friction),
-     ("steady_friction.csv", ["eps[1]", "u[a0/t0]", "mu_d[1]"], steady_friction)],
+    [("static_friction.csv", ["eps[1]", "T[t0]", "mu_s[1]"], static_friction_over_eps),
+     ("steady_friction.csv", ["eps[1]", "u[a0/t0]", "mu_d[1]"], steady_friction_over_eps)],
 )
 def test_csv_header_grid_and_values(run, name, header, fn):
     out, _, _ = run
@@ -104,7 +110,7 @@ def test_csv_header_grid_and_values(run, name, header, fn):
         assert np.all(eps[block] == e)  # exactly 0.01, 0.02, ... as written
         np.testing.assert_array_equal(x[block], grid)
     assert x[0] == 0.01 and x[200] == 100.0
-    np.testing.assert_array_equal(mu, fn(x, eps, ALPHA))  # full precision round trip
+    np.testing.assert_array_equal(mu, fn(TrapModel(ALPHA), x, eps))  # full precision round trip
 
 
 def test_static_csv_starts_at_one_within_first_order_bound(run):
@@ -181,20 +187,23 @@ def test_summary_agrees_with_library(run):
     trap = Trap(ALPHA)
     for k, v in trap.summary().items():
         assert s[k] == v, k
-    assert s["dieterich_C_asymptotic"] == dieterich_constant_asymptotic(ALPHA)
-    assert s["dieterich_C_least_squares"] == dieterich_constant_least_squares(0.04, ALPHA)
+    assert s["dieterich_C_asymptotic"] == dieterich_constant_asymptotic(TrapModel(alpha=ALPHA))
+    assert s["dieterich_C_least_squares"] == dieterich_constant_least_squares(
+        TrapModel(alpha=ALPHA, eps=0.04))
     assert s["static_slope_per_eps"] == static_slope_per_eps(ALPHA)
     assert s["dynamic_slope_per_eps"] == DYNAMIC_SLOPE_PER_EPS
     u = np.array([0.01, 0.1, 1.0, 10.0, 100.0])
     np.testing.assert_allclose(list(s["dieterich_C_local"].values()),
-                               dieterich_constant_local(u, 0.04, ALPHA), rtol=1e-12)
+                               dieterich_constant_local(TrapModel(alpha=ALPHA, eps=0.04),
+                                                        u), rtol=1e-12)
     r = s["fig2"]["radius_ratio"]
     assert r == pytest.approx(math.sqrt(1 + 0.04 * math.log(26.0)), rel=1e-14)
     assert s["fig2"]["threshold_shift_p_c"] == pytest.approx(float(threshold_shift(r)), rel=1e-15)
-    assert s["fig2"]["mu_s"] == float(static_friction(25.0, 0.04, ALPHA))
+    assert s["fig2"]["mu_s"] == float(static_friction(TrapModel(alpha=ALPHA, eps=0.04), 25.0))
     assert s["fig4"]["death_point_p_d"] == float(steady_death_point(0.1, 0.04, ALPHA))
     for d in s["loaded_protocol"]:
-        m = static_friction(np.array([1.0, 100.0]), 0.04, ALPHA, load=d["load"])
+        m = static_friction(TrapModel(alpha=ALPHA, eps=0.04), np.array([1.0, 100.0]),
+                            load=d["load"])
         assert [d["mu_s_T_1"], d["mu_s_T_100"]] == m.tolist()
 
 

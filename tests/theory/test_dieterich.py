@@ -10,6 +10,7 @@ from dryfriction.theory.dieterich import (
     dieterich_constant_local,
     forward_moment,
 )
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import steady_friction, steady_friction_first_order
 from dryfriction.theory.trap import Trap, force_forward
@@ -29,48 +30,50 @@ def test_moments_against_quadrature(alpha):
 @pytest.mark.parametrize("alpha", [0.05, 0.13])
 def test_asymptotic_constant_from_exact_curves(alpha):
     # independent route: where the exact curves meet at high velocity
-    c_inf = dieterich_constant_asymptotic(alpha)
-    c_local = dieterich_constant_local(np.array([1e4, 1e5]), 1e-3, alpha)
+    c_inf = dieterich_constant_asymptotic(TrapModel(alpha=alpha))
+    c_local = dieterich_constant_local(TrapModel(alpha=alpha, eps=1e-3), np.array([1e4, 1e5]))
     np.testing.assert_allclose(c_local, c_inf, rtol=2e-3)
     # and the dynamic side of it from the clock quadrature of the first-order result
     u, eps = 1e7, 1e-3
-    dyn = (steady_friction_first_order(u, eps, alpha) - 1) * 2 * u * Trap(alpha).H0 / eps
+    dyn = (steady_friction_first_order(TrapModel(alpha=alpha, eps=eps),
+                                       u) - 1) * 2 * u * Trap(alpha).H0 / eps
     assert dyn == pytest.approx(4 * forward_moment(1, alpha) + 3 * forward_moment(0, alpha),
                                 rel=1e-5)
 
 
 def test_paper_parameters_no_single_constant():
     eps = 0.04
-    c_inf = dieterich_constant_asymptotic(0.13)
+    c_inf = dieterich_constant_asymptotic(TrapModel(alpha=0.13))
     # the paper reads 2.45 ~ 1 + y_c off its Fig. 6; the first-order expansions give c_inf
     assert 2.4 < c_inf < 2.7
     u = np.logspace(-2, 2, 9)
-    c_u = dieterich_constant_local(u, eps)
+    c_u = dieterich_constant_local(TrapModel(eps=eps), u)
     assert np.all(np.diff(c_u) < 0)  # C(u) falls monotonically towards c_inf
     assert c_u[0] / c_u[-1] > 3  # no single D0 over four decades
-    c_ls = dieterich_constant_least_squares(eps)
+    c_ls = dieterich_constant_least_squares(TrapModel(eps=eps))
     # it is a minimum of the misfit
     uu = np.logspace(-2, 2, 81)
-    mu_d = steady_friction(uu, eps)
+    mu_d = steady_friction(TrapModel(eps=eps), uu)
 
     def cost(c):
-        return np.sum((mu_d - static_friction(c / uu, eps)) ** 2)
+        return np.sum((mu_d - static_friction(TrapModel(eps=eps), c / uu)) ** 2)
 
     assert cost(c_ls) < cost(c_ls * 1.01) and cost(c_ls) < cost(c_ls / 1.01)
     # ...yet the best global fit leaves a visible misfit (paper: a global fit is not possible)
-    assert np.max(np.abs(mu_d - static_friction(c_ls / uu, eps))) > 0.01
+    assert np.max(np.abs(mu_d - static_friction(TrapModel(eps=eps), c_ls / uu))) > 0.01
 
 
 def test_local_constant_solves_the_equation():
     u = np.array([0.03, 0.3, 3.0])
-    c = dieterich_constant_local(u, 0.03)
-    np.testing.assert_allclose(static_friction(c / u, 0.03), steady_friction(u, 0.03), rtol=1e-12)
+    c = dieterich_constant_local(TrapModel(eps=0.03), u)
+    np.testing.assert_allclose(static_friction(TrapModel(eps=0.03), c / u),
+                               steady_friction(TrapModel(eps=0.03), u), rtol=1e-12)
 
 
 def test_bad_input():
     with pytest.raises(ValueError, match="eps"):
-        dieterich_constant_least_squares(0.0)
+        dieterich_constant_least_squares(TrapModel(eps=0.0))
     with pytest.raises(ValueError, match="u"):
-        dieterich_constant_local(-1.0, 0.04)
+        dieterich_constant_local(TrapModel(eps=0.04), -1.0)
     with pytest.raises(ValueError, match="alpha"):
-        dieterich_constant_asymptotic(1.0)
+        dieterich_constant_asymptotic(TrapModel(alpha=1.0))

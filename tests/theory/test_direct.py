@@ -27,6 +27,7 @@ from dryfriction.ensemble.population import Ensemble, Initial, Track, TrapModel
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.theory.direct import instantaneous_jump, junction_log_slope, junction_strength
 from dryfriction.theory.linear_stability import critical_stiffness, effective_rsf, linear_response
+from dryfriction.theory.model import OldTheoryFormWarning
 from dryfriction.theory.stability import rightmost_root, rsf_from_response, steady_response
 from dryfriction.theory.static import static_friction
 from dryfriction.theory.steady import (
@@ -70,11 +71,9 @@ def test_junction_strength_regularisation() -> None:
 def test_bad_direct_parameters_are_refused(kwargs: dict, match: str) -> None:
     args = {"direct": 0.01, "v_ref": 1.0, **kwargs}
     with pytest.raises(ValueError, match=match):
-        steady_friction(1.0, EPS, **args)
-    with pytest.raises(ValueError, match=match):
         TrapModel(eps=EPS, **args)
     with pytest.raises(ValueError, match="pull_velocity"):
-        static_friction(10.0, EPS, direct=0.01)
+        static_friction(TrapModel(eps=EPS, direct=0.01), 10.0)
 
 
 # ---------------------------------------------------------------- A = 0 is the athermal model
@@ -82,11 +81,12 @@ def test_bad_direct_parameters_are_refused(kwargs: dict, match: str) -> None:
 
 def test_zero_direct_is_bit_for_bit_the_athermal_model() -> None:
     u = np.geomspace(1e-3, 1e3, 13)
-    np.testing.assert_array_equal(steady_friction(u, EPS, direct=0.0, v_ref=7.0),
-                                  steady_friction(u, EPS))
+    np.testing.assert_array_equal(steady_friction(TrapModel(eps=EPS, direct=0.0, v_ref=7.0), u),
+                                  steady_friction(TrapModel(eps=EPS), u))
     T = np.geomspace(1e-2, 1e4, 7)
-    np.testing.assert_array_equal(static_friction(T, EPS, direct=0.0, pull_velocity=3.0),
-                                  static_friction(T, EPS))
+    np.testing.assert_array_equal(static_friction(TrapModel(eps=EPS, direct=0.0), T,
+                                                  pull_velocity=3.0),
+                                  static_friction(TrapModel(eps=EPS), T))
     # A = 0 is the athermal analysis bit for bit: the population's own response, no g factor
     athermal = rsf_from_response(steady_response(0.1, TrapModel(eps=EPS)))
     assert effective_rsf(0.1, TrapModel(eps=EPS, direct=0.0))["a"] == athermal["a"]
@@ -114,8 +114,9 @@ def test_zero_direct_is_bit_for_bit_the_athermal_model() -> None:
 def test_steady_friction_is_junction_strength_times_the_aged_population() -> None:
     u = np.array([1e-3, 0.1, 10.0])
     A, vr = 0.02, 0.5
-    np.testing.assert_allclose(steady_friction(u, EPS, direct=A, v_ref=vr),
-                               (1 + A * np.log(u / vr)) * steady_friction(u, EPS), rtol=1e-14)
+    np.testing.assert_allclose(steady_friction(TrapModel(eps=EPS, direct=A, v_ref=vr), u),
+                               (1 + A * np.log(u / vr)) * steady_friction(TrapModel(eps=EPS),
+                                                                          u), rtol=1e-14)
 
 
 @pytest.mark.parametrize("u", [1e-3, 0.1, 10.0])
@@ -124,8 +125,8 @@ def test_log_slope_is_the_derivative_of_steady_friction(u: float) -> None:
     h = 1e-2  # Richardson-extrapolated central difference, independent of the code's step
 
     def d(hh: float) -> float:
-        return float(steady_friction(u * math.exp(hh), EPS, direct=A)
-                     - steady_friction(u * math.exp(-hh), EPS, direct=A)) / (2 * hh)
+        return float(steady_friction(TrapModel(eps=EPS, direct=A), u * math.exp(hh))
+                     - steady_friction(TrapModel(eps=EPS, direct=A), u * math.exp(-hh))) / (2 * hh)
 
     ref = (4 * d(h / 2) - d(h)) / 3
     assert float(steady_log_slope(u, EPS, direct=A)) == pytest.approx(ref, rel=1e-5, abs=1e-8)
@@ -136,7 +137,7 @@ def test_low_velocity_slope_is_A_mu_minus_three_halves_eps() -> None:
     g = 1 + A ln u); the sign change sits at A mu_d = 3 eps g/2. Small eps so that O(eps^2)
     is below the tolerance."""
     eps, u = 2e-3, 1e-3
-    mu_d = float(steady_friction(u, eps))
+    mu_d = float(steady_friction(TrapModel(eps=eps), u))
     for A in (0.0, 1e-3, 3e-3, 1e-2):
         exact = float(steady_log_slope(u, eps, direct=A))
         g = 1.0 + A * math.log(u)
@@ -149,9 +150,10 @@ def test_low_velocity_slope_is_A_mu_minus_three_halves_eps() -> None:
 
 def test_static_threshold_depends_on_the_pull_velocity() -> None:
     A, T = 0.02, 100.0
-    slow = float(static_friction(T, EPS, direct=A, pull_velocity=0.1))
-    fast = float(static_friction(T, EPS, direct=A, pull_velocity=10.0))
-    assert fast - slow == pytest.approx(A * float(static_friction(T, EPS)) * math.log(100.0),
+    slow = float(static_friction(TrapModel(eps=EPS, direct=A), T, pull_velocity=0.1))
+    fast = float(static_friction(TrapModel(eps=EPS, direct=A), T, pull_velocity=10.0))
+    assert fast - slow == pytest.approx(A * float(static_friction(TrapModel(eps=EPS),
+                                                                  T)) * math.log(100.0),
                                         rel=1e-12)
 
 
@@ -160,7 +162,7 @@ def test_effective_rsf_a_is_A_times_the_friction_level() -> None:
     b and Dc come from the population as before (b scaled by g)."""
     A, u = 0.01, 1.0
     e0, e = effective_rsf(u, TrapModel(eps=EPS)), effective_rsf(u, TrapModel(eps=EPS, direct=A))
-    mu = float(steady_friction(u, EPS))
+    mu = float(steady_friction(TrapModel(eps=EPS), u))
     assert e["a_direct"] == pytest.approx(A * mu, rel=1e-12)
     assert e["a"] - e0["a"] == pytest.approx(A * mu, rel=1e-12)  # g(u = v_ref) = 1
     assert e["dc"] == e0["dc"] and e["b"] == pytest.approx(e0["b"], rel=1e-12)
@@ -184,7 +186,7 @@ def test_velocity_step_jumps_by_a_ln_ratio_then_relaxes() -> None:
                     Initial("steady", velocity=u1, track=Track(lam)), Output(every_slip=d))
     i = int(np.flatnonzero(step.x > s0 + 1e-12)[0])
     granular = float(np.max(np.abs(np.diff(step.mu[i - 40: i]))))
-    mu1 = float(steady_friction(u1, EPS, direct=A))
+    mu1 = float(steady_friction(TrapModel(eps=EPS, direct=A), u1))
     predicted = A * mu1 * math.log(u2 / u1)
     assert step.mu[i] - step.mu[i - 1] == pytest.approx(predicted, abs=granular)
     assert granular < 0.05 * predicted
@@ -208,7 +210,7 @@ def test_static_peak_after_hold_scales_with_the_pull_velocity() -> None:
                      VelocityDrive(VelocityProgram([{"velocity": 0.0, "duration": T},
                                                     {"velocity": u, "slip": 2.9}])),
                      Initial("rest", track=Track(lam)), Output(every_slip=2e-4))
-        mu_s = float(static_friction(T, EPS, direct=A, pull_velocity=u))
+        mu_s = float(static_friction(TrapModel(eps=EPS, direct=A), T, pull_velocity=u))
         assert r.summary()["peak_mu"] == pytest.approx(mu_s, rel=1e-3)
         assert np.all(r.mu[(r.t > 0) & (r.t <= T)] == 0.0)  # a kinematic hold: g(0) = 0
 
@@ -234,7 +236,7 @@ def test_stiff_spring_is_the_kinematic_limit() -> None:
     np.testing.assert_allclose(r.x_pull - r.x, r.mu / K, atol=1e-9)
     half = r.t > r.t[-1] / 4
     assert np.mean(r.mu[half]) == pytest.approx(
-        float(steady_friction(u, EPS, direct=A, v_ref=0.3)), rel=1e-3)
+        float(steady_friction(TrapModel(eps=EPS, direct=A, v_ref=0.3), u)), rel=1e-3)
 
 
 def test_junction_strength_follows_the_slider_not_the_load_point() -> None:
@@ -304,14 +306,15 @@ def test_cli_direct_options() -> None:
     r = run.invoke(app, ["steady", "--eps", "0.04", "--u", "0.1", "10", "--direct", "0.02",
                          "--u-ref", "0.5", "--json"])
     assert r.exit_code == 0, r.output
-    np.testing.assert_allclose(json.loads(r.stdout)["mu_d"], steady_friction(
-        np.array([0.1, 10.0]), EPS, direct=0.02, v_ref=0.5), rtol=1e-12)
+    np.testing.assert_allclose(json.loads(r.stdout)["mu_d"],
+                               steady_friction(TrapModel(eps=EPS, direct=0.02, v_ref=0.5),
+                                               np.array([0.1, 10.0])), rtol=1e-12)
     plain = run.invoke(app, ["steady", "--eps", "0.04", "--u", "1", "--json"])
     assert "direct" not in json.loads(plain.stdout)  # the athermal output is unchanged
     r = run.invoke(app, ["static", "--eps", "0.04", "--T", "10", "--direct", "0.02",
                          "--pull-velocity", "3", "--json"])
     assert json.loads(r.stdout)["mu_s"][0] == pytest.approx(
-        float(static_friction(10.0, EPS, direct=0.02, pull_velocity=3.0)), rel=1e-12)
+        float(static_friction(TrapModel(eps=EPS, direct=0.02), 10.0, pull_velocity=3.0)), rel=1e-12)
     r = run.invoke(app, ["stability", "--eps", "0.04", "--u", "0.1", "--direct", "0.02",
                          "--json"])
     assert json.loads(r.stdout)["K_c"][0] == pytest.approx(
@@ -405,12 +408,23 @@ def test_si_forms_convert_v_ref_and_the_pull_velocity() -> None:
     for a0, t0 in ((1e-6, 0.01), (3e-6, 5.0)):
         s = PhysicalScales(a0=a0, t0=t0, mu_el=0.5)
         vs = a0 / t0
-        mu = steady_friction_si(1e-3, EPS, s, direct=A, v_ref=1e-5)
+        # the model's v_ref is reduced: 1e-5 m/s in units of this V*
+        model = TrapModel(eps=EPS, direct=A, v_ref=float(s.reduced_velocity(1e-5)))
+        mu = steady_friction_si(model, 1e-3, s)
         assert float(mu) == pytest.approx(
-            0.5 * (1 + A * math.log(100)) * float(steady_friction(1e-3 / vs, EPS)), rel=1e-12)
-        ms = static_friction_si(10.0, EPS, s, direct=A, v_ref=1e-5, pull_velocity=1e-7)
+            0.5 * (1 + A * math.log(100)) * float(steady_friction(model.athermal, 1e-3 / vs)),
+            rel=1e-12)
+        ms = static_friction_si(model, 10.0, s, pull_velocity=1e-7)
         assert float(ms) == pytest.approx(
-            0.5 * (1 + A * math.log(1e-2)) * float(static_friction(10.0 / t0, EPS)), rel=1e-12)
+            0.5 * (1 + A * math.log(1e-2)) * float(static_friction(model.athermal, 10.0 / t0)),
+            rel=1e-12)
+        # the old forms, v_ref in m/s, give the same numbers (one more release)
+        with pytest.warns(OldTheoryFormWarning, match=r"use steady_friction_si\(model, V"):
+            old = steady_friction_si(1e-3, EPS, s, direct=A, v_ref=1e-5)
+        assert float(old) == pytest.approx(float(mu), rel=1e-14)
+        with pytest.warns(OldTheoryFormWarning, match=r"use static_friction_si\(model, t_w"):
+            old = static_friction_si(10.0, EPS, s, direct=A, v_ref=1e-5, pull_velocity=1e-7)
+        assert float(old) == pytest.approx(float(ms), rel=1e-14)
 
 
 @pytest.mark.parametrize("direct", [0.005, 0.02, 0.1])

@@ -38,6 +38,8 @@ import functools
 import numpy as np
 import pytest
 
+from dryfriction.theory.model import TrapModel
+
 
 def _dpsi(z: np.ndarray) -> np.ndarray:
     """psi'(z) for psi = 1 - 3 z^2 + 2 |z|^3 inside |z| <= 1, 0 outside."""
@@ -168,7 +170,7 @@ def reference_mu_s(T: float, eps: float, alpha: float, h: float) -> float:
 def _package(T: float, eps: float, alpha: float) -> float:
     from dryfriction import static_friction
 
-    return float(static_friction(T, eps, alpha))
+    return float(static_friction(TrapModel(alpha=alpha, eps=eps), T))
 
 
 CASES = [  # (T, eps, alpha): very strong pinning at 0.13, strong pinning at 0.3

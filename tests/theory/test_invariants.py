@@ -75,15 +75,16 @@ def test_direct_twin_against_the_steady_curve_away_from_v_ref(u: float) -> None:
     ``u = v_ref``, 1.2e-3 here), ``b`` not scaled."""
     tw = effective_rsf(u, TrapModel(eps=EPS, direct=A, v_ref=V_REF))
     base = effective_rsf(u, TrapModel(eps=EPS))
-    slope = _dlog(lambda x: steady_friction(x, EPS, direct=A, v_ref=V_REF), u)
+    slope = _dlog(lambda x: steady_friction(TrapModel(eps=EPS, direct=A, v_ref=V_REF), x), u)
     assert tw["a"] - tw["b"] == pytest.approx(slope, abs=1e-7)
     assert tw["b"] == pytest.approx(_g(u) * base["b"], rel=1e-12)
     assert tw["dc"] == pytest.approx(base["dc"], rel=1e-12)
-    mu_d = float(steady_friction(u, EPS))
+    mu_d = float(steady_friction(TrapModel(eps=EPS), u))
     assert tw["a_direct"] == pytest.approx(_dlog(_g, u, 1e-5) * mu_d, rel=1e-7)
     # the athermal twin against the athermal curve (the same identity with g = 1)
-    assert base["a"] - base["b"] == pytest.approx(_dlog(lambda x: steady_friction(x, EPS), u),
-                                                  abs=1e-7)
+    athermal = TrapModel(eps=EPS)
+    assert base["a"] - base["b"] == pytest.approx(
+        _dlog(lambda x: steady_friction(athermal, x), u), abs=1e-7)
 
 
 def test_direct_response_matches_its_twin_at_small_rates() -> None:
@@ -108,7 +109,8 @@ def test_steady_log_slope_is_the_slope_of_the_steady_curve(u: float) -> None:
     """``steady_log_slope`` (with and without the direct effect) against a finite difference of
     ``steady_friction`` taken here. Mistake: ``g`` dropped from the ageing term."""
     for direct in (0.0, A):
-        want = _dlog(lambda x, d=direct: steady_friction(x, EPS, direct=d, v_ref=V_REF), u)
+        want = _dlog(lambda x,
+                     d=direct: steady_friction(TrapModel(eps=EPS, direct=d, v_ref=V_REF), x), u)
         got = float(steady_log_slope(u, EPS, direct=direct, v_ref=V_REF))
         assert got == pytest.approx(want, abs=2e-7)
 
@@ -119,7 +121,8 @@ def test_athermal_response_derivative_is_the_steady_slope() -> None:
     u = 0.45
     resp = steady_response(u, TrapModel(eps=EPS))
     h = 1e-4
-    fd = float((steady_friction(u + h, EPS) - steady_friction(u - h, EPS)) / (2 * h))
+    fd = float((steady_friction(TrapModel(eps=EPS),
+                                u + h) - steady_friction(TrapModel(eps=EPS), u - h)) / (2 * h))
     assert resp.derivative_at_zero(1) == pytest.approx(fd, rel=1e-5)
 
 
@@ -131,15 +134,16 @@ def test_static_friction_never_decreases_with_the_wait(T: float, f: float, creep
                                                        load: float) -> None:
     """``mu_s(T f) >= mu_s(T)`` for ``f > 1``: contacts only grow while waiting (eq. 27)."""
     eps = 0.02
-    lo, hi = static_friction(np.array([T, T * f]), eps, creep=creep, load=load)
+    lo, hi = static_friction(TrapModel(eps=eps, creep=creep), np.array([T, T * f]), load=load)
     assert hi >= lo - 1e-12
 
 
 def test_dieterich_time_is_where_the_curves_meet() -> None:
     """``C(u)``: ``mu_s(C/u) = mu_d(u)`` at generic ``u`` (eq. 36 inverted)."""
     u = np.array([3e-3, 0.07, 0.8])
-    c = dieterich_constant_local(u, EPS)
-    np.testing.assert_allclose(static_friction(c / u, EPS), steady_friction(u, EPS), atol=1e-9)
+    c = dieterich_constant_local(TrapModel(eps=EPS), u)
+    np.testing.assert_allclose(static_friction(TrapModel(eps=EPS), c / u),
+                               steady_friction(TrapModel(eps=EPS), u), atol=1e-9)
 
 
 # ------------------------------------------------------------------ RSF linear stability
@@ -202,11 +206,15 @@ def test_first_order_expansions_miss_only_order_eps_squared(alpha: float) -> Non
     from dryfriction.theory.steady import steady_friction_first_order
 
     for u in (0.23, 3.1):
-        d = [float(steady_friction(u, e, alpha) - steady_friction_first_order(u, e, alpha))
+        d = [float(steady_friction(TrapModel(alpha=alpha, eps=e),
+                                   u) - steady_friction_first_order(TrapModel(alpha=alpha, eps=e),
+                                                                    u))
              for e in (4e-3, 2e-3)]
         assert 3.8 < d[0] / d[1] < 4.2, (u, d)
     for T in (0.7, 300.0):
-        d = [float(static_friction(T, e, alpha) - static_friction_first_order(T, e, alpha))
+        d = [float(static_friction(TrapModel(alpha=alpha, eps=e),
+                                   T) - static_friction_first_order(TrapModel(alpha=alpha, eps=e),
+                                                                    T))
              for e in (4e-3, 2e-3)]
         assert 3.8 < d[0] / d[1] < 4.2, (T, d)
 
@@ -223,11 +231,12 @@ def test_low_velocity_form_is_the_limit_of_the_first_order(alpha: float) -> None
     )
 
     e = 1e-3
-    d = [abs(float(steady_friction_first_order(u, e, alpha)
-                   - steady_friction_low_velocity(u, e, alpha))) for u in (1e-4, 1e-5)]
+    d = [abs(float(steady_friction_first_order(TrapModel(alpha=alpha, eps=e), u)
+                   - steady_friction_low_velocity(TrapModel(alpha=alpha, eps=e),
+                                                  u))) for u in (1e-4, 1e-5)]
     assert d[0] > 5 * d[1], d
     u = 1e-5
-    fd = _dlog(lambda x: steady_friction(x, e, alpha), u)
+    fd = _dlog(lambda x: steady_friction(TrapModel(alpha=alpha, eps=e), x), u)
     assert float(steady_log_slope_low_velocity(u, e, alpha)) == pytest.approx(fd, rel=0.02)
 
 
@@ -291,7 +300,7 @@ def test_static_threshold_is_the_maximum_of_the_pull_force(alpha: float) -> None
             # the cusps where a force can peak (edge at its spinodal): eq. 26's d*, 1 + y_c
             d = np.sort(np.append(grid, [r * yc - dw, 1.0 + yc]))
             brute = float(np.max(pull_force(d, r, alpha, dw)))
-            mu_s = float(static_friction_at_radius(r, alpha, dw))
+            mu_s = float(static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=dw))
             assert brute <= mu_s + 1e-12
             assert mu_s == pytest.approx(brute, abs=1e-6)
 

@@ -188,7 +188,9 @@ def test_the_direct_effect_enters_every_linear_quantity_of_the_model():
     assert critical_stiffness(u, base) == nyquist_stiffness(resp)
     assert effective_rsf(u, base) == {**rsf_from_response(resp), "a_direct": 0.0}
     g = float(junction_strength(u, A, v_ref))
-    a_d = float(junction_log_slope(u, A, v_ref)) * float(steady_friction(u, 0.05, 0.16))
+    a_d = float(junction_log_slope(u, A,
+                                   v_ref)) * float(steady_friction(TrapModel(alpha=0.16, eps=0.05),
+                                                                   u))
     tw0, tw = effective_rsf(u, base), effective_rsf(u, m)
     assert tw["b"] == pytest.approx(g * tw0["b"], rel=1e-10)
     assert tw["a"] == pytest.approx(g * tw0["a"] + a_d, rel=1e-10)

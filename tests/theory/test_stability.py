@@ -28,8 +28,9 @@ def test_zero_frequency_limits(alpha, creep, u):
     h = 1e-6
     dz = (resp.Z(h) - resp.Z(-h)).real / (2 * h)
     du = 1e-5 * u
-    slope = (steady_friction(u + du, eps, alpha, creep) - steady_friction(u - du, eps, alpha,
-                                                                          creep)) / (2 * du)
+    slope = (steady_friction(TrapModel(alpha=alpha, eps=eps, creep=creep),
+                             u + du) - steady_friction(TrapModel(alpha=alpha, eps=eps, creep=creep),
+                                                       u - du)) / (2 * du)
     assert dz == pytest.approx(slope, rel=1e-5)
 
 
@@ -78,7 +79,7 @@ def test_shift_stiffness_against_shifted_population(u):
     eps = 0.04
     fwd, bwd = shift_stiffness(u, TrapModel(eps=eps))
     d = 1e-5
-    base = float(steady_friction(u, eps))
+    base = float(steady_friction(TrapModel(eps=eps), u))
     assert _shifted_force(0.0, u, eps) == pytest.approx(base, rel=1e-9)
     assert (_shifted_force(d, u, eps) - base) / d == pytest.approx(fwd, rel=2e-3)
     assert (base - _shifted_force(-d, u, eps)) / d == pytest.approx(bwd, rel=2e-3)
@@ -146,7 +147,8 @@ def test_effective_rsf_from_moments(u):
     assert resp.derivative_at_zero(3) == pytest.approx(d3, rel=1e-3)
     # a - b is the steady-state slope u d mu_d/du (rate-and-state's mu0 + (a - b) ln V)
     du = 1e-5 * u
-    slope = (steady_friction(u + du, eps) - steady_friction(u - du, eps)) / (2 * du)
+    slope = (steady_friction(TrapModel(eps=eps),
+                             u + du) - steady_friction(TrapModel(eps=eps), u - du)) / (2 * du)
     assert p["a"] - p["b"] == pytest.approx(u * slope, rel=1e-5)
     assert p["b"] > p["a"] > 0 and 0.3 < p["dc"] < 2.46  # velocity weakening, Dc < (1 + y_c) a0
 

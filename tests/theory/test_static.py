@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.static import (
     fresh_force,
     loaded_edge,
@@ -14,6 +15,7 @@ from dryfriction.theory.static import (
     static_friction,
     static_friction_at_radius,
     static_friction_first_order,
+    static_friction_over_eps,
     static_slope_per_eps,
     threshold_shift,
 )
@@ -36,7 +38,8 @@ def test_precision_against_mpmath_eq27():
         r = math.sqrt(1 + e * math.log1p(t))
         if r * Trap(a).y_c - 1 > Trap(a).y_c:
             continue  # fresh traps die before the aged edge: eq. 27 literally undefined there
-        assert static_friction(t, e, a) == pytest.approx(ref_static_eq27(t, e, a), rel=1e-9)
+        assert static_friction(TrapModel(alpha=a, eps=e),
+                               t) == pytest.approx(ref_static_eq27(t, e, a), rel=1e-9)
 
 
 def test_pull_force_against_trap_by_trap_sum():
@@ -55,7 +58,7 @@ def test_threshold_is_max_of_pull(alpha, r, load):
     d_w = loaded_edge(load, alpha)
     d = np.linspace(0.0, 1.0 + r * Trap(alpha).death_point + 1.0, 40001)
     scan = pull_force(d, r, alpha, d_w).max()
-    mu_s = static_friction_at_radius(r, alpha, d_w)
+    mu_s = static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=d_w)
     # the dense scan can only undershoot the true maximum, by at most slope * step; both carry
     # rounding of relative size 1e-16 / H0 (H0 ~ (1 - alpha)^3 as alpha -> 1)
     assert mu_s >= scan - 1e-12 - 1e-14 / Trap(alpha).H0
@@ -67,14 +70,14 @@ def test_paper_regime_threshold_is_eq27_point():
     for eps in (0.01, 0.05):
         for T in (0.01, 1.0, 100.0):
             r = math.sqrt(1 + eps * math.log1p(T))
-            assert static_friction(T, eps) == pytest.approx(
+            assert static_friction(TrapModel(eps=eps), T) == pytest.approx(
                 float(pull_force(threshold_shift(r), r)), rel=1e-15)
 
 
 def test_limits():
-    assert static_friction(0.0, 0.05) == pytest.approx(1.0, rel=1e-14)
-    assert static_friction(1e6, 0.0) == pytest.approx(1.0, rel=1e-14)
-    assert static_friction(0.0, 0.05, alpha=0.5) == pytest.approx(1.0, rel=1e-13)
+    assert static_friction(TrapModel(eps=0.05), 0.0) == pytest.approx(1.0, rel=1e-14)
+    assert static_friction(TrapModel(eps=0.0), 1e6) == pytest.approx(1.0, rel=1e-14)
+    assert static_friction(TrapModel(alpha=0.5, eps=0.05), 0.0) == pytest.approx(1.0, rel=1e-13)
     # fresh contact: force 0 at rest (eq. 25), 1 at the elastic threshold d = y_c (eq. 12)
     for alpha in (0.13, 0.5):
         assert fresh_force(0.0, alpha) == pytest.approx(0.0, abs=1e-14)
@@ -86,8 +89,8 @@ def test_first_order_expansion_eq28(alpha):
     T = np.logspace(-2, 2, 9)
     prev = None
     for eps in (1e-2, 1e-3, 1e-4):
-        err = np.max(np.abs(static_friction(T, eps, alpha) - static_friction_first_order(
-            T, eps, alpha)))
+        model = TrapModel(alpha=alpha, eps=eps)
+        err = np.max(np.abs(static_friction(model, T) - static_friction_first_order(model, T)))
         if prev is not None:  # the remainder is O(eps^2)
             assert err < prev / 50
         prev = err
@@ -105,7 +108,7 @@ def test_slope_per_eps_paper_value():
         (3 * trap.H1 + y1 * f1) / (2 * trap.H0_paper), rel=1e-12)
     # mu_s is not log-linear in T at short times (paper §4): slope grows with T
     T = np.array([0.01, 0.1, 1, 10, 100])
-    mu = static_friction(T, 0.03)
+    mu = static_friction(TrapModel(eps=0.03), T)
     slopes = np.diff(mu) / np.diff(np.log(T))
     assert np.all(np.diff(slopes) > 0)
     assert slopes[-1] == pytest.approx(0.03 * static_slope_per_eps(a), rel=0.05)
@@ -115,22 +118,24 @@ def test_slope_per_eps_paper_value():
 @settings(max_examples=60, deadline=None)
 def test_monotone_in_T_and_eps(alpha, eps, T, k):
     # very strong pinning (the paper's regime); strong pinning is checked below
-    assert static_friction(T * k, eps, alpha) > static_friction(T, eps, alpha)
-    assert static_friction(T, eps * min(k, 1.5), alpha) > static_friction(T, eps, alpha)
+    assert static_friction(TrapModel(alpha=alpha, eps=eps),
+                           T * k) > static_friction(TrapModel(alpha=alpha, eps=eps), T)
+    assert static_friction(TrapModel(alpha=alpha, eps=eps * min(k, 1.5)),
+                           T) > static_friction(TrapModel(alpha=alpha, eps=eps), T)
 
 
 def test_loaded_protocol_larger_and_steeper():
     # paper §4: ageing under load gives larger mu_s and larger d mu_s / d ln t_w
     T = np.array([1.0, 100.0])
-    rest = static_friction(T, 0.03)
+    rest = static_friction(TrapModel(eps=0.03), T)
     slope_rest = np.diff(rest) / np.diff(np.log(T))
     for load in (0.3, 0.6, 0.9):
-        loaded = static_friction(T, 0.03, load=load)
+        loaded = static_friction(TrapModel(eps=0.03), T, load=load)
         assert np.all(loaded > rest)
         assert (np.diff(loaded) / np.diff(np.log(T)))[0] > slope_rest[0]
         # the edge really carries the load at T = 0
         assert fresh_force(loaded_edge(load), 0.13) == pytest.approx(load, rel=1e-12)
-        assert static_friction(0.0, 0.03, load=load) == pytest.approx(1.0, rel=1e-13)
+        assert static_friction(TrapModel(eps=0.03), 0.0, load=load) == pytest.approx(1.0, rel=1e-13)
 
 
 def test_eyring_nabarro_variant():
@@ -138,8 +143,8 @@ def test_eyring_nabarro_variant():
     # e^{(1-s)/eps} for s >= 1), so its static friction is larger, by O(eps^2)
     T = np.logspace(-2, 2, 5)
     for eps in (0.02, 0.002):
-        en = static_friction(T, eps, creep="eyring-nabarro")
-        lg = static_friction(T, eps)
+        en = static_friction(TrapModel(eps=eps, creep="eyring-nabarro"), T)
+        lg = static_friction(TrapModel(eps=eps), T)
         assert np.all(en >= lg - 1e-15)
     assert np.max(en - lg) < 20 * 0.002**2 * np.log1p(T[-1]) ** 2
 
@@ -153,9 +158,12 @@ def test_eyring_nabarro_variant():
      ({"creep": "power"}, "creep")],
 )
 def test_bad_input(kwargs, name):
+    # a model's parameter is refused when the model is built, the others by the call
     args = {"T": 1.0, "eps": 0.01} | kwargs
-    with pytest.raises(ValueError, match=name):
-        static_friction(**args)
+    T = args.pop("T")
+    call = {k: args.pop(k) for k in ("load", "hold") if k in args}
+    with pytest.raises(ValueError, match=f"^{name} = "):
+        static_friction(TrapModel(**args), T, **call)
 
 
 def test_eyring_nabarro_static_range_and_array_consistency():
@@ -166,11 +174,12 @@ def test_eyring_nabarro_static_range_and_array_consistency():
     eps = 0.05
     t_v = max_age(eps)
     T = np.geomspace(1e-2, 0.999 * t_v, 23)
-    together = static_friction(T, eps, ALPHA0, "eyring-nabarro")
-    alone = np.array([float(static_friction(t, eps, ALPHA0, "eyring-nabarro")) for t in T])
+    together = static_friction(TrapModel(alpha=ALPHA0, eps=eps, creep="eyring-nabarro"), T)
+    alone = np.array([float(static_friction(TrapModel(alpha=ALPHA0, eps=eps,
+                                                      creep="eyring-nabarro"), t)) for t in T])
     np.testing.assert_array_equal(together, alone)
     with pytest.raises(ValueError, match=r"T = 1e\+12 is beyond the Eyring-Nabarro law's range"):
-        static_friction(1e12, eps, ALPHA0, "eyring-nabarro")
+        static_friction(TrapModel(alpha=ALPHA0, eps=eps, creep="eyring-nabarro"), 1e12)
 
 
 @pytest.mark.parametrize(("T", "eps", "word"), [
@@ -180,15 +189,18 @@ def test_eyring_nabarro_static_range_and_array_consistency():
 ])
 def test_static_out_of_range_is_a_named_value_error(T, eps, word):
     with pytest.raises(ValueError, match=word):
-        static_friction(T, eps)
+        if np.ndim(eps):  # a sweep over eps
+            static_friction_over_eps(TrapModel(), T, eps)
+        else:
+            static_friction(TrapModel(eps=eps), T)
 
 
 def test_reversed_load_and_the_two_holds():
     # a reversed load is the mirror population: d_w(-f) = -d_w(f); at zero load the holds agree
     assert loaded_edge(-0.4) == pytest.approx(-loaded_edge(0.4), rel=1e-15)
     T = np.array([1.0, 100.0])
-    rest = static_friction(T, 0.04)
-    assert np.array_equal(static_friction(T, 0.04, hold="force"), rest)
+    rest = static_friction(TrapModel(eps=0.04), T)
+    assert np.array_equal(static_friction(TrapModel(eps=0.04), T, hold="force"), rest)
     from dryfriction.theory.static import force_hold_shift
 
     # the force hold moves the slider against the load as the contacts age (it stays put at
@@ -199,14 +211,15 @@ def test_reversed_load_and_the_two_holds():
     # Dillavou & Rubinstein's sign and trend: a forward load ages faster than rest, a reversed
     # one slower (both holds)
     for hold in ("position", "force"):
-        up = static_friction(T, 0.04, load=0.5, hold=hold)
-        down = static_friction(T, 0.04, load=-0.5, hold=hold)
+        up = static_friction(TrapModel(eps=0.04), T, load=0.5, hold=hold)
+        down = static_friction(TrapModel(eps=0.04), T, load=-0.5, hold=hold)
         assert np.all(down < rest) and np.all(rest < up)
         assert up[1] - up[0] > rest[1] - rest[0] > down[1] - down[0] > 0
     # under a reversed force hold the slider creeps forward and the pairs it meets age during
     # the wait (the ensemble agrees: test_driving, slow): stronger than the position hold
-    gap = static_friction(100.0, 0.04, load=-0.5, hold="force") - static_friction(
-        100.0, 0.04, load=-0.5, hold="position")
+    gap = static_friction(TrapModel(eps=0.04), 100.0, load=-0.5,
+                          hold="force") - static_friction(TrapModel(eps=0.04), 100.0, load=-0.5,
+                                                          hold="position")
     assert 0.01 < gap < 0.013
 
 
@@ -215,7 +228,7 @@ def test_force_hold_rear_exits_lower_the_loaded_threshold():
     # past w = -1: they leave and come back fresh in the pull. The ensemble's force-controlled
     # run (examples/static_threshold_loaded.toml, 1000 pairs/a0, about 3e-4 density error)
     # gives 1.2477; the position hold's closed form is 1.2490
-    force = float(static_friction(100.0, 0.04, load=0.5, hold="force"))
-    position = float(static_friction(100.0, 0.04, load=0.5, hold="position"))
+    force = float(static_friction(TrapModel(eps=0.04), 100.0, load=0.5, hold="force"))
+    position = float(static_friction(TrapModel(eps=0.04), 100.0, load=0.5, hold="position"))
     assert force == pytest.approx(1.2474, abs=4e-4)
     assert position - force > 1e-3

@@ -5,6 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dryfriction.theory.model import TrapModel
 from dryfriction.theory.steady import (
     DYNAMIC_SLOPE_PER_EPS,
     low_velocity_constant,
@@ -13,6 +14,7 @@ from dryfriction.theory.steady import (
     steady_friction,
     steady_friction_first_order,
     steady_friction_low_velocity,
+    steady_friction_over_eps,
     steady_profile,
 )
 from dryfriction.theory.trap import ALPHA0, Trap
@@ -32,23 +34,25 @@ def test_precision_against_mpmath():
     eps = rng.uniform(0.0, 0.2, n)
     u = np.exp(rng.uniform(np.log(1e-4), np.log(1e4), n))
     for a, e, v in zip(alpha, eps, u, strict=True):
-        assert steady_friction(v, e, a) == pytest.approx(ref_steady(v, e, a), rel=1e-9)
+        assert steady_friction(TrapModel(alpha=a, eps=e),
+                               v) == pytest.approx(ref_steady(v, e, a), rel=1e-9)
 
 
 def test_vectorised_equals_pointwise_and_broadcasts():
     u = np.logspace(-3, 3, 7)
     eps = np.array([[0.01], [0.05]])
-    grid = steady_friction(u, eps)
+    grid = steady_friction_over_eps(TrapModel(), u, eps)
     assert grid.shape == (2, 7)
-    assert grid[1, 3] == pytest.approx(steady_friction(u[3], 0.05), rel=1e-14)
+    assert grid[1, 3] == pytest.approx(steady_friction(TrapModel(eps=0.05), u[3]), rel=1e-14)
 
 
 def test_elastic_limit_and_saturation():
     u = np.logspace(-4, 4, 9)
     for alpha in (0.05, 0.13, 0.5):
-        np.testing.assert_allclose(steady_friction(u, 0.0, alpha), 1.0, rtol=1e-12)
+        np.testing.assert_allclose(steady_friction(TrapModel(alpha=alpha, eps=0.0), u), 1.0,
+                                   rtol=1e-12)
     # u -> inf: mu_d -> 1 like 1/u (first order: ~ eps C / u)
-    big = steady_friction(np.array([1e4, 1e5, 1e6]), 0.05)
+    big = steady_friction(TrapModel(eps=0.05), np.array([1e4, 1e5, 1e6]))
     excess = big - 1
     assert np.all(excess > 0)
     np.testing.assert_allclose(excess[1:] / excess[:-1], 0.1, rtol=1e-3)
@@ -59,8 +63,8 @@ def test_first_order_in_eps(alpha):
     u = np.logspace(-3, 3, 7)
     prev = None
     for eps in (1e-2, 1e-3, 1e-4):
-        err = np.max(np.abs(steady_friction(u, eps, alpha) - steady_friction_first_order(
-            u, eps, alpha)))
+        model = TrapModel(alpha=alpha, eps=eps)
+        err = np.max(np.abs(steady_friction(model, u) - steady_friction_first_order(model, u)))
         if prev is not None:
             assert err < prev / 50  # remainder O(eps^2)
         prev = err
@@ -71,13 +75,13 @@ def test_low_velocity_expansion_eq35():
     # d mu_d / d ln u -> -(3/2) eps as u -> 0 at small eps (eq. 35 reading)
     eps = 1e-4
     u = np.array([1e-6, 1e-5])
-    mu = steady_friction(u, eps)
+    mu = steady_friction(TrapModel(eps=eps), u)
     slope = np.diff(mu)[0] / np.diff(np.log(u))[0]
     assert slope / eps == pytest.approx(DYNAMIC_SLOPE_PER_EPS, rel=1e-3)
     # with its constant, eq. 35 is the u -> 0 limit of the first-order result
     u = np.array([1e-6, 1e-8])
-    lo = steady_friction_low_velocity(u, 1e-3)
-    fo = steady_friction_first_order(u, 1e-3)
+    lo = steady_friction_low_velocity(TrapModel(eps=1e-3), u)
+    fo = steady_friction_first_order(TrapModel(eps=1e-3), u)
     np.testing.assert_allclose(lo, fo, rtol=0, atol=1e-3 * 10 * u.max())
     assert np.isfinite(low_velocity_constant(0.13))
 
@@ -86,14 +90,16 @@ def test_low_velocity_expansion_eq35():
 @settings(max_examples=60, deadline=None)
 def test_velocity_weakening_and_eps_monotone(alpha, eps, u, k):
     # very strong pinning (the paper's regime): mu_d decreases with u, increases with eps
-    assert steady_friction(u * k, eps, alpha) < steady_friction(u, eps, alpha)
-    assert steady_friction(u, eps * min(k, 1.5), alpha) > steady_friction(u, eps, alpha)
+    assert steady_friction(TrapModel(alpha=alpha, eps=eps),
+                           u * k) < steady_friction(TrapModel(alpha=alpha, eps=eps), u)
+    assert steady_friction(TrapModel(alpha=alpha, eps=eps * min(k, 1.5)),
+                           u) > steady_friction(TrapModel(alpha=alpha, eps=eps), u)
 
 
 def test_strong_pinning_is_not_monotone():
     # ours: in strong pinning the aged traps on the far side of the bump return more work
     # than they took, and mu_d dips below 1 at intermediate velocity
-    mu = steady_friction(np.logspace(-4, 4, 81), 0.04, alpha=0.5)
+    mu = steady_friction(TrapModel(alpha=0.5, eps=0.04), np.logspace(-4, 4, 81))
     assert mu.min() < 1.0 < mu.max()
 
 
@@ -108,14 +114,15 @@ def test_death_point_eq32_and_profile():
     # the profile integrates to mu_d H0 (eq. 33 density) — trapezoid on a fine grid
     yy = np.linspace(-1, pd, 400001)
     integral = np.trapezoid(steady_profile(yy, u, eps), yy)
-    assert integral / Trap(0.13).H0 == pytest.approx(steady_friction(u, eps), rel=1e-5)
+    assert integral / Trap(0.13).H0 == pytest.approx(steady_friction(TrapModel(eps=eps), u),
+                                                     rel=1e-5)
 
 
 def test_eyring_nabarro_variant_and_precision():
     u = np.logspace(-2, 2, 5)
     for eps in (0.02, 0.002):
-        en = steady_friction(u, eps, creep="eyring-nabarro")
-        lg = steady_friction(u, eps)
+        en = steady_friction(TrapModel(eps=eps, creep="eyring-nabarro"), u)
+        lg = steady_friction(TrapModel(eps=eps), u)
         assert np.all(en >= lg - 1e-14)  # the exact law ages faster
     assert np.max(en - lg) < 50 * 0.002**2
 
@@ -126,8 +133,11 @@ def test_eyring_nabarro_variant_and_precision():
      ({"alpha": 1.0}, "alpha"), ({"alpha": -0.2}, "alpha"), ({"creep": "x"}, "creep")],
 )
 def test_bad_input(kwargs, name):
-    with pytest.raises(ValueError, match=name):
-        steady_friction(**({"u": 1.0, "eps": 0.01} | kwargs))
+    # a model's parameter is refused when the model is built, u by the call
+    args = {"u": 1.0, "eps": 0.01} | kwargs
+    u = args.pop("u")
+    with pytest.raises(ValueError, match=f"^{name} = "):
+        steady_friction(TrapModel(**args), u)
 
 
 def test_continuity_across_alpha0():
@@ -136,14 +146,17 @@ def test_continuity_across_alpha0():
 
     lo, hi = ALPHA0 * (1 - 1e-9), ALPHA0 * (1 + 1e-9)
     u = np.logspace(-3, 3, 7)
-    np.testing.assert_allclose(steady_friction(u, 0.05, lo), steady_friction(u, 0.05, hi),
+    np.testing.assert_allclose(steady_friction(TrapModel(alpha=lo, eps=0.05), u),
+                               steady_friction(TrapModel(alpha=hi, eps=0.05), u),
                                rtol=1e-6)
     T = np.logspace(-3, 3, 7)
-    np.testing.assert_allclose(static_friction(T, 0.05, lo), static_friction(T, 0.05, hi),
+    np.testing.assert_allclose(static_friction(TrapModel(alpha=lo, eps=0.05), T),
+                               static_friction(TrapModel(alpha=hi, eps=0.05), T),
                                rtol=1e-6)
     for load in (0.3, 0.8):
-        np.testing.assert_allclose(static_friction(T, 0.05, lo, load=load),
-                                   static_friction(T, 0.05, hi, load=load), rtol=1e-6)
+        np.testing.assert_allclose(static_friction(TrapModel(alpha=lo, eps=0.05), T, load=load),
+                                   static_friction(TrapModel(alpha=hi, eps=0.05), T,
+                                                   load=load), rtol=1e-6)
 
 
 # --- range of the inputs (issue 16) -----------------------------------------------------------
@@ -188,10 +201,10 @@ def test_eyring_nabarro_near_its_edge_matches_an_independent_quadrature(eps):
     # wrong u_min (an edge refused too early or accepted too late)
     u_min = min_velocity(eps, ALPHA0)
     for u in (1.001 * u_min, 3.0 * u_min):
-        got = float(steady_friction(u, eps, ALPHA0, "eyring-nabarro"))
+        got = float(steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep="eyring-nabarro"), u))
         assert got == pytest.approx(_en_steady_quadrature(u, eps, ALPHA0), rel=1e-7)
     with pytest.raises(ValueError, match=r"u = .* beyond the Eyring-Nabarro law's range at eps"):
-        steady_friction(0.999 * u_min, eps, ALPHA0, "eyring-nabarro")
+        steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep="eyring-nabarro"), 0.999 * u_min)
 
 
 def test_min_velocity_is_where_traps_die_at_the_end_of_the_range():
@@ -213,17 +226,19 @@ def test_one_u_alone_equals_the_same_u_in_an_array(creep):
     eps = 0.1
     lo = 1.001 * min_velocity(eps, ALPHA0, creep) if creep != "log" else 1e-8
     u = np.geomspace(lo, 1e3, 29)
-    together = steady_friction(u, eps, ALPHA0, creep)
-    alone = np.array([float(steady_friction(x, eps, ALPHA0, creep)) for x in u])
+    together = steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep=creep), u)
+    alone = np.array([float(steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep=creep),
+                                            x)) for x in u])
     np.testing.assert_array_equal(together, alone)
 
 
 def test_extreme_but_allowed_velocities_are_right():
     # the ends of the accepted range (1e-30, 1e30) against the mpmath reference and the
     # high-velocity limit: catches overflow or lost precision at the edges
-    assert float(steady_friction(1e-30, 0.01, ALPHA0)) == pytest.approx(
+    assert float(steady_friction(TrapModel(alpha=ALPHA0, eps=0.01), 1e-30)) == pytest.approx(
         ref_steady(1e-30, 0.01, ALPHA0), rel=1e-9)
-    assert float(steady_friction(1e30, 0.04, ALPHA0)) == pytest.approx(1.0, abs=1e-13)
+    assert float(steady_friction(TrapModel(alpha=ALPHA0, eps=0.04),
+                                 1e30)) == pytest.approx(1.0, abs=1e-13)
 
 
 @pytest.mark.parametrize(("u", "eps", "word"), [
@@ -235,7 +250,10 @@ def test_extreme_but_allowed_velocities_are_right():
 def test_out_of_range_is_a_named_value_error(u, eps, word):
     # before: nan, inf, RuntimeError, NumPy's anonymous broadcast error
     with pytest.raises(ValueError, match=word):
-        steady_friction(u, eps)
+        if np.ndim(eps):  # a sweep over eps
+            steady_friction_over_eps(TrapModel(), u, eps)
+        else:
+            steady_friction(TrapModel(eps=eps), u)
 
 
 def test_grouping_and_chunking_do_not_change_a_point(monkeypatch):
@@ -247,8 +265,8 @@ def test_grouping_and_chunking_do_not_change_a_point(monkeypatch):
     u = 10.0 ** rng.uniform(-2, 2, 37)
     eps = rng.choice([0.0, 0.02, 0.04, 0.07], 37)
     monkeypatch.setattr(creep_mod, "PER_EPS_CHUNK", 5)
-    together = steady_friction(u.reshape(37, 1), eps.reshape(37, 1))
-    alone = np.array([steady_friction(a, b) for a, b in zip(u, eps, strict=True)])
+    together = steady_friction_over_eps(TrapModel(), u.reshape(37, 1), eps.reshape(37, 1))
+    alone = np.array([steady_friction(TrapModel(eps=b), a) for a, b in zip(u, eps, strict=True)])
     assert together.shape == (37, 1)
     np.testing.assert_array_equal(together[:, 0], alone)
 
@@ -267,6 +285,6 @@ def test_death_point_converges_where_newton_hops_between_two_floats():
     pd = steady_death_point(u, 0.04, creep="eyring-nabarro")
     r = np.sqrt(law.radius_sq(law.clock((pd + 1.0) / u)))
     np.testing.assert_allclose(pd / r, Trap(0.13).y_c, rtol=1e-13)  # eq. 32
-    mu = steady_friction(u, 0.04, creep="eyring-nabarro")
-    near = steady_friction(u * (1 + 1e-9), 0.04, creep="eyring-nabarro")
+    mu = steady_friction(TrapModel(eps=0.04, creep="eyring-nabarro"), u)
+    near = steady_friction(TrapModel(eps=0.04, creep="eyring-nabarro"), u * (1 + 1e-9))
     np.testing.assert_allclose(mu, near, rtol=1e-9)  # a regular point of a smooth curve

@@ -1,5 +1,5 @@
 """The event catalogue of an extended interface, its precursor curve and its magnitude-frequency
-distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.analysis.fronts`.
+distribution, from the events of :mod:`dryfriction.analysis.fronts`.
 
 * **Catalogue**: one row per event, written with headers ``name[unit]`` (units from the
   fields': e.g. ``t_start[t0]``, ``extent[a0]``, ``moment[a0^2]``; ``[1]`` a pure number, an
@@ -15,7 +15,7 @@ distribution (issue 29, parts 2 and 5), from the events of :mod:`dryfriction.ana
   of every earlier event from the loaded edge, so that the small re-slips next to the edge
   that follow a precursor while the load is still below the level it had dropped from
   (aftershocks) are left out (ours).
-* **Trend** of the precursors (the question of issue 29, part 5: do they arrest at lengths that
+* **Trend** of the precursors (do they arrest at lengths that
   grow with the applied shear?): Spearman's rank correlation ``rho`` of length against ratio and
   its two-sided p-value (``scipy.stats.spearmanr``). The answer is ``"yes"`` (they grow) when
   ``rho > 0`` and ``p < TREND_LEVEL``, ``"decreasing"`` when ``rho < 0`` and ``p <

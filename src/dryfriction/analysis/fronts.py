@@ -1,5 +1,5 @@
-"""Rupture fronts and slip events of an extended interface, read from its space-time fields
-(issue 29, part 2). Every definition here is ours unless a reference is cited.
+"""Rupture fronts and slip events of an extended interface, read from its space-time fields.
+Every definition here is ours unless a reference is cited.
 
 The input is the fields of a run of N elements at positions ``x`` sampled at times ``t``:
 slip rate ``v[j, i]`` and slip ``s[j, i]`` of element ``i`` at time ``t[j]`` (and optionally the

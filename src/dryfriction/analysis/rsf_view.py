@@ -55,7 +55,7 @@ from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider
 from ..rsf.driving import simulate as simulate_rate_state
 from ..rsf.law import RateState
 from ..theory.linear_stability import effective_rsf
-from ..theory.model import TRAPS_PER_A0
+from ..theory.model import TRAPS_PER_A0, takes_model
 from ..theory.stability import shift_stiffness
 from ..theory.steady import steady_friction
 from ..theory.trap import Trap
@@ -315,11 +315,14 @@ class RSFView:
     shs: dict[str, Any]
     memory: dict[str, float]
     findings: tuple[str, ...] = field(default=())
+    direct: float = 0.0
+    v_ref: float = 1.0
 
     def to_dict(self) -> dict[str, Any]:
         return {
             "units": "reduced: friction F/F_el, slips and Dc in a0, times in t0, V in a0/t0",
-            "eps": self.eps, "alpha": self.alpha, "creep": self.creep, "u0": self.u0,
+            "eps": self.eps, "alpha": self.alpha, "creep": self.creep, "direct": self.direct,
+            "v_ref": self.v_ref, "u0": self.u0,
             "step_factor": self.factor, "traps_per_a0": self.traps_per_a0,
             "holds_t0": list(self.holds),
             "fits": {k: v.to_dict() for k, v in self.twins.items()},
@@ -329,7 +332,7 @@ class RSFView:
         }
 
 
-def trap_model_as_rsf(
+def _trap_model_as_rsf_loose(
     eps: float = 0.04,
     alpha: float = 0.13,
     u0: float = 0.1,
@@ -339,12 +342,31 @@ def trap_model_as_rsf(
     creep: str = "log",
     every_slip: float = 0.02,
 ) -> RSFView:
+    """:func:`trap_model_as_rsf` with the model's parameters loose (its old form): the athermal
+    model ``TrapModel(alpha, eps, creep)``."""
+    check_scalar("eps", eps, 0.0, lo_open=True)
+    return trap_model_as_rsf(TrapModel(alpha, eps, creep), u0, factor, holds, traps_per_a0,
+                             every_slip)
+
+
+@takes_model(_trap_model_as_rsf_loose,
+             "trap_model_as_rsf(eps, alpha, u0, factor, holds, traps_per_a0, creep, every_slip)",
+             "trap_model_as_rsf(model, u0, factor, holds, traps_per_a0, every_slip)")
+def trap_model_as_rsf(
+    model: TrapModel,
+    u0: float = 0.1,
+    factor: float = 10.0,
+    holds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0, 10000.0),
+    traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
+    every_slip: float = 0.02,
+) -> RSFView:
     """Fit rate-and-state to the trap model's velocity steps and slide-hold-slide.
 
     Parameters
     ----------
-    eps, alpha : float
-        Creep parameter (``> 0``) and trap stiffness of the trap model.
+    model : TrapModel
+        The trap model, ``model.eps > 0``; the whole model runs (with its direct effect, when
+        ``model.direct > 0``); ``model.mu_el`` does not enter: friction is ``F/F_el``.
     u0 : float
         Reference velocity ``V t0/a0`` (steady sliding before each test; ``V0`` of the fit).
     factor : float
@@ -354,7 +376,6 @@ def trap_model_as_rsf(
     traps_per_a0 : float
         Density of the (regular) track. ``1000`` gives the steady friction to about ``1e-3``
         (checked against eq. 34 in the tests) at a fraction of a second per run.
-    creep : {"log", "eyring-nabarro"}
     every_slip : float
         Sampling of the step transients, ``a0``.
 
@@ -366,10 +387,11 @@ def trap_model_as_rsf(
         steady slope of eq. 34 and the linear prediction of
         :func:`dryfriction.theory.linear_stability.effective_rsf`.
     """
-    eps = check_scalar("eps", eps, 0.0, lo_open=True)
+    eps, alpha, creep = model.eps, model.alpha, model.creep
+    check_scalar("eps", eps, 0.0, lo_open=True)
+    model = model.replace(mu_el=1.0)  # the view is in F/F_el: mu_el does not enter
     u0 = check_scalar("u0", u0, 0.0, lo_open=True)
     factor = check_scalar("factor", factor, 1.0, lo_open=True)
-    model = TrapModel(alpha, eps, creep)
     track = Track(traps_per_a0)
     yc = Trap(alpha).y_c
     pre = 0.5  # a0 of steady sliding before each step
@@ -394,8 +416,7 @@ def trap_model_as_rsf(
     twins["ageing_with_holds"] = fit_rsf_twin(series, u0, "ageing", peak_data)
 
     lin = effective_rsf(u0, model)
-    lin_twin = RateState(lin["a"], lin["b"], lin["dc"], float(steady_friction(u0, eps, alpha,
-                                                                                 creep)), u0)
+    lin_twin = RateState(lin["a"], lin["b"], lin["dc"], float(steady_friction(model, u0)), u0)
     for name, u1, res, _data in runs:
         i_step = int(np.argmax(res.t > pre / u0 + 1e-12))  # first sample after the step
         entry: dict[str, Any] = {
@@ -417,7 +438,7 @@ def trap_model_as_rsf(
         entry["direct_effect_rsf_ageing"] = twins["ageing"].a * math.log(u1 / u0)
         steps[name] = entry
 
-    mu_u0 = float(steady_friction(u0, eps, alpha, creep))
+    mu_u0 = float(steady_friction(model, u0))
     shs: dict[str, Any] = {"holds_t0": list(holds), "peak_mu": peaks.tolist(),
                            "mu_ss_u0": mu_u0}
     for law, key in (("ageing", "ageing"), ("slip", "slip"), ("ageing_with_holds",
@@ -433,20 +454,22 @@ def trap_model_as_rsf(
         if len(holds) >= 3 else float("nan")
 
     h = 1e-4
-    slope = float((steady_friction(u0 * (1 + h), eps, alpha, creep)
-                   - steady_friction(u0 * (1 - h), eps, alpha, creep)) / (2 * h))
-    chord = float((steady_friction(factor * u0, eps, alpha, creep)
-                   - steady_friction(u0 / factor, eps, alpha, creep)) / (2 * math.log(factor)))
+    slope = float((steady_friction(model, u0 * (1 + h))
+                   - steady_friction(model, u0 * (1 - h))) / (2 * h))
+    chord = float((steady_friction(model, factor * u0)
+                   - steady_friction(model, u0 / factor)) / (2 * math.log(factor)))
     steady = {"mu_d_u0": mu_u0, "u_dmu_du_at_u0": slope, "chord_slope_over_steps": chord,
               "eq35_slope": -1.5 * eps}
-    fwd, bwd = shift_stiffness(u0, TrapModel(alpha, eps, creep))
+    fwd, bwd = shift_stiffness(u0, model)
     linear = {"a": lin["a"], "b": lin["b"], "dc": lin["dc"], "a_minus_b": lin["a"] - lin["b"],
               "forward_shift_stiffness": fwd, "backward_shift_stiffness": bwd}
     memory = {"one_plus_yc": 1.0 + yc}
 
     ta = twins["ageing"]
     findings = (
-        f"no direct effect: the friction moves by {steps[runs[0][0]]['jump_first_sample']:.2g} "
+        ("no direct effect: the friction moves by " if model.direct == 0.0
+         else f"direct effect A = {model.direct:g}: the friction moves by ")
+        + f"{steps[runs[0][0]]['jump_first_sample']:.2g} "
         f"over the first sample after the step u0 -> {factor:g} u0, where rate-and-state jumps "
         f"by a ln f; the fitted a = {ta.a:.3g} is {ta.a / ta.b:.2g} b",
         f"a - b = {ta.a - ta.b:.4g} (ageing law) against the chord slope of eq. 34 over the steps "
@@ -466,7 +489,8 @@ def trap_model_as_rsf(
         "law: no healing at rest)",
     )
     return RSFView(eps, alpha, creep, u0, factor, traps_per_a0, tuple(float(x) for x in holds),
-                   twins, steady, linear, steps, shs, memory, findings)
+                   twins, steady, linear, steps, shs, memory, findings, model.direct,
+                   model.v_ref)
 
 
 @dataclass(frozen=True)
@@ -587,7 +611,7 @@ def compare_protocol(proto: Any, state_law: str = "ageing",
         calibration = "own program"
     else:
         u0 = float(init.velocity) if init.kind == "steady" else u_first
-        view = trap_model_as_rsf(model.eps, model.alpha, u0, creep=model.creep)
+        view = trap_model_as_rsf(model, u0)
         twin = view.twins["ageing_with_holds" if state_law == "ageing" else "slip"]
         calibration = "standard"
         notes.append(f"twin from the standard calibration at u0 = {u0:g} (velocity steps x10 and "

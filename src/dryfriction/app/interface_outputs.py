@@ -1,4 +1,4 @@
-"""What an extended-interface run writes besides its own files (issue 29, part 2): the
+"""What an extended-interface run writes besides its own files: the
 space-time fields, the event catalogue, the fronts, the precursor curve and four figures
 (:mod:`dryfriction.analysis.fronts`, :mod:`dryfriction.analysis.catalogue`,
 :mod:`dryfriction.plots.fronts`).

@@ -1,8 +1,7 @@
 """The closed-form workflows: :func:`trap`, :func:`static`, :func:`steady`, :func:`stability`
 (the commands of the same names). Each checks its input (one line naming the option as typed),
 evaluates the theory and returns a :class:`TableOutcome`: the parameters and the columns with
-their units, which the command line prints as a table or JSON. Moved here from the command line
-(issue 26)."""
+their units, which the command line prints as a table or JSON. Moved here from the command line."""
 
 from __future__ import annotations
 
@@ -109,6 +108,7 @@ def static(eps: float, T: list[float] | None = None, t_w: list[float] | None = N
     ``dryfriction static``): :func:`dryfriction.theory.static.static_friction`; with ``t_w``
     (s) and ``t0`` (and ``mu_el``) in SI units, ``mu_s = F_s/W``
     (:func:`dryfriction.theory.units.static_friction_si`). Exactly one of ``T``, ``t_w``."""
+    from ..theory.model import TrapModel
     from ..theory.static import static_friction
     from ..theory.units import static_friction_si
 
@@ -122,14 +122,16 @@ def static(eps: float, T: list[float] | None = None, t_w: list[float] | None = N
         if mu_el is not None:
             raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "
                              "or drop it")
-        mu = static_friction(np.asarray(T, float), eps, alpha, creep, load, direct, v_ref,
-                             pull_velocity, hold)
+        model = TrapModel(alpha, eps, creep, direct=direct, v_ref=v_ref)
+        mu = static_friction(model, np.asarray(T, float), load=load,
+                             pull_velocity=pull_velocity, hold=hold)
         cols: dict[str, Any] = {"T": list(T or []), "mu_s": mu}
     elif direct:
         raise ValueError("--direct takes reduced inputs (--T, --u-ref and --pull-velocity in "
                          "a0/t0); in SI use dryfriction.theory.units.static_friction_si")
     else:
-        mu = static_friction_si(np.asarray(t_w, float), eps, scales, alpha, creep, load)
+        mu = static_friction_si(TrapModel(alpha, eps, creep), np.asarray(t_w, float), scales,
+                                load=load, hold=hold)
         params.update(t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
         cols = {"t_w": list(t_w or []), "mu_s": mu}
     units = {"T": "t0", "t_w": "s", "mu_s": _friction_unit(mu_el)}
@@ -164,6 +166,7 @@ def steady(eps: float, u: list[float] | None = None, V: list[float] | None = Non
     ``dryfriction steady``): :func:`dryfriction.theory.steady.steady_friction`; with ``V``
     (m/s), ``a0`` and ``t0`` (and ``mu_el``) in SI units, ``mu_d = F_d/W``
     (:func:`dryfriction.theory.units.steady_friction_si`). Exactly one of ``u``, ``V``."""
+    from ..theory.model import TrapModel
     from ..theory.steady import steady_friction
     from ..theory.units import steady_friction_si
 
@@ -175,14 +178,15 @@ def steady(eps: float, u: list[float] | None = None, V: list[float] | None = Non
         if mu_el is not None:
             raise ValueError("--mu-el converts the friction of SI inputs: give --V, --a0 and "
                              "--t0, or drop it")
-        mu = steady_friction(np.asarray(u, float), eps, alpha, creep, direct, v_ref)
+        mu = steady_friction(TrapModel(alpha, eps, creep, direct=direct, v_ref=v_ref),
+                             np.asarray(u, float))
         cols: dict[str, Any] = {"u": list(u or []), "mu_d": mu}
     elif direct:
         raise ValueError("--direct takes reduced inputs (--u and --u-ref in a0/t0); in SI use "
                          "dryfriction.theory.units.steady_friction_si")
     else:
         _velocities_in_range(np.asarray(V, float), scales.a0, scales.t0)
-        mu = steady_friction_si(np.asarray(V, float), eps, scales, alpha, creep)
+        mu = steady_friction_si(TrapModel(alpha, eps, creep), np.asarray(V, float), scales)
         params.update(a0=scales.a0, t0=scales.t0, **({} if mu_el is None else {"mu_el": mu_el}))
         cols = {"V": list(V or []), "mu_d": mu}
     units = {"u": "a0/t0", "V": "m/s", "mu_d": _friction_unit(mu_el)}

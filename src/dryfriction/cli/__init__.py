@@ -23,7 +23,7 @@ COMMAND_MODULES: dict[str, str] = {
     "sweep": "sweeps", "phase-diagram": "sweeps", "bifurcation": "bifurcation",
 }
 """Command name -> the module that registers it on :data:`.common.app`: :func:`main` imports
-only the one a command line names (issue 26: the other command modules and what they import
+only the one a command line names (the other command modules and what they import
 were a third of a ``simulate --no-figure``'s start-up); help, ``--version`` and an unknown name
 get every command (:mod:`.commands`). Kept complete by ``tests/test_startup.py``."""
 

@@ -33,7 +33,7 @@ app = typer.Typer(
 
 class _Console:
     """A Rich console made at its first use: a command that prints only JSON (``simulate
-    --json``) does not import Rich (a tenth of rsfmodel's whole velocity step, issue 26)."""
+    --json``) does not import Rich (a tenth of rsfmodel's whole velocity step)."""
 
     def __init__(self, **options: Any) -> None:
         self._options = options
@@ -122,7 +122,7 @@ def option_named(message: str) -> str:
     """The library's message with its leading parameter name (``v_ref = -1 is out of range``)
     given as the option the user typed (``--v-ref = -1 ...``), where the running command has
     that option: the library's checks name their Python parameter, the user knows only the
-    command line (issue 24: bad input names the option given). Any other message is returned
+    command line. Any other message is returned
     unchanged (a protocol's ``FILE: in model: ...``, a name that is not an option here)."""
     match = _LEADING_NAME.match(message)
     from typer._click.globals import get_current_context  # the Click that Typer vendors

@@ -4,7 +4,7 @@ The figures a command hands to its painter are functions of :mod:`dryfriction.ap
 :func:`dryfriction.app.ratestate.rsf_figure`), each importing its builder in
 :mod:`dryfriction.plots.runs` when called, so that a command naming it imports no matplotlib
 (the painter has imported it already, :func:`preload`), while the imports stay import
-statements that the layer and cycle checks of ``tests/test_layers.py`` see (issue 26 item 3).
+statements that the layer and cycle checks of ``tests/test_layers.py`` see.
 A reference pickles as its module and name, so the painter receives it as cheaply as a string.
 """
 

@@ -162,7 +162,16 @@ def stability(
     v_ref_old: float | None = _v_ref_alias(),
     json_out: bool = typer.Option(False, "--json", help="Machine-readable output."),
 ) -> None:
-    """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding."""
+    """Critical stiffness K_c (F_el/a0) and onset frequency (1/t0) of steady sliding.
+
+    Columns: K_c, the largest spring stiffness at which steady sliding is unstable;
+    omega_c, the angular frequency of the oscillation at that onset; forward_stiffness
+    and backward_stiffness, the stiffness the steady contact population opposes to a
+    sudden small shift of the slider forward and backward (forward is the lower: the
+    oldest contacts break at once); dmu_d_du, the slope of steady friction against
+    velocity; K_c_rsf (with --eps > 0), the critical stiffness of the rate-and-state
+    law fitted to the model's slow response (Rice and Ruina 1983).
+    """
     from ..app.theory import stability as run
 
     v_ref = renamed("--v-ref", "--u-ref", _U_REF_WHY, v_ref_old, v_ref, _STB["v_ref"].default)

@@ -1,4 +1,4 @@
-"""A drawing process forked when a command that draws a figure starts (issue 12).
+"""A drawing process forked when a command that draws a figure starts.
 
 A small command's figure costs more than its solve: importing matplotlib took about 0.4 s of
 the 1.3 s of ``dryfriction simulate examples/rsf_velocity_step.toml``. The console script

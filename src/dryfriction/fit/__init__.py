@@ -19,10 +19,11 @@ Nothing here draws: the figure ``fit.png`` is :func:`dryfriction.plots.fits.plot
 Models (SI units; friction coefficients ``F/W``):
 
 * ``"cv"`` — the Caroli–Velický trap model (:class:`CVModel`), ``alpha`` fixed (0.13 by
-  default). Static data ``mu_s(t_w) = mu_el static_friction(t_w/t0, eps)`` (eq. 27) fix ``eps``,
-  ``t0`` (s) and ``mu_el``; steady data ``mu_d(V) = mu_el steady_friction(V/V*, eps)`` (eq. 34)
-  fix ``eps``, ``V* = a0/t0`` (m/s) and ``mu_el``; together they fix ``eps, t0, a0, mu_el``
-  (``a0`` in m) with one parameter set. Both go through :mod:`dryfriction.theory.units`.
+  default). Static data ``mu_s(t_w) = mu_el static_friction(TrapModel(alpha, eps), t_w/t0)``
+  (eq. 27) fix ``eps``, ``t0`` (s) and ``mu_el``; steady data
+  ``mu_d(V) = mu_el steady_friction(TrapModel(alpha, eps), V/V*)`` (eq. 34) fix ``eps``,
+  ``V* = a0/t0`` (m/s) and ``mu_el``; together they fix ``eps, t0, a0, mu_el`` (``a0`` in m)
+  with one parameter set. Both go through :mod:`dryfriction.theory.units`.
 * ``"rsf"`` — rate-and-state friction (:class:`RSFModel`), ``v0`` fixed and reported. Steady
   data give only ``a - b`` and ``mu0`` (``mu_ss = mu0 + (a - b) ln(V/V0)``, Ruina 1983); static
   (healing) data give ``mu0, b, Dc`` through

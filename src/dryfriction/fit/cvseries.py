@@ -2,7 +2,7 @@
 kinematic or an elastic machine with a trend, and its start from a rate-and-state fit
 (:func:`cv_start_from_rsf`).
 
-The machine (issue 11, ours) is the one the rate-and-state record fit uses
+The machine is the one the rate-and-state record fit uses
 (:func:`.models.rsf_series`): a spring of stiffness ``k`` (per unit normal force, 1/m) between
 the load point, which follows the data's program, and the slider, which here is the trap
 ensemble's quasi-static slider (:class:`dryfriction.ensemble.driving.SpringDrive` with mass 0);
@@ -188,8 +188,9 @@ def cv_start_from_rsf(rsf: Mapping[str, float], v0: float, alpha: float = 0.13,
     eps, mu_el, A, g = 0.02, float(rsf["mu0"]), 0.0, 1.0
     u_ref = v_ref * u / v0  # v_ref in units a0/t0 = v0/u
     for _ in range(4):
-        tw = effective_rsf(u, TrapModel(alpha, eps, creep))
-        mu_d = float(steady_friction(u, eps, alpha, creep))
+        model = TrapModel(alpha, eps, creep)
+        tw = effective_rsf(u, model)
+        mu_d = float(steady_friction(model, u))
         g = float(junction_strength(u, A, u_ref)) if A else 1.0
         mu_el = float(rsf["mu0"]) / (g * mu_d)
         eps = min(max(eps * float(rsf["b"]) / (mu_el * g * tw["b"]), 1e-5), 0.5)

@@ -23,7 +23,7 @@ from ..rsf.driving import RSFOutput, SpringSlider, simulate
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
-from ..theory.model import TRAPS_PER_A0
+from ..theory.model import TRAPS_PER_A0, TrapModel
 from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
@@ -292,10 +292,16 @@ class CVModel:
     def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
         x = d.x if x is None else x
         if d.kind == "static":
-            return static_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep)
+            return static_friction_si(TrapModel(self.alpha, v["eps"], self.creep), x,
+                                      self._scales(v))
         if d.kind == "steady":
-            return steady_friction_si(x, v["eps"], self._scales(v), self.alpha, self.creep,
-                                      v.get("direct", 0.0), self.v_ref)
+            scales = self._scales(v)
+            direct = v.get("direct", 0.0)
+            # the model's v_ref is reduced: a0/t0 moves with the fit, v_ref (m/s) does not
+            extra = {"direct": direct, "v_ref": float(scales.reduced_velocity(self.v_ref))
+                     } if direct else {}
+            return steady_friction_si(TrapModel(self.alpha, v["eps"], self.creep, **extra), x,
+                                      scales)
         assert isinstance(d, SeriesData)
         if self.series is not None:
             return self.series(v, d)
@@ -324,7 +330,7 @@ class CVModel:
         out: dict[str, tuple[float, str]] = {}
         if "a0" in v:
             out["vstar"] = (v["a0"] / v["t0"], "m/s")
-            out["D0"] = (dieterich_constant_asymptotic(self.alpha) * v["a0"], "m")
+            out["D0"] = (dieterich_constant_asymptotic(TrapModel(self.alpha)) * v["a0"], "m")
         return out
 
     # -- starting points ---------------------------------------------------------------
@@ -332,15 +338,17 @@ class CVModel:
         tpos = d.t_w[d.t_w > 0]
         lo, hi = (tpos.min(), tpos.max()) if tpos.size else (1.0, 1.0)
         grid = np.geomspace(lo * 1e-5, hi * 10.0, 25)
+        unit = TrapModel(self.alpha, 1.0)  # eps = 1: the first order's slope per eps
         return _linear_scan(d.mu_s, _weights(d),
-                            lambda t0: static_friction_first_order(d.t_w / t0, 1.0, self.alpha)
-                            - 1.0, grid)
+                            lambda t0: static_friction_first_order(unit, d.t_w / t0) - 1.0,
+                            grid)
 
     def _steady_scan(self, d: SteadyData) -> list[tuple[float, float, float, float]]:
         grid = np.geomspace(d.V.min() * 1e-2, d.V.max() * 1e5, 25)
+        unit = TrapModel(self.alpha, 1.0)  # eps = 1: the first order's slope per eps
         return _linear_scan(d.mu_d, _weights(d),
-                            lambda vs: steady_friction_first_order(d.V / vs, 1.0, self.alpha)
-                            - 1.0, grid)
+                            lambda vs: steady_friction_first_order(unit, d.V / vs) - 1.0,
+                            grid)
 
     def guesses(self, datasets: Sequence[Dataset]) -> list[dict[str, float]]:
         out = self._athermal_guesses(datasets)

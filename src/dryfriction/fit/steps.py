@@ -1,4 +1,4 @@
-"""Per-step fitting of a multi-step laboratory record (issue 10): each velocity step (or
+"""Per-step fitting of a multi-step laboratory record: each velocity step (or
 slide-hold-slide cycle) fitted on its own with rate-and-state friction on an elastic machine
 with a linear slip trend, optionally all steps together with one ``(a, b, Dc)``.
 
@@ -71,6 +71,7 @@ STEP_COLUMNS: tuple[str, ...] = (
     "rms", "noise", "white_noise", "peak_residual", "n", "success", "errors", "resid_rho1",
     "hac_lags", "a_minus_b_lo", "a_minus_b_hi", "b_over_dc", "b_over_dc_lo", "b_over_dc_hi",
     "stiffness_lo", "stiffness_hi", "slip_before", "slip_after", "flags",
+    "t_change_lo", "t_change_hi",
     *EXPERIMENT_COLUMNS,
 ) + LAW_COLUMNS
 """Columns of the per-step table (SI: velocities m/s, ``dc`` m, ``stiffness`` and ``trend``
@@ -79,7 +80,9 @@ the ``sigma_*`` and intervals allow for correlated residuals (:func:`step_covari
 ``resid_rho1`` is the residuals' lag-1 autocorrelation and ``hac_lags`` the bandwidth used;
 ``b_over_dc`` in 1/m; ``slip_before`` the load-point slip since the previous change (or the
 record's start), ``slip_after`` the window's slip after the change, m; ``flags`` the words of
-:data:`.identify.FLAG_WORDS` separated by ``;``; then the normal stress, its level, the hold and
+:data:`.identify.FLAG_WORDS` separated by ``;``; ``t_change_lo``, ``t_change_hi`` the 95 %
+interval of the change time as detected (:class:`dryfriction.records.labsteps.Segment`; nan
+for a program given by hand); then the normal stress, its level, the hold and
 the intervals' kind: :data:`.experiment.EXPERIMENT_COLUMNS`; then the state law's,
 :data:`.lawcolumns.LAW_COLUMNS`). A parameter that is not identified
 (:mod:`.identify`) has ``nan`` value and error, and ``nan`` interval ends where the data give
@@ -409,6 +412,8 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
     row: dict[str, Any] = {
         "index": int(getattr(w, "index", 0)), "kind": str(getattr(w, "kind", "step")),
         "t_change": float(getattr(w, "t_change", math.nan)),
+        "t_change_lo": float(getattr(w, "t_change_lo", math.nan)),
+        "t_change_hi": float(getattr(w, "t_change_hi", math.nan)),
         "v_before": float(getattr(w, "v_before", d.v_load[0])),
         "v_after": float(getattr(w, "v_after", d.v_load[-1])),
         "a": val("a"), "b": val("b"), "a_minus_b": val("a") - val("b"), "dc": val("dc"),
@@ -663,11 +668,11 @@ COMPARED = ("a", "b", "dc", "stiffness")
 
 def compare_with_program(pieces: list[SeriesData], fits: list[Any],
                          rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """How each step's values depend on the drive (issue 30 item 3: "report how k and a
-    depend on that choice"): every window refitted on the idealised program, started from
-    its measured-drive optimum (one local fit each), its ``a, b, dc, stiffness`` and rms
-    beside the measured drive's (the rows' values, NaN where not identified: the refit's
-    are raw). One dict per step for ``fit.json``'s ``drive.comparison``."""
+    """How each step's values depend on the drive: every window refitted on the idealised
+    program, started from its measured-drive optimum (one local fit each), its
+    ``a, b, dc, stiffness`` and rms beside the measured drive's (the rows' values, NaN where
+    not identified: the refit's are raw). One dict per step for ``fit.json``'s
+    ``drive.comparison``."""
     out: list[dict[str, Any]] = []
     for d, r, row in zip(pieces, fits, rows, strict=True):
         plain = SeriesData(d.t, d.v_load, d.mu, d.sigma, d.source)

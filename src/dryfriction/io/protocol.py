@@ -7,7 +7,7 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     eps = 0.04                   # required, >= 0
     creep = "log"                # optional: "log" | "eyring-nabarro"
     mu_el = 1.0                  # optional, 0 < mu_el <= 10
-    direct = 0.0                 # optional, 0 <= A <= 1: direct effect (issue 11)
+    direct = 0.0                 # optional, 0 <= A <= 1: direct effect
     v_ref = 1.0                  # optional, a0/t0, > 0: its reference velocity
 
     [ensemble]                   # Track and Initial

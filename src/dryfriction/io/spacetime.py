@@ -1,4 +1,4 @@
-"""Space-time fields of an extended interface on disk (issue 29, part 2): NetCDF through xarray
+"""Space-time fields of an extended interface on disk: NetCDF through xarray
 when it is installed (the optional extra ``dryfriction[sweep]``), else a compressed NumPy
 ``.npz`` with the same arrays, the units as a JSON string.
 

@@ -162,6 +162,7 @@ STEP_UNITS: dict[str, str | None] = {
     "n": "1 (samples)", "success": LABEL, "errors": LABEL,
     "resid_rho1": "1 (lag-1 autocorrelation of the residuals)",
     "hac_lags": "1 (samples)", "slip_before": "m", "slip_after": "m", "flags": LABEL,
+    "t_change_lo": "s (95 % interval of t_change)", "t_change_hi": "s (95 % interval of t_change)",
     "normal": "Pa (N where the record gives a force: column normal_unit)",
     "normal_unit": LABEL, "normal_level": LABEL, "hold": "s", "intervals": LABEL,
     "state_law": LABEL, "initial": LABEL, "aic": DIMENSIONLESS, "bic": DIMENSIONLESS,
@@ -176,6 +177,9 @@ SEGMENT_UNITS: dict[str, str | None] = {
     "duration": "s", "velocity": "m/s", "velocity_um": "um/s", "i_start": LABEL,
     "i_end": LABEL, "samples": DIMENSIONLESS,
     "confidence": "1 (the velocity change over its scatter)",
+    "t_start_lo": "s (95 % interval of the change at the start, record time)",
+    "t_start_hi": "s (95 % interval of the change at the start, record time)",
+    "t_start_placed": LABEL,
     "normal_stress": "MPa", "normal_force": "kN",
 }
 """segments.csv (the load program of a record: ``record --out``, a record's ``fit``)."""
@@ -185,7 +189,7 @@ RECORD_FIT_UNITS: dict[str, str | None] = {
     **{k: v for k, v in SEGMENT_UNITS.items() if k in ("t_start", "t_end", "velocity",
                                                       "i_start", "i_end", "confidence",
                                                       "duration")},
-    "t_given": "s", "sigma_t_change": "s",
+    "t_given": "s", "sigma_t_change": "s", "start_lo": "s", "start_hi": "s",
     "displacement_noise": "m", "level": LABEL, "steps": LABEL, "step": LABEL,
     "rise": "1 (friction)", "mean_normal": "Pa",
     "aicc": DIMENSIONLESS, "delta_aic": DIMENSIONLESS, "delta_bic": DIMENSIONLESS,

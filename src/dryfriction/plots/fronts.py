@@ -1,4 +1,4 @@
-"""Figures of an extended interface's slip (issue 29, part 2): the space-time map of the slip
+"""Figures of an extended interface's slip: the space-time map of the slip
 rate with the rupture fronts drawn on it, front speed against position, the precursor curve and
 the magnitude-frequency distribution. Each takes what :mod:`dryfriction.analysis.fronts` and
 :mod:`dryfriction.analysis.catalogue` compute and returns ``(fig, axes)``."""

@@ -28,8 +28,9 @@ from ..theory.creep import radius
 from ..theory.dieterich import (
     dieterich_constant_asymptotic,
     dieterich_constant_least_squares,
-    dieterich_constant_local,
+    dieterich_constant_local_over_eps,
 )
+from ..theory.model import TrapModel
 from ..theory.static import (
     pull_force,
     static_friction,
@@ -344,10 +345,11 @@ def fig3_static_friction(
     ys = []
     gap = 0.0
     for k, e in enumerate(eps_values):
-        mu = static_friction(T, e, alpha, creep)
+        model = TrapModel(alpha, e, creep)
+        mu = static_friction(model, T)
         ys.append(mu)
         ax.plot(T, mu, color=_COLORS[k % 5], lw=1.8, label=rf"({k + 1}) $\varepsilon$ = {e:g}")
-        first = static_friction_first_order(T, e, alpha)
+        first = static_friction_first_order(model, T)
         gap = max(gap, float(np.max(np.abs(first - mu))))
         ax.plot(T, first, color="k", lw=0.8, ls=(0, (2.5, 2.5)), zorder=3)
     ax.plot([], [], color="k", lw=0.8, ls=(0, (2.5, 2.5)),
@@ -375,10 +377,11 @@ def fig5_steady_friction(
     low = u <= 1.0
     ys = []
     for k, e in enumerate(eps_values):
-        mu = steady_friction(u, e, alpha, creep)
+        model = TrapModel(alpha, e, creep)
+        mu = steady_friction(model, u)
         ys.append(mu)
         ax.plot(u, mu, color=_COLORS[k % 5], lw=1.8, label=rf"({k + 1}) $\varepsilon$ = {e:g}")
-        ax.plot(u[low], steady_friction_low_velocity(u[low], e, alpha), color="0.5", lw=0.8,
+        ax.plot(u[low], steady_friction_low_velocity(model, u[low]), color="0.5", lw=0.8,
                 ls=":", label="low-velocity expansion, eq. 35" if k == 0 else None)
     _label_curves(ax, u, ys, 0.03)
     _finish_log_panel(
@@ -420,7 +423,7 @@ def fig4_steady_pinning_curve(
                 fontsize=9)
     ax.axvline(trap.y_c, color="0.5", lw=0.8, ls=":")
     ax.text(trap.y_c, 0.05, r"elastic $y_c$ ", fontsize=8, color="0.3", ha="right")
-    mu = float(steady_friction(u, eps, alpha, creep))
+    mu = float(steady_friction(TrapModel(alpha, eps, creep), u))
     _per_trap_axes(ax, rf"Fig. 4 — steady motion, $u$ = {u:g}, $\varepsilon$ = {eps:g}: "
                    rf"$\mu_d$ = {mu:.4f}")
     return fig, ax
@@ -440,7 +443,8 @@ def fig6_dieterich(
     paper's 2.45, and the model's asymptotic and least-squares constants (Dieterich, eq. 36)."""
     fig, ax = _axes(ax, figsize=(6.0, 4.4))
     u = np.logspace(np.log10(u_range[0]), np.log10(u_range[1]), n)
-    ax.plot(u, steady_friction(u, eps, alpha, creep), color="k", lw=2.2,
+    model = TrapModel(alpha, eps, creep)
+    ax.plot(u, steady_friction(model, u), color="k", lw=2.2,
             label=r"$\mu_d(u)$")
     # one legend entry per C, each its own colour and its own dashes: labels written on the
     # curves were struck through by the neighbouring ones, which lie a few points apart, and
@@ -449,15 +453,15 @@ def fig6_dieterich(
     dashes = ((0, (7.0, 2.0)), (0, (3.0, 1.5)), (0, (7.0, 2.0, 2.0, 2.0)),
               (0, (2.0, 1.2, 2.0, 1.2, 7.0, 1.2)))
     for k, C in enumerate(C_values):
-        ax.plot(u, static_friction(C / u, eps, alpha, creep), color=shades[k % len(shades)],
+        ax.plot(u, static_friction(model, C / u), color=shades[k % len(shades)],
                 lw=1.5, ls=dashes[k % len(dashes)], label=rf"$\mu_s(C/u)$, $C$ = {C:g}")
-    ax.plot(u, static_friction(C_paper / u, eps, alpha, creep), color="0.35", lw=1.4,
+    ax.plot(u, static_friction(model, C_paper / u), color="0.35", lw=1.4,
             ls="--", label=rf"$C$ = {C_paper:g} (paper)")
-    c_inf = dieterich_constant_asymptotic(alpha)
-    c_ls = dieterich_constant_least_squares(eps, alpha, u_range[0], u_range[1], creep=creep)
-    ax.plot(u, static_friction(c_inf / u, eps, alpha, creep), color="C3", lw=1.4,
+    c_inf = dieterich_constant_asymptotic(model)
+    c_ls = dieterich_constant_least_squares(model, u_range[0], u_range[1])
+    ax.plot(u, static_friction(model, c_inf / u), color="C3", lw=1.4,
             label=rf"$C_\infty$ = {c_inf:.4f} (ours, asymptotic)")
-    ax.plot(u, static_friction(c_ls / u, eps, alpha, creep), color="C0", lw=1.4,
+    ax.plot(u, static_friction(model, c_ls / u), color="C0", lw=1.4,
             label=rf"$C_{{LS}}$ = {c_ls:.4f} (ours, least squares)")
     _finish_log_panel(
         ax, u,
@@ -480,8 +484,9 @@ def extra_loaded_static(
     but does not compute; ours) against ageing at rest (``f_w = 0``)."""
     fig, ax = _axes(ax)
     T = np.logspace(np.log10(T_range[0]), np.log10(T_range[1]), n)
+    model = TrapModel(alpha, eps)
     for k, f_w in enumerate(loads):
-        ax.plot(T, static_friction(T, eps, alpha, load=f_w), color=_COLORS[k % 5], lw=1.8,
+        ax.plot(T, static_friction(model, T, load=f_w), color=_COLORS[k % 5], lw=1.8,
                 label=rf"$f_w$ = {f_w:g} $F_{{el}}$" + (" (at rest, paper)" if f_w == 0 else ""))
     _finish_log_panel(
         ax, T,
@@ -502,12 +507,13 @@ def extra_creep_laws(
     x = np.logspace(np.log10(x_range[0]), np.log10(x_range[1]), n)
     for k, e in enumerate(eps_values):
         c = _COLORS[(2 * k) % 5]
-        ax.plot(x, static_friction(x, e, alpha, "log"), color=c, lw=1.6,
+        log, en = TrapModel(alpha, e, "log"), TrapModel(alpha, e, "eyring-nabarro")
+        ax.plot(x, static_friction(log, x), color=c, lw=1.6,
                 label=rf"$\mu_s(T)$, $\varepsilon$ = {e:g}")
-        ax.plot(x, static_friction(x, e, alpha, "eyring-nabarro"), color=c, lw=1.4, ls="--")
-        ax.plot(x, steady_friction(x, e, alpha, "log"), color=c, lw=1.6, alpha=0.55,
+        ax.plot(x, static_friction(en, x), color=c, lw=1.4, ls="--")
+        ax.plot(x, steady_friction(log, x), color=c, lw=1.6, alpha=0.55,
                 label=rf"$\mu_d(u)$, $\varepsilon$ = {e:g}")
-        ax.plot(x, steady_friction(x, e, alpha, "eyring-nabarro"), color=c, lw=1.4, ls="--",
+        ax.plot(x, steady_friction(en, x), color=c, lw=1.4, ls="--",
                 alpha=0.55)
     ax.plot([], [], color="k", lw=1.4, label="log law (eq. 17)")
     ax.plot([], [], color="k", lw=1.4, ls="--", label="Eyring–Nabarro (eqs. 15–16)")
@@ -531,10 +537,11 @@ def extra_local_dieterich_constant(
     fig, ax = _axes(ax)
     u = np.logspace(np.log10(u_range[0]), np.log10(u_range[1]), n)
     # every eps in one call: one root search for all the curves
-    curves = dieterich_constant_local(u, np.asarray(eps_values, float)[:, None], alpha)
+    curves = dieterich_constant_local_over_eps(TrapModel(alpha), u,
+                                               np.asarray(eps_values, float)[:, None])
     for k, (e, c) in enumerate(zip(eps_values, curves, strict=True)):
         ax.plot(u, c, color=_COLORS[k % 5], lw=1.6, label=rf"({k + 1}) $\varepsilon$ = {e:g}")
-    c_inf = dieterich_constant_asymptotic(alpha)
+    c_inf = dieterich_constant_asymptotic(TrapModel(alpha))
     ax.axhline(c_inf, color="C3", lw=1.0, ls="--", label=rf"$C_\infty$ = {c_inf:.4f} (ours)")
     ax.axhline(2.45, color="0.4", lw=1.0, ls=":", label=r"2.45 $\approx 1 + y_c$ (paper)")
     ax.set_xscale("log")

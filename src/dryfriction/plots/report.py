@@ -15,7 +15,7 @@
 
 All numbers come from the library; nothing is fitted to the paper.
 
-The figures are drawn in parallel where the machine has more than one core (issue 12: drawing
+The figures are drawn in parallel where the machine has more than one core (drawing
 was two thirds of the command): a pool of processes forked after the imports, each drawing
 whole figures into the staging folder, while this process computes the data and the summary;
 serially where ``fork`` is not available (or on one core). The files are the same either way.
@@ -44,10 +44,12 @@ from ..theory.dieterich import (
     dieterich_constant_least_squares,
     dieterich_constant_local,
 )
+from ..theory.model import TrapModel
 from ..theory.static import (
     loaded_edge,
     pull_force,
     static_friction,
+    static_friction_over_eps,
     static_slope_per_eps,
     threshold_shift,
 )
@@ -55,6 +57,7 @@ from ..theory.steady import (
     DYNAMIC_SLOPE_PER_EPS,
     steady_death_point,
     steady_friction,
+    steady_friction_over_eps,
 )
 from ..theory.trap import Trap
 from ..validation import check_figure_format
@@ -123,9 +126,10 @@ def _plots() -> list[tuple[str, Callable[[], Figure]]]:
 
 
 def _grid_columns(fn: Callable[..., np.ndarray], xname: str, yname: str) -> dict[str, np.ndarray]:
+    """``fn(model, x, eps)``, a sweep over ``eps`` in one call (``*_over_eps``), on the grid."""
     eps = np.repeat(np.asarray(EPS, float), GRID.size)
     x = np.tile(GRID, len(EPS))
-    return {"eps": eps, xname: x, yname: fn(x, eps, ALPHA)}
+    return {"eps": eps, xname: x, yname: fn(TrapModel(ALPHA), x, eps)}
 
 
 def compute_summary() -> dict[str, Any]:
@@ -136,10 +140,11 @@ def compute_summary() -> dict[str, Any]:
     s["static_slope_per_eps"] = static_slope_per_eps(ALPHA)
     s["dynamic_slope_per_eps"] = DYNAMIC_SLOPE_PER_EPS
 
-    c_inf = dieterich_constant_asymptotic(ALPHA)
-    c_ls = dieterich_constant_least_squares(EPS_FIG6, ALPHA, 0.01, 100.0, n=81)
+    fig6 = TrapModel(ALPHA, EPS_FIG6)
+    c_inf = dieterich_constant_asymptotic(fig6)
+    c_ls = dieterich_constant_least_squares(fig6, 0.01, 100.0, n=81)
     u = GRID
-    mu_d = steady_friction(u, EPS_FIG6, ALPHA)
+    mu_d = steady_friction(fig6, u)
     s["dieterich_eps"] = EPS_FIG6
     s["dieterich_C_asymptotic"] = c_inf
     s["dieterich_C_least_squares"] = c_ls
@@ -147,27 +152,27 @@ def compute_summary() -> dict[str, Any]:
     s["dieterich_C_paper"] = C_PAPER
     s["one_plus_y_c"] = 1.0 + trap.y_c
     s["dieterich_max_residual"] = {
-        name: float(np.max(np.abs(mu_d - static_friction(C / u, EPS_FIG6, ALPHA))))
+        name: float(np.max(np.abs(mu_d - static_friction(fig6, C / u))))
         for name, C in (("C_asymptotic", c_inf), ("C_least_squares", c_ls), ("C_paper", C_PAPER))
     }
     s["dieterich_paper_vs_asymptotic_max_gap"] = float(np.max(np.abs(
-        static_friction(C_PAPER / u, EPS_FIG6, ALPHA) - static_friction(c_inf / u, EPS_FIG6, ALPHA)
+        static_friction(fig6, C_PAPER / u) - static_friction(fig6, c_inf / u)
     )))
     s["dieterich_C_local"] = {
         f"{x:g}": float(c) for x, c in zip(U_LOCAL, dieterich_constant_local(
-            np.asarray(U_LOCAL), EPS_FIG6, ALPHA), strict=True)
+            fig6, np.asarray(U_LOCAL)), strict=True)
     }
 
     r = float(radius(T_FIG2, EPS_FIG2))
     s["fig2"] = {
         "T": T_FIG2, "eps": EPS_FIG2, "radius_ratio": r,
         "threshold_shift_p_c": float(threshold_shift(r, ALPHA)),
-        "mu_s": float(static_friction(T_FIG2, EPS_FIG2, ALPHA)),
+        "mu_s": float(static_friction(TrapModel(ALPHA, EPS_FIG2), T_FIG2)),
     }
     s["fig4"] = {
         "u": U_FIG4, "eps": EPS_FIG4,
         "death_point_p_d": float(steady_death_point(U_FIG4, EPS_FIG4, ALPHA)),
-        "mu_d": float(steady_friction(U_FIG4, EPS_FIG4, ALPHA)),
+        "mu_d": float(steady_friction(TrapModel(ALPHA, EPS_FIG4), U_FIG4)),
     }
     eps_b = np.asarray(EPS, float)[:, None]
     # eq. 27 reading: the aged (+) edge at its spinodal beats the other candidate maximum of
@@ -176,15 +181,17 @@ def compute_summary() -> dict[str, Any]:
     at_aged = pull_force(threshold_shift(r_grid, ALPHA), r_grid, ALPHA)
     at_fresh = pull_force(np.full_like(r_grid, 1.0 + trap.y_c), r_grid, ALPHA)
     s["eq27_reading_is_the_maximum_over_figure_range"] = bool(np.all(at_aged > at_fresh))
-    s["mu_s_at_T_0.01"] = static_friction(0.01, eps_b, ALPHA)[:, 0]
-    s["mu_s_at_T_100"] = static_friction(100.0, eps_b, ALPHA)[:, 0]
-    s["mu_d_at_u_0.01"] = steady_friction(0.01, eps_b, ALPHA)[:, 0]
-    s["mu_d_at_u_100"] = steady_friction(100.0, eps_b, ALPHA)[:, 0]
+    paper_model = TrapModel(ALPHA)
+    s["mu_s_at_T_0.01"] = static_friction_over_eps(paper_model, 0.01, eps_b)[:, 0]
+    s["mu_s_at_T_100"] = static_friction_over_eps(paper_model, 100.0, eps_b)[:, 0]
+    s["mu_d_at_u_0.01"] = steady_friction_over_eps(paper_model, 0.01, eps_b)[:, 0]
+    s["mu_d_at_u_100"] = steady_friction_over_eps(paper_model, 100.0, eps_b)[:, 0]
     s["eps_values"] = list(EPS)
 
     # how far the exact Eyring-Nabarro law is from the log law over the figure ranges
-    ms = {c: static_friction(GRID, eps_b, ALPHA, c) for c in ("log", "eyring-nabarro")}
-    md = {c: steady_friction(GRID, eps_b, ALPHA, c) for c in ("log", "eyring-nabarro")}
+    laws = {c: TrapModel(ALPHA, creep=c) for c in ("log", "eyring-nabarro")}
+    ms = {c: static_friction_over_eps(m, GRID, eps_b) for c, m in laws.items()}
+    md = {c: steady_friction_over_eps(m, GRID, eps_b) for c, m in laws.items()}
     s["creep_law_difference"] = {
         "range": "eps 0.01-0.05, T and u 0.01-100",
         "max_abs_radius_ratio": float(np.max(np.abs(creep_law_difference(eps_b, GRID)))),
@@ -197,7 +204,7 @@ def compute_summary() -> dict[str, Any]:
     # ageing under a tangential load (ours): secant slope between T = 1 and T = 100
     loaded = []
     for f_w in LOADS:
-        m1, m100 = static_friction(np.array([1.0, 100.0]), 0.04, ALPHA, load=f_w)
+        m1, m100 = static_friction(TrapModel(ALPHA, 0.04), np.array([1.0, 100.0]), load=f_w)
         loaded.append({
             "load": f_w, "edge_d_w": loaded_edge(f_w, ALPHA), "eps": 0.04,
             "mu_s_T_1": float(m1), "mu_s_T_100": float(m100),
@@ -502,12 +509,12 @@ def reproduce(out: str | Path, progress: Progress | None = None, *, force: bool 
         # the figures first: in parallel they are drawn while the data below is computed
         drawn = figure_map(_draw, [(i, tmp, fmt, dpi) for i in order])
         done = 0
-        write_csv(tmp / "static_friction.csv", _grid_columns(static_friction, "T", "mu_s"),
-                  REPRODUCE_UNITS)
+        write_csv(tmp / "static_friction.csv",
+                  _grid_columns(static_friction_over_eps, "T", "mu_s"), REPRODUCE_UNITS)
         done += 1
         tick(done, "static_friction.csv")
-        write_csv(tmp / "steady_friction.csv", _grid_columns(steady_friction, "u", "mu_d"),
-                  REPRODUCE_UNITS)
+        write_csv(tmp / "steady_friction.csv",
+                  _grid_columns(steady_friction_over_eps, "u", "mu_d"), REPRODUCE_UNITS)
         done += 1
         tick(done, "steady_friction.csv")
         summary = with_units(compute_summary(), REPRODUCE_UNITS)

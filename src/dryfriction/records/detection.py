@@ -58,7 +58,7 @@ from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
-           "displacement", "no_change_message", "Z_MIN"]
+           "displacement", "no_change_message", "PLACE_TOL", "Z_MIN"]
 
 Z_MIN = 6.5
 """Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
@@ -522,10 +522,11 @@ def detect_program(
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
         t, x = t_all, x_all
         fits = _Fits(t, x)
-    bounds = place_changes(t, x, bounds, fits.table(bounds)[0],
-                           sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
-                           fl.absolute, m, weak=_z(fits, fl, bounds) < LOCAL_Z,
-                           periods=periods)
+    bounds, places = place_changes(t, x, bounds, fits.table(bounds)[0],
+                                   sigma if blk == 1 else fl.sigma, fl.scales, fl.relative,
+                                   fl.absolute, m, weak=_z(fits, fl, bounds) < LOCAL_Z,
+                                   periods=periods)
+    where = {pl.index: pl for pl in places}
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
     hold = [bool(h) for h in _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)]
@@ -544,11 +545,25 @@ def detect_program(
         if j > 0 and s.i_start in keep:
             conf = float(_z(fits, fl, [segs[j - 1].i_start, s.i_start, s.i_end])[0])
         normal = float(np.mean(sn[s.i_start:s.i_end])) if sn is not None else float("nan")
-        out.append(replace(s, confidence=conf, normal=normal))
+        pl = where.get(s.i_start) if np.isfinite(conf) else None
+        if pl is None or not np.isfinite(pl.lo):
+            out.append(replace(s, confidence=conf, normal=normal))
+            continue
+        # placed: the interval within the larger of one sample (the interval before the
+        # change) and PLACE_TOL of the reported time, on both sides
+        tol = max(float(t[s.i_start] - t[s.i_start - 1]), PLACE_TOL)
+        placed = not pl.edge and max(s.t_start - pl.lo, pl.hi - s.t_start) <= tol
+        out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,
+                           start_edge=pl.edge, start_placed=placed))
     rate, gaps = sampling_changes(t)
     return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),
                      tuple(gaps), tuple(float(t[i]) for i in nchg))
 
+
+PLACE_TOL = 0.5
+"""A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when its 95 % interval
+lies within the larger of one sample and this many seconds of its time, s: the tolerance the
+detection is measured against on the artifact zoo (``benchmarks/bench_detect.py``)."""
 
 LOCAL_Z = 500.0
 """Below this confidence a change is placed by the generalised-least-squares hinge under the

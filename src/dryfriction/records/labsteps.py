@@ -46,6 +46,17 @@ class Segment:
         ``--segments``, or a boundary set by a normal-stress change alone.
     normal : float
         Mean normal stress (Pa) or force (N) over it; NaN without a normal column.
+    start_lo, start_hi : float
+        95 % interval of the time of the change at its start, s, in the record's own time
+        (:func:`.placement.change_profile`); NaN where none was computed (as ``confidence``).
+    start_edge : bool
+        That interval reaches the end of the times searched for the change: the record does
+        not place it there (the interval is a lower bound on the uncertainty).
+    start_placed : bool
+        The record places the change: its interval lies within the larger of one sample and
+        :data:`.detection.PLACE_TOL` of ``t_start`` on both sides (and is not at the edge).
+        ``False``: the time is uncertain beyond that (the table and segments.csv say so).
+        True where no interval was computed.
     """
 
     t_start: float
@@ -55,6 +66,10 @@ class Segment:
     i_end: int
     confidence: float = float("nan")
     normal: float = float("nan")
+    start_lo: float = float("nan")
+    start_hi: float = float("nan")
+    start_edge: bool = False
+    start_placed: bool = True
 
     @property
     def duration(self) -> float:
@@ -144,18 +159,29 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
     confidence of the change at each start, the mean normal stress in MPa or, for a record
     whose ``normal_unit`` is "N", the normal force in kN)."""
     what, nu, scale = _normal_column(normal_unit)
-    lines = [f"{'#':>3} {'t_start (s)':>13} {'t_end (s)':>13} {'duration (s)':>12} "
-             f"{'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} {'confidence':>10} "
-             f"{'normal (' + nu + ')':>12}"]
+    lines = [f"{'#':>3} {'t_start (s)':>13} {'95 % (s)':>15} {'t_end (s)':>13} "
+             f"{'duration (s)':>12} {'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} "
+             f"{'confidence':>10} {'normal (' + nu + ')':>12}"]
+    unplaced = []
     for j, s in enumerate(segments):
         kind = "  hold" if s.velocity == 0.0 else ""
         conf = "-" if not np.isfinite(s.confidence) else f"{s.confidence:.3g}"
         normal = "-" if not np.isfinite(s.normal) else f"{s.normal * scale:.4g}"
-        lines.append(f"{j:>3} {s.t_start:>13.6g} {s.t_end:>13.6g} {s.duration:>12.6g} "
-                     f"{s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
+        iv = "-" if not np.isfinite(s.start_lo) else (
+            f"-{s.t_start - s.start_lo:.2g}/+{s.start_hi - s.t_start:.2g}"
+            + ("" if s.start_placed else "*"))
+        if not s.start_placed:
+            unplaced.append(str(j))
+        lines.append(f"{j:>3} {s.t_start:>13.6g} {iv:>15} {s.t_end:>13.6g} "
+                     f"{s.duration:>12.6g} {s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
                      f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>12}{kind}")
     lines.append("confidence: the velocity change at the segment's start over the scatter the "
-                 f"apparatus' fluctuations give it; normal: mean {what}, {nu}")
+                 f"apparatus' fluctuations give it; 95 %: the interval of its time about "
+                 f"t_start; normal: mean {what}, {nu}")
+    if unplaced:
+        lines.append(f"* segment(s) {', '.join(unplaced)}: the record does not place the "
+                     "change within the larger of one sample and 0.5 s (95 %); its time is "
+                     "uncertain by the interval shown: give it with --segments if known")
     return "\n".join(lines)
 
 
@@ -178,13 +204,16 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
                        normal_unit: str = "Pa") -> None:
     """Write the load program as CSV, one row per segment, units in the headers
     (``name[unit]``, :mod:`dryfriction.io.units`); the ``--segments`` form of the whole
-    program in a comment line on top."""
+    program in a comment line on top. ``t_start_lo[s]`` and ``t_start_hi[s]`` are the 95 %
+    interval of the change at the segment's start (record time; empty where none was
+    computed), ``t_start_placed`` whether it lies within the larger of one sample and 0.5 s
+    of ``t_start`` (:class:`Segment`)."""
     from ..io.units import SEGMENT_UNITS, header
 
     what, _, scale = _normal_column(normal_unit)
     names = ("segment", "kind", "t_start", "t_end", "t_from_first", "duration", "velocity",
-             "velocity_um", "i_start", "i_end", "samples", "confidence",
-             what.replace(" ", "_"))
+             "velocity_um", "i_start", "i_end", "samples", "confidence", "t_start_lo",
+             "t_start_hi", "t_start_placed", what.replace(" ", "_"))
     rows = [f"# --segments {segments_spec(segments, t0)}",
             ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
     for j, s in enumerate(segments):
@@ -193,9 +222,12 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
                 "normal change" if prev == s.velocity else "step")
         conf = "" if not np.isfinite(s.confidence) else f"{s.confidence:.4g}"
         normal = "" if not np.isfinite(s.normal) else f"{s.normal * scale:.6g}"
+        has = np.isfinite(s.start_lo)
+        iv = (f"{s.start_lo:.9g},{s.start_hi:.9g},{'yes' if s.start_placed else 'no'}" if has
+              else ",,")
         rows.append(f"{j},{kind},{s.t_start:.9g},{s.t_end:.9g},{s.t_start - t0:.9g},"
                     f"{s.duration:.9g},{s.velocity:.6e},{s.velocity * 1e6:.6g},{s.i_start},"
-                    f"{s.i_end},{s.i_end - s.i_start},{conf},{normal}")
+                    f"{s.i_end},{s.i_end - s.i_start},{conf},{iv},{normal}")
     with open(path, "w", encoding="utf-8") as fh:  # type: ignore[call-overload]
         fh.write("\n".join(rows) + "\n")
 
@@ -242,6 +274,9 @@ class StepWindow:
         Load-point velocities before and after (after the hold for ``"shs"``), m/s.
     hold : float
         Hold duration, s (0 for a step).
+    t_change_lo, t_change_hi : float
+        95 % interval of ``t_change``, s (:class:`Segment`'s ``start_lo``, ``start_hi``); NaN
+        where none was computed.
     """
 
     index: int
@@ -252,6 +287,8 @@ class StepWindow:
     v_before: float
     v_after: float
     hold: float
+    t_change_lo: float = float("nan")
+    t_change_hi: float = float("nan")
 
 
 def slice_steps(
@@ -303,12 +340,13 @@ def slice_steps(
         i0 = max(i0, prev.i_start)
         if cur.velocity != 0.0:
             out.append(StepWindow(len(out), "step", i0, cur.i_end, cur.t_start, prev.velocity,
-                                  cur.velocity, 0.0))
+                                  cur.velocity, 0.0, cur.start_lo, cur.start_hi))
             j += 1
         elif j + 1 < len(segs):
             after = segs[j + 1]
             out.append(StepWindow(len(out), "shs", i0, after.i_end, cur.t_start,
-                                  prev.velocity, after.velocity, cur.duration))
+                                  prev.velocity, after.velocity, cur.duration, cur.start_lo,
+                                  cur.start_hi))
             j += 2
         else:
             break  # a final hold: nothing slides after it

@@ -26,8 +26,9 @@ from ..validation import (
     check_scalar,
 )
 from .creep import CREEP_LAWS, PER_EPS_CHUNK, per_eps
+from .model import TrapModel, takes_model
 from .static import static_friction, static_friction_at_radius, static_slope_per_eps
-from .steady import steady_friction
+from .steady import steady_friction, steady_friction_over_eps
 from .trap import Trap, z_plus
 
 __all__ = [
@@ -35,6 +36,7 @@ __all__ = [
     "dieterich_constant_asymptotic",
     "dieterich_constant_least_squares",
     "dieterich_constant_local",
+    "dieterich_constant_local_over_eps",
 ]
 
 
@@ -66,8 +68,8 @@ def forward_moment(k: int, alpha: float = 0.13) -> float:
     return total
 
 
-def dieterich_constant_asymptotic(alpha: float = 0.13) -> float:
-    """``C_inf``: Dieterich constant matching ``mu_d`` and ``mu_s`` as ``u -> inf`` (ours)."""
+def _asymptotic_loose(alpha: float = 0.13) -> float:
+    """:func:`dieterich_constant_asymptotic` with ``alpha`` loose (its old form)."""
     alpha = check_alpha(alpha)
     trap = Trap(alpha)
     dyn = 4.0 * forward_moment(1, alpha) + 3.0 * forward_moment(0, alpha)
@@ -75,7 +77,24 @@ def dieterich_constant_asymptotic(alpha: float = 0.13) -> float:
     return dyn / stat
 
 
-def dieterich_constant_least_squares(
+def _athermal(model: TrapModel, name: str) -> None:
+    if model.direct > 0.0:
+        raise ValueError(f"{name} compares the athermal curves mu_d(u) and mu_s(T) (eq. 36); "
+                         f"model.direct = {model.direct:g} makes mu_s depend on the pull "
+                         "velocity: pass model.athermal")
+
+
+@takes_model(_asymptotic_loose, "dieterich_constant_asymptotic(alpha)",
+             "dieterich_constant_asymptotic(model)")
+def dieterich_constant_asymptotic(model: TrapModel) -> float:
+    """``C_inf``: Dieterich constant matching ``mu_d`` and ``mu_s`` as ``u -> inf`` (ours;
+    module docstring). Only ``model.alpha`` enters (the first orders in ``eps`` of both curves
+    are proportional to ``eps``, for either creep law); the athermal model only."""
+    _athermal(model, "dieterich_constant_asymptotic")
+    return _asymptotic_loose(model.alpha)
+
+
+def _least_squares_loose(
     eps: float,
     alpha: float = 0.13,
     u_min: float = 0.01,
@@ -83,17 +102,18 @@ def dieterich_constant_least_squares(
     n: int = 81,
     creep: str = "log",
 ) -> float:
-    """``C`` minimising ``sum (mu_d(u_i) - mu_s(C/u_i))^2`` on ``n`` log-spaced ``u`` (Fig. 6)."""
+    """:func:`dieterich_constant_least_squares` with the parameters loose (its old form)."""
     eps = check_scalar("eps", eps, 0.0, lo_open=True)
     alpha = check_alpha(alpha)
     u_min = check_scalar("u_min", u_min, 0.0, lo_open=True)
     u_max = check_scalar("u_max", u_max, u_min, lo_open=True)
     check_choice("creep", creep, CREEP_LAWS)
     u = np.logspace(np.log10(u_min), np.log10(u_max), int(n))
-    mu_d = steady_friction(u, eps, alpha, creep)
+    model = TrapModel(alpha, eps, creep)
+    mu_d = steady_friction(model, u)
 
     def cost(log_c: float) -> float:
-        return float(np.sum((mu_d - static_friction(np.exp(log_c) / u, eps, alpha, creep)) ** 2))
+        return float(np.sum((mu_d - static_friction(model, np.exp(log_c) / u)) ** 2))
 
     from scipy.optimize import minimize_scalar  # lazily: slow to import
 
@@ -102,10 +122,23 @@ def dieterich_constant_least_squares(
     return float(np.exp(res.x))
 
 
-def dieterich_constant_local(
+@takes_model(_least_squares_loose,
+             "dieterich_constant_least_squares(eps, alpha, u_min, u_max, n, creep)",
+             "dieterich_constant_least_squares(model, u_min, u_max, n)")
+def dieterich_constant_least_squares(model: TrapModel, u_min: float = 0.01,
+                                     u_max: float = 100.0, n: int = 81) -> float:
+    """``C`` minimising ``sum (mu_d(u_i) - mu_s(C/u_i))^2`` on ``n`` log-spaced ``u`` in
+    ``[u_min, u_max]`` (reduced ``a0/t0``) for ``model`` (Fig. 6); ``model.eps > 0``, the
+    athermal model only."""
+    _athermal(model, "dieterich_constant_least_squares")
+    return _least_squares_loose(model.eps, model.alpha, u_min, u_max, n, model.creep)
+
+
+def _local_loose(
     u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log"
 ) -> Array:
-    """``C(u) = u T`` with ``mu_s(T) = mu_d(u)``: where the two curves meet (eq. 36 inverted).
+    """:func:`dieterich_constant_local` with the parameters loose and ``eps`` broadcast with
+    ``u`` (its old form, and the core of :func:`dieterich_constant_local_over_eps`).
 
     ``mu_s`` depends on ``T`` only through the aged radius ``r = a_r(T)`` and increases with
     it; ``r`` is found by bisection and ``T`` from the creep law's inverse. NaN where
@@ -118,7 +151,7 @@ def dieterich_constant_local(
     check_broadcast(u=u, eps=eps)
 
     u_b, eps_b = np.broadcast_arrays(u, eps)
-    tgt = np.asarray(steady_friction(u_b, eps_b, alpha, creep), float)
+    tgt = np.asarray(steady_friction_over_eps(TrapModel(alpha, creep=creep), u_b, eps_b), float)
     # mu_s(r) does not depend on eps: one bisection for every point, in bounded chunks
     flat = np.atleast_1d(tgt).ravel()
     r = np.empty(flat.size)
@@ -129,16 +162,38 @@ def dieterich_constant_local(
     return np.where(tgt >= 1.0, u_b * T, np.nan)[()]
 
 
+@takes_model(_local_loose, "dieterich_constant_local(u, eps, alpha, creep)",
+             "dieterich_constant_local(model, u)")
+def dieterich_constant_local(model: TrapModel, u: ArrayLike) -> Array:
+    """``C(u) = u T`` with ``mu_s(T) = mu_d(u)`` for ``model``: where the two curves meet
+    (eq. 36 inverted). ``mu_s`` depends on ``T`` only through the aged radius ``r = a_r(T)``
+    and increases with it; ``r`` is found by bisection and ``T`` from the creep law's inverse.
+    NaN where ``mu_d(u) < 1`` (no waiting time gives a static friction that low).
+    ``model.eps > 0``; the athermal model only."""
+    _athermal(model, "dieterich_constant_local")
+    return _local_loose(u, model.eps, model.alpha, model.creep)
+
+
+def dieterich_constant_local_over_eps(model: TrapModel, u: ArrayLike, eps: ArrayLike) -> Array:
+    """:func:`dieterich_constant_local` with ``model.eps`` replaced by every value of ``eps``,
+    broadcast with ``u``: a sweep over the creep parameter in one vectorised call (a figure);
+    ``eps > 0``. At a scalar ``e`` it equals ``dieterich_constant_local(model.replace(eps=e),
+    u)``."""
+    _athermal(model, "dieterich_constant_local_over_eps")
+    return _local_loose(u, eps, model.alpha, model.creep)
+
+
 def _radius_at_static_friction(tgt: Array, alpha: float) -> Array:
     """Aged radius ratio ``r >= 1`` with ``mu_s(r) = tgt`` (bisection; ``mu_s`` increases
     with ``r``); tends to 1 where ``tgt <= 1``."""
+    model = TrapModel(alpha)
     lo = np.ones_like(tgt)
     hi = np.full_like(tgt, 2.0)
-    while np.any(static_friction_at_radius(hi, alpha) < tgt):
-        hi = np.where(static_friction_at_radius(hi, alpha) < tgt, 2.0 * hi, hi)
+    while np.any(static_friction_at_radius(model, hi) < tgt):
+        hi = np.where(static_friction_at_radius(model, hi) < tgt, 2.0 * hi, hi)
     for _ in range(80):
         mid = 0.5 * (lo + hi)
-        below = static_friction_at_radius(mid, alpha) < tgt
+        below = static_friction_at_radius(model, mid) < tgt
         lo = np.where(below, mid, lo)
         hi = np.where(below, hi, mid)
     return 0.5 * (lo + hi)

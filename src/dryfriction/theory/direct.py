@@ -1,4 +1,4 @@
-"""The direct effect: thermally activated junction rheology on top of creep ageing (issue 11).
+"""The direct effect: thermally activated junction rheology on top of creep ageing.
 
 **[reading]** Baumberger & Caroli (Adv. Phys. 55, 279 (2006)): the interfacial junctions yield
 by thermally activated (Eyring) plasticity, so their shear strength depends on the present slip

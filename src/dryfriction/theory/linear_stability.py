@@ -98,7 +98,7 @@ def linear_response(u: float, model: TrapModel) -> SteadyResponse | DirectRespon
     base = steady_response(u, model)
     if model.direct == 0.0:
         return base
-    mu_d = float(steady_friction(u, model.eps, model.alpha, model.creep))
+    mu_d = float(steady_friction(model.athermal, u))
     g = float(junction_strength(u, model.direct, model.v_ref))
     a_d = float(junction_log_slope(u, model.direct, model.v_ref)) * mu_d
     return DirectResponse(base=base, g=g, a_direct=a_d)

@@ -1,4 +1,4 @@
-"""The trap model as one object: its parameters, their defaults and allowed ranges (issue 26).
+"""The trap model as one object: its parameters, their defaults and allowed ranges.
 
 Every default and every range of the model's parameters is declared once, as data, in
 :data:`TRAP_PARAMETERS` (and :data:`TRAPS_PER_A0` for the track density, which belongs to the
@@ -11,8 +11,11 @@ check nothing again. Reduced units: velocities in ``a0/t0``, friction in ``F_el`
 from __future__ import annotations
 
 import dataclasses
+import functools
+import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 from ..validation import (
     ALPHA_MIN,
@@ -28,7 +31,8 @@ from ..validation import (
 from .creep import CREEP_LAWS, CreepLaw, creep_law
 from .trap import Trap
 
-__all__ = ["Parameter", "TRAP_PARAMETERS", "TRAPS_PER_A0", "TRAPS_PER_A0_COARSE", "TrapModel"]
+__all__ = ["OldTheoryFormWarning", "Parameter", "TRAP_PARAMETERS", "TRAPS_PER_A0",
+           "TRAPS_PER_A0_COARSE", "TrapModel", "takes_model"]
 
 
 TRAP_PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
@@ -123,3 +127,43 @@ class TrapModel:
     def replace(self, **changes: Any) -> TrapModel:
         """A copy with ``changes`` (checked like a new model)."""
         return dataclasses.replace(self, **changes)
+
+
+# ---------------------------------------------------------------- the old loose forms
+
+class OldTheoryFormWarning(FutureWarning):
+    """A theory, analysis or fit function called in its old form, with the trap model's
+    parameters loose (``steady_friction(u, eps, alpha, creep, direct, v_ref)``) instead of a
+    :class:`TrapModel` first. The old form still works, for one release
+    (CHANGELOG.md).
+
+    A ``FutureWarning`` (shown to every user, not only to developers); its own class so that the
+    test suite turns exactly this one into an error (pyproject.toml): no internal code path may
+    use an old form unnoticed."""
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def takes_model(old: Callable[..., Any], old_form: str, new_form: str) -> Callable[[_F], _F]:
+    """Decorate a function whose first argument is a :class:`TrapModel` so that its old loose
+    form keeps working for one release.
+
+    A call whose first argument (or keyword ``model``) is a :class:`TrapModel` goes to the
+    decorated function; any other call is the old form: it warns
+    (:class:`OldTheoryFormWarning`, naming ``old_form`` and ``new_form``) and is passed, as
+    given, to ``old``, the loose implementation (so the old form computes exactly what it
+    did: no mapping of its arguments that could swap two of them)."""
+
+    def wrap(new: _F) -> _F:
+        @functools.wraps(new)
+        def dispatch(*args: Any, **kwargs: Any) -> Any:
+            if (args and isinstance(args[0], TrapModel)) or "model" in kwargs:
+                return new(*args, **kwargs)
+            warnings.warn(f"{old_form} is the old form (one more release): use {new_form}, "
+                          "with a dryfriction.TrapModel", OldTheoryFormWarning, stacklevel=2)
+            return old(*args, **kwargs)
+
+        return dispatch  # type: ignore[return-value]
+
+    return wrap

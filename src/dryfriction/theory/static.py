@@ -61,6 +61,7 @@ from ..validation import (
 )
 from .creep import CREEP_LAWS, check_age, per_eps, radius
 from .direct import junction_strength
+from .model import TrapModel, takes_model
 from .trap import Trap, force_forward, work_forward, work_minus
 
 __all__ = [
@@ -69,6 +70,7 @@ __all__ = [
     "pull_force",
     "threshold_shift",
     "static_friction",
+    "static_friction_over_eps",
     "force_hold_shift",
     "HOLDS",
     "static_friction_at_radius",
@@ -177,8 +179,10 @@ def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
     return np.maximum(vals.max(axis=-1), np.maximum(f1, f2))
 
 
-def static_friction_at_radius(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
-    """Static threshold ``mu_s`` (units ``F_el``) as a function of the aged radius ratio ``r``.
+def _at_radius_loose(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
+    """:func:`static_friction_at_radius` with ``alpha`` loose (its old form, and the core of
+    :func:`static_friction`). Static threshold ``mu_s`` (units ``F_el``) as a function of the
+    aged radius ratio ``r``.
 
     The maximum of ``mu(d)`` over the pull. In very strong pinning it is the largest of
     ``mu(d*)`` (the eq. 27 reading), ``mu(1 + y_c)`` (fresh edge at its spinodal) and the
@@ -196,7 +200,29 @@ def static_friction_at_radius(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.
     return best
 
 
-def static_friction(
+def _athermal_only(model: TrapModel, name: str) -> None:
+    if model.direct > 0.0:
+        raise ValueError(f"{name} is the threshold of the aged population, without the direct "
+                         f"effect (model.direct = {model.direct:g}): pass model.athermal, or use "
+                         "static_friction(model, T, pull_velocity=...)")
+
+
+@takes_model(_at_radius_loose, "static_friction_at_radius(r, alpha, d_w)",
+             "static_friction_at_radius(model, r, d_w)")
+def static_friction_at_radius(model: TrapModel, r: ArrayLike, d_w: float = 0.0) -> Array:
+    """Static threshold ``mu_s`` (units ``F_el``) of ``model``'s traps as a function of the aged
+    radius ratio ``r = a_r(T)`` (``>= 1``), contact made with the population edge at ``d_w``
+    (``a0``; 0: zero load, :func:`loaded_edge`).
+
+    The maximum of ``mu(d)`` over the pull (module docstring); only ``model.alpha`` enters (the
+    creep law and ``eps`` are in ``r``). The athermal threshold: a model with the direct effect
+    is refused (its threshold depends on the pull velocity: :func:`static_friction`).
+    """
+    _athermal_only(model, "static_friction_at_radius")
+    return _at_radius_loose(r, model.alpha, d_w)
+
+
+def _static_friction_loose(
     T: ArrayLike,
     eps: ArrayLike,
     alpha: float = 0.13,
@@ -207,7 +233,9 @@ def static_friction(
     pull_velocity: float | None = None,
     hold: str = "position",
 ) -> Array:
-    """Static friction ``mu_s = F_s/F_el`` after a wait ``T = t_w/t0`` (eq. 27, our reading).
+    """:func:`static_friction` with the parameters loose and ``eps`` broadcast with ``T`` (its
+    old form, and the vectorised core of :func:`static_friction_over_eps`). Static friction
+    ``mu_s = F_s/F_el`` after a wait ``T = t_w/t0`` (eq. 27, our reading).
 
     Parameters
     ----------
@@ -242,12 +270,7 @@ def static_friction(
     alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     direct, v_ref = check_direct(direct, v_ref)
-    if direct > 0.0:
-        if pull_velocity is None:
-            raise ValueError("pull_velocity is required when direct > 0 (the threshold depends "
-                             "on how fast it is pulled): "
-                             f"allowed {U_MIN:g} <= pull_velocity <= {U_MAX:g} (a0/t0)")
-        pull_velocity = check_scalar("pull_velocity", pull_velocity, U_MIN, U_MAX)
+    pull_velocity = _checked_pull(direct, pull_velocity)
     T = check_range("T", T, 0.0, T_MAX)
     eps = check_range("eps", eps, 0.0, EPS_MAX)
     check_broadcast(T=T, eps=eps)
@@ -261,11 +284,72 @@ def static_friction(
     else:
         # radius and threshold together, chunk by chunk: the threshold's temporaries (~80
         # bytes a point) would otherwise be held for the whole array at once
-        mu = per_eps(lambda law, t: static_friction_at_radius(law.radius(t), alpha, d_w),
+        mu = per_eps(lambda law, t: _at_radius_loose(law.radius(t), alpha, d_w),
                      creep, eps, T)
     if direct > 0.0:
         mu = mu * junction_strength(pull_velocity, direct, v_ref)
     return check_finite_result("mu_s", mu, T=T, eps=eps)
+
+
+def _checked_pull(direct: float, pull_velocity: float | None) -> float | None:
+    """The pull's slip rate, required (and checked) when the model has the direct effect."""
+    if direct == 0.0:
+        return pull_velocity
+    if pull_velocity is None:
+        raise ValueError("pull_velocity is required when direct > 0 (the threshold depends "
+                         "on how fast it is pulled): "
+                         f"allowed {U_MIN:g} <= pull_velocity <= {U_MAX:g} (a0/t0)")
+    return check_scalar("pull_velocity", pull_velocity, U_MIN, U_MAX)
+
+
+@takes_model(_static_friction_loose,
+             "static_friction(T, eps, alpha, creep, load, direct, v_ref, pull_velocity, hold)",
+             "static_friction(model, T, load=..., pull_velocity=..., hold=...)")
+def static_friction(model: TrapModel, T: ArrayLike, *, load: float = 0.0,
+                    pull_velocity: float | None = None, hold: str = "position") -> Array:
+    """Static friction ``mu_s = F_s/F_el`` of ``model`` after a wait ``T = t_w/t0`` (eq. 27, our
+    reading).
+
+    Parameters
+    ----------
+    model : TrapModel
+        ``alpha``, ``eps``, ``creep`` (eq. 17 or the exact eqs. 15-16), ``direct`` and
+        ``v_ref`` (reduced ``a0/t0``). ``model.mu_el`` does not enter: the result is ``F/F_el``.
+    T : array_like
+        Reduced waiting time ``t_w/t0``, ``>= 0``.
+    load : float
+        Tangential force at contact formation, units ``F_el``, ``-1 < load < 1``. 0 is the
+        paper's protocol; ``load != 0`` the loaded protocol (ours, module docstring).
+    pull_velocity : float, optional
+        Slip rate of the pull, reduced ``a0/t0``, ``> 0``; required when ``model.direct > 0``
+        (the threshold then scales with ``g(pull_velocity)``), ignored otherwise.
+    hold : {"position", "force"}
+        How the loaded contact is held during the wait (no difference at ``load = 0``):
+        ``"position"``, the slider stays where the load put it and the force grows as the
+        contacts age (the population does not move, as in §4); ``"force"``, the tangential
+        force stays ``load`` and the slider creeps (back, for ``load > 0``) as the contacts
+        age (module docstring).
+
+    Returns
+    -------
+    ndarray
+        ``mu_s``, the shape of ``T``; ``mu_s(T = 0) = 1`` (times ``g(pull_velocity)``). For a
+        sweep over ``eps`` in one call see :func:`static_friction_over_eps`.
+    """
+    return _static_friction_loose(T, model.eps, model.alpha, model.creep, load, model.direct,
+                                  model.v_ref, pull_velocity, hold)
+
+
+def static_friction_over_eps(model: TrapModel, T: ArrayLike, eps: ArrayLike, *,
+                             load: float = 0.0, pull_velocity: float | None = None,
+                             hold: str = "position") -> Array:
+    """:func:`static_friction` of ``model`` with its ``eps`` replaced by every value of ``eps``,
+    broadcast with ``T``: a sweep over the creep parameter in one vectorised call (the paper's
+    figures). ``eps`` is checked like ``model.eps`` (``0 <= eps <= 1``); ``model.eps`` is not
+    used. At a scalar ``e`` it equals ``static_friction(model.replace(eps=e), T, ...)``.
+    """
+    return _static_friction_loose(T, eps, model.alpha, model.creep, load, model.direct,
+                                  model.v_ref, pull_velocity, hold)
 
 
 # ---------------------------------------------------------------- the constant-force hold
@@ -423,12 +507,27 @@ def static_slope_per_eps(alpha: float = 0.13) -> float:
     return (3.0 * trap.H1 + (trap.y_c - 1.0) * f1) / (2.0 * trap.H0)
 
 
-def static_friction_first_order(T: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
-    """First order in ``eps`` of :func:`static_friction` at zero load (eq. 28a).
-
-    ``mu_s ~ 1 + eps ln(1 + T) [3 H1 + (y_c - 1) f_+(y_c - 1)] / (2 H0)``.
-    """
+def _static_first_order_loose(T: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
+    """:func:`static_friction_first_order` with its parameters loose (its old form)."""
     T = check_range("T", T, 0.0, T_MAX)
     eps = check_range("eps", eps, 0.0, EPS_MAX)
     check_broadcast(T=T, eps=eps)
     return 1.0 + eps * np.log1p(T) * static_slope_per_eps(alpha)
+
+
+@takes_model(_static_first_order_loose, "static_friction_first_order(T, eps, alpha)",
+             "static_friction_first_order(model, T, pull_velocity=...)")
+def static_friction_first_order(model: TrapModel, T: ArrayLike, *,
+                                pull_velocity: float | None = None) -> Array:
+    """First order in ``model.eps`` of :func:`static_friction` at zero load (eq. 28a).
+
+    ``mu_s ~ 1 + eps ln(1 + T) [3 H1 + (y_c - 1) f_+(y_c - 1)] / (2 H0)`` (both creep laws:
+    eq. 17 is eqs. 15-16 to first order in ``eps``); times ``g(pull_velocity)`` with the
+    direct effect, where ``pull_velocity`` (reduced ``a0/t0``) is required, as in
+    :func:`static_friction`.
+    """
+    pull_velocity = _checked_pull(model.direct, pull_velocity)
+    mu = _static_first_order_loose(T, model.eps, model.alpha)
+    if model.direct == 0.0:
+        return mu
+    return mu * junction_strength(pull_velocity, model.direct, model.v_ref)

@@ -38,10 +38,12 @@ from ..validation import (
 )
 from .creep import CREEP_LAWS, CreepLaw, EyringNabarroCreep, per_eps
 from .direct import junction_log_slope, junction_strength
+from .model import TrapModel, takes_model
 from .trap import Trap, force_forward, force_minus, force_plus
 
 __all__ = [
     "steady_friction",
+    "steady_friction_over_eps",
     "min_velocity",
     "check_steady_inputs",
     "steady_death_point",
@@ -215,11 +217,13 @@ def _steady_one_law(law: CreepLaw, u: Array, alpha: float) -> Array:
     return total / trap.H0
 
 
-def steady_friction(
+def _steady_friction_loose(
     u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log",
     direct: float = 0.0, v_ref: float = 1.0,
 ) -> Array:
-    """Steady dynamic friction ``mu_d = F_d/F_el`` at reduced velocity ``u = V t0/a0`` (eq. 34).
+    """:func:`steady_friction` with the parameters loose and ``eps`` broadcast with ``u`` (its
+    old form, and the vectorised core of :func:`steady_friction_over_eps`). Steady dynamic
+    friction ``mu_d = F_d/F_el`` at reduced velocity ``u = V t0/a0`` (eq. 34).
 
     With the direct effect (``direct = A > 0``, :mod:`.direct`, ours) the junction strength at
     the sliding velocity multiplies the aged population's force: ``mu = g(u) mu_d(u)``.
@@ -258,6 +262,46 @@ def steady_friction(
     return check_finite_result("mu_d", mu, u=u, eps=eps)
 
 
+@takes_model(_steady_friction_loose, "steady_friction(u, eps, alpha, creep, direct, v_ref)",
+             "steady_friction(model, u)")
+def steady_friction(model: TrapModel, u: ArrayLike) -> Array:
+    """Steady dynamic friction ``mu_d = F_d/F_el`` of ``model`` at reduced velocity
+    ``u = V t0/a0`` (eq. 34).
+
+    With the direct effect (``model.direct = A > 0``, :mod:`.direct`, ours) the junction
+    strength at the sliding velocity multiplies the aged population's force:
+    ``mu = g(u) mu_d(u)``. ``model.mu_el`` does not enter: the result is ``F/F_el``.
+
+    Parameters
+    ----------
+    model : TrapModel
+        ``alpha``, ``eps``, ``creep``, ``direct`` and ``v_ref`` (reduced ``a0/t0``).
+    u : array_like
+        Reduced sliding velocity ``V/V*``, ``V* = a0/t0``; ``> 0``.
+
+    Returns
+    -------
+    ndarray
+        ``mu_d``, the shape of ``u``; tends to 1 for ``u -> inf`` and grows like
+        ``-(3/2) eps ln u`` for ``u -> 0`` (times ``g(u)`` when ``direct > 0``). For a sweep
+        over ``eps`` in one call see :func:`steady_friction_over_eps`.
+    """
+    return _steady_friction_loose(u, model.eps, model.alpha, model.creep, model.direct,
+                                  model.v_ref)
+
+
+def steady_friction_over_eps(model: TrapModel, u: ArrayLike, eps: ArrayLike) -> Array:
+    """:func:`steady_friction` of ``model`` with its ``eps`` replaced by every value of ``eps``,
+    broadcast with ``u``: a sweep over the creep parameter in one vectorised call (the paper's
+    figures; the quadrature is batched by value of ``eps``, as for one model). ``eps`` is
+    checked like ``model.eps`` (``0 <= eps <= 1``); ``model.eps`` is not used.
+
+    ``steady_friction_over_eps(model, u, e)`` at a scalar ``e`` equals
+    ``steady_friction(model.replace(eps=e), u)``.
+    """
+    return _steady_friction_loose(u, eps, model.alpha, model.creep, model.direct, model.v_ref)
+
+
 def steady_log_slope(
     u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log",
     direct: float = 0.0, v_ref: float = 1.0,
@@ -271,12 +315,12 @@ def steady_log_slope(
     direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
     h = 1e-4
-    up = steady_friction(u * np.exp(h), eps, alpha, creep)
-    dn = steady_friction(u * np.exp(-h), eps, alpha, creep)
+    up = _steady_friction_loose(u * np.exp(h), eps, alpha, creep)
+    dn = _steady_friction_loose(u * np.exp(-h), eps, alpha, creep)
     slope = (up - dn) / (2.0 * h)
     if direct == 0.0:
         return slope
-    mu = steady_friction(u, eps, alpha, creep)
+    mu = _steady_friction_loose(u, eps, alpha, creep)
     return junction_log_slope(u, direct, v_ref) * mu + junction_strength(u, direct, v_ref) * slope
 
 
@@ -319,8 +363,9 @@ def steady_profile(
     return np.where((y >= -1.0) & (y <= y_end), f, 0.0)
 
 
-def steady_friction_first_order(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
-    """First order in ``eps`` of eq. 34 for any ``u`` (ours).
+def _steady_first_order_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
+    """First order in ``eps`` of eq. 34 for any ``u`` (ours), parameters loose, ``eps``
+    broadcast with ``u`` (the old form of :func:`steady_friction_first_order`).
 
     Expanding ``r^2 f(y/r)`` and the moving death point to first order and integrating by parts
     (the boundary terms cancel): ``mu_d ~ 1 + (eps / 2 H0) int_{-1}^{death}
@@ -351,6 +396,24 @@ def steady_friction_first_order(u: ArrayLike, eps: ArrayLike, alpha: float = 0.1
     return out
 
 
+@takes_model(_steady_first_order_loose, "steady_friction_first_order(u, eps, alpha)",
+             "steady_friction_first_order(model, u)")
+def steady_friction_first_order(model: TrapModel, u: ArrayLike) -> Array:
+    """First order in ``model.eps`` of eq. 34 for any ``u`` (ours), times ``g(u)`` with the
+    direct effect (``model.direct > 0``).
+
+    ``mu_d ~ 1 + (eps / 2 H0) int_{-1}^{death} [3 ln(1 + (y + 1)/u) + y/(u + y + 1)] f(y) dy``
+    (expanding ``r^2 f(y/r)`` and the moving death point to first order and integrating by
+    parts; the boundary terms cancel). Tends to eq. 35 as ``u -> 0`` and to
+    ``1 + (eps / 2 u H0) int (4 y + 3) f dy`` as ``u -> inf``. Both creep laws give it: eq. 17
+    is eqs. 15-16 to first order in ``eps``.
+    """
+    mu = _steady_first_order_loose(u, model.eps, model.alpha)
+    if model.direct == 0.0:
+        return mu
+    return mu * junction_strength(np.asarray(u, float), model.direct, model.v_ref)
+
+
 @lru_cache(maxsize=256)
 def low_velocity_constant(alpha: float = 0.13) -> float:
     """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` (ours, eq. 35's
@@ -368,15 +431,26 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
     return val / trap.H0
 
 
-def steady_friction_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
-                                 direct: float = 0.0, v_ref: float = 1.0) -> Array:
-    """Low-velocity expansion of eq. 34 (eq. 35 with its constant):
+def _steady_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
+                               direct: float = 0.0, v_ref: float = 1.0) -> Array:
+    """:func:`steady_friction_low_velocity` with its parameters loose (its old form):
     ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for ``u << 1`` and ``eps << 1``; times
     ``g(u)`` with the direct effect."""
     direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
     mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
     return mu if direct == 0.0 else mu * junction_strength(u, direct, v_ref)
+
+
+@takes_model(_steady_low_velocity_loose,
+             "steady_friction_low_velocity(u, eps, alpha, direct, v_ref)",
+             "steady_friction_low_velocity(model, u)")
+def steady_friction_low_velocity(model: TrapModel, u: ArrayLike) -> Array:
+    """Low-velocity expansion of eq. 34 for ``model`` (eq. 35 with its constant ``K1``,
+    :func:`low_velocity_constant`): ``mu_d ~ 1 + (eps/2) (-3 ln u + K1)``, valid for
+    ``u << 1`` and ``eps << 1`` (both creep laws: eq. 17 is eqs. 15-16 to first order in
+    ``eps``); times ``g(u)`` with the direct effect (``model.direct > 0``)."""
+    return _steady_low_velocity_loose(u, model.eps, model.alpha, model.direct, model.v_ref)
 
 
 def steady_log_slope_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
