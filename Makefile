@@ -29,7 +29,7 @@ demo: $(STAMP)
 	@echo "  $(BIN)/dryfriction --help"
 
 # the suite, then the selected slow tests (each over ~20 s; all of them: pytest --runslow)
-SLOW_SUBSET := ageing_under_load or huge_run_sizes or site_builds or chromium or (readme_line and not phase)
+SLOW_SUBSET := ageing_under_load or huge_run_sizes or site_builds or chromium or (readme_line and not phase and not interface_precursors)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 	$(BIN)/python -m pytest -q --runslow -m slow -k "$(SLOW_SUBSET)"

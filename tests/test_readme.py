@@ -31,10 +31,12 @@ SHELL_BLOCK = re.compile(r"^```(?:bash|sh|console|shell)[ \t]*\n(.*?)^```", re.M
 # the set-up lines: what the test environment already is
 SETUP = ("make", "source", ".", "cd", "pip")
 
-# marked slow: CI runs all but the phase diagram (a 3 x 3 stick-slip grid on Dask, ~70 s) in
+# marked slow: CI runs all but the phase diagram (a 3 x 3 stick-slip grid on Dask, ~70 s) and the
+# interface's precursor study in
 # its --runslow subset (Makefile SLOW_SUBSET); `pytest --runslow` runs every one
 SLOW = ("dryfriction fit", "dryfriction compare", "dryfriction simulate", "dryfriction reproduce",
-        "dryfriction phase-diagram", "dryfriction sweep")
+        "dryfriction phase-diagram", "dryfriction sweep",
+        "python examples/interface_precursors.py")  # three chain runs, ~7 min: not in CI
 
 
 def shell_lines(text: str) -> list[str]:
@@ -65,7 +67,9 @@ def test_shell_lines_parser() -> None:
 
 LINES = [line for page in PAGES for line in shell_lines(page.read_text())]
 # each command once, in the order first shown
-COMMANDS = list(dict.fromkeys(line for line in LINES if line.startswith("dryfriction")))
+# the package's commands, and the example scripts a page tells the reader to run
+RUNNABLE = ("dryfriction", "python examples/")
+COMMANDS = list(dict.fromkeys(line for line in LINES if line.startswith(RUNNABLE)))
 
 
 def test_readme_has_runnable_lines_and_only_known_setup() -> None:
@@ -73,7 +77,7 @@ def test_readme_has_runnable_lines_and_only_known_setup() -> None:
     # the README's command-line example: simulate, record, fit
     assert [line.split()[1] for line in readme] == ["simulate", "record", "fit"]
     assert len(COMMANDS) >= 30
-    others = [line for line in LINES if not line.startswith("dryfriction")]
+    others = [line for line in LINES if not line.startswith(RUNNABLE)]
     assert all(line.split()[0] in SETUP for line in others), others
 
 
