@@ -253,7 +253,11 @@ def test_bifurcation(tmp_path: Path) -> None:
     proto.write_text(RSF_PROTOCOL)
     assert run("bifurcation", proto, "--velocities", "2.1e-6,3.7e-5", "--out",
                tmp_path / "cli") == 0
-    done = app.bifurcation(proto, [2.1e-6, 3.7e-5], tmp_path / "py")
+    calls: list[tuple[int, int]] = []
+    done = app.bifurcation(proto, [2.1e-6, 3.7e-5, 8.3e-6], tmp_path / "py",
+                           progress=lambda i, n: calls.append((i, n)))
+    assert calls == [(1, 3), (2, 3), (3, 3)]  # progress after each velocity (a check: ~5-30 s)
+    done = app.bifurcation(proto, [2.1e-6, 3.7e-5], tmp_path / "py", force=True)
     assert done.files == ["bifurcation.csv", "bifurcation.json", "bifurcation.png"]
     same_folders(tmp_path / "cli", tmp_path / "py", done.files)
     assert [r["velocity"] for r in done.report["rows"]] == pytest.approx([2.1e-6, 3.7e-5])

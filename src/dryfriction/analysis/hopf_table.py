@@ -19,6 +19,7 @@ sought). With ``check``, each row is also checked by direct simulation
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 from ..io.protocol import RSFProtocol
@@ -102,8 +103,8 @@ def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
     return out
 
 
-def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: bool = False
-                      ) -> dict[str, Any]:
+def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: bool = False,
+                      progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
     """Rows of the Hopf point's nature at each velocity (module docstring).
 
     Parameters
@@ -114,6 +115,8 @@ def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: boo
         Load velocities, m/s (:func:`parse_velocities`).
     check : bool
         Also simulate each row (at most :data:`MAX_CHECKED` velocities).
+    progress : callable, optional
+        ``progress(done, total)`` after each velocity (a check takes ~5-30 s).
 
     Returns
     -------
@@ -125,7 +128,7 @@ def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: boo
                          f"most {MAX_CHECKED} (each check simulates for ~5-30 s)")
     model, drive = protocol.params, protocol.drive
     rows = []
-    for v in velocities:
+    for i, v in enumerate(velocities):
         h = rsf_hopf(model, v, drive.damping, drive.mass)
         row = h.as_row()
         if check:
@@ -134,6 +137,8 @@ def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: boo
             except SolverError as exc:  # said in the row, not a crash of the whole table
                 row.update({**_empty_check(), "check": f"simulation failed: {exc}"})
         rows.append(row)
+        if progress is not None:
+            progress(i + 1, len(velocities))
     notes = ["nature from the sign of the first Lyapunov coefficient l1 (Kuznetsov 2004); "
              "degenerate: |l1| < 1e-8 of its largest term (docs/hopf.md)"]
     if model.regularized:

@@ -39,7 +39,8 @@ class BifurcationOutcome:
 def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | Path, *,
                 check: bool = _O["check"], figure: bool = _O["figure"],
                 force: bool = _O["force"],
-                report: Callable[[str], None] | None = None) -> BifurcationOutcome:
+                report: Callable[[str], None] | None = None,
+                progress: Callable[[int, int], None] | None = None) -> BifurcationOutcome:
     """Critical stiffness, frequency and first Lyapunov coefficient ``l1`` of steady sliding
     at each load velocity (m/s) of a rate-and-state protocol: the Hopf bifurcation's nature
     (supercritical ``l1 < 0``, subcritical ``l1 > 0``, degenerate ``l1 = 0``;
@@ -57,6 +58,8 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
     check : bool
         Check each nature by direct simulation (at most ``MAX_CHECKED`` velocities).
     figure, force, report : as :func:`dryfriction.app.simulate`.
+    progress : callable, optional
+        ``progress(done, total)`` after each velocity.
     """
     from ..analysis.hopf_table import MAX_CHECKED, bifurcation_table, parse_velocities
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
@@ -75,7 +78,7 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
                          "is computed for rate-and-state (law = 'rsf'); the trap model's is "
                          "not done (docs/hopf.md)")
     check_output_dir(out, force=force)
-    rep = bifurcation_table(proto, vs, check)
+    rep = bifurcation_table(proto, vs, check, progress=progress)
     rep = with_units({**rep, "protocol": str(protocol)}, BIFURCATION_UNITS)
     rows = rep["rows"]
     files = ["bifurcation.csv", "bifurcation.json"]

@@ -10,7 +10,7 @@ from rich.table import Table
 from rich.text import Text
 
 from ..app.options import OPTIONS
-from .common import FORCE_HELP, app, cli_errors, print_whole, say
+from .common import FORCE_HELP, app, cli_errors, lazy_progress_bar, print_whole, say
 
 _O = OPTIONS["bifurcation"]
 
@@ -38,8 +38,9 @@ def bifurcation(
     degenerate l1 = 0)."""
     from ..app.hopf import bifurcation as run
 
-    report = run(protocol, velocities, out_dir, check=check, figure=figure, force=force,
-                 report=say).report
+    with lazy_progress_bar("bifurcation", unit="velocities") as update:
+        report = run(protocol, velocities, out_dir, check=check, figure=figure, force=force,
+                     report=say, progress=lambda done, total: update(done, total)).report
     rows = report["rows"]
     if json_out:
         from ..io.files import to_jsonable
