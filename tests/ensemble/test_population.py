@@ -126,7 +126,7 @@ def test_steady_initial_state_matches_eq34(u: float) -> None:
     # eq. 34 only by the slip 1/lam of ageing ignored (checked at the level below)
     assert np.mean(f) == pytest.approx(float(steady_friction(TrapModel(eps=0.04), u)), rel=2e-3)
     snap = e.snapshot()
-    p_d = float(steady_death_point(u, 0.04))
+    p_d = float(steady_death_point(TrapModel(eps=0.04), u))
     assert snap["p"].max() <= p_d + 1e-12
     assert snap["p"].max() > p_d - 1.0 / lam
 

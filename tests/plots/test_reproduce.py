@@ -200,7 +200,7 @@ def test_summary_agrees_with_library(run):
     assert r == pytest.approx(math.sqrt(1 + 0.04 * math.log(26.0)), rel=1e-14)
     assert s["fig2"]["threshold_shift_p_c"] == pytest.approx(float(threshold_shift(r)), rel=1e-15)
     assert s["fig2"]["mu_s"] == float(static_friction(TrapModel(alpha=ALPHA, eps=0.04), 25.0))
-    assert s["fig4"]["death_point_p_d"] == float(steady_death_point(0.1, 0.04, ALPHA))
+    assert s["fig4"]["death_point_p_d"] == float(steady_death_point(TrapModel(ALPHA, 0.04), 0.1))
     for d in s["loaded_protocol"]:
         m = static_friction(TrapModel(alpha=ALPHA, eps=0.04), np.array([1.0, 100.0]),
                             load=d["load"])

@@ -111,7 +111,7 @@ def test_steady_log_slope_is_the_slope_of_the_steady_curve(u: float) -> None:
     for direct in (0.0, A):
         want = _dlog(lambda x,
                      d=direct: steady_friction(TrapModel(eps=EPS, direct=d, v_ref=V_REF), x), u)
-        got = float(steady_log_slope(u, EPS, direct=direct, v_ref=V_REF))
+        got = float(steady_log_slope(TrapModel(eps=EPS, direct=direct, v_ref=V_REF), u))
         assert got == pytest.approx(want, abs=2e-7)
 
 
@@ -237,7 +237,8 @@ def test_low_velocity_form_is_the_limit_of_the_first_order(alpha: float) -> None
     assert d[0] > 5 * d[1], d
     u = 1e-5
     fd = _dlog(lambda x: steady_friction(TrapModel(alpha=alpha, eps=e), x), u)
-    assert float(steady_log_slope_low_velocity(u, e, alpha)) == pytest.approx(fd, rel=0.02)
+    assert float(steady_log_slope_low_velocity(TrapModel(alpha, e), u)) == pytest.approx(
+        fd, rel=0.02)
 
 
 # ------------------------------------------------------------------ creep, athermal stability

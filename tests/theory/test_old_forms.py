@@ -43,6 +43,13 @@ CASES = [
                                 8e-6), (M, T * 0.5, SCALES), {}, {"load": 0.3,
                                                                    "pull_velocity": 8e-6}),
     (dieterich.dieterich_constant_asymptotic, (0.1,), (M.athermal,), {}, {}),
+    (steady.steady_log_slope, (U, 0.04, 0.1, "eyring-nabarro", 0.03, 0.5), (M, U), {}, {}),
+    (steady.steady_log_slope, (U, 0.04), (TrapModel(eps=0.04), U), {"creep": "log"}, {}),
+    (steady.steady_log_slope_low_velocity, (U, 0.04, 0.1, 0.03, 0.5), (LOG, U), {}, {}),
+    (steady.steady_death_point, (U, 0.04, 0.1, "eyring-nabarro"), (M, U), {}, {}),
+    (steady.steady_death_point, (U, 0.04), (LOG.replace(alpha=0.4), U), {"alpha": 0.4}, {}),
+    (steady.steady_profile, (np.linspace(-1.2, 1.5, 7), 0.8, 0.04, 0.1, "eyring-nabarro"),
+     (M, np.linspace(-1.2, 1.5, 7), 0.8), {}, {}),
     (dieterich.dieterich_constant_least_squares, (0.04, 0.1, 0.05, 20.0, 9, "eyring-nabarro"),
      (M.athermal, 0.05, 20.0, 9), {}, {}),
     (dieterich.dieterich_constant_local, (U, 0.04, 0.1), (LOG.athermal, U), {}, {}),
@@ -72,6 +79,10 @@ def test_the_new_forms_use_the_whole_model():
             (static.static_friction, T, {"pull_velocity": 2.0}, every),
             (steady.steady_friction_low_velocity, U, {}, every[:2] + every[3:]),
             (steady.steady_friction_first_order, U, {}, every[:2] + every[3:]),
+            (steady.steady_log_slope, U, {}, every),
+            (steady.steady_log_slope_low_velocity, U, {}, every[:2] + every[3:]),
+            (steady.steady_death_point, U, {}, every[:3]),
+            (steady.steady_profile, np.linspace(-0.9, 0.5, 5), {"u": 0.8}, every[:3]),
             (static.static_friction_first_order, T, {"pull_velocity": 2.0},
              every[:2] + every[3:]),
             (units.steady_friction_si, U * 4e-6, {"scales": SCALES}, every),
@@ -144,7 +155,8 @@ MODEL_FIRST = {"steady_friction", "steady_friction_first_order", "steady_frictio
                "static_friction", "static_friction_first_order", "static_friction_at_radius",
                "static_friction_si", "steady_friction_si", "dieterich_constant_asymptotic",
                "dieterich_constant_least_squares", "dieterich_constant_local",
-               "trap_model_as_rsf"}
+               "trap_model_as_rsf", "steady_log_slope", "steady_log_slope_low_velocity",
+               "steady_death_point", "steady_profile"}
 
 
 def _is_model(node: ast.expr, names: set[str]) -> bool:

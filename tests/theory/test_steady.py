@@ -105,15 +105,15 @@ def test_strong_pinning_is_not_monotone():
 
 def test_death_point_eq32_and_profile():
     u, eps = 0.1, 0.04
-    pd = steady_death_point(u, eps)
+    pd = steady_death_point(TrapModel(eps=eps), u)
     r = np.sqrt(1 + eps * np.log1p((pd + 1) / u))
     assert pd / r == pytest.approx(Trap(0.13).y_c, rel=1e-13)  # eq. 32
     y = np.linspace(-1.5, pd + 0.5, 4001)
-    f = steady_profile(y, u, eps)
+    f = steady_profile(TrapModel(eps=eps), y, u)
     assert np.all(f[y < -1] == 0) and np.all(f[y > pd] == 0)
     # the profile integrates to mu_d H0 (eq. 33 density) — trapezoid on a fine grid
     yy = np.linspace(-1, pd, 400001)
-    integral = np.trapezoid(steady_profile(yy, u, eps), yy)
+    integral = np.trapezoid(steady_profile(TrapModel(eps=eps), yy, u), yy)
     assert integral / Trap(0.13).H0 == pytest.approx(steady_friction(TrapModel(eps=eps), u),
                                                      rel=1e-5)
 
@@ -215,7 +215,7 @@ def test_min_velocity_is_where_traps_die_at_the_end_of_the_range():
     eps = 0.1
     u = min_velocity(eps, ALPHA0)
     assert -1.0 + u * max_age(eps) == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-12)
-    yd = float(steady_death_point(u, eps, ALPHA0, "eyring-nabarro"))
+    yd = float(steady_death_point(TrapModel(ALPHA0, eps, "eyring-nabarro"), u))
     assert yd == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-8)
 
 
@@ -282,7 +282,7 @@ def test_death_point_converges_where_newton_hops_between_two_floats():
 
     u = np.array(_HOPPING)
     law = creep_law("eyring-nabarro", 0.04)
-    pd = steady_death_point(u, 0.04, creep="eyring-nabarro")
+    pd = steady_death_point(TrapModel(eps=0.04, creep="eyring-nabarro"), u)
     r = np.sqrt(law.radius_sq(law.clock((pd + 1.0) / u)))
     np.testing.assert_allclose(pd / r, Trap(0.13).y_c, rtol=1e-13)  # eq. 32
     mu = steady_friction(TrapModel(eps=0.04, creep="eyring-nabarro"), u)

@@ -405,9 +405,10 @@ def fig4_steady_pinning_curve(
     ``p_d`` (eq. 32); dashed, the elastic curve for comparison."""
     trap = Trap(alpha)
     fig, ax = _axes(ax)
-    p_d = float(steady_death_point(u, eps, alpha, creep))
+    model = TrapModel(alpha, eps, creep)
+    p_d = float(steady_death_point(model, u))
     y = np.linspace(-1.0, p_d, 1200)
-    f = steady_profile(y, u, eps, alpha, creep)
+    f = steady_profile(model, y, u)
     ye = np.linspace(-1.0, trap.y_c, 600)
     ax.plot(ye, force_plus(ye, alpha), color="0.45", ls="--", lw=1.2,
             label=r"elastic curve ($\varepsilon$ = 0)")

@@ -171,7 +171,7 @@ def compute_summary() -> dict[str, Any]:
     }
     s["fig4"] = {
         "u": U_FIG4, "eps": EPS_FIG4,
-        "death_point_p_d": float(steady_death_point(U_FIG4, EPS_FIG4, ALPHA)),
+        "death_point_p_d": float(steady_death_point(TrapModel(ALPHA, EPS_FIG4), U_FIG4)),
         "mu_d": float(steady_friction(TrapModel(ALPHA, EPS_FIG4), U_FIG4)),
     }
     eps_b = np.asarray(EPS, float)[:, None]
