@@ -539,7 +539,7 @@ def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
                                                                          "slip": 3.0}])),
                            Output(every_slip=5e-4))
     creep = h.x[-1] - h.x[0]
-    assert creep == pytest.approx(force_hold_shift(T, EPS, load=f_w), abs=1e-3)
+    assert creep == pytest.approx(force_hold_shift(TrapModel(eps=EPS), T, load=f_w), abs=1e-3)
     assert np.sign(creep) == -np.sign(f_w)
     closed_pos = float(static_friction(TrapModel(eps=EPS), T, load=f_w, hold="position"))
     closed_force = float(static_friction(TrapModel(eps=EPS), T, load=f_w, hold="force"))
@@ -567,8 +567,8 @@ def test_force_hold_sampled_in_slip_follows_the_creep(f_w: float) -> None:
     slip = runs["slip"]
     end_hold = int(np.flatnonzero(slip.t <= T * (1 + 1e-12))[-1])
     assert slip.t[end_hold] == pytest.approx(T, rel=1e-12)
-    assert slip.x[end_hold] - slip.x[0] == pytest.approx(force_hold_shift(T, EPS, load=f_w),
-                                                         abs=1e-3)
+    shift = force_hold_shift(TrapModel(eps=EPS), T, load=f_w)
+    assert slip.x[end_hold] - slip.x[0] == pytest.approx(shift, abs=1e-3)
     thr = slip.info["threshold_mu"]
     assert thr == pytest.approx(runs["time"].info["threshold_mu"], abs=3e-4)
     assert thr == pytest.approx(float(static_friction(TrapModel(eps=EPS), T, load=f_w,

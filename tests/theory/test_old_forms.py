@@ -50,6 +50,13 @@ CASES = [
     (steady.steady_death_point, (U, 0.04), (LOG.replace(alpha=0.4), U), {"alpha": 0.4}, {}),
     (steady.steady_profile, (np.linspace(-1.2, 1.5, 7), 0.8, 0.04, 0.1, "eyring-nabarro"),
      (M, np.linspace(-1.2, 1.5, 7), 0.8), {}, {}),
+    (steady.min_velocity, (0.04, 0.1, "eyring-nabarro"), (M,), {}, {}),
+    (steady.min_velocity, (0.3,), (TrapModel(eps=0.3, creep="eyring-nabarro"),), {}, {}),
+    (steady.low_velocity_constant, (0.1,), (M,), {}, {}),
+    (static.force_hold_shift, (30.0, 0.04, 0.1, "eyring-nabarro", 0.3), (M, 30.0), {},
+     {"load": 0.3}),
+    (static.force_hold_shift, (30.0, 0.04), (LOG.replace(alpha=0.4), 30.0),
+     {"alpha": 0.4, "load": -0.2}, {"load": -0.2}),
     (dieterich.dieterich_constant_least_squares, (0.04, 0.1, 0.05, 20.0, 9, "eyring-nabarro"),
      (M.athermal, 0.05, 20.0, 9), {}, {}),
     (dieterich.dieterich_constant_local, (U, 0.04, 0.1), (LOG.athermal, U), {}, {}),
@@ -93,6 +100,23 @@ def test_the_new_forms_use_the_whole_model():
             other = {"alpha": 0.3, "eps": 0.05, "creep": "log", "direct": 0.05, "v_ref": 3.0}
             assert not np.allclose(fn(M.replace(**{field: other[field]}), x, **kw), base,
                                    rtol=1e-9), (fn.__name__, field)
+
+
+def test_the_new_scalar_forms_use_their_fields():
+    # mistake caught: min_velocity, force_hold_shift or low_velocity_constant reading a field
+    # of the model wrongly
+    # (eps and alpha swapped, creep or alpha dropped); each field below changes the result
+    base = steady.min_velocity(M)
+    assert base > 0
+    for field, value in (("alpha", 0.3), ("eps", 0.05), ("creep", "log")):
+        assert steady.min_velocity(M.replace(**{field: value})) != base, field
+    shift = static.force_hold_shift(M, 30.0, load=0.3)
+    assert shift < 0
+    for field, value in (("alpha", 0.3), ("eps", 0.05), ("creep", "log")):
+        assert static.force_hold_shift(M.replace(**{field: value}), 30.0, load=0.3) != shift
+    k1 = steady.low_velocity_constant(M)
+    assert steady.low_velocity_constant(M.replace(alpha=0.3)) != k1
+    assert steady.low_velocity_constant(M.replace(eps=0.3, creep="log", direct=0.0)) == k1
 
 
 def test_sweeps_over_eps_equal_one_model_per_eps():
@@ -156,7 +180,8 @@ MODEL_FIRST = {"steady_friction", "steady_friction_first_order", "steady_frictio
                "static_friction_si", "steady_friction_si", "dieterich_constant_asymptotic",
                "dieterich_constant_least_squares", "dieterich_constant_local",
                "trap_model_as_rsf", "steady_log_slope", "steady_log_slope_low_velocity",
-               "steady_death_point", "steady_profile"}
+               "steady_death_point", "steady_profile", "min_velocity",
+               "low_velocity_constant", "force_hold_shift"}
 
 
 def _is_model(node: ast.expr, names: set[str]) -> bool:

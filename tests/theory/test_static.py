@@ -205,8 +205,9 @@ def test_reversed_load_and_the_two_holds():
 
     # the force hold moves the slider against the load as the contacts age (it stays put at
     # T = 0) and by the same amount for +-f (mirror symmetry of the held population)
-    assert force_hold_shift(0.0, 0.04, load=0.5) == 0.0
-    back, fwd = force_hold_shift(100.0, 0.04, load=0.5), force_hold_shift(100.0, 0.04, load=-0.5)
+    assert force_hold_shift(TrapModel(eps=0.04), 0.0, load=0.5) == 0.0
+    back = force_hold_shift(TrapModel(eps=0.04), 100.0, load=0.5)
+    fwd = force_hold_shift(TrapModel(eps=0.04), 100.0, load=-0.5)
     assert back < -0.05 and fwd == pytest.approx(-back, rel=1e-9)
     # Dillavou & Rubinstein's sign and trend: a forward load ages faster than rest, a reversed
     # one slower (both holds)

@@ -83,7 +83,7 @@ def test_low_velocity_expansion_eq35():
     lo = steady_friction_low_velocity(TrapModel(eps=1e-3), u)
     fo = steady_friction_first_order(TrapModel(eps=1e-3), u)
     np.testing.assert_allclose(lo, fo, rtol=0, atol=1e-3 * 10 * u.max())
-    assert np.isfinite(low_velocity_constant(0.13))
+    assert np.isfinite(low_velocity_constant(TrapModel()))
 
 
 @given(st.floats(0.005, ALPHA0), st.floats(0.001, 0.2), st.floats(1e-4, 1e3), st.floats(1.05, 10))
@@ -199,7 +199,7 @@ def _en_steady_quadrature(u: float, eps: float, alpha: float) -> float:
 def test_eyring_nabarro_near_its_edge_matches_an_independent_quadrature(eps):
     # catches a death-point search that lands past the law's range (NaN, 0, -1e17 before) and a
     # wrong u_min (an edge refused too early or accepted too late)
-    u_min = min_velocity(eps, ALPHA0)
+    u_min = min_velocity(TrapModel(ALPHA0, eps, "eyring-nabarro"))
     for u in (1.001 * u_min, 3.0 * u_min):
         got = float(steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep="eyring-nabarro"), u))
         assert got == pytest.approx(_en_steady_quadrature(u, eps, ALPHA0), rel=1e-7)
@@ -213,7 +213,7 @@ def test_min_velocity_is_where_traps_die_at_the_end_of_the_range():
     from dryfriction.creep import max_age
 
     eps = 0.1
-    u = min_velocity(eps, ALPHA0)
+    u = min_velocity(TrapModel(ALPHA0, eps, "eyring-nabarro"))
     assert -1.0 + u * max_age(eps) == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-12)
     yd = float(steady_death_point(TrapModel(ALPHA0, eps, "eyring-nabarro"), u))
     assert yd == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-8)
@@ -224,7 +224,7 @@ def test_one_u_alone_equals_the_same_u_in_an_array(creep):
     # catches shared iteration (converged points moved while others iterate) or a batch-size
     # dependent sum
     eps = 0.1
-    lo = 1.001 * min_velocity(eps, ALPHA0, creep) if creep != "log" else 1e-8
+    lo = 1.001 * min_velocity(TrapModel(ALPHA0, eps, creep)) if creep != "log" else 1e-8
     u = np.geomspace(lo, 1e3, 29)
     together = steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep=creep), u)
     alone = np.array([float(steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep=creep),

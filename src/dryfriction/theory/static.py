@@ -479,14 +479,9 @@ def _force_hold(T: float, eps: float, alpha: float, creep: str, f_w: float
     return max(cand), s
 
 
-def force_hold_shift(T: float, eps: float, alpha: float = 0.13, creep: str = "log",
-                     load: float = 0.0) -> float:
-    """Slider displacement (``a0``) during a hold at constant tangential force ``load``.
-
-    Negative: under a positive load the slider creeps back as the contacts age (their force
-    at fixed position grows, so the force balance moves them back); positive for a reversed
-    load. See :func:`static_friction` (``hold = "force"``).
-    """
+def _force_hold_shift_loose(T: float, eps: float, alpha: float = 0.13, creep: str = "log",
+                            load: float = 0.0) -> float:
+    """:func:`force_hold_shift` with the parameters loose (its old form)."""
     T = check_scalar("T", T, 0.0, T_MAX)
     eps = check_scalar("eps", eps, 0.0, EPS_MAX)
     alpha = check_alpha(alpha)
@@ -494,6 +489,22 @@ def force_hold_shift(T: float, eps: float, alpha: float = 0.13, creep: str = "lo
     check_age(np.asarray(T), np.asarray(eps), creep)
     loaded_edge(load, alpha)
     return _force_hold(T, eps, alpha, creep, float(load))[1]
+
+
+@takes_model(_force_hold_shift_loose, "force_hold_shift(T, eps, alpha, creep, load)",
+             "force_hold_shift(model, T, load=...)")
+def force_hold_shift(model: TrapModel, T: float, *, load: float = 0.0) -> float:
+    """Slider displacement (``a0``) of ``model`` during a hold of reduced duration ``T`` at
+    constant tangential force ``load`` (units ``F_el``, ``-1 < load < 1``; ours, module
+    docstring).
+
+    Negative: under a positive load the slider creeps back as the contacts age (their force
+    at fixed position grows, so the force balance moves them back); positive for a reversed
+    load. See :func:`static_friction` (``hold = "force"``). Uses ``model.alpha``, ``eps`` and
+    ``creep``; as in :func:`static_friction`, the hold is the population's, so ``direct`` and
+    ``v_ref`` do not enter.
+    """
+    return _force_hold_shift_loose(T, model.eps, model.alpha, model.creep, load)
 
 
 def static_slope_per_eps(alpha: float = 0.13) -> float:

@@ -90,8 +90,11 @@ def _minus_branch_nodes(c_d: Array, c_e: Array, yc: float) -> tuple[Array, Array
     return c_d + x, wts
 
 
-def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro") -> float:
-    """Smallest ``u`` at which steady sliding stays inside the creep law's range (ours).
+def _min_velocity_loose(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro"
+                        ) -> float:
+    """:func:`min_velocity` with the parameters loose (its old form; note its default creep
+    law, Eyring-Nabarro, where :class:`TrapModel`'s is the log law).
+    Smallest ``u`` at which steady sliding stays inside the creep law's range (ours).
 
     A trap dies where ``-1 + u T = w_d a_r(T)`` (eq. 32; ``w_d`` = :attr:`Trap.death_point`).
     The Eyring-Nabarro law holds up to the age ``T_v`` where ``a_r^2 = 1/eps``
@@ -113,13 +116,36 @@ def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro")
     return (1.0 + w_d / math.sqrt(eps)) / t_v if t_v > 0 else math.inf
 
 
+@takes_model(_min_velocity_loose, "min_velocity(eps, alpha, creep)", "min_velocity(model)")
+def min_velocity(model: TrapModel) -> float:
+    """Smallest reduced velocity ``u`` at which steady sliding of ``model`` stays inside its
+    creep law's range (ours).
+
+    A trap dies where ``-1 + u T = w_d a_r(T)`` (eq. 32; ``w_d`` = :attr:`Trap.death_point`);
+    the Eyring-Nabarro law holds up to the age ``T_v`` where ``a_r^2 = 1/eps``, so (see the
+    derivation in :func:`_min_velocity_loose`)
+
+        u_min = (1 + w_d / sqrt(eps)) / T_v(eps).
+
+    Uses ``model.alpha``, ``eps`` and ``creep``; the log law has no such limit (0 is
+    returned), nor has ``eps = 0``. ``direct`` and ``v_ref`` do not enter (the direct effect
+    leaves the trap dynamics alone).
+
+    Returns
+    -------
+    float
+        ``u_min`` in ``a0/t0`` (``inf`` if the law has no range left).
+    """
+    return _min_velocity_loose(model.eps, model.alpha, model.creep)
+
+
 def _check_velocity(u: Array, eps: Array, alpha: float, creep: str) -> None:
     """Refuse velocities whose traps die beyond the creep law's range (:func:`min_velocity`)."""
     if creep == "log":
         return
     u_b, eps_b = np.broadcast_arrays(u, eps)
     for e in np.unique(eps_b):
-        u_min = min_velocity(float(e), alpha, creep)
+        u_min = _min_velocity_loose(float(e), alpha, creep)
         low = (eps_b == e) & (u_b < u_min)
         if np.any(low):
             t_v = EyringNabarroCreep(float(e)).max_age
@@ -468,9 +494,8 @@ def steady_friction_first_order(model: TrapModel, u: ArrayLike) -> Array:
 
 
 @lru_cache(maxsize=256)
-def low_velocity_constant(alpha: float = 0.13) -> float:
-    """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` (ours, eq. 35's
-    order-``eps`` constant)."""
+def _low_velocity_constant_loose(alpha: float = 0.13) -> float:
+    """:func:`low_velocity_constant` at a loose ``alpha`` (its old form; cached)."""
     alpha = check_alpha(alpha)
     trap = Trap(alpha)
 
@@ -484,6 +509,18 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
     return val / trap.H0
 
 
+@takes_model(_low_velocity_constant_loose, "low_velocity_constant(alpha)",
+             "low_velocity_constant(model)")
+def low_velocity_constant(model: TrapModel) -> float:
+    """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` of ``model`` (ours,
+    eq. 35's order-``eps`` constant, :func:`steady_friction_low_velocity`).
+
+    A property of the trap alone: only ``model.alpha`` enters (``eps`` is the expansion's
+    parameter; both creep laws agree to this order; the direct effect multiplies the result).
+    """
+    return _low_velocity_constant_loose(model.alpha)
+
+
 def _steady_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
                                direct: float = 0.0, v_ref: float = 1.0) -> Array:
     """:func:`steady_friction_low_velocity` with its parameters loose (its old form):
@@ -491,7 +528,7 @@ def _steady_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13
     ``g(u)`` with the direct effect."""
     direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
-    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + _low_velocity_constant_loose(alpha))
     return mu if direct == 0.0 else mu * junction_strength(u, direct, v_ref)
 
 
@@ -515,7 +552,7 @@ def _steady_log_slope_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: fl
     exactly when ``A mu_d > 3 eps g/2``."""
     direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
-    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + _low_velocity_constant_loose(alpha))
     if direct == 0.0:
         return -1.5 * eps * np.ones_like(mu)
     return (junction_log_slope(u, direct, v_ref) * mu
