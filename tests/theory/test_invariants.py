@@ -291,10 +291,10 @@ def test_static_threshold_is_the_maximum_of_the_pull_force(alpha: float) -> None
     from dryfriction.theory.trap import Trap
 
     yc = Trap(alpha).y_c
-    assert float(fresh_force(0.0, alpha)) == pytest.approx(0.0, abs=1e-14)
-    assert float(fresh_force(yc, alpha)) == pytest.approx(1.0, rel=1e-12)
-    d_w = loaded_edge(0.41, alpha)
-    assert float(fresh_force(d_w, alpha)) == pytest.approx(0.41, rel=1e-12)
+    assert float(fresh_force(TrapModel(alpha), 0.0)) == pytest.approx(0.0, abs=1e-14)
+    assert float(fresh_force(TrapModel(alpha), yc)) == pytest.approx(1.0, rel=1e-12)
+    d_w = loaded_edge(TrapModel(alpha), 0.41)
+    assert float(fresh_force(TrapModel(alpha), d_w)) == pytest.approx(0.41, rel=1e-12)
     grid = np.linspace(0.0, 2.0 * (1.0 + yc) * 1.3, 40001)
     for r in (1.013, 1.07):
         for dw in (0.0, d_w):

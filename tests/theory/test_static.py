@@ -55,7 +55,7 @@ def test_pull_force_against_trap_by_trap_sum():
 @given(st.floats(0.005, 0.995), st.floats(1.0, 2.5), st.floats(0.0, 0.99))
 @settings(max_examples=150, deadline=None)
 def test_threshold_is_max_of_pull(alpha, r, load):
-    d_w = loaded_edge(load, alpha)
+    d_w = loaded_edge(TrapModel(alpha), load)
     d = np.linspace(0.0, 1.0 + r * Trap(alpha).death_point + 1.0, 40001)
     scan = pull_force(d, r, alpha, d_w).max()
     mu_s = static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=d_w)
@@ -80,8 +80,8 @@ def test_limits():
     assert static_friction(TrapModel(alpha=0.5, eps=0.05), 0.0) == pytest.approx(1.0, rel=1e-13)
     # fresh contact: force 0 at rest (eq. 25), 1 at the elastic threshold d = y_c (eq. 12)
     for alpha in (0.13, 0.5):
-        assert fresh_force(0.0, alpha) == pytest.approx(0.0, abs=1e-14)
-        assert fresh_force(Trap(alpha).y_c, alpha) == pytest.approx(1.0, rel=1e-13)
+        assert fresh_force(TrapModel(alpha), 0.0) == pytest.approx(0.0, abs=1e-14)
+        assert fresh_force(TrapModel(alpha), Trap(alpha).y_c) == pytest.approx(1.0, rel=1e-13)
 
 
 @pytest.mark.parametrize("alpha", [0.05, 0.13, 0.3])
@@ -134,7 +134,8 @@ def test_loaded_protocol_larger_and_steeper():
         assert np.all(loaded > rest)
         assert (np.diff(loaded) / np.diff(np.log(T)))[0] > slope_rest[0]
         # the edge really carries the load at T = 0
-        assert fresh_force(loaded_edge(load), 0.13) == pytest.approx(load, rel=1e-12)
+        edge = loaded_edge(TrapModel(), load)
+        assert fresh_force(TrapModel(), edge) == pytest.approx(load, rel=1e-12)
         assert static_friction(TrapModel(eps=0.03), 0.0, load=load) == pytest.approx(1.0, rel=1e-13)
 
 
@@ -197,7 +198,8 @@ def test_static_out_of_range_is_a_named_value_error(T, eps, word):
 
 def test_reversed_load_and_the_two_holds():
     # a reversed load is the mirror population: d_w(-f) = -d_w(f); at zero load the holds agree
-    assert loaded_edge(-0.4) == pytest.approx(-loaded_edge(0.4), rel=1e-15)
+    edge_back = loaded_edge(TrapModel(), -0.4)
+    assert edge_back == pytest.approx(-loaded_edge(TrapModel(), 0.4), rel=1e-15)
     T = np.array([1.0, 100.0])
     rest = static_friction(TrapModel(eps=0.04), T)
     assert np.array_equal(static_friction(TrapModel(eps=0.04), T, hold="force"), rest)

@@ -206,7 +206,7 @@ def compute_summary() -> dict[str, Any]:
     for f_w in LOADS:
         m1, m100 = static_friction(TrapModel(ALPHA, 0.04), np.array([1.0, 100.0]), load=f_w)
         loaded.append({
-            "load": f_w, "edge_d_w": loaded_edge(f_w, ALPHA), "eps": 0.04,
+            "load": f_w, "edge_d_w": loaded_edge(TrapModel(ALPHA), f_w), "eps": 0.04,
             "mu_s_T_1": float(m1), "mu_s_T_100": float(m100),
             "secant_slope_per_eps_T_1_to_100": float(
                 (m100 - m1) / (0.04 * (math.log(101.0) - math.log(2.0)))),

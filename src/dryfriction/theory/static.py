@@ -79,8 +79,9 @@ __all__ = [
 ]
 
 
-def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
-    """Force (units ``F_el``) of a fresh rest population shifted by ``d`` (units ``a0``).
+def _fresh_force_loose(d: ArrayLike, alpha: float = 0.13) -> Array:
+    """:func:`fresh_force` at a loose ``alpha`` (its old form).
+    Force (units ``F_el``) of a fresh rest population shifted by ``d`` (units ``a0``).
 
     ``[Phi(d) + int_d^1 f_-] / H0`` for ``0 <= d <= y_c``: 0 at ``d = 0`` (forces cancel, eq. 25)
     and 1 at ``d = y_c`` (the elastic threshold equals ``F_el``). Its slope at 0 is the contact
@@ -93,8 +94,22 @@ def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
     return (work_forward(d, alpha) + work_minus(dm, 1.0, alpha)) / trap.H0
 
 
-def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
-    """Population edge ``d_w`` (units ``a0``) at which a fresh contact carries force ``f_w``.
+@takes_model(_fresh_force_loose, "fresh_force(d, alpha)", "fresh_force(model, d)")
+def fresh_force(model: TrapModel, d: ArrayLike) -> Array:
+    """Force (units ``F_el``) of a fresh rest population of ``model`` shifted by ``d`` (units
+    ``a0``, ``0 <= d <= y_c``).
+
+    ``[Phi(d) + int_d^1 f_-] / H0``: 0 at ``d = 0`` (forces cancel, eq. 25) and 1 at
+    ``d = y_c`` (the elastic threshold equals ``F_el``). Its slope at 0 is the contact
+    stiffness ``Delta f / H0`` (eqs. 13-14). Only ``model.alpha`` enters (a fresh population
+    has not aged; the direct effect multiplies forces in sliding only).
+    """
+    return _fresh_force_loose(d, model.alpha)
+
+
+def _loaded_edge_loose(f_w: float, alpha: float = 0.13) -> float:
+    """:func:`loaded_edge` at a loose ``alpha`` (its old form).
+    Population edge ``d_w`` (units ``a0``) at which a fresh contact carries force ``f_w``.
 
     Parameters
     ----------
@@ -109,12 +124,34 @@ def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
     if f_w == 0.0:
         return 0.0
     if f_w < 0.0:  # mirror symmetry p -> -p of the rest population
-        return -loaded_edge(-f_w, alpha)
+        return -_loaded_edge_loose(-f_w, alpha)
     yc = Trap(alpha).y_c
     from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
 
-    return float(brentq(lambda d: float(fresh_force(d, alpha)) - f_w, 0.0, yc, xtol=1e-15,
-                        rtol=4 * np.finfo(float).eps, maxiter=200))
+    return float(brentq(lambda d: float(_fresh_force_loose(d, alpha)) - f_w, 0.0, yc,
+                        xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
+
+
+@takes_model(_loaded_edge_loose, "loaded_edge(f_w, alpha)", "loaded_edge(model, load)")
+def loaded_edge(model: TrapModel, load: float) -> float:
+    """Population edge ``d_w`` (units ``a0``) at which a fresh contact of ``model`` carries the
+    tangential force ``load`` (ours, module docstring): the root of
+    ``fresh_force(model, d_w) = load``.
+
+    Parameters
+    ----------
+    model : TrapModel
+        Only ``alpha`` enters (see :func:`fresh_force`).
+    load : float
+        Tangential force during the wait, units ``F_el``, ``-1 < load < 1``; a negative
+        (reversed) load gives the mirror image, ``d_w(-f) = -d_w(f)``.
+
+    Returns
+    -------
+    float
+        ``d_w`` in ``a0``.
+    """
+    return _loaded_edge_loose(load, model.alpha)
 
 
 def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
@@ -276,7 +313,7 @@ def _static_friction_loose(
     check_broadcast(T=T, eps=eps)
     check_age(T, eps, creep)
     check_choice("hold", hold, HOLDS)
-    d_w = loaded_edge(load, alpha)
+    d_w = _loaded_edge_loose(load, alpha)
     if hold == "force" and load != 0.0:
         Tb, eb = np.broadcast_arrays(T, eps)
         mu = np.array([_force_hold(float(t), float(e), alpha, creep, float(load))[0]
@@ -419,7 +456,7 @@ def _force_hold(T: float, eps: float, alpha: float, creep: str, f_w: float
 
     trap = Trap(alpha)
     H0, yc = trap.H0, trap.y_c
-    d_w = loaded_edge(f_w, alpha)
+    d_w = _loaded_edge_loose(f_w, alpha)
     slabs = _Slabs([], [], [], [])
     s, low, top, rear = 0.0, 0.0, 0.0, -1.0
     times = np.geomspace(min(1e-6, T), T, _HOLD_STEPS) if T > 0 else np.zeros(0)
@@ -487,7 +524,7 @@ def _force_hold_shift_loose(T: float, eps: float, alpha: float = 0.13, creep: st
     alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     check_age(np.asarray(T), np.asarray(eps), creep)
-    loaded_edge(load, alpha)
+    _loaded_edge_loose(load, alpha)
     return _force_hold(T, eps, alpha, creep, float(load))[1]
 
 
