@@ -300,7 +300,7 @@ def test_static_threshold_is_the_maximum_of_the_pull_force(alpha: float) -> None
         for dw in (0.0, d_w):
             # the cusps where a force can peak (edge at its spinodal): eq. 26's d*, 1 + y_c
             d = np.sort(np.append(grid, [r * yc - dw, 1.0 + yc]))
-            brute = float(np.max(pull_force(d, r, alpha, dw)))
+            brute = float(np.max(pull_force(TrapModel(alpha), d, r, dw)))
             mu_s = float(static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=dw))
             assert brute <= mu_s + 1e-12
             assert mu_s == pytest.approx(brute, abs=1e-6)

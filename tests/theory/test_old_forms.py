@@ -61,6 +61,14 @@ CASES = [
      {}, {}),
     (static.loaded_edge, (0.3, 0.1), (M, 0.3), {}, {}),
     (static.loaded_edge, (-0.3,), (LOG.replace(alpha=0.13), -0.3), {}, {}),
+    (static.pull_force, (np.array([0.05, 0.3, 1.4]), 1.2, 0.1, 0.04),
+     (M, np.array([0.05, 0.3, 1.4]), 1.2, 0.04), {}, {}),
+    (static.pull_force, (0.3, np.array([1.0, 1.3])), (LOG.replace(alpha=0.4), 0.3,
+                                                     np.array([1.0, 1.3])), {"alpha": 0.4}, {}),
+    (static.threshold_shift, (np.array([1.0, 1.3]), 0.1, 0.04), (M, np.array([1.0, 1.3]), 0.04),
+     {}, {}),
+    (static.threshold_shift, (1.3,), (LOG.replace(alpha=0.13), 1.3), {"d_w": 0.1},
+     {"d_w": 0.1}),
     (dieterich.dieterich_constant_least_squares, (0.04, 0.1, 0.05, 20.0, 9, "eyring-nabarro"),
      (M.athermal, 0.05, 20.0, 9), {}, {}),
     (dieterich.dieterich_constant_local, (U, 0.04, 0.1), (LOG.athermal, U), {}, {}),
@@ -107,8 +115,8 @@ def test_the_new_forms_use_the_whole_model():
 
 
 def test_the_new_scalar_forms_use_their_fields():
-    # mistake caught: min_velocity, force_hold_shift, low_velocity_constant, fresh_force or
-    # loaded_edge reading a field of the model wrongly
+    # mistake caught: min_velocity, force_hold_shift, low_velocity_constant, fresh_force,
+    # loaded_edge, pull_force or threshold_shift reading a field of the model wrongly
     # (eps and alpha swapped, creep or alpha dropped); each field below changes the result
     base = steady.min_velocity(M)
     assert base > 0
@@ -118,8 +126,10 @@ def test_the_new_scalar_forms_use_their_fields():
     assert shift < 0
     for field, value in (("alpha", 0.3), ("eps", 0.05), ("creep", "log")):
         assert static.force_hold_shift(M.replace(**{field: value}), 30.0, load=0.3) != shift
-    for fn, x in ((static.fresh_force, 0.05), (static.loaded_edge, 0.3)):
-        assert fn(M.replace(alpha=0.3), x) != fn(M, x), fn.__name__
+    for fn, x in ((static.fresh_force, 0.05), (static.loaded_edge, 0.3),
+                  (lambda m, d: static.pull_force(m, d, 1.2), 0.3),
+                  (lambda m, r: static.threshold_shift(m, r), 1.2)):
+        assert fn(M.replace(alpha=0.3), x) != fn(M, x)
     k1 = steady.low_velocity_constant(M)
     assert steady.low_velocity_constant(M.replace(alpha=0.3)) != k1
     assert steady.low_velocity_constant(M.replace(eps=0.3, creep="log", direct=0.0)) == k1
@@ -187,7 +197,8 @@ MODEL_FIRST = {"steady_friction", "steady_friction_first_order", "steady_frictio
                "dieterich_constant_least_squares", "dieterich_constant_local",
                "trap_model_as_rsf", "steady_log_slope", "steady_log_slope_low_velocity",
                "steady_death_point", "steady_profile", "min_velocity",
-               "low_velocity_constant", "force_hold_shift", "fresh_force", "loaded_edge"}
+               "low_velocity_constant", "force_hold_shift", "fresh_force", "loaded_edge",
+               "pull_force", "threshold_shift"}
 
 
 def _is_model(node: ast.expr, names: set[str]) -> bool:

@@ -49,7 +49,8 @@ def test_pull_force_against_trap_by_trap_sum():
         yc = Trap(alpha).y_c
         for d in np.linspace(0.0, 1.3 * (1 + yc) * r, 7)[1:]:
             ref = ref_pull_force(d, r, alpha, d_w)
-            assert pull_force(d, r, alpha, d_w) == pytest.approx(ref, rel=1e-9, abs=1e-12)
+            got = pull_force(TrapModel(alpha), d, r, d_w)
+            assert got == pytest.approx(ref, rel=1e-9, abs=1e-12)
 
 
 @given(st.floats(0.005, 0.995), st.floats(1.0, 2.5), st.floats(0.0, 0.99))
@@ -57,7 +58,7 @@ def test_pull_force_against_trap_by_trap_sum():
 def test_threshold_is_max_of_pull(alpha, r, load):
     d_w = loaded_edge(TrapModel(alpha), load)
     d = np.linspace(0.0, 1.0 + r * Trap(alpha).death_point + 1.0, 40001)
-    scan = pull_force(d, r, alpha, d_w).max()
+    scan = pull_force(TrapModel(alpha), d, r, d_w).max()
     mu_s = static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=d_w)
     # the dense scan can only undershoot the true maximum, by at most slope * step; both carry
     # rounding of relative size 1e-16 / H0 (H0 ~ (1 - alpha)^3 as alpha -> 1)
@@ -71,7 +72,7 @@ def test_paper_regime_threshold_is_eq27_point():
         for T in (0.01, 1.0, 100.0):
             r = math.sqrt(1 + eps * math.log1p(T))
             assert static_friction(TrapModel(eps=eps), T) == pytest.approx(
-                float(pull_force(threshold_shift(r), r)), rel=1e-15)
+                float(pull_force(TrapModel(), threshold_shift(TrapModel(), r), r)), rel=1e-15)
 
 
 def test_limits():

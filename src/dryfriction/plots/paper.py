@@ -255,7 +255,7 @@ def population_at_shift(
     aged (+) traps, born on ``[-1, d_w]``, now on ``[d - 1, d_w + d]`` with ``r^2 f_+(p/r)``
     (eq. 23); aged (-) traps, born on ``[d_w, 1]``, now on ``[d_w + d, 1 + d]``, alive while
     ``p/r <= 1``, with ``r^2 f_-(p/r)``. This is the same decomposition as ``pull_force``
-    (a test checks that the areas add up to ``pull_force(d, r) H0``).
+    (a test checks that the areas add up to ``pull_force(model, d, r) H0``).
     """
     trap = Trap(alpha)
     yc = trap.y_c
@@ -282,7 +282,7 @@ def fig2b_population_at_threshold(
     trap = Trap(alpha)
     fig, ax = _axes(ax)
     r = float(radius(T, eps, creep))
-    d = float(threshold_shift(r, alpha))
+    d = float(threshold_shift(TrapModel(alpha), r))
     groups = population_at_shift(d, r, alpha)
     yp = np.linspace(-1.0, trap.y_c, 500)
     ax.plot(yp, force_plus(yp, alpha), color="0.45", ls="--", lw=1.2,
@@ -296,7 +296,7 @@ def fig2b_population_at_threshold(
         color, label = styles[key]
         ax.plot(p, f, color=color, lw=2.2, label=label)
         ax.fill_between(p, 0.0, f, color=color, alpha=0.15)
-    mu = float(pull_force(d, r, alpha))
+    mu = float(pull_force(TrapModel(alpha), d, r))
     ax.axvline(-1.0 + d, color="0.5", lw=0.8, ls=":")
     ax.axvline(d, color="0.5", lw=0.8, ls=":")
     # at the foot of the lines, below the zero line where nothing is drawn, each on the side

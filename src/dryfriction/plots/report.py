@@ -166,7 +166,7 @@ def compute_summary() -> dict[str, Any]:
     r = float(radius(T_FIG2, EPS_FIG2))
     s["fig2"] = {
         "T": T_FIG2, "eps": EPS_FIG2, "radius_ratio": r,
-        "threshold_shift_p_c": float(threshold_shift(r, ALPHA)),
+        "threshold_shift_p_c": float(threshold_shift(TrapModel(ALPHA), r)),
         "mu_s": float(static_friction(TrapModel(ALPHA, EPS_FIG2), T_FIG2)),
     }
     s["fig4"] = {
@@ -178,8 +178,9 @@ def compute_summary() -> dict[str, Any]:
     # eq. 27 reading: the aged (+) edge at its spinodal beats the other candidate maximum of
     # the pull (fresh edge at its own spinodal, shift 1 + y_c) over the whole figure range
     r_grid = radius(GRID, eps_b)
-    at_aged = pull_force(threshold_shift(r_grid, ALPHA), r_grid, ALPHA)
-    at_fresh = pull_force(np.full_like(r_grid, 1.0 + trap.y_c), r_grid, ALPHA)
+    m = TrapModel(ALPHA)
+    at_aged = pull_force(m, threshold_shift(m, r_grid), r_grid)
+    at_fresh = pull_force(m, np.full_like(r_grid, 1.0 + trap.y_c), r_grid)
     s["eq27_reading_is_the_maximum_over_figure_range"] = bool(np.all(at_aged > at_fresh))
     paper_model = TrapModel(ALPHA)
     s["mu_s_at_T_0.01"] = static_friction_over_eps(paper_model, 0.01, eps_b)[:, 0]

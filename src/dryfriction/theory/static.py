@@ -154,8 +154,10 @@ def loaded_edge(model: TrapModel, load: float) -> float:
     return _loaded_edge_loose(load, model.alpha)
 
 
-def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
-    """Force ``mu(d)`` (units ``F_el``) during the pull, after a shift ``d >= 0`` (units ``a0``).
+def _pull_force_loose(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
+                      ) -> Array:
+    """:func:`pull_force` at a loose ``alpha`` (its old form).
+    Force ``mu(d)`` (units ``F_el``) during the pull, after a shift ``d >= 0`` (units ``a0``).
 
     Parameters
     ----------
@@ -181,9 +183,38 @@ def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
     return (fresh + r**3 * (aged_plus + aged_minus)) / trap.H0
 
 
-def threshold_shift(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
-    """Shift ``d* = r y_c - d_w`` at which the aged (+) edge reaches its spinodal (eq. 26)."""
+@takes_model(_pull_force_loose, "pull_force(d, r, alpha, d_w)", "pull_force(model, d, r, d_w)")
+def pull_force(model: TrapModel, d: ArrayLike, r: ArrayLike, d_w: float = 0.0) -> Array:
+    """Force ``mu(d)`` (units ``F_el``) of ``model``'s population during the pull, after a
+    shift ``d >= 0`` (units ``a0``; module docstring, eqs. 25-27).
+
+    Parameters
+    ----------
+    model : TrapModel
+        Only ``alpha`` enters: the ageing is in ``r``, and the direct effect's factor
+        ``g(pull_velocity)`` is applied by :func:`static_friction`.
+    d : array_like
+        Shift of the slider since the end of the wait, units ``a0``.
+    r : array_like
+        Radius ratio ``a_r(t_w)`` of the aged contacts (broadcast with ``d``), ``>= 1``.
+    d_w : float
+        Population edge during the wait (0: waiting at zero load; see :func:`loaded_edge`).
+    """
+    return _pull_force_loose(d, r, model.alpha, d_w)
+
+
+def _threshold_shift_loose(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
+    """:func:`threshold_shift` at a loose ``alpha`` (its old form)."""
     return np.asarray(r, float) * Trap(check_alpha(alpha)).y_c - d_w
+
+
+@takes_model(_threshold_shift_loose, "threshold_shift(r, alpha, d_w)",
+             "threshold_shift(model, r, d_w)")
+def threshold_shift(model: TrapModel, r: ArrayLike, d_w: float = 0.0) -> Array:
+    """Shift ``d* = r y_c - d_w`` (units ``a0``) at which the aged (+) edge of ``model``'s
+    population, radius ratio ``r``, reaches its spinodal (eq. 26). Only ``model.alpha``
+    enters (through ``y_c``)."""
+    return _threshold_shift_loose(r, model.alpha, d_w)
 
 
 def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
@@ -193,15 +224,15 @@ def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
     force can peak before the aged edge reaches its spinodal (``f_+`` turns over before
     ``y_c``: its slope tends to ``-inf`` there).
     """
-    dstar = threshold_shift(r, alpha, d_w)[..., None]
+    dstar = _threshold_shift_loose(r, alpha, d_w)[..., None]
     grid = dstar * np.linspace(0.0, 1.0, n)
-    vals = pull_force(grid, r[..., None], alpha, d_w)
+    vals = _pull_force_loose(grid, r[..., None], alpha, d_w)
     k = np.argmax(vals, axis=-1)[..., None]
     lo = np.take_along_axis(grid, np.maximum(k - 1, 0), axis=-1)[..., 0]
     hi = np.take_along_axis(grid, np.minimum(k + 1, n - 1), axis=-1)[..., 0]
     g = (math.sqrt(5.0) - 1.0) / 2.0
     x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-    f1, f2 = pull_force(x1, r, alpha, d_w), pull_force(x2, r, alpha, d_w)
+    f1, f2 = _pull_force_loose(x1, r, alpha, d_w), _pull_force_loose(x2, r, alpha, d_w)
     for _ in range(60):
         left = f1 >= f2
         hi = np.where(left, x2, hi)
@@ -211,8 +242,8 @@ def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
         f2 = np.where(left, f1, np.nan)
         f1 = np.where(left, np.nan, f2)
         x1, x2 = x1n, x2n
-        f1 = np.where(np.isnan(f1), pull_force(x1, r, alpha, d_w), f1)
-        f2 = np.where(np.isnan(f2), pull_force(x2, r, alpha, d_w), f2)
+        f1 = np.where(np.isnan(f1), _pull_force_loose(x1, r, alpha, d_w), f1)
+        f2 = np.where(np.isnan(f2), _pull_force_loose(x2, r, alpha, d_w), f2)
     return np.maximum(vals.max(axis=-1), np.maximum(f1, f2))
 
 
@@ -230,8 +261,9 @@ def _at_radius_loose(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Arr
     alpha = check_alpha(alpha)
     r = check_range("r", r, 1.0)
     trap = Trap(alpha)
-    best = np.maximum(pull_force(threshold_shift(r, alpha, d_w), r, alpha, d_w), 1.0)
-    best = np.maximum(best, pull_force(np.full_like(r, 1.0 + trap.y_c), r, alpha, d_w))
+    best = np.maximum(_pull_force_loose(_threshold_shift_loose(r, alpha, d_w), r, alpha, d_w),
+                      1.0)
+    best = np.maximum(best, _pull_force_loose(np.full_like(r, 1.0 + trap.y_c), r, alpha, d_w))
     if trap.y_c < 1.0:
         best = np.maximum(best, _interior_maximum(np.atleast_1d(r), alpha, d_w).reshape(r.shape))
     return best
