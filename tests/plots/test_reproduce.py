@@ -190,7 +190,7 @@ def test_summary_agrees_with_library(run):
     assert s["dieterich_C_asymptotic"] == dieterich_constant_asymptotic(TrapModel(alpha=ALPHA))
     assert s["dieterich_C_least_squares"] == dieterich_constant_least_squares(
         TrapModel(alpha=ALPHA, eps=0.04))
-    assert s["static_slope_per_eps"] == static_slope_per_eps(ALPHA)
+    assert s["static_slope_per_eps"] == static_slope_per_eps(TrapModel(ALPHA))
     assert s["dynamic_slope_per_eps"] == DYNAMIC_SLOPE_PER_EPS
     u = np.array([0.01, 0.1, 1.0, 10.0, 100.0])
     np.testing.assert_allclose(list(s["dieterich_C_local"].values()),

@@ -69,6 +69,10 @@ CASES = [
      {}, {}),
     (static.threshold_shift, (1.3,), (LOG.replace(alpha=0.13), 1.3), {"d_w": 0.1},
      {"d_w": 0.1}),
+    (static.static_slope_per_eps, (0.1,), (M,), {}, {}),
+    (static.static_slope_per_eps, (), (TrapModel(eps=0.3),), {"alpha": 0.13}, {}),
+    (dieterich.forward_moment, (1, 0.1), (M, 1), {}, {}),
+    (dieterich.forward_moment, (0, 0.6), (LOG.replace(alpha=0.6), 0), {}, {}),
     (dieterich.dieterich_constant_least_squares, (0.04, 0.1, 0.05, 20.0, 9, "eyring-nabarro"),
      (M.athermal, 0.05, 20.0, 9), {}, {}),
     (dieterich.dieterich_constant_local, (U, 0.04, 0.1), (LOG.athermal, U), {}, {}),
@@ -116,7 +120,8 @@ def test_the_new_forms_use_the_whole_model():
 
 def test_the_new_scalar_forms_use_their_fields():
     # mistake caught: min_velocity, force_hold_shift, low_velocity_constant, fresh_force,
-    # loaded_edge, pull_force or threshold_shift reading a field of the model wrongly
+    # loaded_edge, pull_force, threshold_shift, static_slope_per_eps or forward_moment reading
+    # a field of the model wrongly
     # (eps and alpha swapped, creep or alpha dropped); each field below changes the result
     base = steady.min_velocity(M)
     assert base > 0
@@ -128,7 +133,9 @@ def test_the_new_scalar_forms_use_their_fields():
         assert static.force_hold_shift(M.replace(**{field: value}), 30.0, load=0.3) != shift
     for fn, x in ((static.fresh_force, 0.05), (static.loaded_edge, 0.3),
                   (lambda m, d: static.pull_force(m, d, 1.2), 0.3),
-                  (lambda m, r: static.threshold_shift(m, r), 1.2)):
+                  (lambda m, r: static.threshold_shift(m, r), 1.2),
+                  (lambda m, k: static.static_slope_per_eps(m) * k, 1),
+                  (dieterich.forward_moment, 1)):
         assert fn(M.replace(alpha=0.3), x) != fn(M, x)
     k1 = steady.low_velocity_constant(M)
     assert steady.low_velocity_constant(M.replace(alpha=0.3)) != k1
@@ -198,7 +205,7 @@ MODEL_FIRST = {"steady_friction", "steady_friction_first_order", "steady_frictio
                "trap_model_as_rsf", "steady_log_slope", "steady_log_slope_low_velocity",
                "steady_death_point", "steady_profile", "min_velocity",
                "low_velocity_constant", "force_hold_shift", "fresh_force", "loaded_edge",
-               "pull_force", "threshold_shift"}
+               "pull_force", "threshold_shift", "static_slope_per_eps", "forward_moment"}
 
 
 def _is_model(node: ast.expr, names: set[str]) -> bool:

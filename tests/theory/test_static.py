@@ -105,14 +105,14 @@ def test_slope_per_eps_paper_value():
     y1 = yc - 1
     f1 = 6 * a * (y1 + (0.87 + math.sqrt(0.87**2 - 4 * a * y1)) / 2)
     trap = Trap(a)
-    assert static_slope_per_eps(a) == pytest.approx(
+    assert static_slope_per_eps(TrapModel(a)) == pytest.approx(
         (3 * trap.H1 + y1 * f1) / (2 * trap.H0_paper), rel=1e-12)
     # mu_s is not log-linear in T at short times (paper §4): slope grows with T
     T = np.array([0.01, 0.1, 1, 10, 100])
     mu = static_friction(TrapModel(eps=0.03), T)
     slopes = np.diff(mu) / np.diff(np.log(T))
     assert np.all(np.diff(slopes) > 0)
-    assert slopes[-1] == pytest.approx(0.03 * static_slope_per_eps(a), rel=0.05)
+    assert slopes[-1] == pytest.approx(0.03 * static_slope_per_eps(TrapModel(a)), rel=0.05)
 
 
 @given(st.floats(0.01, ALPHA0), st.floats(0.001, 0.2), st.floats(1e-3, 1e3), st.floats(1.01, 10))

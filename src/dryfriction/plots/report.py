@@ -137,7 +137,7 @@ def compute_summary() -> dict[str, Any]:
     trap = Trap(ALPHA)
     s: dict[str, Any] = dict(trap.summary())
     s["H0_paper_formula"] = trap.H0_paper
-    s["static_slope_per_eps"] = static_slope_per_eps(ALPHA)
+    s["static_slope_per_eps"] = static_slope_per_eps(TrapModel(ALPHA))
     s["dynamic_slope_per_eps"] = DYNAMIC_SLOPE_PER_EPS
 
     fig6 = TrapModel(ALPHA, EPS_FIG6)

@@ -576,8 +576,9 @@ def force_hold_shift(model: TrapModel, T: float, *, load: float = 0.0) -> float:
     return _force_hold_shift_loose(T, model.eps, model.alpha, model.creep, load)
 
 
-def static_slope_per_eps(alpha: float = 0.13) -> float:
-    """``(1/eps) d mu_s / d ln T`` at first order in ``eps`` and large ``T`` (eq. 28a).
+def _static_slope_per_eps_loose(alpha: float = 0.13) -> float:
+    """:func:`static_slope_per_eps` at a loose ``alpha`` (its old form).
+    ``(1/eps) d mu_s / d ln T`` at first order in ``eps`` and large ``T`` (eq. 28a).
 
     ``[3 H1 + (y_c - 1) f(y_c - 1)] / (2 H0)``, with ``f`` the forward force (``f_+`` in the
     paper's regime) and ``H1`` of eq. 28b.
@@ -587,12 +588,26 @@ def static_slope_per_eps(alpha: float = 0.13) -> float:
     return (3.0 * trap.H1 + (trap.y_c - 1.0) * f1) / (2.0 * trap.H0)
 
 
+@takes_model(_static_slope_per_eps_loose, "static_slope_per_eps(alpha)",
+             "static_slope_per_eps(model)")
+def static_slope_per_eps(model: TrapModel) -> float:
+    """``(1/eps) d mu_s / d ln T`` of ``model`` at first order in ``eps`` and large ``T``
+    (eq. 28a): ``[3 H1 + (y_c - 1) f(y_c - 1)] / (2 H0)``, with ``f`` the forward force
+    (``f_+`` in the paper's regime) and ``H1`` of eq. 28b.
+
+    A property of the trap: only ``model.alpha`` enters (``eps`` is the expansion's parameter,
+    both creep laws agree to this order; the direct effect multiplies ``mu_s`` by
+    ``g(pull_velocity)``, see :func:`static_friction_first_order`).
+    """
+    return _static_slope_per_eps_loose(model.alpha)
+
+
 def _static_first_order_loose(T: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
     """:func:`static_friction_first_order` with its parameters loose (its old form)."""
     T = check_range("T", T, 0.0, T_MAX)
     eps = check_range("eps", eps, 0.0, EPS_MAX)
     check_broadcast(T=T, eps=eps)
-    return 1.0 + eps * np.log1p(T) * static_slope_per_eps(alpha)
+    return 1.0 + eps * np.log1p(T) * _static_slope_per_eps_loose(alpha)
 
 
 @takes_model(_static_first_order_loose, "static_friction_first_order(T, eps, alpha)",
