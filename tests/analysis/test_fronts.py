@@ -279,3 +279,30 @@ def test_simultaneous_slip_is_an_instantaneous_front():
     (e,) = detect_events(space_time(t, x, v), 1.0)
     assert e.spanning and e.fronts[1].mean_speed == math.inf
     assert e.fronts[0].mean_speed == math.inf and np.all(np.isinf(e.fronts[1].speed))
+
+
+def test_triggered_precursors_leave_out_the_reslips_after_a_drop():
+    # mistakes: the test against the last event's start load (not every earlier one's), so a
+    # second re-slip is kept; the filter applied to the spanning events too; the bar raised
+    # by an event away from the edge
+    t, x = grid(n_x=40, dx=0.5, t_end=24.0, dt=0.013)
+    # precursors at t = 1 (to 7), 6 (to 15), 10 (to 25); re-slips at t = 3.5 and 4.5 (to 2
+    # and 3) while the load is below where the one at t = 1 started (the second above the
+    # first's); a global slip at t = 16 after a drop of the load; an event far from the edge
+    # at t = 5 during a brief rise of the load above where the second precursor starts
+    pulses = [Pulse(30, 30, 30, 5.0, 4.0),
+              Pulse(0, 0, 7, 1.0, 4.0), Pulse(0, 0, 2, 3.5, 4.0), Pulse(0, 0, 3, 4.5, 4.0),
+              Pulse(0, 0, 15, 6.0, 4.0), Pulse(0, 0, 25, 10.0, 4.0),
+              Pulse(0, 0, 39, 16.0, 4.0)]
+    v, s = fields(t, x, pulses)
+    load = (0.3 + 0.05 * t - 0.2 * ((t > 1.5) & (t < 5.5)) - 0.8 * (t > 15.5)
+            + 1.0 * ((t > 4.8) & (t < 5.3)))
+    st = space_time(t, x, v, s, load)
+    events = detect_events(st, THR)
+    assert [e.spanning for e in events] == [False] * 6 + [True]
+    assert [e.elements[0] for e in events] == [0, 0, 0, 30, 0, 0, 0]
+    every = precursors(events, st, 2.5, edge="left")
+    assert every.length == pytest.approx([4.0, 1.5, 2.0, 8.0, 13.0])
+    pre = precursors(events, st, 2.5, edge="left", triggered=True)
+    assert pre.length == pytest.approx([4.0, 8.0, 13.0])
+    assert pre.spanning_ratio.size == 1  # the global slip, at a lower load, still counted

@@ -10,7 +10,11 @@ distribution, from the events of :mod:`dryfriction.analysis.fronts`.
   system-spanning slip): each arrested event's extent against the load-to-normal ratio
   ``load(t_arrest) / normal_load`` at its arrest time (the last arrival, the tips' stop),
   the load linearly interpolated between samples. An event cut by the record's first or last
-  sample is left out (it may not have arrested).
+  sample is left out (it may not have arrested). Optionally (``triggered=True``) only the
+  events triggered by the loading are kept: those that start at a load above the start load
+  of every earlier event from the loaded edge, so that the small re-slips next to the edge
+  that follow a precursor while the load is still below the level it had dropped from
+  (aftershocks) are left out (ours).
 * **Trend** of the precursors (do they arrest at lengths that
   grow with the applied shear?): Spearman's rank correlation ``rho`` of length against ratio and
   its two-sided p-value (``scipy.stats.spearmanr``). The answer is ``"yes"`` (they grow) when
@@ -122,7 +126,7 @@ class Precursors:
 
 def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
                edge: str | None = None, edge_gap: int = 0,
-               after: float | None = None) -> Precursors:
+               after: float | None = None, triggered: bool = False) -> Precursors:
     """Arrested-front lengths against the load-to-normal ratio at their arrest (module doc).
 
     Parameters
@@ -145,6 +149,12 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
         next to it.
     after : float, optional
         Leave out the events that start before this time [time unit] (an initial transient).
+    triggered : bool
+        Keep only the events that start at a load above the start load of every earlier event
+        that reaches the edge (those before ``after`` included; without ``edge``, every earlier
+        event): each precursor needs the
+        load to rise past where the last one started; a re-slip at a lower load, after the
+        drop of the event before, is left out (module doc).
 
     Returns
     -------
@@ -159,7 +169,7 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
         raise ValueError(f"edge_gap = {edge_gap!r} is out of range: a whole number >= 0")
     n_x = st.x.size
     start = -math.inf if after is None else check_scalar("after", after)
-    events = [e for e in events if e.t_start >= start]
+    events = list(events)
 
     def touches(e: Event) -> bool:
         if edge is None:
@@ -176,8 +186,17 @@ def precursors(events: Sequence[Event], st: SpaceTime, normal_load: float, *,
                 else slice(e.elements[0], n_x))
         return float(np.sum(st.lengths[span]))
 
+    kept = {e.index for e in events}
+    if triggered:  # a new load maximum at the start among the edge's events (module doc)
+        peak, kept = -math.inf, set()
+        for e in sorted((e for e in events if touches(e)), key=lambda e: e.t_start):
+            if e.load_start > peak:
+                kept.add(e.index)
+            peak = max(peak, e.load_start)
+    events = [e for e in events if e.t_start >= start]
     # an event cut by the record's end may still be growing: not known to have arrested
-    arrested = sorted((e for e in events if not (e.spanning or e.cut) and touches(e)),
+    arrested = sorted((e for e in events
+                       if not (e.spanning or e.cut) and touches(e) and e.index in kept),
                       key=lambda e: e.t_arrest)
     spanning = [e for e in events if e.spanning]
     return Precursors(

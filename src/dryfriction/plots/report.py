@@ -576,7 +576,7 @@ def _draw(job: tuple[int, Path, str, int]) -> tuple[str, Image, tuple[Image, ...
 def panel_pngs(fig: Figure, png: bytes | None, name: str, dpi: int | None = None
                ) -> tuple[Image, ...]:
     """The panels of a figure whose axes sit side by side in one row, each cut out of its PNG
-    as a PNG of its own (``()`` for a single panel or another layout).
+    as a PNG of its own (an empty tuple for a single panel or another layout).
 
     A report read in a window 800 px wide shrinks a two-panel figure (11.2 in) to about 70
     pixels an inch, and its 10-point ticks to 10 px; one panel at a time keeps them at
