@@ -60,7 +60,7 @@ def test_steady_sliding_converges_to_eq34(u: float) -> None:
     better than the 1e-3 asked. The instantaneous sawtooth is checked in the density study.
     """
     lam, m = 500.0, 8
-    p_d = float(steady_death_point(u, EPS))
+    p_d = float(steady_death_point(TrapModel(eps=EPS), u))
     r = _velocity([{"velocity": u, "slip": 1.0 + p_d + 1.0}], lam, every_slip=1 / (m * lam))
     means, xs = _period_means(r, lam, m)
     late = means[xs > 1.0 + p_d + 0.05]
@@ -75,7 +75,7 @@ def density_study(runslow: bool) -> dict[float, float]:
     """Peak-to-peak sawtooth amplitude of steady sliding at u = 1 against the density."""
     lams = [100.0, 200.0, 400.0, 800.0] + ([1600.0, 3200.0] if runslow else [])
     u = 1.0
-    p_d = float(steady_death_point(u, EPS))
+    p_d = float(steady_death_point(TrapModel(eps=EPS), u))
     out = {}
     for lam in lams:
         r = _velocity([{"velocity": u, "slip": 1.0 + p_d + 0.3}], lam, every_slip=1 / (40 * lam),
@@ -90,7 +90,7 @@ def test_steady_sawtooth_converges_at_first_order(density_study: dict[float, flo
     Convergence order 1 in the density, with the predicted constant."""
     u = 1.0
     trap = Trap(0.13)
-    p_d = float(steady_death_point(u, EPS))
+    p_d = float(steady_death_point(TrapModel(eps=EPS), u))
     r_d2 = (p_d / trap.y_c) ** 2
     J = r_d2 * trap.f_c / trap.H0
     lams = np.array(sorted(density_study))
@@ -248,7 +248,7 @@ def test_velocity_step_memory_length() -> None:
     memory = {}
     for tol in (0.1, 0.01):
         memory[tol] = float(xs[np.flatnonzero(gap > tol)[-1] + 1] - s0)
-    p_d2 = float(steady_death_point(u2, EPS))
+    p_d2 = float(steady_death_point(TrapModel(eps=EPS), u2))
     print(f"REPORT velocity step {u1}->{u2} (eps={EPS}, lambda={lam:g}): slip to within "
           f"10% / 1% of the change {memory[0.1]:.3f} / {memory[0.01]:.3f}; exact memory "
           f"{memory_exact:.4f}; 1 + p_d(u2) = {1 + p_d2:.4f}; 1 + y_c = {1 + YC:.4f}")
@@ -457,7 +457,7 @@ def test_strong_pinning_steady_sliding_matches_eq34(alpha: float) -> None:
     sampler adds event samples in strong pinning, so fixed-size blocks of samples drift in phase).
     """
     lam, m, u = 500.0, 16, 1.0
-    p_d = float(steady_death_point(u, EPS, alpha))
+    p_d = float(steady_death_point(TrapModel(alpha, EPS), u))
     e = Ensemble(TrapModel(alpha=alpha, eps=EPS), Track(lam), Initial("rest"))
     x0 = math.ceil((2.0 + p_d) * lam) / lam
     for x in np.linspace(0.0, x0, 200)[1:]:
@@ -501,7 +501,7 @@ def test_strong_pinning_velocity_step_memory_length() -> None:
     d = 1 / (m * lam)
     law = TrapModel(alpha=alpha, eps=EPS).law
     p_1 = -1.0 + u2 * float(law.age(death_clock(law, np.array([u2]), 1.0))[0])
-    assert p_1 > 1.0 + 2.0 / lam and p_1 > float(steady_death_point(u2, EPS, alpha))
+    assert p_1 > 1.0 + 2.0 / lam and p_1 > float(steady_death_point(TrapModel(alpha, EPS), u2))
     step = _velocity_at(alpha, [{"velocity": u1, "slip": s0}, {"velocity": u2, "slip": 3.5}],
                         lam, Initial("steady", velocity=u1), d)
     ref = _velocity_at(alpha, [{"velocity": u2, "slip": s0 + 3.5}], lam,
@@ -539,7 +539,7 @@ def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
                                                                          "slip": 3.0}])),
                            Output(every_slip=5e-4))
     creep = h.x[-1] - h.x[0]
-    assert creep == pytest.approx(force_hold_shift(T, EPS, load=f_w), abs=1e-3)
+    assert creep == pytest.approx(force_hold_shift(TrapModel(eps=EPS), T, load=f_w), abs=1e-3)
     assert np.sign(creep) == -np.sign(f_w)
     closed_pos = float(static_friction(TrapModel(eps=EPS), T, load=f_w, hold="position"))
     closed_force = float(static_friction(TrapModel(eps=EPS), T, load=f_w, hold="force"))
@@ -567,8 +567,8 @@ def test_force_hold_sampled_in_slip_follows_the_creep(f_w: float) -> None:
     slip = runs["slip"]
     end_hold = int(np.flatnonzero(slip.t <= T * (1 + 1e-12))[-1])
     assert slip.t[end_hold] == pytest.approx(T, rel=1e-12)
-    assert slip.x[end_hold] - slip.x[0] == pytest.approx(force_hold_shift(T, EPS, load=f_w),
-                                                         abs=1e-3)
+    shift = force_hold_shift(TrapModel(eps=EPS), T, load=f_w)
+    assert slip.x[end_hold] - slip.x[0] == pytest.approx(shift, abs=1e-3)
     thr = slip.info["threshold_mu"]
     assert thr == pytest.approx(runs["time"].info["threshold_mu"], abs=3e-4)
     assert thr == pytest.approx(float(static_friction(TrapModel(eps=EPS), T, load=f_w,

@@ -49,7 +49,8 @@ def test_loaded_state_carries_its_force(f_w: float) -> None:
         errs.append(abs(e.observe().force - f_w))
     assert errs[1] < 2e-3
     assert errs[1] < errs[0] or errs[1] < 1e-6
-    assert float(fresh_force(loaded_edge(f_w))) == pytest.approx(f_w, abs=1e-12)
+    edge = loaded_edge(TrapModel(), f_w)
+    assert float(fresh_force(TrapModel(), edge)) == pytest.approx(f_w, abs=1e-12)
 
 
 def test_kernel_agrees_with_exact_functions_eyring_nabarro() -> None:
@@ -126,7 +127,7 @@ def test_steady_initial_state_matches_eq34(u: float) -> None:
     # eq. 34 only by the slip 1/lam of ageing ignored (checked at the level below)
     assert np.mean(f) == pytest.approx(float(steady_friction(TrapModel(eps=0.04), u)), rel=2e-3)
     snap = e.snapshot()
-    p_d = float(steady_death_point(u, 0.04))
+    p_d = float(steady_death_point(TrapModel(eps=0.04), u))
     assert snap["p"].max() <= p_d + 1e-12
     assert snap["p"].max() > p_d - 1.0 / lam
 

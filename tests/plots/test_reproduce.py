@@ -190,7 +190,7 @@ def test_summary_agrees_with_library(run):
     assert s["dieterich_C_asymptotic"] == dieterich_constant_asymptotic(TrapModel(alpha=ALPHA))
     assert s["dieterich_C_least_squares"] == dieterich_constant_least_squares(
         TrapModel(alpha=ALPHA, eps=0.04))
-    assert s["static_slope_per_eps"] == static_slope_per_eps(ALPHA)
+    assert s["static_slope_per_eps"] == static_slope_per_eps(TrapModel(ALPHA))
     assert s["dynamic_slope_per_eps"] == DYNAMIC_SLOPE_PER_EPS
     u = np.array([0.01, 0.1, 1.0, 10.0, 100.0])
     np.testing.assert_allclose(list(s["dieterich_C_local"].values()),
@@ -198,9 +198,10 @@ def test_summary_agrees_with_library(run):
                                                         u), rtol=1e-12)
     r = s["fig2"]["radius_ratio"]
     assert r == pytest.approx(math.sqrt(1 + 0.04 * math.log(26.0)), rel=1e-14)
-    assert s["fig2"]["threshold_shift_p_c"] == pytest.approx(float(threshold_shift(r)), rel=1e-15)
+    p_c = float(threshold_shift(TrapModel(ALPHA), r))
+    assert s["fig2"]["threshold_shift_p_c"] == pytest.approx(p_c, rel=1e-15)
     assert s["fig2"]["mu_s"] == float(static_friction(TrapModel(alpha=ALPHA, eps=0.04), 25.0))
-    assert s["fig4"]["death_point_p_d"] == float(steady_death_point(0.1, 0.04, ALPHA))
+    assert s["fig4"]["death_point_p_d"] == float(steady_death_point(TrapModel(ALPHA, 0.04), 0.1))
     for d in s["loaded_protocol"]:
         m = static_friction(TrapModel(alpha=ALPHA, eps=0.04), np.array([1.0, 100.0]),
                             load=d["load"])
@@ -303,10 +304,11 @@ def test_a_folder_of_someone_elses_files_is_refused_before_any_work(tmp_path, mo
 def test_population_at_shift_adds_up_to_pull_force():
     trap = Trap(ALPHA)
     r = float(np.sqrt(1 + 0.04 * np.log(26.0)))
-    for d, d_w in [(float(threshold_shift(r)), 0.0), (0.7, 0.0), (0.3, 0.2)]:
+    for d, d_w in [(float(threshold_shift(TrapModel(ALPHA), r)), 0.0), (0.7, 0.0), (0.3, 0.2)]:
         groups = plotting.population_at_shift(d, r, ALPHA, d_w, n=20001)
         area = sum(np.trapezoid(f, p) for p, f in groups.values() if p.size)
-        assert area / trap.H0 == pytest.approx(float(pull_force(d, r, ALPHA, d_w)), rel=1e-4)
+        assert area / trap.H0 == pytest.approx(
+            float(pull_force(TrapModel(ALPHA), d, r, d_w)), rel=1e-4)
 
 
 def test_plotting_draws_into_a_given_axes():

@@ -23,8 +23,8 @@ def test_moments_against_quadrature(alpha):
     for k in (0, 1, 2):
         q, _ = quad(lambda y, k=k: y**k * force_forward(y, alpha), -1, trap.death_point,
                     points=pts, epsabs=1e-13, epsrel=1e-12, limit=200)
-        assert forward_moment(k, alpha) == pytest.approx(q, rel=1e-9, abs=1e-12)
-    assert forward_moment(0, alpha) == pytest.approx(trap.H0, rel=1e-12)
+        assert forward_moment(TrapModel(alpha), k) == pytest.approx(q, rel=1e-9, abs=1e-12)
+    assert forward_moment(TrapModel(alpha), 0) == pytest.approx(trap.H0, rel=1e-12)
 
 
 @pytest.mark.parametrize("alpha", [0.05, 0.13])
@@ -37,8 +37,8 @@ def test_asymptotic_constant_from_exact_curves(alpha):
     u, eps = 1e7, 1e-3
     dyn = (steady_friction_first_order(TrapModel(alpha=alpha, eps=eps),
                                        u) - 1) * 2 * u * Trap(alpha).H0 / eps
-    assert dyn == pytest.approx(4 * forward_moment(1, alpha) + 3 * forward_moment(0, alpha),
-                                rel=1e-5)
+    m = TrapModel(alpha=alpha)
+    assert dyn == pytest.approx(4 * forward_moment(m, 1) + 3 * forward_moment(m, 0), rel=1e-5)
 
 
 def test_paper_parameters_no_single_constant():

@@ -129,7 +129,8 @@ def test_log_slope_is_the_derivative_of_steady_friction(u: float) -> None:
                      - steady_friction(TrapModel(eps=EPS, direct=A), u * math.exp(-hh))) / (2 * hh)
 
     ref = (4 * d(h / 2) - d(h)) / 3
-    assert float(steady_log_slope(u, EPS, direct=A)) == pytest.approx(ref, rel=1e-5, abs=1e-8)
+    assert float(steady_log_slope(TrapModel(eps=EPS, direct=A), u)) == pytest.approx(
+        ref, rel=1e-5, abs=1e-8)
 
 
 def test_low_velocity_slope_is_A_mu_minus_three_halves_eps() -> None:
@@ -139,13 +140,13 @@ def test_low_velocity_slope_is_A_mu_minus_three_halves_eps() -> None:
     eps, u = 2e-3, 1e-3
     mu_d = float(steady_friction(TrapModel(eps=eps), u))
     for A in (0.0, 1e-3, 3e-3, 1e-2):
-        exact = float(steady_log_slope(u, eps, direct=A))
+        exact = float(steady_log_slope(TrapModel(eps=eps, direct=A), u))
         g = 1.0 + A * math.log(u)
         assert exact == pytest.approx(A * mu_d - 1.5 * eps * g, abs=0.05 * eps), A
-        assert float(steady_log_slope_low_velocity(u, eps, direct=A)) == pytest.approx(
-            exact, abs=0.05 * eps)
-    assert float(steady_log_slope(u, eps, direct=1e-3)) < 0 < float(
-        steady_log_slope(u, eps, direct=1e-2))
+        low = float(steady_log_slope_low_velocity(TrapModel(eps=eps, direct=A), u))
+        assert low == pytest.approx(exact, abs=0.05 * eps)
+    assert float(steady_log_slope(TrapModel(eps=eps, direct=1e-3), u)) < 0 < float(
+        steady_log_slope(TrapModel(eps=eps, direct=1e-2), u))
 
 
 def test_static_threshold_depends_on_the_pull_velocity() -> None:
@@ -194,7 +195,7 @@ def test_velocity_step_jumps_by_a_ln_ratio_then_relaxes() -> None:
                    Initial("steady", velocity=u2, track=Track(lam)), Output(every_slip=d))
     diff = np.abs(step.mu[1:] - ref.mu[1:])  # same slider positions (same every_slip)
     memory = float(step.x[1:][np.flatnonzero(diff > 1e-9)[-1] + 1] - s0)
-    p_d2 = float(steady_death_point(u2, EPS))
+    p_d2 = float(steady_death_point(TrapModel(eps=EPS), u2))
     print(f"REPORT direct step 1->10 A={A}: jump {step.mu[i] - step.mu[i - 1]:.5f}, "
           f"A mu1 ln 10 = {predicted:.5f}, granular {granular:.1e}; memory {memory:.4f}, "
           f"1 + p_d = {1 + p_d2:.4f}, 1 + y_c = {1 + YC:.4f}")

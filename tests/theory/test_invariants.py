@@ -111,7 +111,7 @@ def test_steady_log_slope_is_the_slope_of_the_steady_curve(u: float) -> None:
     for direct in (0.0, A):
         want = _dlog(lambda x,
                      d=direct: steady_friction(TrapModel(eps=EPS, direct=d, v_ref=V_REF), x), u)
-        got = float(steady_log_slope(u, EPS, direct=direct, v_ref=V_REF))
+        got = float(steady_log_slope(TrapModel(eps=EPS, direct=direct, v_ref=V_REF), u))
         assert got == pytest.approx(want, abs=2e-7)
 
 
@@ -237,7 +237,8 @@ def test_low_velocity_form_is_the_limit_of_the_first_order(alpha: float) -> None
     assert d[0] > 5 * d[1], d
     u = 1e-5
     fd = _dlog(lambda x: steady_friction(TrapModel(alpha=alpha, eps=e), x), u)
-    assert float(steady_log_slope_low_velocity(u, e, alpha)) == pytest.approx(fd, rel=0.02)
+    assert float(steady_log_slope_low_velocity(TrapModel(alpha, e), u)) == pytest.approx(
+        fd, rel=0.02)
 
 
 # ------------------------------------------------------------------ creep, athermal stability
@@ -290,16 +291,16 @@ def test_static_threshold_is_the_maximum_of_the_pull_force(alpha: float) -> None
     from dryfriction.theory.trap import Trap
 
     yc = Trap(alpha).y_c
-    assert float(fresh_force(0.0, alpha)) == pytest.approx(0.0, abs=1e-14)
-    assert float(fresh_force(yc, alpha)) == pytest.approx(1.0, rel=1e-12)
-    d_w = loaded_edge(0.41, alpha)
-    assert float(fresh_force(d_w, alpha)) == pytest.approx(0.41, rel=1e-12)
+    assert float(fresh_force(TrapModel(alpha), 0.0)) == pytest.approx(0.0, abs=1e-14)
+    assert float(fresh_force(TrapModel(alpha), yc)) == pytest.approx(1.0, rel=1e-12)
+    d_w = loaded_edge(TrapModel(alpha), 0.41)
+    assert float(fresh_force(TrapModel(alpha), d_w)) == pytest.approx(0.41, rel=1e-12)
     grid = np.linspace(0.0, 2.0 * (1.0 + yc) * 1.3, 40001)
     for r in (1.013, 1.07):
         for dw in (0.0, d_w):
             # the cusps where a force can peak (edge at its spinodal): eq. 26's d*, 1 + y_c
             d = np.sort(np.append(grid, [r * yc - dw, 1.0 + yc]))
-            brute = float(np.max(pull_force(d, r, alpha, dw)))
+            brute = float(np.max(pull_force(TrapModel(alpha), d, r, dw)))
             mu_s = float(static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=dw))
             assert brute <= mu_s + 1e-12
             assert mu_s == pytest.approx(brute, abs=1e-6)
@@ -319,4 +320,4 @@ def test_forward_moments_against_quadrature(alpha: float) -> None:
     for k in (0, 1, 3):
         want = quad(lambda y, k=k: y**k * float(force_forward(y, alpha)), -1.0, tr.death_point,
                     points=pts, epsabs=1e-13, limit=200)[0]
-        assert forward_moment(k, alpha) == pytest.approx(want, rel=1e-9, abs=1e-12)
+        assert forward_moment(TrapModel(alpha), k) == pytest.approx(want, rel=1e-9, abs=1e-12)

@@ -43,6 +43,36 @@ CASES = [
                                 8e-6), (M, T * 0.5, SCALES), {}, {"load": 0.3,
                                                                    "pull_velocity": 8e-6}),
     (dieterich.dieterich_constant_asymptotic, (0.1,), (M.athermal,), {}, {}),
+    (steady.steady_log_slope, (U, 0.04, 0.1, "eyring-nabarro", 0.03, 0.5), (M, U), {}, {}),
+    (steady.steady_log_slope, (U, 0.04), (TrapModel(eps=0.04), U), {"creep": "log"}, {}),
+    (steady.steady_log_slope_low_velocity, (U, 0.04, 0.1, 0.03, 0.5), (LOG, U), {}, {}),
+    (steady.steady_death_point, (U, 0.04, 0.1, "eyring-nabarro"), (M, U), {}, {}),
+    (steady.steady_death_point, (U, 0.04), (LOG.replace(alpha=0.4), U), {"alpha": 0.4}, {}),
+    (steady.steady_profile, (np.linspace(-1.2, 1.5, 7), 0.8, 0.04, 0.1, "eyring-nabarro"),
+     (M, np.linspace(-1.2, 1.5, 7), 0.8), {}, {}),
+    (steady.min_velocity, (0.04, 0.1, "eyring-nabarro"), (M,), {}, {}),
+    (steady.min_velocity, (0.3,), (TrapModel(eps=0.3, creep="eyring-nabarro"),), {}, {}),
+    (steady.low_velocity_constant, (0.1,), (M,), {}, {}),
+    (static.force_hold_shift, (30.0, 0.04, 0.1, "eyring-nabarro", 0.3), (M, 30.0), {},
+     {"load": 0.3}),
+    (static.force_hold_shift, (30.0, 0.04), (LOG.replace(alpha=0.4), 30.0),
+     {"alpha": 0.4, "load": -0.2}, {"load": -0.2}),
+    (static.fresh_force, (np.array([0.0, 0.05, 0.2]), 0.1), (M, np.array([0.0, 0.05, 0.2])),
+     {}, {}),
+    (static.loaded_edge, (0.3, 0.1), (M, 0.3), {}, {}),
+    (static.loaded_edge, (-0.3,), (LOG.replace(alpha=0.13), -0.3), {}, {}),
+    (static.pull_force, (np.array([0.05, 0.3, 1.4]), 1.2, 0.1, 0.04),
+     (M, np.array([0.05, 0.3, 1.4]), 1.2, 0.04), {}, {}),
+    (static.pull_force, (0.3, np.array([1.0, 1.3])), (LOG.replace(alpha=0.4), 0.3,
+                                                     np.array([1.0, 1.3])), {"alpha": 0.4}, {}),
+    (static.threshold_shift, (np.array([1.0, 1.3]), 0.1, 0.04), (M, np.array([1.0, 1.3]), 0.04),
+     {}, {}),
+    (static.threshold_shift, (1.3,), (LOG.replace(alpha=0.13), 1.3), {"d_w": 0.1},
+     {"d_w": 0.1}),
+    (static.static_slope_per_eps, (0.1,), (M,), {}, {}),
+    (static.static_slope_per_eps, (), (TrapModel(eps=0.3),), {"alpha": 0.13}, {}),
+    (dieterich.forward_moment, (1, 0.1), (M, 1), {}, {}),
+    (dieterich.forward_moment, (0, 0.6), (LOG.replace(alpha=0.6), 0), {}, {}),
     (dieterich.dieterich_constant_least_squares, (0.04, 0.1, 0.05, 20.0, 9, "eyring-nabarro"),
      (M.athermal, 0.05, 20.0, 9), {}, {}),
     (dieterich.dieterich_constant_local, (U, 0.04, 0.1), (LOG.athermal, U), {}, {}),
@@ -72,6 +102,10 @@ def test_the_new_forms_use_the_whole_model():
             (static.static_friction, T, {"pull_velocity": 2.0}, every),
             (steady.steady_friction_low_velocity, U, {}, every[:2] + every[3:]),
             (steady.steady_friction_first_order, U, {}, every[:2] + every[3:]),
+            (steady.steady_log_slope, U, {}, every),
+            (steady.steady_log_slope_low_velocity, U, {}, every[:2] + every[3:]),
+            (steady.steady_death_point, U, {}, every[:3]),
+            (steady.steady_profile, np.linspace(-0.9, 0.5, 5), {"u": 0.8}, every[:3]),
             (static.static_friction_first_order, T, {"pull_velocity": 2.0},
              every[:2] + every[3:]),
             (units.steady_friction_si, U * 4e-6, {"scales": SCALES}, every),
@@ -82,6 +116,30 @@ def test_the_new_forms_use_the_whole_model():
             other = {"alpha": 0.3, "eps": 0.05, "creep": "log", "direct": 0.05, "v_ref": 3.0}
             assert not np.allclose(fn(M.replace(**{field: other[field]}), x, **kw), base,
                                    rtol=1e-9), (fn.__name__, field)
+
+
+def test_the_new_scalar_forms_use_their_fields():
+    # mistake caught: min_velocity, force_hold_shift, low_velocity_constant, fresh_force,
+    # loaded_edge, pull_force, threshold_shift, static_slope_per_eps or forward_moment reading
+    # a field of the model wrongly
+    # (eps and alpha swapped, creep or alpha dropped); each field below changes the result
+    base = steady.min_velocity(M)
+    assert base > 0
+    for field, value in (("alpha", 0.3), ("eps", 0.05), ("creep", "log")):
+        assert steady.min_velocity(M.replace(**{field: value})) != base, field
+    shift = static.force_hold_shift(M, 30.0, load=0.3)
+    assert shift < 0
+    for field, value in (("alpha", 0.3), ("eps", 0.05), ("creep", "log")):
+        assert static.force_hold_shift(M.replace(**{field: value}), 30.0, load=0.3) != shift
+    for fn, x in ((static.fresh_force, 0.05), (static.loaded_edge, 0.3),
+                  (lambda m, d: static.pull_force(m, d, 1.2), 0.3),
+                  (lambda m, r: static.threshold_shift(m, r), 1.2),
+                  (lambda m, k: static.static_slope_per_eps(m) * k, 1),
+                  (dieterich.forward_moment, 1)):
+        assert fn(M.replace(alpha=0.3), x) != fn(M, x)
+    k1 = steady.low_velocity_constant(M)
+    assert steady.low_velocity_constant(M.replace(alpha=0.3)) != k1
+    assert steady.low_velocity_constant(M.replace(eps=0.3, creep="log", direct=0.0)) == k1
 
 
 def test_sweeps_over_eps_equal_one_model_per_eps():
@@ -144,7 +202,10 @@ MODEL_FIRST = {"steady_friction", "steady_friction_first_order", "steady_frictio
                "static_friction", "static_friction_first_order", "static_friction_at_radius",
                "static_friction_si", "steady_friction_si", "dieterich_constant_asymptotic",
                "dieterich_constant_least_squares", "dieterich_constant_local",
-               "trap_model_as_rsf"}
+               "trap_model_as_rsf", "steady_log_slope", "steady_log_slope_low_velocity",
+               "steady_death_point", "steady_profile", "min_velocity",
+               "low_velocity_constant", "force_hold_shift", "fresh_force", "loaded_edge",
+               "pull_force", "threshold_shift", "static_slope_per_eps", "forward_moment"}
 
 
 def _is_model(node: ast.expr, names: set[str]) -> bool:

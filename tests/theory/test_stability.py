@@ -55,7 +55,7 @@ def _shifted_force(delta, u, eps, alpha=0.13):
     """
     trap = Trap(alpha)
     law = LogCreep(eps)
-    pd = float(steady_death_point(u, eps, alpha))
+    pd = float(steady_death_point(TrapModel(alpha, eps), u))
 
     def g(y):
         r = float(law.radius((y + 1) / u))

@@ -49,15 +49,16 @@ def test_pull_force_against_trap_by_trap_sum():
         yc = Trap(alpha).y_c
         for d in np.linspace(0.0, 1.3 * (1 + yc) * r, 7)[1:]:
             ref = ref_pull_force(d, r, alpha, d_w)
-            assert pull_force(d, r, alpha, d_w) == pytest.approx(ref, rel=1e-9, abs=1e-12)
+            got = pull_force(TrapModel(alpha), d, r, d_w)
+            assert got == pytest.approx(ref, rel=1e-9, abs=1e-12)
 
 
 @given(st.floats(0.005, 0.995), st.floats(1.0, 2.5), st.floats(0.0, 0.99))
 @settings(max_examples=150, deadline=None)
 def test_threshold_is_max_of_pull(alpha, r, load):
-    d_w = loaded_edge(load, alpha)
+    d_w = loaded_edge(TrapModel(alpha), load)
     d = np.linspace(0.0, 1.0 + r * Trap(alpha).death_point + 1.0, 40001)
-    scan = pull_force(d, r, alpha, d_w).max()
+    scan = pull_force(TrapModel(alpha), d, r, d_w).max()
     mu_s = static_friction_at_radius(TrapModel(alpha=alpha), r, d_w=d_w)
     # the dense scan can only undershoot the true maximum, by at most slope * step; both carry
     # rounding of relative size 1e-16 / H0 (H0 ~ (1 - alpha)^3 as alpha -> 1)
@@ -71,7 +72,7 @@ def test_paper_regime_threshold_is_eq27_point():
         for T in (0.01, 1.0, 100.0):
             r = math.sqrt(1 + eps * math.log1p(T))
             assert static_friction(TrapModel(eps=eps), T) == pytest.approx(
-                float(pull_force(threshold_shift(r), r)), rel=1e-15)
+                float(pull_force(TrapModel(), threshold_shift(TrapModel(), r), r)), rel=1e-15)
 
 
 def test_limits():
@@ -80,8 +81,8 @@ def test_limits():
     assert static_friction(TrapModel(alpha=0.5, eps=0.05), 0.0) == pytest.approx(1.0, rel=1e-13)
     # fresh contact: force 0 at rest (eq. 25), 1 at the elastic threshold d = y_c (eq. 12)
     for alpha in (0.13, 0.5):
-        assert fresh_force(0.0, alpha) == pytest.approx(0.0, abs=1e-14)
-        assert fresh_force(Trap(alpha).y_c, alpha) == pytest.approx(1.0, rel=1e-13)
+        assert fresh_force(TrapModel(alpha), 0.0) == pytest.approx(0.0, abs=1e-14)
+        assert fresh_force(TrapModel(alpha), Trap(alpha).y_c) == pytest.approx(1.0, rel=1e-13)
 
 
 @pytest.mark.parametrize("alpha", [0.05, 0.13, 0.3])
@@ -104,14 +105,14 @@ def test_slope_per_eps_paper_value():
     y1 = yc - 1
     f1 = 6 * a * (y1 + (0.87 + math.sqrt(0.87**2 - 4 * a * y1)) / 2)
     trap = Trap(a)
-    assert static_slope_per_eps(a) == pytest.approx(
+    assert static_slope_per_eps(TrapModel(a)) == pytest.approx(
         (3 * trap.H1 + y1 * f1) / (2 * trap.H0_paper), rel=1e-12)
     # mu_s is not log-linear in T at short times (paper §4): slope grows with T
     T = np.array([0.01, 0.1, 1, 10, 100])
     mu = static_friction(TrapModel(eps=0.03), T)
     slopes = np.diff(mu) / np.diff(np.log(T))
     assert np.all(np.diff(slopes) > 0)
-    assert slopes[-1] == pytest.approx(0.03 * static_slope_per_eps(a), rel=0.05)
+    assert slopes[-1] == pytest.approx(0.03 * static_slope_per_eps(TrapModel(a)), rel=0.05)
 
 
 @given(st.floats(0.01, ALPHA0), st.floats(0.001, 0.2), st.floats(1e-3, 1e3), st.floats(1.01, 10))
@@ -134,7 +135,8 @@ def test_loaded_protocol_larger_and_steeper():
         assert np.all(loaded > rest)
         assert (np.diff(loaded) / np.diff(np.log(T)))[0] > slope_rest[0]
         # the edge really carries the load at T = 0
-        assert fresh_force(loaded_edge(load), 0.13) == pytest.approx(load, rel=1e-12)
+        edge = loaded_edge(TrapModel(), load)
+        assert fresh_force(TrapModel(), edge) == pytest.approx(load, rel=1e-12)
         assert static_friction(TrapModel(eps=0.03), 0.0, load=load) == pytest.approx(1.0, rel=1e-13)
 
 
@@ -197,7 +199,8 @@ def test_static_out_of_range_is_a_named_value_error(T, eps, word):
 
 def test_reversed_load_and_the_two_holds():
     # a reversed load is the mirror population: d_w(-f) = -d_w(f); at zero load the holds agree
-    assert loaded_edge(-0.4) == pytest.approx(-loaded_edge(0.4), rel=1e-15)
+    edge_back = loaded_edge(TrapModel(), -0.4)
+    assert edge_back == pytest.approx(-loaded_edge(TrapModel(), 0.4), rel=1e-15)
     T = np.array([1.0, 100.0])
     rest = static_friction(TrapModel(eps=0.04), T)
     assert np.array_equal(static_friction(TrapModel(eps=0.04), T, hold="force"), rest)
@@ -205,8 +208,9 @@ def test_reversed_load_and_the_two_holds():
 
     # the force hold moves the slider against the load as the contacts age (it stays put at
     # T = 0) and by the same amount for +-f (mirror symmetry of the held population)
-    assert force_hold_shift(0.0, 0.04, load=0.5) == 0.0
-    back, fwd = force_hold_shift(100.0, 0.04, load=0.5), force_hold_shift(100.0, 0.04, load=-0.5)
+    assert force_hold_shift(TrapModel(eps=0.04), 0.0, load=0.5) == 0.0
+    back = force_hold_shift(TrapModel(eps=0.04), 100.0, load=0.5)
+    fwd = force_hold_shift(TrapModel(eps=0.04), 100.0, load=-0.5)
     assert back < -0.05 and fwd == pytest.approx(-back, rel=1e-9)
     # Dillavou & Rubinstein's sign and trend: a forward load ages faster than rest, a reversed
     # one slower (both holds)

@@ -83,7 +83,7 @@ def test_low_velocity_expansion_eq35():
     lo = steady_friction_low_velocity(TrapModel(eps=1e-3), u)
     fo = steady_friction_first_order(TrapModel(eps=1e-3), u)
     np.testing.assert_allclose(lo, fo, rtol=0, atol=1e-3 * 10 * u.max())
-    assert np.isfinite(low_velocity_constant(0.13))
+    assert np.isfinite(low_velocity_constant(TrapModel()))
 
 
 @given(st.floats(0.005, ALPHA0), st.floats(0.001, 0.2), st.floats(1e-4, 1e3), st.floats(1.05, 10))
@@ -105,15 +105,15 @@ def test_strong_pinning_is_not_monotone():
 
 def test_death_point_eq32_and_profile():
     u, eps = 0.1, 0.04
-    pd = steady_death_point(u, eps)
+    pd = steady_death_point(TrapModel(eps=eps), u)
     r = np.sqrt(1 + eps * np.log1p((pd + 1) / u))
     assert pd / r == pytest.approx(Trap(0.13).y_c, rel=1e-13)  # eq. 32
     y = np.linspace(-1.5, pd + 0.5, 4001)
-    f = steady_profile(y, u, eps)
+    f = steady_profile(TrapModel(eps=eps), y, u)
     assert np.all(f[y < -1] == 0) and np.all(f[y > pd] == 0)
     # the profile integrates to mu_d H0 (eq. 33 density) — trapezoid on a fine grid
     yy = np.linspace(-1, pd, 400001)
-    integral = np.trapezoid(steady_profile(yy, u, eps), yy)
+    integral = np.trapezoid(steady_profile(TrapModel(eps=eps), yy, u), yy)
     assert integral / Trap(0.13).H0 == pytest.approx(steady_friction(TrapModel(eps=eps), u),
                                                      rel=1e-5)
 
@@ -199,7 +199,7 @@ def _en_steady_quadrature(u: float, eps: float, alpha: float) -> float:
 def test_eyring_nabarro_near_its_edge_matches_an_independent_quadrature(eps):
     # catches a death-point search that lands past the law's range (NaN, 0, -1e17 before) and a
     # wrong u_min (an edge refused too early or accepted too late)
-    u_min = min_velocity(eps, ALPHA0)
+    u_min = min_velocity(TrapModel(ALPHA0, eps, "eyring-nabarro"))
     for u in (1.001 * u_min, 3.0 * u_min):
         got = float(steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep="eyring-nabarro"), u))
         assert got == pytest.approx(_en_steady_quadrature(u, eps, ALPHA0), rel=1e-7)
@@ -213,9 +213,9 @@ def test_min_velocity_is_where_traps_die_at_the_end_of_the_range():
     from dryfriction.creep import max_age
 
     eps = 0.1
-    u = min_velocity(eps, ALPHA0)
+    u = min_velocity(TrapModel(ALPHA0, eps, "eyring-nabarro"))
     assert -1.0 + u * max_age(eps) == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-12)
-    yd = float(steady_death_point(u, eps, ALPHA0, "eyring-nabarro"))
+    yd = float(steady_death_point(TrapModel(ALPHA0, eps, "eyring-nabarro"), u))
     assert yd == pytest.approx(Trap(ALPHA0).y_c / np.sqrt(eps), rel=1e-8)
 
 
@@ -224,7 +224,7 @@ def test_one_u_alone_equals_the_same_u_in_an_array(creep):
     # catches shared iteration (converged points moved while others iterate) or a batch-size
     # dependent sum
     eps = 0.1
-    lo = 1.001 * min_velocity(eps, ALPHA0, creep) if creep != "log" else 1e-8
+    lo = 1.001 * min_velocity(TrapModel(ALPHA0, eps, creep)) if creep != "log" else 1e-8
     u = np.geomspace(lo, 1e3, 29)
     together = steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep=creep), u)
     alone = np.array([float(steady_friction(TrapModel(alpha=ALPHA0, eps=eps, creep=creep),
@@ -282,7 +282,7 @@ def test_death_point_converges_where_newton_hops_between_two_floats():
 
     u = np.array(_HOPPING)
     law = creep_law("eyring-nabarro", 0.04)
-    pd = steady_death_point(u, 0.04, creep="eyring-nabarro")
+    pd = steady_death_point(TrapModel(eps=0.04, creep="eyring-nabarro"), u)
     r = np.sqrt(law.radius_sq(law.clock((pd + 1.0) / u)))
     np.testing.assert_allclose(pd / r, Trap(0.13).y_c, rtol=1e-13)  # eq. 32
     mu = steady_friction(TrapModel(eps=0.04, creep="eyring-nabarro"), u)

@@ -136,11 +136,12 @@ def test_continuity_across_alpha0():
 
 
 def test_contact_stiffness_is_slope_of_fresh_force():
+    from dryfriction.theory.model import TrapModel
     from dryfriction.theory.static import fresh_force
 
     for alpha in (0.13, 0.4):
         h = 1e-7
-        slope = float(fresh_force(h, alpha)) / h
+        slope = float(fresh_force(TrapModel(alpha), h)) / h
         assert slope == pytest.approx(Trap(alpha).contact_stiffness, rel=1e-5)
 
 

@@ -338,7 +338,7 @@ class Ensemble:
         reach += 1.0
         k0, k1 = self.track.index_span(self.x - reach - self._margin, self.x + reach + self._margin)
         self._set_buffer(k0, k1)
-        d = 0.0 if ini.kind != "loaded" else loaded_edge(float(ini.force or 0.0), self._alpha)
+        d = 0.0 if ini.kind != "loaded" else loaded_edge(self.model, float(ini.force or 0.0))
         u = float(ini.velocity or 1.0)
         lo = hi = -1
         carry = -np.inf  # running maximum of w over the higher indices (steady only)

@@ -255,7 +255,7 @@ def population_at_shift(
     aged (+) traps, born on ``[-1, d_w]``, now on ``[d - 1, d_w + d]`` with ``r^2 f_+(p/r)``
     (eq. 23); aged (-) traps, born on ``[d_w, 1]``, now on ``[d_w + d, 1 + d]``, alive while
     ``p/r <= 1``, with ``r^2 f_-(p/r)``. This is the same decomposition as ``pull_force``
-    (a test checks that the areas add up to ``pull_force(d, r) H0``).
+    (a test checks that the areas add up to ``pull_force(model, d, r) H0``).
     """
     trap = Trap(alpha)
     yc = trap.y_c
@@ -282,7 +282,7 @@ def fig2b_population_at_threshold(
     trap = Trap(alpha)
     fig, ax = _axes(ax)
     r = float(radius(T, eps, creep))
-    d = float(threshold_shift(r, alpha))
+    d = float(threshold_shift(TrapModel(alpha), r))
     groups = population_at_shift(d, r, alpha)
     yp = np.linspace(-1.0, trap.y_c, 500)
     ax.plot(yp, force_plus(yp, alpha), color="0.45", ls="--", lw=1.2,
@@ -296,7 +296,7 @@ def fig2b_population_at_threshold(
         color, label = styles[key]
         ax.plot(p, f, color=color, lw=2.2, label=label)
         ax.fill_between(p, 0.0, f, color=color, alpha=0.15)
-    mu = float(pull_force(d, r, alpha))
+    mu = float(pull_force(TrapModel(alpha), d, r))
     ax.axvline(-1.0 + d, color="0.5", lw=0.8, ls=":")
     ax.axvline(d, color="0.5", lw=0.8, ls=":")
     # at the foot of the lines, below the zero line where nothing is drawn, each on the side
@@ -405,9 +405,10 @@ def fig4_steady_pinning_curve(
     ``p_d`` (eq. 32); dashed, the elastic curve for comparison."""
     trap = Trap(alpha)
     fig, ax = _axes(ax)
-    p_d = float(steady_death_point(u, eps, alpha, creep))
+    model = TrapModel(alpha, eps, creep)
+    p_d = float(steady_death_point(model, u))
     y = np.linspace(-1.0, p_d, 1200)
-    f = steady_profile(y, u, eps, alpha, creep)
+    f = steady_profile(model, y, u)
     ye = np.linspace(-1.0, trap.y_c, 600)
     ax.plot(ye, force_plus(ye, alpha), color="0.45", ls="--", lw=1.2,
             label=r"elastic curve ($\varepsilon$ = 0)")

@@ -137,7 +137,7 @@ def compute_summary() -> dict[str, Any]:
     trap = Trap(ALPHA)
     s: dict[str, Any] = dict(trap.summary())
     s["H0_paper_formula"] = trap.H0_paper
-    s["static_slope_per_eps"] = static_slope_per_eps(ALPHA)
+    s["static_slope_per_eps"] = static_slope_per_eps(TrapModel(ALPHA))
     s["dynamic_slope_per_eps"] = DYNAMIC_SLOPE_PER_EPS
 
     fig6 = TrapModel(ALPHA, EPS_FIG6)
@@ -166,20 +166,21 @@ def compute_summary() -> dict[str, Any]:
     r = float(radius(T_FIG2, EPS_FIG2))
     s["fig2"] = {
         "T": T_FIG2, "eps": EPS_FIG2, "radius_ratio": r,
-        "threshold_shift_p_c": float(threshold_shift(r, ALPHA)),
+        "threshold_shift_p_c": float(threshold_shift(TrapModel(ALPHA), r)),
         "mu_s": float(static_friction(TrapModel(ALPHA, EPS_FIG2), T_FIG2)),
     }
     s["fig4"] = {
         "u": U_FIG4, "eps": EPS_FIG4,
-        "death_point_p_d": float(steady_death_point(U_FIG4, EPS_FIG4, ALPHA)),
+        "death_point_p_d": float(steady_death_point(TrapModel(ALPHA, EPS_FIG4), U_FIG4)),
         "mu_d": float(steady_friction(TrapModel(ALPHA, EPS_FIG4), U_FIG4)),
     }
     eps_b = np.asarray(EPS, float)[:, None]
     # eq. 27 reading: the aged (+) edge at its spinodal beats the other candidate maximum of
     # the pull (fresh edge at its own spinodal, shift 1 + y_c) over the whole figure range
     r_grid = radius(GRID, eps_b)
-    at_aged = pull_force(threshold_shift(r_grid, ALPHA), r_grid, ALPHA)
-    at_fresh = pull_force(np.full_like(r_grid, 1.0 + trap.y_c), r_grid, ALPHA)
+    m = TrapModel(ALPHA)
+    at_aged = pull_force(m, threshold_shift(m, r_grid), r_grid)
+    at_fresh = pull_force(m, np.full_like(r_grid, 1.0 + trap.y_c), r_grid)
     s["eq27_reading_is_the_maximum_over_figure_range"] = bool(np.all(at_aged > at_fresh))
     paper_model = TrapModel(ALPHA)
     s["mu_s_at_T_0.01"] = static_friction_over_eps(paper_model, 0.01, eps_b)[:, 0]
@@ -206,7 +207,7 @@ def compute_summary() -> dict[str, Any]:
     for f_w in LOADS:
         m1, m100 = static_friction(TrapModel(ALPHA, 0.04), np.array([1.0, 100.0]), load=f_w)
         loaded.append({
-            "load": f_w, "edge_d_w": loaded_edge(f_w, ALPHA), "eps": 0.04,
+            "load": f_w, "edge_d_w": loaded_edge(TrapModel(ALPHA), f_w), "eps": 0.04,
             "mu_s_T_1": float(m1), "mu_s_T_100": float(m100),
             "secant_slope_per_eps_T_1_to_100": float(
                 (m100 - m1) / (0.04 * (math.log(101.0) - math.log(2.0)))),

@@ -43,8 +43,9 @@ __all__ = [
 _ZX, _ZW = np.polynomial.legendre.leggauss(16)
 
 
-def forward_moment(k: int, alpha: float = 0.13) -> float:
-    """``int_{-1}^{death} y^k f(y) dy`` for the forward force profile, exactly (ours).
+def _forward_moment_loose(k: int, alpha: float = 0.13) -> float:
+    """:func:`forward_moment` at a loose ``alpha`` (its old form).
+    ``int_{-1}^{death} y^k f(y) dy`` for the forward force profile, exactly (ours).
 
     On the (+) branch ``y(z) = -(z^2 + (1 - alpha) z)/alpha`` and ``f = -6 z (1 + z)``, so the
     integrand is a polynomial in ``z`` of degree ``2k + 3``; 16-point Gauss-Legendre in ``z`` is
@@ -68,12 +69,25 @@ def forward_moment(k: int, alpha: float = 0.13) -> float:
     return total
 
 
+@takes_model(_forward_moment_loose, "forward_moment(k, alpha)", "forward_moment(model, k)")
+def forward_moment(model: TrapModel, k: int) -> float:
+    """``int_{-1}^{death} y^k f(y) dy`` for the forward force profile of ``model``'s trap,
+    exactly (ours; units ``Phi00/a0`` times ``a0^k``), ``0 <= k <= 14``.
+
+    On the (+) branch ``y(z) = -(z^2 + (1 - alpha) z)/alpha`` and ``f = -6 z (1 + z)``, so the
+    integrand is a polynomial in ``z`` of degree ``2k + 3``; 16-point Gauss-Legendre in ``z`` is
+    exact for ``k <= 14``. The (-) part (strong pinning) follows from ``f_-(y) = -f_+(-y)``.
+    Only ``model.alpha`` enters.
+    """
+    return _forward_moment_loose(k, model.alpha)
+
+
 def _asymptotic_loose(alpha: float = 0.13) -> float:
     """:func:`dieterich_constant_asymptotic` with ``alpha`` loose (its old form)."""
     alpha = check_alpha(alpha)
     trap = Trap(alpha)
-    dyn = 4.0 * forward_moment(1, alpha) + 3.0 * forward_moment(0, alpha)
-    stat = 2.0 * trap.H0 * static_slope_per_eps(alpha)
+    dyn = 4.0 * _forward_moment_loose(1, alpha) + 3.0 * _forward_moment_loose(0, alpha)
+    stat = 2.0 * trap.H0 * static_slope_per_eps(TrapModel(alpha))
     return dyn / stat
 
 

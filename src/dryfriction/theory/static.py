@@ -79,8 +79,9 @@ __all__ = [
 ]
 
 
-def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
-    """Force (units ``F_el``) of a fresh rest population shifted by ``d`` (units ``a0``).
+def _fresh_force_loose(d: ArrayLike, alpha: float = 0.13) -> Array:
+    """:func:`fresh_force` at a loose ``alpha`` (its old form).
+    Force (units ``F_el``) of a fresh rest population shifted by ``d`` (units ``a0``).
 
     ``[Phi(d) + int_d^1 f_-] / H0`` for ``0 <= d <= y_c``: 0 at ``d = 0`` (forces cancel, eq. 25)
     and 1 at ``d = y_c`` (the elastic threshold equals ``F_el``). Its slope at 0 is the contact
@@ -93,8 +94,22 @@ def fresh_force(d: ArrayLike, alpha: float = 0.13) -> Array:
     return (work_forward(d, alpha) + work_minus(dm, 1.0, alpha)) / trap.H0
 
 
-def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
-    """Population edge ``d_w`` (units ``a0``) at which a fresh contact carries force ``f_w``.
+@takes_model(_fresh_force_loose, "fresh_force(d, alpha)", "fresh_force(model, d)")
+def fresh_force(model: TrapModel, d: ArrayLike) -> Array:
+    """Force (units ``F_el``) of a fresh rest population of ``model`` shifted by ``d`` (units
+    ``a0``, ``0 <= d <= y_c``).
+
+    ``[Phi(d) + int_d^1 f_-] / H0``: 0 at ``d = 0`` (forces cancel, eq. 25) and 1 at
+    ``d = y_c`` (the elastic threshold equals ``F_el``). Its slope at 0 is the contact
+    stiffness ``Delta f / H0`` (eqs. 13-14). Only ``model.alpha`` enters (a fresh population
+    has not aged; the direct effect multiplies forces in sliding only).
+    """
+    return _fresh_force_loose(d, model.alpha)
+
+
+def _loaded_edge_loose(f_w: float, alpha: float = 0.13) -> float:
+    """:func:`loaded_edge` at a loose ``alpha`` (its old form).
+    Population edge ``d_w`` (units ``a0``) at which a fresh contact carries force ``f_w``.
 
     Parameters
     ----------
@@ -109,16 +124,40 @@ def loaded_edge(f_w: float, alpha: float = 0.13) -> float:
     if f_w == 0.0:
         return 0.0
     if f_w < 0.0:  # mirror symmetry p -> -p of the rest population
-        return -loaded_edge(-f_w, alpha)
+        return -_loaded_edge_loose(-f_w, alpha)
     yc = Trap(alpha).y_c
     from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
 
-    return float(brentq(lambda d: float(fresh_force(d, alpha)) - f_w, 0.0, yc, xtol=1e-15,
-                        rtol=4 * np.finfo(float).eps, maxiter=200))
+    return float(brentq(lambda d: float(_fresh_force_loose(d, alpha)) - f_w, 0.0, yc,
+                        xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
 
 
-def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
-    """Force ``mu(d)`` (units ``F_el``) during the pull, after a shift ``d >= 0`` (units ``a0``).
+@takes_model(_loaded_edge_loose, "loaded_edge(f_w, alpha)", "loaded_edge(model, load)")
+def loaded_edge(model: TrapModel, load: float) -> float:
+    """Population edge ``d_w`` (units ``a0``) at which a fresh contact of ``model`` carries the
+    tangential force ``load`` (ours, module docstring): the root of
+    ``fresh_force(model, d_w) = load``.
+
+    Parameters
+    ----------
+    model : TrapModel
+        Only ``alpha`` enters (see :func:`fresh_force`).
+    load : float
+        Tangential force during the wait, units ``F_el``, ``-1 < load < 1``; a negative
+        (reversed) load gives the mirror image, ``d_w(-f) = -d_w(f)``.
+
+    Returns
+    -------
+    float
+        ``d_w`` in ``a0``.
+    """
+    return _loaded_edge_loose(load, model.alpha)
+
+
+def _pull_force_loose(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
+                      ) -> Array:
+    """:func:`pull_force` at a loose ``alpha`` (its old form).
+    Force ``mu(d)`` (units ``F_el``) during the pull, after a shift ``d >= 0`` (units ``a0``).
 
     Parameters
     ----------
@@ -144,9 +183,38 @@ def pull_force(d: ArrayLike, r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0
     return (fresh + r**3 * (aged_plus + aged_minus)) / trap.H0
 
 
-def threshold_shift(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
-    """Shift ``d* = r y_c - d_w`` at which the aged (+) edge reaches its spinodal (eq. 26)."""
+@takes_model(_pull_force_loose, "pull_force(d, r, alpha, d_w)", "pull_force(model, d, r, d_w)")
+def pull_force(model: TrapModel, d: ArrayLike, r: ArrayLike, d_w: float = 0.0) -> Array:
+    """Force ``mu(d)`` (units ``F_el``) of ``model``'s population during the pull, after a
+    shift ``d >= 0`` (units ``a0``; module docstring, eqs. 25-27).
+
+    Parameters
+    ----------
+    model : TrapModel
+        Only ``alpha`` enters: the ageing is in ``r``, and the direct effect's factor
+        ``g(pull_velocity)`` is applied by :func:`static_friction`.
+    d : array_like
+        Shift of the slider since the end of the wait, units ``a0``.
+    r : array_like
+        Radius ratio ``a_r(t_w)`` of the aged contacts (broadcast with ``d``), ``>= 1``.
+    d_w : float
+        Population edge during the wait (0: waiting at zero load; see :func:`loaded_edge`).
+    """
+    return _pull_force_loose(d, r, model.alpha, d_w)
+
+
+def _threshold_shift_loose(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Array:
+    """:func:`threshold_shift` at a loose ``alpha`` (its old form)."""
     return np.asarray(r, float) * Trap(check_alpha(alpha)).y_c - d_w
+
+
+@takes_model(_threshold_shift_loose, "threshold_shift(r, alpha, d_w)",
+             "threshold_shift(model, r, d_w)")
+def threshold_shift(model: TrapModel, r: ArrayLike, d_w: float = 0.0) -> Array:
+    """Shift ``d* = r y_c - d_w`` (units ``a0``) at which the aged (+) edge of ``model``'s
+    population, radius ratio ``r``, reaches its spinodal (eq. 26). Only ``model.alpha``
+    enters (through ``y_c``)."""
+    return _threshold_shift_loose(r, model.alpha, d_w)
 
 
 def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
@@ -156,15 +224,15 @@ def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
     force can peak before the aged edge reaches its spinodal (``f_+`` turns over before
     ``y_c``: its slope tends to ``-inf`` there).
     """
-    dstar = threshold_shift(r, alpha, d_w)[..., None]
+    dstar = _threshold_shift_loose(r, alpha, d_w)[..., None]
     grid = dstar * np.linspace(0.0, 1.0, n)
-    vals = pull_force(grid, r[..., None], alpha, d_w)
+    vals = _pull_force_loose(grid, r[..., None], alpha, d_w)
     k = np.argmax(vals, axis=-1)[..., None]
     lo = np.take_along_axis(grid, np.maximum(k - 1, 0), axis=-1)[..., 0]
     hi = np.take_along_axis(grid, np.minimum(k + 1, n - 1), axis=-1)[..., 0]
     g = (math.sqrt(5.0) - 1.0) / 2.0
     x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-    f1, f2 = pull_force(x1, r, alpha, d_w), pull_force(x2, r, alpha, d_w)
+    f1, f2 = _pull_force_loose(x1, r, alpha, d_w), _pull_force_loose(x2, r, alpha, d_w)
     for _ in range(60):
         left = f1 >= f2
         hi = np.where(left, x2, hi)
@@ -174,8 +242,8 @@ def _interior_maximum(r: Array, alpha: float, d_w: float, n: int = 64) -> Array:
         f2 = np.where(left, f1, np.nan)
         f1 = np.where(left, np.nan, f2)
         x1, x2 = x1n, x2n
-        f1 = np.where(np.isnan(f1), pull_force(x1, r, alpha, d_w), f1)
-        f2 = np.where(np.isnan(f2), pull_force(x2, r, alpha, d_w), f2)
+        f1 = np.where(np.isnan(f1), _pull_force_loose(x1, r, alpha, d_w), f1)
+        f2 = np.where(np.isnan(f2), _pull_force_loose(x2, r, alpha, d_w), f2)
     return np.maximum(vals.max(axis=-1), np.maximum(f1, f2))
 
 
@@ -193,8 +261,9 @@ def _at_radius_loose(r: ArrayLike, alpha: float = 0.13, d_w: float = 0.0) -> Arr
     alpha = check_alpha(alpha)
     r = check_range("r", r, 1.0)
     trap = Trap(alpha)
-    best = np.maximum(pull_force(threshold_shift(r, alpha, d_w), r, alpha, d_w), 1.0)
-    best = np.maximum(best, pull_force(np.full_like(r, 1.0 + trap.y_c), r, alpha, d_w))
+    best = np.maximum(_pull_force_loose(_threshold_shift_loose(r, alpha, d_w), r, alpha, d_w),
+                      1.0)
+    best = np.maximum(best, _pull_force_loose(np.full_like(r, 1.0 + trap.y_c), r, alpha, d_w))
     if trap.y_c < 1.0:
         best = np.maximum(best, _interior_maximum(np.atleast_1d(r), alpha, d_w).reshape(r.shape))
     return best
@@ -276,7 +345,7 @@ def _static_friction_loose(
     check_broadcast(T=T, eps=eps)
     check_age(T, eps, creep)
     check_choice("hold", hold, HOLDS)
-    d_w = loaded_edge(load, alpha)
+    d_w = _loaded_edge_loose(load, alpha)
     if hold == "force" and load != 0.0:
         Tb, eb = np.broadcast_arrays(T, eps)
         mu = np.array([_force_hold(float(t), float(e), alpha, creep, float(load))[0]
@@ -419,7 +488,7 @@ def _force_hold(T: float, eps: float, alpha: float, creep: str, f_w: float
 
     trap = Trap(alpha)
     H0, yc = trap.H0, trap.y_c
-    d_w = loaded_edge(f_w, alpha)
+    d_w = _loaded_edge_loose(f_w, alpha)
     slabs = _Slabs([], [], [], [])
     s, low, top, rear = 0.0, 0.0, 0.0, -1.0
     times = np.geomspace(min(1e-6, T), T, _HOLD_STEPS) if T > 0 else np.zeros(0)
@@ -479,25 +548,37 @@ def _force_hold(T: float, eps: float, alpha: float, creep: str, f_w: float
     return max(cand), s
 
 
-def force_hold_shift(T: float, eps: float, alpha: float = 0.13, creep: str = "log",
-                     load: float = 0.0) -> float:
-    """Slider displacement (``a0``) during a hold at constant tangential force ``load``.
-
-    Negative: under a positive load the slider creeps back as the contacts age (their force
-    at fixed position grows, so the force balance moves them back); positive for a reversed
-    load. See :func:`static_friction` (``hold = "force"``).
-    """
+def _force_hold_shift_loose(T: float, eps: float, alpha: float = 0.13, creep: str = "log",
+                            load: float = 0.0) -> float:
+    """:func:`force_hold_shift` with the parameters loose (its old form)."""
     T = check_scalar("T", T, 0.0, T_MAX)
     eps = check_scalar("eps", eps, 0.0, EPS_MAX)
     alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     check_age(np.asarray(T), np.asarray(eps), creep)
-    loaded_edge(load, alpha)
+    _loaded_edge_loose(load, alpha)
     return _force_hold(T, eps, alpha, creep, float(load))[1]
 
 
-def static_slope_per_eps(alpha: float = 0.13) -> float:
-    """``(1/eps) d mu_s / d ln T`` at first order in ``eps`` and large ``T`` (eq. 28a).
+@takes_model(_force_hold_shift_loose, "force_hold_shift(T, eps, alpha, creep, load)",
+             "force_hold_shift(model, T, load=...)")
+def force_hold_shift(model: TrapModel, T: float, *, load: float = 0.0) -> float:
+    """Slider displacement (``a0``) of ``model`` during a hold of reduced duration ``T`` at
+    constant tangential force ``load`` (units ``F_el``, ``-1 < load < 1``; ours, module
+    docstring).
+
+    Negative: under a positive load the slider creeps back as the contacts age (their force
+    at fixed position grows, so the force balance moves them back); positive for a reversed
+    load. See :func:`static_friction` (``hold = "force"``). Uses ``model.alpha``, ``eps`` and
+    ``creep``; as in :func:`static_friction`, the hold is the population's, so ``direct`` and
+    ``v_ref`` do not enter.
+    """
+    return _force_hold_shift_loose(T, model.eps, model.alpha, model.creep, load)
+
+
+def _static_slope_per_eps_loose(alpha: float = 0.13) -> float:
+    """:func:`static_slope_per_eps` at a loose ``alpha`` (its old form).
+    ``(1/eps) d mu_s / d ln T`` at first order in ``eps`` and large ``T`` (eq. 28a).
 
     ``[3 H1 + (y_c - 1) f(y_c - 1)] / (2 H0)``, with ``f`` the forward force (``f_+`` in the
     paper's regime) and ``H1`` of eq. 28b.
@@ -507,12 +588,26 @@ def static_slope_per_eps(alpha: float = 0.13) -> float:
     return (3.0 * trap.H1 + (trap.y_c - 1.0) * f1) / (2.0 * trap.H0)
 
 
+@takes_model(_static_slope_per_eps_loose, "static_slope_per_eps(alpha)",
+             "static_slope_per_eps(model)")
+def static_slope_per_eps(model: TrapModel) -> float:
+    """``(1/eps) d mu_s / d ln T`` of ``model`` at first order in ``eps`` and large ``T``
+    (eq. 28a): ``[3 H1 + (y_c - 1) f(y_c - 1)] / (2 H0)``, with ``f`` the forward force
+    (``f_+`` in the paper's regime) and ``H1`` of eq. 28b.
+
+    A property of the trap: only ``model.alpha`` enters (``eps`` is the expansion's parameter,
+    both creep laws agree to this order; the direct effect multiplies ``mu_s`` by
+    ``g(pull_velocity)``, see :func:`static_friction_first_order`).
+    """
+    return _static_slope_per_eps_loose(model.alpha)
+
+
 def _static_first_order_loose(T: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
     """:func:`static_friction_first_order` with its parameters loose (its old form)."""
     T = check_range("T", T, 0.0, T_MAX)
     eps = check_range("eps", eps, 0.0, EPS_MAX)
     check_broadcast(T=T, eps=eps)
-    return 1.0 + eps * np.log1p(T) * static_slope_per_eps(alpha)
+    return 1.0 + eps * np.log1p(T) * _static_slope_per_eps_loose(alpha)
 
 
 @takes_model(_static_first_order_loose, "static_friction_first_order(T, eps, alpha)",

@@ -90,8 +90,11 @@ def _minus_branch_nodes(c_d: Array, c_e: Array, yc: float) -> tuple[Array, Array
     return c_d + x, wts
 
 
-def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro") -> float:
-    """Smallest ``u`` at which steady sliding stays inside the creep law's range (ours).
+def _min_velocity_loose(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro"
+                        ) -> float:
+    """:func:`min_velocity` with the parameters loose (its old form; note its default creep
+    law, Eyring-Nabarro, where :class:`TrapModel`'s is the log law).
+    Smallest ``u`` at which steady sliding stays inside the creep law's range (ours).
 
     A trap dies where ``-1 + u T = w_d a_r(T)`` (eq. 32; ``w_d`` = :attr:`Trap.death_point`).
     The Eyring-Nabarro law holds up to the age ``T_v`` where ``a_r^2 = 1/eps``
@@ -113,13 +116,36 @@ def min_velocity(eps: float, alpha: float = 0.13, creep: str = "eyring-nabarro")
     return (1.0 + w_d / math.sqrt(eps)) / t_v if t_v > 0 else math.inf
 
 
+@takes_model(_min_velocity_loose, "min_velocity(eps, alpha, creep)", "min_velocity(model)")
+def min_velocity(model: TrapModel) -> float:
+    """Smallest reduced velocity ``u`` at which steady sliding of ``model`` stays inside its
+    creep law's range (ours).
+
+    A trap dies where ``-1 + u T = w_d a_r(T)`` (eq. 32; ``w_d`` = :attr:`Trap.death_point`);
+    the Eyring-Nabarro law holds up to the age ``T_v`` where ``a_r^2 = 1/eps``, so (see the
+    derivation in :func:`_min_velocity_loose`)
+
+        u_min = (1 + w_d / sqrt(eps)) / T_v(eps).
+
+    Uses ``model.alpha``, ``eps`` and ``creep``; the log law has no such limit (0 is
+    returned), nor has ``eps = 0``. ``direct`` and ``v_ref`` do not enter (the direct effect
+    leaves the trap dynamics alone).
+
+    Returns
+    -------
+    float
+        ``u_min`` in ``a0/t0`` (``inf`` if the law has no range left).
+    """
+    return _min_velocity_loose(model.eps, model.alpha, model.creep)
+
+
 def _check_velocity(u: Array, eps: Array, alpha: float, creep: str) -> None:
     """Refuse velocities whose traps die beyond the creep law's range (:func:`min_velocity`)."""
     if creep == "log":
         return
     u_b, eps_b = np.broadcast_arrays(u, eps)
     for e in np.unique(eps_b):
-        u_min = min_velocity(float(e), alpha, creep)
+        u_min = _min_velocity_loose(float(e), alpha, creep)
         low = (eps_b == e) & (u_b < u_min)
         if np.any(low):
             t_v = EyringNabarroCreep(float(e)).max_age
@@ -302,11 +328,12 @@ def steady_friction_over_eps(model: TrapModel, u: ArrayLike, eps: ArrayLike) -> 
     return _steady_friction_loose(u, eps, model.alpha, model.creep, model.direct, model.v_ref)
 
 
-def steady_log_slope(
+def _steady_log_slope_loose(
     u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log",
     direct: float = 0.0, v_ref: float = 1.0,
 ) -> Array:
-    """``d mu / d ln u`` of :func:`steady_friction` (ours).
+    """:func:`steady_log_slope` with the parameters loose, ``eps`` broadcast with ``u`` (its
+    old form). ``d mu / d ln u`` of :func:`steady_friction` (ours).
 
     ``u g'(u) mu_d + g(u) d mu_d/d ln u``: the direct term (``-> A mu_d`` above the rheology's
     crossover) plus the ageing term (``-> -(3/2) eps`` for ``u << 1``, eq. 35). The ageing
@@ -324,11 +351,36 @@ def steady_log_slope(
     return junction_log_slope(u, direct, v_ref) * mu + junction_strength(u, direct, v_ref) * slope
 
 
-def steady_death_point(
+@takes_model(_steady_log_slope_loose, "steady_log_slope(u, eps, alpha, creep, direct, v_ref)",
+             "steady_log_slope(model, u)")
+def steady_log_slope(model: TrapModel, u: ArrayLike) -> Array:
+    """``d mu / d ln u`` of :func:`steady_friction` of ``model`` at reduced velocity ``u`` (ours).
+
+    ``u g'(u) mu_d + g(u) d mu_d/d ln u``: the direct term (``-> A mu_d`` above the rheology's
+    crossover) plus the ageing term (``-> -(3/2) eps`` for ``u << 1``, eq. 35). The ageing
+    slope is a central difference in ``ln u`` (step 1e-4; the quadrature is smooth in ``u``).
+
+    Parameters
+    ----------
+    model : TrapModel
+        ``alpha``, ``eps``, ``creep``, ``direct`` and ``v_ref`` (reduced ``a0/t0``).
+    u : array_like
+        Reduced sliding velocity ``V t0/a0``, ``> 0``.
+
+    Returns
+    -------
+    ndarray
+        ``d mu/d ln u`` (friction in ``F_el``), the shape of ``u``.
+    """
+    return _steady_log_slope_loose(u, model.eps, model.alpha, model.creep, model.direct,
+                                   model.v_ref)
+
+
+def _steady_death_point_loose(
     u: ArrayLike, eps: ArrayLike, alpha: float = 0.13, creep: str = "log"
 ) -> Array:
-    """Where a steadily sliding trap leaves the (+) branch, ``p_d/a0`` with ``p_d/a(p_d) = y_c``
-    (eq. 32)."""
+    """:func:`steady_death_point` with the parameters loose, ``eps`` broadcast with ``u`` (its
+    old form)."""
     alpha, u, eps = check_steady_inputs(u, eps, alpha, creep)
     yc = Trap(alpha).y_c
 
@@ -339,13 +391,27 @@ def steady_death_point(
     return per_eps(one, creep, eps, u)
 
 
-def steady_profile(
+@takes_model(_steady_death_point_loose, "steady_death_point(u, eps, alpha, creep)",
+             "steady_death_point(model, u)")
+def steady_death_point(model: TrapModel, u: ArrayLike) -> Array:
+    """Where a trap of ``model`` sliding steadily at reduced velocity ``u`` leaves the (+)
+    branch, ``p_d/a0`` with ``p_d/a(p_d) = y_c`` (eq. 32).
+
+    Uses ``model.alpha``, ``eps`` and ``creep``; the direct effect scales the friction force,
+    not the trap dynamics (:mod:`.direct`), so ``direct`` and ``v_ref`` do not enter.
+
+    Returns
+    -------
+    ndarray
+        ``p_d/a0``, the shape of ``u``.
+    """
+    return _steady_death_point_loose(u, model.eps, model.alpha, model.creep)
+
+
+def _steady_profile_loose(
     y: ArrayLike, u: float, eps: float, alpha: float = 0.13, creep: str = "log"
 ) -> Array:
-    """Force of the trap at ``y = p/a0`` in steady sliding, units ``Phi00/a0`` (eq. 31, Fig. 4).
-
-    ``r(y)^2 f(y/r(y))`` for traps in contact, 0 before contact (``y < -1``) and after death.
-    """
+    """:func:`steady_profile` with the parameters loose (its old form)."""
     alpha = check_alpha(alpha)
     check_choice("creep", creep, CREEP_LAWS)
     u = check_scalar("u", u, U_MIN, U_MAX)
@@ -361,6 +427,19 @@ def steady_profile(
     y_end = -1.0 + u * float(law.age(death_clock(law, np.array([u]), Trap(alpha).death_point))[0])
     f = r**2 * force_forward(w, alpha)
     return np.where((y >= -1.0) & (y <= y_end), f, 0.0)
+
+
+@takes_model(_steady_profile_loose, "steady_profile(y, u, eps, alpha, creep)",
+             "steady_profile(model, y, u)")
+def steady_profile(model: TrapModel, y: ArrayLike, u: float) -> Array:
+    """Force of a trap of ``model`` at ``y = p/a0`` in steady sliding at reduced velocity ``u``,
+    units ``Phi00/a0`` (eq. 31, Fig. 4).
+
+    ``r(y)^2 f(y/r(y))`` for traps in contact, 0 before contact (``y < -1``) and after death.
+    Uses ``model.alpha``, ``eps`` and ``creep``: the population's force, before the direct
+    effect's factor ``g(u)`` (:mod:`.direct`), which does not change the trap dynamics.
+    """
+    return _steady_profile_loose(y, u, model.eps, model.alpha, model.creep)
 
 
 def _steady_first_order_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13) -> Array:
@@ -415,9 +494,8 @@ def steady_friction_first_order(model: TrapModel, u: ArrayLike) -> Array:
 
 
 @lru_cache(maxsize=256)
-def low_velocity_constant(alpha: float = 0.13) -> float:
-    """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` (ours, eq. 35's
-    order-``eps`` constant)."""
+def _low_velocity_constant_loose(alpha: float = 0.13) -> float:
+    """:func:`low_velocity_constant` at a loose ``alpha`` (its old form; cached)."""
     alpha = check_alpha(alpha)
     trap = Trap(alpha)
 
@@ -431,6 +509,18 @@ def low_velocity_constant(alpha: float = 0.13) -> float:
     return val / trap.H0
 
 
+@takes_model(_low_velocity_constant_loose, "low_velocity_constant(alpha)",
+             "low_velocity_constant(model)")
+def low_velocity_constant(model: TrapModel) -> float:
+    """``K1 = (1/H0) int_{-1}^{death} [3 ln(1 + y) + y/(1 + y)] f(y) dy`` of ``model`` (ours,
+    eq. 35's order-``eps`` constant, :func:`steady_friction_low_velocity`).
+
+    A property of the trap alone: only ``model.alpha`` enters (``eps`` is the expansion's
+    parameter; both creep laws agree to this order; the direct effect multiplies the result).
+    """
+    return _low_velocity_constant_loose(model.alpha)
+
+
 def _steady_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
                                direct: float = 0.0, v_ref: float = 1.0) -> Array:
     """:func:`steady_friction_low_velocity` with its parameters loose (its old form):
@@ -438,7 +528,7 @@ def _steady_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13
     ``g(u)`` with the direct effect."""
     direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
-    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + _low_velocity_constant_loose(alpha))
     return mu if direct == 0.0 else mu * junction_strength(u, direct, v_ref)
 
 
@@ -453,16 +543,31 @@ def steady_friction_low_velocity(model: TrapModel, u: ArrayLike) -> Array:
     return _steady_low_velocity_loose(u, model.eps, model.alpha, model.direct, model.v_ref)
 
 
-def steady_log_slope_low_velocity(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
-                                  direct: float = 0.0, v_ref: float = 1.0) -> Array:
-    """``d mu/d ln u`` of :func:`steady_friction_low_velocity` (ours, derived):
+def _steady_log_slope_low_velocity_loose(u: ArrayLike, eps: ArrayLike, alpha: float = 0.13,
+                                         direct: float = 0.0, v_ref: float = 1.0) -> Array:
+    """:func:`steady_log_slope_low_velocity` with the parameters loose (its old form).
+    ``d mu/d ln u`` of :func:`steady_friction_low_velocity` (ours, derived):
     ``A_u mu_d - (3/2) eps g(u)``, ``A_u = u g'(u)``; ``-> A mu_d - 3 eps/2`` when
     ``u >> v_ref e^{-1/A}`` and ``A ln(u/v_ref) << 1``. Velocity strengthening at low ``u``
     exactly when ``A mu_d > 3 eps g/2``."""
     direct, v_ref = check_direct(direct, v_ref)
     alpha, u, eps = check_steady_inputs(u, eps, alpha, "log")
-    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + low_velocity_constant(alpha))
+    mu = 1.0 + 0.5 * eps * (-3.0 * np.log(u) + _low_velocity_constant_loose(alpha))
     if direct == 0.0:
         return -1.5 * eps * np.ones_like(mu)
     return (junction_log_slope(u, direct, v_ref) * mu
             - 1.5 * eps * junction_strength(u, direct, v_ref))
+
+
+@takes_model(_steady_log_slope_low_velocity_loose,
+             "steady_log_slope_low_velocity(u, eps, alpha, direct, v_ref)",
+             "steady_log_slope_low_velocity(model, u)")
+def steady_log_slope_low_velocity(model: TrapModel, u: ArrayLike) -> Array:
+    """``d mu/d ln u`` of :func:`steady_friction_low_velocity` of ``model`` (ours, derived):
+    ``A_u mu_d - (3/2) eps g(u)``, ``A_u = u g'(u)``; ``-> A mu_d - 3 eps/2`` when
+    ``u >> v_ref e^{-1/A}`` and ``A ln(u/v_ref) << 1``. Velocity strengthening at low ``u``
+    exactly when ``A mu_d > 3 eps g/2``. Uses ``alpha`` (through ``mu_d``'s constant ``K1``),
+    ``eps``, ``direct`` and ``v_ref``; both creep laws give it (eq. 17 is eqs. 15-16 to first
+    order in ``eps``)."""
+    return _steady_log_slope_low_velocity_loose(u, model.eps, model.alpha, model.direct,
+                                                model.v_ref)
