@@ -208,3 +208,19 @@ def test_the_fits_predictions_are_the_model_first_si_forms() -> None:
                                       StaticData(tw, np.ones(2)))
     np.testing.assert_allclose(got, 0.45 * static_friction(TrapModel(0.11, 0.03), tw / 0.2),
                                rtol=1e-14)
+
+
+@pytest.mark.parametrize("field, bad", [("alpha", 1.0), ("alpha", -0.2), ("creep", "power"),
+                                        ("direct", 1.7), ("direct", -0.01)])
+def test_fit_model_takes_the_trap_models_declared_defaults_and_ranges(field, bad) -> None:
+    """CVModel's trap fields (alpha, creep, direct) default and are refused as TrapModel's,
+    from the one declaration (theory.model.TRAP_PARAMETERS), not a second copy."""
+    from dryfriction.theory.model import TrapModel
+
+    for name in ("alpha", "creep", "direct"):
+        assert getattr(CVModel(), name) == getattr(TrapModel(), name)
+    with pytest.raises(ValueError) as want:
+        TrapModel(**{field: bad})
+    with pytest.raises(ValueError) as got:
+        CVModel(**{field: bad})
+    assert str(got.value) == str(want.value)

@@ -23,12 +23,12 @@ from ..rsf.driving import RSFOutput, SpringSlider, simulate
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
-from ..theory.model import TRAPS_PER_A0, TrapModel
+from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0, TrapModel
 from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
 from ..theory.trap import Trap
 from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
-from ..validation import DIRECT_MAX, Array, check_choice, check_scalar
+from ..validation import DIRECT_MAX, Array, check_choice, check_scalar, declared
 from .cvseries import cv_series
 from .laws import (
     FIT_LAWS,
@@ -209,12 +209,16 @@ class CVModel:
         lets it reach.
     """
 
-    alpha: float = 0.13
-    creep: str = "log"
+    # the trap parameters a fit holds fixed (alpha, creep) or starts from (direct): their
+    # defaults and ranges are the model's own (theory.model.TRAP_PARAMETERS), not restated.
+    # A fit model is a family of TrapModels (eps, mu_el and the scales are fitted; v_ref is
+    # in m/s here, reduced in the model), so it declares these fields rather than holding one.
+    alpha: float = declared(TRAP_PARAMETERS, "alpha")
+    creep: str = declared(TRAP_PARAMETERS, "creep")
     series: SeriesModel | None = None
     traps_per_a0: float = TRAPS_PER_A0.default  # type: ignore[assignment]
     diff_step: float = 0.03
-    direct: float = 0.0
+    direct: float = declared(TRAP_PARAMETERS, "direct")
     v_ref: float = 1e-6
     stiffness: float | str = math.inf
     trend: bool = False
@@ -225,10 +229,9 @@ class CVModel:
     steady_tail: bool = False
 
     def __post_init__(self) -> None:
-        check_scalar("alpha", self.alpha, 0.0, 1.0, lo_open=True, hi_open=True)
-        check_choice("creep", self.creep, ("log", "eyring-nabarro"))
+        for name in ("alpha", "creep", "direct"):
+            object.__setattr__(self, name, TRAP_PARAMETERS[name].check(getattr(self, name)))
         check_scalar("v_ref", self.v_ref, 0.0, lo_open=True)
-        check_scalar("direct", self.direct, 0.0, DIRECT_MAX)
         if isinstance(self.stiffness, str):
             check_choice("stiffness", self.stiffness, ("fit",))
         else:
