@@ -196,7 +196,9 @@ def test_index_and_gallery_render_in_chromium(site: Path, tmp_path: Path) -> Non
 
 # pages with the widest code and tables
 NARROW_PAGES = ("index.html", "quickstart.html", "cli.html", "tutorials/lab-record.html",
-                "tutorials/direct-effect.html", "howto/sweeps.html", "performance.html")
+                "tutorials/direct-effect.html", "howto/sweeps.html", "performance.html",
+                "explanation/interface.html", "auto_examples/plot_command_line.html",
+                "auto_examples/plot_lab_record_fit.html")
 OVERFLOW_PROBE = (
     "<script>window.addEventListener('load',function(){var w=window.innerWidth,bad=[];"
     "if(document.documentElement.scrollWidth>w+1)bad.push('page:'+document.documentElement"
