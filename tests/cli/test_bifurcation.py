@@ -83,14 +83,15 @@ def test_bad_velocities_one_line_before_any_work(tmp_path: Path, value: str, wor
     assert not out.exists()
 
 
-def test_too_many_checks_and_trap_model_refused(tmp_path: Path) -> None:
+def test_too_many_checks_and_trap_model_without_direct_refused(tmp_path: Path) -> None:
     out = tmp_path / "out"
     many = ",".join(str(1e-6 * (i + 1)) for i in range(13))
     r = run(protocol(tmp_path, "ageing"), "--velocities", many, "--out", str(out), "--check")
     assert r.exit_code == 2 and "at most 12" in r.stderr and not out.exists()
     cv = Path(__file__).resolve().parents[2] / "examples" / "velocity_step.toml"
     r = run(str(cv), "--velocities", "1e-6", "--out", str(out))
-    assert r.exit_code == 2 and "law = 'cv'" in r.stderr and not out.exists()
+    # a trap protocol without the direct effect: no finite K_c (dryfriction.analysis.trap_hopf)
+    assert r.exit_code == 2 and "model.direct = 0" in r.stderr and not out.exists()
 
 
 def test_supercritical_check_columns(tmp_path: Path) -> None:
@@ -131,3 +132,77 @@ def test_frequency_is_in_the_unit_the_files_say(tmp_path: Path) -> None:
     unit = doc["units"]["frequency"]
     expected = {"rad/s": omega, "Hz": omega / (2 * math.pi)}[unit]
     assert doc["rows"][0]["frequency"] == pytest.approx(expected, rel=1e-8), unit
+
+
+def trap_protocol(tmp_path: Path, direct: float = 0.02, mass: float = 1.7,
+                  damping: float = 0.03, alpha: float = 0.13) -> str:
+    """A trap-model protocol with a spring drive (its stiffness and program are not used)."""
+    p = tmp_path / f"trap_{direct}_{mass}_{alpha}.toml"
+    p.write_text(f"""[model]
+alpha = {alpha}
+eps = 0.04
+direct = {direct}
+
+[ensemble]
+traps_per_a0 = 200
+initial = "steady"
+initial_velocity = 0.03
+
+[drive]
+kind = "spring"
+stiffness = 0.05
+mass = {mass}
+damping = {damping}
+segments = [{{velocity = 0.03, slip = 12.0}}]
+
+[output]
+every = 1.0
+""")
+    return str(p)
+
+
+def test_trap_model_rows_are_trap_hopf_in_reduced_units(tmp_path: Path) -> None:
+    """Each row is trap_hopf at the reduced velocity with the drive's mass and damping (the
+    table's own route: app -> hopf_table; the direct call here), the headers reduced."""
+    from dryfriction.analysis.trap_hopf import trap_hopf
+    from dryfriction.theory.model import TrapModel
+
+    out = tmp_path / "out"
+    r = run(trap_protocol(tmp_path), "--velocities", "0.031,0.27", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    model = TrapModel(alpha=0.13, eps=0.04, direct=0.02)
+    with open(out / "bifurcation.csv") as fh:
+        assert fh.readline().strip() == ("velocity[a0/t0],K_c[F_el/a0],frequency[rad/t0],"
+                                         "l1[1/a0^2],relative_l1[1],nature")
+    rows = read_rows(out / "bifurcation.csv")
+    for row, u in zip(rows, (0.031, 0.27), strict=True):
+        h = trap_hopf(u, model, 1.7, 0.03)
+        assert float(row["velocity"]) == u
+        assert float(row["K_c"]) == pytest.approx(h.K_c, rel=1e-12)
+        assert float(row["frequency"]) == pytest.approx(h.omega, rel=1e-12)
+        assert float(row["l1"]) == pytest.approx(h.l1_x, rel=1e-9)
+        assert row["nature"] == h.nature
+    doc = json.loads((out / "bifurcation.json").read_text())
+    assert doc["units"]["mass"] == "F_el t0^2/a0" and doc["mass"] == 1.7
+    assert (out / "bifurcation.png").stat().st_size > 1000
+    from dryfriction.plots.hopf import plot_bifurcation  # the figure's axes say reduced units
+
+    _, axes = plot_bifurcation(doc)
+    assert "a_0/t_0" in axes[1].get_xlabel() and "F_{el}/a_0" in axes[0].get_ylabel()
+
+
+@pytest.mark.parametrize("kwargs,args,word", [
+    ({"direct": 0.0}, (), "model.direct = 0"),
+    ({"alpha": 0.2}, (), "model.alpha = 0.2"),
+    ({}, ("--check",), "examples/trap_hopf_check.py"),
+    ({}, ("--velocities", "0.03,0"), "a0/t0"),
+], ids=["direct", "alpha", "check", "velocity"])
+def test_trap_model_refusals_one_line_before_any_work(tmp_path: Path, kwargs: dict[str, float],
+                                                      args: tuple[str, ...], word: str) -> None:
+    out = tmp_path / "out"
+    vel = () if "--velocities" in args else ("--velocities", "0.03")
+    r = run(trap_protocol(tmp_path, **kwargs), *vel, *args, "--out", str(out))
+    assert r.exit_code == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and word in lines[0], r.stderr
+    assert not out.exists()

@@ -53,6 +53,17 @@ def test_every_column_has_a_unit(tmp_path: Path, args: tuple[str, ...]) -> None:
     assert check_folder(out) == []
 
 
+def test_trap_bifurcation_has_units(tmp_path: Path) -> None:
+    """The trap-model route of ``bifurcation`` (reduced units: io.units.TRAP_BIFURCATION_UNITS)."""
+    proto = tmp_path / "trap.toml"
+    proto.write_text((EXAMPLES / "spring_inertial.toml").read_text().replace(
+        "eps = 0.04", "eps = 0.04\ndirect = 0.02"))
+    out = tmp_path / "out"
+    _run("bifurcation", str(proto), "--velocities", "0.04", "--no-figure", "--out", str(out))
+    assert check_folder(out) == []
+    assert "[a0/t0]" in (out / "bifurcation.csv").read_text()
+
+
 def test_snapshots_have_units(tmp_path: Path) -> None:
     out = tmp_path / "out"
     _run("simulate", str(SHS), "--out", str(out), "--no-figure")

@@ -23,13 +23,17 @@ from collections.abc import Callable
 from typing import Any
 
 from ..io.protocol import RSFProtocol
+from ..io.units import TRAP_BIFURCATION_UNITS
 from ..rsf.driving import SolverError
 from ..rsf.law import V_MAX
+from ..theory.model import TrapModel
 from .rsf_hopf import rsf_hopf
 from .rsf_hopf_check import amplitude_exponent, basin_threshold, settled_amplitude
+from .trap_hopf import ALPHA0, trap_hopf
 
-__all__ = ["parse_velocities", "bifurcation_table", "UNITS", "MAX_VELOCITIES",
-           "MAX_CHECKED", "CHECK_DISTANCES"]
+__all__ = ["parse_velocities", "bifurcation_table", "trap_bifurcation_table", "check_trap",
+           "UNITS", "MAX_VELOCITIES", "MAX_TRAP_VELOCITIES", "MAX_CHECKED",
+           "CHECK_DISTANCES"]
 
 MAX_VELOCITIES = 400
 """Most velocities in one table (each costs ~10 ms; ours)."""
@@ -46,10 +50,15 @@ UNITS = {"velocity": "m/s", "K_c": "1/m (per unit normal force)", "frequency": "
          "check_amp_ratio": "1", "check_threshold": "1 (ln V kick)"}
 """The unit of each column of ``bifurcation.csv``."""
 
+MAX_TRAP_VELOCITIES = 40
+"""Most velocities in one trap-model table (each :func:`.trap_hopf.trap_hopf` costs ~0.1-1 s;
+ours)."""
 
-def parse_velocities(text: str) -> list[float]:
-    """``"V1,V2,..."`` (m/s) as floats, each in ``(0, V_MAX]``, at most
-    :data:`MAX_VELOCITIES`; ``ValueError`` naming ``--velocities`` otherwise."""
+
+def parse_velocities(text: str, v_max: float = V_MAX, unit: str = "m/s",
+                     most: int = MAX_VELOCITIES) -> list[float]:
+    """``"V1,V2,..."`` (``unit``, m/s unless told) as floats, each in ``(0, v_max]``, at most
+    ``most``; ``ValueError`` naming ``--velocities`` otherwise."""
     parts = [p.strip() for p in str(text).split(",")]
     out = []
     for p in parts:
@@ -57,12 +66,12 @@ def parse_velocities(text: str) -> list[float]:
             v = float(p)
         except ValueError:
             raise ValueError(f"--velocities: {p!r} is not a number: allowed a comma-separated "
-                             f"list of load velocities in (0, {V_MAX:g}] m/s") from None
-        if not 0.0 < v <= V_MAX:
-            raise ValueError(f"--velocities: {p} is out of range: allowed (0, {V_MAX:g}] m/s")
+                             f"list of load velocities in (0, {v_max:g}] {unit}") from None
+        if not 0.0 < v <= v_max:
+            raise ValueError(f"--velocities: {p} is out of range: allowed (0, {v_max:g}] {unit}")
         out.append(v)
-    if not 1 <= len(out) <= MAX_VELOCITIES:
-        raise ValueError(f"--velocities: {len(out)} values: allowed 1 to {MAX_VELOCITIES}")
+    if not 1 <= len(out) <= most:
+        raise ValueError(f"--velocities: {len(out)} values: allowed 1 to {most}")
     return out
 
 
@@ -146,3 +155,56 @@ def bifurcation_table(protocol: RSFProtocol, velocities: list[float], check: boo
                      "sliding to O((V0/V)^2 exp(-2 Psi/a)))")
     return {"rows": rows, "units": {k: UNITS[k] for k in rows[0]}, "law": model.state_law,
             "damping": drive.damping, "mass": drive.mass, "notes": notes}
+
+
+def check_trap(model: TrapModel, mass: float, damping: float) -> None:
+    """``ValueError`` in one line naming the protocol's parameter where
+    :func:`.trap_hopf.trap_hopf` does not apply (before any work)."""
+    if model.direct == 0.0:
+        raise ValueError("model.direct = 0 is not allowed here: the quasi-static trap slider has "
+                         "no finite K_c without the direct effect; allowed 0 < direct <= 1")
+    if model.alpha >= ALPHA0:
+        raise ValueError(f"model.alpha = {model.alpha:g} is not allowed here: the normal form is "
+                         f"written for very strong pinning; allowed 0 < alpha < {ALPHA0:.4f}")
+    if mass == 0.0 and damping != 0.0:
+        raise ValueError(f"drive.damping = {damping:g} is not allowed with drive.mass = 0; "
+                         "allowed damping = 0")
+
+
+def trap_bifurcation_table(model: TrapModel, velocities: list[float], mass: float = 0.0,
+                           damping: float = 0.0,
+                           progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+    """Rows of the Hopf point's nature of the trap model at each pulling velocity: each is
+    :func:`.trap_hopf.trap_hopf` with its defaults (reduced units throughout).
+
+    Parameters
+    ----------
+    model : TrapModel
+        With the direct effect, ``0 < direct``, and ``alpha < ALPHA0`` (:func:`check_trap`).
+    velocities : list of float
+        Pulling velocities ``u``, ``a0/t0``.
+    mass, damping : float
+        ``M`` (``F_el t0^2/a0``) and ``eta`` (``F_el t0/a0``).
+    progress : callable, optional
+        ``progress(done, total)`` after each velocity.
+
+    Returns
+    -------
+    dict
+        ``{"rows": [...], "units", "law": "trap", "damping", "mass", "notes"}``, the units
+        :data:`dryfriction.io.units.TRAP_BIFURCATION_UNITS`.
+    """
+    check_trap(model, mass, damping)
+    rows = []
+    for i, u in enumerate(velocities):
+        h = trap_hopf(u, model, mass, damping)
+        rows.append({"velocity": u, "K_c": h.K_c, "frequency": h.omega, "l1": h.l1_x,
+                     "relative_l1": h.relative_l1, "nature": h.nature})
+        if progress is not None:
+            progress(i + 1, len(velocities))
+    notes = ["trap model, reduced units (a0, t0, F_el): K_c and l1 of the pseudospectral "
+             "reduction of the population (dryfriction.analysis.trap_hopf, docs/hopf.md); "
+             "nature from the sign of l1; degenerate: |l1| < 1e-8 of its largest term; "
+             "none: stable at every stiffness"]
+    return {"rows": rows, "units": {k: TRAP_BIFURCATION_UNITS[k] for k in rows[0]}, "law": "trap", "damping": damping,
+            "mass": mass, "notes": notes}

@@ -42,44 +42,72 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
                 report: Callable[[str], None] | None = None,
                 progress: Callable[[int, int], None] | None = None) -> BifurcationOutcome:
     """Critical stiffness, frequency and first Lyapunov coefficient ``l1`` of steady sliding
-    at each load velocity (m/s) of a rate-and-state protocol: the Hopf bifurcation's nature
-    (supercritical ``l1 < 0``, subcritical ``l1 > 0``, degenerate ``l1 = 0``;
-    :func:`dryfriction.analysis.hopf_table.bifurcation_table`).
+    at each load velocity of a protocol: the Hopf bifurcation's nature (supercritical
+    ``l1 < 0``, subcritical ``l1 > 0``, degenerate ``l1 = 0``). Rate-and-state (m/s, SI):
+    :func:`dryfriction.analysis.hopf_table.bifurcation_table`; the trap model (reduced units
+    ``a0``, ``t0``, ``F_el``): :func:`dryfriction.analysis.hopf_table.trap_bifurcation_table`.
 
     Parameters
     ----------
     protocol : path
-        A rate-and-state protocol (``model.law = "rsf"``): its law, damping and mass are used.
+        A rate-and-state protocol (``model.law = "rsf"``: its law, damping and mass are used)
+        or a trap-model one (``model.law = "cv"`` with ``0 < direct``, ``alpha < 0.1716``: its
+        model, and a spring drive's mass and damping, else 0).
     velocities : str or list of float
-        Load velocities, m/s: ``"1e-6,1e-5"`` as ``--velocities`` takes them, or a list.
+        Load velocities, m/s for rate-and-state, ``a0/t0`` for the trap model:
+        ``"1e-6,1e-5"`` as ``--velocities`` takes them, or a list.
     out : path
         Folder for bifurcation.csv, bifurcation.json and bifurcation.png (whole or not at
         all).
     check : bool
-        Check each nature by direct simulation (at most ``MAX_CHECKED`` velocities).
+        Check each nature by direct simulation (at most ``MAX_CHECKED`` velocities;
+        rate-and-state only).
     figure, force, report : as :func:`dryfriction.app.simulate`.
     progress : callable, optional
         ``progress(done, total)`` after each velocity.
     """
-    from ..analysis.hopf_table import MAX_CHECKED, bifurcation_table, parse_velocities
+    from ..analysis.hopf_table import (
+        MAX_CHECKED,
+        MAX_TRAP_VELOCITIES,
+        bifurcation_table,
+        check_trap,
+        parse_velocities,
+        trap_bifurcation_table,
+    )
     from ..io.files import check_output_dir, output_directory, write_csv, write_json
-    from ..io.protocol import RSFProtocol, load_protocol
-    from ..io.units import BIFURCATION_UNITS, with_units
+    from ..io.protocol import Protocol, RSFProtocol, load_protocol
+    from ..io.units import BIFURCATION_UNITS, TRAP_BIFURCATION_UNITS, with_units
+    from ..validation import U_MAX
 
     if not isinstance(velocities, str):
         velocities = ",".join(repr(float(v)) for v in velocities)
-    vs = parse_velocities(velocities)
-    if check and len(vs) > MAX_CHECKED:
-        raise ValueError(f"--velocities: {len(vs)} values with --check: allowed at most "
-                         f"{MAX_CHECKED}")
     proto = load_protocol(protocol)
-    if not isinstance(proto, RSFProtocol):
-        raise ValueError(f"{protocol}: model.law = 'cv' is not allowed here: the normal form "
-                         "is computed for rate-and-state (law = 'rsf'); the trap model's is "
-                         "not done (docs/hopf.md)")
-    check_output_dir(out, force=force)
-    rep = bifurcation_table(proto, vs, check, progress=progress)
-    rep = with_units({**rep, "protocol": str(protocol)}, BIFURCATION_UNITS)
+    if isinstance(proto, Protocol):  # the trap model: reduced units, no simulated check
+        if check:
+            raise ValueError("--check is for rate-and-state protocols; the trap model's "
+                             "simulation check is examples/trap_hopf_check.py")
+        vs = parse_velocities(velocities, U_MAX, "a0/t0 (reduced, for a trap-model protocol)",
+                              MAX_TRAP_VELOCITIES)
+        mass = float(getattr(proto.drive, "mass", 0.0))  # a spring drive's; else none
+        damping = float(getattr(proto.drive, "damping", 0.0))
+        try:
+            check_trap(proto.model, mass, damping)
+        except ValueError as exc:
+            raise ValueError(f"{protocol}: {exc}") from None
+        check_output_dir(out, force=force)
+        rep = trap_bifurcation_table(proto.model, vs, mass, damping, progress=progress)
+        rep = with_units({**rep, "protocol": str(protocol)}, TRAP_BIFURCATION_UNITS)
+    elif isinstance(proto, RSFProtocol):
+        vs = parse_velocities(velocities)
+        if check and len(vs) > MAX_CHECKED:
+            raise ValueError(f"--velocities: {len(vs)} values with --check: allowed at most "
+                             f"{MAX_CHECKED}")
+        check_output_dir(out, force=force)
+        rep = bifurcation_table(proto, vs, check, progress=progress)
+        rep = with_units({**rep, "protocol": str(protocol)}, BIFURCATION_UNITS)
+    else:
+        raise ValueError(f"{protocol}: an [interface] protocol is not allowed here: allowed a "
+                         "rate-and-state (law = 'rsf') or a single-slider trap-model protocol")
     rows = rep["rows"]
     files = ["bifurcation.csv", "bifurcation.json"]
     with output_directory(out, command="bifurcation", force=force, inputs=[protocol],
@@ -91,7 +119,8 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
             from ..plots.hopf import plot_bifurcation
             from ..plots.style import save_figure
 
-            fig, _ = plot_bifurcation(rep, f"{rep['law']} law, {protocol}")
+            what = "trap model" if rep["law"] == "trap" else f"{rep['law']} law"
+            fig, _ = plot_bifurcation(rep, f"{what}, {protocol}")
             save_figure(fig, tmp / "bifurcation.png", "png")
             files.append("bifurcation.png")
     return BifurcationOutcome(Path(out), files, rep)

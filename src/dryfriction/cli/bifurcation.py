@@ -19,15 +19,21 @@ _O = OPTIONS["bifurcation"]
 @cli_errors
 def bifurcation(
     protocol: str = typer.Argument(..., help="A rate-and-state protocol (model.law = 'rsf'): "
-                                             "its friction law, damping and mass are used."),
+                                             "its friction law, damping and mass are used; or "
+                                             "a trap-model one (law = 'cv', 0 < direct, "
+                                             "alpha < 0.1716): its model, a spring drive's "
+                                             "mass and damping."),
     velocities: str = typer.Option(..., "--velocities", metavar="V1,V2,...",
-                                   help="Load velocities, m/s, comma-separated."),
+                                   help="Load velocities, comma-separated: m/s for "
+                                        "rate-and-state, reduced u = V t0/a0 [a0/t0] for a "
+                                        "trap-model protocol."),
     out_dir: str = typer.Option(..., "--out", metavar="DIR",
                                 help="Folder for bifurcation.csv, bifurcation.json and "
                                      "bifurcation.png."),
     check: bool = typer.Option(_O["check"].default, "--check", help="Check each nature by direct "
                                "simulation (settled cycles, or the unstable cycle by "
-                               "bisection; at most 12 velocities, ~5-30 s each)."),
+                               "bisection; at most 12 velocities, ~5-30 s each; "
+                               "rate-and-state only)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON."),
     figure: bool = typer.Option(_O["figure"].default, "--figure/--no-figure",
                                 help="Draw bifurcation.png."),
@@ -47,7 +53,8 @@ def bifurcation(
 
         print(json.dumps(to_jsonable(report), indent=2))
         return
-    table = Table(title=Text(f"Hopf point of steady sliding, {report['law']} law"))
+    what = "trap model" if report["law"] == "trap" else f"{report['law']} law"
+    table = Table(title=Text(f"Hopf point of steady sliding, {what}"))
     from ..io.units import header
 
     for col in rows[0]:

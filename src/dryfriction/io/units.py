@@ -37,7 +37,7 @@ from typing import Any
 __all__ = ["DIMENSIONLESS", "LABEL", "Units", "header", "split_header", "csv_unit",
            "labelled", "with_units", "read_rows", "undeclared", "STEP_UNITS", "RECORD_FIT_UNITS",
            "SUMMARY_UNITS", "FIT_UNITS", "COMPARE_UNITS", "SEGMENT_UNITS",
-           "REPRODUCE_UNITS", "BIFURCATION_UNITS", "SNAPSHOT_UNITS",
+           "REPRODUCE_UNITS", "BIFURCATION_UNITS", "TRAP_BIFURCATION_UNITS", "SNAPSHOT_UNITS",
            "RECORD_UNITS", "THEORY_UNITS", "INTERFACE_SUMMARY_UNITS", "INTERFACE_LOAD_UNITS"]
 
 DIMENSIONLESS = "1"
@@ -304,6 +304,15 @@ BIFURCATION_UNITS: dict[str, str | None] = {
     "l1": DIMENSIONLESS, "relative_l1": DIMENSIONLESS, "amp_coef": DIMENSIONLESS,
 }
 """bifurcation.json's numbers beside its columns (whose units it carries in ``units``)."""
+
+TRAP_BIFURCATION_UNITS: dict[str, str | None] = {
+    "nature": LABEL, "damping": "F_el t0/a0", "mass": "F_el t0^2/a0",
+    "velocity": "a0/t0", "K_c": "F_el/a0", "frequency": "rad/t0",
+    "l1": "1/a0^2 (the slip component of the eigenvector of unit modulus)",
+    "relative_l1": DIMENSIONLESS,
+}
+"""bifurcation.json and bifurcation.csv of a trap-model protocol (reduced units:
+:mod:`dryfriction.analysis.trap_hopf`)."""
 
 SNAPSHOT_UNITS: dict[str, str | None] = {
     "p": "a0 (the pair's elastic stretch)", "branch": "1 (+1 or -1)", "age": "t0",

@@ -7,7 +7,15 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .style import LEGEND_SIZE, RUN_WIDTH, TITLE_SIZE, VELOCITY_SI, new_figure
+from .style import (
+    LEGEND_SIZE,
+    RUN_WIDTH,
+    STIFFNESS_K,
+    TITLE_SIZE,
+    VELOCITY_SI,
+    VELOCITY_U,
+    new_figure,
+)
 
 __all__ = ["plot_bifurcation"]
 
@@ -17,9 +25,11 @@ _MARK = {"supercritical": ("o", "tab:blue"), "subcritical": ("s", "tab:red"),
 
 
 def plot_bifurcation(report: dict[str, Any], title: str = "") -> tuple[Any, Any]:
-    """Two panels sharing the velocity axis (m/s, log): ``K_c`` (1/m, log) and
-    ``l1 / max|term|`` (symmetric log), marked by nature (circle supercritical, square
-    subcritical, diamond degenerate). Returns ``(fig, axes)``."""
+    """Two panels sharing the velocity axis (m/s, log; ``a0/t0`` for the trap model,
+    ``report["law"] == "trap"``): ``K_c`` (1/m, log; ``F_el/a0``) and ``l1 / max|term|``
+    (symmetric log), marked by nature (circle supercritical, square subcritical, diamond
+    degenerate). Returns ``(fig, axes)``."""
+    trap = report.get("law") == "trap"  # reduced units (dryfriction.analysis.trap_hopf)
     fig, axes = new_figure((RUN_WIDTH, 5.6), nrows=2, sharex=True, suptitle=bool(title))
     rows = report["rows"]
     for nature, (marker, colour) in _MARK.items():
@@ -34,11 +44,12 @@ def plot_bifurcation(report: dict[str, Any], title: str = "") -> tuple[Any, Any]
     kcs = [r["K_c"] for r in rows if math.isfinite(r["K_c"]) and r["K_c"] > 0]
     if kcs and max(kcs) > 10 * min(kcs):  # log only over a decade: else unreadable ticks
         axes[0].set_yscale("log")
-    axes[0].set_ylabel(r"critical stiffness $K_c$  [1/m]")
+    axes[0].set_ylabel(r"critical " + STIFFNESS_K.replace("$K$", "$K_c$") if trap
+                       else r"critical stiffness $K_c$  [1/m]")
     axes[0].legend(fontsize=LEGEND_SIZE)
     _symlog_panel(axes[1], [r["relative_l1"] for r in rows])
     axes[1].set_ylabel(r"$\ell_1$ / largest term  [1]")
-    axes[1].set_xlabel(VELOCITY_SI)
+    axes[1].set_xlabel(VELOCITY_U if trap else VELOCITY_SI)
     vs = [r["velocity"] for r in rows]
     if min(vs) == max(vs):  # one velocity: a visible decade around it
         axes[1].set_xlim(min(vs) / 3, max(vs) * 3)
