@@ -206,5 +206,5 @@ def trap_bifurcation_table(model: TrapModel, velocities: list[float], mass: floa
              "reduction of the population (dryfriction.analysis.trap_hopf, docs/hopf.md); "
              "nature from the sign of l1; degenerate: |l1| < 1e-8 of its largest term; "
              "none: stable at every stiffness"]
-    return {"rows": rows, "units": {k: TRAP_BIFURCATION_UNITS[k] for k in rows[0]}, "law": "trap", "damping": damping,
-            "mass": mass, "notes": notes}
+    return {"rows": rows, "units": {k: TRAP_BIFURCATION_UNITS[k] for k in rows[0]},
+            "law": "trap", "damping": damping, "mass": mass, "notes": notes}
