@@ -168,7 +168,8 @@ def test_trap_model_rows_are_trap_hopf_in_reduced_units(tmp_path: Path) -> None:
     from dryfriction.theory.model import TrapModel
 
     out = tmp_path / "out"
-    r = run(trap_protocol(tmp_path), "--velocities", "0.031,0.27", "--out", str(out))
+    r = run(trap_protocol(tmp_path), "--velocities", "0.031,0.27", "--out", str(out),
+            "--no-figure")
     assert r.exit_code == 0, r.output
     model = TrapModel(alpha=0.13, eps=0.04, direct=0.02)
     with open(out / "bifurcation.csv") as fh:
@@ -184,7 +185,6 @@ def test_trap_model_rows_are_trap_hopf_in_reduced_units(tmp_path: Path) -> None:
         assert row["nature"] == h.nature
     doc = json.loads((out / "bifurcation.json").read_text())
     assert doc["units"]["mass"] == "F_el t0^2/a0" and doc["mass"] == 1.7
-    assert (out / "bifurcation.png").stat().st_size > 1000
     from dryfriction.plots.hopf import plot_bifurcation  # the figure's axes say reduced units
 
     _, axes = plot_bifurcation(doc)
