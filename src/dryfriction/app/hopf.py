@@ -81,6 +81,10 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
 
     if not isinstance(velocities, str):
         velocities = ",".join(repr(float(v)) for v in velocities)
+    n_given = len(velocities.split(","))  # before reading the protocol, as before the trap route
+    if check and n_given > MAX_CHECKED:
+        raise ValueError(f"--velocities: {n_given} values with --check: allowed at most "
+                         f"{MAX_CHECKED}")
     proto = load_protocol(protocol)
     if isinstance(proto, Protocol):  # the trap model: reduced units, no simulated check
         if check:
@@ -99,9 +103,6 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
         rep = with_units({**rep, "protocol": str(protocol)}, TRAP_BIFURCATION_UNITS)
     elif isinstance(proto, RSFProtocol):
         vs = parse_velocities(velocities)
-        if check and len(vs) > MAX_CHECKED:
-            raise ValueError(f"--velocities: {len(vs)} values with --check: allowed at most "
-                             f"{MAX_CHECKED}")
         check_output_dir(out, force=force)
         rep = bifurcation_table(proto, vs, check, progress=progress)
         rep = with_units({**rep, "protocol": str(protocol)}, BIFURCATION_UNITS)
