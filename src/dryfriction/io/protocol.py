@@ -334,13 +334,7 @@ def protocol_from_dict(doc: Mapping[str, Any], source: str = "<protocol>"
     from ..ensemble.resources import check_run
     from ..ensemble.result import check_snapshots
 
-    unknown = sorted(set(doc) - set(_TABLES))
-    if unknown:
-        raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
-                         f"{', '.join(_TABLES)}")
-    for t in _TABLES:
-        if t not in doc:
-            raise ValueError(f"{source}: table '{t}' is missing")
+    _check_tables(doc, _TABLES, source)
 
     model = _trap_model(doc, source)
     track, initial = _population(doc, source)
@@ -428,6 +422,19 @@ def _population(doc: Mapping[str, Any], source: str) -> tuple[Track, Initial]:
     return track, initial
 
 
+def _check_tables(doc: Mapping[str, Any], tables: tuple[str, ...], source: str,
+                  missing_hint: str = "") -> None:
+    """Exactly ``tables`` at the top of a protocol file: one line naming an unknown or a
+    missing table (``missing_hint`` said after the missing one)."""
+    unknown = sorted(set(doc) - set(tables))
+    if unknown:
+        raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
+                         f"{', '.join(tables)}")
+    for t in tables:
+        if t not in doc:
+            raise ValueError(f"{source}: table '{t}' is missing{missing_hint}")
+
+
 _INTERFACE_TABLES = ("model", "ensemble", "interface", "drive", "output")
 _INTERFACE_KEYS = ("n_elements", "coupling", "mass", "damping", "disorder", "normal_spread",
                    "density_spread")
@@ -474,14 +481,8 @@ def _interface_protocol(doc: Mapping[str, Any], source: str) -> InterfaceProtoco
     from ..ensemble.interface import InterfaceDrive, InterfaceModel, check_interface
     from ..ensemble.result import Output
 
-    unknown = sorted(set(doc) - set(_INTERFACE_TABLES))
-    if unknown:
-        raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
-                         f"{', '.join(_INTERFACE_TABLES)}")
-    for t in _INTERFACE_TABLES:
-        if t not in doc:
-            raise ValueError(f"{source}: table '{t}' is missing (an [interface] protocol has "
-                             f"{', '.join(_INTERFACE_TABLES)})")
+    _check_tables(doc, _INTERFACE_TABLES, source,
+                  f" (an [interface] protocol has {', '.join(_INTERFACE_TABLES)})")
     trap = _trap_model(doc, source)
     _, initial = _population(doc, source)
     i = _Table(source, "interface", doc["interface"])
