@@ -41,11 +41,16 @@ ENSEMBLE = {"qs_u1": (1.0, 0.0, (0.02, 0.01)), "qs_u0.01": (0.01, 0.0, (0.02, 0.
             "inertial_u1": (1.0, 0.845, (0.02, 0.01, 0.05, 0.1))}
 
 
+def _case(hop, u: float, mass: float) -> dict:  # type: ignore[no-untyped-def]
+    """The Hopf point's numbers, before the simulated rows."""
+    return {"u": u, "mass": mass, "K_c": hop.K_c, "omega": hop.omega, "l1_x": hop.l1_x,
+            "nature": hop.nature, "rows": []}
+
+
 def reduced_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
     hop = trap_hopf(u, MODEL, mass, **RES)
     fld = TrapField(u, MODEL, mass, 0.0, **RES)
-    out = {"u": u, "mass": mass, "K_c": hop.K_c, "omega": hop.omega, "l1_x": hop.l1_x,
-           "nature": hop.nature, "rows": []}
+    out = _case(hop, u, mass)
     for d in ds:
         t = time.process_time()
         if hop.l1_x < 0:
@@ -79,8 +84,7 @@ def reduced_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
 
 def ensemble_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
     hop = trap_hopf(u, MODEL, mass, **RES)
-    out = {"u": u, "mass": mass, "K_c": hop.K_c, "omega": hop.omega, "l1_x": hop.l1_x,
-           "nature": hop.nature, "rows": []}
+    out = _case(hop, u, mass)
     for d in ds:
         t = time.process_time()
         if hop.l1_x < 0:
