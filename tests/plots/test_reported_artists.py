@@ -127,3 +127,23 @@ def test_record_figure_velocity_in_um_per_s() -> None:
     # the record steps 0.2 -> 2 µm/s: the drawn median lies between its slowest and fastest
     assert seg[0] / 2 < float(np.median(np.abs(y))) < seg[-1] * 2, (np.median(y), seg)
     assert 0.05 < seg[0] and seg[-1] < 20.0  # the program itself in µm/s
+
+
+def test_record_figure_marks_a_change_it_does_not_place() -> None:
+    """A change whose time the record does not place (its 95 % interval reaches beyond
+    0.5 s) is numbered with a star in record.png, as in the table, and the title says why;
+    the shared record's one change is such a case (-1.2/+0.15 s)."""
+    rec = read_record(SHARED)
+    det = detect_program(rec)
+    want = [j for j, s in enumerate(det.segments) if j and not s.start_placed]
+    assert want == [1]
+    fig, info = plot_record(rec, det.segments, det)
+    assert info.unplaced == want
+    words = [t.get_text() for t in fig.axes[0].texts]
+    assert "1*" in words, words
+    assert "not placed" in fig._suptitle.get_text()
+    placed = [s if j != 1 else dataclasses.replace(s, start_placed=True)
+              for j, s in enumerate(det.segments)]
+    fig, info = plot_record(rec, placed, det)
+    assert info.unplaced == [] and "not placed" not in fig._suptitle.get_text()
+    assert "1" in [t.get_text() for t in fig.axes[0].texts]

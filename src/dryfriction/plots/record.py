@@ -34,12 +34,16 @@ class RecordFigure:
         Kind (``rate change``, ``gap``, ``reset``, ``normal change``) -> times marked, s.
     artists : dict
         Panel -> the matplotlib artists of the shading.
+    unplaced : list of int
+        The segments whose start the record does not place within the larger of one sample
+        and 0.5 s (95 %): numbered with a ``*``, as in the table, and said in the title.
     """
 
     panels: list[str]
     shaded: list[int]
     marks: dict[str, list[float]] = field(default_factory=dict)
     artists: dict[str, list[Any]] = field(default_factory=dict)
+    unplaced: list[int] = field(default_factory=list)
 
 
 def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float) -> tuple[np.ndarray,
@@ -130,7 +134,10 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
             info.artists[name].append(a.axvspan(s.t_start - t0, s.t_end - t0,
                                                 color="C0" if hold else "C2",
                                                 alpha=0.12 if hold else 0.08, lw=0))
-        ax.annotate(f"{j}" + (" hold" if hold else ""), (s.t_start - t0, 1.0),
+        if not s.start_placed:
+            info.unplaced.append(j)
+        ax.annotate(f"{j}" + ("*" if not s.start_placed else "") + (" hold" if hold else ""),
+                    (s.t_start - t0, 1.0),
                     xycoords=("data", "axes fraction"), xytext=(2, -10),
                     textcoords="offset points", fontsize=8)
     marks = {"rate change": list(detection.rate_changes) if detection else [],
@@ -151,6 +158,10 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     n_steps = sum(1 for j in info.shaded if segments[j].velocity != 0.0)
     n_holds = len(info.shaded) - n_steps
     fig.suptitle(f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
-                 f"{n_holds} hold(s); shaded and numbered as in segments.csv", fontsize=9)
-    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=0.93, hspace=0.08)
+                 f"{n_holds} hold(s); shaded and numbered as in segments.csv"
+                 + (f"\n* change time not placed within max(0.5 s, one sample) (95 % interval in segments.csv): "
+                    f"segment(s) {', '.join(map(str, info.unplaced))}" if info.unplaced else ""),
+                 fontsize=9)
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=0.91 if info.unplaced else 0.93,
+                        hspace=0.08)
     return fig, info
