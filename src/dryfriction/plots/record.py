@@ -159,8 +159,9 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     n_holds = len(info.shaded) - n_steps
     fig.suptitle(f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
                  f"{n_holds} hold(s); shaded and numbered as in segments.csv"
-                 + (f"\n* change time not placed within max(0.5 s, one sample) (95 % interval in segments.csv): "
-                    f"segment(s) {', '.join(map(str, info.unplaced))}" if info.unplaced else ""),
+                 + ("\n* change time not placed within max(0.5 s, one sample) (95 % interval "
+                    f"in segments.csv): segment(s) {', '.join(map(str, info.unplaced))}"
+                    if info.unplaced else ""),
                  fontsize=9)
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=0.91 if info.unplaced else 0.93,
                         hspace=0.08)
