@@ -53,7 +53,7 @@ import numpy as np
 from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
 from .labsteps import Segment, make_segments
-from .placement import PLACED_P, oscillation_periods, place_changes, placed_probability
+from .placement import PLACED_P, RELAX_STOP, oscillation_periods, place_changes, placed_probability
 from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
 
@@ -522,15 +522,16 @@ def detect_program(
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
         t, x = t_all, x_all
         fits = _Fits(t, x)
-    # a change to or from a hold is placed by the hinge under the wander whatever its
-    # confidence (the servo's relaxation after a stop bends the whole stretches' kink: zoo
-    # records 150-449, 104 such changes kept where the stretches put them, 6 off by more than
-    # the tolerance, 1 once placed: HOLD_PLACED)
+    # a change to or from a hold (or a speed below RELAX_STOP of the other side's) is placed
+    # by the hinge under the wander whatever its confidence (the servo's relaxation after a
+    # stop bends the whole stretches' kink: HOLD_PLACED)
     v_now, d_now, sxx_now = fits.table(bounds)
     hold_now = _is_hold(v_now, d_now, sxx_now, fl, floor, given)
     weak = _z(fits, fl, bounds) < LOCAL_Z
     if HOLD_PLACED:
-        weak = weak | hold_now[1:] | hold_now[:-1]
+        u = np.abs(v_now)
+        stop = np.minimum(u[1:], u[:-1]) <= RELAX_STOP * np.maximum(u[1:], u[:-1])
+        weak = weak | hold_now[1:] | hold_now[:-1] | stop
     if weak.any() and not periods and not weak_now.any():
         periods = _periods(t, x, bounds, fits)
     bounds, places = place_changes(t, x, bounds, v_now, sigma if blk == 1 else fl.sigma,
@@ -577,7 +578,10 @@ lies within the larger of one sample and this many seconds of its time, s: the t
 detection is measured against on the artifact zoo (``benchmarks/bench_detect.py``)."""
 
 HOLD_PLACED = True
-"""Changes to and from a hold are placed by the hinge under the wander at any confidence."""
+"""Changes to and from a hold, or between speeds in a ratio beyond ``1 / RELAX_STOP``
+(:data:`.placement.RELAX_STOP`), are placed by the hinge under the wander at any confidence
+(ours: on zoo records 150-449, 104 changes at holds were left where the whole stretches put
+them, 6 off by more than the tolerance, where the hinge's profile would have put 1)."""
 
 LOCAL_Z = 500.0
 """Below this confidence a change is placed by the generalised-least-squares hinge under the
