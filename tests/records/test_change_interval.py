@@ -93,11 +93,12 @@ def test_detected_changes_carry_their_interval() -> None:
     """The detector's segments carry the interval of the change at their start, holding the
     reported time: on the servo record (3 -> 10 um/s at 400 s, 10 then 100 Hz) within 1 s of
     it (measured -0.8 to +0.16 s at most) and holding the truth, placed on some seeds (1 and 3:
-    within 0.3 s); on 30 oracle records of ratio 1.3 with the machine oscillation every change
-    time off by more than its tolerance is marked not placed, and the intervals hold the true
-    time on >= 27 (measured 30). Mistakes: the intervals not passed to the segments (NaN); the
-    placed flag from the nearer side of the interval (min, not max: seed 0's interval, -0.8
-    to +0.16 s of it, marked placed)."""
+    within 0.3 s), the placed flag being the probability of lying within the tolerance
+    (``start_p``) against PLACED_P; on 30 oracle records of ratio 1.3 with the machine
+    oscillation every change time off by more than its tolerance is marked not placed, and
+    the intervals hold the true time on >= 27 (measured 30). Mistakes, each seen failing: the
+    intervals not passed to the segments (NaN); the flag from the interval's width as before
+    (seed 0's interval, -0.8 to +0.16 s, marked not placed at probability 0.97)."""
     placed, lopsided = [], 0
     for seed in range(4):
         rec, change = servo_record(seed)
