@@ -560,8 +560,9 @@ def detect_program(
         if pl is None or not np.isfinite(pl.lo):
             out.append(replace(s, confidence=conf, normal=normal))
             continue
-        # placed: the interval within the larger of one sample (the interval before the
-        # change) and PLACE_TOL of the reported time, on both sides
+        # placed: probably (PLACED_P) within the larger of one sample (the interval before
+        # the change) and PLACE_TOL of the reported time, by the widened profile; a change
+        # whose profile reaches the end of the times searched is not
         tol = max(float(t[s.i_start] - t[s.i_start - 1]), PLACE_TOL)
         p_in = placed_probability(pl, s.t_start, tol)
         placed = not pl.edge and p_in >= PLACED_P
@@ -573,9 +574,10 @@ def detect_program(
 
 
 PLACE_TOL = 0.5
-"""A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when its 95 % interval
-lies within the larger of one sample and this many seconds of its time, s: the tolerance the
-detection is measured against on the artifact zoo (``benchmarks/bench_detect.py``)."""
+"""A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when the probability
+that it lies within the larger of one sample and this many seconds of its time is at least
+:data:`.placement.PLACED_P`, s: the tolerance the detection is measured against on the
+artifact zoo (``benchmarks/bench_detect.py``)."""
 
 HOLD_PLACED = True
 """Changes to and from a hold, or between speeds in a ratio beyond ``1 / RELAX_STOP``
