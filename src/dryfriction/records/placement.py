@@ -16,7 +16,8 @@ P)`` and ``int cos(2 pi t / P)`` (amplitude and phase free, one amplitude for bo
 ours). At a stop, the servo's position error relaxes after the command (:data:`RELAX_STOP`):
 ``(1 - exp(-(t - t_c) / tau))+`` enters as a free regressor beside the hinge. Each change's
 95 % interval is its profile likelihood's (:func:`profile_interval`), widened
-(:data:`WIDEN`).
+(:data:`WIDEN`), and the same widened profile gives the probability that it lies within a
+tolerance of the time reported (:func:`placed_probability`, :data:`PLACED_P`).
 
 Integrated Ornstein-Uhlenbeck covariance (standard; e.g. Gardiner, *Stochastic Methods*,
 section 3.8): with ``C(u) = s**2 exp(-|u| / tau)``,
