@@ -243,7 +243,7 @@ def posterior(rec: z.ZooRecord, k: int, half: float = 60.0, span: float = 10.0,
     cw = np.concatenate([[0.0], np.cumsum(w)])
     lo = np.searchsorted(grid, grid - tol, side="left")
     hi = np.searchsorted(grid, grid + tol, side="right")
-    best = float(np.max(cw[hi] - cw[lo]))
+    best = float(np.clip(np.max(cw[hi] - cw[lo]), 0.0, 1.0))
     mean = float(w @ grid)
     return best, float(np.sqrt(w @ (grid - mean) ** 2))
 
