@@ -275,10 +275,13 @@ def profile_weights(times: Array, gain: Array, scale: float, left: float, right:
 
 PLACED_P = 0.9
 """A change is *placed* when the probability that it lies within its tolerance of its reported
-time (:func:`placed_probability`: the profile likelihood widened by
-:data:`WIDEN`) is at least this (ours; chosen on zoo records 150-449, where it marks
-every time off by more than its tolerance, as the interval's width did, and 102 changes within
-it instead of 171: ``python -m benchmarks bench_detect_bound``)."""
+time (:func:`placed_probability`: the profile likelihood widened by :data:`WIDEN`, as the
+interval) is at least this (ours; chosen on zoo records 150-449: 0.9 marked all 13 times off
+by more than their tolerance and 85 of the 537 within it, where the interval's width marked
+165; on records 5000-5299, run once, 18 of the 19 off and 91 of the 528 within, the width 19
+and 172: ``python -m benchmarks bench_detect_bound``). Zoo record 5230, a restart after a
+hold sampled at 0.8 Hz, placed 2.6 s early with its interval on the other side, was marked
+placed at this level."""
 
 
 def placed_probability(pl: Placement, at: float, tol: float, widen: float | None = None
