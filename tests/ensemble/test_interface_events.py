@@ -75,18 +75,22 @@ def test_event_catalogue_statistics_agree_with_the_dynamic_run() -> None:
     assert abs(peak_e - peak_d) <= 0.02 * peak_d, (peak_e, peak_d)
 
 
-def test_energy_balance_holds_per_event_with_quasi_static_phases() -> None:
+@pytest.mark.parametrize("rate", [QUASI_STATIC_RATE, 0.1])
+def test_energy_balance_holds_per_event_with_quasi_static_phases(rate: float) -> None:
     """``work_load = delta(elastic + kinetic) + work_friction + work_damping +
-    work_quasi_static`` over the whole run and over every event, and what the quasi-static
-    phases remove is small against the work of the events. Mistakes caught: the unbalanced
-    force's work not booked, the damping's work over a quasi-static step left out."""
-    ed = _stick_slip(QUASI_STATIC_RATE)
+    work_quasi_static`` over the whole run and over every event, at the default threshold
+    (where what the quasi-static phases remove is small against the work) and at a ten times
+    larger one (where it is not, and the balance must still close). Measured residuals ~1e-3
+    of a work of ~230, the dynamic run's own. Mistakes caught: the unbalanced force's work
+    not booked, the damping's work over a quasi-static step left out."""
+    ed = _stick_slip(rate)
     e = ed.energy
     res = ed.energy_residual()
     work = e["work_load"][-1]
     assert work > 10.0
-    assert np.max(np.abs(res)) < 1e-3 * work
-    assert 0.0 < abs(e["work_quasi_static"][-1]) < 1e-3 * work
+    assert np.max(np.abs(res)) < 2e-5 * work
+    if rate == QUASI_STATIC_RATE:
+        assert 0.0 < abs(e["work_quasi_static"][-1]) < 1e-4 * work
     events = detect_events(from_result(ed), 10.0 * V)
     i = np.searchsorted
     for ev in events:

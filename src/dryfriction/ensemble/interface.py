@@ -56,10 +56,35 @@ threads, except by default on a machine already busy (one-minute load average at
 cores), where each step's join of the threads waits for a time slice; the numbers are the same
 with any number of threads (tests/ensemble/test_interface.py).
 
+Event-driven loading (ours; ``quasi_static_rate = v_qs > 0``): quasi-static loading between
+events, dynamic stepping within them, as the event-driven spring-block codes do.
+
+* The dynamics hand over when every block is quiet after a step, ``v_i^2 + (a_i/omega)^2 <
+  v_qs^2`` (its slip rate, and the rate its unbalanced force ``m a_i`` would give it within an
+  oscillation; ``omega = sqrt((K_p + k_contact)/m)``, the chain's lowest normal mode on fresh
+  contacts), and not before one period ``2 pi/omega`` of dynamics.
+* A quasi-static step goes to the next sample at once: every block in equilibrium at the new
+  time without inertia, ``K_p (P - y_i) + k_c (y_{i+1} - 2 y_i + y_{i-1}) + [i = 0] K_s (L -
+  y_0) - F_i(y_i) - eta (y_i - x_i)/dt = 0``, the friction of each window moved to ``y_i`` with
+  the contacts aged to the new time (creep over the step, exact as in the dynamics), by
+  Newton's method with the windows' own stiffness (:func:`.interface_kernel.settle_chain`).
+* A step is taken only if no contact reaches its spinodal on the way, that is, no block's
+  force reaches its threshold (the force at which its next contact gives way); else it is
+  shortened to just before it, and within one dynamic step of the bound ``dt`` the dynamics
+  resume from the last equilibrium, at the quasi-static velocities.
+
+Exact: the loading, the ages and every contact's force at each equilibrium; with ``v_qs = 0``
+the run is the dynamic one bit for bit. Neglected: the inertia ``m x''`` during the quiet
+phases, that is the chain's residual oscillation when a phase starts, at most ``v_qs/omega``
+in slip and ``m N v_qs^2`` in energy (booked in ``work_quasi_static``, so that the energy
+balance still closes), and the overshoot of a contact's force drop below ``v_qs`` (each
+threshold is handed to the dynamics, but a drop whose ringing stays below ``v_qs`` is let
+settle quasi-statically after one period). :data:`QUASI_STATIC_RATE` is the threshold the
+checks against the dynamic run were made with (tests/ensemble/test_interface_events.py).
+
 Not modelled (refused or absent, and said so): the direct effect (``direct > 0`` is refused),
-the quasi-static (``mass = 0``) limit, an event-driven quasi-static loading between events (the
-chain is stepped dynamically throughout, holds included), a long-range (thin-slab) elastic
-kernel, snapshots of the populations.
+the quasi-static (``mass = 0``) limit, a long-range (thin-slab) elastic kernel, snapshots of
+the populations.
 """
 
 from __future__ import annotations
