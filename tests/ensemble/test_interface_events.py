@@ -7,6 +7,7 @@ Each test names the plausible mistake it is for (seen failing with it applied, t
 from __future__ import annotations
 
 import functools
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,6 +22,7 @@ from dryfriction.ensemble.interface import (
 from dryfriction.ensemble.interface_result import InterfaceResult
 from dryfriction.ensemble.population import Initial, Track
 from dryfriction.ensemble.result import Output
+from dryfriction.io.protocol import parse_protocol
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.theory.model import TrapModel
 
@@ -112,4 +114,18 @@ def test_event_driven_runs_are_refused_like_dynamic_ones() -> None:
     initial = Initial("rest", track=Track(100.0, "random", seed=1))
     with pytest.raises(ValueError, match=r"every = 0.01 with n_elements = 1000 records") as err:
         simulate_interface(model, drive, initial, Output(every=0.01))
+    assert "\n" not in str(err.value)
+
+
+def test_the_protocol_table_takes_the_threshold() -> None:
+    """``quasi_static_rate`` in the ``[interface]`` table reaches the model; a negative one is
+    refused in one line naming it, before any work."""
+    text = (Path(__file__).parents[2] / "examples" / "interface_side_loaded.toml").read_text()
+    assert "[interface]\n" in text
+    good = text.replace("[interface]\n", "[interface]\nquasi_static_rate = 0.02\n")
+    assert parse_protocol(good, "ed.toml").model.quasi_static_rate == 0.02
+    assert parse_protocol(text, "dyn.toml").model.quasi_static_rate == 0.0
+    bad = text.replace("[interface]\n", "[interface]\nquasi_static_rate = -1\n")
+    with pytest.raises(ValueError, match="quasi_static_rate") as err:
+        parse_protocol(bad, "bad.toml")
     assert "\n" not in str(err.value)
