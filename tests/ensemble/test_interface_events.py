@@ -103,7 +103,7 @@ def test_energy_balance_holds_per_event_with_quasi_static_phases(rate: float) ->
         assert abs(res[b] - res[a]) < 2e-3 * max(diss, 0.1), (ev.index, res[b] - res[a], diss)
 
 
-def test_event_driven_runs_are_refused_like_dynamic_ones() -> None:
+def test_event_driven_runs_are_refused_like_dynamic_ones(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     """The memory and sample limits hold for the event-driven mode: refused in one line
     before any work; a negative threshold names its parameter."""
     with pytest.raises(ValueError, match="quasi_static_rate") as err:
@@ -114,6 +114,11 @@ def test_event_driven_runs_are_refused_like_dynamic_ones() -> None:
     initial = Initial("rest", track=Track(100.0, "random", seed=1))
     with pytest.raises(ValueError, match=r"every = 0.01 with n_elements = 1000 records") as err:
         simulate_interface(model, drive, initial, Output(every=0.01))
+    assert "\n" not in str(err.value)
+    monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "1MB")
+    small = InterfaceDrive("uniform", 0.1, VelocityProgram([Segment(1.0, duration=10.0)]))
+    with pytest.raises(ValueError, match=r"traps_per_a0 = 100 places .* pairs") as err:
+        simulate_interface(model, small, initial, Output(every=1.0))
     assert "\n" not in str(err.value)
 
 
