@@ -59,6 +59,8 @@ _DIN = "tests/ensemble/test_direct_inertia.py"
 _FRG = "tests/analysis/test_fronts_generic.py"
 _CRG = "tests/theory/test_creep_generic.py"
 _MAG = "tests/fit/test_machine_generic.py"
+_ARG = "tests/records/test_artifacts_generic.py"
+_SSE = "tests/io/test_stickslip_table_edges.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -548,6 +550,45 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("reload time: the spring's take-up left out", "app/ratestate.py",
        "return max(30.0, min(load + 10.0 * dc / speed, LOAD_MAX))",
        "return max(30.0, min(10.0 * dc / speed, LOAD_MAX))", "tests/app/test_reload_time.py"),
+    _m("sampling: only a faster sampling looked for", "records/artifacts.py",
+       "np.flatnonzero((ratio > _RATE_FACTOR) | (ratio < 1.0 / _RATE_FACTOR))",
+       "np.flatnonzero((ratio < 1.0 / _RATE_FACTOR))", _ARG, "-k", "both_ways"),
+    _m("sampling: a rate change placed at its block's start", "records/artifacts.py",
+       "changes.append(float(t[j * block + k]))", "changes.append(float(t[(j + 1) * block]))",
+       _ARG, "-k", "both_ways"),
+    _m("sampling: a rate change needs a factor 2", "records/artifacts.py",
+       "_RATE_FACTOR = 1.5  #", "_RATE_FACTOR = 2.0  #", _ARG, "-k", "rate_change_threshold"),
+    _m("sampling: a gap reported at its end", "records/artifacts.py",
+       "return changes, [float(t[i]) for i in gap]",
+       "return changes, [float(t[i + 1]) for i in gap]", _ARG, "-k", "gap_threshold"),
+    _m("sampling: a gap over 5 intervals", "records/artifacts.py",
+       "gap = np.flatnonzero(dt > 10.0 * np.maximum(",
+       "gap = np.flatnonzero(dt > 5.0 * np.maximum(", _ARG, "-k", "gap_threshold"),
+    _m("jump excursion: the step not projected off the line's slope", "records/artifacts.py",
+       "den = ni - ni**2 / n - ts[ks] ** 2 / sxx", "den = ni - ni**2 / n",
+       _ARG, "-k", "re_zeroing"),
+    _m("jump excursion: the sample after the jump off by one", "records/artifacts.py",
+       "out.append((j, a + int(ks[i]), float(rs[ks[i]] / den[i])))",
+       "out.append((j, a + int(ks[i]) - 1, float(rs[ks[i]] / den[i])))",
+       _ARG, "-k", "re_zeroing"),
+    _m("normal change: the half-way crossing looked for upwards only", "records/artifacts.py",
+       "cross = np.flatnonzero(seg >= mid if after > before else seg <= mid)",
+       "cross = np.flatnonzero(seg >= mid)", _ARG, "-k", "up_and_down"),
+    _m("space-time fields: float32 whatever compact says", "io/spacetime.py",
+       "dtype = np.float32 if compact else np.float64", "dtype = np.float32",
+       "tests/io/test_spacetime_generic.py"),
+    _m("stickslip table: stick_fraction's upper end open", "io/protocol.py",
+       '"stick_fraction": (0.0, 1.0, True, False),', '"stick_fraction": (0.0, 1.0, True, True),',
+       _SSE, "-k", "edges"),
+    _m("stickslip table: rel_threshold's upper end closed", "io/protocol.py",
+       '"rel_threshold": (0.0, 1.0, True, True),', '"rel_threshold": (0.0, 1.0, True, False),',
+       _SSE, "-k", "edges"),
+    _m("stickslip table: a zero floor accepted", "io/protocol.py",
+       '"floor": (0.0, None, True, False),', '"floor": (0.0, None, False, False),',
+       _SSE, "-k", "edges"),
+    _m("stickslip table: a boolean read as a number", "io/protocol.py",
+       "if isinstance(value, bool) or not isinstance(value, (int, float)):",
+       "if not isinstance(value, (int, float)):", _SSE, "-k", "boolean"),
 )
 
 
