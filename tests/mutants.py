@@ -61,6 +61,7 @@ _CRG = "tests/theory/test_creep_generic.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
+_LCG = "tests/fit/test_lawcolumns.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -589,6 +590,28 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("stickslip table: a boolean read as a number", "io/protocol.py",
        "if isinstance(value, bool) or not isinstance(value, (int, float)):",
        "if not isinstance(value, (int, float)):", _SSE, "-k", "boolean"),
+    _m("law columns: state0's span rule a factor 10, not ln 10", "fit/lawcolumns.py",
+       "narrow = finite and hi - lo <= math.log(MAX_SPAN)",
+       "narrow = finite and hi - lo <= MAX_SPAN", _LCG, "-k", "two_state"),
+    _m("law columns: a log parameter's interval as value +- z se", "fit/lawcolumns.py",
+       "lo, hi = ((sp.from_internal(float(theta[j]) - z * se),\n"
+       "                   sp.from_internal(float(theta[j]) + z * se))",
+       "lo, hi = ((val - z * se,\n                   val + z * se)", _LCG, "-k", "two_state"),
+    _m("law columns: the two-state note with a - b + b2", "fit/lawcolumns.py",
+       "{row['a_minus_b'] - row['b2']:.4g}", "{row['a_minus_b'] + row['b2']:.4g}",
+       _LCG, "-k", "two_state"),
+    _m("law columns: Nagata's c = 0 taken as on its search bound", "fit/lawcolumns.py",
+       "< _BOUND_REL * max(width, 1.0) if name != \"c\" else",
+       "< _BOUND_REL * max(width, 1.0) if True else", _LCG, "-k", "nagata"),
+    _m("fit laws: the free start without its state0", "fit/laws.py",
+       'theta0 = values["dc"] / v_first * math.exp(values["state0"])',
+       'theta0 = values["dc"] / v_first', "tests/fit/test_laws_mapping.py", "-k", "free_start"),
+    _m("fit laws: ageing2's second Dc given the first", "fit/laws.py",
+       'dc2=values["dc2"] if two else None', 'dc2=values["dc"] if two else None',
+       "tests/fit/test_laws_mapping.py", "-k", "lands"),
+    _m("fit laws: the second Dc's start at a tenth of Dc", "fit/laws.py",
+       'out["dc2"] = 10.0 * guess.get("dc", 1e-5)', 'out["dc2"] = 0.1 * guess.get("dc", 1e-5)',
+       "tests/fit/test_laws_mapping.py", "-k", "starting"),
 )
 
 
