@@ -62,6 +62,7 @@ _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
 _LCG = "tests/fit/test_lawcolumns.py"
+_IDD = "tests/fit/test_identify_definitions.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -612,6 +613,22 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fit laws: the second Dc's start at a tenth of Dc", "fit/laws.py",
        'out["dc2"] = 10.0 * guess.get("dc", 1e-5)', 'out["dc2"] = 0.1 * guess.get("dc", 1e-5)',
        "tests/fit/test_laws_mapping.py", "-k", "starting"),
+    _m("transient test: F without the residuals' correlation factor", "fit/identify.py",
+       "F = (rss0 - rss1) / df1 / (rss1 / (len(d) - p)) * shrink",
+       "F = (rss0 - rss1) / df1 / (rss1 / (len(d) - p))", _IDD, "-k", "f_test"),
+    _m("transient test: denominator's degrees of freedom n - p", "fit/identify.py",
+       "df1, df2 = p - 2, n_eff - p", "df1, df2 = p - 2, len(d) - p", _IDD, "-k", "f_test"),
+    _m("misfit: the peak allowance's correlation factor turned over", "fit/identify.py",
+       "math.sqrt((1 + rho) / ((1 - rho) * peak_samples))",
+       "math.sqrt((1 - rho) / ((1 + rho) * peak_samples))", _IDD, "-k", "allowance"),
+    _m("misfit: the allowance from the residuals' correlation", "fit/identify.py",
+       "    calm = _calm(d)\n    rho = _tail_rho(d)\n",
+       "    calm = _calm(d)\n"
+       "    rho = float(np.clip(np.corrcoef(resid[1:], resid[:-1])[0, 1], 0.0, 0.999))\n",
+       _IDD, "-k", "allowance"),
+    _m("misfit: rms allowance 2 for 1.5", "fit/identify.py",
+       'if row["rms"] > MISFIT_RMS * noise:', 'if row["rms"] > 2.0 * noise:',
+       _IDD, "-k", "allowance"),
 )
 
 
