@@ -63,6 +63,7 @@ _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
 _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
+_FLG = "tests/records/test_fluctuations_generic.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -651,6 +652,28 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("covariance: the noise variance left out", "fit/statistics.py",
        "else (Vt.T * inv) @ Vt * s2", "else (Vt.T * inv) @ Vt",
        "tests/fit/test_statistics_generic.py", "-k", "inverse_normal"),
+    _m("fluctuations: beyond the longest scale the last value kept", "records/detection.py",
+       "return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)",
+       "return np.where(d >= T[-1], q[-1], out)", _FLG, "-k", "log_log"),
+    _m("fluctuations: interpolated linearly in T", "records/detection.py",
+       "out = np.exp(np.interp(np.log(d), np.log(T), np.log(np.maximum(q, 1e-300))))",
+       "out = np.interp(d, T, q)", _FLG, "-k", "log_log"),
+    _m("fluctuations: the servo bound as a lower bound", "records/detection.py",
+       "out = np.where(d > self.scales[-1], np.minimum(out, np.sqrt(12.0) * self.lag / d),",
+       "out = np.where(d > self.scales[-1], np.maximum(out, np.sqrt(12.0) * self.lag / d),",
+       _FLG, "-k", "log_log"),
+    _m("fluctuations: white noise over sqrt(Sxx) in the scatter", "records/detection.py",
+       "return np.sqrt(self.sigma**2 / np.maximum(sxx, 1e-300)",
+       "return np.sqrt(self.sigma**2 / np.sqrt(np.maximum(sxx, 1e-300))",
+       _FLG, "-k", "three_variances"),
+    _m("held stiffness: the share as own/var", "fit/onemachine.py",
+       "out.append((var, min(var / own, 1.0) if own > 0 else 0.0))",
+       "out.append((var, min(own / var, 1.0) if own > 0 else 0.0))",
+       "tests/fit/test_onemachine_generic.py"),
+    _m("held stiffness: standard error from the half-width over 2 z", "fit/onemachine.py",
+       'var = (math.log(rec["hi"] / rec["lo"]) / (2.0 * Z)) ** 2',
+       'var = (math.log(rec["hi"] / rec["lo"]) / (4.0 * Z)) ** 2',
+       "tests/fit/test_onemachine_generic.py"),
 )
 
 
