@@ -64,6 +64,7 @@ _SSE = "tests/io/test_stickslip_table_edges.py"
 _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
+_IOG = "tests/app/test_interface_outputs_generic.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -674,6 +675,19 @@ MUTANTS: tuple[Mutant, ...] = (
        'var = (math.log(rec["hi"] / rec["lo"]) / (2.0 * Z)) ** 2',
        'var = (math.log(rec["hi"] / rec["lo"]) / (4.0 * Z)) ** 2',
        "tests/fit/test_onemachine_generic.py"),
+    _m("fronts.csv: the position and arrival columns swapped", "app/interface_outputs.py",
+       "(e.index, f.direction, f.x[k], f.t[k], f.speed[k],",
+       "(e.index, f.direction, f.t[k], f.x[k], f.speed[k],", _IOG, "-k", "fronts_csv"),
+    _m("fronts.csv: a speed interval's ends swapped", "app/interface_outputs.py",
+       "f.speed_low[k], f.speed_high[k]), strict=True)",
+       "f.speed_high[k], f.speed_low[k]), strict=True)", _IOG, "-k", "fronts_csv"),
+    _m("fronts: a speed interval's ends from the wrong slowness bounds", "analysis/fronts.py",
+       "return 1.0 / s, (1.0 / hi if hi > 0 else math.nan), (1.0 / lo if lo > 0 else math.inf)",
+       "return 1.0 / s, (1.0 / lo if lo > 0 else math.nan), (1.0 / hi if hi > 0 else math.inf)",
+       _IOG, "-k", "fronts_csv"),
+    _m("interface summary: the sound speed sqrt(m/k)", "analysis/fronts.py",
+       "return math.sqrt(k / m) if k >= 0 and m > 0 else math.nan",
+       "return math.sqrt(m / k) if k > 0 and m > 0 else math.nan", _IOG, "-k", "summary"),
 )
 
 
