@@ -688,6 +688,16 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("interface summary: the sound speed sqrt(m/k)", "analysis/fronts.py",
        "return math.sqrt(k / m) if k >= 0 and m > 0 else math.nan",
        "return math.sqrt(m / k) if k > 0 and m > 0 else math.nan", _IOG, "-k", "summary"),
+    _m("peak residual: the extreme a maximum after a down step too", "fit/steps.py",
+       "up = v[i0] > v[max(i0 - 1, 0)] or v[max(i0 - 1, 0)] == 0.0", "up = True",
+       "tests/fit/test_peak_residual.py"),
+    _m("peak residual: from the first change to sliding, not the last", "fit/steps.py",
+       "    i0 = int(ch[-1]) + 1 if ch.size else 0\n    m = PEAK_SAMPLES",
+       "    i0 = int(ch[0]) + 1 if ch.size else 0\n    m = PEAK_SAMPLES",
+       "tests/fit/test_peak_residual.py"),
+    _m("peak residual: one sample's residual, not the mean", "fit/steps.py",
+       "    return float(np.mean(r)), i0 + j + m // 2", "    return float(r[0]), i0 + j + m // 2",
+       "tests/fit/test_peak_residual.py"),
 )
 
 
