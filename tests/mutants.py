@@ -698,6 +698,12 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("peak residual: one sample's residual, not the mean", "fit/steps.py",
        "    return float(np.mean(r)), i0 + j + m // 2", "    return float(r[0]), i0 + j + m // 2",
        "tests/fit/test_peak_residual.py"),
+    _m("mat names: a velocity's um_s kept with its underscore", "records/labforms.py",
+       'unit = m.group(2).replace("_", "/")', "unit = m.group(2)",
+       "tests/records/test_labforms_units.py"),
+    _m("mat names: ms not read as a unit", "records/labforms.py",
+       r'_UNIT_SUFFIX = re.compile(r"^(.+?)_(s|ms|us|min|',
+       r'_UNIT_SUFFIX = re.compile(r"^(.+?)_(s|us|min|', "tests/records/test_labforms_units.py"),
 )
 
 
