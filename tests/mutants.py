@@ -704,6 +704,19 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("mat names: ms not read as a unit", "records/labforms.py",
        r'_UNIT_SUFFIX = re.compile(r"^(.+?)_(s|ms|us|min|',
        r'_UNIT_SUFFIX = re.compile(r"^(.+?)_(s|us|min|', "tests/records/test_labforms_units.py"),
+    _m("text check: UTF-16's mark tested before UTF-32's", "io/textfile.py",
+       '    if head.startswith((b"\\xff\\xfe\\x00\\x00", b"\\x00\\x00\\xfe\\xff")):\n'
+       '        raise ValueError(f"{source} is UTF-32 text: save it as UTF-8")\n'
+       '    if head.startswith((b"\\xff\\xfe", b"\\xfe\\xff")):\n'
+       '        raise ValueError(f"{source} is UTF-16 text: save it as UTF-8")\n',
+       '    if head.startswith((b"\\xff\\xfe", b"\\xfe\\xff")):\n'
+       '        raise ValueError(f"{source} is UTF-16 text: save it as UTF-8")\n'
+       '    if head.startswith((b"\\xff\\xfe\\x00\\x00", b"\\x00\\x00\\xfe\\xff")):\n'
+       '        raise ValueError(f"{source} is UTF-32 text: save it as UTF-8")\n',
+       "tests/io/test_textfile.py"),
+    _m("text check: a mark-less UTF-16 looked for in one byte order", "io/textfile.py",
+       "(even.count(0) > 0.4 * len(even) or odd.count(0) > 0.4 * len(odd))",
+       "(odd.count(0) > 0.4 * len(odd))", "tests/io/test_textfile.py"),
 )
 
 
