@@ -717,6 +717,14 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("text check: a mark-less UTF-16 looked for in one byte order", "io/textfile.py",
        "(even.count(0) > 0.4 * len(even) or odd.count(0) > 0.4 * len(odd))",
        "(odd.count(0) > 0.4 * len(odd))", "tests/io/test_textfile.py"),
+    _m("granular floor: the radius, not its square", "analysis/stickslip.py",
+       "r2 = float(model.law.radius(np.array([tau_d]))[0]) ** 2",
+       "r2 = float(model.law.radius(np.array([tau_d]))[0])",
+       "tests/analysis/test_granular_floor.py"),
+    _m("granular floor: mu_el left out", "analysis/stickslip.py",
+       "return factor * model.mu_el * trap.f_c * r2 / (trap.H0 * traps_per_a0)",
+       "return factor * trap.f_c * r2 / (trap.H0 * traps_per_a0)",
+       "tests/analysis/test_granular_floor.py"),
 )
 
 
