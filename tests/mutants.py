@@ -65,6 +65,7 @@ _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
+_HTE = "tests/analysis/test_hopf_table_edges.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -725,6 +726,15 @@ MUTANTS: tuple[Mutant, ...] = (
        "return factor * model.mu_el * trap.f_c * r2 / (trap.H0 * traps_per_a0)",
        "return factor * trap.f_c * r2 / (trap.H0 * traps_per_a0)",
        "tests/analysis/test_granular_floor.py"),
+    _m("velocities: the upper end open", "analysis/hopf_table.py",
+       "if not 0.0 < v <= v_max:", "if not 0.0 < v < v_max:", _HTE, "-k", "velocities"),
+    _m("velocities: the count's end off by one", "analysis/hopf_table.py",
+       "if not 1 <= len(out) <= most:", "if not 1 <= len(out) < most:", _HTE, "-k", "velocities"),
+    _m("trap normal form: alpha0 itself accepted", "analysis/hopf_table.py",
+       "if model.alpha >= ALPHA0:", "if model.alpha > ALPHA0:", _HTE, "-k", "alpha0"),
+    _m("trap normal form: a damping without mass accepted", "analysis/hopf_table.py",
+       "if mass == 0.0 and damping != 0.0:", "if mass == 0.0 and damping > 1e-6:",
+       _HTE, "-k", "alpha0"),
 )
 
 
