@@ -735,6 +735,15 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("trap normal form: a damping without mass accepted", "analysis/hopf_table.py",
        "if mass == 0.0 and damping != 0.0:", "if mass == 0.0 and damping > 1e-6:",
        _HTE, "-k", "alpha0"),
+    _m("RSF state_rate: PRZ without its 1/2", "rsf/law.py",
+       "return 0.5 * (1.0 - omega * omega)", "return (1.0 - omega * omega)",
+       "tests/rsf/test_state_rate.py"),
+    _m("RSF state_rate: the slip law's sign", "rsf/law.py",
+       "return np.where(omega > 0, -omega * np.log(omega), 0.0)",
+       "return np.where(omega > 0, omega * np.log(omega), 0.0)", "tests/rsf/test_state_rate.py"),
+    _m("RSF state_rate: a reverse velocity's rate of its signed value", "rsf/law.py",
+       'v = np.abs(check_range("v", v))', 'v = check_range("v", v)',
+       "tests/rsf/test_state_rate.py"),
 )
 
 
