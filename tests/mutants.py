@@ -744,6 +744,11 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("RSF state_rate: a reverse velocity's rate of its signed value", "rsf/law.py",
        'v = np.abs(check_range("v", v))', 'v = check_range("v", v)',
        "tests/rsf/test_state_rate.py"),
+    _m("units: an empty unit written as name[]", "io/units.py",
+       "    return u or DIMENSIONLESS\n", "    return u\n", "tests/io/test_units_headers.py"),
+    _m("units: a header's unit cut at its first space", "io/units.py",
+       'u = unit.split(" (", 1)[0].strip()', 'u = unit.split(" ", 1)[0].strip()',
+       "tests/io/test_units_headers.py"),
 )
 
 
