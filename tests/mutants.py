@@ -749,6 +749,16 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("units: a header's unit cut at its first space", "io/units.py",
        'u = unit.split(" (", 1)[0].strip()', 'u = unit.split(" ", 1)[0].strip()',
        "tests/io/test_units_headers.py"),
+    _m("segments.csv: a normal change at one velocity called a step", "records/labsteps.py",
+       '"normal change" if prev == s.velocity else "step")', '"step")',
+       "tests/records/test_segments_csv.py"),
+    _m("segments.csv: samples as i_end - i_start + 1", "records/labsteps.py",
+       "{s.i_end - s.i_start},{conf}", "{s.i_end - s.i_start + 1},{conf}",
+       "tests/records/test_segments_csv.py"),
+    _m("segments.csv: the --segments line's times absolute", "records/labsteps.py",
+       'return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)',
+       'return ",".join(f"{s.t_start:.10g}:{s.velocity:.6g}" for s in segments)',
+       "tests/records/test_segments_csv.py"),
 )
 
 
