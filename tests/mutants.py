@@ -759,6 +759,16 @@ MUTANTS: tuple[Mutant, ...] = (
        'return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)',
        'return ",".join(f"{s.t_start:.10g}:{s.velocity:.6g}" for s in segments)',
        "tests/records/test_segments_csv.py"),
+    _m("hold grid: the count of uniform steps rounded down", "ensemble/result.py",
+       "n = max(1, math.ceil(hold / every - 1e-9))", "n = max(1, int(hold / every))",
+       "tests/ensemble/test_hold_grid.py"),
+    _m("hold grid: a sample at the hold's start", "ensemble/result.py",
+       "return hold * np.arange(1, n + 1) / n", "return hold * np.arange(0, n + 1) / n",
+       "tests/ensemble/test_hold_grid.py"),
+    _m("hold grid: exp for expm1 (every sample one t0 late)", "ensemble/result.py",
+       "grid = np.expm1(math.log1p(hold) * np.arange(1, n + 1) / n)",
+       "grid = np.exp(math.log1p(hold) * np.arange(1, n + 1) / n)",
+       "tests/ensemble/test_hold_grid.py"),
 )
 
 
