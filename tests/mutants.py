@@ -780,6 +780,12 @@ MUTANTS: tuple[Mutant, ...] = (
        "return level if max(d2, drift) <= tol else None", "tests/fit/test_steady_level.py"),
     _m("steady tail: the tolerance absolute", "fit/cvtail.py",
        "tol = STEADY_TOL * abs(level)", "tol = STEADY_TOL", "tests/fit/test_steady_level.py"),
+    _m("levels: a step without normal value put with the lowest", "fit/experiment.py",
+       "            level += 1\n            out[i] = level", "            out[i] = 0",
+       "tests/fit/test_levels_generic.py"),
+    _m("levels report: the mean over a NaN value", "fit/experiment.py",
+       "mean = float(ok.mean()) if ok.size else math.nan", "mean = float(np.mean(v))",
+       "tests/fit/test_levels_generic.py"),
 )
 
 
