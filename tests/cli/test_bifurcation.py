@@ -135,16 +135,16 @@ def test_frequency_is_in_the_unit_the_files_say(tmp_path: Path) -> None:
 
 
 def trap_protocol(tmp_path: Path, direct: float = 0.02, mass: float = 1.7,
-                  damping: float = 0.03, alpha: float = 0.13) -> str:
+                  damping: float = 0.03, alpha: float = 0.13, traps: float = 200) -> str:
     """A trap-model protocol with a spring drive (its stiffness and program are not used)."""
-    p = tmp_path / f"trap_{direct}_{mass}_{alpha}.toml"
+    p = tmp_path / f"trap_{direct}_{mass}_{alpha}_{traps}.toml"
     p.write_text(f"""[model]
 alpha = {alpha}
 eps = 0.04
 direct = {direct}
 
 [ensemble]
-traps_per_a0 = 200
+traps_per_a0 = {traps}
 initial = "steady"
 initial_velocity = 0.03
 
@@ -194,9 +194,9 @@ def test_trap_model_rows_are_trap_hopf_in_reduced_units(tmp_path: Path) -> None:
 @pytest.mark.parametrize("kwargs,args,word", [
     ({"direct": 0.0}, (), "model.direct = 0"),
     ({"alpha": 0.2}, (), "model.alpha = 0.2"),
-    ({}, ("--check",), "examples/trap_hopf_check.py"),
+    ({"traps": 3000}, ("--check",), "--check: the trap ensemble's check"),
     ({}, ("--velocities", "0.03,0"), "a0/t0"),
-], ids=["direct", "alpha", "check", "velocity"])
+], ids=["direct", "alpha", "check_cost", "velocity"])
 def test_trap_model_refusals_one_line_before_any_work(tmp_path: Path, kwargs: dict[str, float],
                                                       args: tuple[str, ...], word: str) -> None:
     out = tmp_path / "out"
