@@ -34,7 +34,8 @@ from .trap_hopf import TrapField, TrapHopf, simulate
 
 __all__ = ["SETTLE_TOL", "SETTLE_PERIODS", "reduced_amplitudes", "ensemble_amplitudes",
            "settled", "threshold", "amplitude_exponent", "cycle_start", "cycle_amplitudes",
-           "swing_distance", "check_distances", "check_plan", "check_cost", "check_point"]
+           "swing_distance", "check_distances", "check_plan", "check_cost", "check_point",
+           "carried_stick_slip"]
 
 SETTLE_TOL = 1e-3
 """Largest relative change of the amplitude over :data:`SETTLE_PERIODS` of a settled cycle."""
@@ -183,6 +184,33 @@ def cycle_amplitudes(u: float, model: TrapModel, hop: TrapHopf, K: float, slip: 
     return 0.5 * np.ptp(y[1:1 + n * _SAMPLES].reshape(n, _SAMPLES), axis=1)
 
 
+
+def carried_stick_slip(u: float, model: TrapModel, hop: TrapHopf, K: float,
+                       track: Track | float, periods: tuple[int, int] = (30, 40),
+                       grow_at: float = 0.95) -> tuple[np.ndarray, np.ndarray]:
+    """Hysteresis above ``K_c`` (ours): stick-slip grown at ``grow_at K_c`` (released from the
+    largest forward cycle, :data:`FORWARD`) for ``periods[0]`` linear periods, then carried
+    with its mechanical state (spring force, population) to the stiffness ``K`` for
+    ``periods[1]``. Returns the per-period amplitudes (``F_el``) of both stages."""
+    T = 2 * math.pi / hop.omega
+    K1 = grow_at * hop.K_c
+    ens, f0, _ = cycle_start(u, model, hop, K1, FORWARD * u / hop.omega, track)
+
+    def run(k: float, n: int, force: float) -> tuple[np.ndarray, float]:
+        r = continue_spring(ens, SpringDrive(k, 0.0, VelocityProgram(
+            [Segment(u, duration=n * T)])), Output(every=T / _SAMPLES), spring_force=force)
+        y = k * (r.x_pull - r.x)
+        m = (y.size - 1) // _SAMPLES
+        return 0.5 * np.ptp(y[1:1 + m * _SAMPLES].reshape(m, _SAMPLES), axis=1), float(y[-1])
+
+    grown, f_end = run(K1, periods[0], f0)
+    carried, _ = run(K, periods[1], f_end)
+    return grown, carried
+
+
+FORWARD = 0.9
+"""Largest swing of a start: ``slip omega_c < FORWARD u`` keeps the slider moving forward."""
+
 # ---------------------------------------------------------------- the check of one row
 
 DISTANCES = (0.03, 0.05, 0.08)
@@ -194,8 +222,6 @@ SWING_MAX = 0.75
 distance (ours): the slider keeps moving forward, where the expansion holds."""
 SUB_SWING = 0.5
 """The subcritical check's distance puts the predicted unstable cycle at this swing (ours)."""
-FORWARD = 0.9
-"""Largest swing of a start: ``slip omega_c < FORWARD u`` keeps the slider moving forward."""
 SUPER_PERIODS = (60, 240)
 """First and longest run of a supercritical point, in linear periods (doubled between)."""
 SUB_PERIODS = (30, 80)
@@ -241,7 +267,7 @@ def check_plan(hop: TrapHopf, u: float) -> list[tuple[float, int]]:
         d = swing_distance(hop, u, SUB_SWING)
         beta = abs(hop.dbeta_dK) * hop.K_c * d
         periods = int(max(SUB_PERIODS[0], min(SUB_PERIODS[1], 2.0 / (beta * T))))
-        return [(d, periods)] * (2 + SUB_STEPS)
+        return [(d, periods)] * (2 + SUB_STEPS) + [(d, 70)]  # + the carried stick-slip
     return []
 
 
@@ -274,7 +300,9 @@ def check_point(u: float, model: TrapModel, hop: TrapHopf, track: Track, mass: f
       amplitude squared, linear in ``d`` (the normal form's law): ``check_K_c_shift``;
     * subcritical: the unstable cycle by bisection of the start (``0.5`` times the normal
       form's unstable cycle and the largest forward start, :data:`FORWARD`) at
-      ``K = K_c (1 + d)``: the last decaying start is ``check_threshold``.
+      ``K = K_c (1 + d)``: the last decaying start is ``check_threshold``; when every
+      start decays (the track's stabilisation near ``K_c``, docs/hopf.md), whether
+      stick-slip carried to ``K`` persists (:func:`carried_stick_slip`).
     """
     out: dict[str, Any] = {"check": "", "check_distance": math.nan,
                            "check_exponent": math.nan, "check_exponent_err": math.nan,
@@ -320,7 +348,12 @@ def check_point(u: float, model: TrapModel, hop: TrapHopf, track: Track, mass: f
             out.update(check_threshold=r["lo"], check_amp_ratio=r["amplitude"] / pred,
                        check="unstable cycle by bisection above K_c")
         else:
-            out["check"] = "NOT bracketed: the smallest and largest starts behave alike"
+            # every forward start decays (or grows): is stick-slip carried above K_c kept?
+            grown, carried = carried_stick_slip(u, model, hop, K, track)
+            kept = bool(np.mean(carried[-5:]) > 0.5 * np.mean(grown[-5:]) > 2 * pred)
+            out["check"] = ("unstable cycle NOT bracketed by forward starts; stick-slip "
+                            "carried above K_c persists (hysteresis)" if kept else
+                            "NOT bracketed, and stick-slip carried above K_c does not persist")
     else:
         out["check"] = "not run: no Hopf point" if hop.nature == "none" else "not run"
     return out
