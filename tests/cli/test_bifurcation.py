@@ -206,3 +206,33 @@ def test_trap_model_refusals_one_line_before_any_work(tmp_path: Path, kwargs: di
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and word in lines[0], r.stderr
     assert not out.exists()
+
+
+def test_trap_check_runs_on_the_protocols_track_and_writes_its_columns(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """--check on a trap protocol calls the ensemble check of each row with the protocol's
+    track, mass and damping, and bifurcation.csv carries its columns with their units (the
+    check itself is replaced by a stub here: it takes minutes; tests/analysis/
+    test_trap_hopf_check.py runs it, slow)."""
+    import dryfriction.analysis.hopf_table as table
+
+    seen: list[tuple[float, float, float, float]] = []
+
+    def stub(u, model, hop, track, mass, damping):  # type: ignore[no-untyped-def]
+        seen.append((u, track.traps_per_a0, mass, damping))
+        return {"check": "stub", "check_distance": 0.03, "check_exponent": 0.5,
+                "check_exponent_err": 0.01, "check_amp_ratio": 1.0,
+                "check_threshold": math.nan, "check_K_c_shift": -0.01,
+                "check_traps_per_a0": track.traps_per_a0}
+
+    monkeypatch.setattr(table, "check_point", stub)
+    monkeypatch.setattr(table, "check_cost", lambda hop, u, track: 1.0)
+    out = tmp_path / "out"
+    r = run(trap_protocol(tmp_path, traps=137), "--velocities", "0.031,0.27", "--out",
+            str(out), "--check", "--no-figure")
+    assert r.exit_code == 0, r.output
+    assert seen == [(0.031, 137.0, 1.7, 0.03), (0.27, 137.0, 1.7, 0.03)]
+    head = (out / "bifurcation.csv").read_text().splitlines()[0]
+    assert "check_K_c_shift[1]" in head and "check_traps_per_a0[1/a0]" in head
+    rows = read_rows(out / "bifurcation.csv")
+    assert [row["check"] for row in rows] == ["stub", "stub"]
