@@ -28,6 +28,7 @@ import numpy as np
 
 from ..ensemble.driving import Output, SpringDrive, continue_spring
 from ..ensemble.population import Ensemble, Initial, Track
+from ..ensemble.thermal import SUBSTEP_SLIP
 from ..program import Segment, VelocityProgram
 from ..theory.model import TRAPS_PER_A0_COARSE, TrapModel
 from .trap_hopf import TrapField, TrapHopf, simulate
@@ -158,7 +159,7 @@ def cycle_start(u: float, model: TrapModel, hop: TrapHopf, K: float, slip: float
     trk = track if isinstance(track, Track) else Track(float(track))
     ens = Ensemble(model, trk, Initial("steady", velocity=u), age_horizon=t_prep + 10.0)
     # steps in time whose slip is at most a quarter of the spacing at the cycle's fastest
-    n = int(math.ceil(t_prep * (u + slip * om) * trk.traps_per_a0 / 0.25))
+    n = int(math.ceil(t_prep * (u + slip * om) * trk.traps_per_a0 / SUBSTEP_SLIP))
     for t in np.linspace(0.0, t_prep, n + 1)[1:]:
         ens.advance(u * t + slip * math.sin(om * t), float(t))
     V = u + slip * om * math.cos(om * t_prep)
@@ -229,10 +230,12 @@ SUB_PERIODS = (30, 80)
 SUB_STEPS = 3
 """Bisection steps of the subcritical check."""
 CPU_PER_SUBSTEP = (6e-5, 1.5e-7)
-"""Measured CPU seconds of one spring-drive substep of the ensemble (a quarter of the trap
-spacing of load travel): ``c0 + c1 lambda reach``, ``reach`` the slip (``a0``) a trap lives,
-from 22 periods at ``u = 1`` with 100 and 200 pairs/``a0`` (0.29 and 0.80 s per period, a
-loaded 2-core machine; docs/hopf.md)."""
+"""CPU seconds of one spring-drive substep of the ensemble (a quarter of the trap spacing of
+load travel), ``c0 + c1 lambda WINDOW`` (ours). With these values the estimate is about twice
+what was measured at ``u = 1`` quasi-static (0.29, 0.80 and 2.6 s per period at 100, 200 and
+400 pairs/``a0``, a loaded 2-core machine; docs/hopf.md): an upper estimate."""
+WINDOW = 7.0
+"""Length of track (``a0``) whose pairs a substep touches, an upper bound (ours)."""
 
 
 def swing_distance(hop: TrapHopf, u: float, swing: float) -> float:
@@ -279,14 +282,9 @@ def check_cost(hop: TrapHopf, u: float, track: Track) -> float:
         return 0.0
     lam = track.traps_per_a0
     T = 2 * math.pi / hop.omega
-    reach = 1.0 + 2.0 * max(1.0, hop_reach(hop, u))
-    per_period = u * T * lam / 0.25 * (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * lam * reach)
+    per_period = (u * T * lam / SUBSTEP_SLIP
+                  * (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * lam * WINDOW))
     return float(sum((p + 2) * per_period for _, p in plan))
-
-
-def hop_reach(hop: TrapHopf, u: float) -> float:
-    """Slip (``a0``) a trap lives in steady sliding, bounded by a period's slip."""
-    return min(2.0 * math.pi * u / hop.omega, 3.0)
 
 
 def check_point(u: float, model: TrapModel, hop: TrapHopf, track: Track, mass: float = 0.0,
