@@ -15,7 +15,6 @@ from dryfriction.analysis.trap_hopf_check import (
     SWING_MAX,
     check_cost,
     check_distances,
-    check_point,
     cycle_start,
     swing_distance,
 )
@@ -93,16 +92,23 @@ PAPER = TrapModel(eps=0.04, alpha=0.13, direct=0.02)
 
 
 @pytest.mark.slow
-def test_ensemble_check_finds_the_supercritical_cycle() -> None:
-    """The trap ensemble on 100 pairs/a0 has cycles below K_c whose squared amplitude
-    grows linearly with the distance (the normal form's law) about a K_c at most 2 % below
-    the reduction's (docs/hopf.md: 1.1 % at u = 1, falling with the density)."""
+def test_ensemble_cycle_below_kc_approaches_the_normal_form_away_from_the_track() -> None:
+    """Supercritical point (u = 1): released from the normal form's cycle, the ensemble on 100
+    pairs/a0 keeps a cycle below K_c; at d = 0.05 it has 0.89 of the normal form's size, at
+    d = 0.02 only 0.65, the track's shift of K_c (docs/hopf.md: 0.889 and 0.655; 0.82 and
+    0.955 at d = 0.02 on 200 and 400 pairs/a0). The whole check_point takes longer than the
+    suite's 300 s limit."""
+    from dryfriction.analysis.trap_hopf_check import cycle_amplitudes
+
     u = 1.0
-    h = trap_hopf(u, PAPER)
-    r = check_point(u, PAPER, h, Track(100.0))
-    # a cycle at every distance (settled, or within the track's period-to-period wander)
-    assert "settled" in r["check"] and "no cycle" not in r["check"], r
-    assert -0.02 < r["check_K_c_shift"] < 0.0 and r["check_exponent"] > 0.4
+    h = trap_hopf(u, PAPER, n=12, panels=10, stretch=2.0)
+    ratios = []
+    for d, periods in ((0.05, 20), (0.02, 40)):
+        K = h.K_c * (1 - d)
+        a = cycle_amplitudes(u, PAPER, h, K, h.slip_amplitude(K), periods, 100.0)
+        assert abs(a[-1] / a[-6] - 1) < 0.01  # kept, not decaying to the track's floor
+        ratios.append(float(np.mean(a[-5:])) / h.force_amplitude(K))
+    assert 0.85 < ratios[0] < 0.93 and 0.6 < ratios[1] < 0.7, ratios
 
 
 @pytest.mark.slow
