@@ -312,6 +312,12 @@ TRAP_BIFURCATION_UNITS: dict[str, str | None] = {
     "velocity": "a0/t0", "K_c": "F_el/a0", "frequency": "rad/t0",
     "l1": "1/a0^2 (the slip component of the eigenvector of unit modulus)",
     "relative_l1": DIMENSIONLESS,
+    "check": LABEL, "check_distance": "1 (|K - K_c|/K_c of the amplitude ratio)",
+    "check_exponent": DIMENSIONLESS, "check_exponent_err": DIMENSIONLESS,
+    "check_amp_ratio": DIMENSIONLESS,
+    "check_threshold": "F_el (half peak-to-peak spring force of the last decaying start)",
+    "check_K_c_shift": "1 ((K_c,sim - K_c)/K_c from the amplitude squared linear in d)",
+    "check_traps_per_a0": "1/a0",
 }
 """bifurcation.json and bifurcation.csv of a trap-model protocol (reduced units:
 :mod:`dryfriction.analysis.trap_hopf`)."""
