@@ -135,16 +135,16 @@ def test_frequency_is_in_the_unit_the_files_say(tmp_path: Path) -> None:
 
 
 def trap_protocol(tmp_path: Path, direct: float = 0.02, mass: float = 1.7,
-                  damping: float = 0.03, alpha: float = 0.13) -> str:
+                  damping: float = 0.03, alpha: float = 0.13, traps: float = 200) -> str:
     """A trap-model protocol with a spring drive (its stiffness and program are not used)."""
-    p = tmp_path / f"trap_{direct}_{mass}_{alpha}.toml"
+    p = tmp_path / f"trap_{direct}_{mass}_{alpha}_{traps}.toml"
     p.write_text(f"""[model]
 alpha = {alpha}
 eps = 0.04
 direct = {direct}
 
 [ensemble]
-traps_per_a0 = 200
+traps_per_a0 = {traps}
 initial = "steady"
 initial_velocity = 0.03
 
@@ -194,9 +194,9 @@ def test_trap_model_rows_are_trap_hopf_in_reduced_units(tmp_path: Path) -> None:
 @pytest.mark.parametrize("kwargs,args,word", [
     ({"direct": 0.0}, (), "model.direct = 0"),
     ({"alpha": 0.2}, (), "model.alpha = 0.2"),
-    ({}, ("--check",), "examples/trap_hopf_check.py"),
+    ({"traps": 3000}, ("--check",), "--check: the trap ensemble's check"),
     ({}, ("--velocities", "0.03,0"), "a0/t0"),
-], ids=["direct", "alpha", "check", "velocity"])
+], ids=["direct", "alpha", "check_cost", "velocity"])
 def test_trap_model_refusals_one_line_before_any_work(tmp_path: Path, kwargs: dict[str, float],
                                                       args: tuple[str, ...], word: str) -> None:
     out = tmp_path / "out"
@@ -206,3 +206,33 @@ def test_trap_model_refusals_one_line_before_any_work(tmp_path: Path, kwargs: di
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and word in lines[0], r.stderr
     assert not out.exists()
+
+
+def test_trap_check_runs_on_the_protocols_track_and_writes_its_columns(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """--check on a trap protocol calls the ensemble check of each row with the protocol's
+    track, mass and damping, and bifurcation.csv carries its columns with their units (the
+    check itself is replaced by a stub here: it takes minutes; tests/analysis/
+    test_trap_hopf_check.py runs it, slow)."""
+    import dryfriction.analysis.hopf_table as table
+
+    seen: list[tuple[float, float, float, float]] = []
+
+    def stub(u, model, hop, track, mass, damping):  # type: ignore[no-untyped-def]
+        seen.append((u, track.traps_per_a0, mass, damping))
+        return {"check": "stub", "check_distance": 0.03, "check_exponent": 0.5,
+                "check_exponent_err": 0.01, "check_amp_ratio": 1.0,
+                "check_threshold": math.nan, "check_K_c_shift": -0.01,
+                "check_traps_per_a0": track.traps_per_a0}
+
+    monkeypatch.setattr(table, "check_point", stub)
+    monkeypatch.setattr(table, "check_cost", lambda hop, u, track: 1.0)
+    out = tmp_path / "out"
+    r = run(trap_protocol(tmp_path, traps=137), "--velocities", "0.031,0.27", "--out",
+            str(out), "--check", "--no-figure")
+    assert r.exit_code == 0, r.output
+    assert seen == [(0.031, 137.0, 1.7, 0.03), (0.27, 137.0, 1.7, 0.03)]
+    head = (out / "bifurcation.csv").read_text().splitlines()[0]
+    assert "check_K_c_shift[1]" in head and "check_traps_per_a0[1/a0]" in head
+    rows = read_rows(out / "bifurcation.csv")
+    assert [row["check"] for row in rows] == ["stub", "stub"]

@@ -22,6 +22,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+from ..ensemble.population import Track
 from ..io.protocol import RSFProtocol
 from ..io.units import TRAP_BIFURCATION_UNITS
 from ..rsf.driving import SolverError
@@ -30,10 +31,11 @@ from ..theory.model import TrapModel
 from .rsf_hopf import rsf_hopf
 from .rsf_hopf_check import amplitude_exponent, basin_threshold, settled_amplitude
 from .trap_hopf import ALPHA0, trap_hopf
+from .trap_hopf_check import check_cost, check_point
 
 __all__ = ["parse_velocities", "bifurcation_table", "trap_bifurcation_table", "check_trap",
            "UNITS", "MAX_VELOCITIES", "MAX_TRAP_VELOCITIES", "MAX_CHECKED",
-           "CHECK_DISTANCES"]
+           "CHECK_DISTANCES", "TRAP_CHECK_CPU_MAX", "trap_check_cost"]
 
 MAX_VELOCITIES = 400
 """Most velocities in one table (each costs ~10 ms; ours)."""
@@ -53,6 +55,9 @@ UNITS = {"velocity": "m/s", "K_c": "1/m (per unit normal force)", "frequency": "
 MAX_TRAP_VELOCITIES = 40
 """Most velocities in one trap-model table (each :func:`.trap_hopf.trap_hopf` costs ~0.1-1 s;
 ours)."""
+TRAP_CHECK_CPU_MAX = 1800.0
+"""Longest estimated CPU time (s) of a trap-model ``check`` (:func:`trap_check_cost`; ours:
+half an hour, a few supercritical velocities on 100 pairs per ``a0``)."""
 
 
 def parse_velocities(text: str, v_max: float = V_MAX, unit: str = "m/s",
@@ -171,11 +176,24 @@ def check_trap(model: TrapModel, mass: float, damping: float) -> None:
                          "allowed damping = 0")
 
 
+def trap_check_cost(hops: list[Any], velocities: list[float], track: Track) -> float:
+    """Estimated CPU seconds of the simulated check of every Hopf point in ``hops``
+    (:func:`.trap_hopf_check.check_cost`)."""
+    return sum(check_cost(h, u, track) for h, u in zip(hops, velocities, strict=True))
+
+
 def trap_bifurcation_table(model: TrapModel, velocities: list[float], mass: float = 0.0,
                            damping: float = 0.0,
-                           progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+                           progress: Callable[[int, int], None] | None = None, *,
+                           track: Track | None = None,
+                           cpu_max: float = TRAP_CHECK_CPU_MAX) -> dict[str, Any]:
     """Rows of the Hopf point's nature of the trap model at each pulling velocity: each is
-    :func:`.trap_hopf.trap_hopf` with its defaults (reduced units throughout).
+    :func:`.trap_hopf.trap_hopf` with its defaults (reduced units throughout). With a
+    ``track``, each row is also checked by the trap ensemble on it
+    (:func:`.trap_hopf_check.check_point`: settled cycles below ``K_c``, or the unstable
+    cycle by bisection above it), after the estimate of its cost
+    (:func:`trap_check_cost`) is found within ``cpu_max`` seconds; else ``ValueError`` in one
+    line, before any simulation.
 
     Parameters
     ----------
@@ -186,7 +204,11 @@ def trap_bifurcation_table(model: TrapModel, velocities: list[float], mass: floa
     mass, damping : float
         ``M`` (``F_el t0^2/a0``) and ``eta`` (``F_el t0/a0``).
     progress : callable, optional
-        ``progress(done, total)`` after each velocity.
+        ``progress(done, total)`` after each velocity (and after each check).
+    track : Track, optional
+        The pairs of the check's ensemble (the protocol's); ``None``: no check.
+    cpu_max : float
+        Largest estimated CPU seconds of the check.
 
     Returns
     -------
@@ -195,13 +217,27 @@ def trap_bifurcation_table(model: TrapModel, velocities: list[float], mass: floa
         :data:`dryfriction.io.units.TRAP_BIFURCATION_UNITS`.
     """
     check_trap(model, mass, damping)
-    rows = []
+    rows, hops = [], []
+    total = len(velocities) * (2 if track is not None else 1)
     for i, u in enumerate(velocities):
         h = trap_hopf(u, model, mass, damping)
+        hops.append(h)
         rows.append({"velocity": u, "K_c": h.K_c, "frequency": h.omega, "l1": h.l1_x,
                      "relative_l1": h.relative_l1, "nature": h.nature})
         if progress is not None:
-            progress(i + 1, len(velocities))
+            progress(i + 1, total)
+    if track is not None:
+        cost = trap_check_cost(hops, velocities, track)
+        if cost > cpu_max:
+            raise ValueError(
+                f"--check: the trap ensemble's check of these {len(velocities)} velocities "
+                f"would take about {cost / 60:.0f} CPU-minutes on {track.traps_per_a0:g} "
+                f"pairs per a0; allowed up to {cpu_max / 60:.0f}: give fewer velocities or a "
+                "sparser track (ensemble.traps_per_a0)")
+        for i, (u, h) in enumerate(zip(velocities, hops, strict=True)):
+            rows[i].update(check_point(u, model, h, track, mass, damping))
+            if progress is not None:
+                progress(len(velocities) + i + 1, total)
     notes = ["trap model, reduced units (a0, t0, F_el): K_c and l1 of the pseudospectral "
              "reduction of the population (dryfriction.analysis.trap_hopf, docs/hopf.md); "
              "nature from the sign of l1; degenerate: |l1| < 1e-8 of its largest term; "

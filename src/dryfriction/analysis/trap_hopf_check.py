@@ -28,12 +28,15 @@ import numpy as np
 
 from ..ensemble.driving import Output, SpringDrive, continue_spring
 from ..ensemble.population import Ensemble, Initial, Track
+from ..ensemble.thermal import SUBSTEP_SLIP
 from ..program import Segment, VelocityProgram
 from ..theory.model import TRAPS_PER_A0_COARSE, TrapModel
 from .trap_hopf import TrapField, TrapHopf, simulate
 
 __all__ = ["SETTLE_TOL", "SETTLE_PERIODS", "reduced_amplitudes", "ensemble_amplitudes",
-           "settled", "threshold", "amplitude_exponent"]
+           "settled", "threshold", "amplitude_exponent", "cycle_start", "cycle_amplitudes",
+           "swing_distance", "check_distances", "check_plan", "check_cost", "check_point",
+           "carried_stick_slip"]
 
 SETTLE_TOL = 1e-3
 """Largest relative change of the amplitude over :data:`SETTLE_PERIODS` of a settled cycle."""
@@ -123,3 +126,232 @@ def amplitude_exponent(d: Any, amp: Any) -> tuple[float, float]:
     x, y = np.log(np.asarray(d, float)), np.log(np.asarray(amp, float))
     coef, cov = np.polyfit(x, y, 1, cov=True)
     return float(coef[0]), float(math.sqrt(cov[0, 0]))
+
+
+def cycle_start(u: float, model: TrapModel, hop: TrapHopf, K: float, slip: float,
+                track: Track | float, mass: float = 0.0, damping: float = 0.0,
+                prep_periods: float = 2.0) -> tuple[Ensemble, float, float]:
+    """A trap ensemble on ``track`` (a :class:`Track`, or its pairs per ``a0`` on a regular
+    one) whose population has lived through the
+    linear cycle ``X(t) = u t + slip sin(omega_c t)`` (``slip`` in ``a0``) for
+    ``prep_periods`` periods, and the spring force and slider velocity that continue it.
+
+    The population's history is the cycle's (a trap lives less than one period of slip,
+    ``tau_d u < 2 pi u/omega_c``, docs/hopf.md), so the released slider starts on the cycle,
+    not on a kick that must first grow through the track's discreteness. The slider is moved
+    by :meth:`Ensemble.advance` in steps of a quarter of the trap spacing, as the spring drive
+    steps it (:data:`dryfriction.ensemble.thermal.SUBSTEP_SLIP`). At release (ours): the
+    spring force ``g(V) F_pop + eta V + M X''`` (the slider's equation of motion on the
+    cycle; ``M = 0``: the friction), ``V = X'``.
+
+    Returns
+    -------
+    (Ensemble, float, float)
+        The ensemble (time ``t_prep``), the spring force (``F_el``), the velocity (``a0/t0``).
+    """
+    from ..theory.direct import junction_strength
+
+    om = hop.omega
+    if not slip * om < u:
+        raise ValueError(f"slip = {slip:g} a0 is out of range at u = {u:g}: the linear cycle "
+                         f"moves backward; allowed slip < u/omega_c = {u / om:g} a0")
+    t_prep = prep_periods * 2 * math.pi / om
+    trk = track if isinstance(track, Track) else Track(float(track))
+    ens = Ensemble(model, trk, Initial("steady", velocity=u), age_horizon=t_prep + 10.0)
+    # steps in time whose slip is at most a quarter of the spacing at the cycle's fastest
+    n = int(math.ceil(t_prep * (u + slip * om) * trk.traps_per_a0 / SUBSTEP_SLIP))
+    for t in np.linspace(0.0, t_prep, n + 1)[1:]:
+        ens.advance(u * t + slip * math.sin(om * t), float(t))
+    V = u + slip * om * math.cos(om * t_prep)
+    accel = -slip * om * om * math.sin(om * t_prep)
+    g = float(junction_strength(V, model.direct, model.v_ref))
+    return ens, ens.observe().force * g + damping * V + mass * accel, V
+
+
+def cycle_amplitudes(u: float, model: TrapModel, hop: TrapHopf, K: float, slip: float,
+                     periods: int, track: Track | float, mass: float = 0.0,
+                     damping: float = 0.0) -> np.ndarray:
+    """Half peak-to-peak spring force (``F_el``) per linear period ``2 pi/omega_c`` of the
+    spring-pulled trap ensemble (:func:`dryfriction.ensemble.driving.continue_spring`, the
+    integrator of ``dryfriction.simulate``'s spring drive) at stiffness ``K``, released from
+    the linear cycle of slip amplitude ``slip`` (:func:`cycle_start`)."""
+    T = 2 * math.pi / hop.omega
+    ens, f0, V = cycle_start(u, model, hop, K, slip, track, mass, damping)
+    r = continue_spring(ens, SpringDrive(K, mass, VelocityProgram(
+        [Segment(u, duration=periods * T)]), damping), Output(every=T / _SAMPLES),
+        spring_force=f0, velocity=V if mass > 0 else 0.0)
+    y = K * (r.x_pull - r.x)
+    n = (y.size - 1) // _SAMPLES
+    return 0.5 * np.ptp(y[1:1 + n * _SAMPLES].reshape(n, _SAMPLES), axis=1)
+
+
+
+def carried_stick_slip(u: float, model: TrapModel, hop: TrapHopf, K: float,
+                       track: Track | float, periods: tuple[int, int] = (30, 40),
+                       grow_at: float = 0.95) -> tuple[np.ndarray, np.ndarray]:
+    """Hysteresis above ``K_c`` (ours): stick-slip grown at ``grow_at K_c`` (released from the
+    largest forward cycle, :data:`FORWARD`) for ``periods[0]`` linear periods, then carried
+    with its mechanical state (spring force, population) to the stiffness ``K`` for
+    ``periods[1]``. Returns the per-period amplitudes (``F_el``) of both stages."""
+    T = 2 * math.pi / hop.omega
+    K1 = grow_at * hop.K_c
+    ens, f0, _ = cycle_start(u, model, hop, K1, FORWARD * u / hop.omega, track)
+
+    def run(k: float, n: int, force: float) -> tuple[np.ndarray, float]:
+        r = continue_spring(ens, SpringDrive(k, 0.0, VelocityProgram(
+            [Segment(u, duration=n * T)])), Output(every=T / _SAMPLES), spring_force=force)
+        y = k * (r.x_pull - r.x)
+        m = (y.size - 1) // _SAMPLES
+        return 0.5 * np.ptp(y[1:1 + m * _SAMPLES].reshape(m, _SAMPLES), axis=1), float(y[-1])
+
+    grown, f_end = run(K1, periods[0], f0)
+    carried, _ = run(K, periods[1], f_end)
+    return grown, carried
+
+
+FORWARD = 0.9
+"""Largest swing of a start: ``slip omega_c < FORWARD u`` keeps the slider moving forward."""
+
+# ---------------------------------------------------------------- the check of one row
+
+DISTANCES = (0.03, 0.05, 0.08)
+"""Relative distances ``(K_c - K)/K_c`` of the supercritical check's settled cycles (ours):
+beyond the ~1 % by which the ensemble's own ``K_c`` differs (docs/hopf.md), scaled down
+together where the largest would swing the slider beyond :data:`SWING_MAX`."""
+SWING_MAX = 0.75
+"""Largest velocity swing ``slip omega_c/u`` of the normal form's cycle at a checked
+distance (ours): the slider keeps moving forward, where the expansion holds."""
+SUB_SWING = 0.5
+"""The subcritical check's distance puts the predicted unstable cycle at this swing (ours)."""
+SUPER_PERIODS = (60, 240)
+"""First and longest run of a supercritical point, in linear periods (doubled between)."""
+SUB_PERIODS = (30, 80)
+"""Shortest and longest run of a subcritical start (two e-foldings of the linear rate)."""
+SUB_STEPS = 3
+"""Bisection steps of the subcritical check."""
+CPU_PER_SUBSTEP = (6e-5, 1.5e-7)
+"""CPU seconds of one spring-drive substep of the ensemble (a quarter of the trap spacing of
+load travel), ``c0 + c1 lambda WINDOW`` (ours). With these values the estimate is about twice
+what was measured at ``u = 1`` quasi-static (0.29, 0.80 and 2.6 s per period at 100, 200 and
+400 pairs/``a0``, a loaded 2-core machine; docs/hopf.md): an upper estimate."""
+WINDOW = 7.0
+"""Length of track (``a0``) whose pairs a substep touches, an upper bound (ours)."""
+
+
+def swing_distance(hop: TrapHopf, u: float, swing: float) -> float:
+    """Relative distance ``|K - K_c|/K_c`` where the normal form's half peak-to-peak slip is
+    ``swing u/omega_c`` (its slip grows as the root of the distance)."""
+    d_ref = 0.01
+    K = hop.K_c * (1 - d_ref if hop.l1_x < 0 else 1 + d_ref)
+    return d_ref * (swing * u / (hop.omega * hop.slip_amplitude(K))) ** 2
+
+
+def check_distances(hop: TrapHopf, u: float) -> list[float]:
+    """The supercritical check's distances: :data:`DISTANCES`, scaled down together so that
+    the largest swings the slider by at most :data:`SWING_MAX`."""
+    top = swing_distance(hop, u, SWING_MAX)
+    scale = min(1.0, top / DISTANCES[-1])
+    return [d * scale for d in DISTANCES]
+
+
+def check_plan(hop: TrapHopf, u: float) -> list[tuple[float, int]]:
+    """``(distance, periods)`` of every run the check of one Hopf point may make (the longest
+    each may take): settled cycles at :func:`check_distances`, or the bisection's starts."""
+    T = 2 * math.pi / hop.omega
+    if hop.nature == "supercritical":
+        lo, hi = SUPER_PERIODS
+        runs = []
+        p = lo
+        while p <= hi:
+            runs.append(p)
+            p *= 2
+        return [(d, p) for d in check_distances(hop, u) for p in runs]
+    if hop.nature == "subcritical":
+        d = swing_distance(hop, u, SUB_SWING)
+        beta = abs(hop.dbeta_dK) * hop.K_c * d
+        periods = int(max(SUB_PERIODS[0], min(SUB_PERIODS[1], 2.0 / (beta * T))))
+        return [(d, periods)] * (2 + SUB_STEPS) + [(d, 70)]  # + the carried stick-slip
+    return []
+
+
+def check_cost(hop: TrapHopf, u: float, track: Track) -> float:
+    """Estimated CPU seconds of :func:`check_point` (every run at its longest, 2 periods of
+    preparation each; :data:`CPU_PER_SUBSTEP`)."""
+    plan = check_plan(hop, u)
+    if not plan:
+        return 0.0
+    lam = track.traps_per_a0
+    T = 2 * math.pi / hop.omega
+    per_period = (u * T * lam / SUBSTEP_SLIP
+                  * (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * lam * WINDOW))
+    return float(sum((p + 2) * per_period for _, p in plan))
+
+
+def check_point(u: float, model: TrapModel, hop: TrapHopf, track: Track, mass: float = 0.0,
+                damping: float = 0.0) -> dict[str, Any]:
+    """The simulated check of one Hopf point by the trap ensemble (:func:`cycle_amplitudes`):
+    the columns of ``bifurcation.csv`` (:mod:`.hopf_table`).
+
+    * supercritical: settled cycles (:func:`settled`) at ``K = K_c (1 - d)``, ``d`` from
+      :func:`check_distances`; the exponent of the amplitude against ``d`` with its standard error;
+      the ratio to the normal form at the smallest ``d``; the simulated ``K_c`` from the
+      amplitude squared, linear in ``d`` (the normal form's law): ``check_K_c_shift``;
+    * subcritical: the unstable cycle by bisection of the start (``0.5`` times the normal
+      form's unstable cycle and the largest forward start, :data:`FORWARD`) at
+      ``K = K_c (1 + d)``: the last decaying start is ``check_threshold``; when every
+      start decays (the track's stabilisation near ``K_c``, docs/hopf.md), whether
+      stick-slip carried to ``K`` persists (:func:`carried_stick_slip`).
+    """
+    out: dict[str, Any] = {"check": "", "check_distance": math.nan,
+                           "check_exponent": math.nan, "check_exponent_err": math.nan,
+                           "check_amp_ratio": math.nan, "check_threshold": math.nan,
+                           "check_K_c_shift": math.nan,
+                           "check_traps_per_a0": track.traps_per_a0}
+    top = FORWARD * u / hop.omega
+    if hop.nature == "supercritical":
+        ds, amps, unsettled = [], [], []
+        for d in check_distances(hop, u):
+            K = hop.K_c * (1 - d)
+            r = settled(lambda s, p, K=K: cycle_amplitudes(u, model, hop, K, s / K, p, track,
+                                                           mass, damping),
+                        K * min(hop.slip_amplitude(K), top), SUPER_PERIODS[0],
+                        max_periods=SUPER_PERIODS[1])
+            ds.append(d)
+            amps.append(r["amplitude"])
+            if not r["settled"]:
+                unsettled.append(round(d, 5))
+        beta, err = amplitude_exponent(ds, amps)
+        # amplitude^2 = c (d - shift): the normal form's law about the simulated K_c
+        coef = np.polyfit(ds, np.square(amps), 1)
+        out.update(check_distance=ds[0], check_exponent=beta, check_exponent_err=err,
+                   check_amp_ratio=amps[0] / hop.force_amplitude(hop.K_c * (1 - ds[0])),
+                   check_K_c_shift=float(coef[1] / coef[0]))
+        grew = all(a > 0 for a in amps) and coef[0] > 0
+        out["check"] = ("settled cycles below K_c" if grew and not unsettled else
+                        f"NOT settled at d = {unsettled}" if grew else
+                        "no cycle below K_c")
+    elif hop.nature == "subcritical":
+        d = swing_distance(hop, u, SUB_SWING)
+        K = hop.K_c * (1 + d)
+        pred = hop.force_amplitude(K)
+        plan = check_plan(hop, u)
+
+        def grows(s: float) -> tuple[bool, np.ndarray]:
+            a = cycle_amplitudes(u, model, hop, K, s / K, plan[0][1], track, mass, damping)
+            return bool(np.mean(a[-3:]) > np.mean(a[1:4])), a
+
+        r = threshold(grows, 0.5 * pred, K * top, steps=SUB_STEPS)
+        out["check_distance"] = d
+        if r["bracketed"]:
+            out.update(check_threshold=r["lo"], check_amp_ratio=r["amplitude"] / pred,
+                       check="unstable cycle by bisection above K_c")
+        else:
+            # every forward start decays (or grows): is stick-slip carried above K_c kept?
+            grown, carried = carried_stick_slip(u, model, hop, K, track)
+            kept = bool(np.mean(carried[-5:]) > 0.5 * np.mean(grown[-5:]) > 2 * pred)
+            out["check"] = ("unstable cycle NOT bracketed by forward starts; stick-slip "
+                            "carried above K_c persists (hysteresis)" if kept else
+                            "NOT bracketed, and stick-slip carried above K_c does not persist")
+    else:
+        out["check"] = "not run: no Hopf point" if hop.nature == "none" else "not run"
+    return out

@@ -60,8 +60,10 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
         Folder for bifurcation.csv, bifurcation.json and bifurcation.png (whole or not at
         all).
     check : bool
-        Check each nature by direct simulation (at most ``MAX_CHECKED`` velocities;
-        rate-and-state only).
+        Check each nature by direct simulation (at most ``MAX_CHECKED`` velocities):
+        rate-and-state by its solver; the trap model by its ensemble on the protocol's track
+        (refused in one line, before any simulation, when the estimated cost is over
+        :data:`~dryfriction.analysis.hopf_table.TRAP_CHECK_CPU_MAX`).
     figure, force, report : as :func:`dryfriction.app.simulate`.
     progress : callable, optional
         ``progress(done, total)`` after each velocity.
@@ -86,10 +88,7 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
         raise ValueError(f"--velocities: {n_given} values with --check: allowed at most "
                          f"{MAX_CHECKED}")
     proto = load_protocol(protocol)
-    if isinstance(proto, Protocol):  # the trap model: reduced units, no simulated check
-        if check:
-            raise ValueError("--check is for rate-and-state protocols; the trap model's "
-                             "simulation check is examples/trap_hopf_check.py")
+    if isinstance(proto, Protocol):  # the trap model: reduced units
         vs = parse_velocities(velocities, U_MAX, "a0/t0 (reduced, for a trap-model protocol)",
                               MAX_TRAP_VELOCITIES)
         mass = float(getattr(proto.drive, "mass", 0.0))  # a spring drive's; else none
@@ -99,7 +98,8 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
         except ValueError as exc:
             raise ValueError(f"{protocol}: {exc}") from None
         check_output_dir(out, force=force)
-        rep = trap_bifurcation_table(proto.model, vs, mass, damping, progress=progress)
+        rep = trap_bifurcation_table(proto.model, vs, mass, damping, progress=progress,
+                                     track=proto.track if check else None)
         rep = with_units({**rep, "protocol": str(protocol)}, TRAP_BIFURCATION_UNITS)
     elif isinstance(proto, RSFProtocol):
         vs = parse_velocities(velocities)

@@ -32,8 +32,10 @@ def bifurcation(
                                      "bifurcation.png."),
     check: bool = typer.Option(_O["check"].default, "--check", help="Check each nature by direct "
                                "simulation (settled cycles, or the unstable cycle by "
-                               "bisection; at most 12 velocities, ~5-30 s each; "
-                               "rate-and-state only)."),
+                               "bisection; at most 12 velocities; rate-and-state "
+                               "~5-30 s each; the trap model by its ensemble on the "
+                               "protocol's track, minutes each, refused above 30 "
+                               "estimated CPU-minutes)."),
     json_out: bool = typer.Option(False, "--json", help="Print the result as JSON."),
     figure: bool = typer.Option(_O["figure"].default, "--figure/--no-figure",
                                 help="Draw bifurcation.png."),

@@ -1,0 +1,72 @@
+"""The step judge's statistics (fit/identify.py) against their definitions written here, at a
+generic residual correlation (issue 25: an estimator checked only at rho = 0 hides a factor
+(1 + rho)/(1 - rho) turned over). Each test names the mistake it is for; each was seen failing
+with it applied."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy import stats
+
+from dryfriction.fit.identify import MISFIT_RMS, misfit_words, transient_test
+from dryfriction.fit.machine import load_point_displacement
+from dryfriction.records.data import SeriesData
+
+
+def _step(n: int = 300, seed: int = 3) -> tuple[SeriesData, np.ndarray]:
+    """A 1.1 -> 3.3 um/s step at 0.25 s sampling: friction a line in load-point displacement
+    plus AR(1) noise (rho 0.6, 2e-4)."""
+    rng = np.random.default_rng(seed)
+    t = 4.0 + 0.25 * np.arange(n)
+    v = np.where(np.arange(n) < n // 3, 1.1e-6, 3.3e-6)
+    e = np.zeros(n)
+    for i in range(1, n):
+        e[i] = 0.6 * e[i - 1] + rng.normal(0.0, 2e-4 * math.sqrt(1 - 0.36))
+    d0 = SeriesData(t, v, np.zeros(n))
+    x = load_point_displacement(d0)
+    return SeriesData(t, v, 0.613 + 37.0 * x + e), x
+
+
+def test_transient_f_test_is_its_definition() -> None:
+    # mistakes: F without the factor (1 - rho)/(1 + rho); the denominator's degrees of
+    # freedom n - p instead of n_eff - p; the numerator's p instead of p - 2
+    d, x = _step()
+    p, rho = 6, 0.43
+    X = np.column_stack([np.ones(len(d)), x - x[0]])
+    r0 = d.mu - X @ np.linalg.lstsq(X, d.mu, rcond=None)[0]
+    model = d.mu - 0.97 * r0  # a fit a little better than the line
+    r1 = d.mu - model
+    shrink = (1 - rho) / (1 + rho)
+    n_eff = len(d) * shrink
+    F = (r0 @ r0 - r1 @ r1) / (p - 2) / (r1 @ r1 / (len(d) - p)) * shrink
+    pv = float(stats.f.sf(F, p - 2, n_eff - p))
+    assert 0.01 < pv < 0.99  # a p-value the message prints, neither end
+    msg = transient_test(d, model, p, rho)
+    assert f"p = {pv:.2g})" in msg
+    # a real transient: the model explains a decay the line cannot
+    bump = 4e-3 * np.exp(-np.maximum(x - x[100], 0.0) / 20e-6) * (np.arange(len(d)) >= 100)
+    assert transient_test(SeriesData(d.t, d.v_load, d.mu + bump), model + bump, p, rho) == ""
+
+
+def test_peak_residual_allowance_counts_the_tail_correlation() -> None:
+    # mistakes: the allowance's factor (1 + rho)/(1 - rho) turned over; the correlation of the
+    # whole window instead of its detrended last third; peak_samples ignored
+    d, _ = _step()
+    tail = slice(len(d) * 2 // 3, len(d))
+    tt = d.t[tail] - d.t[tail][0]
+    calm = d.mu[tail] - np.polyval(np.polyfit(tt, d.mu[tail], 1), tt)
+    rho = float(np.clip(np.corrcoef(calm[1:], calm[:-1])[0, 1], 0.0, 0.999))
+    assert 0.45 < rho < 0.75
+    noise, k = 2.1e-4, 12
+    allow = 3.0 * noise * min(1.0, math.sqrt((1 + rho) / ((1 - rho) * k)))
+    model = d.mu + np.where(np.arange(len(d)) % 2 == 0, 1e-5, -1e-5)  # a white misfit
+    for factor, flagged in ((0.98, False), (1.02, True)):
+        row = {"noise": noise, "rms": 1e-5, "peak_residual": -factor * allow}
+        words = misfit_words(d, model, row, k)
+        assert any("peak residual" in w for w in words) is flagged, (factor, words)
+    row = {"noise": noise, "rms": 1.01 * MISFIT_RMS * noise, "peak_residual": 0.0}
+    assert any("rms residual" in w for w in misfit_words(d, model, row, k))
+    row["rms"] = 0.99 * MISFIT_RMS * noise
+    assert not any("rms residual" in w for w in misfit_words(d, model, row, k))

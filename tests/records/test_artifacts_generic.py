@@ -1,0 +1,72 @@
+"""The artifacts of a record (records/artifacts.py) on signals built to know them (issue 25):
+sampling that slows down as well as speeds up, each criterion just inside and just outside its
+threshold, a re-zeroing's jump against its true size, a normal-stress change up and down. Each
+test names the mistake it is for; each was seen failing with it applied."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dryfriction.records.artifacts import jump_excursions, normal_changes, sampling_changes
+
+
+def _times(*pieces: tuple[float, int]) -> np.ndarray:
+    """Sample times from (interval, count) pieces, from t = 3.7 s."""
+    dt = np.concatenate([np.full(n, d) for d, n in pieces])
+    return 3.7 + np.concatenate([[0.0], np.cumsum(dt)])
+
+
+@pytest.mark.parametrize("before, after", [(0.05, 0.2), (0.2, 0.05)])
+def test_sampling_rate_change_both_ways(before: float, after: float) -> None:
+    # mistakes: only a faster sampling looked for (a slower one missed); the change placed at
+    # the block's start, not at the first interval at the new rate
+    t = _times((before, 300), (after, 300))
+    changes, gaps = sampling_changes(t)
+    assert changes == pytest.approx([t[300]], abs=1e-12) and gaps == []
+
+
+@pytest.mark.parametrize("factor, found", [(1.4, False), (1.6, True)])
+def test_sampling_rate_change_threshold(factor: float, found: bool) -> None:
+    # mistake: the factor 1.5 taken as 2 (or as 1.2): a change by 1.6 missed or one by 1.4 kept
+    t = _times((0.1, 320), (0.1 * factor, 320))
+    assert (len(sampling_changes(t)[0]) == 1) is found
+
+
+@pytest.mark.parametrize("gap, found", [(1.9, False), (2.1, True)])
+def test_gap_threshold_and_start_time(gap: float, found: bool) -> None:
+    # mistakes: a gap reported at the sample after it (its end); a gap over 5 intervals, or
+    # over 20, instead of 10
+    t = _times((0.2, 200), (gap, 1), (0.2, 200))
+    _, gaps = sampling_changes(t)
+    assert gaps == ([pytest.approx(t[200], abs=1e-12)] if found else [])
+
+
+def test_a_re_zeroing_inside_an_excursion_is_a_jump_of_its_size() -> None:
+    # mistakes: the step not projected off the line's slope (its size biased by the slope
+    # times the step's lever arm); the first sample after the jump off by one; its sign
+    t = _times((0.2, 599))
+    v = 1.7e-6
+    x = 2.1e-3 + v * (t - t[0])
+    x[313:] -= 3.1e-6  # the transducer re-zeroed between samples 312 and 313
+    bounds = [0, 290, 330, 600]
+    speeds = np.array([v, 0.4 * v, v])  # what a velocity fit would make of the stretch
+    (found,) = jump_excursions(t, x, bounds, speeds, rel_tol=0.1, m=10)
+    j, k, jump = found
+    assert (j, k) == (1, 313)
+    assert jump == pytest.approx(-3.1e-6, rel=1e-6)
+    # a true excursion (a ramp at 0.4 v, no jump) is not one
+    ramp = 2.1e-3 + np.concatenate([[0.0], np.cumsum(np.diff(t) * np.r_[
+        np.full(290, v), np.full(40, 0.4 * v), np.full(269, v)])])
+    assert jump_excursions(t, ramp, bounds, speeds, rel_tol=0.1, m=10) == []
+
+
+@pytest.mark.parametrize("level_after", [6.1e6, 4.7e6])
+def test_normal_stress_change_up_and_down(level_after: float) -> None:
+    # mistake: the half-way crossing looked for upwards only (a decrease placed at the
+    # cluster's first sample)
+    rng = np.random.default_rng(19)
+    t = _times((0.1, 3999))
+    sn = np.where(np.arange(t.size) < 1234, 5.3e6, level_after) + rng.normal(0, 2e3, t.size)
+    (i,) = normal_changes(t, sn)
+    assert i == 1234
