@@ -270,7 +270,7 @@ def _zoo_hold_errors(indices: tuple[int, ...], tmp: Path) -> list[float]:
     return out
 
 
-def test_changes_at_holds_are_placed_at_any_confidence(tmp_path: Path,
+def test_changes_at_holds_placed_at_any_confidence_when_switched_on(tmp_path: Path,
                                                        monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo records 232 and 364 (slide-hold-slides with the servo error and the oscillation; in
     the range 150-449 the rule was chosen on): every change at a hold within its tolerance
@@ -281,6 +281,9 @@ def test_changes_at_holds_are_placed_at_any_confidence(tmp_path: Path,
     "hold" is a creep of -2.6 nm/s, 200 times slower than the slide: 1.97 again)."""
     import dryfriction.records.detection as detection
 
-    assert max(_zoo_hold_errors((232, 364), tmp_path)) <= 1.0
-    monkeypatch.setattr(detection, "HOLD_PLACED", False)
+    # the rule is off by default (it moves slide-hold-slide records' hold starts: see
+    # HOLD_PLACED); this test keeps the measured gain on the zoo that the study found
+    assert detection.HOLD_PLACED is False
     assert max(_zoo_hold_errors((232, 364), tmp_path)) > 1.0
+    monkeypatch.setattr(detection, "HOLD_PLACED", True)
+    assert max(_zoo_hold_errors((232, 364), tmp_path)) <= 1.0
