@@ -310,3 +310,39 @@ def test_a_steady_fit_with_the_direct_effect_is_the_one_before_the_model_object(
     for r in (new, old):
         got = {p.name: p.value for p in r.parameters}
         assert got == pytest.approx(before, rel=1e-12, abs=0.0)
+
+
+def test_old_forms_of_the_series_the_start_and_the_record_model_compute_the_same(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # mistakes caught: an old form passing v_ref (m/s) on as the reduced one, dropping its
+    # direct, or swapping alpha and creep (each shim maps its loose arguments onto CVModel)
+    from dryfriction.fit import cvseries, cvsteps
+    from dryfriction.theory.model import OldTheoryFormWarning
+
+    d = _step(120)
+    k = 0.4 * MU_EL / A0
+    v = {**_values(0.015), "eps": 0.023, "trend": -20.0}
+    cv = CVModel(TrapModel(0.12, creep="eyring-nabarro", direct=0.015), v_ref=1.7e-6,
+                 traps_per_a0=60, sample_slip=0.01, stiffness=k)
+    new = cv_series(cv, v, d)
+    with pytest.raises(ValueError, match="v_ref is not a fitted value"):
+        cv_series(cv, {**v, "v_ref": 1.7e-6}, d)
+    with pytest.warns(OldTheoryFormWarning):
+        old = cvseries.cv_series({**v, "v_ref": 1.7e-6}, d, 0.12, "eyring-nabarro", 60,
+                                 sample_slip=0.01, stiffness=k)
+    np.testing.assert_array_equal(old, new)
+    rsf = {"mu0": 0.61, "a": 0.011, "b": 0.014, "dc": 2.2e-6}
+    with pytest.warns(OldTheoryFormWarning):
+        old_start = cv_start_from_rsf(rsf, 1.7e-6, 0.12, "eyring-nabarro", 0.02, 1.3e-6, 0.7)
+    assert old_start == cv_start_from_rsf(
+        CVModel(TrapModel(0.12, creep="eyring-nabarro", direct=0.02), v_ref=1.3e-6), rsf,
+        1.7e-6, 0.7)
+    held = TrapModel(0.12, creep="eyring-nabarro", direct=0.02)
+    with pytest.warns(OldTheoryFormWarning):
+        old_record = cvsteps.record_cv_model(0.12, "eyring-nabarro", 0.02, 1.3e-6, 40.0)
+    assert old_record == cvsteps.record_cv_model(held, 1.3e-6, 40.0)
+    seen: list[CVModel] = []
+    monkeypatch.setattr(cvsteps, "_fit_cv_steps", lambda data, fits, model: seen.append(model))
+    with pytest.warns(OldTheoryFormWarning):
+        cvsteps.fit_cv_steps([d], [None], 0.12, "eyring-nabarro", 0.02, 1.3e-6, 40.0)
+    assert seen == [old_record]

@@ -532,6 +532,9 @@ def cv_series(model: CVModel | Mapping[str, float], *args: Any, **kwargs: Any) -
 
 def _cv_series(model: CVModel, values: Mapping[str, float], data: SeriesData, *,
                every_slip: float = 0.01, max_samples: int = 200_000) -> Array:
+    if "v_ref" in values:  # the old form's place for it: here it would be silently unused
+        raise ValueError("v_ref is not a fitted value: it is the model's, CVModel(v_ref=...), "
+                         "in m/s")
     run = {k: v for k, v in values.items() if k != "trend"}
     mu = series_run(run, data, lambda: model.trap_model(run), (model.trap, model.v_ref),
                     model.traps_per_a0, every_slip, max_samples,
