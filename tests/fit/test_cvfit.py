@@ -346,3 +346,67 @@ def test_old_forms_of_the_series_the_start_and_the_record_model_compute_the_same
     with pytest.warns(OldTheoryFormWarning):
         cvsteps.fit_cv_steps([d], [None], 0.12, "eyring-nabarro", 0.02, 1.3e-6, 40.0)
     assert seen == [old_record]
+
+
+_OLD_KEYWORDS = {"alpha", "creep", "direct", "traps_per_a0", "stiffness", "sample_slip",
+                 "steady_tail", "every_slip", "max_samples", "progress"}
+
+
+def _old_fit_form_calls(tree: Any) -> list[int]:
+    """Lines where a fit function that takes the fit model is called in its old loose form:
+    ``CVModel`` with a trap field loose; ``cv_series``, ``cv_start_from_rsf`` with a mapping
+    first or loose keywords; ``record_cv_model`` with a number first; ``fit_cv_steps`` with
+    more than the model."""
+    import ast
+
+    def trap_like(a: ast.expr) -> bool:
+        return not isinstance(a, (ast.Constant, ast.Dict, ast.UnaryOp)) and not (
+            isinstance(a, ast.Name) and a.id in ("alpha", "values", "v", "rsf", "truth"))
+
+    bad = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        f = node.func
+        name = f.id if isinstance(f, ast.Name) else getattr(f, "attr", None)
+        kws = {k.arg for k in node.keywords}
+        first = node.args[0] if node.args else None
+        if name == "CVModel":
+            old = bool(kws & {"alpha", "creep", "direct"}) or len(node.args) > 1 or (
+                first is not None and not trap_like(first))
+        elif name in ("cv_series", "cv_start_from_rsf", "record_cv_model"):
+            old = first is not None and not trap_like(first) or bool(
+                kws & _OLD_KEYWORDS - ({"progress"} if name == "record_cv_model" else set()))
+        elif name == "fit_cv_steps":
+            old = len(node.args) > 3 or bool(kws)
+        else:
+            continue
+        if old:
+            bad.append(node.lineno)
+    return bad
+
+
+def test_no_module_calls_an_old_form_of_the_fit_model() -> None:
+    # the scan on both forms first (it could pass for not looking), then the package, the
+    # examples and the benchmarks (the suite's error on the warning covers only the paths
+    # it runs)
+    import ast
+    from pathlib import Path
+
+    old = ast.parse("CVModel(0.13, 'log')\nCVModel(direct=0.02)\ncv_series(v, d, 0.13)\n"
+                    "cv_start_from_rsf(rsf, v0)\nrecord_cv_model(0.13, 'log', 0.03)\n"
+                    "fit_cv_steps(data, fits, 0.13, 'log')\n"
+                    "cv_series(model, v, d, traps_per_a0=30)\n")
+    new = ast.parse("CVModel(TrapModel(0.13), v_ref=1e-6)\ncv_series(cv, v, d)\n"
+                    "cv_start_from_rsf(model, rsf, v0)\n"
+                    "record_cv_model(TrapModel(direct=0.03), v_ref, tpa, progress=tick)\n"
+                    "fit_cv_steps(data, fits, model)\nCVModel()\n")
+    assert _old_fit_form_calls(old) == [1, 2, 3, 4, 5, 6, 7]
+    assert _old_fit_form_calls(new) == []
+    root = Path(__file__).resolve().parents[2]
+    sources = [*sorted((root / "src").rglob("*.py")), *sorted((root / "examples").rglob("*.py")),
+               *sorted((root / "benchmarks").glob("*.py"))]
+    assert len(sources) > 50
+    bad = [f"{p.relative_to(root)}:{ln}" for p in sources
+           for ln in _old_fit_form_calls(ast.parse(p.read_text()))]
+    assert bad == [], bad
