@@ -41,8 +41,8 @@ model's is ``cv_series(model, values, data)`` (the ensemble simulator
 :func:`dryfriction.ensemble.driving.simulate` with the data's load program as a kinematic
 :class:`~dryfriction.ensemble.driving.VelocityDrive` or through the machine's spring, through
 :class:`~dryfriction.theory.units.PhysicalScales`). The ensemble's friction is a sum over
-discrete traps, so it is a fine staircase in the parameters (a trap dies at a sample): its Jacobian is
-taken with a larger difference step (:attr:`CVModel.diff_step`).
+discrete traps, so it is a fine staircase in the parameters (a trap dies at a sample): its
+Jacobian is taken with a larger difference step (:attr:`CVModel.diff_step`).
 
 Method (ours, standard weighted least squares):
 
