@@ -251,6 +251,8 @@ def test_old_loose_form_warns_and_builds_the_same_model() -> None:
         CVModel(0.11, alpha=0.12)
     with pytest.raises(TypeError, match="TrapModel"):
         CVModel(TrapModel(), 0.13)
+    with pytest.raises(TypeError, match="direct is the trap model's"):
+        CVModel(TrapModel(), direct=0.02)
 
 
 @pytest.mark.parametrize("held, word", [(TrapModel(eps=0.03), "trap.eps"),

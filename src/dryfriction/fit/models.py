@@ -159,6 +159,10 @@ def _old_cv_form(first: Any, old: tuple[Any, ...], loose: dict[str, Any],
     """The old loose form of :class:`CVModel` (``alpha``, ``creep``, ``direct`` as its own
     fields, by position or keyword): warn, and give the held trap model and the rest."""
     args = ((first,) if first is not None else ()) + old
+    if isinstance(first, TrapModel) and loose.keys() & {"alpha", "creep", "direct"}:
+        name = sorted(loose.keys() & {"alpha", "creep", "direct"})[0]
+        raise TypeError(f"CVModel(TrapModel(...), {name}=...): {name} is the trap model's; "
+                        f"give it to the TrapModel")
     if isinstance(first, TrapModel) or len(args) > len(_OLD_POSITIONS):
         raise TypeError("CVModel takes the trap model, then keywords: CVModel(TrapModel("
                         "alpha=..., creep=..., direct=...), traps_per_a0=..., v_ref=..., ...)")
