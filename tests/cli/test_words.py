@@ -47,7 +47,7 @@ def test_stability_table_is_whole_at_80_columns_with_units():
                "--eta", "0.1")
     assert r.exit_code == 0, r.output
     assert "…" not in r.stdout
-    for header in ("u[a0/t0]", "K_c[F_el/a0]", "omega_c[1/t0]", "dmu_d_du[F_el t0/a0]"):
+    for header in ("u[a0/t0]", "K_c[F_el/a0]", "omega_c[rad/t0]", "dmu_d_du[F_el t0/a0]"):
         assert header in r.stdout
     as_json = json.loads(invoke("stability", "--eps", "0.04", "--u", "0.01", "0.1", "--M",
                                 "10", "--eta", "0.1", "--json").stdout)

@@ -65,7 +65,7 @@ def test_readme_linear_sweep_has_every_point_and_units(tmp_path, recwarn):
     assert np.isfinite(ds["K_c"].values).all()
     # K_c depends on the velocity only (no mass, no damping here)
     assert (ds["K_c"].values == ds["K_c"].values[0]).all()
-    assert ds["K_c"].attrs["units"] == "F_el/a0" and ds["omega_c"].attrs["units"] == "1/t0"
+    assert ds["K_c"].attrs["units"] == "F_el/a0" and ds["omega_c"].attrs["units"] == "rad/t0"
     assert ds["drive.segments.0.velocity"].attrs["units"] == "a0/t0"
     # was: NaN at 3 of the 9 points (no root found from 24 starts); every point where the
     # linear problem is defined (all of them here) has a growth rate, and says what it is

@@ -31,7 +31,7 @@ always exists) or because ``K = -Z(inf)``, where every frequency grows (-2)."""
 
 SWEEP_VARIABLES: dict[str, dict[str, str]] = {
     "K_c": {"long_name": "critical spring stiffness of steady sliding", "units": "F_el/a0"},
-    "omega_c": {"long_name": "angular frequency at the onset of instability", "units": "1/t0"},
+    "omega_c": {"long_name": "angular frequency at the onset of instability", "units": "rad/t0"},
     "growth_rate": {"long_name": "growth rate sup Re(lambda) of the linear modes (NaN: "
                     "undefined, growth_rate_kind says why)", "units": "1/t0"},
     "growth_rate_kind": {"long_name": "what the growth rate is", "units": "1",
@@ -54,7 +54,7 @@ def linear_summary(protocol: Mapping[str, Any]) -> dict[str, float]:
     Returns
     -------
     dict
-        ``K_c`` (``F_el/a0``), ``omega_c`` (``1/t0``), the growth rate at the given
+        ``K_c`` (``F_el/a0``), ``omega_c`` (``rad/t0``), the growth rate at the given
         stiffness (``1/t0``): the supremum of ``Re lambda`` over the roots, the larger of
         the rightmost root found and the delay chain's limit, with ``growth_rate_kind``
         (:data:`GROWTH_KINDS`), and ``linearly_stable`` (1 or 0).

@@ -197,7 +197,7 @@ def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].defaul
               mass: float = _STB["mass"].default, damping: float = _STB["damping"].default,
               creep: str = _STB["creep"].default, direct: float = _STB["direct"].default,
               v_ref: float = _STB["v_ref"].default) -> TableOutcome:
-    """Critical stiffness ``K_c`` (F_el/a0) and onset frequency (1/t0) of steady sliding at
+    """Critical stiffness ``K_c`` (F_el/a0) and onset angular frequency (rad/t0) of steady sliding at
     each reduced velocity ``u`` (``dryfriction stability``:
     :func:`dryfriction.theory.linear_stability.critical_stiffness`), and for ``eps > 0`` the
     rate-and-state twin's ``K_c`` (Rice & Ruina 1983, with the model's effective a, b, Dc:
@@ -232,7 +232,7 @@ def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].defaul
     }
     if twins:  # rate-and-state with the model's effective a, b, Dc (Rice & Ruina 1983)
         cols["K_c_rsf"] = [t["K_c"] for t in twins]
-    units = {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "1/t0",
+    units = {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "rad/t0",
              "forward_stiffness": "F_el/a0", "backward_stiffness": "F_el/a0",
              "dmu_d_du": "F_el t0/a0", "K_c_rsf": "F_el/a0"}
     return TableOutcome("linear stability of steady sliding", params, cols, units)

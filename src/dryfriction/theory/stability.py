@@ -371,7 +371,7 @@ def characteristic(
 
 @dataclass(frozen=True)
 class StabilityResult:
-    """Critical stiffness ``K_c`` (``F_el/a0``) and onset angular frequency (``1/t0``)."""
+    """Critical stiffness ``K_c`` (``F_el/a0``) and onset angular frequency (``rad/t0``)."""
 
     u: float
     eps: float
