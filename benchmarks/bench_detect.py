@@ -148,6 +148,10 @@ def report(r: dict[str, float], start: int, n: int) -> None:
               f"({100 * (1 - r['placed'] / r['changes']):.1f} %) marked not placed; of the "
               f"{r['placed']} placed, {100 * r['placed_right'] / max(r['placed'], 1):.1f} % "
               "within max(1 sample, 0.5 s)")
+        wf, placed, pr = r["wrong_flagged"], r["placed"], r["placed_right"]
+        print(f"not placed against the times: wrong & flagged {wf}, wrong & unflagged "
+              f"{placed - pr}, right & flagged {r['changes'] - placed - wf}, right & unflagged "
+              f"{pr}")
 
 
 if __name__ == "__main__":

@@ -1,8 +1,10 @@
 """Speed of the extended interface (issue 29): trap updates per second, cost against the number
-of blocks, one thread against two.
+of blocks (N = 32, 64, 128, 256 and the fitted exponent), one thread against two, and the
+stick-slip run dynamic against event-driven (``quasi_static_rate``).
 
 Run ``python benchmarks/bench_interface.py [--full]`` (``--full``: N up to 1024 and the
-stick-slip run at N = 256 over 100 a0, the issue's scale; an hour on a loaded machine).
+issue's scale, N = 256 blocks of about 200 contacts through at least 20 system-spanning events,
+event-driven; an hour or more on a loaded machine).
 A trap update is one pair of a block's contact window processed in one step (the pairs in
 contact and the free ones between them).
 Uniform steady sliding at ``u = 1`` of blocks with 100 pairs per ``a0`` (about 250 pairs in
@@ -18,7 +20,14 @@ import os
 import statistics
 import sys
 
-from dryfriction.ensemble.interface import InterfaceDrive, InterfaceModel, simulate_interface
+import numpy as np
+
+from dryfriction.ensemble.interface import (
+    QUASI_STATIC_RATE,
+    InterfaceDrive,
+    InterfaceModel,
+    simulate_interface,
+)
 from dryfriction.ensemble.population import Initial, Track
 from dryfriction.ensemble.result import Output
 from dryfriction.program import Segment, VelocityProgram
@@ -49,11 +58,17 @@ def cost_against_n(sizes: tuple[int, ...], duration: float) -> None:
     print(f"cost against N (one thread, {duration:g} t0 of sliding, 100 pairs/a0)")
     print(f"{'N':>6} {'steps':>7} {'updates':>10} {'wall s':>8} {'cpu s':>7} "
           f"{'us/step/block':>14} {'updates/cpu-s':>13}")
+    per_step = []
     for n in sizes:
         r = run(n, duration, 1)
         per = r["cpu"] / r["steps"] / n * 1e6  # CPU time: the machine may be shared
+        per_step.append(r["cpu"] / r["steps"])
         print(f"{n:>6} {r['steps']:>7.0f} {r['updates']:>10.3g} {r['wall']:>8.2f} "
               f"{r['cpu']:>7.2f} {per:>14.2f} {r['updates'] / r['cpu']:>13.3g}   {_load()}")
+    # the cost of a step against N: CPU s per step ~ N^p, p by least squares in logs (ours)
+    p = float(np.polyfit(np.log(sizes), np.log(per_step), 1)[0])
+    print(f"  CPU time per step grows as N^{p:.2f} (linear: 1) from N = {sizes[0]} to "
+          f"{sizes[-1]}")
 
 
 def threads(n: int, duration: float, repeats: int) -> None:
@@ -71,16 +86,18 @@ def threads(n: int, duration: float, repeats: int) -> None:
     print(f"  median one thread {m1:.2f} s, two threads {m2:.2f} s: speed-up {m1 / m2:.2f}x")
 
 
-def spanning_events(n: int, slip: float, threads: int | None = None) -> None:
+def spanning_events(n: int, slip: float, threads: int | None = None, rate: float = 0.0,
+                    lam: float = 100.0) -> None:
     """Stick-slip of the chain under uniform loading (the single slider's inertial example per
-    block: ``K_p = 0.05``, ``m = 1``, ``eta = 0.02``, ``V = 0.01``; ``k_c = 1``; 100 pairs/a0,
-    about 250 in a window): the events whose fast part (slip rate above ``10 V``) covers every
-    block, and the wall time per such event."""
+    block: ``K_p = 0.05``, ``m = 1``, ``eta = 0.02``, ``V = 0.01``; ``k_c = 1``; ``lam`` pairs
+    per a0, about ``2.5 lam`` in a window), dynamic (``rate = 0``) or event-driven
+    (``quasi_static_rate = rate``): the events whose fast part (slip rate above ``10 V``)
+    covers every block, and the CPU time per such event."""
     V = 0.01
     r = simulate_interface(
-        InterfaceModel(TrapModel(eps=0.04), n, 1.0, 1.0, 0.02),
+        InterfaceModel(TrapModel(eps=0.04), n, 1.0, 1.0, 0.02, quasi_static_rate=rate),
         InterfaceDrive("uniform", 0.05, VelocityProgram([Segment(V, slip=slip)])),
-        Initial("steady", velocity=V, track=Track(100.0, "random", seed=1)),
+        Initial("steady", velocity=V, track=Track(lam, "random", seed=1)),
         Output(every=1.0), threads=threads)
     fast = r.slip_rate > 10.0 * V
     on = fast.any(axis=1)
@@ -96,17 +113,23 @@ def spanning_events(n: int, slip: float, threads: int | None = None) -> None:
         else:
             j += 1
     wall, cpu = r.info["wall_s"], r.info["cpu_s"]
-    print(f"events: N = {n}, {slip:g} a0 of plate travel: {spanning} system-spanning events, "
-          f"{r.info['steps']} steps, {r.info['trap_updates']:.3g} trap updates, wall {wall:.1f} "
-          f"s, CPU {cpu:.1f} s ({cpu / max(spanning, 1):.1f} CPU s per event), threads "
-          f"{r.info['threads']}   {_load()}")
+    quiet = r.info["quasi_static_steps"]
+    print(f"events: N = {n}, {lam:g} pairs/a0, {slip:g} a0 of plate travel, quasi_static_rate "
+          f"{rate:g} a0/t0: {spanning} system-spanning events, {r.info['steps']} steps "
+          f"({quiet} quasi-static, {r.info['handovers']} handovers), "
+          f"{r.info['trap_updates']:.3g} trap updates, wall {wall:.1f} s, CPU {cpu:.1f} s "
+          f"({cpu / max(spanning, 1):.1f} CPU s per event), threads {r.info['threads']}   "
+          f"{_load()}")
 
 
 def main() -> None:
-    full = "--full" in sys.argv  # the issue's scale: N = 256 through ~20 events (long)
-    cost_against_n((16, 64, 256, 1024) if full else (16, 64, 256), 2.0)
+    full = "--full" in sys.argv  # the issue's scale: N = 256 through >= 20 events (long)
+    cost_against_n((32, 64, 128, 256, 1024) if full else (32, 64, 128, 256), 2.0)
     threads(256, 2.0, 3 if full else 2)
-    spanning_events(256 if full else 64, 100.0 if full else 30.0)
+    for rate in (0.0, QUASI_STATIC_RATE):  # the same run, dynamic then event-driven
+        spanning_events(64, 30.0, rate=rate)
+    if full:  # N = 256 x about 200 contacts (80 pairs per a0), event-driven
+        spanning_events(256, 200.0, rate=QUASI_STATIC_RATE, lam=80.0)
 
 
 if __name__ == "__main__":

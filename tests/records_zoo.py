@@ -104,6 +104,11 @@ class ZooRecord:
     normal_ramp: float = 0.0
     v: np.ndarray | None = None  # load-point velocity as a servo reports it, m/s
     velocities: list[float] = field(default_factory=list)  # commanded, m/s, one per stretch
+    quantum: float = QUANTUM  # m, the displacement's quantum (``quant``: 0.1-0.5 um)
+    # for an oracle that knows them: the relative velocity excursions (machine oscillation and
+    # bursts, 1) and the displacement added by the drift and the reset (m)
+    eps: np.ndarray | None = None
+    x_known: np.ndarray | None = None
 
     @property
     def rows(self) -> int:
@@ -266,11 +271,13 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
         # the servo's velocity reading sees the error's rate too
         vt = vt + np.gradient(e, t)
     x += 1e-3 + rng.normal(0.0, WHITE, t.size)
+    x_plain = x.copy()
     if "drift" in artifacts:
         x += 2e-6 * np.sin(np.pi * t / end + rng.uniform(0, np.pi))
     if "reset" in artifacts:
         i = int(rng.integers(t.size // 10, 9 * t.size // 10))
         x[i:] -= x[i] if rng.random() < 0.5 else rng.uniform(-500e-6, 500e-6)
+    x_known = x - x_plain
     q = float(rng.uniform(0.1e-6, 0.5e-6)) if "quant" in artifacts else QUANTUM
     x = np.round(x / q) * q
     mu = friction(t, [(s, v) for s, v in prog], a=a, b=b, dc=dc, k=k)
@@ -293,7 +300,7 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     v_read = np.round(vt * (1.0 + rng.normal(0.0, 0.02, t.size)) / QUANTUM) * QUANTUM
     return ZooRecord(f"zoo_{index:03d}_{program}_{'+'.join(artifacts) or 'plain'}",
                      program, artifacts, dialect, t + 100.0, x, mu, sn, changes,
-                     normal_changes, ramp, v_read, [v for _, v in prog])
+                     normal_changes, ramp, v_read, [v for _, v in prog], q, eps, x_known)
 
 
 def specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:

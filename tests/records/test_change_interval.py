@@ -23,6 +23,8 @@ from dryfriction.records.record import LabRecord
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_detect import SHARED, _oracle_records, servo_record  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
 
 def test_interval_of_a_gaussian_profile_on_an_uneven_grid() -> None:
     """A gain ``-(t - mu)**2 / s0**2`` is a Gaussian log-likelihood of sd ``s0`` (the
@@ -91,11 +93,12 @@ def test_detected_changes_carry_their_interval() -> None:
     """The detector's segments carry the interval of the change at their start, holding the
     reported time: on the servo record (3 -> 10 um/s at 400 s, 10 then 100 Hz) within 1 s of
     it (measured -0.8 to +0.16 s at most) and holding the truth, placed on some seeds (1 and 3:
-    within 0.3 s); on 30 oracle records of ratio 1.3 with the machine oscillation every change
-    time off by more than its tolerance is marked not placed, and the intervals hold the true
-    time on >= 27 (measured 30). Mistakes: the intervals not passed to the segments (NaN); the
-    placed flag from the nearer side of the interval (min, not max: seed 0's interval, -0.8
-    to +0.16 s of it, marked placed)."""
+    within 0.3 s), the placed flag being the probability of lying within the tolerance
+    (``start_p``) against PLACED_P; on 30 oracle records of ratio 1.3 with the machine
+    oscillation every change time off by more than its tolerance is marked not placed, and
+    the intervals hold the true time on >= 27 (measured 30). Mistakes, each seen failing: the
+    intervals not passed to the segments (NaN); the flag from the interval's width as before
+    (seed 0's interval, -0.8 to +0.16 s, marked not placed at probability 0.97)."""
     placed, lopsided = [], 0
     for seed in range(4):
         rec, change = servo_record(seed)
@@ -104,11 +107,12 @@ def test_detected_changes_carry_their_interval() -> None:
         assert s.start_lo <= s.t_start <= s.start_hi
         assert s.start_lo - t0 <= change <= s.start_hi - t0
         assert s.start_hi - s.start_lo < 1.5
-        # placed: within max(1 sample, 0.5 s) on BOTH sides
+        # placed: the probability of lying within max(1 sample, 0.5 s) at least PLACED_P
         t = np.asarray(rec.time)
         tol = max(float(t[s.i_start] - t[s.i_start - 1]), 0.5)
         sides = (s.t_start - s.start_lo, s.start_hi - s.t_start)
-        assert s.start_placed == (max(sides) <= tol), sides
+        assert 0.0 <= s.start_p <= 1.0
+        assert s.start_placed == (s.start_p >= placement.PLACED_P and not s.start_edge)
         lopsided += min(sides) <= tol < max(sides)
         placed.append(s.start_placed)
     assert placed[1] and placed[3] and lopsided >= 1
@@ -127,11 +131,15 @@ def test_detected_changes_carry_their_interval() -> None:
 
 def test_table_and_segments_csv_show_the_interval(tmp_path: Path) -> None:
     """The interval and the placed flag reach the table and segments.csv, in that segment's
-    row. Mistakes: yes/no swapped; the columns shifted against their header; the unplaced
-    change not named under the table."""
+    row, with the probability of lying within the tolerance. Mistakes: yes/no swapped; the
+    columns shifted against their header; the unplaced change not named under the table; the
+    probability column left out of the rows (seen failing: its header read the normal
+    stress)."""
     segs = (Segment(100.0, 300.0, 1e-6, 0, 2000),
-            Segment(300.0, 500.0, 3e-6, 2000, 4000, 40.0, 30e6, 299.5, 300.25, False, True),
-            Segment(500.0, 700.0, 1e-6, 4000, 6000, 30.0, 30e6, 498.0, 503.0, False, False))
+            Segment(300.0, 500.0, 3e-6, 2000, 4000, 40.0, 30e6, 299.5, 300.25, False, True,
+                    0.97),
+            Segment(500.0, 700.0, 1e-6, 4000, 6000, 30.0, 30e6, 498.0, 503.0, False, False,
+                    0.31))
     text = segments_table(segs, "Pa")
     rows = text.splitlines()
     assert "95 %" in rows[0]
@@ -145,6 +153,8 @@ def test_table_and_segments_csv_show_the_interval(tmp_path: Path) -> None:
     assert float(table[1]["t_start_lo[s]"]) == 299.5
     assert float(table[1]["t_start_hi[s]"]) == 300.25
     assert table[1]["t_start_placed"] == "yes" and table[2]["t_start_placed"] == "no"
+    assert table[0]["t_start_p[1]"] == ""
+    assert float(table[1]["t_start_p[1]"]) == 0.97 and float(table[2]["t_start_p[1]"]) == 0.31
     assert float(table[2]["normal_stress[MPa]"]) == 30.0
 
 
@@ -219,3 +229,58 @@ def test_a_slow_stop_is_placed_without_it(monkeypatch: pytest.MonkeyPatch) -> No
     assert _stops_placed(0.4e-6, 5.0, 16) == 16
     monkeypatch.setattr(placement, "RELAX_ABOVE", 0.0)
     assert _stops_placed(0.4e-6, 5.0, 16) <= 13
+
+
+def test_placed_probability_of_a_gaussian_profile() -> None:
+    """A Gaussian profile (sd ``s0`` about ``mu``) on a grid 50 times coarser right of ``mu``
+    than left of it: the probability that the change lies within ``tol`` of a time ``at`` is
+    the widened profile's mass there, the Gaussian's within ``tol / WIDEN`` of ``at``
+    (closed form). Mistakes, each seen failing: the widening left out (``tol``, not ``tol /
+    WIDEN``: 0.821 against 0.491 at the first point); a cell counted whole when the window's
+    end cuts it (0.502 against 0.491)."""
+    from scipy.stats import norm
+
+    mu, s0 = 3.7, 0.31
+    t = np.concatenate([np.arange(0.0, mu, 0.001), np.arange(mu, 8.0, 0.05)])
+    edges, w = placement.profile_weights(t, -((t - mu) ** 2) / s0**2, 1.0, 0.0, 8.0)
+    assert w.sum() == pytest.approx(1.0)
+    pl = placement.Placement(100, cells=edges, weights=w)
+    for at, tol in ((3.9, 0.5), (3.52, 0.3), (4.1, 1.0), (3.7, 0.2)):
+        a, b = at - tol / placement.WIDEN, at + tol / placement.WIDEN
+        exact = norm.cdf((b - mu) / s0) - norm.cdf((a - mu) / s0)
+        assert placement.placed_probability(pl, at, tol) == pytest.approx(exact, abs=4e-3)
+    # no profile computed: nothing says against the time
+    assert placement.placed_probability(placement.Placement(100), 1.0, 0.5) == 1.0
+
+
+def _zoo_hold_errors(indices: tuple[int, ...], tmp: Path) -> list[float]:
+    """|time error| / tolerance of each change at a hold or a stop (ratio > 100) of these zoo
+    records (written in their dialect and read back, as bench_detect does)."""
+    from dryfriction.records.lab import read_record
+    from records_zoo import make_record, score, specs, write
+
+    out = []
+    for i, prog, arts, dialect in specs(max(indices) + 1):
+        if i not in indices:
+            continue
+        rec = make_record(i, prog, arts, dialect)
+        s = score(rec, detect_program(read_record(write(rec, tmp))), 0.0)
+        assert s.count_right, rec.name
+        out += [abs(c[1]) / c[2] for c in s.changes if not c[0] < 100.0]
+    return out
+
+
+def test_changes_at_holds_are_placed_at_any_confidence(tmp_path: Path,
+                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo records 232 and 364 (slide-hold-slides with the servo error and the oscillation; in
+    the range 150-449 the rule was chosen on): every change at a hold within its tolerance
+    (measured: at most 0.6 of it) when such changes are placed by the hinge under the wander
+    whatever their confidence. Mistake, seen failing: left where the whole stretches put them
+    when their confidence is above LOCAL_Z (HOLD_PLACED = False: 232's first restart 1.97
+    tolerances off, 364's last change 2.24; measured); the holds only, not the stops (232's
+    "hold" is a creep of -2.6 nm/s, 200 times slower than the slide: 1.97 again)."""
+    import dryfriction.records.detection as detection
+
+    assert max(_zoo_hold_errors((232, 364), tmp_path)) <= 1.0
+    monkeypatch.setattr(detection, "HOLD_PLACED", False)
+    assert max(_zoo_hold_errors((232, 364), tmp_path)) > 1.0

@@ -197,8 +197,8 @@ def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].defaul
               mass: float = _STB["mass"].default, damping: float = _STB["damping"].default,
               creep: str = _STB["creep"].default, direct: float = _STB["direct"].default,
               v_ref: float = _STB["v_ref"].default) -> TableOutcome:
-    """Critical stiffness ``K_c`` (F_el/a0) and onset angular frequency (rad/t0) of steady sliding at
-    each reduced velocity ``u`` (``dryfriction stability``:
+    """Critical stiffness ``K_c`` (F_el/a0) and onset angular frequency (rad/t0) of steady sliding
+    at each reduced velocity ``u`` (``dryfriction stability``:
     :func:`dryfriction.theory.linear_stability.critical_stiffness`), and for ``eps > 0`` the
     rate-and-state twin's ``K_c`` (Rice & Ruina 1983, with the model's effective a, b, Dc:
     :func:`dryfriction.analysis.rsf_stability.rsf_stability_prediction`)."""

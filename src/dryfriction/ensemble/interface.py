@@ -56,10 +56,35 @@ threads, except by default on a machine already busy (one-minute load average at
 cores), where each step's join of the threads waits for a time slice; the numbers are the same
 with any number of threads (tests/ensemble/test_interface.py).
 
+Event-driven loading (ours; ``quasi_static_rate = v_qs > 0``): quasi-static loading between
+events, dynamic stepping within them, as the event-driven spring-block codes do.
+
+* The dynamics hand over when every block is quiet after a step, ``v_i^2 + (a_i/omega)^2 <
+  v_qs^2`` (its slip rate, and the rate its unbalanced force ``m a_i`` would give it within an
+  oscillation; ``omega = sqrt((K_p + k_contact)/m)``, the chain's lowest normal mode on fresh
+  contacts), and not before one period ``2 pi/omega`` of dynamics.
+* A quasi-static step goes to the next sample at once: every block in equilibrium at the new
+  time without inertia, ``K_p (P - y_i) + k_c (y_{i+1} - 2 y_i + y_{i-1}) + [i = 0] K_s (L -
+  y_0) - F_i(y_i) - eta (y_i - x_i)/dt = 0``, the friction of each window moved to ``y_i`` with
+  the contacts aged to the new time (creep over the step, exact as in the dynamics), by
+  Newton's method with the windows' own stiffness (:func:`.interface_kernel.settle_chain`).
+* A step is taken only if no contact reaches its spinodal on the way, that is, no block's
+  force reaches its threshold (the force at which its next contact gives way); else it is
+  shortened to just before it, and within one dynamic step of the bound ``dt`` the dynamics
+  resume from the last equilibrium, at the quasi-static velocities.
+
+Exact: the loading, the ages and every contact's force at each equilibrium; with ``v_qs = 0``
+the run is the dynamic one bit for bit. Neglected: the inertia ``m x''`` during the quiet
+phases, that is the chain's residual oscillation when a phase starts, at most ``v_qs/omega``
+in slip and ``m N v_qs^2`` in energy (booked in ``work_quasi_static``, so that the energy
+balance still closes), and the overshoot of a contact's force drop below ``v_qs`` (each
+threshold is handed to the dynamics, but a drop whose ringing stays below ``v_qs`` is let
+settle quasi-statically after one period). :data:`QUASI_STATIC_RATE` is the threshold the
+checks against the dynamic run were made with (tests/ensemble/test_interface_events.py).
+
 Not modelled (refused or absent, and said so): the direct effect (``direct > 0`` is refused),
-the quasi-static (``mass = 0``) limit, an event-driven quasi-static loading between events (the
-chain is stepped dynamically throughout, holds included), a long-range (thin-slab) elastic
-kernel, snapshots of the populations.
+the quasi-static (``mass = 0``) limit, a long-range (thin-slab) elastic kernel, snapshots of
+the populations.
 """
 
 from __future__ import annotations
@@ -90,15 +115,15 @@ from ..validation import (
     check_time,
 )
 from .drives import MASS_MIN, STIFFNESS_MAX
-from .interface_kernel import OUT_SIZE, advance_chain
+from .interface_kernel import OUT_SIZE, advance_chain, settle_chain
 from .interface_result import INTERFACE_UNITS, InterfaceResult
 from .kernel import radius_table
 from .population import Ensemble, Initial, Track
 from .result import Output, segment_grid
 
 __all__ = ["DISORDERS", "LOADINGS", "InterfaceDrive", "InterfaceEstimate", "InterfaceModel",
-           "MAX_ELEMENTS", "MAX_FIELD_VALUES", "element_tracks", "estimate_interface",
-           "simulate_interface"]
+           "MAX_ELEMENTS", "MAX_FIELD_VALUES", "QUASI_STATIC_RATE", "element_tracks",
+           "estimate_interface", "simulate_interface"]
 
 LOADINGS: tuple[str, ...] = ("uniform", "side")
 DISORDERS: tuple[str, ...] = ("independent", "identical")
@@ -115,6 +140,10 @@ development machine: ``benchmarks/interface_speed.py``)."""
 PARALLEL_MIN_ELEMENTS: int = 16
 """Fewest blocks whose windows are updated in parallel (ours): below it opening and joining a
 parallel region every step costs more than the blocks' work."""
+QUASI_STATIC_RATE: float = 0.01
+"""The quasi-static switch's threshold ``v_qs`` (``a0/t0``) the event-driven checks were made
+with (ours; :class:`InterfaceModel` ``quasi_static_rate``): a tenth of the event threshold of
+:mod:`dryfriction.analysis.fronts` (10 x the loading velocity) at a loading of 0.01 ``a0/t0``."""
 _SEED_SPREAD = 1 << 32  # the spreads' stream, apart from every block's (i < 2**20)
 
 
@@ -139,6 +168,11 @@ class InterfaceModel:
     normal_spread, density_spread : float
         Half-widths ``0 <= s < 1`` of the uniform spreads of the blocks' normal load and trap
         density (need a seed when nonzero).
+    quasi_static_rate : float
+        ``v_qs >= 0``, ``a0/t0``: the slip rate below which every block must be for the
+        loading to advance quasi-statically (event-driven, module docstring); 0 (the default)
+        steps the chain dynamically throughout. :data:`QUASI_STATIC_RATE` is the value the
+        event-driven checks were made with.
     """
 
     law: ClassVar[str] = "cv"
@@ -150,6 +184,7 @@ class InterfaceModel:
     disorder: str = "independent"
     normal_spread: float = 0.0
     density_spread: float = 0.0
+    quasi_static_rate: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.trap, TrapModel):
@@ -172,6 +207,8 @@ class InterfaceModel:
         for name in ("normal_spread", "density_spread"):
             s = check_scalar(name, getattr(self, name), 0.0, 1.0, hi_open=True)
             object.__setattr__(self, name, s)
+        object.__setattr__(self, "quasi_static_rate",
+                           check_scalar("quasi_static_rate", self.quasi_static_rate, 0.0, U_MAX))
 
     @property
     def coupling_eigenvalue_max(self) -> float:
@@ -513,14 +550,22 @@ def simulate_interface(
     outs = np.zeros((n, OUT_SIZE))
     wfric = np.zeros(n)
     wdamp = np.zeros(n)
-    acc = np.zeros(4)
+    acc = np.zeros(6)  # the kernels' [work_load, steps, updates, overflow]; qs steps, handovers
+    wqs = np.zeros(n)
+    v_qs = model.quasi_static_rate
+    # the lowest normal mode of the chain on fresh contacts, sqrt((K_p + k_contact)/m): the
+    # quiet test's oscillation and the least time a dynamic phase lasts (one of its periods)
+    omega_qs = math.sqrt((kp + trap.contact_stiffness * float(np.min(normal))) / model.mass)
+    t_settle = 2.0 * math.pi / omega_qs
+    nxt = np.full(n, np.inf)
     slip = np.empty((n_t, n))
     rate = np.empty((n_t, n))
     stress = np.empty((n_t, n))
     load = np.empty(n_t)
     lpos = np.empty(n_t)
     energy = {k: np.empty(n_t) for k in ("work_load", "elastic_energy", "kinetic_energy",
-                                         "work_friction", "work_damping")}
+                                         "work_friction", "work_damping",
+                                         "work_quasi_static")}
 
     def record(j: int, t: float) -> None:
         lp = load_at(t)
@@ -539,6 +584,7 @@ def simulate_interface(
         energy["kinetic_energy"][j] = 0.5 * model.mass * float(np.sum(v * v))
         energy["work_friction"][j] = float(np.sum(wfric))
         energy["work_damping"][j] = float(np.sum(wdamp))
+        energy["work_quasi_static"][j] = float(np.sum(wqs))
 
     if threads is not None:
         numba.set_num_threads(threads)
@@ -552,16 +598,46 @@ def simulate_interface(
     args_fixed = (model.mass, model.damping, kp, kc, ks, side, 0.0, load0, p_times, p_pos, p_vel,
                   x0, tm.alpha, trap.y_c, trap.regime is Regime.STRONG, h, s_tab,
                   ds_tab, outs, wfric, wdamp, acc, serial)
+    args_settle = (model.mass, model.damping, kp, kc, ks, side, 0.0, load0, p_times, p_pos,
+                   p_vel, x0, tm.alpha, trap.y_c, trap.regime is Regime.STRONG, h, s_tab, ds_tab,
+                   outs, wfric, wdamp, wqs, acc, serial)
+    quasi = False  # the phase: quasi-static loading, or dynamic stepping
+    t_min = 0.0  # a dynamic phase lasts at least until then
+
+    def event_driven(t: float, t1: float) -> float:
+        """From ``t`` to the sample ``t1``, alternating the phases (module docstring)."""
+        nonlocal quasi, t_min
+        while t < t1 and acc[3] == 0.0:
+            if quasi:
+                t, hit = settle_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1,
+                                      dt_osc, nxt, *args_settle)
+                acc[4] += 1.0
+                if hit:
+                    quasi = False
+                    t_min = t + t_settle
+                    acc[5] += 1.0
+            else:
+                t = advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1,
+                                  dt_osc, dx_max, *args_fixed, v_qs, omega_qs, t_min)
+                if t < t1 and acc[3] == 0.0:  # every block quiet
+                    quasi = True
+                    nxt[:] = np.inf
+        return t
+
+    def advance(t: float, t1: float) -> float:
+        if v_qs > 0.0:
+            return event_driven(t, t1)
+        return advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc,
+                             dx_max, *args_fixed)
+
     try:
         for j in range(1, n_t):
             t1 = float(grid[j])
-            if advance_chain.overloads:
-                t = advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1,
-                                  dt_osc, dx_max, *args_fixed)
+            if advance_chain.overloads and (v_qs == 0.0 or settle_chain.overloads):
+                t = advance(t, t1)
             else:  # the first call loads (or compiles) it: signals held back meanwhile
                 with deferred():
-                    t = advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1,
-                                      dt_osc, dx_max, *args_fixed)
+                    t = advance(t, t1)
             if acc[3] != 0.0:
                 worst = int(np.argmax(np.abs(x)))
                 raise RuntimeError(
@@ -583,6 +659,9 @@ def simulate_interface(
         "wall_s": _time.perf_counter() - t_wall,
         "cpu_s": _time.process_time() - t_cpu,  # every thread of the process
         "threads": 1 if serial else int(numba.get_num_threads()),
+        "quasi_static_rate": v_qs,
+        "quasi_static_steps": int(acc[4]),
+        "handovers": int(acc[5]),
         "dt_max": dt_osc,
         "cover_a0": [lo_cov, hi_cov],
         "regime": trap.regime.value,

@@ -27,7 +27,7 @@ import numpy as np
 
 from .kernel import OUT_SIZE, advance_window
 
-__all__ = ["OUT_SIZE", "advance_chain", "load_position"]
+__all__ = ["OUT_SIZE", "QS_NEWTON_MAX", "QS_TOL", "advance_chain", "load_position", "settle_chain"]
 
 
 @numba.njit(cache=True)
@@ -62,8 +62,8 @@ def _block(i, c, state, birth, off, lo, hi, x, x_new, f_new, fscale, t, t_new, a
 @numba.njit(cache=True, parallel=True)
 def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc, dx_max,
                   mass, eta, kp, kc, ks, side, plate_fixed, load0, p_times, p_pos, p_vel, p_x0,
-                  alpha, yc, strong, h, s_tab, ds_tab, outs, wfric, wdamp, acc, serial
-                  ):  # pragma: no cover - compiled
+                  alpha, yc, strong, h, s_tab, ds_tab, outs, wfric, wdamp, acc, serial,
+                  v_qs=0.0, omega_qs=1.0, t_min=0.0):  # pragma: no cover - compiled
     """Step the chain from time ``t`` to ``t1`` (arrays updated in place).
 
     The step follows the single slider's inertial driver (:mod:`.driving`, ``_run_spring``):
@@ -79,7 +79,14 @@ def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_os
     ``serial`` updates the windows in a plain loop (one thread); else in a ``prange``, the same
     numbers either way (each block's update touches only its own arrays).
 
-    Returns the time reached (``t1``, or the step where a window reached its buffer's end).
+    Event-driven runs (:mod:`.interface`): with ``v_qs > 0`` the stepping also stops, once the
+    time has passed ``t_min``, at the first step after which every block is quiet,
+    ``v_i^2 + (a_i/omega_qs)^2 < v_qs^2`` (its slip rate and the rate its unbalanced force
+    would give it within an oscillation of angular frequency ``omega_qs``); ``v_qs = 0`` never
+    stops early, so the arithmetic is the dynamic run's.
+
+    Returns the time reached (``t1``, the step where a window reached its buffer's end, or the
+    first quiet step).
     """
     n = x.shape[0]
     x_new = np.empty(n)
@@ -144,4 +151,205 @@ def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_os
         t = t_new
         if acc[3] != 0.0:
             break
+        if v_qs > 0.0 and t >= t_min and t < t1:
+            quiet = True
+            for i in range(n):
+                if v[i] * v[i] + (a[i] / omega_qs) ** 2 >= v_qs * v_qs:
+                    quiet = False
+                    break
+            if quiet:
+                break
     return t
+
+
+@numba.njit(cache=True)
+def _probe(i, c, state, birth, off, lo, hi, x, y, t, t_new, commit, alpha, yc, strong, h,
+           s_tab, ds_tab, outs):  # pragma: no cover - compiled
+    """Block ``i``'s friction at ``y[i]`` and time ``t_new``, moved from ``x[i]`` at ``t``
+    (:func:`.kernel.advance_window` with its stiffness ``dF/dx`` and the next spinodal ahead);
+    the pairs and window are written only when ``commit``."""
+    s0 = off[i]
+    s1 = off[i + 1]
+    lo_i, hi_i = advance_window(c[s0:s1], state[s0:s1], birth[s0:s1], lo[i], hi[i], x[i], y[i],
+                                t, t_new, 1, alpha, yc, strong, h, s_tab, ds_tab, commit, True,
+                                outs[i])
+    if commit:
+        lo[i] = lo_i
+        hi[i] = hi_i
+
+
+@numba.njit(cache=True)
+def _spring_force(i, n, x, load, side, plate, kp, kc, ks):  # pragma: no cover - compiled
+    """Force of the loading, edge and coupling springs on block ``i`` at positions ``x``."""
+    s = kp * (plate - x[i])
+    if i > 0:
+        s += kc * (x[i - 1] - x[i])
+    if i < n - 1:
+        s += kc * (x[i + 1] - x[i])
+    if side and i == 0:
+        s += ks * (load - x[0])
+    return s
+
+
+QS_NEWTON_MAX: int = 30
+"""Most Newton iterations of one quasi-static step before it is halved (ours)."""
+QS_TOL: float = 1e-11
+"""Newton's convergence: the largest correction of a block's position, ``a0`` (ours)."""
+
+
+@numba.njit(cache=True, parallel=True)
+def settle_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_min, nxt,
+                 mass, eta, kp, kc, ks, side, plate_fixed, load0, p_times, p_pos, p_vel, p_x0,
+                 alpha, yc, strong, h, s_tab, ds_tab, outs, wfric, wdamp, wqs, acc, serial
+                 ):  # pragma: no cover - compiled
+    """One quasi-static step of the chain from ``t`` towards ``t1`` (arrays updated in place).
+
+    Every block is put in equilibrium at the new time without inertia (ours): ``K_p (P - y_i)
+    + k_c (y_{i+1} - 2 y_i + y_{i-1}) + [i = 0] K_s (L - y_0) - F_i(y_i) - eta (y_i - x_i)/dt =
+    0``, the friction ``F_i`` of each window moved from ``x_i`` at ``t`` to ``y_i`` at ``t +
+    dt`` (the contacts age over the step by creep, exactly), solved by Newton's method with
+    the windows' own stiffness ``dF_i/dx`` (a tridiagonal system). The step is taken only if
+    no contact reaches its spinodal on the way (no block's force drops); else it is shortened,
+    to just before the first spinodal ahead (``nxt``, the next spinodal of every block at its
+    last committed state), down to ``dt_min``.
+
+    Energy (ours): the work terms are the trapezoid sums of the dynamic kernel; the unbalanced
+    force ``g_i = m a_i`` at both ends (nonzero at the start of the first quasi-static step,
+    where the dynamics left it) does the work ``wqs`` that the step removes, with the kinetic
+    energy it drops, so that ``work_load = delta(elastic + kinetic) + work_friction +
+    work_damping + wqs`` holds exactly.
+
+    Returns ``(t_reached, hit)``: ``hit = 1`` when a block reached its threshold (a spinodal
+    within ``dt_min``), the state then left at ``t_reached``, where the dynamics resume; ``v``
+    holds the last step's ``(y - x)/dt`` and ``a`` the unbalanced force over ``m``.
+    """
+    n = x.shape[0]
+    y = np.empty(n)
+    fy = np.empty(n)
+    ky = np.empty(n)
+    g = np.empty(n)
+    cp = np.empty(n)
+    dp = np.empty(n)
+    l_old = load0 + load_position(t, p_times, p_pos, p_vel) - p_x0
+    plate_old = plate_fixed if side else l_old
+    dt = t1 - t
+    while True:
+        t_new = t1 if dt >= t1 - t else t + dt
+        dt = t_new - t
+        l_new = load0 + load_position(t_new, p_times, p_pos, p_vel) - p_x0
+        plate = plate_fixed if side else l_new
+        for i in range(n):  # the guess: the blocks keep their velocity
+            y[i] = x[i] + v[i] * dt
+        converged = False
+        for _ in range(QS_NEWTON_MAX):
+            if serial:
+                for i in range(n):
+                    _probe(i, c, state, birth, off, lo, hi, x, y, t, t_new, False, alpha, yc,
+                           strong, h, s_tab, ds_tab, outs)
+            else:
+                for i in numba.prange(n):
+                    _probe(i, c, state, birth, off, lo, hi, x, y, t, t_new, False, alpha, yc,
+                           strong, h, s_tab, ds_tab, outs)
+            for i in range(n):
+                fy[i] = outs[i, 0] * fscale[i]
+                ky[i] = outs[i, 1] * fscale[i]
+                acc[2] += hi[i] - lo[i]
+            # residual and the Jacobian -dg/dy (tridiagonal, Thomas algorithm)
+            for i in range(n):
+                g[i] = (_spring_force(i, n, y, l_new, side, plate, kp, kc, ks) - fy[i]
+                        - eta * (y[i] - x[i]) / dt)
+            worst = 0.0
+            for i in range(n):
+                diag = kp + ky[i] + eta / dt
+                if i > 0:
+                    diag += kc
+                if i < n - 1:
+                    diag += kc
+                if side and i == 0:
+                    diag += ks
+                up = -kc if i < n - 1 else 0.0
+                low = -kc if i > 0 else 0.0
+                den = diag - (low * cp[i - 1] if i > 0 else 0.0)
+                cp[i] = up / den
+                dp[i] = (g[i] - (low * dp[i - 1] if i > 0 else 0.0)) / den
+            for i in range(n - 1, -1, -1):
+                d = dp[i] - (cp[i] * dp[i + 1] if i < n - 1 else 0.0)
+                dp[i] = d
+                if abs(d) > worst:
+                    worst = abs(d)
+            for i in range(n):
+                y[i] += dp[i]
+            if not worst == worst:  # NaN: a singular Jacobian
+                break
+            if worst < QS_TOL:
+                converged = True
+                break
+        dead = False
+        for i in range(n):
+            if outs[i, 5] != 0.0:
+                dead = True
+        if converged and not dead:
+            break
+        if dt <= dt_min * (1.0 + 1e-9):  # (t + dt) - t may round dt_min up
+            # the threshold: hand over to the dynamics at t, the state untouched
+            for i in range(n):
+                a[i] = (_spring_force(i, n, x, l_old, side, plate_old, kp, kc, ks) - f[i]
+                        - eta * v[i]) / mass
+            return t, 1
+        # shorten to just before the first spinodal ahead (nxt is a lower bound: ageing moves
+        # a spinodal forward), at least halving
+        frac = 0.5
+        if converged:
+            for i in range(n):
+                if outs[i, 5] != 0.0 and y[i] > x[i]:
+                    s = 0.9 * (nxt[i] - x[i]) / (y[i] - x[i])
+                    if s < frac:
+                        frac = s
+        if frac < 0.0:
+            frac = 0.0
+        dt = max(dt * frac, dt_min)
+    # commit the equilibrium at t_new and book the energy
+    if serial:
+        for i in range(n):
+            _probe(i, c, state, birth, off, lo, hi, x, y, t, t_new, True, alpha, yc, strong, h,
+                   s_tab, ds_tab, outs)
+    else:
+        for i in numba.prange(n):
+            _probe(i, c, state, birth, off, lo, hi, x, y, t, t_new, True, alpha, yc, strong, h,
+                   s_tab, ds_tab, outs)
+    s_old = 0.0
+    s_new = 0.0
+    if side:
+        s_old = ks * (l_old - x[0])
+        s_new = ks * (l_new - y[0])
+    else:
+        for i in range(n):
+            s_old += kp * (l_old - x[i])
+            s_new += kp * (l_new - y[i])
+    acc[0] += 0.5 * (s_old + s_new) * (l_new - l_old)
+    hit = 0
+    for i in range(n):
+        fy[i] = outs[i, 0] * fscale[i]
+        nxt[i] = outs[i, 7]
+        if outs[i, 5] != 0.0:  # a spinodal within the last Newton correction: dynamics now
+            hit = 1
+        if outs[i, 8] != 0.0:
+            acc[3] = 1.0
+        acc[2] += hi[i] - lo[i]
+    for i in range(n):
+        dx = y[i] - x[i]
+        v_new = dx / dt
+        cp[i] = v_new
+        g_old = (_spring_force(i, n, x, l_old, side, plate_old, kp, kc, ks) - f[i]
+                 - eta * v[i])
+        g_new = _spring_force(i, n, y, l_new, side, plate, kp, kc, ks) - fy[i] - eta * v_new
+        wfric[i] += 0.5 * (f[i] + fy[i]) * dx
+        wdamp[i] += 0.5 * eta * (v[i] + v_new) * dx
+        wqs[i] += 0.5 * (g_old + g_new) * dx + 0.5 * mass * (v[i] * v[i] - v_new * v_new)
+        a[i] = g_new / mass
+    for i in range(n):
+        x[i] = y[i]
+        v[i] = cp[i]
+        f[i] = fy[i]
+    acc[1] += 1.0
+    return t_new, hit

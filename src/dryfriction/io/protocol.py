@@ -69,6 +69,7 @@ of its own::
     disorder = "independent"     # optional: "independent" | "identical" (all on block 0's)
     normal_spread = 0.1          # optional, 0 <= s < 1: per-block normal load 1 +- s
     density_spread = 0.0         # optional, 0 <= s < 1: per-block trap density 1 +- s
+    quasi_static_rate = 0.01     # optional, a0/t0, >= 0: event-driven loading below it (0: off)
 
     [drive]                      # InterfaceDrive
     kind = "side"                # required: "uniform" (top plate) | "side" (edge spring)
@@ -437,7 +438,7 @@ def _check_tables(doc: Mapping[str, Any], tables: tuple[str, ...], source: str,
 
 _INTERFACE_TABLES = ("model", "ensemble", "interface", "drive", "output")
 _INTERFACE_KEYS = ("n_elements", "coupling", "mass", "damping", "disorder", "normal_spread",
-                   "density_spread")
+                   "density_spread", "quasi_static_rate")
 _INTERFACE_DRIVE_KEYS = {
     "uniform": ("kind", "stiffness", "segments"),
     "side": ("kind", "stiffness", "edge_stiffness", "segments"),
@@ -451,7 +452,8 @@ class InterfaceProtocol:
 
     Tables: ``[model]`` (the traps' law), ``[ensemble]`` (every block's track density, layout,
     seed and initial population), ``[interface]`` (``n_elements``, ``coupling``, ``mass``,
-    ``damping``, ``disorder``, ``normal_spread``, ``density_spread``), ``[drive]`` (``kind =
+    ``damping``, ``disorder``, ``normal_spread``, ``density_spread``,
+    ``quasi_static_rate``), ``[drive]`` (``kind =
     "uniform"`` with ``stiffness`` and ``segments``, or ``kind = "side"`` with ``edge_stiffness``,
     optional ``stiffness`` and ``segments``), ``[output]`` (``every`` or ``every_slip``).
     """
@@ -495,7 +497,8 @@ def _interface_protocol(doc: Mapping[str, Any], source: str) -> InterfaceProtoco
                     mass=i.number("mass", required=True), damping=i.number("damping", 0.0),
                     disorder=i.string("disorder", "independent"),
                     normal_spread=i.number("normal_spread", 0.0),
-                    density_spread=i.number("density_spread", 0.0))
+                    density_spread=i.number("density_spread", 0.0),
+                    quasi_static_rate=i.number("quasi_static_rate", 0.0))
     d = _Table(source, "drive", doc["drive"])
     kinds = ", ".join(repr(k) for k in _INTERFACE_DRIVE_KEYS)
     kind = d.string("kind", required=True)

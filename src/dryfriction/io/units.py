@@ -180,6 +180,7 @@ SEGMENT_UNITS: dict[str, str | None] = {
     "t_start_lo": "s (95 % interval of the change at the start, record time)",
     "t_start_hi": "s (95 % interval of the change at the start, record time)",
     "t_start_placed": LABEL,
+    "t_start_p": "1 (probability that the change lies within max(1 sample, 0.5 s) of t_start)",
     "normal_stress": "MPa", "normal_force": "kN",
 }
 """segments.csv (the load program of a record: ``record --out``, a record's ``fit``)."""
@@ -190,6 +191,7 @@ RECORD_FIT_UNITS: dict[str, str | None] = {
                                                       "i_start", "i_end", "confidence",
                                                       "duration")},
     "t_given": "s", "sigma_t_change": "s", "start_lo": "s", "start_hi": "s",
+    "start_p": SEGMENT_UNITS["t_start_p"],
     "displacement_noise": "m", "level": LABEL, "steps": LABEL, "step": LABEL,
     "rise": "1 (friction)", "mean_normal": "Pa",
     "aicc": DIMENSIONLESS, "delta_aic": DIMENSIONLESS, "delta_bic": DIMENSIONLESS,
@@ -325,7 +327,8 @@ _WORK = "F_el a0"
 INTERFACE_LOAD_UNITS: dict[str, str | None] = {
     "t": "t0", "load": "F_el", "load_point": "a0", "mean_slip": "a0", "max_slip_rate": "a0/t0",
     "work_load": _WORK, "elastic_energy": _WORK, "kinetic_energy": _WORK,
-    "work_friction": _WORK, "work_damping": _WORK, "energy_residual": _WORK,
+    "work_friction": _WORK, "work_damping": _WORK, "work_quasi_static": _WORK,
+    "energy_residual": _WORK,
 }
 """load.csv of ``simulate`` for an ``[interface]`` protocol: the loading and the
 energy balance over time (reduced; ``F_el`` is one block's)."""
@@ -338,7 +341,8 @@ INTERFACE_SUMMARY_UNITS: dict[str, str | None] = {
     "normal_spread": DIMENSIONLESS, "density_spread": DIMENSIONLESS, "slip": "a0",
     "duration": "t0", "load_point_start": "a0", "steps": DIMENSIONLESS,
     "trap_updates": DIMENSIONLESS, "cpu_s": "s", "threads": DIMENSIONLESS, "dt_max": "t0",
-    "cover_a0": "a0", "x": "element",
+    "cover_a0": "a0", "x": "element", "quasi_static_rate": "a0/t0",
+    "quasi_static_steps": DIMENSIONLESS, "handovers": DIMENSIONLESS,
 }
 """summary.json of ``simulate`` for an ``[interface]`` protocol (reduced units,
 ``F_el`` one block's)."""

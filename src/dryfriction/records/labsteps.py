@@ -14,6 +14,7 @@ import numpy as np
 
 from ..rsf.law import V_MAX, V_MIN
 from ..validation import Array
+from .placement import PLACED_P
 from .record import LabRecord
 
 __all__ = [
@@ -53,10 +54,14 @@ class Segment:
         That interval reaches the end of the times searched for the change: the record does
         not place it there (the interval is a lower bound on the uncertainty).
     start_placed : bool
-        The record places the change: its interval lies within the larger of one sample and
-        :data:`.detection.PLACE_TOL` of ``t_start`` on both sides (and is not at the edge).
-        ``False``: the time is uncertain beyond that (the table and segments.csv say so).
-        True where no interval was computed.
+        The record places the change: the probability ``start_p`` is at least
+        :data:`.placement.PLACED_P` (and the interval is not at the edge). ``False``: the time
+        is uncertain beyond the tolerance (the table and segments.csv say so). True where no
+        interval was computed.
+    start_p : float
+        The probability that the change lies within the larger of one sample and
+        :data:`.detection.PLACE_TOL` of ``t_start`` (:func:`.placement.placed_probability`);
+        NaN where no interval was computed.
     """
 
     t_start: float
@@ -70,6 +75,7 @@ class Segment:
     start_hi: float = float("nan")
     start_edge: bool = False
     start_placed: bool = True
+    start_p: float = float("nan")
 
     @property
     def duration(self) -> float:
@@ -180,7 +186,8 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
                  f"t_start; normal: mean {what}, {nu}")
     if unplaced:
         lines.append(f"* segment(s) {', '.join(unplaced)}: the record does not place the "
-                     "change within the larger of one sample and 0.5 s (95 %); its time is "
+                     "change within the larger of one sample and 0.5 s (probability below "
+                     f"{100 * PLACED_P:.0f} %, t_start_p in segments.csv); its time is "
                      "uncertain by the interval shown: give it with --segments if known")
     return "\n".join(lines)
 
@@ -206,14 +213,15 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
     (``name[unit]``, :mod:`dryfriction.io.units`); the ``--segments`` form of the whole
     program in a comment line on top. ``t_start_lo[s]`` and ``t_start_hi[s]`` are the 95 %
     interval of the change at the segment's start (record time; empty where none was
-    computed), ``t_start_placed`` whether it lies within the larger of one sample and 0.5 s
-    of ``t_start`` (:class:`Segment`)."""
+    computed), ``t_start_p`` the probability that the change lies within the larger of one
+    sample and 0.5 s of ``t_start`` and ``t_start_placed`` whether that is at least
+    :data:`.placement.PLACED_P` (:class:`Segment`)."""
     from ..io.units import SEGMENT_UNITS, header
 
     what, _, scale = _normal_column(normal_unit)
     names = ("segment", "kind", "t_start", "t_end", "t_from_first", "duration", "velocity",
              "velocity_um", "i_start", "i_end", "samples", "confidence", "t_start_lo",
-             "t_start_hi", "t_start_placed", what.replace(" ", "_"))
+             "t_start_hi", "t_start_placed", "t_start_p", what.replace(" ", "_"))
     rows = [f"# --segments {segments_spec(segments, t0)}",
             ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
     for j, s in enumerate(segments):
@@ -223,8 +231,9 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
         conf = "" if not np.isfinite(s.confidence) else f"{s.confidence:.4g}"
         normal = "" if not np.isfinite(s.normal) else f"{s.normal * scale:.6g}"
         has = np.isfinite(s.start_lo)
-        iv = (f"{s.start_lo:.9g},{s.start_hi:.9g},{'yes' if s.start_placed else 'no'}" if has
-              else ",,")
+        p = f"{s.start_p:.3f}" if np.isfinite(s.start_p) else ""
+        iv = (f"{s.start_lo:.9g},{s.start_hi:.9g},{'yes' if s.start_placed else 'no'},{p}"
+              if has else ",,,")
         rows.append(f"{j},{kind},{s.t_start:.9g},{s.t_end:.9g},{s.t_start - t0:.9g},"
                     f"{s.duration:.9g},{s.velocity:.6e},{s.velocity * 1e6:.6g},{s.i_start},"
                     f"{s.i_end},{s.i_end - s.i_start},{conf},{iv},{normal}")
