@@ -333,6 +333,8 @@ def test_old_forms_of_the_series_the_start_and_the_record_model_compute_the_same
         old = cvseries.cv_series({**v, "v_ref": 1.7e-6}, d, 0.12, "eyring-nabarro", 60,
                                  sample_slip=0.01, stiffness=k)
     np.testing.assert_array_equal(old, new)
+    with pytest.raises(TypeError, match=r"fit.cv_series\(model, values, data\)"):
+        cvseries.cv_series(cv, v, d)  # type: ignore[arg-type]
     rsf = {"mu0": 0.61, "a": 0.011, "b": 0.014, "dc": 2.2e-6}
     with pytest.warns(OldTheoryFormWarning):
         old_start = cv_start_from_rsf(rsf, 1.7e-6, 0.12, "eyring-nabarro", 0.02, 1.3e-6, 0.7)

@@ -102,6 +102,9 @@ def cv_series(values: Mapping[str, float], data: SeriesData, alpha: float = 0.13
     TrapModel(alpha, creep=creep), traps_per_a0=..., v_ref=..., stiffness=...,
     sample_slip=..., steady_tail=...), values, data)``; it computes exactly this.
     """
+    if not isinstance(values, Mapping):  # a CVModel: the new form lives beside CVModel
+        raise TypeError("fit.cvseries.cv_series is the old form only: call "
+                        "dryfriction.fit.cv_series(model, values, data)")
     warnings.warn("fit.cvseries.cv_series(values, data, alpha, creep, traps_per_a0, ...) is "
                   "the old form (one more release): use fit.cv_series(CVModel(TrapModel(alpha, "
                   "creep=creep), traps_per_a0=..., v_ref=..., stiffness=...), values, data), "
