@@ -18,9 +18,10 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from dryfriction.app.records import cv_cost  # noqa: E402
-from dryfriction.fit.cvsteps import fit_cv_steps  # noqa: E402
+from dryfriction.fit.cvsteps import fit_cv_steps, record_cv_model  # noqa: E402
 from dryfriction.fit.steps import fit_steps, step_data  # noqa: E402
 from dryfriction.records import lab  # noqa: E402
+from dryfriction.theory.model import TrapModel  # noqa: E402
 
 RECORD = Path(__file__).resolve().parents[1] / "examples/data/lab/sepiolite_velstep_0.2-2um_s.txt"
 
@@ -40,7 +41,8 @@ def main() -> None:
         est = cv_cost(pieces, 0.13, "log", direct)
         runs[0] = 0
         c0 = time.process_time()
-        r = fit_cv_steps(res.data, res.fits, 0.13, "log", direct, progress=tick)[0]
+        model = record_cv_model(TrapModel(0.13, creep="log", direct=direct), progress=tick)
+        r = fit_cv_steps(res.data, res.fits, model)[0]
         dc = time.process_time() - c0
         print(f"A {'free' if direct else '= 0'}: {runs[0]} runs, {dc:6.1f} s CPU (goal <= 300), "
               f"estimate {est:6.1f} s (ratio {est / dc:.2g}, goal 1/3..3), rms "

@@ -41,6 +41,7 @@ from basalt_step import basalt_step  # noqa: E402
 from dryfriction.fit.cvsteps import fit_cv_steps, record_cv_model  # noqa: E402
 from dryfriction.fit.steps import fit_steps, step_covariance  # noqa: E402
 from dryfriction.records import lab  # noqa: E402
+from dryfriction.theory.model import TrapModel  # noqa: E402
 
 DIRECT = 0.03
 
@@ -89,7 +90,8 @@ def main() -> None:
     cvseries._LAST.clear()
     stages: list[tuple[str, float, int, int]] = []
     c0 = time.process_time()
-    alt = fit_cv_steps([d], [r], 0.13, "log", DIRECT, progress=tick)[0]
+    alt = fit_cv_steps([d], [r], record_cv_model(TrapModel(0.13, creep="log", direct=DIRECT),
+                                                 progress=tick))[0]
     stages.append(("fit (search and engine covariance)", time.process_time() - c0, runs[0],
                    simulated[0]))
     c1, n1, s1 = time.process_time(), runs[0], simulated[0]
@@ -114,7 +116,7 @@ def main() -> None:
 
     # one forward run at the optimum, profiled
     vals = {p.name: p.value for p in alt.parameters}
-    model = record_cv_model(0.13, "log", DIRECT)
+    model = record_cv_model(TrapModel(0.13, creep="log", direct=DIRECT))
     cvseries._LAST.clear()
     travel = [0.0]
     chunk = cvtail.continue_spring

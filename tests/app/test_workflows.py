@@ -172,6 +172,59 @@ def test_the_command_line_takes_its_defaults_from_the_app_layer() -> None:
             (workflow, own - set(options))
 
 
+def _command_calls() -> dict[str, Any]:
+    """Every command of ``dryfriction`` and the one library function it runs (the workflows of
+    :mod:`dryfriction.app`; ``examples`` and ``model`` print or copy shipped files, through
+    :mod:`dryfriction.io.examples`)."""
+    from dryfriction.app import fitting, hopf, ratestate, reading, runs, sweeps, theory
+    from dryfriction.io import examples
+
+    return {"simulate": runs.simulate, "compare": runs.compare, "reproduce": runs.reproduce,
+            "sweep": sweeps.sweep, "phase-diagram": sweeps.phase_diagram, "fit": fitting.fit,
+            "rsf": ratestate.rsf, "record": reading.record, "bifurcation": hopf.bifurcation,
+            "trap": theory.trap, "static": theory.static, "steady": theory.steady,
+            "stability": theory.stability, "examples": examples.copy_examples,
+            "model": examples.model_description}
+
+
+def test_every_command_is_one_call_of_one_library_function() -> None:
+    """Each command's body calls its library function once (read from its source: the name
+    its imports bind is that very function), so a Python user runs the same workflow with one
+    call; every command with options of its own is a workflow of :data:`app.OPTIONS` (whose
+    defaults the test above holds to the command line's). A new command without a function
+    here fails."""
+    import ast
+    import importlib
+    import importlib.util
+    import inspect
+    import textwrap
+
+    import typer.main
+
+    from dryfriction.cli import app as cli_app
+
+    calls = _command_calls()
+    group = typer.main.get_command(cli_app)
+    assert set(group.commands) == set(calls)  # type: ignore[attr-defined]
+    assert set(calls) - set(app.OPTIONS) == {"examples", "model"}
+    for command, fn in calls.items():
+        body = inspect.unwrap(group.commands[command].callback)  # type: ignore[attr-defined]
+        tree = ast.parse(textwrap.dedent(inspect.getsource(body)))
+        package = importlib.import_module(body.__module__).__package__
+        bound: dict[str, Any] = {}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                where = importlib.util.resolve_name("." * node.level + (node.module or ""),
+                                                    package)
+                for a in node.names:
+                    bound[a.asname or a.name] = getattr(importlib.import_module(where), a.name)
+        n = sum(isinstance(c, ast.Call) and isinstance(c.func, ast.Name)
+                and bound.get(c.func.id) is fn for c in ast.walk(tree))
+        assert n == 1, (command, fn.__qualname__, n)
+        if command in app.OPTIONS:
+            assert getattr(app, fn.__name__) is fn, command  # the app layer's own name
+
+
 # ------------------------------------------------- rsf, record, bifurcation, the closed forms
 
 RSF_PROTOCOL = """

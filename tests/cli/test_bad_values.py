@@ -204,7 +204,8 @@ def test_a_memory_refusal_inside_a_fit_names_the_fits_own_option(
         monkeypatch: pytest.MonkeyPatch) -> None:
     # was: the simulator's hint, "raise every_slip ... lower traps_per_a0", keys fit does not
     # have, in fit.json's notes
-    from dryfriction.fit.cvseries import cv_series
+    from dryfriction import TrapModel
+    from dryfriction.fit import CVModel, cv_series
     from dryfriction.records.data import SeriesData
 
     monkeypatch.setenv("DRYFRICTION_MEMORY_LIMIT", "1MiB")
@@ -212,8 +213,8 @@ def test_a_memory_refusal_inside_a_fit_names_the_fits_own_option(
     data = SeriesData(t, np.where(t < 20.0, 1.3e-6, 1.1e-5), np.full(t.size, 0.61),
                       source="s.csv")
     with pytest.raises(ValueError) as exc:
-        cv_series({"eps": 0.03, "t0": 0.7, "a0": 2.1e-6, "mu_el": 0.5}, data,
-                  traps_per_a0=3e4)
+        cv_series(CVModel(TrapModel(), traps_per_a0=3e4),
+                  {"eps": 0.03, "t0": 0.7, "a0": 2.1e-6, "mu_el": 0.5}, data)
     msg = str(exc.value)
     assert msg.startswith("s.csv: a trap-model run") and "--traps-per-a0" in msg
     assert "every_slip" not in msg and "traps_per_a0 " not in msg

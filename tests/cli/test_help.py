@@ -160,3 +160,18 @@ def test_stability_help_explains_every_column() -> None:
     words = text.split("Options:")[0]
     for c in cols:
         assert f"{c}," in words or f"{c} " in words, (c, words)
+
+
+def test_the_commands_defaults_load_no_scipy() -> None:
+    """``dryfriction --help`` reads the commands' defaults (``app.options`` -> ``theory.model``
+    -> ``theory.creep``) but computes nothing: ``scipy.special`` imported there cost ~0.13 s of
+    its ~0.2 s of CPU (bench_cli: 0.195 -> 0.337 s). Mistake caught: creep.py importing exp1
+    at the top."""
+    import subprocess
+    import sys
+
+    code = ("import sys\nimport dryfriction.app.options\n"
+            "print('SCIPY', 'scipy' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120).stdout
+    assert "SCIPY False" in out

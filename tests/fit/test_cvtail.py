@@ -15,6 +15,7 @@ import dryfriction.fit.cvseries as cvseries
 import dryfriction.fit.cvtail as cvtail
 from dryfriction.ensemble.driving import Output, SpringDrive, simulate
 from dryfriction.ensemble.population import Initial, Track, TrapModel
+from dryfriction.fit.models import CVModel, cv_series
 from dryfriction.program import Segment
 
 # the basalt-like step's start in reduced units (eps, mu_el, A, v_ref a0/t0; K F_el/a0), at a
@@ -101,17 +102,18 @@ def test_memory_answers_the_same_point_read_back(monkeypatch: pytest.MonkeyPatch
     t = np.linspace(0.0, 12.0, 300)
     d = SeriesData(t, np.where(t < 4.0, 0.3e-6, 1e-6), np.zeros(300), source="s")
     v = {"eps": 0.0126, "t0": 3.08, "a0": 9.25e-6, "mu_el": 0.58, "direct": 0.0106,
-         "v_ref": 1e-6, "trend": -3.0}
-    kw = {"traps_per_a0": 30.0, "stiffness": 7000.0, "sample_slip": 0.01, "steady_tail": True}
+         "trend": -3.0}
+    cv = CVModel(TrapModel(direct=0.0106), v_ref=1e-6, traps_per_a0=30.0, stiffness=7000.0,
+                 sample_slip=0.01, steady_tail=True)
     cvseries._LAST.clear()
-    first = cvseries.cv_series(v, d, **kw)  # type: ignore[arg-type]
+    first = cv_series(cv, v, d)
     back = {k: float(np.exp(np.log(x))) if x > 0 else x for k, x in v.items()}
     back["eps"] = np.nextafter(v["eps"], 1.0)
-    again = cvseries.cv_series({**back, "trend": -2.0}, d, **kw)  # type: ignore[arg-type]
+    again = cv_series(cv, {**back, "trend": -2.0}, d)
     assert calls[0] == 1
     # the trend from -3 to -2 /m: one more load-point displacement, no run
     assert np.allclose(again - first, cvseries.load_point_displacement(d))
-    cvseries.cv_series({**v, "eps": v["eps"] * (1 + 1e-9)}, d, **kw)  # type: ignore[arg-type]
+    cv_series(cv, {**v, "eps": v["eps"] * (1 + 1e-9)}, d)
     assert calls[0] == 2
 
 
@@ -168,7 +170,7 @@ def test_search_agrees_with_the_fit_before(tmp_path: object) -> None:
     from pathlib import Path
 
     from basalt_step import basalt_step
-    from dryfriction.fit.cvsteps import fit_cv_steps
+    from dryfriction.fit.cvsteps import fit_cv_steps, record_cv_model
     from dryfriction.fit.steps import fit_steps, robust_estimates, step_covariance
     from dryfriction.records import lab
 
@@ -177,7 +179,7 @@ def test_search_agrees_with_the_fit_before(tmp_path: object) -> None:
     wins = lab.slice_steps(rec, segs)
     res = fit_steps(rec, wins, segs, profile=False)
     cvseries._LAST.clear()
-    alt = fit_cv_steps(res.data, res.fits, 0.13, "log", 0.03)[0]
+    alt = fit_cv_steps(res.data, res.fits, record_cv_model(TrapModel(direct=0.03)))[0]
     rob = robust_estimates(step_covariance(alt, res.data[0], "hac"))
     for name, (value, lo, hi) in BEFORE.items():
         fast = rob[name]

@@ -366,7 +366,7 @@ def _direct_series(seed: int) -> tuple:
     from dryfriction.fit import CVModel
 
     true = {"eps": 0.03, "t0": 0.01, "a0": 1e-6, "mu_el": 0.5, "direct": 0.02}
-    model = CVModel(traps_per_a0=300, direct=0.01, v_ref=true["a0"] / true["t0"])
+    model = CVModel(TrapModel(direct=0.01), traps_per_a0=300, v_ref=true["a0"] / true["t0"])
     return synthetic_steps(true, model, seed), true, model
 
 
@@ -398,7 +398,7 @@ def test_direct_fit_refuses_static_data() -> None:
 
     d = StaticData(np.array([1.0, 10.0, 100.0, 1000.0]), np.array([0.5, 0.51, 0.52, 0.53]))
     with pytest.raises(ValueError, match="static"):
-        fit(d, CVModel(direct=0.01), profile=False)
+        fit(d, CVModel(TrapModel(direct=0.01)), profile=False)
 
 
 def test_si_forms_convert_v_ref_and_the_pull_velocity() -> None:

@@ -76,8 +76,9 @@ def test_the_track_density_has_one_default_and_one_minimum():
         tree = ast.parse(path.read_text())
         for node in ast.walk(tree):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                args = node.args.args + node.args.kwonlyargs
-                defaults = ([None] * (len(node.args.args) - len(node.args.defaults))
+                positional = node.args.posonlyargs + node.args.args
+                args = positional + node.args.kwonlyargs
+                defaults = ([None] * (len(positional) - len(node.args.defaults))
                             + list(node.args.defaults) + list(node.args.kw_defaults))
                 pairs = zip(args, defaults, strict=True)
             elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):

@@ -209,12 +209,13 @@ MODEL_FIRST = {"steady_friction", "steady_friction_first_order", "steady_frictio
 
 
 def _is_model(node: ast.expr, names: set[str]) -> bool:
-    """A TrapModel by construction: ``TrapModel(...)``, ``x.replace(...)``, ``x.athermal``,
-    ``x.model``, or a name bound to one of these or annotated ``TrapModel``."""
+    """A TrapModel by construction: ``TrapModel(...)``, ``x.replace(...)``, a fit model's
+    member ``cv.trap_model(...)``, ``x.athermal``, ``x.model``, or a name bound to one of
+    these or annotated ``TrapModel``."""
     if isinstance(node, ast.Call):
         f = node.func
         return (isinstance(f, ast.Name) and f.id == "TrapModel") or (
-            isinstance(f, ast.Attribute) and f.attr in ("TrapModel", "replace"))
+            isinstance(f, ast.Attribute) and f.attr in ("TrapModel", "replace", "trap_model"))
     if isinstance(node, ast.Attribute):
         return node.attr in ("athermal", "model")
     return isinstance(node, ast.Name) and node.id in names

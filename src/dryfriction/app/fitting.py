@@ -208,6 +208,7 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.units import DIMENSIONLESS, FIT_UNITS, with_units
     from ..records.data import read_csv
+    from ..theory.model import TrapModel
     from ..validation import check_figure_format
 
     o = {**{k: v for k, v in _D.items() if k not in _RECORD_ONLY}, **options}
@@ -223,9 +224,10 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     opts: dict[str, Any] = dict(alpha=o["alpha"], creep=o["creep"], v0=o["v0"],
                                 state_law=o["state_law"], stiffness=stiffness,
                                 regularized=o["regularized"], trend=bool(o["trend"]))
-    chosen: Any = (CVModel(o["alpha"], o["creep"], traps_per_a0=CSV_TRAPS_PER_A0
+    chosen: Any = (CVModel(TrapModel(o["alpha"], creep=o["creep"], direct=o["direct"]),
+                           traps_per_a0=CSV_TRAPS_PER_A0
                            if o["traps_per_a0"] is None else o["traps_per_a0"],
-                           direct=o["direct"], v_ref=o["v_ref"]) if model == "cv" else model)
+                           v_ref=o["v_ref"]) if model == "cv" else model)
     done = [0]
 
     def fit_progress(n: int, total: int, what: str) -> None:

@@ -52,9 +52,11 @@ def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
     the wall clock counts the others' work), scaled to all windows by their durations and
     times :data:`CV_CALLS_PER_STEP` a window (so the estimate costs one run, not a fit)."""
     from ..fit.cvsteps import RECORD_TRAPS_PER_A0, record_cv_model
+    from ..theory.model import TrapModel
 
     first = pieces[0]
-    m = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0 or RECORD_TRAPS_PER_A0)
+    m = record_cv_model(TrapModel(alpha, creep=creep, direct=direct), v_ref,
+                        traps_per_a0 or RECORD_TRAPS_PER_A0)
     guess = m.guesses([first])[0]
     t0 = time.process_time()
     try:
@@ -150,7 +152,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
     path = Path(path)
     bar = bar or _no_bar
     from ..fit import compare_models
-    from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps
+    from ..fit.cvsteps import RECORD_TRAPS_PER_A0, fit_cv_steps, record_cv_model
     from ..fit.experiment import default_profile
     from ..fit.lawchoice import INITIAL_CHOICES, fit_steps_laws
     from ..fit.steps import (
@@ -163,6 +165,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
     from ..io.files import output_directory, write_json
     from ..io.units import RECORD_FIT_UNITS, with_units
     from ..records import lab
+    from ..theory.model import TrapModel
     from ..validation import check_choice
 
     check_choice("errors", errors, ERRORS)
@@ -243,8 +246,9 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
             for i, d in enumerate(res.data):
                 update(runs[0], what=f"step {i + 1} of {len(res.data)}")
                 try:
-                    alt = fit_cv_steps([d], [res.fits[i]], alpha, creep, direct, v_ref, tpa,
-                                       progress=run_done)[0]
+                    alt = fit_cv_steps([d], [res.fits[i]], record_cv_model(
+                        TrapModel(alpha, creep=creep, direct=direct), v_ref, tpa,
+                        progress=run_done))[0]
                     cv_results[i] = alt
                     entry = {"step": i, **alt.to_dict()}
                     if errors == "hac":  # the record's residuals are correlated: as for rsf

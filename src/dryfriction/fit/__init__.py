@@ -18,9 +18,12 @@ Nothing here draws: the figure ``fit.png`` is :func:`dryfriction.plots.fits.plot
 
 Models (SI units; friction coefficients ``F/W``):
 
-* ``"cv"`` — the Caroli–Velický trap model (:class:`CVModel`), ``alpha`` fixed (0.13 by
-  default). Static data ``mu_s(t_w) = mu_el static_friction(TrapModel(alpha, eps), t_w/t0)``
-  (eq. 27) fix ``eps``, ``t0`` (s) and ``mu_el``; steady data
+* ``"cv"`` — the Caroli–Velický trap model (:class:`CVModel`): a family of
+  :class:`~dryfriction.theory.model.TrapModel` that holds one for its fixed part (``alpha``,
+  0.13 by default, the creep law, and whether the direct effect is fitted) and gives the member
+  at fitted values, ``cv.trap_model(values)`` (``v_ref``, m/s, made reduced there). Static
+  data ``mu_s(t_w) = mu_el static_friction(TrapModel(alpha, eps), t_w/t0)`` (eq. 27) fix
+  ``eps``, ``t0`` (s) and ``mu_el``; steady data
   ``mu_d(V) = mu_el steady_friction(TrapModel(alpha, eps), V/V*)`` (eq. 34) fix ``eps``,
   ``V* = a0/t0`` (m/s) and ``mu_el``; together they fix ``eps, t0, a0, mu_el`` (``a0`` in m)
   with one parameter set. Both go through :mod:`dryfriction.theory.units`.
@@ -33,12 +36,13 @@ Models (SI units; friction coefficients ``F/W``):
   :func:`dryfriction.rsf.driving.simulate`.
 
 Time-series models are callables ``(values, data) -> predicted friction``
-(:data:`SeriesModel`); the rate-and-state one is :func:`rsf_series`, the trap model's is
-:func:`cv_series` (the ensemble simulator :func:`dryfriction.ensemble.driving.simulate` with the
-data's load program as a kinematic :class:`~dryfriction.ensemble.driving.VelocityDrive`, through
-:class:`~dryfriction.theory.units.PhysicalScales`). The ensemble's friction is a sum over discrete
-traps, so it is a fine staircase in the parameters (a trap dies at a sample): its Jacobian is
-taken with a larger difference step (:attr:`CVModel.diff_step`).
+(:data:`SeriesModel`); the rate-and-state one is ``rsf_series(model, values, data)``, the trap
+model's is ``cv_series(model, values, data)`` (the ensemble simulator
+:func:`dryfriction.ensemble.driving.simulate` with the data's load program as a kinematic
+:class:`~dryfriction.ensemble.driving.VelocityDrive` or through the machine's spring, through
+:class:`~dryfriction.theory.units.PhysicalScales`). The ensemble's friction is a sum over
+discrete traps, so it is a fine staircase in the parameters (a trap dies at a sample): its
+Jacobian is taken with a larger difference step (:attr:`CVModel.diff_step`).
 
 Method (ours, standard weighted least squares):
 

@@ -17,12 +17,14 @@ misfit and AIC compare with the rate-and-state fit's directly.
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
 from ..records.data import SeriesData
-from ..theory.model import TRAPS_PER_A0_COARSE
+from ..theory.model import TRAPS_PER_A0_COARSE, OldTheoryFormWarning, TrapModel
 from .cvseries import cv_start_from_rsf
 from .engine import fit
 from .models import CVModel
@@ -72,38 +74,70 @@ RECORD_DIFF_STEP = 0.03
 """Finite-difference step of the Jacobian, relative in the internal variables."""
 
 
-def record_cv_model(alpha: float, creep: str, direct: float = 0.0, v_ref: float = 1e-6,
-                    traps_per_a0: float = RECORD_TRAPS_PER_A0,
-                    progress: Callable[[], None] | None = None,
-                    max_nfev: int = RECORD_MAX_NFEV) -> CVModel:
-    """The trap model as a record is fitted with it (module docstring)."""
-    return CVModel(alpha, creep, traps_per_a0=traps_per_a0, direct=direct, v_ref=v_ref,
-                   stiffness="fit", trend=True, sample_slip=RECORD_SAMPLE_SLIP,
-                   max_nfev=max_nfev, diff_step=RECORD_DIFF_STEP, progress=progress,
-                   steady_tail=True)
-
-
-def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alpha: float,
-                 creep: str, direct: float = 0.0, v_ref: float = 1e-6,
-                 traps_per_a0: float = RECORD_TRAPS_PER_A0,
-                 progress: Callable[[], None] | None = None) -> list[FitResult]:
-    """Fit the trap model to each window from its rate-and-state fit (module docstring).
+def record_cv_model(trap: TrapModel | float | None = None, *args: Any, **kwargs: Any) -> CVModel:
+    """The trap model as a record is fitted with it (module docstring):
+    ``record_cv_model(trap, v_ref=1e-6, traps_per_a0=RECORD_TRAPS_PER_A0, progress=None,
+    max_nfev=RECORD_MAX_NFEV)``.
 
     Parameters
     ----------
-    data, rsf_fits : sequences
-        The windows and their rate-and-state fits (:func:`.steps.fit_steps`).
-    alpha, creep : float, str
-        Trap model (fixed).
-    direct : float
-        ``0``: the athermal model; ``> 0``: the direct effect ``A`` is fitted (its start comes
-        from the twin, not from this value).
+    trap : TrapModel
+        The held trap model (:class:`.models.CVModel`): ``alpha``, ``creep`` fixed; ``direct >
+        0``: the direct effect is fitted. The old form ``record_cv_model(alpha, creep, direct,
+        v_ref, traps_per_a0, progress, max_nfev)`` warns
+        (:class:`~dryfriction.theory.model.OldTheoryFormWarning`) for one more release.
     v_ref : float
         Reference velocity of the direct effect, m/s.
     traps_per_a0 : float
         Track density.
     progress : callable, optional
         Called after each forward run.
+    max_nfev : int
+        Cap on the evaluations of the engine's minimisation.
+    """
+    if trap is None or isinstance(trap, TrapModel):
+        return _record_cv_model(TrapModel() if trap is None else trap, *args, **kwargs)
+    warnings.warn("fit.cvsteps.record_cv_model(alpha, creep, direct, v_ref, ...) is the old "
+                  "form (one more release): use record_cv_model(TrapModel(alpha, creep=creep, "
+                  "direct=direct), v_ref, ...), with a dryfriction.TrapModel",
+                  OldTheoryFormWarning, stacklevel=2)
+    return _old_record_cv_model(trap, *args, **kwargs)
+
+
+def _old_record_cv_model(alpha: float, creep: str, direct: float = 0.0, v_ref: float = 1e-6,
+                         traps_per_a0: float = RECORD_TRAPS_PER_A0,
+                         progress: Callable[[], None] | None = None,
+                         max_nfev: int = RECORD_MAX_NFEV) -> CVModel:
+    return _record_cv_model(TrapModel(alpha, creep=creep, direct=direct), v_ref, traps_per_a0,
+                            progress, max_nfev)
+
+
+def _record_cv_model(trap: TrapModel, v_ref: float = 1e-6,
+                     traps_per_a0: float = RECORD_TRAPS_PER_A0,
+                     progress: Callable[[], None] | None = None,
+                     max_nfev: int = RECORD_MAX_NFEV) -> CVModel:
+    return CVModel(trap, traps_per_a0=traps_per_a0, v_ref=v_ref, stiffness="fit", trend=True,
+                   sample_slip=RECORD_SAMPLE_SLIP, max_nfev=max_nfev,
+                   diff_step=RECORD_DIFF_STEP, progress=progress, steady_tail=True)
+
+
+def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult],
+                 model: CVModel | float | None = None, *args: Any,
+                 **kwargs: Any) -> list[FitResult]:
+    """Fit the trap model to each window from its rate-and-state fit (module docstring):
+    ``fit_cv_steps(data, rsf_fits, model)``.
+
+    Parameters
+    ----------
+    data, rsf_fits : sequences
+        The windows and their rate-and-state fits (:func:`.steps.fit_steps`).
+    model : CVModel
+        The trap model as a record is fitted with it (:func:`record_cv_model`; default:
+        ``record_cv_model(TrapModel())``), its progress called after each forward run. With
+        the direct effect (``model.trap.direct > 0``) ``A``'s start comes from the twin, not
+        from the model. The old form ``fit_cv_steps(data, rsf_fits, alpha, creep, direct,
+        v_ref, traps_per_a0, progress)`` warns
+        (:class:`~dryfriction.theory.model.OldTheoryFormWarning`) for one more release.
 
     Returns
     -------
@@ -111,12 +145,34 @@ def fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alph
         One per window, without profiles (the covariance gives the intervals and the
         correlations).
     """
-    model = record_cv_model(alpha, creep, direct, v_ref, traps_per_a0, progress)
+    if model is None or isinstance(model, CVModel):
+        if args or kwargs:
+            raise TypeError("fit_cv_steps(data, rsf_fits, model) takes no more arguments: "
+                            "the model holds them (record_cv_model)")
+        return _fit_cv_steps(data, rsf_fits, record_cv_model() if model is None else model)
+    warnings.warn("fit.cvsteps.fit_cv_steps(data, rsf_fits, alpha, creep, direct, v_ref, "
+                  "traps_per_a0, progress) is the old form (one more release): use "
+                  "fit_cv_steps(data, rsf_fits, record_cv_model(TrapModel(alpha, creep=creep, "
+                  "direct=direct), v_ref, traps_per_a0, progress)), with a "
+                  "dryfriction.TrapModel", OldTheoryFormWarning, stacklevel=2)
+    return _old_fit_cv_steps(data, rsf_fits, model, *args, **kwargs)
+
+
+def _old_fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], alpha: float,
+                      creep: str, direct: float = 0.0, v_ref: float = 1e-6,
+                      traps_per_a0: float = RECORD_TRAPS_PER_A0,
+                      progress: Callable[[], None] | None = None) -> list[FitResult]:
+    return _fit_cv_steps(data, rsf_fits, _record_cv_model(
+        TrapModel(alpha, creep=creep, direct=direct), v_ref, traps_per_a0, progress))
+
+
+def _fit_cv_steps(data: Sequence[SeriesData], rsf_fits: Sequence[FitResult], model: CVModel
+                  ) -> list[FitResult]:
     out = []
     for d, r in zip(data, rsf_fits, strict=True):
         rsf = {p.name: p.value for p in r.parameters}
         v0 = r.options["v0"]
-        start = cv_start_from_rsf(rsf, float(v0), alpha, creep, direct, v_ref)
+        start = cv_start_from_rsf(model, rsf, float(v0))
         found, iterations, why, nfev = search_step(d, model, start)
         # the engine's fit from there: its first evaluation and Jacobian are the search's last
         # (remembered, :mod:`.cvseries`), and it takes no step (one evaluation), so its own

@@ -20,6 +20,7 @@ import numpy as np
 from scipy import stats
 
 from ..records.data import Dataset, SeriesData, StaticData, SteadyData
+from ..theory.model import TrapModel
 from ..validation import Array, check_choice, check_scalar
 from .models import CVModel, Model, ParamSpec, RSFModel, data_kinds
 from .problem import Problem
@@ -75,7 +76,7 @@ def _prepare(datasets: Dataset | Iterable[Dataset], model: str | Model, alpha: f
             raise ValueError(f"{d!r} is not a StaticData, SteadyData or SeriesData")
     if isinstance(model, str):
         check_choice("model", model, ("cv", "rsf"))
-        m: Model = (CVModel(alpha, creep) if model == "cv"
+        m: Model = (CVModel(TrapModel(alpha, creep=creep)) if model == "cv"
                     else RSFModel(v0, state_law, stiffness, regularized=regularized,
                                  trend=trend))
     else:

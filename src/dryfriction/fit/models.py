@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -23,13 +24,13 @@ from ..rsf.driving import RSFOutput, SpringSlider, simulate
 from ..rsf.law import RateState
 from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
-from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0, TrapModel
+from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0, OldTheoryFormWarning, TrapModel
 from ..theory.static import static_friction_first_order
 from ..theory.steady import steady_friction_first_order
-from ..theory.trap import Trap
-from ..theory.units import PhysicalScales, static_friction_si, steady_friction_si
-from ..validation import DIRECT_MAX, Array, check_choice, check_scalar, declared
-from .cvseries import cv_series
+from ..theory.units import static_friction_si, steady_friction_si
+from ..validation import DIRECT_MAX, Array, check_choice, check_scalar
+from .cvseries import cv_series as _old_cv_series
+from .cvseries import fitted_scales, fitted_trap, series_run
 from .laws import (
     FIT_LAWS,
     INITIAL_STATES,
@@ -153,36 +154,80 @@ def _machine_guess(series: Sequence[SeriesData], stiffness: float | str, trend: 
     return extra
 
 
+def _old_cv_form(first: Any, old: tuple[Any, ...], loose: dict[str, Any],
+                 given: dict[str, Any]) -> tuple[TrapModel | None, dict[str, Any]]:
+    """The old loose form of :class:`CVModel` (``alpha``, ``creep``, ``direct`` as its own
+    fields, by position or keyword): warn, and give the held trap model and the rest."""
+    args = ((first,) if first is not None else ()) + old
+    if isinstance(first, TrapModel) and loose.keys() & {"alpha", "creep", "direct"}:
+        name = sorted(loose.keys() & {"alpha", "creep", "direct"})[0]
+        raise TypeError(f"CVModel(TrapModel(...), {name}=...): {name} is the trap model's; "
+                        f"give it to the TrapModel")
+    if isinstance(first, TrapModel) or len(args) > len(_OLD_POSITIONS):
+        raise TypeError("CVModel takes the trap model, then keywords: CVModel(TrapModel("
+                        "alpha=..., creep=..., direct=...), traps_per_a0=..., v_ref=..., ...)")
+    by_position = dict(zip(_OLD_POSITIONS, args, strict=False))
+    unknown = set(loose) - {"alpha", "creep", "direct"}
+    if unknown:
+        raise TypeError(f"CVModel got an unexpected keyword argument {sorted(unknown)[0]!r}")
+    twice = set(by_position) & set(loose)
+    if twice:
+        raise TypeError(f"CVModel got multiple values for argument {sorted(twice)[0]!r}")
+    fields = {**given, **{k: v for k, v in by_position.items() if k in given}}
+    trap_fields = {k: v for k, v in {**by_position, **loose}.items()
+                   if k in ("alpha", "creep", "direct")}
+    warnings.warn("CVModel(alpha, creep, ..., direct=...) is the old form (one more release): "
+                  "use CVModel(TrapModel(alpha=..., creep=..., direct=...), ...), with a "
+                  "dryfriction.TrapModel", OldTheoryFormWarning, stacklevel=3)
+    return TrapModel(**trap_fields), fields
+
+
 def _machine_note(stiffness: float | str, trend: bool) -> str:
     mach = ("fitted stiffness" if stiffness == "fit" else "kinematic"
             if math.isinf(float(stiffness)) else f"k = {float(stiffness):g} 1/m")
     return f"{mach} machine" + (", linear trend in load-point displacement" if trend else "")
 
 
-@dataclass(frozen=True)
+_OLD_POSITIONS = ("alpha", "creep", "series", "traps_per_a0", "diff_step", "direct", "v_ref",
+                  "stiffness", "trend", "sample_slip", "max_nfev", "progress", "steady_tail")
+"""CVModel's fields in the order of its old generated constructor (``CVModel(alpha, creep,
+...)``), for the old positional form."""
+
+_HELD_DEFAULTS = ("eps", "mu_el", "v_ref")
+"""The fields of a fit's held :class:`TrapModel` that the fit sets, so that they must be left
+at their defaults: ``eps`` and ``mu_el`` are fitted, the reduced ``v_ref`` follows the fitted
+``a0/t0`` from :attr:`CVModel.v_ref` (m/s)."""
+
+
+@dataclass(frozen=True, init=False)
 class CVModel:
-    """The Caroli–Velický trap model for fitting (SI; module docstring).
+    """The Caroli–Velický trap model for fitting (SI; module docstring): a family of
+    :class:`~dryfriction.theory.model.TrapModel`, the held ``trap`` with the fitted ``eps``,
+    ``mu_el`` (and ``direct``), at the fitted scales ``a0``, ``t0``
+    (:meth:`trap_model`).
+
+    ``CVModel(TrapModel(alpha=0.11, creep="eyring-nabarro", direct=0.02), v_ref=1e-6)``.
 
     Parameters
     ----------
-    alpha : float
-        Reduced trap stiffness, fixed (0.13 in the paper).
-    creep : {"log", "eyring-nabarro"}
-        Ageing law (eq. 17 or eqs. 15-16).
+    trap : TrapModel
+        The held part (default ``TrapModel()``): ``alpha`` and ``creep`` fixed; ``direct``:
+        ``0``, the athermal model; ``> 0``, the direct-effect coefficient ``A`` (parameter
+        ``direct``, dimensionless, ``0 <= A <= 1``; :mod:`dryfriction.theory.direct`) is
+        fitted, started from this value (hold it with ``fix={"direct": ...}``); steady and
+        time-series data only (static data carry no pull velocity). Its ``eps``, ``mu_el`` and
+        ``v_ref`` are the fit's to set, so they must be left at their defaults (refused
+        otherwise: give ``eps``, ``mu_el`` to :func:`.engine.fit` as ``start`` or ``fix``, and
+        ``v_ref`` here, in m/s).
     series : callable, optional
         Time-series model ``(values, SeriesData) -> mu``; default (``None``): :func:`cv_series`
-        with this ``alpha``, ``creep`` and ``traps_per_a0``.
+        with this model.
     traps_per_a0 : float
         Track density of the ensemble for time series.
-    direct : float
-        ``0`` (default): the athermal model, as before. ``> 0``: the direct-effect coefficient
-        ``A`` (parameter ``direct``, dimensionless, ``0 <= A <= 1``;
-        :mod:`dryfriction.theory.direct`) is fitted, started from this value (hold it with
-        ``fix={"direct": ...}``); steady and time-series data only (static data carry no pull
-        velocity).
     v_ref : float
         Reference velocity of the direct effect, m/s, fixed (``> 0``): with ``A`` free it is
-        degenerate with ``mu_el`` (``mu_el (1 + A ln(V/V_ref))``), so it cannot be fitted.
+        degenerate with ``mu_el`` (``mu_el (1 + A ln(V/V_ref))``), so it cannot be fitted. The
+        member's is reduced, ``v_ref / (a0/t0)`` (:meth:`trap_model`).
     stiffness : float or "fit"
         Time series: machine stiffness per unit normal force, 1/m (``inf``, the default: the
         kinematic machine, as before); ``"fit"``: a free parameter ``stiffness`` (``ln k``),
@@ -207,30 +252,55 @@ class CVModel:
         them (ours; 0.03 at the default density). With it the optimiser stops at a relative
         change of 1e-6 in cost or parameters (1e-12 otherwise), which the staircase never
         lets it reach.
+
+    Notes
+    -----
+    The old form, the trap fields loose (``CVModel(alpha, creep, ..., direct=...)``, by
+    position or keyword), builds the same model for one more release and warns
+    (:class:`~dryfriction.theory.model.OldTheoryFormWarning`).
     """
 
-    # the trap parameters a fit holds fixed (alpha, creep) or starts from (direct): their
-    # defaults and ranges are the model's own (theory.model.TRAP_PARAMETERS), not restated.
-    # A fit model is a family of TrapModels (eps, mu_el and the scales are fitted; v_ref is
-    # in m/s here, reduced in the model), so it declares these fields rather than holding one.
-    alpha: float = declared(TRAP_PARAMETERS, "alpha")
-    creep: str = declared(TRAP_PARAMETERS, "creep")
-    series: SeriesModel | None = None
-    traps_per_a0: float = TRAPS_PER_A0.default  # type: ignore[assignment]
-    diff_step: float = 0.03
-    direct: float = declared(TRAP_PARAMETERS, "direct")
-    v_ref: float = 1e-6
-    stiffness: float | str = math.inf
-    trend: bool = False
-    sample_slip: float | None = None
-    max_nfev: int | None = None
-    progress: Callable[[], None] | None = field(default=None, compare=False, repr=False)
+    trap: TrapModel
+    series: SeriesModel | None
+    traps_per_a0: float
+    diff_step: float
+    v_ref: float
+    stiffness: float | str
+    trend: bool
+    sample_slip: float | None
+    max_nfev: int | None
+    progress: Callable[[], None] | None = field(compare=False, repr=False)
     name: str = field(default="cv", init=False)
     steady_tail: bool = False
 
+    def __init__(self, trap: TrapModel | None = None, *old: Any,
+                 series: SeriesModel | None = None,
+                 traps_per_a0: float = TRAPS_PER_A0.default,  # type: ignore[assignment]
+                 diff_step: float = 0.03, v_ref: float = 1e-6, stiffness: float | str = math.inf,
+                 trend: bool = False, sample_slip: float | None = None,
+                 max_nfev: int | None = None, progress: Callable[[], None] | None = None,
+                 steady_tail: bool = False, **loose: Any) -> None:
+        given = dict(series=series, traps_per_a0=traps_per_a0, diff_step=diff_step,
+                     v_ref=v_ref, stiffness=stiffness, trend=trend, sample_slip=sample_slip,
+                     max_nfev=max_nfev, progress=progress, steady_tail=steady_tail)
+        if trap is not None and not isinstance(trap, TrapModel) or old or loose:
+            trap, given = _old_cv_form(trap, old, loose, given)
+        for name, value in given.items():
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "trap", TrapModel() if trap is None else trap)
+        object.__setattr__(self, "name", "cv")
+        self.__post_init__()
+
     def __post_init__(self) -> None:
-        for name in ("alpha", "creep", "direct"):
-            object.__setattr__(self, name, TRAP_PARAMETERS[name].check(getattr(self, name)))
+        if not isinstance(self.trap, TrapModel):
+            raise ValueError(f"trap = {self.trap!r} is not allowed: a dryfriction.TrapModel")
+        for name in _HELD_DEFAULTS:
+            if getattr(self.trap, name) != TRAP_PARAMETERS[name].default:
+                raise ValueError(
+                    f"trap.{name} = {getattr(self.trap, name):g} is not allowed: the fit sets "
+                    f"it, so the held TrapModel leaves it at {TRAP_PARAMETERS[name].default:g}"
+                    + (" (give v_ref to CVModel, in m/s)" if name == "v_ref" else
+                       " (give it to fit() as start= or fix=)"))
         check_scalar("v_ref", self.v_ref, 0.0, lo_open=True)
         if isinstance(self.stiffness, str):
             check_choice("stiffness", self.stiffness, ("fit",))
@@ -243,6 +313,32 @@ class CVModel:
         if self.max_nfev is not None and not (isinstance(self.max_nfev, int)
                                               and self.max_nfev >= 1):
             raise ValueError(f"max_nfev = {self.max_nfev!r} is not allowed: an integer >= 1")
+
+    @property
+    def alpha(self) -> float:
+        """The held trap stiffness (``trap.alpha``)."""
+        return self.trap.alpha
+
+    @property
+    def creep(self) -> str:
+        """The held creep law (``trap.creep``)."""
+        return self.trap.creep
+
+    @property
+    def direct(self) -> float:
+        """``trap.direct``: 0, the athermal model; ``> 0``, ``A`` is fitted, from this start."""
+        return self.trap.direct
+
+    def trap_model(self, values: Mapping[str, float] | None = None, /,
+                   **fitted: float) -> TrapModel:
+        """The member of this family at fitted values (SI, as :meth:`parameters` names them):
+        the held :attr:`trap` with ``eps``, ``mu_el`` and ``direct`` (0 where the family is
+        athermal), its ``v_ref`` the reduced ``v_ref / (a0/t0)`` (or ``v_ref / vstar``) of
+        this ``v_ref`` in m/s (:func:`.cvseries.fitted_trap`, the one place it is converted).
+
+        ``cv.trap_model(r.values)`` for a fit result ``r``, or
+        ``cv.trap_model(eps=0.03, mu_el=0.5, direct=0.02, a0=1e-6, t0=0.4)``."""
+        return fitted_trap(self.trap, self.v_ref, {**(values or {}), **fitted})
 
     def options(self) -> dict[str, Any]:
         opts: dict[str, Any] = {"alpha": self.alpha, "creep": self.creep}
@@ -285,37 +381,16 @@ class CVModel:
             n.append(f"time series simulated on a {_machine_note(self.stiffness, self.trend)}")
         return n
 
-    def _scales(self, v: Mapping[str, float]) -> PhysicalScales:
-        if "a0" in v:
-            return PhysicalScales(v["a0"], v["t0"], v["mu_el"])
-        if "vstar" in v:  # t0 = 1 s: only a0/t0 matters for steady data
-            return PhysicalScales(v["vstar"] * 1.0, 1.0, v["mu_el"])
-        return PhysicalScales(1.0, v["t0"], v["mu_el"])  # a0 does not enter eq. 27
-
     def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
         x = d.x if x is None else x
         if d.kind == "static":
-            return static_friction_si(TrapModel(self.alpha, v["eps"], self.creep), x,
-                                      self._scales(v))
+            return static_friction_si(self.trap_model(v), x, fitted_scales(v))
         if d.kind == "steady":
-            scales = self._scales(v)
-            direct = v.get("direct", 0.0)
-            # the model's v_ref is reduced: a0/t0 moves with the fit, v_ref (m/s) does not
-            extra = {"direct": direct, "v_ref": float(scales.reduced_velocity(self.v_ref))
-                     } if direct else {}
-            return steady_friction_si(TrapModel(self.alpha, v["eps"], self.creep, **extra), x,
-                                      scales)
+            return steady_friction_si(self.trap_model(v), x, fitted_scales(v))
         assert isinstance(d, SeriesData)
         if self.series is not None:
             return self.series(v, d)
-        if self.direct:
-            v = {**v, "v_ref": self.v_ref}
-        if self.stiffness == math.inf and not self.trend and self.sample_slip is None:
-            mu = cv_series(v, d, self.alpha, self.creep, self.traps_per_a0)  # as before
-        else:
-            mu = cv_series(v, d, self.alpha, self.creep, self.traps_per_a0,
-                           stiffness=machine_stiffness(self.stiffness, v),
-                           sample_slip=self.sample_slip, steady_tail=self.steady_tail)
+        mu = cv_series(self, v, d)
         if self.progress is not None:
             self.progress()
         return mu
@@ -333,7 +408,7 @@ class CVModel:
         out: dict[str, tuple[float, str]] = {}
         if "a0" in v:
             out["vstar"] = (v["a0"] / v["t0"], "m/s")
-            out["D0"] = (dieterich_constant_asymptotic(TrapModel(self.alpha)) * v["a0"], "m")
+            out["D0"] = (dieterich_constant_asymptotic(self.trap.athermal) * v["a0"], "m")
         return out
 
     # -- starting points ---------------------------------------------------------------
@@ -341,14 +416,14 @@ class CVModel:
         tpos = d.t_w[d.t_w > 0]
         lo, hi = (tpos.min(), tpos.max()) if tpos.size else (1.0, 1.0)
         grid = np.geomspace(lo * 1e-5, hi * 10.0, 25)
-        unit = TrapModel(self.alpha, 1.0)  # eps = 1: the first order's slope per eps
+        unit = self.trap_model(eps=1.0, direct=0.0)  # eps = 1: the first order's slope per eps
         return _linear_scan(d.mu_s, _weights(d),
                             lambda t0: static_friction_first_order(unit, d.t_w / t0) - 1.0,
                             grid)
 
     def _steady_scan(self, d: SteadyData) -> list[tuple[float, float, float, float]]:
         grid = np.geomspace(d.V.min() * 1e-2, d.V.max() * 1e5, 25)
-        unit = TrapModel(self.alpha, 1.0)  # eps = 1: the first order's slope per eps
+        unit = self.trap_model(eps=1.0, direct=0.0)  # eps = 1: the first order's slope per eps
         return _linear_scan(d.mu_d, _weights(d),
                             lambda vs: steady_friction_first_order(unit, d.V / vs) - 1.0,
                             grid)
@@ -413,12 +488,65 @@ class CVModel:
         if np.sum(pos) >= 2 and np.ptp(np.log(vel[pos])) > 0:
             slope = float(np.polyfit(np.log(vel[pos]), np.array(ends)[pos], 1)[0])
             eps = min(max(-slope / (1.5 * mu_el), 1e-3), 0.3)
-        yc = Trap(self.alpha).y_c
+        yc = self.trap.trap.y_c
         slip = float(np.sum(dur * vel))
         a0 = max(slip / max(len(dur), 1) / (2.0 * (1.0 + yc)), 1e-12)
         vm = float(np.exp(np.mean(np.log(vel[pos])))) if np.any(pos) else 1.0
         return [{"eps": eps, "t0": a0 / (f * vm), "a0": a0, "mu_el": mu_el}
                 for f in (1.0, 0.1, 10.0)]
+
+
+def cv_series(model: CVModel | Mapping[str, float], *args: Any, **kwargs: Any) -> Array:
+    """The trap model's friction along a measured load program (the CV time-series model):
+    ``cv_series(model, values, data)``, as :func:`rsf_series`.
+
+    The member of ``model`` at ``values`` (:meth:`CVModel.trap_model`) starts in steady
+    sliding at ``v_load[0]`` and is driven by the data's program
+    (:func:`.cvseries.series_run`), kinematically or through the machine's spring (``model
+    .stiffness``, ``values["stiffness"]`` where fitted, 1/m), on a regular track of
+    ``model.traps_per_a0`` pairs per ``a0``, sampled every ``model.sample_slip`` a0 where set,
+    without the steady tails where ``model.steady_tail``; plus ``values["trend"] * x_lp``
+    (:func:`load_point_displacement`) where ``values`` has a trend.
+
+    Parameters
+    ----------
+    model : CVModel
+        The fitted family. The old form ``cv_series(values, data, alpha, creep,
+        traps_per_a0, every_slip, max_samples, stiffness, sample_slip, steady_tail)`` warns
+        (:class:`~dryfriction.theory.model.OldTheoryFormWarning`) for one more release.
+    values : mapping
+        ``eps`` (dimensionless), ``t0`` (s), ``a0`` (m), ``mu_el`` (dimensionless); ``direct``
+        where the model fits it; ``stiffness`` (1/m), ``trend`` (1/m) where fitted.
+    data : SeriesData
+        Times (s) and load velocities (m/s).
+    every_slip : float, keyword
+        Largest slip between samples, ``a0`` (default 0.01).
+    max_samples : int, keyword
+        Budget of samples (default 200 000): more is an error.
+
+    Returns
+    -------
+    ndarray
+        Friction coefficient ``F/W`` at ``data.t``.
+    """
+    if not isinstance(model, CVModel):
+        return _old_cv_series(model, *args, **kwargs)
+    return _cv_series(model, *args, **kwargs)
+
+
+def _cv_series(model: CVModel, values: Mapping[str, float], data: SeriesData, *,
+               every_slip: float = 0.01, max_samples: int = 200_000) -> Array:
+    if "v_ref" in values:  # the old form's place for it: here it would be silently unused
+        raise ValueError("v_ref is not a fitted value: it is the model's, CVModel(v_ref=...), "
+                         "in m/s")
+    run = {k: v for k, v in values.items() if k != "trend"}
+    mu = series_run(run, data, lambda: model.trap_model(run), (model.trap, model.v_ref),
+                    model.traps_per_a0, every_slip, max_samples,
+                    machine_stiffness(model.stiffness, values), model.sample_slip,
+                    model.steady_tail)
+    if "trend" in values:
+        return mu + values["trend"] * load_point_displacement(data)
+    return mu
 
 
 def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -> Array:

@@ -45,7 +45,6 @@ from typing import Literal, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import exp1
 
 from ..validation import EPS_MAX, Array, check_broadcast, check_choice, check_range, check_scalar
 
@@ -265,6 +264,10 @@ class EyringNabarroCreep:
             return math.inf
         if eps >= 1.0:
             return 0.0
+        # imported here: scipy.special costs ~0.3 s of CPU, and the command line's start
+        # reads this module (app.options -> theory.model -> creep) for its defaults
+        from scipy.special import exp1
+
         gap = float(exp1(1.0) - exp1(1.0 / eps))
         log_t = 1.0 / eps - math.log(eps) + math.log(gap)
         return math.exp(log_t) if log_t < 709.0 else math.inf
