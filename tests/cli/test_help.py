@@ -175,3 +175,28 @@ def test_the_commands_defaults_load_no_scipy() -> None:
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=120).stdout
     assert "SCIPY False" in out
+
+
+def test_the_whole_command_loads_no_scipy_stats() -> None:
+    """Every command runs after the whole command line is imported, ``--help`` too:
+    ``scipy.stats`` costs ~0.4 s of import there (``records.placement`` took its chi-square
+    quantile from it). Mistake caught: ``from scipy.stats import chi2`` at placement's top."""
+    import subprocess
+    import sys
+
+    code = ("import sys\nimport dryfriction.cli.commands\n"
+            "print('STATS', 'scipy.stats' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120).stdout
+    assert "STATS False" in out
+
+
+def test_the_chi_square_quantile_is_the_squared_normal_one() -> None:
+    """``records.placement``'s one-degree chi-square quantile against SciPy's own at generic
+    levels (mistake: the normal quantile at ``level`` rather than ``(1 + level)/2``)."""
+    from scipy.stats import chi2
+
+    from dryfriction.records.placement import _chi2_1
+
+    for level in (0.37, 0.9, 0.95, 0.995):
+        assert abs(_chi2_1(level) - chi2.ppf(level, 1)) < 1e-10 * chi2.ppf(level, 1)

@@ -32,7 +32,6 @@ from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import cho_factor, solve_triangular
-from scipy.stats import chi2
 
 from ..validation import Array
 
@@ -193,6 +192,15 @@ def place_change(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2
                           periods).index
 
 
+def _chi2_1(level: float) -> float:
+    """The ``level`` quantile of chi-square with one degree of freedom, ``ndtri((1 + level)/2)^2``
+    (the square of a standard normal). ``scipy.special`` is imported here, not ``scipy.stats`` at
+    the top: ``dryfriction --help`` reaches this module, and scipy.stats costs ~0.4 s to import."""
+    from scipy.special import ndtri
+
+    return float(ndtri(0.5 * (1.0 + level))) ** 2
+
+
 @dataclass(frozen=True)
 class Placement:
     """Where a velocity change is, and how well the record places it (ours).
@@ -348,7 +356,7 @@ def profile_interval(times: Array, gain: Array, scale: float, left: float, right
     # at the edge: the first or the last candidate inside the likelihood-ratio region of the
     # same level (log-likelihood within chi2_1(level) / 2 of the best: 1.92 at 95 %)
     ends = g[ok][[0, -1]]
-    edge = bool(np.any((ends - g[ok].max()) / (2.0 * scale) >= -0.5 * chi2.ppf(level, 1)))
+    edge = bool(np.any((ends - g[ok].max()) / (2.0 * scale) >= -0.5 * _chi2_1(level)))
     return float(edges[i]), float(edges[j + 1]), edge
 
 
