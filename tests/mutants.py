@@ -786,6 +786,23 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("levels report: the mean over a NaN value", "fit/experiment.py",
        "mean = float(ok.mean()) if ok.size else math.nan", "mean = float(np.mean(v))",
        "tests/fit/test_levels_generic.py"),
+    # --- blind set 4's survivors (benchmarks/blind_mutants4.py), tests written after it was
+    # measured: these no longer measure anything; a fresh blind set must
+    _m("interface: uniform load as the mean spring force", "ensemble/interface.py",
+       "load[j] = float(np.sum(kp * (lp - x)))", "load[j] = float(np.mean(kp * (lp - x)))",
+       "tests/ensemble/test_interface_generic.py", "-k", "uniform_load"),
+    _m("interface: spreads drawn one-sided on [1, 1 + s]", "ensemble/interface.py",
+       "xi = rng.uniform(-1.0, 1.0, size=(2, n))", "xi = rng.uniform(0.0, 1.0, size=(2, n))",
+       "tests/ensemble/test_interface_generic.py", "-k", "straddle"),
+    _m("interface outputs: default edge_gap 0", "app/interface_outputs.py",
+       "transient: float = 0.0, edge_gap: int = 1,", "transient: float = 0.0, edge_gap: int = 0,",
+       "tests/app/test_interface_outputs_generic.py", "-k", "default_edge_gap"),
+    _m("data: a waiting time of zero refused", "records/data.py",
+       'if c == "t_w" and x < 0.0:', 'if c == "t_w" and x <= 0.0:',
+       "tests/io/test_data.py", "-k", "waiting_time_of_zero"),
+    _m("fronts figure: the density's slope on the cumulative count", "plots/fronts.py",
+       "(m / mf.m_min) ** (1.0 - mf.alpha)", "(m / mf.m_min) ** (-mf.alpha)",
+       "tests/plots/test_fronts_figures.py", "-k", "cumulative_count"),
 )
 
 

@@ -72,3 +72,17 @@ def test_summary_numbers_by_hand(tmp_path) -> None:
     assert summary["threshold"] == pytest.approx(0.13, rel=1e-15)
     assert summary["precursors"]["after"] == 1.7
     assert summary["units"]["sound_speed"] == "element/t0"
+
+
+def test_the_default_edge_gap_keeps_an_event_beside_the_creeping_edge_block(tmp_path) -> None:
+    """Side loading keeps the edge block creeping below the threshold, so an event from the
+    loaded edge starts at element 1: by default (``edge_gap = 1``) it is a precursor, its
+    length from the loaded end to the far side of the last element it reached (cells of width
+1: elements 0 to 14, 15), and summary.json says the gap used. Mistake: a default of 0
+    (every precursor of a side-loaded run lost)."""
+    res, x, _ = _run()
+    _, _, summary = interface_outputs(res, tmp_path, threshold=THR, figure=False, fields=False)
+    rows = read_rows(tmp_path / "precursors.csv")
+    assert len(rows) == 1
+    assert float(rows[0]["length"]) == pytest.approx(x[14] + 0.5 * (x[1] - x[0]), rel=1e-12)
+    assert summary["precursors"]["edge_gap"] == 1

@@ -93,3 +93,13 @@ def test_in_memory_data_sets_are_checked_and_frozen() -> None:
     d = StaticData([1.0, 2.0], [0.5, 0.6])
     with pytest.raises(ValueError):
         d.t_w[0] = 3.0
+
+
+def test_a_waiting_time_of_zero_is_read_and_a_negative_one_refused(tmp_path: Path) -> None:
+    """``t_w = 0`` is a measurement (the peak on reloading at once: the steady level's
+    neighbour), not bad input; a negative one is refused naming file, line and value. Mistake:
+    the refusal at ``t_w <= 0`` (the zero-wait point of a slide-hold-slide series lost)."""
+    st = read_csv(write(tmp_path, "t_w[s],mu_s\n0,0.583\n2.5,0.601\n40,0.622\n"))
+    assert isinstance(st, StaticData) and st.t_w.tolist() == [0.0, 2.5, 40.0]
+    with pytest.raises(ValueError, match=r"line 3.*negative waiting time -0\.5"):
+        read_csv(write(tmp_path, "t_w[s],mu_s\n1,0.59\n-0.5,0.6\n", "neg.csv"))

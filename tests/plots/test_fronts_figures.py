@@ -105,3 +105,24 @@ def test_long_record_is_pooled_by_its_largest_values():
     assert shown.shape[0] <= MAP_ROWS + 1
     assert shown[:, 1].max() == pytest.approx(np.log10(5.0))
     assert shown[-1, 2] == pytest.approx(np.log10(7.0))
+
+
+def test_the_fitted_line_follows_the_cumulative_count(run):
+    """The magnitude-frequency figure draws ``N(>= M)``, whose power law has the exponent
+    ``1 - alpha`` when the density goes as ``M^-alpha``: the dashed line starts at ``n_fit``
+    at ``M_min`` and its log-log slope matches the slope of the drawn steps (least squares on
+    the steps, an independent route; 400 Pareto moments, alpha = 2.4). Mistake: the density's
+    slope ``-alpha`` drawn on the cumulative count."""
+    rng = np.random.default_rng(31)
+    moments = 0.7 * (1.0 - rng.uniform(size=400)) ** (-1.0 / 1.4)  # density ~ M^-2.4
+    mf = magnitude_frequency(moments)
+    fig, ax = magnitude_frequency_figure(mf, run[0])
+    step, line = ax.get_lines()[0], ax.get_lines()[1]
+    lm, ln = np.log(line.get_xdata()), np.log(line.get_ydata())
+    drawn = float(np.polyfit(lm, ln, 1)[0])
+    assert line.get_ydata()[0] == pytest.approx(mf.n_fit, rel=1e-12)
+    keep = step.get_ydata() >= 10  # the tail's last few counts are noise
+    steps = float(np.polyfit(np.log(step.get_xdata()[keep]), np.log(step.get_ydata()[keep]), 1)[0])
+    assert drawn == pytest.approx(1.0 - mf.alpha, rel=1e-9)
+    assert abs(drawn - steps) < 0.15
+    assert abs(steps - (1.0 - 2.4)) < 0.15
