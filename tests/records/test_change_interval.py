@@ -16,7 +16,13 @@ import pytest
 
 import dryfriction.records.placement as placement
 from dryfriction.records.detection import detect_program
-from dryfriction.records.labsteps import Segment, segments_table, slice_steps, write_segments_csv
+from dryfriction.records.labsteps import (
+    PLACED_P,
+    Segment,
+    segments_table,
+    slice_steps,
+    write_segments_csv,
+)
 from dryfriction.records.placement import change_profile, profile_interval
 from dryfriction.records.record import LabRecord
 
@@ -112,7 +118,7 @@ def test_detected_changes_carry_their_interval() -> None:
         tol = max(float(t[s.i_start] - t[s.i_start - 1]), 0.5)
         sides = (s.t_start - s.start_lo, s.start_hi - s.t_start)
         assert 0.0 <= s.start_p <= 1.0
-        assert s.start_placed == (s.start_p >= placement.PLACED_P and not s.start_edge)
+        assert s.start_placed == (s.start_p >= PLACED_P and not s.start_edge)
         lopsided += min(sides) <= tol < max(sides)
         placed.append(s.start_placed)
     assert placed[1] and placed[3] and lopsided >= 1

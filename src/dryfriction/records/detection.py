@@ -52,8 +52,8 @@ import numpy as np
 
 from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
-from .labsteps import Segment, make_segments
-from .placement import PLACED_P, RELAX_STOP, oscillation_periods, place_changes, placed_probability
+from .labsteps import PLACED_P, Segment, make_segments
+from .placement import RELAX_STOP, oscillation_periods, place_changes, placed_probability
 from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
 
@@ -576,7 +576,7 @@ def detect_program(
 PLACE_TOL = 0.5
 """A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when the probability
 that it lies within the larger of one sample and this many seconds of its time is at least
-:data:`.placement.PLACED_P`, s: the tolerance the detection is measured against on the
+:data:`.labsteps.PLACED_P`, s: the tolerance the detection is measured against on the
 artifact zoo (``benchmarks/bench_detect.py``)."""
 
 HOLD_PLACED = False

@@ -14,10 +14,10 @@ import numpy as np
 
 from ..rsf.law import V_MAX, V_MIN
 from ..validation import Array
-from .placement import PLACED_P
 from .record import LabRecord
 
 __all__ = [
+    "PLACED_P",
     "Segment",
     "StepWindow",
     "make_segments",
@@ -28,6 +28,17 @@ __all__ = [
     "load_velocity_series",
     "slice_steps",
 ]
+
+PLACED_P = 0.9
+"""A change is *placed* when the probability that it lies within its tolerance of its reported time
+(:func:`.placement.placed_probability`: the profile likelihood widened by
+:data:`.placement.WIDEN`, as the interval) is at least this (ours; chosen on zoo records
+150-449: 0.9 marked all 13 times off by more than their tolerance and 85 of the 537 within it,
+where the interval's width marked 165; on records 5000-5299, run once, 18 of the 19 off and 91
+of the 528 within, the width 19 and 172: ``python -m benchmarks bench_detect_bound``). Zoo
+record 5230, a restart after a hold sampled at 0.8 Hz, placed 2.6 s early with its interval on
+the other side, was marked placed at this level."""
+
 
 @dataclass(frozen=True)
 class Segment:
@@ -55,7 +66,7 @@ class Segment:
         not place it there (the interval is a lower bound on the uncertainty).
     start_placed : bool
         The record places the change: the probability ``start_p`` is at least
-        :data:`.placement.PLACED_P` (and the interval is not at the edge). ``False``: the time
+        :data:`PLACED_P` (and the interval is not at the edge). ``False``: the time
         is uncertain beyond the tolerance (the table and segments.csv say so). True where no
         interval was computed.
     start_p : float
@@ -215,7 +226,7 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
     interval of the change at the segment's start (record time; empty where none was
     computed), ``t_start_p`` the probability that the change lies within the larger of one
     sample and 0.5 s of ``t_start`` and ``t_start_placed`` whether that is at least
-    :data:`.placement.PLACED_P` (:class:`Segment`)."""
+    :data:`PLACED_P` (:class:`Segment`)."""
     from ..io.units import SEGMENT_UNITS, header
 
     what, _, scale = _normal_column(normal_unit)

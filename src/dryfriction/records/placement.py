@@ -17,7 +17,7 @@ ours). At a stop, the servo's position error relaxes after the command (:data:`R
 ``(1 - exp(-(t - t_c) / tau))+`` enters as a free regressor beside the hinge. Each change's
 95 % interval is its profile likelihood's (:func:`profile_interval`), widened
 (:data:`WIDEN`), and the same widened profile gives the probability that it lies within a
-tolerance of the time reported (:func:`placed_probability`, :data:`PLACED_P`).
+tolerance of the time reported (:func:`placed_probability`, :data:`.labsteps.PLACED_P`).
 
 Integrated Ornstein-Uhlenbeck covariance (standard; e.g. Gardiner, *Stochastic Methods*,
 section 3.8): with ``C(u) = s**2 exp(-|u| / tau)``,
@@ -35,7 +35,7 @@ from scipy.linalg import cho_factor, solve_triangular
 
 from ..validation import Array
 
-__all__ = ["LEVEL", "PLACED_P", "Placement", "change_profile", "oscillation_periods",
+__all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
            "ou_parameters", "place_change", "place_changes", "placed_probability",
            "profile_interval", "profile_weights"]
 
@@ -280,16 +280,6 @@ def profile_weights(times: Array, gain: Array, scale: float, left: float, right:
     w = w * np.diff(edges)
     return edges, w / w.sum()
 
-
-PLACED_P = 0.9
-"""A change is *placed* when the probability that it lies within its tolerance of its reported
-time (:func:`placed_probability`: the profile likelihood widened by :data:`WIDEN`, as the
-interval) is at least this (ours; chosen on zoo records 150-449: 0.9 marked all 13 times off
-by more than their tolerance and 85 of the 537 within it, where the interval's width marked
-165; on records 5000-5299, run once, 18 of the 19 off and 91 of the 528 within, the width 19
-and 172: ``python -m benchmarks bench_detect_bound``). Zoo record 5230, a restart after a
-hold sampled at 0.8 Hz, placed 2.6 s early with its interval on the other side, was marked
-placed at this level."""
 
 
 def placed_probability(pl: Placement, at: float, tol: float, widen: float | None = None
