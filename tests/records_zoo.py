@@ -425,3 +425,25 @@ def score(rec: ZooRecord, det: object, cpu: float) -> Score:
     note = "" if nright else f"normal changes {nfound} vs {rec.normal_changes}"
     count = len(found) == len(truth) and len(nfound) == len(rec.normal_changes)
     return Score(right and nright, len(found), false, missed, worst, cpu, count, note, per)
+
+
+def ou_step(seed: int, v2: float) -> tuple[np.ndarray, np.ndarray, int]:
+    """A placement test's record (not the zoo's): 1.3 um/s -> ``v2`` (m/s) at 90 s, sampled at
+    8 Hz, the velocity wandering by an 8 % Ornstein-Uhlenbeck relative error of correlation
+    time 3 s (exact AR(1) at the sampling step), integrated by the trapezoid rule, plus 0.17 um
+    of white displacement noise; and a guess of the change's sample within 3 s of it, all from
+    ``np.random.default_rng(seed)``. Returns times (s), displacement (m) and the guess."""
+    fs, t_c = 8.0, 90.0
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 180.0, 1.0 / fs)
+    v = np.where(t >= t_c, v2, 1.3e-6)
+    rho = np.exp(-1.0 / (fs * 3.0))
+    eps = np.empty_like(t)
+    eps[0] = rng.normal(0.0, 0.08)
+    e = rng.normal(0.0, 0.08 * np.sqrt(1 - rho**2), t.size)
+    for i in range(1, t.size):
+        eps[i] = rho * eps[i - 1] + e[i]
+    vt = v * (1 + eps)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) / fs)])
+    x = x + rng.normal(0.0, 0.17e-6, t.size)
+    return t, x, int(np.searchsorted(t, t_c + rng.uniform(-3.0, 3.0)))

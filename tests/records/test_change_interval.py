@@ -29,6 +29,8 @@ from dryfriction.records.record import LabRecord
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_detect import SHARED, _oracle_records, servo_record  # noqa: E402
 
+from records_zoo import ou_step  # noqa: E402
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 
@@ -54,22 +56,9 @@ def test_interval_of_a_gaussian_profile_on_an_uneven_grid() -> None:
 
 
 def _ou_step(seed: int, ratio: float) -> tuple[np.ndarray, np.ndarray, int]:
-    """1.3 um/s -> ratio times that at 90 s, 8 Hz, an 8 % (3 s) OU relative velocity wander
-    and 0.17 um white noise (test_placement's records), and a guess within 3 s."""
-    fs, t_c = 8.0, 90.0
-    rng = np.random.default_rng(1000 + seed)
-    t = np.arange(0.0, 180.0, 1.0 / fs)
-    v = np.where(t >= t_c, 1.3e-6 * ratio, 1.3e-6)
-    rho = np.exp(-1.0 / (fs * 3.0))
-    eps = np.empty_like(t)
-    eps[0] = rng.normal(0.0, 0.08)
-    e = rng.normal(0.0, 0.08 * np.sqrt(1 - rho**2), t.size)
-    for i in range(1, t.size):
-        eps[i] = rho * eps[i - 1] + e[i]
-    vt = v * (1 + eps)
-    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) / fs)])
-    x = x + rng.normal(0.0, 0.17e-6, t.size)
-    return t, x, int(np.searchsorted(t, t_c + rng.uniform(-3.0, 3.0)))
+    """1.3 um/s -> ratio times that at 90 s (:func:`records_zoo.ou_step`, test_placement's
+    records), seeds from 1000."""
+    return ou_step(1000 + seed, 1.3e-6 * ratio)
 
 
 def test_intervals_cover_where_the_model_is_exact(monkeypatch: pytest.MonkeyPatch) -> None:
