@@ -106,6 +106,22 @@ def test_supercritical_check_columns(tmp_path: Path) -> None:
     assert "check_exponent[1]" in (out / "bifurcation.csv").read_text().splitlines()[0]
 
 
+def test_subcritical_check_columns(tmp_path: Path) -> None:
+    """PRZ law, quasi-static: the check bisects the unstable cycle at three distances and
+    reports its branch's exponent (1/2) and its size against the normal form's. The mistake
+    this is for: one distance only, with no exponent (a finite threshold that does not shrink
+    with d, as the slip law's, would pass for a Hopf point's unstable cycle)."""
+    out = tmp_path / "out"
+    r = run(protocol(tmp_path, "prz"), "--velocities", "2.3e-6", "--out", str(out), "--check",
+            "--json", "--no-figure")
+    assert r.exit_code == 0, r.output
+    row = json.loads(r.stdout)["rows"][0]
+    assert row["nature"] == "subcritical"
+    assert row["check"] == "unstable cycle by bisection above K_c"
+    assert abs(row["check_exponent"] - 0.5) < 0.03 and row["check_exponent_err"] < 0.01
+    assert row["check_amp_ratio"] == pytest.approx(1.0, abs=0.02)
+
+
 def test_extreme_velocities_are_said_not_crashed(tmp_path: Path) -> None:
     """A vanishing reduced mass (M = 1e-55 at 1e-30 m/s: a fast eigenvalue of 1e55 beside the
     pair) is still found, and degenerate to the method's precision; a huge one (M = 1e11)

@@ -9,8 +9,10 @@ sought). With ``check``, each row is also checked by direct simulation
 * supercritical: settled cycles at ``K = K_c (1 - d)``, ``d`` in :data:`CHECK_DISTANCES`; the
   fitted exponent of the amplitude (1/2 expected) with its standard error, and the ratio of
   the simulated amplitude at the smallest ``d`` to the normal form's;
-* subcritical: the unstable cycle by bisection at ``K = K_c (1 + d)``, ``d = 0.01``, and the
-  ratio of its amplitude to the normal form's;
+* subcritical: the unstable cycle by bisection at ``K = K_c (1 + d)``, ``d = d1/4, d1/2, d1``
+  (``d1 = 0.01`` or where the predicted cycle's half peak-to-peak ``ln V`` is 0.2), the
+  exponent of its amplitude against ``d`` with its standard error, and the ratio of its
+  amplitude to the normal form's at the smallest ``d``;
 * degenerate: the bisection at ``d = 0.01`` with kicks up to ``ln(V/V*) = 2``: either every
   kick decays (as Ranjith & Rice 1999 prove for the ageing law) or a finite threshold is
   found (a global instability, not a small cycle: the slip law, Gu et al. 1984).
@@ -43,6 +45,8 @@ MAX_CHECKED = 12
 """Most velocities with ``check`` (each check runs ~5-30 s of simulations; ours)."""
 CHECK_DISTANCES = (0.005, 0.01, 0.02)
 """Relative distances ``(K_c - K)/K_c`` of the supercritical check's settled cycles."""
+SUB_FACTORS = (0.25, 0.5)
+"""The subcritical check's further distances, in units of its first one (ours)."""
 
 UNITS = {"velocity": "m/s", "K_c": "1/m (per unit normal force)", "frequency": "rad/s",
          "l1": "1 (reduced coordinates ln V, ln theta, tau/a)", "relative_l1": "1",
@@ -106,7 +110,14 @@ def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
         r = basin_threshold(model, h, d, damping, mass)
         out["check_threshold"] = r["delta_lo"] if math.isfinite(r["delta_hi"]) else math.nan
         if h.nature == "subcritical" and math.isfinite(r["amplitude"]):
-            out["check_amp_ratio"] = r["amplitude"] / (h.amp_coef * math.sqrt(d))
+            # the unstable branch at d/4, d/2 and d: its exponent (1/2 for a Hopf point;
+            # a finite threshold that does not shrink, as the slip law's, would give ~0)
+            rows = [basin_threshold(model, h, f * d, damping, mass) for f in SUB_FACTORS]
+            beta, err, _ = amplitude_exponent(rows + [r])
+            out.update(check_distance=SUB_FACTORS[0] * d, check_exponent=beta,
+                       check_exponent_err=err)
+            out["check_amp_ratio"] = rows[0]["amplitude"] / (h.amp_coef * math.sqrt(
+                SUB_FACTORS[0] * d))
             out["check"] = "unstable cycle by bisection above K_c"
         elif math.isfinite(r["delta_hi"]):
             out["check"] = "finite kick threshold above K_c"

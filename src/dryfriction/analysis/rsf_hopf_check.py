@@ -3,10 +3,11 @@ solver (:func:`dryfriction.rsf.driving.simulate`), to check :mod:`.rsf_hopf` (ev
 procedure here is ours).
 
 * **Supercritical** (:func:`settled_amplitude`, :func:`amplitude_exponent`): below ``k_c``
-  the run starts on the predicted cycle (``ln V`` kicked by the predicted amplitude, state
-  steady), lasts at least three relaxation times ``1/(2 beta)`` onto the cycle, and is
-  lengthened until the half peak-to-peak ``ln V`` of the last period and of
-  the period 50 periods earlier differ by less than ``1e-3`` of it (settled); the amplitudes
+  two runs start off the predicted cycle (``ln V`` kicked by 0.8 and 1.2 times the predicted
+  amplitude, state steady), last at least six relaxation times ``1/(2 beta)`` onto the cycle,
+  and are lengthened until the half peak-to-peak ``ln V`` of the last periods and of
+  the periods 50 periods earlier differ by less than ``1e-3`` of it and the two runs agree to
+  ``2e-3`` (settled); the amplitudes
   at several distances ``d = (k_c - k)/k_c`` give the exponent of ``amp ~ d^beta`` by
   least squares in log-log, with its standard error (1/2 for a Hopf point).
 * **Subcritical or degenerate** (:func:`basin_threshold`): above ``k_c``, starts
@@ -35,10 +36,17 @@ __all__ = ["period_amplitudes", "settled_amplitude", "amplitude_exponent", "basi
 
 _SAMPLES = 128  # samples per period (ours: the sampled peak misses the true one by
 # ~ (pi/128)^2/2 = 3e-4 of the amplitude)
+_STEPS = 400  # step budget per period (measured: ~190 with 128 outputs a period; the
+# default budget of 1e6 steps stopped runs of more than ~5000 periods)
 _MEAN = 5  # periods averaged at each end of the settling comparison (smooths that jitter)
 SETTLE_TOL = 1e-3
 """Largest relative change of the amplitude over :data:`SETTLE_PERIODS` of a settled cycle."""
 SETTLE_PERIODS = 50
+RELAXATIONS = 6
+"""Shortest supercritical run, in relaxation times ``1/(2 beta)`` (a start 20 % off the
+cycle ends ~5e-4 from it)."""
+START_FACTORS = (0.8, 1.2)
+"""The two starts of a supercritical check, in units of the normal form's amplitude."""
 
 
 def period_amplitudes(model: RateState, hopf: RSFHopf, k: float, delta: float, periods: int,
@@ -79,40 +87,66 @@ def period_amplitudes(model: RateState, hopf: RSFHopf, k: float, delta: float, p
     r = simulate(model, SpringSlider([Segment(v, duration=t[-1])], k, damping, mass),
                  RSFInitial(v=v * math.exp(delta), theta=model.dc / v,
                             theta2=None if model.dc2 is None else model.dc2 / v),
-                 RSFOutput(t_eval=t, rtol=rtol))
+                 RSFOutput(t_eval=t, rtol=rtol, max_steps=max(1_000_000, _STEPS * periods)))
     lnv = np.log(r.v / v)[1:].reshape(periods, _SAMPLES)
     return 0.5 * np.ptp(lnv, axis=1)
 
 
 def settled_amplitude(model: RateState, hopf: RSFHopf, distance: float,
-                      damping: float = 0.0, mass: float = 0.0, max_periods: int = 1600
-                      ) -> dict[str, Any]:
+                      damping: float = 0.0, mass: float = 0.0, max_periods: int = 24000,
+                      starts: tuple[float, float] = START_FACTORS) -> dict[str, Any]:
     """The settled cycle below ``k_c`` at ``k = k_c (1 - distance)`` (module docstring).
 
-    Returns ``{"distance", "amplitude", "change", "periods", "settled"}``: the half
-    peak-to-peak ``ln V`` of the last periods (mean of 5), its relative change over 50
-    periods and the run's length (linear periods)."""
+    Two runs start at ``starts`` times the normal form's amplitude (one below it, one above),
+    each at least :data:`RELAXATIONS` relaxation times ``1/(2 beta)`` long, doubled (up to
+    ``max_periods`` linear periods) until both change by less than :data:`SETTLE_TOL` over
+    :data:`SETTLE_PERIODS` periods *and* they end within ``2 SETTLE_TOL`` of each other
+    (ours: a slowly relaxing run meets the first condition long before it arrives, e.g. 0.983
+    of the cycle changing by 6.7e-4 over 50 periods with a relaxation time of 1300 periods;
+    the second does not let the answer be the start's).
+
+    Returns
+    -------
+    dict
+        ``distance``; ``amplitude``, the mean of the two runs' last 5 periods (half
+        peak-to-peak ``ln V``); ``change``, the larger relative change over 50 periods;
+        ``spread``, the two runs' relative difference; ``periods``; ``relaxations``, the run
+        length in relaxation times; ``settled``, both conditions met.
+    """
     k = hopf.k_c * (1.0 - distance)
     start = hopf.amp_coef * math.sqrt(distance) if math.isfinite(hopf.amp_coef) else 0.05
-    # at least three relaxation times 1/(2 |beta|) onto the cycle: a slow approach changes
-    # little over 50 periods long before it has arrived
-    relax = 3 / (4 * math.pi * hopf.growth_slope * distance) if hopf.growth_slope > 0 else 0.0
-    periods = int(min(max_periods, max(4 * SETTLE_PERIODS, math.ceil(relax))))
+    # the amplitude's deviation from the cycle relaxes as exp(-2 beta t): 1/(2 beta) is
+    # relax periods, beta = 2 pi growth_slope distance per period
+    relax = (1 / (4 * math.pi * hopf.growth_slope * distance) if hopf.growth_slope > 0
+             else 0.0)
+    periods = int(min(max_periods, max(4 * SETTLE_PERIODS, math.ceil(RELAXATIONS * relax))))
     while True:
-        amps = period_amplitudes(model, hopf, k, start, periods, damping, mass)
-        last = float(np.mean(amps[-_MEAN:]))
-        before = float(np.mean(amps[-_MEAN - SETTLE_PERIODS:-SETTLE_PERIODS]))
-        change = abs(last - before) / last
-        if change < SETTLE_TOL or periods >= max_periods:
-            return {"distance": distance, "amplitude": last, "change": float(change),
-                    "periods": periods, "settled": bool(change < SETTLE_TOL)}
-        periods *= 2
+        ends, changes = [], []
+        for f in starts:
+            amps = period_amplitudes(model, hopf, k, f * start, periods, damping, mass)
+            last = float(np.mean(amps[-_MEAN:]))
+            before = float(np.mean(amps[-_MEAN - SETTLE_PERIODS:-SETTLE_PERIODS]))
+            ends.append(last)
+            changes.append(abs(last - before) / last)
+        amp = float(np.mean(ends))
+        spread = float(np.ptp(ends)) / amp
+        change = max(changes)
+        ok = change < SETTLE_TOL and spread < 2 * SETTLE_TOL
+        if ok or periods >= max_periods:
+            return {"distance": distance, "amplitude": amp, "change": change,
+                    "spread": spread, "periods": periods,
+                    "relaxations": periods / relax if relax > 0 else math.inf,
+                    "settled": bool(ok)}
+        periods = min(max_periods, 2 * periods)
 
 
 def amplitude_exponent(rows: list[dict[str, Any]]) -> tuple[float, float, float]:
     """``(beta, stderr, coefficient)`` of ``amplitude = coefficient distance^beta`` by least
-    squares in log-log over the settled rows (NaN with fewer than 3)."""
-    ok = [(r["distance"], r["amplitude"]) for r in rows if r["settled"] and r["amplitude"] > 0]
+    squares in log-log over the settled rows (those of :func:`settled_amplitude` with
+    ``settled``, or of :func:`basin_threshold` with a finite ``amplitude``; NaN with fewer
+    than 3)."""
+    ok = [(r["distance"], r["amplitude"]) for r in rows
+          if r.get("settled", True) and math.isfinite(r["amplitude"]) and r["amplitude"] > 0]
     if len(ok) < 3:
         return math.nan, math.nan, math.nan
     d, a = np.log(np.array(ok)).T
