@@ -13,6 +13,7 @@ from dryfriction.analysis.rsf_hopf import SliderField, critical_kappa, rsf_hopf
 from dryfriction.analysis.rsf_hopf_check import (
     amplitude_exponent,
     basin_threshold,
+    settle_two_starts,
     settled_amplitude,
 )
 from dryfriction.program import Segment
@@ -132,6 +133,32 @@ def test_supercritical_amplitude_against_settled_simulations() -> None:
     # the departure from the normal form is the next order: linear in d, vanishing at d = 0
     slope = (ratios[2] - ratios[0]) / 0.015
     assert 0 < slope < 1 and abs(ratios[0] - 0.005 * slope - 1) < 1.5e-3
+
+
+def test_two_starts_settle_a_slow_relaxation_not_its_start() -> None:
+    """The settling rule on the normal form's own amplitude law, ``a' = beta a (1 - a^2)``
+    (exact solution, relaxation time 3000 periods, given as unknown): both starts (0.8 and
+    1.2) must arrive, not only slow down. The mistake this is for: settled on the change over
+    50 periods alone, which the run from below meets ~2 % short of the cycle (change ~ offset
+    x 50/3000)."""
+    R = 3000.0
+    calls: list[int] = []
+
+    def run(a0: float, periods: int) -> np.ndarray:
+        calls.append(periods)
+        k = np.arange(1, periods + 1)
+        return 1 / np.sqrt(1 + (1 / a0**2 - 1) * np.exp(-k / R))
+
+    r = settle_two_starts(run, 1.0, 0.0, 200_000)
+    assert r["settled"] and r["spread"] < 2e-3 and r["change"] < 1e-3
+    assert r["amplitude"] == pytest.approx(1.0, abs=2e-4)
+    assert calls[:2] == [200, 200] and r["periods"] == calls[-1] > 4 * R
+    # given the relaxation time, the first run is already 6 of them long
+    calls.clear()
+    r = settle_two_starts(run, 1.0, R, 200_000)
+    assert calls[0] == 6 * R and r["settled"]
+    # the cap is reported, not passed off as settled
+    assert not settle_two_starts(run, 1.0, 0.0, 1600)["settled"]
 
 
 def test_subcritical_unstable_cycle_by_bisection() -> None:

@@ -126,3 +126,79 @@ def test_stick_slip_carried_above_kc_persists_where_sliding_is_stable() -> None:
     assert np.mean(small[-3:]) < 0.5 * np.mean(small[1:4])
     grown, carried = carried_stick_slip(u, PAPER, h, K, 100.0)
     assert np.mean(grown[-5:]) > 3 * pred and np.min(carried[-10:]) > 3 * pred
+
+
+def _normal_form_runs(monkeypatch: pytest.MonkeyPatch, offset: float = 1.09) -> list[float]:
+    """Replace the reduction's runs by the normal form's amplitude law,
+    ``a' = beta a + (beta/a*^2)(-a^3)`` about the predicted cycle ``a*`` (exact solution per
+    linear period), a start of size ``s`` beginning at ``offset s`` (as a start on the
+    critical eigenspace does in the reduction: 0.918 of the cycle there begins a period of
+    1.0). Returns the list of start sizes it was called with."""
+    import dryfriction.analysis.trap_hopf_check as thc
+
+    starts: list[float] = []
+
+    def fake(fld, hop, K, size, periods):  # type: ignore[no-untyped-def]
+        starts.append(size)
+        star = hop.force_amplitude(K)
+        beta = hop.dbeta_dK * (K - hop.K_c) * 2 * math.pi / hop.omega  # per period
+        k = np.arange(periods)
+        a0 = offset * size
+        # a^2 = a*^2 / (1 + (a*^2/a0^2 - 1) e^{-2 beta k}): stable cycle for beta > 0 (below
+        # K_c, dbeta_dK < 0), unstable for beta < 0
+        den = 1 + (star**2 / a0**2 - 1) * np.exp(-2 * beta * k)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            a = np.where(den > 0, star / np.sqrt(np.abs(den)), np.inf)
+        if not np.isfinite(a).all():
+            raise RuntimeError("runaway")
+        return a
+
+    monkeypatch.setattr(thc, "reduced_amplitudes", fake)
+    return starts
+
+
+def test_population_check_bisects_the_unstable_cycle(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Subcritical point (u = 0.013 of the generic model), the runs replaced by the normal
+    form's amplitude law: the bisection brackets the start that leads onto the cycle, reads
+    the cycle's amplitude (not the start's: 1/1.09 of it), and fits the branch's exponent 1/2.
+    Mistakes this is for: the unstable side taken below K_c (no cycle there: NaN); the
+    amplitude read from the bracketing start."""
+    from dryfriction.analysis.trap_hopf_check import population_check
+
+    starts = _normal_form_runs(monkeypatch)
+    r = population_check(0.013, MODEL, [0.0025, 0.005, 0.01], steps=8, res=RES)
+    assert r["nature"] == "subcritical" and len(r["rows"]) == 3
+    for row in r["rows"]:
+        assert row["bracketed"] and row["K"] > r["K_c"]
+        assert row["lo"] < row["predicted"] / 1.09 < row["hi"]
+        assert row["hi"] - row["lo"] < 0.45 * row["predicted"] / 2**7
+        assert row["ratio"] == pytest.approx(1.0, abs=0.01)
+    assert r["slip_exponent"] == pytest.approx(0.5, abs=0.01) and r["exponent_err"] < 0.01
+    assert len(starts) == 3 * 10  # the two ends and 8 halvings per distance
+
+
+def test_population_check_settles_the_stable_cycle(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Supercritical point (u = 0.87): the two starts settle onto the cycle below K_c."""
+    from dryfriction.analysis.trap_hopf_check import population_check
+
+    _normal_form_runs(monkeypatch, offset=1.0)
+    r = population_check(0.87, MODEL, [0.01, 0.02, 0.04], res=RES)
+    assert r["nature"] == "supercritical"
+    for row in r["rows"]:
+        assert row["settled"] and row["K"] < r["K_c"] and row["spread"] < 2e-3
+        assert row["ratio"] == pytest.approx(1.0, abs=1e-3)
+    # the slip's exponent is the normal form's 1/2; the force's is lowered by K = K_c (1 - d)
+    assert r["slip_exponent"] == pytest.approx(0.5, abs=0.003)
+    assert r["exponent"] < r["slip_exponent"]
+
+
+@pytest.mark.parametrize("kwargs,word", [({"distances": [0.0]}, "distances"),
+                                         ({"distances": [0.2]}, "distances"),
+                                         ({"distances": [0.01], "steps": 0}, "steps"),
+                                         ({"u": -1.0, "distances": [0.01]}, "u")])
+def test_population_check_refuses_bad_input(kwargs: dict, word: str) -> None:
+    from dryfriction.analysis.trap_hopf_check import population_check
+
+    args = {"u": 0.013, "model": MODEL, **kwargs}
+    with pytest.raises(ValueError, match=word):
+        population_check(**args)  # type: ignore[arg-type]

@@ -22,6 +22,7 @@ procedure here is ours).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -32,7 +33,8 @@ from ..rsf.law import RateState
 from ..rsf.spring import RSFInitial, RSFOutput, SpringSlider
 from .rsf_hopf import RSFHopf
 
-__all__ = ["period_amplitudes", "settled_amplitude", "amplitude_exponent", "basin_threshold"]
+__all__ = ["period_amplitudes", "settled_amplitude", "settle_two_starts", "amplitude_exponent",
+           "basin_threshold", "SETTLE_TOL", "SETTLE_PERIODS", "RELAXATIONS", "START_FACTORS"]
 
 _SAMPLES = 128  # samples per period (ours: the sampled peak misses the true one by
 # ~ (pi/128)^2/2 = 3e-4 of the amplitude)
@@ -119,22 +121,49 @@ def settled_amplitude(model: RateState, hopf: RSFHopf, distance: float,
     # relax periods, beta = 2 pi growth_slope distance per period
     relax = (1 / (4 * math.pi * hopf.growth_slope * distance) if hopf.growth_slope > 0
              else 0.0)
+    r = settle_two_starts(
+        lambda s, p: period_amplitudes(model, hopf, k, s, p, damping, mass), start, relax,
+        max_periods, starts)
+    return {"distance": distance, **r}
+
+
+def settle_two_starts(run: Callable[[float, int], np.ndarray], start: float, relax: float,
+                      max_periods: int, starts: tuple[float, float] = START_FACTORS
+                      ) -> dict[str, Any]:
+    """The settling logic of :func:`settled_amplitude` for any simulator (ours).
+
+    Parameters
+    ----------
+    run : callable
+        ``run(start_size, periods) -> amplitudes``, one per linear period.
+    start : float
+        The normal form's amplitude; the runs start at ``starts`` times it.
+    relax : float
+        The relaxation time ``1/(2 beta)`` of the amplitude, in periods (0: unknown).
+    max_periods : int
+        Longest run.
+
+    Returns
+    -------
+    dict
+        ``amplitude`` (mean of the two runs' last 5 periods), ``change``, ``spread``,
+        ``periods``, ``relaxations``, ``settled`` (:func:`settled_amplitude`).
+    """
     periods = int(min(max_periods, max(4 * SETTLE_PERIODS, math.ceil(RELAXATIONS * relax))))
     while True:
         ends, changes = [], []
         for f in starts:
-            amps = period_amplitudes(model, hopf, k, f * start, periods, damping, mass)
+            amps = run(f * start, periods)
             last = float(np.mean(amps[-_MEAN:]))
             before = float(np.mean(amps[-_MEAN - SETTLE_PERIODS:-SETTLE_PERIODS]))
             ends.append(last)
-            changes.append(abs(last - before) / last)
+            changes.append(abs(last - before) / max(last, 1e-300))
         amp = float(np.mean(ends))
-        spread = float(np.ptp(ends)) / amp
+        spread = float(np.ptp(ends)) / max(amp, 1e-300)
         change = max(changes)
         ok = change < SETTLE_TOL and spread < 2 * SETTLE_TOL
         if ok or periods >= max_periods:
-            return {"distance": distance, "amplitude": amp, "change": change,
-                    "spread": spread, "periods": periods,
+            return {"amplitude": amp, "change": change, "spread": spread, "periods": periods,
                     "relaxations": periods / relax if relax > 0 else math.inf,
                     "settled": bool(ok)}
         periods = min(max_periods, 2 * periods)

@@ -3,8 +3,11 @@
 
 Two simulators, both of the quasi-static or inertial spring-slider with the direct effect:
 
-* the reduction itself (:func:`.trap_hopf.simulate`, Radau): checks the normal form's algebra
-  and its amplitude against the dynamics it was derived from;
+* the reduction itself (:func:`.trap_hopf.simulate`, Radau): the trap population as a
+  continuous density on the track (the limit of infinitely many pairs per ``a0``, while the
+  slider moves forward), a deterministic evolution whose friction is the model's; it checks
+  the normal form's algebra and its amplitude against the dynamics it was derived from, and
+  settles cycles and bisects unstable ones to any precision (:func:`population_check`);
 * the package's trap ensemble (:func:`dryfriction.ensemble.driving.continue_spring`, a regular
   track of discrete pairs, the compiled kernel): an independent route, with the lattice's own
   force steps as a noise floor.
@@ -31,12 +34,13 @@ from ..ensemble.population import Ensemble, Initial, Track
 from ..ensemble.thermal import SUBSTEP_SLIP
 from ..program import Segment, VelocityProgram
 from ..theory.model import TRAPS_PER_A0_COARSE, TrapModel
-from .trap_hopf import TrapField, TrapHopf, simulate
+from .rsf_hopf_check import settle_two_starts
+from .trap_hopf import TrapField, TrapHopf, simulate, trap_hopf
 
 __all__ = ["SETTLE_TOL", "SETTLE_PERIODS", "reduced_amplitudes", "ensemble_amplitudes",
            "settled", "threshold", "amplitude_exponent", "cycle_start", "cycle_amplitudes",
            "swing_distance", "check_distances", "check_plan", "check_cost", "check_point",
-           "carried_stick_slip"]
+           "carried_stick_slip", "population_check", "POPULATION_RES"]
 
 SETTLE_TOL = 1e-3
 """Largest relative change of the amplitude over :data:`SETTLE_PERIODS` of a settled cycle."""
@@ -354,4 +358,104 @@ def check_point(u: float, model: TrapModel, hop: TrapHopf, track: Track, mass: f
                             "NOT bracketed, and stick-slip carried above K_c does not persist")
     else:
         out["check"] = "not run: no Hopf point" if hop.nature == "none" else "not run"
+    return out
+
+
+POPULATION_RES = {"n": 12, "panels": 10, "stretch": 2.0}
+"""The reduction's resolution in :func:`population_check` (``l1_x`` within 2e-5 of its
+``n = 64`` value there, docs/hopf.md)."""
+
+
+def population_check(u: float, model: TrapModel, distances: Any, mass: float = 0.0,
+                     damping: float = 0.0, steps: int = 8, max_periods: int = 1600,
+                     res: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The Hopf point's nature checked on the continuous trap population (the reduction of
+    :class:`.trap_hopf.TrapField` integrated by Radau, :func:`reduced_amplitudes`; every
+    procedure here is ours).
+
+    * supercritical: at ``K = K_c (1 - d)`` two runs started on the critical eigenspace at
+      0.8 and 1.2 times the normal form's cycle, settled as rate-and-state's
+      (:func:`.rsf_hopf_check.settle_two_starts`: each changing < 1e-3 over 50 periods,
+      ending within 2e-3 of each other, after >= 6 relaxation times ``1/(2 beta)``);
+    * subcritical: at ``K = K_c (1 + d)``, bisection (``steps`` halvings) of the start on the
+      critical eigenspace between 0.8 (must decay) and 1.25 (must grow, or leave the forward
+      motion the reduction describes) times the normal form's unstable cycle; a run grows when
+      its last period's amplitude exceeds its second's, over ``max(20, min(60, 2/(beta T)))``
+      periods; the cycle's amplitude is the last decaying run's where it changes least.
+
+    Parameters
+    ----------
+    u : float
+        Pulling velocity, ``a0/t0``.
+    model : TrapModel
+        With the direct effect and very strong pinning.
+    distances : sequence of float
+        Relative distances ``|K - K_c|/K_c``, in ``(0, 0.1]``.
+    mass, damping : float
+        ``M`` (``F_el t0^2/a0``) and ``eta`` (``F_el t0/a0``).
+    steps : int
+        Bisection halvings (subcritical).
+    max_periods : int
+        Longest supercritical run, linear periods.
+    res : dict, optional
+        The reduction's resolution (default :data:`POPULATION_RES`).
+
+    Returns
+    -------
+    dict
+        ``u``, ``K_c`` (``F_el/a0``), ``omega`` (``rad/t0``), ``l1_x`` (``1/a0^2``), ``nature``;
+        ``rows``: per distance ``d``, ``K``, ``predicted`` (the normal form's half
+        peak-to-peak spring force, ``F_el``), ``amplitude`` (simulated, ``F_el``), ``ratio``,
+        and ``settled``/``change``/``spread``/``periods`` (supercritical) or
+        ``bracketed``/``lo``/``hi`` (the bracketing starts, ``F_el``; subcritical);
+        ``exponent``, ``exponent_err`` of the amplitude against ``d`` over the settled or
+        bracketed rows (NaN below 3), and ``slip_exponent`` of the slip amplitude
+        (force/``K``), whose normal-form value is exactly 1/2.
+    """
+    from ..validation import check_scalar
+
+    check_scalar("u", u, 0.0, lo_open=True)
+    ds = [check_scalar("distances", d, 0.0, 0.1, lo_open=True) for d in distances]
+    if not 1 <= steps <= 30:
+        raise ValueError(f"steps = {steps} is out of range: allowed 1 to 30")
+    r0 = {**POPULATION_RES, **(res or {})}
+    hop = trap_hopf(u, model, mass, damping, **r0)
+    out: dict[str, Any] = {"u": u, "K_c": hop.K_c, "omega": hop.omega, "l1_x": hop.l1_x,
+                           "nature": hop.nature, "rows": []}
+    if hop.nature not in ("supercritical", "subcritical"):
+        return out
+    fld = TrapField(u, model, mass, damping, **r0)
+    T = 2 * math.pi / hop.omega
+    sign = -1.0 if hop.nature == "supercritical" else 1.0
+    for d in ds:
+        K = hop.K_c * (1 + sign * d)
+        pred = hop.force_amplitude(K)
+        beta = abs(hop.dbeta_dK * (K - hop.K_c))  # the linear rate at K (1/t0)
+        row: dict[str, Any] = {"d": d, "K": K, "predicted": pred}
+        if sign < 0:
+            r = settle_two_starts(lambda s, p, K=K: reduced_amplitudes(fld, hop, K, s, p), pred,
+                                  1 / (2 * beta * T), max_periods)
+            row.update(r)
+        else:
+            periods = int(max(20, min(60, 2.0 / (beta * T))))
+
+            def grows(s: float, K: float = K, periods: int = periods
+                      ) -> tuple[bool, np.ndarray]:
+                try:
+                    a = reduced_amplitudes(fld, hop, K, s, periods)
+                except (RuntimeError, ValueError):  # the slider stopped: out of the reduction
+                    return True, np.array([s])
+                return bool(a[-1] > a[1]), a
+
+            r = threshold(grows, 0.8 * pred, 1.25 * pred, steps=steps)
+            row.update(r)
+            row["settled"] = r["bracketed"]
+        row["ratio"] = row["amplitude"] / pred
+        out["rows"].append(row)
+    ok = [r for r in out["rows"] if r["settled"] and math.isfinite(r["amplitude"])]
+    out["exponent"] = out["exponent_err"] = out["slip_exponent"] = math.nan
+    if len(ok) >= 3:
+        dd = [r["d"] for r in ok]
+        out["exponent"], out["exponent_err"] = amplitude_exponent(dd, [r["amplitude"] for r in ok])
+        out["slip_exponent"] = amplitude_exponent(dd, [r["amplitude"] / r["K"] for r in ok])[0]
     return out
