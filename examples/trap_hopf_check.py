@@ -1,7 +1,10 @@
 """The trap model's l1 against simulations (docs/hopf.md; dryfriction.analysis.trap_hopf_check).
 
-Usage: python examples/trap_hopf_check.py reduced|ensemble|cycle OUT.json [CASES] [TRAPS]
+Usage: python examples/trap_hopf_check.py reduced|population|ensemble|cycle OUT.json [CASES] [TRAPS]
   reduced : the Chebyshev reduction integrated by Radau (cheap; minutes)
+  population: the same continuous population by population_check: settled cycles from two
+            starts, the unstable cycle bisected (8 halvings), exponents; POPULATION below
+            (5-15 CPU-minutes a case)
   ensemble: the package's trap ensemble started from a steady population of (1 + kick) u
             (continue_spring, 100 traps/a0; tens of minutes)
   cycle   : the package's trap ensemble released from the linear cycle (cycle_amplitudes),
@@ -26,6 +29,7 @@ from dryfriction.analysis.trap_hopf_check import (
     amplitude_exponent,
     cycle_amplitudes,
     ensemble_amplitudes,
+    population_check,
     reduced_amplitudes,
     settled,
     threshold,
@@ -55,6 +59,22 @@ CYCLE = {
     "qs_u0.01": (0.01, 0.0, (0.005, 0.01)),
     "qs_u0.03": (0.03, 0.0, (0.005, 0.01)),
 }
+
+
+# name: (u, mass, distances): ``population``
+POPULATION = {
+    "qs_u1": (1.0, 0.0, (0.005, 0.01, 0.02)),
+    "qs_u0.01": (0.01, 0.0, (0.0025, 0.005, 0.01)),
+    "qs_u0.03": (0.03, 0.0, (0.0025, 0.005, 0.01)),
+}
+
+
+def population_case(u: float, mass: float, ds: tuple[float, ...]) -> dict:
+    t = time.process_time()
+    out = population_check(u, MODEL, ds, mass=mass)
+    out["cpu_s"] = time.process_time() - t
+    print(json.dumps(out, default=float), flush=True)
+    return out
 
 
 def _case(hop, u: float, mass: float) -> dict:  # type: ignore[no-untyped-def]
@@ -158,9 +178,11 @@ def cycle_case(u: float, mass: float, ds: tuple[float, ...], traps: float = 100.
 
 if __name__ == "__main__":
     which, path = sys.argv[1], sys.argv[2]
-    table = {"reduced": CASES, "ensemble": ENSEMBLE, "cycle": CYCLE}[which]
+    table = {"reduced": CASES, "population": POPULATION, "ensemble": ENSEMBLE,
+             "cycle": CYCLE}[which]
     names = sys.argv[3].split(",") if len(sys.argv) > 3 else list(table)
-    run = {"reduced": reduced_case, "ensemble": ensemble_case, "cycle": cycle_case}[which]
+    run = {"reduced": reduced_case, "population": population_case, "ensemble": ensemble_case,
+           "cycle": cycle_case}[which]
     traps = float(sys.argv[4]) if len(sys.argv) > 4 else 100.0
     result = {}
     for name in names:
