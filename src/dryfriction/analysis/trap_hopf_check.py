@@ -381,7 +381,9 @@ def population_check(u: float, model: TrapModel, distances: Any, mass: float = 0
       critical eigenspace between 0.8 (must decay) and 1.25 (must grow, or leave the forward
       motion the reduction describes) times the normal form's unstable cycle; a run grows when
       its last period's amplitude exceeds its second's, over ``max(20, min(60, 2/(beta T)))``
-      periods; the cycle's amplitude is the last decaying run's where it changes least.
+      periods, or when the solver fails on it (a start large enough to stop the slider leaves
+      the reduction; reported in ``hi_by_failure``); the cycle's amplitude is the last
+      decaying run's where it changes least.
 
     Parameters
     ----------
@@ -407,7 +409,9 @@ def population_check(u: float, model: TrapModel, distances: Any, mass: float = 0
         ``rows``: per distance ``d``, ``K``, ``predicted`` (the normal form's half
         peak-to-peak spring force, ``F_el``), ``amplitude`` (simulated, ``F_el``), ``ratio``,
         and ``settled``/``change``/``spread``/``periods`` (supercritical) or
-        ``bracketed``/``lo``/``hi`` (the bracketing starts, ``F_el``; subcritical);
+        ``bracketed``/``lo``/``hi`` (the bracketing starts, ``F_el``) and ``hi_by_failure``
+        (the growing end is a run on which the solver failed, counted as growth: say so where
+        it is reported; subcritical);
         ``exponent``, ``exponent_err`` of the amplitude against ``d`` over the settled or
         bracketed rows (NaN below 3), and ``slip_exponent`` of the slip amplitude
         (force/``K``), whose normal-form value is exactly 1/2.
@@ -438,18 +442,23 @@ def population_check(u: float, model: TrapModel, distances: Any, mass: float = 0
             row.update(r)
         else:
             periods = int(max(20, min(60, 2.0 / (beta * T))))
+            failed: list[float] = []
 
-            def grows(s: float, K: float = K, periods: int = periods
-                      ) -> tuple[bool, np.ndarray]:
+            def grows(s: float, K: float = K, periods: int = periods,
+                      failed: list[float] = failed) -> tuple[bool, np.ndarray]:
                 try:
                     a = reduced_amplitudes(fld, hop, K, s, periods)
-                except (RuntimeError, ValueError):  # the slider stopped: out of the reduction
+                except (RuntimeError, ValueError):  # the solver failed: counted as growth
+                    failed.append(s)
                     return True, np.array([s])
                 return bool(a[-1] > a[1]), a
 
             r = threshold(grows, 0.8 * pred, 1.25 * pred, steps=steps)
             row.update(r)
             row["settled"] = r["bracketed"]
+            # honest output: a growing end that is a solver failure (the slider leaving the
+            # forward motion the reduction describes, or a numerical failure) is an assumption
+            row["hi_by_failure"] = r["hi"] in failed
         row["ratio"] = row["amplitude"] / pred
         out["rows"].append(row)
     ok = [r for r in out["rows"] if r["settled"] and math.isfinite(r["amplitude"])]
