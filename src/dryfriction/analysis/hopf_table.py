@@ -114,11 +114,15 @@ def _check(model: Any, h: Any, damping: float, mass: float) -> dict[str, Any]:
             # a finite threshold that does not shrink, as the slip law's, would give ~0)
             rows = [basin_threshold(model, h, f * d, damping, mass) for f in SUB_FACTORS]
             beta, err, _ = amplitude_exponent(rows + [r])
+            # the ratio and the threshold at the smallest distance, as the supercritical row
             out.update(check_distance=SUB_FACTORS[0] * d, check_exponent=beta,
-                       check_exponent_err=err)
+                       check_exponent_err=err, check_threshold=rows[0]["delta_lo"]
+                       if math.isfinite(rows[0]["delta_hi"]) else math.nan)
             out["check_amp_ratio"] = rows[0]["amplitude"] / (h.amp_coef * math.sqrt(
                 SUB_FACTORS[0] * d))
-            out["check"] = "unstable cycle by bisection above K_c"
+            missed = [round(x["distance"], 6) for x in rows if not math.isfinite(x["amplitude"])]
+            out["check"] = "unstable cycle by bisection above K_c" + (
+                f" (NOT bracketed at d = {missed}: no exponent)" if missed else "")
         elif math.isfinite(r["delta_hi"]):
             out["check"] = "finite kick threshold above K_c"
         else:
