@@ -208,11 +208,15 @@ def test_population_check_refuses_bad_input(kwargs: dict, word: str) -> None:
 def test_population_brackets_the_unstable_cycle_at_low_velocity() -> None:
     """Subcritical point (u = 0.01), the continuous population itself: at K = 1.005 K_c the
     start that leads onto the unstable cycle is bracketed and the cycle has the normal form's
-    size (docs/hopf.md: 1.0012 with 8 halvings; ~3 CPU-minutes with 3)."""
+    size (docs/hopf.md: starts 0.8896-0.8914 of it and 1.0012 with 8 halvings; ~45 CPU-s with
+    3, whose coarser bracket must hold that one, and whose last decaying run, up to 5.6 %
+    below the threshold, read 0.956)."""
     from dryfriction.analysis.trap_hopf_check import population_check
 
     r = population_check(0.01, PAPER, [0.005], steps=3)
     row = r["rows"][0]
-    assert r["nature"] == "subcritical" and row["bracketed"]
-    assert 0.8 * row["predicted"] < row["lo"] < row["hi"] < row["predicted"]
-    assert row["ratio"] == pytest.approx(1.0, abs=0.02)
+    pred = row["predicted"]
+    assert r["nature"] == "subcritical" and row["bracketed"] and not row["hi_by_failure"]
+    assert row["lo"] <= 0.8896 * pred and row["hi"] >= 0.8914 * pred
+    assert row["hi"] - row["lo"] <= 0.45 * pred / 2**3 + 1e-12
+    assert row["ratio"] == pytest.approx(1.0, abs=0.06)
