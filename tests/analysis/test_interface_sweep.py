@@ -131,9 +131,12 @@ def test_sweep_values_equal_the_same_point_run_directly(tmp_path: Path) -> None:
         assert got["max_load_ratio"] == pytest.approx(mu_load, rel=1e-12)
         seen.add((got["events"], got["mean_slip"]))
     assert len(seen) == 2, "the two points gave the same catalogue: the swept key was lost"
-    # resumed: the same call reads the stored points (no point computed again)
+    # resumed: the same call reads the stored points (none computed or written again)
+    stored = {p.name: p.stat().st_mtime_ns for p in (out / "points").iterdir()}
+    assert len(stored) == 2
     again = sweep(_sweep_file(tmp_path), out, workers=1)
     assert again.dataset["events"].values.tolist() == ds["events"].values.tolist()
+    assert {p.name: p.stat().st_mtime_ns for p in (out / "points").iterdir()} == stored
 
 
 def test_catalogue_after_leaves_the_early_events_out(tmp_path: Path) -> None:
