@@ -12,7 +12,7 @@ Two kinds of trial, in subprocesses:
 * compiled routes (rate-and-state stepper, trap-ensemble kernel, the fit engine's inner
   integrations): the signal at seeded random wall-clock times within the run, whose time is
   mostly spent in compiled code. The times count from the moment the run says it is ready
-  (its compiled kernels loaded: a marker file written by a start-up hook, :data:`_READY`),
+  (its compiled kernels loaded: a marker file written by a start-up hook, :mod:`ready_hook`),
   not from its start: on a loaded machine the start-up (imports, ~0.5 s of CPU) took several
   seconds of wall time, a signal at a fixed time from the start landed in it, and the test
   failed with no bug;
@@ -35,6 +35,7 @@ import numpy as np
 import pytest
 
 from dryfriction import interrupts
+from ready_hook import ENSEMBLE, STEPPER, ready_env, wait_ready
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -62,88 +63,17 @@ def _check(code: int, err: str, sig: int, what: str) -> None:
     assert said[0].startswith("interrupted:") or NAMES[sig] in said[0], said
 
 
-_READY = r"""
-# written by tests/cli/test_signals.py: the process says when its run is ready for a signal
-import importlib.abc, importlib.util, os, sys
-
-_target, _marker = os.environ["DRYFRICTION_TEST_READY"].split("=", 1)
-_module, _attr = _target.split(":")
-
-
-def _wrap(mod):
-    *path, name = _attr.split(".")
-    owner = mod
-    for part in path:
-        owner = getattr(owner, part)
-    func = getattr(owner, name)
-
-    def ready(*args, **kwargs):
-        try:
-            return func(*args, **kwargs)
-        finally:
-            if not os.path.exists(_marker):
-                open(_marker, "w").close()
-
-    setattr(owner, name, ready)
-
-
-class _Finder(importlib.abc.MetaPathFinder):
-    def find_spec(self, name, path, target=None):
-        if name != _module:
-            return None
-        sys.meta_path.remove(self)
-        spec = importlib.util.find_spec(name)
-        run = spec.loader.exec_module
-
-        def exec_module(mod):
-            run(mod)
-            _wrap(mod)
-
-        spec.loader.exec_module = exec_module
-        return spec
-
-
-sys.meta_path.insert(0, _Finder())
-"""
-"""A ``sitecustomize`` module (Python imports it at start-up from the ``PYTHONPATH``) that
-writes a marker file when ``MODULE:ATTR`` (``DRYFRICTION_TEST_READY=MODULE:ATTR=FILE``) first
-returns: the command runs as users run it (``python -m dryfriction.cli``), with one function
-wrapped, and the test knows when the compiled work has begun."""
-
-# where each route is ready: its compiled kernels loaded, the long compiled work next
-STEPPER = "dryfriction.rsf.stepper:compiled"
-ENSEMBLE = "dryfriction.ensemble.population:Ensemble.advance"
-
-
-def _wait_ready(proc: subprocess.Popen[str], marker: Path, what: str,
-                timeout: float = 300.0) -> None:
-    t0 = time.monotonic()
-    while not marker.exists():
-        assert proc.poll() is None, f"{what} ended before it was ready"
-        assert time.monotonic() - t0 < timeout, f"{what} not ready after {timeout:.0f} s"
-        time.sleep(0.01)
-
-
 def _timed_trials(args: list[str], times: list[float], sigs: list[int], cwd: Path,
                   ready_at: str) -> None:
     """Each trial: the command, and its signal ``delay`` seconds after the run is ready
-    (``ready_at``, the function whose first return marks it)."""
-    hook = cwd / "ready_hook"
-    hook.mkdir(exist_ok=True)
-    (hook / "sitecustomize.py").write_text(_READY)
+    (``ready_at``, the function whose first return marks it: :mod:`ready_hook`)."""
     for i, (delay, sig) in enumerate(zip(times, sigs, strict=True)):
         out, marker = cwd / f"run{i}", cwd / f"ready{i}"
         argv = [a.replace("{out}", str(out)) for a in args]
-        env = _env()
-        env["PYTHONPATH"] = os.pathsep.join([str(hook), *filter(None, [env.get("PYTHONPATH")])])
-        env["DRYFRICTION_TEST_READY"] = f"{ready_at}={marker}"
-        proc = subprocess.Popen(CLI + argv, cwd=cwd, env=env, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, text=True)
-        try:
-            _wait_ready(proc, marker, argv[0])
-        except AssertionError:
-            proc.kill()
-            raise AssertionError(proc.communicate()[1][-3000:]) from None
+        proc = subprocess.Popen(CLI + argv, cwd=cwd,
+                                env=ready_env(_env(), cwd / "hook", ready_at, marker),
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        wait_ready(proc, marker, argv[0])
         time.sleep(delay)
         assert proc.poll() is None, f"{argv} ended before the signal at {delay:.2f} s"
         proc.send_signal(sig)
