@@ -254,10 +254,21 @@ def _http_server():
     return srv
 
 
+def _warm_probe():
+    """Import what a probe of a scheduler imports (Dask's comms, the sweep command), so that the
+    fail-fast tests time the wait for the answer, not the imports: alone in a process on a
+    loaded machine (load 13 on 2 cores) importing them took several seconds of wall time."""
+    import distributed.comm  # noqa: F401
+
+    import dryfriction.cli.sweeps  # noqa: F401
+    import dryfriction.sweeps.cluster  # noqa: F401
+
+
 def test_scheduler_that_is_not_dask_fails_fast_and_a_real_one_works(tmp_path):
     from dask.distributed import LocalCluster
 
     srv = _http_server()
+    _warm_probe()
     try:
         small = {"test": {"x": 1, "y": 2.0, "markers": str(tmp_path)}, "sweep": {"test.x": [1]}}
         t0 = time.monotonic()
@@ -352,6 +363,7 @@ def test_cli_not_a_scheduler_fails_fast_with_one_line(tmp_path):
     from dryfriction.cli import app
 
     srv = _http_server()
+    _warm_probe()
     try:
         p = _cli_proto(tmp_path, '"drive.stiffness" = [0.05]\n')
         t0 = time.monotonic()
