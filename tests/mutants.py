@@ -917,6 +917,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "v1, v2 = float(velocity[j]), float(velocity[j - 1])", _RHE, "-k", "place_changes"),
     _m("placement: weak ignored", "records/placement.py",
        "move = weak is None or bool(weak[j - 1])", "move = True", _RHE, "-k", "place_changes"),
+    _m("simulate: progress as a fraction", "app/runs.py",
+       "progress(100.0 * fraction)", "progress(fraction)", "tests/app/test_simulate_files.py"),
 )
 
 

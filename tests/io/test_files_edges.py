@@ -103,3 +103,23 @@ def test_check_writable_dir_asks_the_folder_or_its_parent(tmp_path: Path,
     with pytest.raises(ValueError, match="is not writable \\(cannot create it in"):
         check_writable_dir(tmp_path / "new")
     assert check_writable_dir(tmp_path / "old") == tmp_path / "old"  # itself allowed
+
+
+@pytest.mark.parametrize("force", [False, True])
+def test_a_folder_made_where_a_listed_result_was_is_kept(tmp_path: Path, force: bool) -> None:
+    """The previous result's a.csv replaced by a folder of the user's: the next run writes its
+    result, leaves that folder (not ours) alone and does not stop with a traceback (it did:
+    IsADirectoryError)."""
+    from dryfriction.io.files import output_directory
+
+    out = tmp_path / "out"
+    with output_directory(out, command="t") as stage:
+        (stage / "a.csv").write_bytes(DATA)
+    (out / "a.csv").unlink()
+    (out / "a.csv").mkdir()
+    if force:  # a folder holding a file: foreign, so only --force writes beside it
+        (out / "a.csv" / "notes.txt").write_text("mine")
+    with output_directory(out, command="t", force=force) as stage:
+        (stage / "b.csv").write_bytes(DATA)
+    assert (out / "a.csv").is_dir() and (out / "b.csv").read_bytes() == DATA
+    assert not force or (out / "a.csv" / "notes.txt").read_text() == "mine"
