@@ -71,6 +71,7 @@ _RES = "tests/test_results_summary.py"
 _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
+_PSW = "tests/app/test_prepare_sweep.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -919,6 +920,35 @@ MUTANTS: tuple[Mutant, ...] = (
        "move = weak is None or bool(weak[j - 1])", "move = True", _RHE, "-k", "place_changes"),
     _m("simulate: progress as a fraction", "app/runs.py",
        "progress(100.0 * fraction)", "progress(fraction)", "tests/app/test_simulate_files.py"),
+    _m("prepare sweep: zero workers accepted", "app/sweeps.py",
+       "if workers is not None and workers < 1:", "if workers is not None and workers < 0:",
+       _PSW),
+    _m("prepare sweep: the per-core limit exclusive", "app/sweeps.py",
+       "if workers is not None and workers > WORKERS_PER_CORE * cores:",
+       "if workers is not None and workers >= WORKERS_PER_CORE * cores:", _PSW),
+    _m("prepare sweep: two workers a core", "app/sweeps.py",
+       "WORKERS_PER_CORE = 4\n", "WORKERS_PER_CORE = 2\n", _PSW),
+    _m("prepare sweep: a grid at the limit needs --yes", "app/sweeps.py",
+       "if spec.size > MAX_POINTS and not confirm:", "if spec.size >= MAX_POINTS and not confirm:",
+       _PSW),
+    _m("prepare sweep: a connect timeout of zero accepted", "app/sweeps.py",
+       "if not connect_timeout > 0:", "if connect_timeout < 0:", _PSW),
+    _m("prepare sweep: the points checked for the other analysis", "app/sweeps.py",
+       'spring_point(point, where, "linear" if linear else "stick-slip")',
+       'spring_point(point, where, "stick-slip")', _PSW),
+    _m("spring point: the pull from the first segment", "io/protocol.py",
+       "return float(drive.program.segments[-1].velocity)",
+       "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
+    _m("spring point: a transient as long as the travel accepted", "io/protocol.py",
+       'if opts.get("transient", 0.0) >= travel:', 'if opts.get("transient", 0.0) > travel:',
+       "tests/io/test_spring_point.py"),
+    _m("spring point: the population follows the pull only when asked", "io/protocol.py",
+       'if opts.get("follow_velocity", True) and', 'if opts.get("follow_velocity", False) and',
+       "tests/io/test_spring_point.py"),
+    _m("spring point: a pull of zero accepted", "io/protocol.py",
+       "    if u <= 0.0:\n        raise ValueError(f\"{source}: the last segment's",
+       "    if u < 0.0:\n        raise ValueError(f\"{source}: the last segment's",
+       "tests/io/test_spring_point.py"),
 )
 
 
