@@ -72,6 +72,7 @@ _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
 _PSW = "tests/app/test_prepare_sweep.py"
+_IDH = "tests/fit/test_identify_helpers.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -936,6 +937,24 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("prepare sweep: the points checked for the other analysis", "app/sweeps.py",
        'spring_point(point, where, "linear" if linear else "stick-slip")',
        'spring_point(point, where, "stick-slip")', _PSW),
+    _m("identify: change index one sample early", "fit/identify.py",
+       "return int(ch[0]) + 1 if ch.size else 0", "return int(ch[0]) if ch.size else 0", _IDH),
+    _m("identify: the calm part's noise with n - 1", "fit/identify.py",
+       "math.sqrt(float(calm @ calm) / (calm.size - 2))",
+       "math.sqrt(float(calm @ calm) / (calm.size - 1))", _IDH),
+    _m("identify: the calm part about its mean", "fit/identify.py",
+       "return _detrended(d.t[tail], d.mu[tail])",
+       "return d.mu[tail] - np.mean(d.mu[tail])", _IDH),
+    _m("identify: repeated flags kept", "fit/identify.py",
+       'return ";".join(dict.fromkeys(words))', 'return ";".join(words)', _IDH),
+    _m("identify: slip since the window's start", "fit/identify.py",
+       "slip = float(x[g_ch] - x[j])", "slip = float(x[g_ch] - x[i_start])", _IDH),
+    _m("identify: the hold healed at the reslide velocity", "fit/identify.py",
+       "vh = float(v[k - 1]) if k > 0 else vb", "vh = vb", _IDH),
+    _m("identify: the remnant decays over 2 Dc", "fit/identify.py",
+       "rem = amp * math.exp(-slip / dc)", "rem = amp * math.exp(-slip / (2.0 * dc))", _IDH),
+    _m("identify: the remnant against the white noise once", "fit/identify.py",
+       "if rem > 2.0 * white:", "if rem > white:", _IDH),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
