@@ -59,17 +59,21 @@ def test_steady_reduced_with_the_direct_effect() -> None:
 def test_static_si_is_mu_el_times_the_reduced_friction_at_t_w_over_t0() -> None:
     from dryfriction.theory.static import static_friction
 
-    eps, t0, mu_el, load = 0.037, 0.013, 0.47, 0.27
+    # a backward load: there the force hold differs from the position hold (by 2 % here;
+    # at small forward loads the two coincide)
+    eps, t0, mu_el, load = 0.037, 0.013, 0.47, -0.4
     t_w = [70.0]  # one value: a force hold costs ~0.2 s a point
     out = app_theory.static(eps, t_w=t_w, t0=t0, mu_el=mu_el, load=load, hold="force")
-    want = mu_el * static_friction(TrapModel(0.13, eps, "log"), np.asarray(t_w) / t0,
-                                   load=load, hold="force")
+    model = TrapModel(0.13, eps, "log")
+    want = mu_el * static_friction(model, np.asarray(t_w) / t0, load=load, hold="force")
     np.testing.assert_allclose(out.columns["mu_s"], want, rtol=1e-12)
+    held = static_friction(model, np.asarray(t_w) / t0, load=load, hold="position")
+    assert abs(want[0] / mu_el - held[0]) > 0.01  # the hold matters at this point
     assert out.columns["t_w"] == t_w and out.units["t_w"] == "s" and out.units["mu_s"] == "F/W"
     assert out.params["t0"] == t0 and out.params["hold"] == "force"
-    red = app_theory.static(eps, [3.3, 170.0], load=load)
+    red = app_theory.static(eps, [3.3, 170.0], load=0.27)
     np.testing.assert_allclose(red.columns["mu_s"], static_friction(
-        TrapModel(0.13, eps, "log"), np.array([3.3, 170.0]), load=load), rtol=1e-12)
+        model, np.array([3.3, 170.0]), load=0.27), rtol=1e-12)
     assert red.units["T"] == "t0" and red.units["mu_s"] == "F_el"
     assert red.params["hold"] == "position"  # the documented default
 
