@@ -73,6 +73,7 @@ _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
 _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
+_RRP = "tests/app/test_record_report.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -955,6 +956,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "rem = amp * math.exp(-slip / dc)", "rem = amp * math.exp(-slip / (2.0 * dc))", _IDH),
     _m("identify: the remnant against the white noise once", "fit/identify.py",
        "if rem > 2.0 * white:", "if rem > white:", _IDH),
+    _m("record report: the time span as its first time and duration", "app/reading.py",
+       '"time_span_s": [float(t[0]), float(t[-1])]',
+       '"time_span_s": [float(t[0]), float(t[-1] - t[0])]', _RRP),
+    _m("record report: a given program said to be detected", "app/reading.py",
+       '"segments_from": "--segments" if segments is not None else "detected"',
+       '"segments_from": "detected" if segments is not None else "--segments"', _RRP),
+    _m("record report: the --segments form on the record's clock", "app/reading.py",
+       'rep["segments_option"] = segments_spec(segs, float(t[0]))',
+       'rep["segments_option"] = segments_spec(segs, 0.0)', _RRP),
+    _m("record report: the note kept with its prefix", "app/reading.py",
+       'rep["apparatus_note"] = note.removeprefix("note: ")', 'rep["apparatus_note"] = note',
+       _RRP),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
