@@ -74,6 +74,7 @@ _RHE = "tests/records/test_records_helpers.py"
 _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
+_PGE = "tests/fit/test_progress_estimate.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -968,6 +969,19 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record report: the note kept with its prefix", "app/reading.py",
        'rep["apparatus_note"] = note.removeprefix("note: ")', 'rep["apparatus_note"] = note',
        _RRP),
+    _m("progress: a Jacobian of p evaluations", "fit/progress.py",
+       "            return 2.0 * self.p\n", "            return float(self.p)\n", _PGE),
+    _m("progress: the profiles' cost not shared over p", "fit/progress.py",
+       "return PROFILE_COST * self.n_starts * start / max(self.p, 1)",
+       "return PROFILE_COST * self.n_starts * start", _PGE),
+    _m("progress: the first start's guess 10 p", "fit/progress.py",
+       "else 10.0 * (self.p + 1))", "else 10.0 * self.p)", _PGE),
+    _m("progress: a running stage may be done", "fit/progress.py",
+       "rest += max(per - (self.done - self.stage0), 1.0) + per * (n - 1)",
+       "rest += max(per - (self.done - self.stage0), 0.0) + per * (n - 1)", _PGE),
+    _m("progress: the stages' sum for their mean", "fit/progress.py",
+       "return sum(self.used[kind]) / len(self.used[kind])", "return sum(self.used[kind])",
+       _PGE),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
