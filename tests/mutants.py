@@ -75,6 +75,7 @@ _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
 _PGE = "tests/fit/test_progress_estimate.py"
+_RTB = "tests/cli/test_records_table.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -982,6 +983,20 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("progress: the stages' sum for their mean", "fit/progress.py",
        "return sum(self.used[kind]) / len(self.used[kind])", "return sum(self.used[kind])",
        _PGE),
+    _m("record table: a normal force in kN scaled as a stress", "cli/records.py",
+       'scale, shown = (1e-3, "kN") if unit == "N" else (1e-6, "MPa")',
+       'scale, shown = (1e-6, "kN") if unit == "N" else (1e-6, "MPa")', _RTB),
+    _m("record table: a value not reported shown as nan", "cli/records.py",
+       'return "—" if math.isnan(x) else f"{x:.4g}"', 'return f"{x:.4g}"', _RTB),
+    _m("record table: the intervals high then low", "cli/records.py",
+       "f\"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]\"",
+       "f\"[{_cell(r[c + '_hi'])}, {_cell(r[c + '_lo'])}]\"", _RTB),
+    _m("record table: every parameter counted as fitted", "cli/records.py",
+       'free = {p.name for p in fit.parameters if not getattr(p, "fixed", False)}',
+       "free = {p.name for p in fit.parameters}", _RTB),
+    _m("record table: the flags counted, not the steps", "cli/records.py",
+       'n = sum(bool(r["flags"]) for r in rows)',
+       'n = sum(len(str(r["flags"]).split(";")) for r in rows if r["flags"])', _RTB),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
