@@ -997,6 +997,24 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record table: the flags counted, not the steps", "cli/records.py",
        'n = sum(bool(r["flags"]) for r in rows)',
        'n = sum(len(str(r["flags"]).split(";")) for r in rows if r["flags"])', _RTB),
+    _m("deferred: the signals delivered last first", "interrupts.py",
+       "_deliver(list(dict.fromkeys(caught)), previous)",
+       "_deliver(list(dict.fromkeys(reversed(caught))), previous)", "tests/test_interrupts.py"),
+    _m("deferred: the default action always held back", "interrupts.py",
+       "if callable(handler) or (defaults and handler == signal.SIG_DFL):",
+       "if callable(handler) or handler == signal.SIG_DFL:", "tests/test_interrupts.py"),
+    _m("deferred: the handlers not restored", "interrupts.py",
+       "        for s, handler in previous.items():\n            signal.signal(s, handler)\n",
+       "        for s, handler in previous.items():\n            pass\n",
+       "tests/test_interrupts.py"),
+    _m("deferred: a raising handler stops the next", "interrupts.py",
+       "    try:\n        handler = handlers[signums[0]]\n        if callable(handler):\n"
+       "            handler(signums[0], None)\n        else:  # the default action, restored: "
+       "it ends the process now\n            signal.raise_signal(signums[0])\n    finally:\n"
+       "        _deliver(signums[1:], handlers)",
+       "    handler = handlers[signums[0]]\n    if callable(handler):\n"
+       "        handler(signums[0], None)\n    else:\n        signal.raise_signal(signums[0])\n"
+       "    _deliver(signums[1:], handlers)", "tests/test_interrupts.py"),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
