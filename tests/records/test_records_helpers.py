@@ -146,3 +146,22 @@ def test_place_changes_moves_each_boundary_to_its_change() -> None:
                                   weak=np.array([True, False]))
     assert held[1] == out[1] and held[2] == bounds[2]
     assert hplaces[1].index == bounds[2] and np.isfinite(hplaces[1].lo)
+
+
+def test_place_changes_a_stop_with_the_servos_relaxation() -> None:
+    """2.1 um/s, then a stop at 60.3 s after which the load point creeps on by the servo's
+    position error, v tau_r (1 - e^(-(t - t_c)/tau_r)), tau_r = 2 s; a relative wander of 5 %
+    (1 s) whose position error stands above the 0.02 um white noise: the stop is placed with
+    its relaxation, on the first sample after it (the plain hinge puts it 0.75 s late)."""
+    rng = np.random.default_rng(5)
+    t = 7.0 + np.arange(0, 120.0, 0.125)
+    tc, v1, tr = 60.3, 2.1e-6, 2.0
+    x = np.where(t < tc, v1 * (t - t[0]),
+                 v1 * (tc - t[0]) + v1 * tr * -np.expm1(-(t - tc) / tr))
+    x = x + rng.normal(0.0, 0.02e-6, t.size)
+    guess = int(np.searchsorted(t, tc + 3.0))
+    out, places = place_changes(t, x, [0, guess, t.size], np.array([v1, 0.0]), 0.02e-6,
+                                np.array([1.0, 4.0, 16.0]), np.array([0.05, 0.0, 0.0]),
+                                np.zeros(3))
+    assert out[1] == int(np.searchsorted(t, tc))
+    assert places[0].lo <= tc <= places[0].hi
