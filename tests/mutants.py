@@ -76,6 +76,7 @@ _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
 _PGE = "tests/fit/test_progress_estimate.py"
 _RTB = "tests/cli/test_records_table.py"
+_RSW = "tests/app/test_rsf_workflow.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1018,6 +1019,23 @@ MUTANTS: tuple[Mutant, ...] = (
        "    handler = handlers[signums[0]]\n    if callable(handler):\n"
        "        handler(signums[0], None)\n    else:\n        signal.raise_signal(signums[0])\n"
        "    _deliver(signums[1:], handlers)", "tests/test_interrupts.py"),
+    _m("rsf workflow: stick-slip started at v1", "app/ratestate.py",
+       "            v_init = 1.01 * v1", "            v_init = v1", _RSW),
+    _m("rsf workflow: the reload time for the step", "app/ratestate.py",
+       'if case == "shs" else 30.0', 'if case == "step" else 30.0', _RSW),
+    _m("rsf workflow: a hold refused", "app/ratestate.py",
+       "if value != 0.0 and abs(value) < V_MIN:", "if abs(value) < V_MIN:", _RSW),
+    _m("rsf workflow: sliding back refused on a rigid machine", "app/ratestate.py",
+       "if value < 0.0 and not (math.isinf(stiffness) and regularized):",
+       "if value < 0.0 and not math.isinf(stiffness):", _RSW),
+    _m("rsf workflow: rtol checked up to 0.1", "app/ratestate.py",
+       'check_scalar("--rtol", rtol, *RTOL_RANGE)',
+       'check_scalar("--rtol", rtol, 0.0, 0.1, lo_open=True)', _RSW),
+    _m("rsf workflow: v0 default 1e-5", "app/options.py",
+       '"v0": Option("--v0", 1e-6, "> 0 m/s")', '"v0": Option("--v0", 1e-5, "> 0 m/s")', _RSW),
+    _m("rsf workflow: the step's second segment from t1", "app/ratestate.py",
+       "segs = [Segment(v1, t1), Segment(v2, t2)]", "segs = [Segment(v1, t1), Segment(v2, t1)]",
+       _RSW),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
