@@ -77,6 +77,7 @@ _RRP = "tests/app/test_record_report.py"
 _PGE = "tests/fit/test_progress_estimate.py"
 _RTB = "tests/cli/test_records_table.py"
 _RSW = "tests/app/test_rsf_workflow.py"
+_FDI = "tests/app/test_fit_dispatch.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1036,6 +1037,18 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("rsf workflow: the step's second segment from t1", "app/ratestate.py",
        "segs = [Segment(v1, t1), Segment(v2, t2)]", "segs = [Segment(v1, t1), Segment(v2, t1)]",
        _RSW),
+    _m("fit dispatch: a record fitted with cv by default", "app/fitting.py",
+       'o["model"] = "rsf" if record else "cv"', 'o["model"] = "cv"', _FDI),
+    _m("fit dispatch: a record's machine fitted by default", "app/fitting.py",
+       '"record" if o["stiffness"] is None else o["stiffness"]',
+       '"fit" if o["stiffness"] is None else o["stiffness"]', _FDI),
+    _m("fit dispatch: a record's trend off by default", "app/fitting.py",
+       'trend=True if o["trend"] is None else o["trend"]', 'trend=bool(o["trend"])', _FDI),
+    _m("fit dispatch: --v0 read for a record", "app/fitting.py",
+       '(("--fix", o["fix"] or None), ("--v0", o["v0"]))', '(("--fix", o["fix"] or None),)',
+       _FDI),
+    _m("fit dispatch: --drive passed to the CSV fit", "app/fitting.py",
+       '"errors", "drive", "initial_state")', '"errors", "initial_state")', _FDI),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
