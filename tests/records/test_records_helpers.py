@@ -1,9 +1,12 @@
 """records helpers called directly (issue 25): lab.apparatus_note on each branch and at its
 edges; segmentation.line_fit / rss / prune / refine against least squares written in the test
 (numpy.polyfit), a prune on both sides of its threshold; placement.place_changes on a record
-with two changes (up, then down: N > 1), the moved and the held boundary."""
+with two changes (up, then down: N > 1), the moved and the held boundary, and on a stop with
+the servo's relaxation; detection.no_change_message's number by hand."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pytest
@@ -165,3 +168,34 @@ def test_place_changes_a_stop_with_the_servos_relaxation() -> None:
                                 np.zeros(3))
     assert out[1] == int(np.searchsorted(t, tc))
     assert places[0].lo <= tc <= places[0].hi
+
+
+# --- detection.no_change_message ------------------------------------------------------------
+
+
+def test_no_change_message_states_the_smallest_change_of_the_two_halves() -> None:
+    """One constant velocity (1.3 um/s, 0.05 um white noise, from 3 s): the line's number is
+    Z_MIN times the two halves' velocity scatters added in quadrature (the fluctuation model
+    at each half's duration, velocity and Sxx, the halves' lines fitted here)."""
+    from dryfriction.records.detection import Z_MIN, detect_program, displacement, no_change_message
+
+    rng = np.random.default_rng(31)
+    t = 3.0 + 0.2 * np.arange(600)
+    x = 1.3e-6 * (t - t[0]) + rng.normal(0.0, 0.05e-6, t.size)
+    rec = LabRecord("flat.txt", t, x, None, np.full(t.size, 0.6), None, "",
+                    {"time": "t", "disp": "x"}, 2, {"disp": "m"})
+    det = detect_program(rec)
+    assert len(det.segments) == 1
+    xd = displacement(rec)
+    h = t.size // 2
+    v, d, sxx = [], [], []
+    for a, b in ((0, h), (h, t.size)):
+        v.append(np.polyfit(t[a:b], xd[a:b], 1)[0])
+        d.append(t[b - 1] - t[a])
+        sxx.append(float(np.sum((t[a:b] - t[a:b].mean()) ** 2)))
+    e = det.fluctuations.scatter(np.array(d), np.array(v), np.array(sxx))
+    lim = Z_MIN * math.hypot(e[0], e[1])
+    assert no_change_message(rec, det) == (
+        f"flat.txt: no velocity change found above the apparatus' fluctuations of "
+        f"{lim * 1e6:.3g} um/s ({Z_MIN:g} times the scatter of the velocities of the record's "
+        "two halves); give the program with --segments, e.g. 0:2e-7,1200:2e-6")
