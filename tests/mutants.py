@@ -78,6 +78,7 @@ _PGE = "tests/fit/test_progress_estimate.py"
 _RTB = "tests/cli/test_records_table.py"
 _RSW = "tests/app/test_rsf_workflow.py"
 _FDI = "tests/app/test_fit_dispatch.py"
+_LPG = "tests/fit/test_load_program.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1066,6 +1067,15 @@ MUTANTS: tuple[Mutant, ...] = (
        _FDI),
     _m("fit dispatch: --drive passed to the CSV fit", "app/fitting.py",
        '"errors", "drive", "initial_state")', '"errors", "initial_state")', _FDI),
+    _m("series segments: a last single sample given the mean interval", "records/data.py",
+       "dur[-1] = float(np.median(np.diff(self.t)))", "dur[-1] = float(np.mean(np.diff(self.t)))",
+       _LPG),
+    _m("load program: times from zero, not from the first sample", "fit/loadpoint.py",
+       "te = np.clip(data.t - data.t[0], 0.0, float(np.sum(dur)))",
+       "te = np.clip(data.t, 0.0, float(np.sum(dur)))", _LPG),
+    _m("load program: a hold not seen", "fit/loadpoint.py",
+       "return prog, te, bool(np.any(vel <= 0.0))", "return prog, te, bool(np.any(vel < 0.0))",
+       _LPG),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
