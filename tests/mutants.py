@@ -79,6 +79,7 @@ _RTB = "tests/cli/test_records_table.py"
 _RSW = "tests/app/test_rsf_workflow.py"
 _FDI = "tests/app/test_fit_dispatch.py"
 _LPG = "tests/fit/test_load_program.py"
+_PDF = "tests/io/test_protocol_defaults.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1100,6 +1101,14 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("sweep lines: all failed when any", "cli/sweeps.py",
        'what = "all" if n_failed == size else f"{n_failed} of"',
        'what = "all" if n_failed else f"{n_failed} of"', "tests/cli/test_sweep_lines.py"),
+    _m("protocol: the reference velocity's default 1e-6", "io/protocol.py",
+       'v_ref=m.number("v_ref", 1.0),', 'v_ref=m.number("v_ref", 1e-6),', _PDF),
+    _m("protocol: the force drive's safety stop at 1", "io/protocol.py",
+       'max_force=d.number("max_force", 10.0))', 'max_force=d.number("max_force", 1.0))', _PDF),
+    _m("protocol: the rsf tolerance's default 1e-6", "io/protocol.py",
+       'rtol=o.number("rtol", 1e-7))', 'rtol=o.number("rtol", 1e-6))', _PDF),
+    _m("protocol: alpha's default 0.1", "io/protocol.py",
+       'alpha=m.number("alpha", 0.13),', 'alpha=m.number("alpha", 0.1),', _PDF),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
