@@ -80,6 +80,7 @@ _RSW = "tests/app/test_rsf_workflow.py"
 _FDI = "tests/app/test_fit_dispatch.py"
 _LPG = "tests/fit/test_load_program.py"
 _PDF = "tests/io/test_protocol_defaults.py"
+_STE = "tests/fit/test_statistics_edges.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1109,6 +1110,13 @@ MUTANTS: tuple[Mutant, ...] = (
        'rtol=o.number("rtol", 1e-7))', 'rtol=o.number("rtol", 1e-6))', _PDF),
     _m("protocol: alpha's default 0.1", "io/protocol.py",
        'alpha=m.number("alpha", 0.13),', 'alpha=m.number("alpha", 0.1),', _PDF),
+    _m("quantile: Student t at zero degrees of freedom", "fit/statistics.py",
+       "return Z95 if sigma_given or dof <= 0 else", "return Z95 if sigma_given or dof < 0 else",
+       _STE),
+    _m("runs test: six signs refused", "fit/statistics.py",
+       "if n1 == 0 or n2 == 0 or n1 + n2 < 6:", "if n1 == 0 or n2 == 0 or n1 + n2 <= 6:", _STE),
+    _m("runs test: zeros taken as signs", "fit/statistics.py",
+       "s = np.sign(r[r != 0])", "s = np.sign(r)", _STE),
     _m("spring point: the pull from the first segment", "io/protocol.py",
        "return float(drive.program.segments[-1].velocity)",
        "return float(drive.program.segments[0].velocity)", "tests/io/test_spring_point.py"),
