@@ -59,8 +59,11 @@ def test_velocity_and_tolerance_edges() -> None:
     with pytest.raises(ValueError, match=r"^--v2 5e-31 is out of range: allowed 0 \(a hold\)"):
         app.rsf(v2=5e-31)
     # sliding back: refused on a spring, accepted on a rigid machine with the asinh law
-    with pytest.raises(ValueError, match=r"^--v2 -1.3e-06 is out of range: allowed 0 to"):
-        app.rsf(v2=-1.3e-6)
+    for rigid in ({}, {"stiffness": math.inf}, {"regularized": True}):  # one of the two only
+        with pytest.raises(ValueError, match=r"^--v2 -1.3e-06 is out of range: allowed 0 to "
+                                             r".*\(sliding back needs --stiffness inf "
+                                             r"--regularized\)$"):
+            app.rsf(v2=-1.3e-6, **rigid)  # type: ignore[arg-type]
     back = app.rsf(v2=-1.3e-6, t1=2.0, t2=3.0, stiffness=math.inf, regularized=True)
     assert back.result.load_velocity[-1] == -1.3e-6
     assert app.rsf(rtol=0.01, t1=2.0, t2=3.0).summary["rtol"] == 0.01
