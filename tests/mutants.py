@@ -67,7 +67,8 @@ _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _HTE = "tests/analysis/test_hopf_table_edges.py"
 # strengthen5B
-_RES = "tests/test_results_summary.py"
+_RES = "tests/ensemble/test_results_summary.py"
+_RBD = "tests/ensemble/test_results_bounds.py"
 _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
@@ -829,19 +830,19 @@ MUTANTS: tuple[Mutant, ...] = (
        "mean = float(np.trapezoid(mu, t) / span) if span > 0 else float(np.mean(mu))",
        "mean = float(np.mean(mu))", _RES),
     _m("bounds: a slide back within the tolerance refused", "results.py",
-       "if np.any(back < -tol):", "if np.any(back < 0.0):", "tests/test_results_bounds.py"),
+       "if np.any(back < -tol):", "if np.any(back < 0.0):", _RBD),
     _m("bounds: the slip bound without its tolerance", "results.py",
        "if slip_max is not None and slip > slip_max + tol:",
-       "if slip_max is not None and slip > slip_max:", "tests/test_results_bounds.py"),
+       "if slip_max is not None and slip > slip_max:", _RBD),
     _m("bounds: the integral's tolerance relative", "results.py",
        "not abs(slip - slip_integral) <= tol:",
-       "not abs(slip - slip_integral) <= tol * abs(slip):", "tests/test_results_bounds.py"),
+       "not abs(slip - slip_integral) <= tol * abs(slip):", _RBD),
     _m("bounds: a NaN time accepted", "results.py",
        '(("t", t, False), ("x", x, False)', '(("t", t, True), ("x", x, False)',
-       "tests/test_results_bounds.py"),
+       _RBD),
     _m("bounds: time standing still refused", "results.py",
        "if t.size > 1 and np.any(np.diff(t) < 0.0):",
-       "if t.size > 1 and np.any(np.diff(t) <= 0.0):", "tests/test_results_bounds.py"),
+       "if t.size > 1 and np.any(np.diff(t) <= 0.0):", _RBD),
     _m("files: is_ours follows a symbolic link to a file", "io/files.py",
        "os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK", "os.O_RDONLY | os.O_NONBLOCK", _FED),
     _m("files: is_ours follows a linked folder on the way", "io/files.py",
@@ -1024,14 +1025,14 @@ MUTANTS: tuple[Mutant, ...] = (
        'n = sum(len(str(r["flags"]).split(";")) for r in rows if r["flags"])', _RTB),
     _m("deferred: the signals delivered last first", "interrupts.py",
        "_deliver(list(dict.fromkeys(caught)), previous)",
-       "_deliver(list(dict.fromkeys(reversed(caught))), previous)", "tests/test_interrupts.py"),
+       "_deliver(list(dict.fromkeys(reversed(caught))), previous)", "tests/cli/test_interrupts.py"),
     _m("deferred: the default action always held back", "interrupts.py",
        "if callable(handler) or (defaults and handler == signal.SIG_DFL):",
-       "if callable(handler) or handler == signal.SIG_DFL:", "tests/test_interrupts.py"),
+       "if callable(handler) or handler == signal.SIG_DFL:", "tests/cli/test_interrupts.py"),
     _m("deferred: the handlers not restored", "interrupts.py",
        "        for s, handler in previous.items():\n            signal.signal(s, handler)\n",
        "        for s, handler in previous.items():\n            pass\n",
-       "tests/test_interrupts.py"),
+       "tests/cli/test_interrupts.py"),
     _m("deferred: a raising handler stops the next", "interrupts.py",
        "    try:\n        handler = handlers[signums[0]]\n        if callable(handler):\n"
        "            handler(signums[0], None)\n        else:  # the default action, restored: "
@@ -1039,7 +1040,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "        _deliver(signums[1:], handlers)",
        "    handler = handlers[signums[0]]\n    if callable(handler):\n"
        "        handler(signums[0], None)\n    else:\n        signal.raise_signal(signums[0])\n"
-       "    _deliver(signums[1:], handlers)", "tests/test_interrupts.py"),
+       "    _deliver(signums[1:], handlers)", "tests/cli/test_interrupts.py"),
     _m("rsf workflow: stick-slip started at v1", "app/ratestate.py",
        "            v_init = 1.01 * v1", "            v_init = v1", _RSW),
     _m("rsf workflow: the reload time for the step", "app/ratestate.py",
