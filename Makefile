@@ -30,8 +30,11 @@ demo: $(STAMP)
 
 # the suite, then the selected slow tests (each over ~20 s; all of them: pytest --runslow)
 SLOW_SUBSET := ageing_under_load or huge_run_sizes or site_builds or chromium or (readme_line and not phase and not interface_precursors)
+# the default suite on TEST_WORKERS processes (pytest-xdist; CI has 2 cores), a file per worker
+# (--dist loadfile: a module's fixtures are computed once); TEST_WORKERS=0 runs it in one process
+TEST_WORKERS ?= 2
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile
 	$(BIN)/python -m pytest -q --runslow -m slow -k "$(SLOW_SUBSET)"
 
 lint: $(STAMP)

@@ -11,7 +11,11 @@ Two kinds of trial, in subprocesses:
 
 * compiled routes (rate-and-state stepper, trap-ensemble kernel, the fit engine's inner
   integrations): the signal at seeded random wall-clock times within the run, whose time is
-  mostly spent in compiled code;
+  mostly spent in compiled code. The times count from the moment the run says it is ready
+  (its compiled kernels loaded: a marker file written by a start-up hook, :mod:`ready_hook`),
+  not from its start: on a loaded machine the start-up (imports, ~0.5 s of CPU) took several
+  seconds of wall time, a signal at a fixed time from the start landed in it, and the test
+  failed with no bug;
 * every command: the signal at a seeded random call into ``dryfriction`` (counted by a
   profile hook, so that a quick command is hit mid-run whatever the machine's speed).
 """
@@ -31,6 +35,7 @@ import numpy as np
 import pytest
 
 from dryfriction import interrupts
+from ready_hook import ENSEMBLE, STEPPER, ready_env, wait_ready
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -58,17 +63,23 @@ def _check(code: int, err: str, sig: int, what: str) -> None:
     assert said[0].startswith("interrupted:") or NAMES[sig] in said[0], said
 
 
-def _timed_trials(args: list[str], times: list[float], sigs: list[int], cwd: Path) -> None:
+def _timed_trials(args: list[str], times: list[float], sigs: list[int], cwd: Path,
+                  ready_at: str) -> None:
+    """Each trial: the command, and its signal ``delay`` seconds after the run is ready
+    (``ready_at``, the function whose first return marks it: :mod:`ready_hook`)."""
     for i, (delay, sig) in enumerate(zip(times, sigs, strict=True)):
-        out = cwd / f"run{i}"
+        out, marker = cwd / f"run{i}", cwd / f"ready{i}"
         argv = [a.replace("{out}", str(out)) for a in args]
-        proc = subprocess.Popen(CLI + argv, cwd=cwd, env=_env(), stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, text=True)
+        proc = subprocess.Popen(CLI + argv, cwd=cwd,
+                                env=ready_env(_env(), cwd / "hook", ready_at, marker),
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        wait_ready(proc, marker, argv[0])
         time.sleep(delay)
         assert proc.poll() is None, f"{argv} ended before the signal at {delay:.2f} s"
         proc.send_signal(sig)
         _, err = proc.communicate(timeout=120)
-        _check(proc.returncode, err, sig, f"{argv[0]} after {delay:.2f} s ({NAMES[sig]})")
+        _check(proc.returncode, err, sig,
+               f"{argv[0]} {delay:.2f} s after ready ({NAMES[sig]})")
 
 
 def _seeded(n: int, lo: float, hi: float, seed: int) -> tuple[list[float], list[int]]:
@@ -245,40 +256,42 @@ def test_a_signal_during_a_compiled_call_is_raised_after_it(delay: float) -> Non
 
 def test_signals_into_the_compiled_rsf_stepper(tmp_path: Path) -> None:
     """Before the fix: 6 of 15 Ctrl-C trials exit -11 (segfault), the others 130 silently.
-    The signals fall within the stepper: the run takes ~1.35 s wall here (its 1e6-step cap)
-    and its start ~0.3 s, so 0.5-1.0 s (1.3 s, when start-up still held scipy.stats, landed
-    at its exit: the run ended 0, its work done)."""
-    times, sigs = _seeded(5, 0.5, 1.0, seed=24)
-    _timed_trials(RSF_LONG, times, sigs, tmp_path)
+    The signals fall within the stepper: once its kernels are loaded the run has ~1.1 s of CPU
+    left (its 1e6-step cap; measured with the hook, 1.62 s of CPU in all), so 0.05-0.6 s
+    after it is ready, on an idle machine as on a loaded one."""
+    times, sigs = _seeded(5, 0.05, 0.6, seed=24)
+    _timed_trials(RSF_LONG, times, sigs, tmp_path, STEPPER)
 
 
 @pytest.mark.slow
 def test_signals_into_the_compiled_rsf_stepper_many(tmp_path: Path) -> None:
-    times, sigs = _seeded(20, 0.5, 1.05, seed=2024)
-    _timed_trials(RSF_LONG, times, sigs, tmp_path)
+    times, sigs = _seeded(20, 0.05, 0.65, seed=2024)
+    _timed_trials(RSF_LONG, times, sigs, tmp_path, STEPPER)
 
 
 def test_signals_into_the_trap_ensemble(tmp_path: Path) -> None:
     proto = _long_trap_protocol(tmp_path / "long.toml")
-    times, sigs = _seeded(3, 0.8, 2.0, seed=7)
+    # ready at the first window's return (the kernel loaded): ~1.8 s of CPU left of 2.5 s
+    times, sigs = _seeded(3, 0.1, 1.2, seed=7)
     _timed_trials(["simulate", str(proto), "--no-figure", "--out", "{out}"], times, sigs,
-                  tmp_path)
+                  tmp_path, ENSEMBLE)
 
 
 def test_signals_into_a_record_fit(tmp_path: Path) -> None:
     """The fit engine's inner integrations (compiled after the process's interpreted budget):
     before the fix SIGTERM here gave ~370 lines ending in SystemError, exit 1."""
-    times, sigs = _seeded(2, 1.5, 3.5, seed=16)
+    # ready once the stepper's kernels are loaded (1.6 s of CPU): ~8 s of CPU left
+    times, sigs = _seeded(2, 0.1, 2.0, seed=16)
     sigs = [signal.SIGTERM, signal.SIGINT]
     _timed_trials(["fit", str(RECORD), "--model", "rsf", "--no-figure", "--out", "{out}"],
-                  times, sigs, tmp_path)
+                  times, sigs, tmp_path, STEPPER)
 
 
 @pytest.mark.slow
 def test_signals_into_a_record_fit_many(tmp_path: Path) -> None:
-    times, sigs = _seeded(8, 1.0, 4.0, seed=160)
+    times, sigs = _seeded(8, 0.05, 2.5, seed=160)
     _timed_trials(["fit", str(RECORD), "--model", "rsf", "--no-figure", "--out", "{out}"],
-                  times, sigs, tmp_path)
+                  times, sigs, tmp_path, STEPPER)
 
 
 # ------------------------------------------------------------------ every command
@@ -334,8 +347,9 @@ def test_every_command_interrupted_mid_run_says_one_line(name: str, tmp_path: Pa
 
 def test_compare_interrupted_says_one_line(tmp_path: Path) -> None:
     """Before the fix: exit 130 and nothing on standard error."""
+    # ready at the trap model's first window (1.3 s of CPU): ~1 s of CPU left
     _timed_trials(["compare", str(EXAMPLES / "velocity_step.toml"), "--no-figure", "--out",
-                   "{out}"], [0.9], [signal.SIGINT], tmp_path)
+                   "{out}"], [0.3], [signal.SIGINT], tmp_path, ENSEMBLE)
 
 
 @pytest.mark.slow

@@ -243,9 +243,17 @@ def test_ctrl_c_during_the_commit_is_delivered_after_it(tmp_path, monkeypatch):
             signal.raise_signal(signal.SIGINT)
 
     monkeypatch.setattr(dio.os, "replace", replace)
-    with pytest.raises(KeyboardInterrupt), output_directory(out) as d:
-        (d / "a").write_text("new")
-        (d / "b").write_text("new")
+    # Python installs its KeyboardInterrupt handler only if SIGINT was not ignored at its
+    # start: a suite run in the background of a non-interactive shell (`make test &`, a CI
+    # step) inherits SIGINT ignored, and raise_signal would do nothing; the handler a
+    # terminal's Python has is installed here
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt), output_directory(out) as d:
+            (d / "a").write_text("new")
+            (d / "b").write_text("new")
+    finally:
+        signal.signal(signal.SIGINT, before)
     assert (out / "a").read_text() == "new" and (out / "b").read_text() == "new"
     assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"a", "b"}
     assert _names(tmp_path) == {"res"} and _names(out) == {MANIFEST, "a", "b"}

@@ -4,7 +4,6 @@ returns, and a sweep runs through a Dask scheduler and worker started outside th
 from __future__ import annotations
 
 import os
-import socket
 import subprocess
 import sys
 import time
@@ -69,21 +68,21 @@ def test_sweep_with_two_workers_leaves_no_process_behind(tmp_path: Path) -> None
     assert not left, [" ".join(p.cmdline()) for p in left]
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+def _scheduler_address(path: Path, proc: subprocess.Popen[bytes],
+                       timeout: float = 60.0) -> str:
+    """The address a scheduler started with ``--port 0 --scheduler-file path`` wrote: the
+    system picks a free port as it binds (a port chosen here and bound later could be taken
+    meanwhile by another test of a parallel run)."""
+    import json
 
-
-def _wait_for_port(port: int, proc: subprocess.Popen[bytes], timeout: float = 60.0) -> None:
     t0 = time.monotonic()
     while time.monotonic() - t0 < timeout:
         assert proc.poll() is None, "the scheduler exited"
-        with socket.socket() as s:
-            if s.connect_ex(("127.0.0.1", port)) == 0:
-                return
-        time.sleep(0.1)
-    raise AssertionError(f"nothing listens on port {port} after {timeout} s")
+        try:
+            return str(json.loads(path.read_text())["address"])
+        except (OSError, ValueError, KeyError):
+            time.sleep(0.1)
+    raise AssertionError(f"no scheduler address in {path} after {timeout} s")
 
 
 def test_sweep_through_an_external_scheduler_and_worker(tmp_path: Path) -> None:
@@ -93,17 +92,16 @@ def test_sweep_through_an_external_scheduler_and_worker(tmp_path: Path) -> None:
 
     proto = tmp_path / "p.toml"
     proto.write_text(PROTO)
-    port = _free_port()
-    address = f"tcp://127.0.0.1:{port}"
     env = _env()
     quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "env": env,
              "cwd": tmp_path}
     scheduler = subprocess.Popen(
         [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
-         "--port", str(port), "--no-dashboard"], **quiet)
+         "--port", "0", "--scheduler-file", str(tmp_path / "scheduler.json"),
+         "--no-dashboard"], **quiet)
     worker = None
     try:
-        _wait_for_port(port, scheduler)
+        address = _scheduler_address(tmp_path / "scheduler.json", scheduler)
         worker = subprocess.Popen(
             [sys.executable, "-m", "distributed.cli.dask_worker", address, "--nthreads", "1",
              "--nworkers", "1", "--no-dashboard", "--host", "127.0.0.1"], **quiet)

@@ -79,14 +79,37 @@ def start_fork_server(preload: Sequence[str] = ()) -> bool:
     forkserver.set_forkserver_preload(["distributed", *preload])
     added = {k: v for k, v in WORKER_ENVIRON.items() if k not in os.environ}
     os.environ.update(added)  # the server inherits the environment when it starts
+    # A terminal's Ctrl-C reaches every process of its group. The server ignores SIGINT only
+    # once its imports are done (multiprocessing.forkserver.main), and they take a second or
+    # more: a Ctrl-C then printed its KeyboardInterrupt traceback above the line that says how
+    # to resume (tests/sweeps/test_sweep.py, the interrupt while the cluster starts). So it
+    # starts with SIGINT ignored, which it and the workers it forks inherit (an ignored
+    # signal stays ignored across exec; the workers ignore it anyway: _QuietWorker). Blocked
+    # meanwhile in this process, a Ctrl-C of this moment stays pending (Linux never discards a
+    # blocked signal as ignored) and reaches this process's own handler once it is restored;
+    # one pending already is discarded by SIG_IGN, so it is raised again. The resource
+    # tracker first: starting it unblocks SIGINT on its way out (multiprocessing's own guard)
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    here = threading.current_thread() is threading.main_thread()
+    if here:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        came = signal.SIGINT in signal.sigpending()
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         forkserver.ensure_running()
+        _FORK_SERVER["owned"] = True  # before a held Ctrl-C is raised: stopped with the rest
     except OSError:
         return False  # the workers are spawned instead: slower, not wrong
     finally:
         for k in added:
             os.environ.pop(k, None)
-    _FORK_SERVER["owned"] = True
+        if here:
+            signal.signal(signal.SIGINT, previous)
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+            if came:
+                signal.raise_signal(signal.SIGINT)
     return True
 
 
@@ -209,16 +232,14 @@ def start_client(scheduler: str | None, n_workers: int | None,
     Close it with :func:`close_client`. ``KeyboardInterrupt`` if Ctrl-C comes while it
     starts (after closing what was started).
     """
-    owned = False
-    if scheduler is None:
-        owned = start_fork_server(preload)
     try:
+        if scheduler is None:
+            start_fork_server(preload)
         if meanwhile is not None:
             meanwhile()
         return _start(scheduler, n_workers, connect_timeout)
     except BaseException:
-        if owned:
-            stop_fork_server()
+        stop_fork_server()  # the one this call started, if any (a Ctrl-C may come as it starts)
         raise
 
 
