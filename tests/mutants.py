@@ -969,6 +969,10 @@ MUTANTS: tuple[Mutant, ...] = (
        '(1.0 + mass * v * v / (ap * self.dc))',
        '(1.0 + mass * v * v / (self.a * self.dc))',
        'tests/rsf/test_law_edges.py'),
+    _m('law: hold peak second state no heal', 'rsf/law.py',
+       'th2 = None if self.dc2 is None else self.dc2 / v + heal',
+       'th2 = None if self.dc2 is None else self.dc2 / v',
+       'tests/rsf/test_law_edges.py'),
     _m("law: hopf at b == a' allowed", 'rsf/law.py',
        'if self.b <= ap:',
        'if self.b < ap:',
@@ -1078,6 +1082,22 @@ MUTANTS: tuple[Mutant, ...] = (
        '            object.__setattr__(self, "program", VelocityProg'
        'ram(self.program))\n\n\nDrive',
        'tests/ensemble/test_drives.py'),
+    _m('creep: age at T_v itself refused', 'theory/creep.py',
+       'over = (eps_b == e) & (T_b > t_v)',
+       'over = (eps_b == e) & (T_b >= t_v)',
+       'tests/theory/test_creep_edges.py'),
+    _m('creep: one T_v for every eps', 'theory/creep.py',
+       'over = (eps_b == e) & (T_b > t_v)',
+       'over = T_b > t_v',
+       'tests/theory/test_creep_edges.py'),
+    _m('creep: T_v without 1/eps', 'theory/creep.py',
+       'log_t = 1.0 / eps - math.log(eps) + math.log(gap)',
+       'log_t = 1.0 / eps + math.log(gap)',
+       'tests/theory/test_creep_edges.py'),
+    _m('creep: from_reduced without ln x', 'theory/creep.py',
+       'return cls(Y=Y, S=eps * Y, edot0=math.exp(-x - math.log(t0) - math.log(x)))',
+       'return cls(Y=Y, S=eps * Y, edot0=math.exp(-x - math.log(t0)))',
+       'tests/theory/test_creep_edges.py'),
     # --- end strengthen5A
 )
 
