@@ -1,0 +1,79 @@
+"""The numbers the figures compute before drawing (issue 25: a figure's secondary quantity
+with no check): the record figure's windowed velocity (least-squares slope per window) against
+the slopes put in and against np.polyfit; the fit figure's binning of big data (edges, the
+min/max envelope, the band and the run means) against loops written here."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+
+from dryfriction.plots.fits import _bin_edges, _draw_data, _envelope
+from dryfriction.plots.record import smoothed_velocity
+
+
+def test_smoothed_velocity_is_the_least_squares_slope_per_window() -> None:
+    rng = np.random.default_rng(11)
+    width = 2.5
+    slopes = np.array([3.1e-6, -0.7e-6, 0.0, 12.4e-6, 5.5e-6])
+    t = np.sort(rng.uniform(0.0, width * slopes.size, 400))
+    t = np.sort(np.r_[0.0, t[(t < 7.5) | (t >= 10.0)], 8.1, 9.3])  # window 3: two samples
+    knots = np.r_[0.0, np.cumsum(slopes * width)]  # x continuous, linear in each window
+    k = np.minimum((t // width).astype(int), slopes.size - 1)
+    x = 4.2e-3 + knots[k] + slopes[k] * (t - width * k)
+    tc, v = smoothed_velocity(t, x, width)
+    kept = [j for j in range(slopes.size) if np.sum(k == j) >= 3]
+    assert 3 not in kept and len(kept) == 4
+    np.testing.assert_allclose(v, slopes[kept], rtol=1e-6, atol=1e-12)
+    np.testing.assert_allclose(tc, [t[k == j].mean() for j in kept], rtol=1e-12)
+    # with noise, shifted by 101.3 s (not a whole number of windows: they start at the first
+    # sample): np.polyfit's slope in each window
+    y = x + 1e-7 * rng.standard_normal(t.size)
+    tc2, v2 = smoothed_velocity(t + 101.3, y, width)
+    want = [np.polyfit(t[k == j], y[k == j], 1)[0] for j in kept]
+    np.testing.assert_allclose(v2, want, rtol=1e-7)
+    np.testing.assert_allclose(tc2, np.asarray(tc) + 101.3, rtol=1e-12)
+
+
+def test_binning_edges_envelope_band_and_means() -> None:
+    np.testing.assert_array_equal(_bin_edges(10, 4), [0, 2, 5, 7, 10])
+    rng = np.random.default_rng(5)
+    n, bins = 103, 7
+    y = rng.standard_normal(n)
+    x = np.cumsum(rng.uniform(0.5, 1.5, n))
+    edges = _bin_edges(n, bins)
+    runs = [np.arange(a, b) for a, b in zip(edges[:-1], edges[1:], strict=True)]
+    want = sorted({int(r[np.argmin(y[r])]) for r in runs} | {int(r[np.argmax(y[r])]) for r in runs})
+    np.testing.assert_array_equal(_envelope(y, bins), want)
+    ax = Figure().subplots()
+    _draw_data(ax, x, y, None, bins, "data")
+    band = ax.collections[0]
+    (line,) = ax.lines
+    np.testing.assert_allclose(line.get_xdata(), [x[r].mean() for r in runs], rtol=1e-14)
+    np.testing.assert_allclose(line.get_ydata(), [y[r].mean() for r in runs], rtol=1e-12)
+    verts = band.get_paths()[0].vertices
+    lo = np.array([y[r].min() for r in runs])
+    hi = np.array([y[r].max() for r in runs])
+    for v in lo:
+        assert np.any(np.isclose(verts[:, 1], v, rtol=0, atol=1e-14))
+    assert verts[:, 1].max() == pytest.approx(hi.max()) and verts[:, 1].min() == pytest.approx(
+        lo.min())
+    assert set(np.round(verts[:, 1], 12)) <= set(np.round(np.r_[lo, hi], 12))
+    assert line.get_label() == f"data: mean per {n / bins:.3g} samples"
+
+
+def test_step_title_values_and_units() -> None:
+    """The step figure's title: velocities in um/s, Dc in um, k per metre, 4 digits; the
+    parameters not identified named on the second line (mistakes: Dc in mm, V in mm/s)."""
+    from dryfriction.plots.steps import step_title
+
+    row = {"index": 4, "kind": "step", "v_before": 3.3e-6, "v_after": 1.1e-5, "a": 0.0061237,
+           "b": float("nan"), "a_minus_b": float("nan"), "dc": 2.34567e-5, "stiffness": 4.4e3,
+           "rms": 0.00123, "flags": "not_identified:b;not_identified:a_minus_b"}
+    head, tail = step_title(row).split("\n")
+    assert head == ("step 4 (step): 3.3 -> 11 µm/s;  a = 0.006124, b = not identified, a-b = "
+                    "not identified, Dc = 23.46 µm, k = 4400 /m, rms = 0.0012")
+    assert tail == ("b, a_minus_b not identified; flags: not_identified:b; "
+                    "not_identified:a_minus_b")
+    assert "\n" not in step_title(dict(row, flags=""))
