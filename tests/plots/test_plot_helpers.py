@@ -77,3 +77,31 @@ def test_step_title_values_and_units() -> None:
     assert tail == ("b, a_minus_b not identified; flags: not_identified:b; "
                     "not_identified:a_minus_b")
     assert "\n" not in step_title(dict(row, flags=""))
+
+
+def test_bifurcation_upper_panel_axes_and_marks() -> None:
+    """bifurcation.png's K_c panel: each nature's points with its marker (a K_c not finite
+    drawn as a gap), a log axis only beyond a decade, units by law, one velocity padded x3."""
+    import math
+
+    from dryfriction.plots.hopf import plot_bifurcation
+
+    rows = [{"velocity": 2.3e-6, "K_c": 410.0, "relative_l1": -0.2, "nature": "supercritical"},
+            {"velocity": 7.9e-6, "K_c": 4700.0, "relative_l1": 0.03, "nature": "subcritical"},
+            {"velocity": 3.1e-5, "K_c": math.inf, "relative_l1": 0.0, "nature": "none"},
+            {"velocity": 9.0e-5, "K_c": 870.0, "relative_l1": 1e-9, "nature": "degenerate"}]
+    fig, axes = plot_bifurcation({"rows": rows})
+    marks = {ln.get_label(): (ln.get_marker(), list(ln.get_xdata()), list(ln.get_ydata()))
+             for ln in axes[0].get_lines()}
+    assert marks["supercritical"] == ("o", [2.3e-6], [410.0])
+    assert marks["subcritical"] == ("s", [7.9e-6], [4700.0])
+    assert marks["degenerate"] == ("D", [9.0e-5], [870.0])
+    assert marks["none"][0] == "x" and math.isnan(marks["none"][2][0])
+    assert axes[0].get_yscale() == "log"  # 410 .. 4700: beyond a decade
+    assert "[1/m]" in axes[0].get_ylabel() and "m/s" in axes[1].get_xlabel()
+    lin = [dict(r, K_c=r["K_c"] / 2.0 if r["K_c"] > 3000 else r["K_c"]) for r in rows]
+    assert plot_bifurcation({"rows": lin})[1][0].get_yscale() == "linear"  # 410 .. 2350
+    one = [dict(rows[0])]
+    _, ax1 = plot_bifurcation({"rows": one, "law": "trap"})
+    assert ax1[1].get_xlim() == pytest.approx((2.3e-6 / 3, 2.3e-6 * 3), rel=1e-12)
+    assert "a_0/t_0" in ax1[1].get_xlabel() or "a0/t0" in ax1[1].get_xlabel()
