@@ -105,3 +105,50 @@ def test_bifurcation_upper_panel_axes_and_marks() -> None:
     _, ax1 = plot_bifurcation({"rows": one, "law": "trap"})
     assert ax1[1].get_xlim() == pytest.approx((2.3e-6 / 3, 2.3e-6 * 3), rel=1e-12)
     assert "a_0/t_0" in ax1[1].get_xlabel() or "a0/t0" in ax1[1].get_xlabel()
+
+
+def test_run_figure_helpers_holds_gaps_and_the_hold_clock() -> None:
+    """The time-series figure's helpers: holds merged, the unsampled steps (no slip, longer
+    than 3 sliding steps, a change of y) broken, and the axis that draws long holds as bands
+    ``min(0.08, 0.3/n) x`` the sliding time wide, real time kept outside them."""
+    from dryfriction.plots.runs import (
+        HOLD_BAND,
+        _broken,
+        _friction_label,
+        _HoldClock,
+        _holds,
+        _unsampled,
+    )
+
+    t = np.array([0.0, 1.0, 2.0, 3.0, 50.0, 51.0, 52.0, 130.0, 131.0])
+    x = np.array([0.0, 0.5, 1.0, 1.0, 1.0, 1.5, 2.0, 2.0, 2.5])
+    y = np.array([1.0, 1.1, 1.2, 1.2, 0.9, 1.0, 1.1, 1.1, 1.2])
+    assert _holds(t, x) == [(2.0, 50.0), (52.0, 130.0)]  # the first two steps merged
+    np.testing.assert_array_equal(_unsampled(t, x, y), [3])  # 3 -> 50: y changes; 6 -> 7: not
+    assert _unsampled(t, x, np.where(t < 10, y, 1.2)).size == 0
+    # the bound: a still step longer than 3 median sliding steps (2.5 is not, 3.5 is)
+    tb = np.array([0.0, 1.0, 2.0, 4.5, 5.5, 9.0, 10.0])
+    xb = np.array([0.0, 0.5, 1.0, 1.0, 1.5, 1.5, 2.0])
+    np.testing.assert_array_equal(_unsampled(tb, xb, np.arange(7.0)), [4])
+    u, yy = _broken(t, y, np.array([3]))
+    assert np.isnan(u[4]) and np.isnan(yy[4]) and u.size == t.size + 1
+    np.testing.assert_array_equal(u[5:], t[4:])
+    clock = _HoldClock(t, _holds(t, x))
+    sliding = 131.0 - (48.0 + 78.0)  # 5 of sliding, 126 held
+    w = min(HOLD_BAND, 0.3 / 2) * sliding
+    assert HOLD_BAND == 0.08 and clock.bands == [(2.0, 50.0), (52.0, 130.0)]
+    s = clock.forward(np.array([0.0, 2.0, 50.0, 51.0, 52.0, 130.0, 131.0, 140.0, -1.0]))
+    np.testing.assert_allclose(s, [0.0, 2.0, 2.0 + w, 3.0 + w, 4.0 + w, 4.0 + 2 * w,
+                                   5.0 + 2 * w, 14.0 + 2 * w, -1.0], rtol=1e-14, atol=1e-14)
+    np.testing.assert_allclose(clock.inverse(s), [0.0, 2.0, 50.0, 51.0, 52.0, 130.0, 131.0,
+                                                  140.0, -1.0], rtol=1e-14, atol=1e-13)
+    # four holds: each band 0.3/4 = 0.075 (< 0.08) of the sliding time wide
+    t4 = np.array([0.0, 1.0, 30.0, 31.0, 60.0, 61.0, 90.0, 91.0, 120.0, 121.0])
+    x4 = np.array([0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 5.0])
+    c4 = _HoldClock(t4, _holds(t4, x4))
+    assert len(c4.bands) == 4
+    assert float(c4.forward(121.0)) == pytest.approx(5.0 + 4 * 0.075 * 5.0, rel=1e-14)
+    # holds shorter than the sliding: real time throughout
+    assert _HoldClock(t[:4], _holds(t[:4], x[:4])).bands == []
+    assert _friction_label(1.0) == r"friction $F/F_{el}$"
+    assert "= 0.45" in _friction_label(0.45)
