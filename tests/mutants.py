@@ -1472,6 +1472,20 @@ MUTANTS: tuple[Mutant, ...] = (
        'if holds and 0.0 < span - held < held:',
        'if holds and 0.0 < span - held:',
        'tests/plots/test_plot_helpers.py'),
+    _m('warm: a cache as new as its source is stale', 'warm.py',
+       'fresh = any(p.stat().st_mtime >= mtime',
+       'fresh = any(p.stat().st_mtime > mtime',
+       'tests/test_warm.py'),
+    _m('warm: a missing source reported', 'warm.py',
+       '        except OSError:\n            continue',
+       '        except OSError:\n            missing.append(rel)\n            continue',
+       'tests/test_warm.py'),
+    _m('warm: the force drive not warmed', 'warm.py',
+       '    {"model": _TRAP_MODEL, "ensemble": _TRAP_ENSEMBLE,\n     '
+       '"drive": {"kind": "force", "rate": 0.5, "max_force": 0.3}, "'
+       'output": {"every": 0.1}},\n',
+       '',
+       'tests/test_warm.py'),
     # --- end strengthen5A
 )
 
