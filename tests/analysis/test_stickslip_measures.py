@@ -104,3 +104,34 @@ def test_transient_is_a_drift_of_the_drops_beyond_30_percent(growth: float, kind
     t, x, v, y = _ramps(drops, [6.0] * k, [0.5] * k)
     st = analyse(t, x, v, y, u=0.083, floor=1e-3, rel_threshold=0.3)
     assert st.events == k and st.kind == kind
+
+
+def test_summarise_reads_a_spring_run_after_half_its_travel() -> None:
+    """summarise: the spring force ``mu_el K (X_pull - X)``, the transient at half the
+    load-point travel by default (an explicit one up to, not including, the travel), ``u`` the
+    last segment's velocity; each number against analyse called on the same samples."""
+    from types import SimpleNamespace
+
+    from dryfriction.analysis.stickslip import summarise
+    from dryfriction.ensemble.drives import SpringDrive
+    from dryfriction.ensemble.population import Track, TrapModel
+    from dryfriction.program import Segment, VelocityProgram
+
+    t, x, _, _ = _ramps([0.2, 0.3, 0.25, 0.2, 0.3, 0.25, 0.22],
+                        [5.0, 7.0, 6.0, 5.5, 7.5, 6.0, 6.5], [0.4] * 7)
+    u, k, mu_el = 0.083, 0.7, 0.45
+    drive = SpringDrive(stiffness=k, mass=0.0, program=VelocityProgram(
+        [Segment(0.02, duration=1.0), Segment(u, duration=float(t[-1]) - 1.0)]))
+    x_pull = 0.3 + u * t
+    res = SimpleNamespace(t=t, x=x, v=np.gradient(x, t), x_pull=x_pull)
+    model = TrapModel(eps=0.04, mu_el=mu_el)
+    got = summarise(res, drive, model, Track(50.0), floor=2e-3)  # type: ignore[arg-type]
+    travel = x_pull - x_pull[0]
+    t_half = float(np.interp(0.5 * travel[-1], travel, t))
+    want = analyse(t, x, res.v, mu_el * k * (x_pull - x), u=u, t_start=t_half, floor=2e-3)
+    assert got == {**want.to_dict(), "u": u, "stiffness": k}
+    summarise(res, drive, model, Track(50.0), transient=0.9 * float(travel[-1]),  # type: ignore[arg-type]
+              floor=2e-3)
+    with pytest.raises(ValueError, match=r"^stickslip\.transient = .* a0 is not allowed: less "
+                                         "than the load-point travel"):
+        summarise(res, drive, model, Track(50.0), transient=float(travel[-1]), floor=2e-3)  # type: ignore[arg-type]
