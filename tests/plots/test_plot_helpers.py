@@ -152,3 +152,41 @@ def test_run_figure_helpers_holds_gaps_and_the_hold_clock() -> None:
     assert _HoldClock(t[:4], _holds(t[:4], x[:4])).bands == []
     assert _friction_label(1.0) == r"friction $F/F_{el}$"
     assert "= 0.45" in _friction_label(0.45)
+
+
+def test_paper_figures_3_and_5_draw_their_functions() -> None:
+    """Fig. 3 and 5: each eps's curve is mu_s(T) (mu_d(u)) of that model, the dashes the
+    first-order expansion with the legend's "within" its largest gap, the dotted lines the
+    low-velocity expansion over u <= 1 only (mistakes: the expansion drawn over the whole
+    range, the gap of the last curve only)."""
+    from dryfriction.plots import paper
+    from dryfriction.theory.model import TrapModel
+    from dryfriction.theory.static import static_friction, static_friction_first_order
+    from dryfriction.theory.steady import steady_friction, steady_friction_low_velocity
+
+    eps = (0.047, 0.013)  # the larger gap first
+    _, ax = paper.fig3_static_friction(alpha=0.11, eps_values=eps, T_range=(0.03, 70.0), n=13)
+    T = np.logspace(np.log10(0.03), np.log10(70.0), 13)
+    lines = [ln for ln in ax.get_lines() if len(ln.get_xdata()) == 13]
+    assert len(lines) == 4
+    gap = 0.0
+    for k, e in enumerate(eps):
+        m = TrapModel(0.11, e)
+        np.testing.assert_allclose(lines[2 * k].get_ydata(), static_friction(m, T), rtol=1e-14)
+        first = static_friction_first_order(m, T)
+        np.testing.assert_allclose(lines[2 * k + 1].get_ydata(), first, rtol=1e-14)
+        gap = max(gap, float(np.max(np.abs(first - static_friction(m, T)))))
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert f"first order, eq. 28 (within {gap:.1g})" in labels
+    _, ax = paper.fig5_steady_friction(alpha=0.11, eps_values=eps, u_range=(0.02, 30.0), n=11)
+    u = np.logspace(np.log10(0.02), np.log10(30.0), 11)
+    dotted = [ln for ln in ax.get_lines() if ln.get_linestyle() == ":"]
+    assert len(dotted) == 2
+    for ln, e in zip(dotted, eps, strict=True):
+        m = TrapModel(0.11, e)
+        np.testing.assert_array_equal(ln.get_xdata(), u[u <= 1.0])
+        np.testing.assert_allclose(ln.get_ydata(), steady_friction_low_velocity(m, u[u <= 1.0]),
+                                   rtol=1e-14)
+    solid = [ln for ln in ax.get_lines() if ln.get_linestyle() == "-" and len(ln.get_xdata()) == 11]
+    np.testing.assert_allclose(solid[1].get_ydata(), steady_friction(TrapModel(0.11, 0.013), u),
+                               rtol=1e-14)
