@@ -187,3 +187,21 @@ def test_parameter_check_and_declared_default() -> None:
     assert val.declared({"k": p}, "k").default == 2.0
     req = val.declared({"r": val.Parameter("r")}, "r")
     assert req.default is dataclasses.MISSING
+
+
+def test_the_declared_limits_and_the_model_objects_that_read_them() -> None:
+    """The limits as their docstrings state them (the model tables read them, so a table-driven
+    test of the tables cannot see a limit that moved), each seen through a model object."""
+    from dryfriction.rsf.law import RateState
+    from dryfriction.theory.model import TrapModel
+
+    assert (val.EPS_MAX, val.U_MIN, val.U_MAX, val.T_MAX, val.FRICTION_MAX) == (
+        1.0, 1e-30, 1e30, 1e30, 10.0)
+    assert TrapModel(eps=1.0).eps == 1.0 and TrapModel(mu_el=10.0).mu_el == 10.0
+    assert TrapModel(v_ref=1e-30).v_ref == 1e-30 and TrapModel(v_ref=1e30).v_ref == 1e30
+    for kw in ({"eps": 1.0 + 1e-9}, {"mu_el": 10.0 + 1e-9}, {"v_ref": 0.99e-30}):
+        with pytest.raises(ValueError, match=f"^{next(iter(kw))} = "):
+            TrapModel(**kw)
+    assert RateState(0.01, 0.012, 1e-5, -10.0, 1e-6).mu0 == -10.0
+    with pytest.raises(ValueError, match="^mu0 = "):
+        RateState(0.01, 0.012, 1e-5, 10.0 + 1e-9, 1e-6)
