@@ -74,3 +74,34 @@ def test_velocity_drive_speeds() -> None:
         VelocityDrive([Segment(1.0, 1.0), Segment(1.01 * U_MAX, 1.0)])  # type: ignore[arg-type]
     with pytest.raises(ValueError, match=r"segments\[0\]\.velocity = -9\.9e-31 a0/t0"):
         VelocityDrive([Segment(-0.99 * U_MIN, 1.0)])  # type: ignore[arg-type]
+
+
+def test_initial_population_defaults_and_ranges() -> None:
+    """What a run starts from: rest by default; a loaded start's force in (-1, 1) open at both
+    ends (a down-load allowed), a steady start's velocity in [U_MIN, U_MAX]; each value only
+    with its kind."""
+    from dryfriction.ensemble.population import Initial, Track
+
+    d = Initial()
+    assert (d.kind, d.force, d.velocity, d.track) == ("rest", None, None, None)
+    assert Initial("loaded", force=-0.999).force == -0.999
+    assert Initial("loaded", force=0.999).force == 0.999
+    for f in (-1.0, 1.0):
+        with pytest.raises(ValueError, match="^initial_force = "):
+            Initial("loaded", force=f)
+    assert Initial("steady", velocity=U_MIN).velocity == U_MIN
+    assert Initial("steady", velocity=U_MAX).velocity == U_MAX
+    with pytest.raises(ValueError, match="^initial_velocity = "):
+        Initial("steady", velocity=0.5 * U_MIN)
+    with pytest.raises(ValueError, match="initial_force applies only to initial = 'loaded', "
+                                         "not 'steady'"):
+        Initial("steady", force=0.2, velocity=1.0)
+    with pytest.raises(ValueError, match="initial_velocity applies only to initial = 'steady'"):
+        Initial("rest", velocity=1.0)
+    with pytest.raises(ValueError, match="initial_force is required"):
+        Initial("loaded")
+    with pytest.raises(ValueError, match="initial_velocity is required"):
+        Initial("steady")
+    with pytest.raises(ValueError, match="track = 100.0 is not allowed: a Track"):
+        Initial(track=100.0)  # type: ignore[arg-type]
+    assert Initial(track=Track(50.0)).track == Track(50.0)
