@@ -1648,6 +1648,18 @@ MUTANTS: tuple[Mutant, ...] = (
        'm = check_scalar("mass", self.mass, MASS_MIN)',
        'm = check_scalar("mass", self.mass, 0.0, lo_open=True)',
        'tests/ensemble/test_interface_inputs.py'),
+    _m('spring: t_eval beyond the program kept', 'rsf/spring.py',
+       'return check_range("t_eval", self.t_eval, 0.0, total)',
+       'return check_range("t_eval", self.t_eval, 0.0)',
+       'tests/rsf/test_law_edges.py'),
+    _m("spring: t_eval at the program's end refused", 'rsf/spring.py',
+       'return check_range("t_eval", self.t_eval, 0.0, total)',
+       'return check_range("t_eval", self.t_eval, 0.0, total, hi_open=True)',
+       'tests/rsf/test_law_edges.py'),
+    _m('spring: every 0 accepted', 'rsf/spring.py',
+       'check_scalar("every", self.every, 0.0, lo_open=True))',
+       'check_scalar("every", self.every, 0.0))',
+       'tests/rsf/test_law_edges.py'),
     # --- end strengthen5A
     # --- interface sweeps (analysis/interface_sweep.py, app/sweeps.py; interface4)
     _m("interface sweep: spanning counted as the arrested events", "analysis/interface_sweep.py",

@@ -126,3 +126,18 @@ def test_machine_ranges_and_initial_defaults() -> None:
     with pytest.raises(ValueError, match=r"segments\[1\]\.velocity = 0 m/s is out of range"):
         holding.check_model(p)
     holding.check_model(RateState(A, B, DC, MU0, V0, regularized=True))
+
+
+def test_t_eval_within_the_program_both_ends() -> None:
+    prog = VelocityProgram([Segment(VL, 2.2), Segment(2 * VL, 2.8)])
+    te = RSFOutput(t_eval=[0.0, 1.3, 5.0]).times(prog)
+    np.testing.assert_array_equal(te, [0.0, 1.3, 5.0])  # both ends of the program allowed
+    with pytest.raises(ValueError, match=r"^t_eval = 5\.01 is out of range: allowed finite and "
+                                         r">= 0 and <= 5$"):
+        RSFOutput(t_eval=[1.0, 5.01]).times(prog)
+    with pytest.raises(ValueError, match="^t_eval = -0.1 is out of range"):
+        RSFOutput(t_eval=[-0.1, 1.0])
+    with pytest.raises(ValueError, match="give at most one of every"):
+        RSFOutput(every=0.5, t_eval=[1.0])
+    with pytest.raises(ValueError, match="^every = 0 is out of range"):
+        RSFOutput(every=0.0)
