@@ -297,7 +297,8 @@ def test_the_layer_check_can_fail(tmp_path):
 # tests (results.py's tables) stay at the top of tests/; everything else mirrors a package
 ROOT_TESTS = {"test_layers", "test_packaging", "test_docs", "test_doc_paths", "test_readme",
               "test_startup", "test_benchmarks", "test_mutants_list", "test_tables", "test_compat",
-              "test_simulator_shape"}  # simulation.py, and no old simulator form anywhere
+              "test_simulator_shape",  # simulation.py, and no old simulator form anywhere
+              "test_program", "test_validation", "test_warm"}  # program.py, validation.py, warm.py
 
 
 def test_the_tests_mirror_the_packages() -> None:

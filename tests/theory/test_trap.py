@@ -154,3 +154,26 @@ def test_largest_force_before_spinodal(alpha):
     y_m = (1 - 2 * alpha) / (4 * alpha)
     assert y[np.argmax(f)] == pytest.approx(y_m, abs=1e-3 * (1 + trap.y_c))
     assert trap.f_c <= trap.f_max
+
+
+def test_alpha_one_itself_does_not_pin_and_the_summary_is_the_properties() -> None:
+    """alpha = 1 is the no-pinning regime's edge (Tomlinson: pinning for alpha < 1): no
+    spinodal, H0 = 0, infinite contact stiffness; just below it every constant is finite.
+    The summary's entries are the properties (mistake: a key reporting another one)."""
+    import math
+
+    t = Trap(1.0)
+    assert not t.pinned and t.H0 == 0.0 and t.H1 == 0.0 and t.maxwell_jump == 0.0
+    assert math.isnan(t.y_c) and math.isnan(t.z_c) and math.isnan(t.f_c)
+    assert math.isnan(t.death_point) and t.contact_stiffness == math.inf
+    below = Trap(0.999)  # H0 ~ (1 - alpha)^3: rounds to 0 much closer to 1
+    assert below.pinned and below.H0 > 0.0 and math.isfinite(below.contact_stiffness)
+    g = Trap(0.37)
+    s = g.summary()
+    for k in ("y_c", "z_c", "f_c", "f_max", "death_point", "maxwell_point", "maxwell_jump",
+              "H0", "H1", "contact_stiffness"):
+        assert s[k] == getattr(g, k), k
+    assert s["alpha"] == 0.37 and s["alpha0"] == ALPHA0 and s["regime"] == "strong pinning"
+    assert g.beta == pytest.approx(6 * 0.37, rel=1e-15)
+    z = np.array([-0.9, -0.2, 0.45])
+    np.testing.assert_allclose(g.energy(z, 0.3), psi(z) + 3 * 0.37 * (z - 0.3) ** 2, rtol=1e-15)
