@@ -161,7 +161,7 @@ OPTIONS: dict[str, dict[str, Option]] = {
         "hold": Option("--hold-time", 100.0, "0 < hold <= LOAD_MAX s"),
         "v_init": Option("--v-init", None, "0 < v_init <= V_MAX m/s; default v1 (1.01 v1 "
                          "for stick-slip)"),
-        "rtol": Option("--rtol", 1e-7, "0 < rtol <= 0.1"),
+        "rtol": Option("--rtol", 1e-7, "1e-13 <= rtol <= 0.01"),
     },
     "record": {"columns": Option("--columns", None, "a column map"),
                "segments": Option("--segments", None, "the load program; default detected"),

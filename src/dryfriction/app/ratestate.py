@@ -59,6 +59,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
     from ..program import Segment
     from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate
     from ..rsf.law import V_MAX, V_MIN, RateState
+    from ..rsf.spring import RTOL_RANGE
     from ..validation import check_choice, check_figure_format, check_scalar
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
@@ -86,7 +87,9 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
                          f"velocity, > 0 and <= {V_MAX:g} m/s (the state starts steady for it)")
     check_scalar("--damping", damping, 0.0, LOAD_MAX)
     check_scalar("--mass", mass, 0.0, LOAD_MAX)
-    check_scalar("--rtol", rtol, 0.0, 0.1, lo_open=True)
+    # the solver's own range (rsf.spring.RTOL_RANGE), named as typed: "0 < rtol <= 0.1" here
+    # once let 0.05 through to a second refusal with another range
+    check_scalar("--rtol", rtol, *RTOL_RANGE)
     params = RateState(a, b, dc, mu0, v0, state_law=state_law,  # type: ignore[arg-type]
                        regularized=regularized)
     if case == "step":

@@ -266,9 +266,12 @@ def is_ours(out: Path, rel: str, digest: str | None) -> bool:
         fd = os.open(path / parts[-1], os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
     except OSError:
         return False
+    # checked on the descriptor, before a file object: fdopen(..., "rb") of a folder raises
+    # IsADirectoryError (a folder made where a listed result was crashed the next run)
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        return False
     with os.fdopen(fd, "rb") as fh:
-        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-            return False
         return hashlib.file_digest(fh, "sha256").hexdigest() == digest
 
 
