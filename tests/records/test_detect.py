@@ -297,20 +297,20 @@ def test_zoo_subset_rates() -> None:
     """Every 10th zoo record (30, most with every artifact at once): the number of changes
     right on >= 29 (measured 30), false changes <= 1.5 % of those found (measured 0 %; 1.4 %,
     zoo_220's stop from 30 um/s placed 5.1 s late, before stops were placed with the servo's
-    relaxation), each change within max(1 sample, 0.5 s) on >= 28 (measured 29: zoo_100, a
-    slide-hold-slide at 0.13 um/s, its four changes placed 0.6-1.6 s off: 0.1-0.2 um of slip,
-    the white noise's size; each inside its 95 % interval and marked not placed). The issue's
-    target (>= 98 % with the times) is not met: see the next test."""
+    relaxation), each change within max(1 sample, 0.5 s) on >= 28 (measured 30; 29 before
+    the hold rule was on: zoo_100, a slide-hold-slide at 0.13 um/s, its four changes placed
+    0.6-1.6 s off, each inside its 95 % interval and marked not placed)."""
     count, right, false, bad = _zoo_rates(ZOO_SUBSET)
     assert count >= 29 / 30, bad
     assert right >= 28 / 30, bad
     assert false <= 0.015
 
 
-@pytest.mark.xfail(strict=True, reason="measured: 29 of this subset's 30 right (96.7 %; "
-                   "zoo_100, a slide-hold-slide at 0.13 um/s, its changes placed 0.6-1.6 s "
-                   "off, each marked not placed; false changes 0 %)")
 def test_zoo_subset_meets_the_issue_target() -> None:
+    """The issue's target (>= 98 % with the times, <= 1 % false) on this subset of 30
+    (measured: 30 right, 0 % false; the whole tuning range 0-299 gives 96.3 %, so the subset
+    is not the zoo). Mistake, seen failing: the hold rule off (HOLD_PLACED = False: zoo_100's
+    changes 1.1-3.2 tolerances off, 29 of 30)."""
     _, right, false, _ = _zoo_rates(ZOO_SUBSET)
     assert right >= 0.98 and false <= 0.01
 
