@@ -10,7 +10,8 @@ changed source is recompiled on its next use (and by the next ``make``, which re
 Each run below is tiny and goes through the same public path as a command (the protocol
 parser), so that every specialisation a command compiles is the one compiled here: the
 trap-model kernel for each creep law and each kind of drive, and the rate-and-state solver
-for each state law, one and two state variables, kinematic and spring machines, sampled and
+(one compiled kernel for every state law, which it takes as a parameter: two laws are run
+here), one and two state variables, kinematic and spring machines, sampled and
 every-step output, and its linear stability. A small rate-and-state run is interpreted
 (:mod:`dryfriction.rsf.stepper`); here every one runs compiled, so that a large one finds the
 compiled kernels cached.
