@@ -93,10 +93,12 @@ def test_segments_csv_of_a_force_record_gives_the_force_in_kn(tmp_path: Path) ->
     path.write_text("\n".join([lines[0] + "\tNormal_force(kN)"]
                               + [f"{ln}\t{f:.6f}" for ln, f in zip(lines[1:], force,
                                                                       strict=True)]) + "\n")
-    done = app.record(path, out=tmp_path / "out")  # detected: the segments carry the normal
-    assert done.record.normal_unit == "N" and len(done.segments) == 4
-    rows = list(csv.DictReader((tmp_path / "out" / "segments.csv").read_text().splitlines()[1:]))
-    assert "normal_force[kN]" in rows[0] and not any("normal_stress" in k for k in rows[0])
-    for r, s in zip(rows, done.segments, strict=True):
-        want = float(np.mean(force[s.i_start:s.i_end]))
-        assert float(r["normal_force[kN]"]) == pytest.approx(want, rel=1e-4)
+    for given in (None, PROGRAM):  # detected, and given with --segments
+        out = tmp_path / f"out{given is None}"
+        done = app.record(path, segments=given, out=out)
+        assert done.record.normal_unit == "N" and len(done.segments) == 4
+        rows = list(csv.DictReader((out / "segments.csv").read_text().splitlines()[1:]))
+        assert "normal_force[kN]" in rows[0] and not any("normal_stress" in k for k in rows[0])
+        for r, s in zip(rows, done.segments, strict=True):
+            want = float(np.mean(force[s.i_start:s.i_end]))
+            assert float(r["normal_force[kN]"]) == pytest.approx(want, rel=1e-4)
