@@ -58,6 +58,9 @@ _DIR = "tests/theory/test_direct.py"
 _DIN = "tests/ensemble/test_direct_inertia.py"
 _FRG = "tests/analysis/test_fronts_generic.py"
 _CRG = "tests/theory/test_creep_generic.py"
+_THG = "tests/analysis/test_trap_hopf_generic.py"
+_BFC = "tests/analysis/test_bifurcation_classify.py"
+_SFD = "tests/plots/test_step_figure_data.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2127,6 +2130,74 @@ MUTANTS: tuple[Mutant, ...] = (
        'k = parse_stiffness("inf" if value is None else value)',
        'k = parse_stiffness("fit" if value is None else value)',
        "tests/app/test_fit_dispatch.py"),
+    # --- strengthen6A (issue 25, sixth round): analysis/trap_hopf.py (death age and mu_age off
+    # steady sliding, the normal-form amplitudes, the nature), analysis/bifurcation.py
+    # (classify's thresholds and defaults), plots/steps.py (plot_step's drawn data)
+    _m("trap hopf: death age at r^2 instead of r", "analysis/trap_hopf.py",
+       "h = P @ vals - 1.0 - self.yc * np.sqrt(R)", "h = P @ vals - 1.0 - self.yc * R",
+       _THG),
+    _m("trap hopf: coverage sigma_tau taken as u (steady only)", "analysis/trap_hopf.py",
+       "np.sum(wq * dsig * R * _fplus", "np.sum(wq * self.u * R * _fplus", _THG),
+    _m("trap hopf: quadrature Jacobian without its 2", "analysis/trap_hopf.py",
+       "wq = t_end * 2.0 * (1.0 - self.s) * self.ws", "wq = t_end * (1.0 - self.s) * self.ws",
+       _THG),
+    _m("trap hopf: reduced coordinate over r^2", "analysis/trap_hopf.py",
+       "wv = (sig - 1.0) / np.sqrt(R)", "wv = (sig - 1.0) / R", _THG),
+    _m("trap hopf: Eyring-Nabarro radius not squared", "analysis/trap_hopf.py",
+       "return self.model.law.radius(np.real(tau)) ** 2",
+       "return self.model.law.radius(np.real(tau))", _THG),
+    _m("trap hopf: slip amplitude without its 2", "analysis/trap_hopf.py",
+       "return 2.0 * math.sqrt(r) if r > 0 else math.nan",
+       "return math.sqrt(r) if r > 0 else math.nan", _THG),
+    _m("trap hopf: a zero-amplitude cycle at K_c", "analysis/trap_hopf.py",
+       "return 2.0 * math.sqrt(r) if r > 0 else math.nan",
+       "return 2.0 * math.sqrt(r) if r >= 0 else math.nan", _THG),
+    _m("trap hopf: force amplitude at K_c's stiffness", "analysis/trap_hopf.py",
+       "return K * self.slip_amplitude(K)", "return self.K_c * self.slip_amplitude(K)", _THG),
+    _m("trap hopf: beta of the wrong sign", "analysis/trap_hopf.py",
+       "beta = self.dbeta_dK * (K - self.K_c)", "beta = self.dbeta_dK * (self.K_c - K)", _THG),
+    _m("trap hopf: amplitude without omega", "analysis/trap_hopf.py",
+       "r = -beta / (self.omega * self.l1_x)", "r = -beta / self.l1_x", _THG),
+    _m("trap hopf: degenerate below 1e-6", "analysis/trap_hopf.py",
+       "if abs(self.relative_l1) < 1e-8:", "if abs(self.relative_l1) < 1e-6:", _THG),
+    _m("trap hopf: degenerate without abs", "analysis/trap_hopf.py",
+       "if abs(self.relative_l1) < 1e-8:", "if self.relative_l1 < 1e-8:", _THG),
+    _m("trap hopf: nature none only for NaN", "analysis/trap_hopf.py",
+       "if not math.isfinite(self.K_c):", "if math.isnan(self.K_c):", _THG),
+    _m("classify: exponent over the largest distances", "analysis/bifurcation.py",
+       "if r[\"d\"] > 0.0 and r[\"amplitude\"] > thr)[:n_fit]",
+       "if r[\"d\"] > 0.0 and r[\"amplitude\"] > thr)[-n_fit:]", _BFC),
+    _m("classify: the floor threshold itself fitted", "analysis/bifurcation.py",
+       "if r[\"d\"] > 0.0 and r[\"amplitude\"] > thr)[:n_fit]",
+       "if r[\"d\"] > 0.0 and r[\"amplitude\"] >= thr)[:n_fit]", _BFC),
+    _m("classify: d = 0 fitted", "analysis/bifurcation.py",
+       "if r[\"d\"] > 0.0 and r[\"amplitude\"] > thr)[:n_fit]",
+       "if r[\"d\"] >= 0.0 and r[\"amplitude\"] > thr)[:n_fit]", _BFC),
+    _m("classify: K = K_c not a hysteresis point", "analysis/bifurcation.py",
+       "hyst = [r[\"d\"] for r in scan[\"up\"] if r[\"d\"] <= 0.0",
+       "hyst = [r[\"d\"] for r in scan[\"up\"] if r[\"d\"] < 0.0", _BFC),
+    _m("classify: no trend taken as decaying", "analysis/bifurcation.py",
+       "and r.get(\"trend\", 1.0) > decaying]", "and r.get(\"trend\", 0.0) > decaying]", _BFC),
+    _m("classify: the decaying trend itself counted", "analysis/bifurcation.py",
+       "and r.get(\"trend\", 1.0) > decaying]", "and r.get(\"trend\", 1.0) >= decaying]", _BFC),
+    _m("classify: floor factor 10 by default", "analysis/bifurcation.py",
+       "def classify(scan: dict[str, Any], factor: float = 5.0,",
+       "def classify(scan: dict[str, Any], factor: float = 10.0,", _BFC),
+    _m("classify: n_fit 5 by default", "analysis/bifurcation.py",
+       "factor: float = 5.0, n_fit: int = 4,", "factor: float = 5.0, n_fit: int = 5,", _BFC),
+    _m("classify: decaying 0.8 by default", "analysis/bifurcation.py",
+       "             decaying: float = 0.9)", "             decaying: float = 0.8)", _BFC),
+    _m("plot_step: time from the record's origin", "plots/steps.py",
+       "    t = d.t - d.t[0]\n", "    t = d.t\n", _SFD),
+    _m("plot_step: displacement in mm", "plots/steps.py",
+       "x_um = load_point_displacement(d) * 1e6", "x_um = load_point_displacement(d) * 1e3",
+       _SFD),
+    _m("plot_step: residual fit - data", "plots/steps.py",
+       "bot.scatter(xv, d.mu - model, **_DATA)", "bot.scatter(xv, model - d.mu, **_DATA)",
+       _SFD),
+    _m("plot_step: others drawn without their label", "plots/steps.py",
+       "top.plot(xv, curve, label=name, **style)", "top.plot(xv, curve, **style)", _SFD),
+    # --- end strengthen6A
 )
 
 

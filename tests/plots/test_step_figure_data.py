@@ -1,0 +1,50 @@
+"""plot_step's drawn data (dryfriction.plots.steps): on a window whose time does not start at
+0 and whose load velocity changes (a down-step), the left column is drawn against the load-point
+displacement in µm (integral of v_load written here), the right against t - t_start in s; the
+data, the fit, the residual (data - fit) and the others' curves are the arrays given."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from dryfriction.plots.steps import plot_step
+from dryfriction.records.data import SeriesData
+
+
+def test_plot_step_draws_displacement_time_fit_and_residuals() -> None:
+    t = 417.3 + np.linspace(0.0, 6.0, 61)  # time does not start at 0
+    v = np.where(t - t[0] < 2.5, 3.1e-6, 0.7e-6)  # a down-step at 2.5 s
+    mu = 0.6 + 0.01 * np.sin(t)
+    data = SeriesData(t=t, v_load=v, mu=mu)
+    model = 0.6 + 0.009 * np.sin(t + 0.1)
+    trap = 0.6 + 0.008 * np.cos(t)
+    row = {"index": 2, "kind": "step", "v_before": 3.1e-6, "v_after": 0.7e-6, "a": 0.01,
+           "b": 0.012, "a_minus_b": -0.002, "dc": 1.3e-5, "stiffness": 3.0e3, "rms": 1e-3,
+           "flags": ""}
+    res = SimpleNamespace(data=[None, None, data], rows=[None, None, row],
+                          model_curve=lambda i: model)
+    fig, axes = plot_step(res, 2, others={"trap model": trap})
+    # the displacement: sum of v dt of the load program, from the window's start, in µm
+    tt = t - t[0]
+    x_ref = np.where(tt < 2.5, 3.1 * tt, 3.1 * 2.5 + 0.7 * (tt - 2.5))
+    for col, xv in ((0, x_ref), (1, tt)):
+        top, bot = axes[0, col], axes[1, col]
+        pts = top.collections[0].get_offsets()
+        np.testing.assert_allclose(pts[:, 0], xv, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(pts[:, 1], mu, rtol=1e-12)
+        fit, other = top.get_lines()
+        assert fit.get_label() == "fit (rsf)" and other.get_label() == "trap model"
+        np.testing.assert_allclose(fit.get_xdata(), xv, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(fit.get_ydata(), model, rtol=1e-12)
+        np.testing.assert_allclose(other.get_ydata(), trap, rtol=1e-12)
+        r = bot.collections[0].get_offsets()
+        np.testing.assert_allclose(r[:, 1], mu - model, rtol=1e-9, atol=1e-15)
+        assert bot.get_lines()[0].get_ydata()[0] == 0.0
+    assert "µm" in axes[1, 0].get_xlabel() and "t_{start}" in axes[1, 1].get_xlabel()
+    assert "residual" == axes[1, 0].get_ylabel()
+    # without others the fit is labelled plainly
+    _, ax2 = plot_step(res, 2)
+    assert [ln.get_label() for ln in ax2[0, 0].get_lines()] == ["fit"]
+    assert fig._suptitle.get_text().startswith("step 2 (step): 3.1 -> 0.7 µm/s")
