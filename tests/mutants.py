@@ -61,6 +61,7 @@ _CRG = "tests/theory/test_creep_generic.py"
 _THG = "tests/analysis/test_trap_hopf_generic.py"
 _BFC = "tests/analysis/test_bifurcation_classify.py"
 _SFD = "tests/plots/test_step_figure_data.py"
+_RFD = "tests/plots/test_record_figure_data.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2197,6 +2198,34 @@ MUTANTS: tuple[Mutant, ...] = (
        _SFD),
     _m("plot_step: others drawn without their label", "plots/steps.py",
        "top.plot(xv, curve, label=name, **style)", "top.plot(xv, curve, **style)", _SFD),
+    _m("record.png: smoothed velocity against record time", "plots/record.py",
+       "ax.plot(tv - t0, v * 1e6,", "ax.plot(tv, v * 1e6,", _RFD),
+    _m("record.png: velocity windows of span/200", "plots/record.py",
+       "width = max(span / 400.0,", "width = max(span / 200.0,", _RFD),
+    _m("record.png: program drawn in record time", "plots/record.py",
+       "ax.plot([s.t_start - t0, s.t_end - t0], [s.velocity * 1e6] * 2,",
+       "ax.plot([s.t_start, s.t_end], [s.velocity * 1e6] * 2,", _RFD),
+    _m("record.png: symlog beyond x 50", "plots/record.py",
+       "if speeds and max(speeds) / min(speeds) > 30.0:",
+       "if speeds and max(speeds) / min(speeds) > 50.0:", _RFD),
+    _m("record.png: symlog threshold at the fastest speed", "plots/record.py",
+       "linthresh=min(speeds) * 1e6)", "linthresh=max(speeds) * 1e6)", _RFD),
+    _m("record.png: velocity axis from 0", "plots/record.py",
+       "ax.set_ylim(-0.15 * vmax, 1.5 * vmax)", "ax.set_ylim(0.0, 1.5 * vmax)", _RFD),
+    _m("record.png: a normal-force boundary shaded", "plots/record.py",
+       "continue  # a boundary set by the normal stress alone",
+       "pass  # a boundary set by the normal stress alone", _RFD),
+    _m("record.png: shading in record time", "plots/record.py",
+       "a.axvspan(s.t_start - t0, s.t_end - t0,", "a.axvspan(s.t_start, s.t_end,", _RFD),
+    _m("record.png: marks in record time", "plots/record.py",
+       "a.axvline(tm - t0, color=color,", "a.axvline(tm, color=color,", _RFD),
+    _m("record.png: normal force N -> kN by 1e-6", "plots/record.py",
+       "else (\"kN\", 1e-3)", "else (\"kN\", 1e-6)", _RFD),
+    _m("record.png: velocity changes counted over all segments", "plots/record.py",
+       "n_steps = sum(1 for j in info.shaded if segments[j].velocity != 0.0)",
+       "n_steps = sum(1 for s in segments if s.velocity != 0.0)", _RFD),
+    _m("record.png: friction against record time", "plots/record.py",
+       "axes[1].scatter(t - t0, record.friction,", "axes[1].scatter(t, record.friction,", _RFD),
     # --- end strengthen6A
 )
 

@@ -1,0 +1,89 @@
+"""record.png's drawn data (dryfriction.plots.record.plot_record) on a synthetic record whose
+time starts at 1234.5 s, with a down-step, a hold and a boundary set by the normal force alone
+(in N): every panel drawn from the first sample, the velocity in µm/s, the program's segments
+at their velocity, the shading and marks where the segments and the detector put them, the
+normal force in kN; the velocity axis linear or symmetric-log on either side of its x 30 rule."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from dryfriction.plots.record import plot_record
+from dryfriction.records.record import LabRecord
+
+T0 = 1234.5
+
+
+def _record(v_fast: float, v_slow: float) -> tuple[LabRecord, list[SimpleNamespace]]:
+    t = T0 + np.arange(6001) * 0.1  # 600 s
+    tt = t - T0
+    edges = [0.0, 200.0, 300.0, 450.0, 600.0]
+    vel = [v_fast, 0.0, v_slow, v_slow]
+    k = np.minimum(np.searchsorted(edges, tt, side="right") - 1, 3)
+    x_edges = np.r_[0.0, np.cumsum(np.diff(edges) * vel)]
+    x = 7.3e-3 + x_edges[k] + np.asarray(vel)[k] * (tt - np.asarray(edges)[k])
+    normal = np.where(tt < 450.0, 2.7e3, 3.1e3)  # N
+    rec = LabRecord(source="synthetic.txt", time=t, load_point=x, load_velocity=None,
+                    friction=0.6 + 0.01 * np.sin(tt), normal_stress=normal, normal_unit="N",
+                    columns={}, first_line=0)
+    segs = [SimpleNamespace(t_start=T0 + a, t_end=T0 + b, velocity=v, start_placed=True)
+            for a, b, v in zip(edges[:-1], edges[1:], vel, strict=True)]
+    return rec, segs
+
+
+def test_record_figure_draws_the_program_shading_marks_and_normal_force() -> None:
+    rec, segs = _record(2.3e-6, 0.41e-6)
+    det = SimpleNamespace(rate_changes=[T0 + 200.0, T0 + 300.0], gaps=[T0 + 77.7], resets=[],
+                          normal_changes=[T0 + 450.0])
+    fig, info = plot_record(rec, segs, det)
+    ax_v, ax_f, ax_n = (fig.axes[info.panels.index(p)] for p in ("velocity", "friction",
+                                                                 "normal"))
+    # the smoothed velocity: windows of max(600/400, 3 x 0.1) = 1.5 s, from the first sample
+    lines = [ln for ln in ax_v.get_lines() if np.asarray(ln.get_xdata()).size > 50]
+    assert len(lines) == 1 and "slope over 1.5 s" in lines[0].get_label()
+    xv, yv = (np.asarray(a, float) for a in lines[0].get_data())
+    assert 0.0 <= xv.min() < 1.5 and 598.5 < xv.max() <= 600.0
+    inside = (xv > 2.0) & (xv < 198.0)
+    np.testing.assert_allclose(yv[inside], 2.3, rtol=1e-6)
+    np.testing.assert_allclose(yv[(xv > 302.0) & (xv < 598.0)], 0.41, rtol=1e-6)
+    # the program's segments at their velocity (µm/s), from the first sample
+    prog = sorted((tuple(ln.get_xdata()), tuple(ln.get_ydata())) for ln in ax_v.get_lines()
+                  if len(ln.get_xdata()) == 2 and ln.get_color() == "C3")
+    assert prog == sorted(((a - T0, b - T0), (v * 1e6, v * 1e6)) for a, b, v in
+                          ((s.t_start, s.t_end, s.velocity) for s in segs))
+    assert ax_v.get_yscale() == "linear"
+    assert ax_v.get_ylim() == pytest.approx((-0.15 * 2.3, 1.5 * 2.3), rel=1e-12)
+    # shaded: the hold and the down-step; not segment 0, not the normal-force boundary
+    assert info.shaded == [1, 2]
+    for name in info.panels:
+        spans = [(p.get_x(), p.get_x() + p.get_width()) for p in info.artists[name]]
+        np.testing.assert_allclose(spans, [(200.0, 300.0), (300.0, 450.0)], atol=1e-9)
+    assert "1 velocity change(s), 1 hold(s)" in fig._suptitle.get_text()
+    # marks at record time - t0 on every panel, reported in record time
+    for a in (ax_v, ax_f, ax_n):
+        marked = sorted(float(ln.get_xdata()[0]) for ln in a.get_lines()
+                        if ln.get_linestyle() in (":", "--", "-."))
+        assert marked == pytest.approx([77.7, 200.0, 300.0, 450.0], abs=1e-9)
+    assert info.marks == {"rate change": [T0 + 200.0, T0 + 300.0], "gap": [T0 + 77.7],
+                          "normal change": [T0 + 450.0]}
+    # friction and normal force against t - t0; the force in kN under a kN label
+    np.testing.assert_allclose(ax_f.collections[0].get_offsets()[:, 0], rec.time - T0,
+                               atol=1e-9)
+    normal = [ln for ln in ax_n.get_lines() if np.asarray(ln.get_xdata()).size == rec.time.size]
+    np.testing.assert_allclose(normal[0].get_ydata(), rec.normal_stress * 1e-3, rtol=1e-12)
+    assert ax_n.get_ylabel() == "normal force  [kN]"
+    assert f"t0 = {T0:g} s" in fig.axes[-1].get_xlabel()
+
+
+@pytest.mark.parametrize("slow, log", [(2.3e-6 / 25.0, False), (2.3e-6 / 40.0, True)])
+def test_record_velocity_axis_symlog_beyond_a_ratio_of_30(slow: float, log: bool) -> None:
+    rec, segs = _record(2.3e-6, slow)
+    fig, info = plot_record(rec, segs, None)
+    ax = fig.axes[info.panels.index("velocity")]
+    assert ax.get_yscale() == ("symlog" if log else "linear")
+    if log:
+        assert ax.yaxis.get_transform().linthresh == pytest.approx(slow * 1e6, rel=1e-12)
+    assert info.marks == {}
