@@ -61,6 +61,7 @@ _CRG = "tests/theory/test_creep_generic.py"
 _THG = "tests/analysis/test_trap_hopf_generic.py"
 _BFC = "tests/analysis/test_bifurcation_classify.py"
 _SFD = "tests/plots/test_step_figure_data.py"
+_FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar_and_limits"
 _RFD = "tests/plots/test_record_figure_data.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
@@ -2226,6 +2227,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "n_steps = sum(1 for s in segments if s.velocity != 0.0)", _RFD),
     _m("record.png: friction against record time", "plots/record.py",
        "axes[1].scatter(t - t0, record.friction,", "axes[1].scatter(t, record.friction,", _RFD),
+    _m("space-time map: floor at threshold/10", "plots/fronts.py",
+       "floor = threshold / 100.0", "floor = threshold / 10.0", _FFG),
+    _m("space-time map: natural log of the rate", "plots/fronts.py",
+       "rate = np.log10(np.maximum(rate, floor))", "rate = np.log(np.maximum(rate, floor))",
+       _FFG),
+    _m("space-time map: limits at the outer centres", "plots/fronts.py",
+       "ax.set_xlim(st.x[0] - st.lengths[0] / 2, st.x[-1] + st.lengths[-1] / 2)",
+       "ax.set_xlim(st.x[0], st.x[-1])", _FFG),
+    _m("space-time map: time axis from 0", "plots/fronts.py",
+       "ax.set_ylim(st.t[0], st.t[-1])", "ax.set_ylim(0.0, st.t[-1])", _FFG),
+    _m("space-time map: colour bar says the threshold as the floor", "plots/fronts.py",
+       "(floor {floor:.3g}; ", "(floor {threshold:.3g}; ", _FFG),
     # --- end strengthen6A
 )
 

@@ -126,3 +126,28 @@ def test_the_fitted_line_follows_the_cumulative_count(run):
     assert drawn == pytest.approx(1.0 - mf.alpha, rel=1e-9)
     assert abs(drawn - steps) < 0.15
     assert abs(steps - (1.0 - 2.4)) < 0.15
+
+
+def test_space_time_map_floor_colour_bar_and_limits():
+    """The map's colours are log10(max(rate, threshold/100)) at every cell (back-slip and
+    sub-floor rates at the floor, one just above it kept), the colour bar says the floor and
+    the threshold, the panel spans the cells' edges of a non-uniform grid (each element's
+    cell edges written here) and a time not starting at 0.
+    Mistakes: the floor at threshold/10, log instead of log10, the centres as limits, y from 0."""
+    t = 37.25 + 0.013 * np.arange(40)
+    x = np.array([0.3, 1.0, 2.2, 4.1])  # non-uniform
+    rng = np.random.default_rng(5)
+    v = 10.0 ** rng.uniform(-5.0, 1.0, (t.size, x.size))
+    v[3, 0], v[7, 2], v[9, 3] = -0.4, 0.00299, 0.0031  # back-slip, below, just above the floor
+    thr = 0.3
+    st = space_time(t, x, v)
+    fig, ax = space_time_figure(st, [], thr)
+    (mesh,) = ax.collections
+    shown = np.asarray(mesh.get_array()).reshape(t.size, x.size)
+    np.testing.assert_allclose(shown, np.log10(np.maximum(v, thr / 100.0)), rtol=1e-12)
+    assert shown[9, 3] > np.log10(0.003) == shown[3, 0] == shown[7, 2]
+    label = fig.axes[-1].get_ylabel()
+    assert "log_{10}" in label and "floor 0.003" in label and "threshold 0.3" in label
+    assert ax.get_ylim() == pytest.approx((t[0], t[-1]), rel=1e-12)
+    # edge cells as long as their one gap: 0.3 - 0.7/2 and 4.1 + 1.9/2
+    assert ax.get_xlim() == pytest.approx((-0.05, 5.05), rel=1e-12, abs=1e-12)
