@@ -61,6 +61,8 @@ _CRG = "tests/theory/test_creep_generic.py"
 _THG = "tests/analysis/test_trap_hopf_generic.py"
 _BFC = "tests/analysis/test_bifurcation_classify.py"
 _SFD = "tests/plots/test_step_figure_data.py"
+_FSG = ("tests/plots/test_fronts_figures.py::"
+        "test_speed_figure_open_intervals_reach_twice_the_highest_bound_and_log_rule")
 _FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar_and_limits"
 _RFD = "tests/plots/test_record_figure_data.py"
 _MAG = "tests/fit/test_machine_generic.py"
@@ -2239,6 +2241,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "ax.set_ylim(st.t[0], st.t[-1])", "ax.set_ylim(0.0, st.t[-1])", _FFG),
     _m("space-time map: colour bar says the threshold as the floor", "plots/fronts.py",
        "(floor {floor:.3g}; ", "(floor {threshold:.3g}; ", _FFG),
+    _m("speed figure: open intervals up to the highest bound", "plots/fronts.py",
+       "top = 2.0 * max(finite_top) if finite_top else 1.0",
+       "top = max(finite_top) if finite_top else 1.0", _FSG),
+    _m("speed figure: the top from the speeds alone", "plots/fronts.py",
+       "finite_top.append(np.nanmax(np.where(np.isfinite(f.speed_high), f.speed_high,\n"
+       "                                                 f.speed)[ok]))",
+       "finite_top.append(np.nanmax(f.speed[ok]))", _FSG),
+    _m("speed figure: a missing lower end at 0", "plots/fronts.py",
+       "low = np.where(np.isfinite(f.speed_low), f.speed_low, f.speed)[ok]",
+       "low = np.where(np.isfinite(f.speed_low), f.speed_low, 0.0)[ok]", _FSG),
+    _m("speed figure: log axis from a factor 5", "plots/fronts.py",
+       "allv.max() > 10 * allv.min():", "allv.max() > 5 * allv.min():", _FSG),
     # --- end strengthen6A
     # --- blind set 6's three survivors (benchmarks/blind_mutants6.py), tests written after its
     # measure

@@ -172,3 +172,37 @@ def test_the_map_floor_is_a_hundredth_of_the_threshold():
     assert np.allclose(shown[:, 1], np.log10(0.02), atol=1e-12)  # the creep as it is
     assert shown[21, 0] == pytest.approx(np.log10(2.5), abs=1e-12)
     assert f"floor {floor:.3g}" in fig.axes[-1].get_ylabel()
+
+
+def _front(x, v, lo, hi, direction):  # the fields front_speed_figure reads
+    from types import SimpleNamespace
+
+    return SimpleNamespace(x=np.array(x), speed=np.array(v), speed_low=np.array(lo),
+                           speed_high=np.array(hi), direction=direction)
+
+
+def test_speed_figure_open_intervals_reach_twice_the_highest_bound_and_log_rule():
+    """An interval with no upper end is drawn up to 2 x the highest finite upper end (or speed)
+    with an arrow there; a speed without an estimate is not drawn; the axis turns log only
+    beyond a factor 10 between the speeds (both sides). Mistakes: the top without its 2, the
+    top from the speeds alone, a missing lower end drawn from 0, the rule at a factor 5."""
+    from types import SimpleNamespace
+
+    st = space_time(np.arange(3.0) + 4.5, np.array([0.0, 1.0]), np.zeros((3, 2)))
+    f1 = _front([0.5, 1.5, 2.5], [1.3, 2.1, np.nan], [1.1, 1.7, np.nan],
+                [1.6, np.inf, np.nan], +1)
+    f2 = _front([3.5, 4.5], [9.0, 4.4], [np.nan, 3.9], [11.7, 5.0], -1)
+    fig, ax = front_speed_figure(st, [SimpleNamespace(fronts=[f1, f2])])
+    top = 2.0 * 11.7
+    (arrow,) = [ln for ln in ax.get_lines() if ln.get_marker() == "^"]
+    assert list(arrow.get_xdata()) == [1.5] and list(arrow.get_ydata()) == [top]
+    pts = sorted((float(a), float(b)) for ln in ax.get_lines() if ln.get_marker() == "."
+                 for a, b in zip(ln.get_xdata(), ln.get_ydata(), strict=True))
+    assert pts == [(0.5, 1.3), (1.5, 2.1), (3.5, 9.0), (4.5, 4.4)]
+    ends = sorted(float(y) for c in ax.collections for seg in c.get_segments() for y in
+                  seg[:, 1])
+    assert ends[-1] == pytest.approx(top) and 9.0 in ends  # a missing lower end: the speed
+    assert ax.get_yscale() == "linear"  # 9/1.3 < 10
+    f3 = _front([0.5], [0.85], [0.8], [0.9], +1)  # 9/0.85 > 10
+    _, ax2 = front_speed_figure(st, [SimpleNamespace(fronts=[f1, f2, f3])])
+    assert ax2.get_yscale() == "log"
