@@ -58,6 +58,10 @@ _DIR = "tests/theory/test_direct.py"
 _DIN = "tests/ensemble/test_direct_inertia.py"
 _FRG = "tests/analysis/test_fronts_generic.py"
 _CRG = "tests/theory/test_creep_generic.py"
+_S6NQ = "tests/theory/test_nyquist_generic.py"
+_S6RB = "tests/theory/test_response_bounds.py"
+_S6CT = "tests/fit/test_consistency_edges.py"
+_S6TH = "tests/ensemble/test_thermal_helpers.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2106,6 +2110,70 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if u <= 0.0:\n        raise ValueError(f\"{source}: the last segment's",
        "    if u < 0.0:\n        raise ValueError(f\"{source}: the last segment's",
        "tests/io/test_spring_point.py"),
+    # --- strengthen6B (issue 25): theory/stability nyquist_crossings, delay_amplitude;
+    # theory/linear_stability DirectResponse; theory/hopf relative_l1; fit/statistics
+    # consistency_test; ensemble/thermal helpers. Each seen failing with its test
+    _m("nyquist: the scan starts at 1e-6 omega_max", "theory/stability.py",
+       "om = np.geomspace(omega_max * 1e-7, omega_max, int(n_omega))",
+       "om = np.geomspace(omega_max * 1e-6, omega_max, int(n_omega))", _S6NQ),
+    _m("nyquist: a linear scan grid", "theory/stability.py",
+       "om = np.geomspace(omega_max * 1e-7, omega_max, int(n_omega))",
+       "om = np.linspace(omega_max * 1e-7, omega_max, int(n_omega))", _S6NQ),
+    _m("nyquist: omega_max = 0 accepted", "theory/stability.py",
+       'omega_max = check_scalar("omega_max", omega_max, 0.0, lo_open=True)\n    om = np.geomspace',
+       'omega_max = check_scalar("omega_max", omega_max, 0.0)\n    om = np.geomspace', _S6NQ),
+    _m("nyquist: damping with the wrong sign", "theory/stability.py",
+       "vals = damping * om + z.imag", "vals = -damping * om + z.imag", _S6NQ),
+    _m("nyquist: the mass term M omega, not M omega^2", "theory/stability.py",
+       "K = mass * o**2 - float(Z(np.array([1j * o]))[0].real)",
+       "K = mass * o - float(Z(np.array([1j * o]))[0].real)", _S6NQ),
+    _m("nyquist: the last refined crossing, not the largest", "theory/stability.py",
+       "        if K > best_K:\n            best_K, best_om = K, o\n    return best_K, best_om",
+       "        if True:\n            best_K, best_om = K, o\n    return best_K, best_om", _S6NQ),
+    _m("delay amplitude without the delay factor", "theory/stability.py",
+       "return abs(self.edge * self.edge_delay) / self.H0",
+       "return abs(self.edge) / self.H0", _S6RB),
+    _m("im_bound: signed sum of the weights", "theory/linear_stability.py",
+       "float(np.sum(np.abs(b.b)))", "abs(float(np.sum(b.b)))", _S6RB),
+    _m("im_bound: without the junction strength g", "theory/linear_stability.py",
+       "return self.g * (float(np.sum(np.abs(b.b)))", "return (float(np.sum(np.abs(b.b)))",
+       _S6RB),
+    _m("direct response: a_d/u added to every derivative", "theory/linear_stability.py",
+       "return d + self.a_direct / self.base.u if n == 1 else d",
+       "return d + self.a_direct / self.base.u if n >= 1 else d", _S6RB),
+    _m("hopf: relative_l1 over the signed largest term", "theory/hopf.py",
+       "big = max(abs(t) for t in self.terms)", "big = abs(max(self.terms))", _S6RB),
+    _m("consistency: equal parameter counts run", "fit/statistics.py",
+       "    if df1 <= 0:\n        return {\"test\": \"not run\"",
+       "    if df1 < 0:\n        return {\"test\": \"not run\"", _S6CT),
+    _m("consistency: F dof from the joint fit's parameters", "fit/statistics.py",
+       "df2 = n - sep_p", "df2 = n - p", _S6CT),
+    _m("consistency: a negative F kept", "fit/statistics.py",
+       "F = (max(delta, 0.0) / df1)", "F = (delta / df1)", _S6CT),
+    _m("consistency: separate chi2 is the cost", "fit/statistics.py",
+       '"separate_chi2": 2.0 * sep_cost', '"separate_chi2": sep_cost', _S6CT),
+    _m("consistency: joint RSS is the cost", "fit/statistics.py",
+       '"joint_rss": 2.0 * cost', '"joint_rss": cost', _S6CT),
+    _m("thermal: the logarithmic inverse strength from z > 0.5", "ensemble/thermal.py",
+       "if z > 20.0:  # 2 sinh z", "if z > 0.5:  # 2 sinh z", _S6TH),
+    _m("thermal: the logarithmic inverse strength with 2 V_ref", "ensemble/thermal.py",
+       "return v_ref * math.exp(z - 1.0 / direct)",
+       "return 2.0 * v_ref * math.exp(z - 1.0 / direct)", _S6TH),
+    _m("thermal: velocity scale from X, not X - X0", "ensemble/thermal.py",
+       "return strength_ratio((x - self.x0) / self.dt, self.direct, self.v_ref)",
+       "return strength_ratio(x / self.dt, self.direct, self.v_ref)", _S6TH),
+    _m("thermal: velocity-scale slope without 1/dt", "ensemble/thermal.py",
+       "return strength_slope((x - self.x0) / self.dt, self.direct, self.v_ref) / self.dt",
+       "return strength_slope((x - self.x0) / self.dt, self.direct, self.v_ref)", _S6TH),
+    _m("thermal: a backward travel gives one creep step", "ensemble/thermal.py",
+       "math.ceil(abs(load_travel) / (SUBSTEP_SLIP", "math.ceil(load_travel / (SUBSTEP_SLIP",
+       _S6TH),
+    _m("thermal: creep substeps rounded", "ensemble/thermal.py",
+       "max(1, math.ceil(abs(load_travel)", "max(1, round(abs(load_travel)", _S6TH),
+    _m("thermal: a first hold segment's 0 skipped for the steady velocity", "ensemble/thermal.py",
+       "    if first_segment is not None:\n        return float(first_segment)",
+       "    if first_segment:\n        return float(first_segment)", _S6TH),
+    # --- end strengthen6B
     # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
     # its measure
     _m("force hold grid: the count from ln(hold), not ln(1 + hold)", "ensemble/result.py",

@@ -59,3 +59,4 @@ def test_initial_velocity_precedence() -> None:
     assert initial_velocity(thermal_m, rest, None) == 0.0
     assert initial_velocity(thermal_m, SimpleNamespace(kind="steady", velocity=None), None) == 0.0
     assert initial_velocity(thermal_m, rest, 0.0) == 0.0
+    assert initial_velocity(thermal_m, steady, 0.0) == 0.0       # a hold first: its 0, not 0.23

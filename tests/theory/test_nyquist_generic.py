@@ -65,6 +65,9 @@ def test_largest_of_several_crossings_is_returned() -> None:
     K, o = nyquist_crossings(z2, m, eta, omega_max=30.0)
     assert K == pytest.approx(ks[best], rel=1e-4)  # grid error; neighbours differ by 4e-3
     assert o == pytest.approx(om[i[best]], rel=1e-4)
+    # no crossing beyond c/eta: a scan reaching 1e5 on its log grid finds the same one
+    K5, o5 = nyquist_crossings(z2, m, eta, omega_max=1e5)
+    assert (K5, o5) == pytest.approx((K, o), rel=1e-9)
 
 
 def test_omega_max_refusal_edges() -> None:
