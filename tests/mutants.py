@@ -62,6 +62,7 @@ _S6NQ = "tests/theory/test_nyquist_generic.py"
 _S6RB = "tests/theory/test_response_bounds.py"
 _S6CT = "tests/fit/test_consistency_edges.py"
 _S6TH = "tests/ensemble/test_thermal_helpers.py"
+_S6SW = "tests/fit/test_series_windows_generic.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2173,6 +2174,17 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("thermal: a first hold segment's 0 skipped for the steady velocity", "ensemble/thermal.py",
        "    if first_segment is not None:\n        return float(first_segment)",
        "    if first_segment:\n        return float(first_segment)", _S6TH),
+    _m("series windows: from the previous change, not halfway", "fit/steps.py",
+       "i0 = (change[k - 1] + change[k]) // 2", "i0 = change[k - 1]", _S6SW),
+    _m("series windows: hold as the reload's time, not its duration", "fit/steps.py",
+       "hold = float(data.t[change[j]] - data.t[change[k]])",
+       "hold = float(data.t[change[j]])", _S6SW),
+    _m("series windows: t_change at the last sample before the change", "fit/steps.py",
+       "change[j + 1], float(data.t[change[k]]),", "change[j + 1], float(data.t[change[k] - 1]),",
+       _S6SW),
+    _m("series windows: v_after the hold's 0", "fit/steps.py",
+       "float(v[change[k] - 1]), float(v[change[j]]), hold)",
+       "float(v[change[k] - 1]), float(v[change[k]]), hold)", _S6SW),
     # --- end strengthen6B
     # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
     # its measure
