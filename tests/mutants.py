@@ -2185,6 +2185,15 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("series windows: v_after the hold's 0", "fit/steps.py",
        "float(v[change[k] - 1]), float(v[change[j]]), hold)",
        "float(v[change[k] - 1]), float(v[change[k]]), hold)", _S6SW),
+    _m("steady noise: n - 1 dof", "fit/steps.py",
+       "r @ r / (mu.size - 2)", "r @ r / (mu.size - 1)", _S6SW),
+    _m("steady noise: three samples accepted", "fit/steps.py",
+       "    if mu.size < 4:", "    if mu.size < 3:", _S6SW),
+    _m("white noise: the differences' spread, not one sample's", "fit/steps.py",
+       "np.abs(d - np.median(d))) / math.sqrt(2.0)", "np.abs(d - np.median(d)))", _S6SW),
+    _m("white noise: three samples refused", "fit/steps.py",
+       "    if d.size < 2:\n        return math.nan\n    return float(1.4826",
+       "    if d.size < 3:\n        return math.nan\n    return float(1.4826", _S6SW),
     # --- end strengthen6B
     # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
     # its measure

@@ -24,3 +24,24 @@ def test_windows_on_a_shifted_non_uniform_record() -> None:
     assert [x.t_change for x in w] == pytest.approx([t[6], t[12], t[22]], rel=1e-15)
     assert [x.hold for x in w] == pytest.approx([0.0, t[16] - t[12], 0.0], abs=1e-15)
     assert w[1].hold > 0.0
+
+
+def test_noise_estimates_from_their_definitions_and_size_edges() -> None:
+    """``steady_noise``: rms about the least-squares line with n - 2 dof (here by lstsq on a
+    time axis far from 0); ``white_noise``: 1.4826 MAD of the first differences over sqrt 2;
+    nan below 4 and 3 samples respectively."""
+    from dryfriction.fit.steps import steady_noise, white_noise
+
+    t = 1.0e3 + np.array([0.0, 0.4, 1.1, 1.3, 2.2, 3.0, 3.1])
+    mu = np.array([0.61, 0.63, 0.60, 0.66, 0.62, 0.67, 0.64])
+    X = np.c_[np.ones_like(t), t - t.mean()]
+    r = mu - X @ np.linalg.lstsq(X, mu, rcond=None)[0]
+    assert steady_noise(t, mu) == pytest.approx(np.sqrt(r @ r / (t.size - 2)), rel=1e-9)
+    assert np.isnan(steady_noise(t[:3], mu[:3]))
+    assert np.isfinite(steady_noise(t[:4], mu[:4]))
+    d = np.diff(mu)
+    want = 1.4826 * np.median(np.abs(d - np.median(d))) / np.sqrt(2.0)
+    assert white_noise(mu) == pytest.approx(want, rel=1e-12)
+    assert np.isnan(white_noise(mu[:2]))
+    assert white_noise(mu[:3]) == pytest.approx(
+        1.4826 * np.median(np.abs(d[:2] - np.median(d[:2]))) / np.sqrt(2.0), rel=1e-12)
