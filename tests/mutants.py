@@ -63,6 +63,7 @@ _S6RB = "tests/theory/test_response_bounds.py"
 _S6CT = "tests/fit/test_consistency_edges.py"
 _S6TH = "tests/ensemble/test_thermal_helpers.py"
 _S6SW = "tests/fit/test_series_windows_generic.py"
+_S6KR = "tests/fit/test_stiffness_record_merge.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2194,6 +2195,15 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("white noise: three samples refused", "fit/steps.py",
        "    if d.size < 2:\n        return math.nan\n    return float(1.4826",
        "    if d.size < 3:\n        return math.nan\n    return float(1.4826", _S6SW),
+    _m("record stiffness: loadings marked used by their own index", "fit/elastic.py",
+       '"used": (n + j) in rec["steps"]', '"used": j in rec["steps"]', _S6KR),
+    _m("record stiffness: a loading's index left among the steps", "fit/elastic.py",
+       'rec["steps"] = [i for i in rec["steps"] if i < n]',
+       'rec["steps"] = [i for i in rec["steps"] if i <= n]', _S6KR),
+    _m("record stiffness: the pooled error 1/sum(w), not its root", "fit/identify.py",
+       "float(1.0 / math.sqrt(w.sum()))", "float(1.0 / w.sum())", _S6KR),
+    _m("record stiffness: the interval's low end taken linearly", "fit/identify.py",
+       '"lo": math.exp(m - z * s)', '"lo": math.exp(m) * (1.0 - z * s)', _S6KR),
     # --- end strengthen6B
     # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
     # its measure
