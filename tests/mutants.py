@@ -2226,6 +2226,18 @@ MUTANTS: tuple[Mutant, ...] = (
        'k = parse_stiffness("inf" if value is None else value)',
        'k = parse_stiffness("fit" if value is None else value)',
        "tests/app/test_fit_dispatch.py"),
+    # --- blind set 6's three survivors (benchmarks/blind_mutants6.py), tests written after its
+    # measure
+    _m("bifurcation: the threshold d = 0 left out of the hysteresis", "analysis/bifurcation.py",
+       'if r["d"] <= 0.0 and r["amplitude"] > thr', 'if r["d"] < 0.0 and r["amplitude"] > thr',
+       "tests/analysis/test_bifurcation.py", "-k", "threshold_itself"),
+    _m("record figure: the program drawn on the record's clock", "plots/record.py",
+       "ax.plot([s.t_start - t0, s.t_end - t0], [s.velocity * 1e6] * 2",
+       "ax.plot([s.t_start, s.t_end], [s.velocity * 1e6] * 2",
+       "tests/plots/test_record_figure_clock.py"),
+    _m("space-time map: the floor at a tenth of the threshold", "plots/fronts.py",
+       "floor = threshold / 100.0", "floor = threshold / 10.0",
+       "tests/plots/test_fronts_figures.py"),
 )
 
 

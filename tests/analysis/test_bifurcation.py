@@ -109,3 +109,18 @@ def test_reduced_continuation_reads_the_reported_bifurcations() -> None:
     assert high["type"] != "subcritical"
     assert amp[0.1] < 0.75 * amp[0.45]
     assert amp[-0.05] < 0.2 * amp[0.45]
+
+
+def test_classify_counts_the_threshold_itself_as_hysteresis() -> None:
+    # mistake (blind set 6, bifurcation_hysteresis_d0_excluded): the hysteresis distances taken
+    # strictly above K_c (d < 0), so a way up that still oscillates at K = K_c exactly (d = 0)
+    # and decays just above is called supercritical; K >= K_c is the stable side of the linear
+    # theory, so an oscillation kept there is the loop. The other side: d > 0 never counts.
+    ds = [0.03, 0.06, 0.1, 0.2]
+    up = [(d, 0.21) for d in ds[::-1]] + [(0.0, 0.17), (-0.04, 2e-3)]
+    sub = classify(_scan([(-0.04, 2e-3)] + [(d, 0.21) for d in ds], up))
+    assert sub["type"] == "subcritical" and sub["hysteresis_d"] == [0.0]
+    # the same scan with the cycle at d = 0 decaying (trend below 0.9): no loop
+    scan = _scan([(-0.04, 2e-3)] + [(d, 0.21) for d in ds], up)
+    scan["up"][-2]["trend"] = 0.7
+    assert classify(scan)["hysteresis_d"] == [] and classify(scan)["type"] == "supercritical"

@@ -126,3 +126,24 @@ def test_the_fitted_line_follows_the_cumulative_count(run):
     assert drawn == pytest.approx(1.0 - mf.alpha, rel=1e-9)
     assert abs(drawn - steps) < 0.15
     assert abs(steps - (1.0 - 2.4)) < 0.15
+
+
+def test_the_map_floor_is_a_hundredth_of_the_threshold():
+    # mistake (blind set 6, plot_fronts_floor_10): the colour floor at threshold/10, not the
+    # documented threshold/100: slip rates between the two (the creep ahead of a front) are
+    # drawn flat at the floor; at rest or slipping back, the floor; the label says which
+    t = np.arange(40) * 0.25
+    x = np.array([0.0, 0.7, 1.9])  # non-uniform positions
+    v = np.zeros((t.size, 3))
+    v[:, 1] = 0.02  # creep: above threshold/100 = 0.006, below threshold/10
+    v[5, 2] = -0.3  # back-slip
+    v[20:24, 0] = 2.5  # a slip
+    fig, ax = space_time_figure(space_time(t, x, v), [], THR)
+    (mesh,) = ax.collections[:1]
+    shown = np.asarray(mesh.get_array()).reshape(t.size, 3)
+    floor = THR / 100.0
+    assert shown[0, 0] == pytest.approx(np.log10(floor), abs=1e-12)  # at rest
+    assert shown[5, 2] == pytest.approx(np.log10(floor), abs=1e-12)  # back-slip
+    assert np.allclose(shown[:, 1], np.log10(0.02), atol=1e-12)  # the creep as it is
+    assert shown[21, 0] == pytest.approx(np.log10(2.5), abs=1e-12)
+    assert f"floor {floor:.3g}" in fig.axes[-1].get_ylabel()
