@@ -64,6 +64,7 @@ _S6CT = "tests/fit/test_consistency_edges.py"
 _S6TH = "tests/ensemble/test_thermal_helpers.py"
 _S6SW = "tests/fit/test_series_windows_generic.py"
 _S6KR = "tests/fit/test_stiffness_record_merge.py"
+_S6RT = "tests/ensemble/test_root_in_bracket.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2204,6 +2205,12 @@ MUTANTS: tuple[Mutant, ...] = (
        "float(1.0 / math.sqrt(w.sum()))", "float(1.0 / w.sum())", _S6KR),
     _m("record stiffness: the interval's low end taken linearly", "fit/identify.py",
        '"lo": math.exp(m - z * s)', '"lo": math.exp(m) * (1.0 - z * s)', _S6KR),
+    _m("root in bracket: the bracket's order taken as given", "ensemble/balance.py",
+       "lo, hi = (xa, xb) if ga < 0.0 else (xb, xa)", "lo, hi = (xa, xb)", _S6RT),
+    _m("root in bracket: a zero at xb returns xa", "ensemble/balance.py",
+       "    if gb == 0.0:\n        return xb", "    if gb == 0.0:\n        return xa", _S6RT),
+    _m("root in bracket: a tiny Newton step taken as converged", "ensemble/balance.py",
+       "if gc == 0.0 or (gc < 0.0) != (g < 0.0):", "if True:", _S6RT),
     # --- end strengthen6B
     # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
     # its measure
