@@ -65,6 +65,7 @@ _S6TH = "tests/ensemble/test_thermal_helpers.py"
 _S6SW = "tests/fit/test_series_windows_generic.py"
 _S6KR = "tests/fit/test_stiffness_record_merge.py"
 _S6RT = "tests/ensemble/test_root_in_bracket.py"
+_S6RE = "tests/ensemble/test_run_estimate_bytes.py"
 _MAG = "tests/fit/test_machine_generic.py"
 _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
@@ -2211,6 +2212,14 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if gb == 0.0:\n        return xb", "    if gb == 0.0:\n        return xa", _S6RT),
     _m("root in bracket: a tiny Newton step taken as converged", "ensemble/balance.py",
        "if gc == 0.0 or (gc < 0.0) != (g < 0.0):", "if True:", _S6RT),
+    _m("run estimate: a snapshot of four arrays", "ensemble/resources.py",
+       "BYTES_PER_SNAPSHOT_TRAP = 6 * 8.0", "BYTES_PER_SNAPSHOT_TRAP = 4 * 8.0", _S6RE),
+    _m("run estimate: snapshots' bytes without the traps in contact", "ensemble/resources.py",
+       "return self.snapshots * self.active * BYTES_PER_SNAPSHOT_TRAP",
+       "return self.snapshots * BYTES_PER_SNAPSHOT_TRAP", _S6RE),
+    _m("run estimate: the total without the snapshots", "ensemble/resources.py",
+       "return self.sample_bytes + self.trap_bytes + self.snapshot_bytes",
+       "return self.sample_bytes + self.trap_bytes", _S6RE),
     # --- end strengthen6B
     # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
     # its measure
