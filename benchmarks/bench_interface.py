@@ -2,9 +2,10 @@
 of blocks (N = 32, 64, 128, 256 and the fitted exponent), one thread against two, and the
 stick-slip run dynamic against event-driven (``quasi_static_rate``).
 
-Run ``python benchmarks/bench_interface.py [--full]`` (``--full``: N up to 1024 and the
-issue's scale, N = 256 blocks of about 200 contacts through at least 20 system-spanning events,
-event-driven; an hour or more on a loaded machine).
+Run ``python benchmarks/bench_interface.py [--full | --bounds]`` (``--full``: N up to 1024 and
+the issue's scale, N = 256 blocks of about 200 contacts through at least 20 system-spanning
+events, event-driven; an hour or more on a loaded machine; ``--bounds``: only where the steps
+of the stick-slip runs go, :func:`step_bounds`).
 A trap update is one pair of a block's contact window processed in one step (the pairs in
 contact and the free ones between them).
 Uniform steady sliding at ``u = 1`` of blocks with 100 pairs per ``a0`` (about 250 pairs in
@@ -122,8 +123,43 @@ def spanning_events(n: int, slip: float, threads: int | None = None, rate: float
           f"{_load()}")
 
 
+def step_bounds(n: int, slip: float, lam: float = 100.0) -> None:
+    """Where the steps of :func:`spanning_events`' dynamic run go (ours): from slip rates
+    sampled every 0.25 t0, the step of each interval ``min(dt_osc, dx_max / max_i |v_i|)``
+    (``dx_max = 1/(4 lam)``, the fastest block's slip bound), the share of the steps that the
+    slip bound sets, and the block-steps a step of each block's own,
+    ``min(dt_osc, dx_max/|v_i|)``, would take against ``N`` times the chain's: a bound on what
+    any multirate scheme could save in window updates (they are the cost)."""
+    V = 0.01
+    r = simulate_interface(
+        InterfaceModel(TrapModel(eps=0.04), n, 1.0, 1.0, 0.02),
+        InterfaceDrive("uniform", 0.05, VelocityProgram([Segment(V, slip=slip)])),
+        Initial("steady", velocity=V, track=Track(lam, "random", seed=1)),
+        Output(every=0.25), threads=1)
+    dt_osc, dx_max = r.info["dt_max"], 0.25 / lam
+    v = np.abs(r.slip_rate[1:])  # the rate at the end of each interval
+    dt_block = np.minimum(dt_osc, dx_max / np.maximum(v, 1e-300))
+    dt_chain = dt_block.min(axis=1)
+    span = np.diff(r.t)
+    steps = span / dt_chain
+    bounded = dt_chain < dt_osc
+    own = float((span[:, None] / dt_block).sum())
+    ringing = v.max(axis=1) < 1.0
+    print(f"step bounds: N = {n}, {lam:g} pairs/a0, {slip:g} a0: {r.info['steps']} steps "
+          f"(estimated {steps.sum():.0f}), dt_osc {dt_osc:.3g} t0, slip-bounded "
+          f"{steps[bounded].sum() / steps.sum():.1%} of the steps in "
+          f"{span[bounded].sum() / span.sum():.1%} of the time; steps with every block below 1 "
+          f"a0/t0 {steps[ringing].sum() / steps.sum():.1%}; each block on its own step: "
+          f"{own / (n * steps.sum()):.1%} of the block-steps; CPU {r.info['cpu_s']:.1f} s   "
+          f"{_load()}")
+
+
 def main() -> None:
     full = "--full" in sys.argv  # the issue's scale: N = 256 through >= 20 events (long)
+    if "--bounds" in sys.argv:  # where the steps go, N = 16 and 64 (about a minute of CPU)
+        step_bounds(16, 20.0)
+        step_bounds(64, 30.0)
+        return
     cost_against_n((32, 64, 128, 256, 1024) if full else (32, 64, 128, 256), 2.0)
     threads(256, 2.0, 3 if full else 2)
     for rate in (0.0, QUASI_STATIC_RATE):  # the same run, dynamic then event-driven

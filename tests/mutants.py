@@ -65,6 +65,7 @@ _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
+_ISW = "tests/analysis/test_interface_sweep.py"
 _HTE = "tests/analysis/test_hopf_table_edges.py"
 
 MUTANTS: tuple[Mutant, ...] = (
@@ -803,6 +804,46 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fronts figure: the density's slope on the cumulative count", "plots/fronts.py",
        "(m / mf.m_min) ** (1.0 - mf.alpha)", "(m / mf.m_min) ** (-mf.alpha)",
        "tests/plots/test_fronts_figures.py", "-k", "cumulative_count"),
+    # --- interface sweeps (analysis/interface_sweep.py, app/sweeps.py; interface4)
+    _m("interface sweep: spanning counted as the arrested events", "analysis/interface_sweep.py",
+       "spanning = [e for e in events if e.spanning]",
+       "spanning = [e for e in events if not e.spanning]", _ISW, "-k", "test_sweep_values"),
+    _m("interface sweep: mean slip as the mean moment", "analysis/interface_sweep.py",
+       '"mean_slip": mean([e.mean_slip for e in events]),',
+       '"mean_slip": mean([e.moment for e in events]),', _ISW, "-k", "test_sweep_values"),
+    _m("interface sweep: friction averaged without the trapezoid weights",
+       "analysis/interface_sweep.py",
+       "float(np.trapezoid(friction, tk) / (tk[-1] - tk[0]))", "float(np.mean(friction))",
+       _ISW, "-k", "test_sweep_values"),
+    _m("interface sweep: precursors with edge_gap 0, not simulate's 1",
+       "analysis/interface_sweep.py", "after: float = 0.0, edge_gap: int = 1)",
+       "after: float = 0.0, edge_gap: int = 0)", _ISW, "-k", "test_sweep_values"),
+    _m("interface sweep: catalogue.after ignored", "analysis/interface_sweep.py",
+       "              if e.t_start >= after]", "              if True]", _ISW, "-k",
+       "catalogue_after"),
+    _m("interface sweep: catalogue.after on the events' end", "analysis/interface_sweep.py",
+       "              if e.t_start >= after]", "              if e.t_end >= after]", _ISW,
+       "-k", "catalogue_after"),
+    _m("interface sweep: points checked as spring protocols", "app/sweeps.py",
+       "        if interface:  # its refusals", "        if False:  # its refusals", _ISW,
+       "-k", "bad_point"),
+    _m("interface sweep: only the base protocol checked", "app/sweeps.py",
+       "            interface_point(point, where)", "            interface_point(spec.base, where)",
+       _ISW, "-k", "bad_point"),
+    _m("interface sweep: [catalogue] not checked before the workers",
+       "analysis/interface_sweep.py",
+       '    opts = catalogue_options(doc.pop("catalogue", None), source)',
+       '    opts = dict(doc.pop("catalogue", None) or {})', _ISW, "-k", "bad_point"),
+    _m("interface sweep: --linear ignored", "app/sweeps.py", "    if interface and linear:",
+       "    if False:", _ISW, "-k", "linear_and_phase"),
+    _m("interface sweep: min_elements 1.5 read as 1", "analysis/interface_sweep.py",
+       "not math.isfinite(value) or value != int(value) or value < low",
+       "not math.isfinite(value) or value < low", _ISW, "-k", "options_and_point"),
+    _m("interface sweep: edge_gap 0 refused", "analysis/interface_sweep.py",
+       'low = 1 if key == "min_elements" else 0', "low = 1", _ISW, "-k", "options_and_point"),
+    _m("interface sweep: after equal to the duration accepted", "analysis/interface_sweep.py",
+       'if opts.get("after", 0.0) >= total:', 'if opts.get("after", 0.0) > total:', _ISW, "-k",
+       "options_and_point"),
 )
 
 

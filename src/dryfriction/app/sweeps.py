@@ -75,6 +75,7 @@ def prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | Non
     refuse at run time)."""
     import tomllib
 
+    from ..analysis.interface_sweep import interface_point
     from ..io.files import check_writable_dir
     from ..io.protocol import spring_point
     from ..io.textfile import HEAD_BYTES, check_text
@@ -110,12 +111,25 @@ def prepare_sweep(protocol: str, out_dir: str, confirm: bool, workers: int | Non
                          "workers: give one of the two")
     if not connect_timeout > 0:
         raise ValueError(f"--connect-timeout {connect_timeout:g} is out of range: allowed > 0")
+    interface = is_interface(spec)
+    if interface and linear:
+        raise ValueError(f"{path}: --linear is for spring protocols: an [interface] protocol's "
+                         "sweep runs the chain and summarises its event catalogue")
     for _, ov in spec.points():
         point = spec.protocol(ov)
         where = f"{path} (point {', '.join(f'{k} = {v}' for k, v in ov.items())})"
-        spring_point(point, where, "linear" if linear else "stick-slip")
+        if interface:  # its refusals and its memory and time estimate, per point
+            interface_point(point, where)
+        else:
+            spring_point(point, where, "linear" if linear else "stick-slip")
     check_writable_dir(out_dir)
     return spec
+
+
+def is_interface(spec: Any) -> bool:
+    """Whether a sweep's base protocol is an extended interface's (an ``[interface]`` table):
+    its points run :func:`dryfriction.analysis.interface_sweep.interface_summary`."""
+    return "interface" in spec.base
 
 
 def protocol_text(protocol: str) -> str:
@@ -135,7 +149,10 @@ def sweep(protocol: str | Path, out: str | Path, *,
           bar: Callable[..., Any] | None = None) -> SweepOutcome:
     """Run a protocol's ``[sweep]`` grid on Dask: stick-slip summaries
     (:func:`dryfriction.analysis.stickslip.stick_slip_summary`) or, with ``linear``, linear
-    stability (:func:`dryfriction.analysis.linear.linear_summary`), written to ``out``/sweep.nc.
+    stability (:func:`dryfriction.analysis.linear.linear_summary`); for an ``[interface]``
+    protocol, the statistics of each point's event catalogue
+    (:func:`dryfriction.analysis.interface_sweep.interface_summary`). Written to
+    ``out``/sweep.nc.
 
     Parameters
     ----------
@@ -162,13 +179,15 @@ def sweep(protocol: str | Path, out: str | Path, *,
     dryfriction.sweeps.sweep.SweepInterrupted
         Ctrl-C: the points computed so far are stored.
     """
+    from ..analysis import interface_sweep, stickslip
     from ..analysis import linear as linear_analysis
-    from ..analysis import stickslip
 
     spec = prepare_sweep(str(protocol), str(out), yes, workers, scheduler, linear,
                          connect_timeout)
     runner, variables = (
-        (linear_analysis.linear_summary, linear_analysis.SWEEP_VARIABLES) if linear
+        (interface_sweep.interface_summary, interface_sweep.SWEEP_VARIABLES)
+        if is_interface(spec)
+        else (linear_analysis.linear_summary, linear_analysis.SWEEP_VARIABLES) if linear
         else (stickslip.stick_slip_summary, stickslip.SWEEP_VARIABLES))
     ds = _run_sweep(spec, runner, str(out), bar, scheduler=scheduler, workers=workers,
                     confirm=yes, source=str(protocol), connect_timeout=connect_timeout,
@@ -208,6 +227,9 @@ def phase_diagram(protocol: str | Path, out: str | Path, *,
     fmt, dpi = check_figure_format(fmt, dpi)
     spec = prepare_sweep(str(protocol), str(out), yes, workers, scheduler, False,
                          connect_timeout)
+    if is_interface(spec):
+        raise ValueError(f"{protocol}: the phase diagram is the spring slider's (K, V) plane: "
+                         "sweep an [interface] protocol with 'dryfriction sweep'")
     k_key, v_key = phase_axes(spec)  # before any worker starts
 
     def render(ds: Any) -> bytes:

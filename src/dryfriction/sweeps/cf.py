@@ -28,6 +28,9 @@ KEY_UNITS: dict[str, str] = {
     "mass": "F_el t0^2/a0", "damping": "F_el t0/a0", "velocity": "a0/t0", "slip": "a0",
     "duration": "t0", "rate": "F_el/t0", "hold": "t0", "max_force": "F_el", "every": "t0",
     "every_slip": "a0", "transient": "a0", "floor": "1", "rel_threshold": "1",
+    "coupling": "F_el/a0", "edge_stiffness": "F_el/a0", "n_elements": "1",
+    "normal_spread": "1", "density_spread": "1", "quasi_static_rate": "a0/t0",
+    "threshold": "a0/t0", "min_elements": "1", "after": "t0", "edge_gap": "1",
     "stick_fraction": "1", "cv_periodic": "1",
 }
 """Unit of a protocol value by its key's last part (``drive.segments.0.velocity``: a0/t0)."""
