@@ -2106,6 +2106,27 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if u <= 0.0:\n        raise ValueError(f\"{source}: the last segment's",
        "    if u < 0.0:\n        raise ValueError(f\"{source}: the last segment's",
        "tests/io/test_spring_point.py"),
+    # --- blind set 5's five last survivors (benchmarks/blind_mutants5.py), tests written after
+    # its measure
+    _m("force hold grid: the count from ln(hold), not ln(1 + hold)", "ensemble/result.py",
+       "n = max(1, math.ceil(math.log1p(hold) / log_step - 1e-9))",
+       "n = max(1, math.ceil(math.log(hold) / log_step - 1e-9))",
+       "tests/ensemble/test_hold_grid.py"),
+    _m("record stiffness: the whole 95 % width taken as the standard error", "fit/identify.py",
+       "est[i] = (math.log(k), math.log(hi / lo) / (2.0 * z))",
+       "est[i] = (math.log(k), math.log(hi / lo) / z)",
+       "tests/fit/test_identify_definitions.py"),
+    _m("report: the loaded secant slope per ln T", "plots/report.py",
+       "(m100 - m1) / (0.04 * (math.log(101.0) - math.log(2.0)))",
+       "(m100 - m1) / (0.04 * math.log(100.0))", "tests/plots/test_reproduce.py"),
+    _m("record --out: segments.csv without the record's normal unit", "app/records.py",
+       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)',
+       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]))',
+       "tests/app/test_record_report.py"),
+    _m("CSV fits: a fitted machine by default", "app/fitting.py",
+       'k = parse_stiffness("inf" if value is None else value)',
+       'k = parse_stiffness("fit" if value is None else value)',
+       "tests/app/test_fit_dispatch.py"),
 )
 
 

@@ -80,3 +80,30 @@ def test_a_csv_option_is_refused_for_a_record(tmp_path: Path, calls, name: str, 
     assert calls == []
     with pytest.raises(TypeError, match="unknown option"):
         app.fit(CSV, tmp_path / "o", stifness=1.0)
+
+
+class _Stop(Exception):
+    pass
+
+
+@pytest.mark.parametrize("given, expect", [(None, float("inf")), ("fit", "fit"),
+                                           ("3.3e4", 3.3e4)])
+def test_csv_series_fit_machine_defaults_to_kinematic(tmp_path: Path, given: Any,
+                                                       expect: Any,
+                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    # mistake (blind set 5, app_csv_stiffness_default_fit): without --stiffness the project's
+    # CSV fits fit a machine stiffness (a spring) instead of the kinematic machine (inf) the
+    # help promises; the fit itself is replaced by a recorder of what it was asked
+    import dryfriction.fit as fit_pkg
+
+    seen: dict[str, Any] = {}
+
+    def record_call(datasets: Any, model: Any, **kw: Any) -> None:
+        seen.update(kw)
+        raise _Stop
+
+    monkeypatch.setattr(fit_pkg, "fit", record_call)
+    opts = {} if given is None else {"stiffness": given}
+    with pytest.raises(_Stop):
+        fitting.fit_data([CSV], tmp_path / "o", model="rsf", **opts)
+    assert seen["stiffness"] == expect

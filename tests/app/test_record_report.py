@@ -81,3 +81,24 @@ def test_a_unitless_displacement_gets_its_note_and_one_segment_no_steps(tmp_path
     assert "--columns disp=Displ:um" in done.note
     one = app.record(_write(tmp_path / "s.txt"), segments="0:1e-6")
     assert one.steps == () and "no_steps" in one.report and one.files == []
+
+
+def test_segments_csv_of_a_force_record_gives_the_force_in_kn(tmp_path: Path) -> None:
+    # mistake (blind set 5, app_segments_csv_unit_dropped): the record's normal unit not passed
+    # from `record --out` to segments.csv, which then reads a force in N as a stress in Pa
+    # (normal_stress[MPa] = 3.7e-3 instead of normal_force[kN] = 3.7)
+    path = _write(tmp_path / "r.txt")
+    lines = path.read_text().splitlines()
+    force = 3.7 + 0.01 * np.cos(np.arange(len(lines) - 1))  # kN
+    path.write_text("\n".join([lines[0] + "\tNormal_force(kN)"]
+                              + [f"{ln}\t{f:.6f}" for ln, f in zip(lines[1:], force,
+                                                                      strict=True)]) + "\n")
+    for given in (None, PROGRAM):  # detected, and given with --segments
+        out = tmp_path / f"out{given is None}"
+        done = app.record(path, segments=given, out=out)
+        assert done.record.normal_unit == "N" and len(done.segments) == 4
+        rows = list(csv.DictReader((out / "segments.csv").read_text().splitlines()[1:]))
+        assert "normal_force[kN]" in rows[0] and not any("normal_stress" in k for k in rows[0])
+        for r, s in zip(rows, done.segments, strict=True):
+            want = float(np.mean(force[s.i_start:s.i_end]))
+            assert float(r["normal_force[kN]"]) == pytest.approx(want, rel=1e-4)

@@ -26,3 +26,14 @@ def test_geometric_grid_uniform_in_the_log_of_the_age() -> None:
     steps = np.diff(np.log1p(np.concatenate([[0.0], g])))
     assert np.allclose(steps, steps[0], rtol=1e-9) and steps[0] <= 0.17
     assert g.size == int(np.ceil(np.log1p(913.0) / 0.17)) and g[-1] == 913.0
+
+
+@pytest.mark.parametrize("hold", [0.63, 2.7])
+def test_short_holds_are_resolved_in_the_log_of_one_plus_the_age(hold: float) -> None:
+    # mistake (blind set 5, hold_grid_log_not_log1p): the count from ln(hold) instead of
+    # ln(1 + hold); at a long hold the two agree, at holds of a few t0 the grid is coarser than
+    # log_step in ln(1 + t), and under 1 t0 it is a single sample
+    step = 0.05
+    g = force_hold_grid(hold, log_step=step)
+    assert g.size == int(np.ceil(np.log1p(hold) / step))  # 10 at 0.63, 27 at 2.7
+    assert np.diff(np.log1p(np.concatenate([[0.0], g]))).max() <= step * (1 + 1e-12)

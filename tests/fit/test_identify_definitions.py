@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from scipy import stats
 
 from dryfriction.fit.identify import MISFIT_RMS, misfit_words, transient_test
@@ -70,3 +71,26 @@ def test_peak_residual_allowance_counts_the_tail_correlation() -> None:
     assert any("rms residual" in w for w in misfit_words(d, model, row, k))
     row["rms"] = 0.99 * MISFIT_RMS * noise
     assert not any("rms residual" in w for w in misfit_words(d, model, row, k))
+
+
+def test_record_stiffness_is_the_inverse_variance_mean_of_ln_k_by_its_definition() -> None:
+    # mistake (blind set 5, record_stiffness_halfwidth_as_se): the standard error of ln k_i
+    # taken as ln(hi/lo)/z (the whole 95 % width) instead of ln(hi/lo)/(2 z): the weighted
+    # mean is unchanged (every weight scales alike) but the record's interval is twice as wide
+    from dryfriction.fit.identify import record_stiffness
+
+    z = 1.96
+    # three consistent steps, asymmetric intervals of different widths (in 1/m)
+    ks = [(2.71e4, 2.2e4, 3.5e4), (3.02e4, 2.9e4, 3.2e4), (2.88e4, 2.5e4, 3.4e4)]
+    rows = [{"stiffness": k, "stiffness_lo": lo, "stiffness_hi": hi, "flags": ""}
+            for k, lo, hi in ks]
+    rec = record_stiffness(rows, z=z)
+    assert rec is not None and rec["steps"] == [0, 1, 2] and rec["unit"] == "1/m"
+    se = np.array([math.log(hi / lo) / (2.0 * z) for _, lo, hi in ks])
+    w = 1.0 / se**2
+    m = float(w @ np.log([k for k, _, _ in ks]) / w.sum())
+    s = 1.0 / math.sqrt(w.sum())
+    assert rec["value"] == pytest.approx(math.exp(m), rel=1e-12)
+    assert rec["lo"] == pytest.approx(math.exp(m - z * s), rel=1e-12)
+    assert rec["hi"] == pytest.approx(math.exp(m + z * s), rel=1e-12)
+    assert all(r["flags"] == "" for r in rows)

@@ -225,6 +225,12 @@ def test_summary_paper_claims(run):
     for a, b in zip(lp, lp[1:], strict=False):
         assert b["mu_s_T_100"] > a["mu_s_T_100"]
         assert b["secant_slope_per_eps_T_1_to_100"] > a["secant_slope_per_eps_T_1_to_100"]
+    # the secant slope by its definition: per eps and per unit of ln(1 + T) between T = 1 and
+    # T = 100, the age measured from the start of the hold (mistake, blind set 5,
+    # report_secant_ln_t_not_ln_1pt: per ln T, ln 100 instead of ln 101 - ln 2, 15 % smaller)
+    for d in lp:
+        assert d["secant_slope_per_eps_T_1_to_100"] == pytest.approx(
+            (d["mu_s_T_100"] - d["mu_s_T_1"]) / (d["eps"] * math.log(101.0 / 2.0)), rel=1e-12)
     # the eq. 27 reading is the maximum of the pull over the whole Fig. 3 range
     assert s["eq27_reading_is_the_maximum_over_figure_range"] is True
     # creep laws: differences grow with eps

@@ -155,9 +155,13 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
             raise ValueError(f"--segments: the segment starting at {starts[j]:g} s holds no "
                              f"sample of {src}")
     segs = list(make_segments(t, idx, vel))
+    # the normal load over each segment, as detection reports it (segments.csv, the table)
+    sn = None if record.normal_stress is None else np.asarray(record.normal_stress, float)
     # a given start falls between samples: keep the time the user wrote
     segs = [Segment(float(t[0]) + s, g.t_end if j == len(segs) - 1 else float(t[0]) +
-                    starts[j + 1], g.velocity, g.i_start, g.i_end)
+                    starts[j + 1], g.velocity, g.i_start, g.i_end,
+                    normal=float(np.mean(sn[g.i_start:g.i_end])) if sn is not None
+                    else float("nan"))
             for j, (s, g) in enumerate(zip(starts, segs, strict=True))]
     return tuple(segs)
 
