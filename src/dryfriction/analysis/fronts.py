@@ -70,6 +70,7 @@ __all__ = [
     "THRESHOLD_FACTOR",
     "default_threshold",
     "check_threshold",
+    "event_threshold",
     "element_lengths",
     "slipping",
     "detect_events",
@@ -282,6 +283,15 @@ def default_threshold(result: Any) -> float:
 def check_threshold(threshold: float, unit: str = DEFAULT_UNITS["slip_rate"]) -> float:
     """``threshold`` as a float, or one ``ValueError`` line: a slip rate, finite and > 0."""
     return _threshold(threshold, {"slip_rate": unit})
+
+
+def event_threshold(result: Any, threshold: float | None = None) -> float:
+    """The slip-rate threshold events of ``result`` are found with: ``threshold`` as given, or
+    :func:`default_threshold` when ``None``; checked by :func:`check_threshold` in the run's
+    slip-rate unit (one ``ValueError`` line). What ``simulate`` and an interface sweep use
+    alike, so that both find the same events."""
+    thr = default_threshold(result) if threshold is None else threshold
+    return check_threshold(thr, result.units.get("slip_rate", DEFAULT_UNITS["slip_rate"]))
 
 
 def _threshold(threshold: float, units: Mapping[str, str]) -> float:

@@ -176,16 +176,14 @@ def catalogue_summary(result: Any, threshold: float | None = None, min_elements:
     """
     from .catalogue import magnitude_frequency, precursor_trend, precursors
     from .fronts import (
-        check_threshold,
-        default_threshold,
         detect_events,
+        event_threshold,
         from_result,
         interface_loaded_edge,
         interface_normal_load,
     )
 
-    thr = default_threshold(result) if threshold is None else threshold
-    thr = check_threshold(thr, result.units.get("slip_rate", _V))
+    thr = event_threshold(result, threshold)
     st = from_result(result)
     events = [e for e in detect_events(st, thr, min_elements=min_elements)
               if e.t_start >= after]

@@ -120,9 +120,8 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
         precursors,
     )
     from ..analysis.fronts import (
-        check_threshold,
-        default_threshold,
         detect_events,
+        event_threshold,
         from_result,
         interface_loaded_edge,
         interface_normal_load,
@@ -135,8 +134,7 @@ def interface_outputs(result: Any, folder: str | Path, *, threshold: float | Non
 
     fmt, dpi = check_figure_format(fmt, dpi)
     transient = check_scalar("transient", transient, 0.0)
-    thr = default_threshold(result) if threshold is None else threshold
-    thr = check_threshold(thr, result.units.get("slip_rate", "a0/t0"))
+    thr = event_threshold(result, threshold)
     folder = Path(folder)
     draw = draw or _draw_here
     st = from_result(result)
