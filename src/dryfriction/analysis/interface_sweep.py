@@ -28,13 +28,17 @@ from typing import Any
 
 import numpy as np
 
-from ..validation import check_scalar
-
 __all__ = ["CATALOGUE_KEYS", "SWEEP_VARIABLES", "TREND_CODES", "catalogue_options",
            "catalogue_summary", "interface_point", "interface_summary"]
 
 CATALOGUE_KEYS: tuple[str, ...] = ("threshold", "min_elements", "after", "edge_gap")
 """Keys of a point's optional ``[catalogue]`` table (module doc)."""
+_CATALOGUE_RANGES: dict[str, tuple[float, float | None, bool, bool]] = {
+    # key: (lo, hi, lo_open, hi_open), as validation.check_scalar takes them; min_elements
+    # (>= 1) and edge_gap (>= 0) are whole numbers
+    "threshold": (0.0, None, True, False),
+    "after": (0.0, None, False, False),
+}
 
 TREND_CODES: dict[int, str] = {-1: "undetermined", 0: "not_significant", 1: "yes",
                                2: "decreasing"}
@@ -97,35 +101,10 @@ def catalogue_options(table: Any, source: str = "protocol") -> dict[str, Any]:
         that is not a number (or not a whole number for ``min_elements``, ``edge_gap``), or
         out of range.
     """
-    if table is None:
-        return {}
-    if not isinstance(table, Mapping):
-        raise ValueError(f"{source}: [catalogue] must be a table of {', '.join(CATALOGUE_KEYS)}")
-    unknown = sorted(str(k) for k in set(table) - set(CATALOGUE_KEYS))
-    if unknown:
-        raise ValueError(f"{source}: unknown key(s) "
-                         f"{', '.join('catalogue.' + k for k in unknown)}: allowed "
-                         f"{', '.join(CATALOGUE_KEYS)}")
-    opts: dict[str, Any] = {}
-    for key, value in table.items():
-        name = f"catalogue.{key}"
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ValueError(f"{source}: {name} = {value!r} is not a number")
-        if key in ("min_elements", "edge_gap"):
-            low = 1 if key == "min_elements" else 0
-            if not math.isfinite(value) or value != int(value) or value < low:
-                raise ValueError(f"{source}: {name} = {value!r} is out of range: allowed a "
-                                 f"whole number >= {low}")
-            opts[key] = int(value)
-            continue
-        try:
-            if key == "threshold":
-                opts[key] = check_scalar(name, value, 0.0, lo_open=True)
-            else:
-                opts[key] = check_scalar(name, value, 0.0)
-        except ValueError as exc:
-            raise ValueError(f"{source}: {exc}") from None
-    return opts
+    from ..io.protocol import option_table
+
+    return option_table(table, "catalogue", CATALOGUE_KEYS, source, ranges=_CATALOGUE_RANGES,
+                        whole={"min_elements": 1, "edge_gap": 0})
 
 
 def interface_point(protocol: Mapping[str, Any], source: str = "sweep point"

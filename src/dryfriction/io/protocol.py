@@ -123,6 +123,7 @@ __all__ = [
     "pulling_velocity",
     "spring_point",
     "stickslip_options",
+    "option_table",
 ]
 
 LAWS: tuple[str, ...] = ("cv", "rsf")
@@ -626,15 +627,77 @@ _STICKSLIP_RANGES: dict[str, tuple[float, float | None, bool, bool]] = {
 }
 
 
-def stickslip_options(table: Any, source: str = "protocol") -> dict[str, Any]:
-    """Check a ``[stickslip]`` table (keys, types and ranges) and return it as a dict.
+def option_table(table: Any, name: str, keys: tuple[str, ...], source: str, *,
+                 ranges: Mapping[str, tuple[float, float | None, bool, bool]],
+                 whole: Mapping[str, int] | None = None,
+                 flags: tuple[str, ...] = ()) -> dict[str, Any]:
+    """Check an options table of a sweep protocol (``[stickslip]``, ``[catalogue]``): its
+    keys, types and ranges, declared as data; return it as a dict.
 
     Parameters
     ----------
     table : mapping or None
-        The table; ``None`` means no table (every default).
+        The table; ``None`` means no table (every default: ``{}``).
+    name : str
+        The table's name, in every message (``name.key``).
+    keys : tuple of str
+        The keys allowed, in the order the messages list them.
     source : str
         Where the table comes from, put in front of every message.
+    ranges : mapping
+        ``key -> (lo, hi, lo_open, hi_open)`` of a number, as
+        :func:`dryfriction.validation.check_scalar` takes them.
+    whole : mapping, optional
+        ``key -> lowest value`` of a whole number (an integer value, ``1.0`` included).
+    flags : tuple of str
+        Keys that are booleans.
+
+    Raises
+    ------
+    ValueError
+        One line: an unknown key, a value of the wrong type (a TOML boolean is an int to
+        Python: refused where a number is meant, rather than read true as 1), a number out of
+        its range; the message names ``name.key`` and the allowed range.
+    """
+    if table is None:
+        return {}
+    if not isinstance(table, Mapping):
+        raise ValueError(f"{source}: [{name}] must be a table of {', '.join(keys)}")
+    unknown = sorted(str(k) for k in set(table) - set(keys))
+    if unknown:
+        raise ValueError(f"{source}: unknown key(s) "
+                         f"{', '.join(name + '.' + k for k in unknown)}: "
+                         f"allowed {', '.join(keys)}")
+    whole = whole or {}
+    opts: dict[str, Any] = {}
+    for key, value in table.items():
+        where = f"{name}.{key}"
+        if key in flags:
+            if not isinstance(value, bool):
+                raise ValueError(f"{source}: {where} = {value!r} is not allowed: true or false")
+            opts[key] = value
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ValueError(f"{source}: {where} = {value!r} is not a number")
+        if key in whole:
+            low = whole[key]
+            if not math.isfinite(value) or value != int(value) or value < low:
+                raise ValueError(f"{source}: {where} = {value!r} is out of range: allowed a "
+                                 f"whole number >= {low}")
+            opts[key] = int(value)
+            continue
+        lo, hi, lo_open, hi_open = ranges[key]
+        try:
+            opts[key] = check_scalar(where, value, lo, hi, lo_open=lo_open, hi_open=hi_open)
+        except ValueError as exc:
+            raise ValueError(f"{source}: {exc}") from None
+    return opts
+
+
+def stickslip_options(table: Any, source: str = "protocol") -> dict[str, Any]:
+    """Check a ``[stickslip]`` table (keys, types and ranges: :data:`STICKSLIP_KEYS`, the
+    ranges of ``_STICKSLIP_RANGES``, ``follow_velocity`` a boolean) and return it as a dict
+    (:func:`option_table`).
 
     Raises
     ------
@@ -642,34 +705,8 @@ def stickslip_options(table: Any, source: str = "protocol") -> dict[str, Any]:
         For an unknown key, a value that is not a number (or, for ``follow_velocity``, not a
         boolean) or a number out of its range; the message names ``stickslip.<key>``.
     """
-    if table is None:
-        return {}
-    if not isinstance(table, Mapping):
-        raise ValueError(f"{source}: [stickslip] must be a table of "
-                         f"{', '.join(STICKSLIP_KEYS)}")
-    unknown = sorted(set(table) - set(STICKSLIP_KEYS))
-    if unknown:
-        raise ValueError(f"{source}: unknown key(s) "
-                         f"{', '.join('stickslip.' + str(k) for k in unknown)}: "
-                         f"allowed {', '.join(STICKSLIP_KEYS)}")
-    opts: dict[str, Any] = {}
-    for key, value in table.items():
-        if key == "follow_velocity":
-            if not isinstance(value, bool):
-                raise ValueError(f"{source}: stickslip.follow_velocity = {value!r} is not "
-                                 "allowed: true or false")
-            opts[key] = value
-            continue
-        # a TOML boolean is an int to Python: refuse it rather than read true as 1
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ValueError(f"{source}: stickslip.{key} = {value!r} is not a number")
-        lo, hi, lo_open, hi_open = _STICKSLIP_RANGES[key]
-        try:
-            opts[key] = check_scalar(f"stickslip.{key}", value, lo, hi, lo_open=lo_open,
-                                     hi_open=hi_open)
-        except ValueError as exc:
-            raise ValueError(f"{source}: {exc}") from None
-    return opts
+    return option_table(table, "stickslip", STICKSLIP_KEYS, source, ranges=_STICKSLIP_RANGES,
+                        flags=("follow_velocity",))
 
 
 def spring_point(protocol: Mapping[str, Any], source: str = "sweep point",
