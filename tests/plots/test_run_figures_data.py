@@ -20,10 +20,10 @@ from dryfriction.plots.runs import _describe_drive, _rsf_title, _trap_title
 
 
 def test_drive_descriptions_spring_force_and_plurals() -> None:
-    # mistakes: K and M swapped, the hold count off (a segment of velocity 0 is a hold), the
-    # loaded start's force taken from the drive, "1 segments"
+    # mistakes: K and M swapped, the hold count off (a segment of velocity 0 is a hold, not
+    # one given by its duration), the loaded start's force taken from the drive, "1 segments"
     segs = [{"velocity": 1e-3, "slip": 0.5}, {"velocity": 0.0, "duration": 30.0},
-            {"velocity": 2e-3, "slip": 0.5}, {"velocity": 0.0, "duration": 7.0}]
+            {"velocity": 2e-3, "duration": 12.0}, {"velocity": 0.0, "duration": 7.0}]
     spring = {"kind": "spring", "stiffness": 0.037, "mass": 0.5, "damping": 0.25,
               "segments": segs}
     assert _describe_drive(spring, {"kind": "loaded", "force": 0.3}) == (
