@@ -51,7 +51,12 @@ def test_windows_by_hand() -> None:
     assert math.isnan(w[0].t_change_lo)
     # a larger pre_slip: the up-step's lead is the whole half of the segment before, no more
     w = slice_steps(_record(), SEGS, pre_slip=1e-3, pre_fraction=1.0)
-    assert (w[0].i_start, w[1].i_start) == (100, 160)  # never before the segment before
+    assert (w[0].i_start, w[1].i_start) == (100, 160)
+    # a change placed between samples, 1 s before the first sample of its segment: the window
+    # still starts at that segment's first sample, never in the segment before it
+    early = (SEGS[0], SEGS[1], Segment(1049.0, 1080.0, 2e-6, 100, 160), *SEGS[3:])
+    w = slice_steps(_record(), early, pre_slip=1e-3, pre_fraction=1.0)
+    assert w[0].i_start == 100
 
 
 def test_a_final_hold_gives_no_window_and_none_at_all_is_refused() -> None:
