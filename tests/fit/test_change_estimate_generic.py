@@ -32,8 +32,9 @@ def test_exact_broken_line_gives_its_corner_between_samples() -> None:
 
 def test_standard_error_is_the_scatter_of_the_corner_on_white_noise() -> None:
     # 120 draws of 0.05 um white noise: the mean reported sigma against the corner's standard
-    # deviation over the draws (measured 1.00; mistakes: the Jacobian's corner column with the
-    # velocities swapped, the residual variance left out, no square root)
+    # deviation over the draws (measured 0.97; mistakes: the residual variance left out, no
+    # square root. The corner column with the two velocities swapped is no mistake: it is
+    # minus the right one plus a constant, and the constant column absorbs it)
     rng = np.random.default_rng(5)
     x = _line(T)
     draws = [estimate_change(T, x + rng.normal(0.0, 5e-8, T.size), 5001.5) for _ in range(120)]
