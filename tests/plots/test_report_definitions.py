@@ -184,3 +184,28 @@ def test_loaded_table_columns_in_their_header_order(forged) -> None:
         r"<tr>(<td class=num>[^\n]*?)</tr>", page.split(head)[1].split("</table>")[0])]
     assert cells == [["0", "-0.11111", "1.02222", "1.13333", "1.4444"],
                      ["0.25", "-0.22222", "1.05555", "1.16666", "1.7777"]]
+
+
+def test_panel_cuts_just_right_of_each_panel() -> None:
+    # three panels side by side at 60 dpi: each cut 0.1 in right of a panel's frame, or at the
+    # next panel's left edge if that is nearer (mistakes: the pad in pixels, cut at the frame
+    # itself, the last panel dropped, the panels named from 1)
+    import io
+
+    from PIL import Image
+
+    from dryfriction.plots.style import new_figure
+
+    fig, _ = new_figure((9.0, 2.5), 1, 3)
+    fig.canvas.draw()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=60)
+    width = Image.open(io.BytesIO(buf.getvalue())).size[0]
+    boxes = sorted((ax.get_position() for ax in fig.axes), key=lambda b: b.x0)
+    cuts = [0] + [round(width * min(b.x1 + 0.1 / 9.0, nxt.x0))
+                  for b, nxt in zip(boxes[:-1], boxes[1:], strict=True)] + [width]
+    got = report.panel_pngs(fig, buf.getvalue(), "f.png", 60)
+    assert [g[0] for g in got] == ["f.png (a)", "f.png (b)", "f.png (c)"]
+    widths = [Image.open(io.BytesIO(g[2])).size[0] for g in got]
+    assert widths == [b - a for a, b in zip(cuts[:-1], cuts[1:], strict=True)]
+    assert all(b.x1 + 0.1 / 9.0 < nxt.x0 for b, nxt in zip(boxes[:-1], boxes[1:], strict=True))
