@@ -91,9 +91,13 @@ def test_edges_span_ten_dc_range_and_short_window() -> None:
     assert "not_identified:dc" in words
     assert f"leaves the range [{rlo:.3g}," in " ".join(row["notes"])
     # short window: slip after the change under 3 Dc; exactly 3 Dc is not short
-    i = int(np.searchsorted(d.t, 1100.0))
-    slip = 1.5e-6 * (d.t[-1] - d.t[i])
-    for dc, short in ((slip / 3.0, False), (slip / 2.99, True)):
+    probe = _row(VAL)
+    judge_step(probe, SPECS, theta, cov, False, Z, d)
+    slip = probe["slip_after"]  # as judge_step computes it (checked against 1.5 um/s above)
+    # a Dc with 3 Dc == slip exactly in floating point (slip/3 may be one unit off)
+    exact = next(c for c in (slip / 3.0, np.nextafter(slip / 3.0, 0.0),
+                             np.nextafter(slip / 3.0, 1.0)) if 3.0 * c == slip)
+    for dc, short in ((float(exact), False), (slip / 2.99, True)):
         val = dict(VAL, dc=dc)
         row = _row(val, {"dc": (dc / 2.0, dc * 2.0)})
         th = np.log([val[s.name] for s in SPECS])
