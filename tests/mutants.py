@@ -2773,6 +2773,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("report panels: named from (b)", "plots/report.py",
        "chr(ord('a') + k)", "chr(ord('a') + k + 1)", _S7RD),
     # --- end strengthen7A
+    # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
+    _m("series windows: the final-hold test off by one", "fit/steps.py",
+       "if k + 1 >= len(change) - 1:", "if k + 1 > len(change) - 1:",
+       "tests/fit/test_series_windows_generic.py"),
 )
 
 
