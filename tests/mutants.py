@@ -116,6 +116,7 @@ _S7FF = "tests/plots/test_fit_figure_data.py"
 _S7PF = "tests/plots/test_paper_figures_data.py"
 _S7JG = "tests/fit/test_judge_generic.py"
 _S7FD = "tests/fit/test_fit_defaults.py"
+_S7SD = "tests/fit/test_step_data.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -2772,6 +2773,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "pad = 0.1 / fig.get_figwidth()", "pad = 0.1", _S7RD),
     _m("report panels: named from (b)", "plots/report.py",
        "chr(ord('a') + k)", "chr(ord('a') + k + 1)", _S7RD),
+    _m("step data: a window to the last sample refused", "fit/steps.py",
+       "if not 0 <= i0 < i1 <= len(data):", "if not 0 <= i0 < i1 < len(data):", _S7SD),
+    _m("step data: the window's end sample included", "fit/steps.py",
+       "    sl = slice(i0, i1)\n", "    sl = slice(i0, i1 + 1)\n", _S7SD),
+    _m("step data: a segment's first sample left out", "fit/steps.py",
+       "        v[s.i_start:s.i_end] = s.velocity\n    if np.any(np.isnan(v)):",
+       "        v[s.i_start + 1:s.i_end] = s.velocity\n    if np.any(np.isnan(v)):", _S7SD),
     # --- end strengthen7A
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
