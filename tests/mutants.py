@@ -117,6 +117,7 @@ _S7PF = "tests/plots/test_paper_figures_data.py"
 _S7JG = "tests/fit/test_judge_generic.py"
 _S7FD = "tests/fit/test_fit_defaults.py"
 _S7SD = "tests/fit/test_step_data.py"
+_S7SL = "tests/plots/test_style_layout.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -2780,6 +2781,14 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("step data: a segment's first sample left out", "fit/steps.py",
        "        v[s.i_start:s.i_end] = s.velocity\n    if np.any(np.isnan(v)):",
        "        v[s.i_start + 1:s.i_end] = s.velocity\n    if np.any(np.isnan(v)):", _S7SD),
+    _m("layout: no room for a figure title", "plots/style.py",
+       "_LEFT, _RIGHT, _BOTTOM, _TOP, _SUPTITLE = 0.85, 0.3, 0.6, 0.35, 0.3",
+       "_LEFT, _RIGHT, _BOTTOM, _TOP, _SUPTITLE = 0.85, 0.3, 0.6, 0.35, 0.0", _S7SL),
+    _m("layout: gaps as fractions of the figure", "plots/style.py",
+       "wspace=_WGAP / ax_w, hspace=_HGAP / ax_h", "wspace=_WGAP / w, hspace=_HGAP / h", _S7SL),
+    _m("layout: row and column gaps swapped", "plots/style.py",
+       "wspace=_WGAP / ax_w, hspace=_HGAP / ax_h", "wspace=_HGAP / ax_w, hspace=_WGAP / ax_h",
+       _S7SL),
     # --- end strengthen7A
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
