@@ -2789,6 +2789,12 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("layout: row and column gaps swapped", "plots/style.py",
        "wspace=_WGAP / ax_w, hspace=_HGAP / ax_h", "wspace=_HGAP / ax_w, hspace=_WGAP / ax_h",
        _S7SL),
+    _m("cv series: the run read at the record's own clock", "fit/cvseries.py",
+       "mu = np.interp((data.t - data.t[0]) / sc.t0, t_res, mu_res)",
+       "mu = np.interp(data.t / sc.t0, t_res, mu_res)", _S7CV),
+    _m("cv series: the spring in F_el/a0 without mu_el", "fit/cvseries.py",
+       'k_red = stiffness * values["a0"] / values["mu_el"]', 'k_red = stiffness * values["a0"]',
+       "tests/fit/test_cvfit.py", "-k", "stiff_spring"),
     # --- end strengthen7A
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",

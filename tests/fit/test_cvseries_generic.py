@@ -5,10 +5,12 @@ inverted at ``u``; ``t0 = u a0/v0``)."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
-from dryfriction.fit import CVModel
+from dryfriction.fit import CVModel, cv_series
 from dryfriction.fit.cvseries import cv_start_from_rsf, fitted_scales, fitted_trap
+from dryfriction.records.data import SeriesData
 from dryfriction.theory.direct import junction_strength
 from dryfriction.theory.linear_stability import effective_rsf
 from dryfriction.theory.model import TrapModel
@@ -64,3 +66,23 @@ def test_start_from_rsf_inverts_the_twin_at_a_reduced_velocity_other_than_one(di
         assert s["direct"] == pytest.approx(direct, rel=0.05)
     else:
         assert "direct" not in s
+
+
+def test_series_on_a_clock_far_from_zero_and_its_steady_level() -> None:
+    # the record's clock starts anywhere: the run is read at t - t[0] (mistake: at t, the
+    # whole series then reads the run's last sample); after 6 a0 at the second velocity the
+    # friction is the steady mu_el mu_d(u) (eq. 34) to the track's granularity
+    a0, t0, mu_el = 1e-6, 1.0, 0.5
+    v1, v2 = 0.3e-6, 3e-6
+    t1, t2 = 4.0 * a0 / v1, 6.0 * a0 / v2
+    t = np.linspace(0.0, t1 + t2, 300, endpoint=False)
+    d0 = SeriesData(t, np.where(t < t1, v1, v2), np.zeros(t.size))
+    d1 = SeriesData(t + 1234.5, d0.v_load, d0.mu)
+    model = CVModel(TrapModel(), traps_per_a0=100, sample_slip=0.01)
+    values = {"eps": 0.02, "t0": t0, "a0": a0, "mu_el": mu_el}
+    m0, m1 = cv_series(model, values, d0), cv_series(model, values, d1)
+    np.testing.assert_allclose(m1, m0, rtol=0, atol=1e-12)
+    want = mu_el * float(steady_friction(TrapModel(eps=0.02), v2 * t0 / a0))
+    assert float(np.mean(m0[-20:])) == pytest.approx(want, abs=2e-3)
+    assert float(np.mean(m0[40:60])) == pytest.approx(
+        mu_el * float(steady_friction(TrapModel(eps=0.02), v1 * t0 / a0)), abs=2e-3)
