@@ -2794,7 +2794,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "mu = np.interp(data.t / sc.t0, t_res, mu_res)", _S7CV),
     _m("cv series: the spring in F_el/a0 without mu_el", "fit/cvseries.py",
        'k_red = stiffness * values["a0"] / values["mu_el"]', 'k_red = stiffness * values["a0"]',
-       "tests/fit/test_cvfit.py", "-k", "stiff_spring"),
+       _S7CV),
     # --- end strengthen7A
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",

@@ -86,3 +86,28 @@ def test_series_on_a_clock_far_from_zero_and_its_steady_level() -> None:
     assert float(np.mean(m0[-20:])) == pytest.approx(want, abs=2e-3)
     assert float(np.mean(m0[40:60])) == pytest.approx(
         mu_el * float(steady_friction(TrapModel(eps=0.02), v1 * t0 / a0)), abs=2e-3)
+
+
+def test_the_spring_in_reduced_units_is_k_a0_over_mu_el() -> None:
+    # friction mu = k (x_lp - x) per unit normal force (k in 1/m) is F/F_el = (k a0/mu_el)
+    # (X_lp - X) in a0: the ensemble's spring K = k a0/mu_el (mistake: k a0, the spring mu_el
+    # times too stiff). Against the ensemble run directly with that K, at mu_el = 0.45
+    from dryfriction.ensemble.driving import Output, SpringDrive, simulate
+    from dryfriction.ensemble.population import Initial, Track
+    from dryfriction.program import Segment
+
+    a0, t0, mu_el, k = 1e-6, 1.0, 0.45, 3.0e5  # K = 0.675 F_el/a0, near the contacts' own
+    v1, v2 = 0.3e-6, 3e-6
+    t1, t2 = 4.0 * a0 / v1, 6.0 * a0 / v2
+    t = 50.0 + np.linspace(0.0, t1 + t2, 300, endpoint=False)
+    d = SeriesData(t, np.where(t < 50.0 + t1, v1, v2), np.zeros(t.size))
+    values = {"eps": 0.02, "t0": t0, "a0": a0, "mu_el": mu_el}
+    got = cv_series(CVModel(TrapModel(), traps_per_a0=100, sample_slip=0.01, stiffness=k),
+                    values, d)
+    dur, vel = d.segments()
+    prog = [Segment(float(v * t0 / a0), float(s / t0)) for s, v in zip(dur, vel, strict=True)]
+    res = simulate(TrapModel(eps=0.02, mu_el=mu_el), SpringDrive(k * a0 / mu_el, 0.0, prog),
+                   Initial("steady", velocity=v1 * t0 / a0, track=Track(100)),
+                   Output(every_slip=0.01))
+    want = np.interp((t - t[0]) / t0, res.t, res.mu)
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)
