@@ -2382,6 +2382,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("space-time map: the floor at a tenth of the threshold", "plots/fronts.py",
        "floor = threshold / 100.0", "floor = threshold / 10.0",
        "tests/plots/test_fronts_figures.py"),
+    # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
+    _m("series windows: the final-hold test off by one", "fit/steps.py",
+       "if k + 1 >= len(change) - 1:", "if k + 1 > len(change) - 1:",
+       "tests/fit/test_series_windows_generic.py"),
 )
 
 
