@@ -92,8 +92,8 @@ from __future__ import annotations
 import math
 import os
 import time as _time
-from dataclasses import asdict, dataclass
 from collections.abc import Callable
+from dataclasses import asdict, dataclass
 from typing import ClassVar
 
 import numba

@@ -193,32 +193,35 @@ def advance_chain_multirate(c, state, birth, off, lo, hi, x, v, a, f, fscale, t,
 
     The chain steps together as in :func:`advance_chain` (the same step, set by the fastest
     block and the stiffest mode; velocity Verlet; the springs at every step), but block ``i``'s
-    window, the cost, is updated only when its own rule asks: when it has passed the next
+    window, the cost, is updated only when its own rule asks: when it is the fastest block
+    (which sets the step, so that one block is :func:`advance_chain` bit for bit), when it
+    has passed the next
     spinodal of its contacts ahead (``ne``, found at the last update at frozen time: ageing
     only moves a spinodal further, so no contact gives way unseen; the step where a contact
     gives way is the step where its force drops, as in :func:`advance_chain`), or when the
     slip path since its last update would pass ``dx_max`` (a quarter trap spacing, the
     single slider's bound, now per block) after one more step of the present size, or the
-    time since it would pass ``dt_osc``. In between, its friction is the first-order expansion about the last update,
-    ``F_i = fu_i + ku_i (x_i - xu_i)`` (``ku_i = dF_i/dx`` of the window then: the contacts'
-    elastic stiffness is kept in the fast dynamics; their ageing over at most ``dt_osc`` and
-    the curvature of ``f_+`` over at most ``dx_max`` are neglected until the next update). An
+    time since it would pass ``dt_osc``. In between, its friction is the first-order
+    expansion about the last update, ``F_i = fu_i + ku_i (x_i - xu_i)`` (``ku_i = dF_i/dx``
+    of the window then: the contacts' elastic stiffness is kept in the fast dynamics; their
+    ageing over at most ``dt_osc`` and the curvature of ``f_+`` over at most ``dx_max`` are
+    neglected until the next update). An
     update applies every transition on the block's straight path from ``xu_i`` at ``tu_i``
     to its present position, as one step of :func:`advance_chain` over that interval would.
 
     This is multiple time stepping (the idea of r-RESPA, Tuckerman, Berne & Martyna, J. Chem.
     Phys. 97, 1990 (1992): the expensive force on a slow clock, the cheap ones on the fast
-    one), with the slow force extrapolated rather than applied as impulses (ours). When every
-    block is updated at every step (one block; or a chain whose fastest block sets every
-    block's bound) the arithmetic is :func:`advance_chain`'s except that the stiffness is
-    computed too.
+    one), with the slow force extrapolated rather than applied as impulses (ours). In a step
+    where every block is due, the arithmetic is :func:`advance_chain`'s (the stiffness is
+    computed too, which changes no force).
 
-    ``xu, tu, fu, ku, path, ne, nd`` (per block) carry the last updates between calls; on entry they
-    must describe the windows as they are (:func:`probe_chain` after any other kernel moved
-    them). Energy: the work against the contacts is the trapezoid of the force the blocks
-    felt, so the balance holds as in :func:`advance_chain`. On an early return (every block
-    quiet, or a window's overflow) every block is brought up to date at the time reached, its
-    force replaced by the window's (no slip: no work) and its acceleration by the new force's.
+    ``xu, tu, fu, ku, path, ne, nd`` (per block) carry the last updates between calls; on
+    entry they must describe the windows as they are (:func:`probe_chain` after any other
+    kernel moved them). Energy: the work against the contacts is the trapezoid of the force
+    the blocks felt, so the balance holds as in :func:`advance_chain`. On an early return
+    (every block quiet, or a window's overflow) every block is brought up to date at the time
+    reached, its force replaced by the window's (no slip: no work) and its acceleration by
+    the new force's.
     ``par_min``: fewest blocks due in one step whose windows are updated in a ``prange``.
 
     Returns the time reached, as :func:`advance_chain`; ``acc[2]`` counts the trap updates
@@ -230,14 +233,17 @@ def advance_chain_multirate(c, state, birth, off, lo, hi, x, v, a, f, fscale, t,
     k_new = np.empty(n)
     due = np.empty(n, np.int64)
     while t < t1:
-        dt = min(dt_osc, t1 - t)
         vmax = 0.0
+        fastest = 0
         for i in range(n):
             av = abs(v[i])
             if av > vmax:
                 vmax = av
+                fastest = i
+        step = dt_osc  # the step's bound, before a sample cuts it short
         if vmax != 0.0:
-            dt = min(dt, dx_max / vmax)
+            step = min(step, dx_max / vmax)
+        dt = min(step, t1 - t)
         if t1 - (t + dt) < 1e-12 * max(1.0, t1):
             dt = t1 - t
         t_new = t1 if dt == t1 - t else t + dt
@@ -246,8 +252,10 @@ def advance_chain_multirate(c, state, birth, off, lo, hi, x, v, a, f, fscale, t,
             x_new[i] = x[i] + v[i] * dt + 0.5 * a[i] * dt * dt
             d = abs(x_new[i] - x[i])
             path[i] += d
-            # due when one more step like this one would take it past its bounds
-            if (path[i] + d > dx_max or (t_new - tu[i]) + dt > dt_osc
+            # due: the fastest block (it sets the step: one block is advance_chain bit for
+            # bit), a block past its next spinodal, or one that one more step would take past
+            # its slip or time bound
+            if (i == fastest or path[i] + d > dx_max or (t_new - tu[i]) + step > dt_osc
                     or (x_new[i] - ne[i]) * nd[i] >= 0.0):
                 due[m] = i
                 m += 1
