@@ -78,6 +78,7 @@ _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
 _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
+_IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2382,6 +2383,45 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("space-time map: the floor at a tenth of the threshold", "plots/fronts.py",
        "floor = threshold / 100.0", "floor = threshold / 10.0",
        "tests/plots/test_fronts_figures.py"),
+    # --- interface5 (issue 29): the multirate kernel (every block's window on its own clock)
+    _m("multirate: the friction held at its last update", "ensemble/interface_kernel.py",
+       "f_new[i] = fu[i] + ku[i] * (x_new[i] - xu[i])", "f_new[i] = fu[i]",
+       _IMR, "-k", "trajectories"),
+    _m("multirate: the stiffness term's sign", "ensemble/interface_kernel.py",
+       "f_new[i] = fu[i] + ku[i] * (x_new[i] - xu[i])",
+       "f_new[i] = fu[i] - ku[i] * (x_new[i] - xu[i])", _IMR, "-k", "trajectories or front"),
+    _m("multirate: extrapolated from the last step, not the last update",
+       "ensemble/interface_kernel.py",
+       "f_new[i] = fu[i] + ku[i] * (x_new[i] - xu[i])",
+       "f_new[i] = fu[i] + ku[i] * (x_new[i] - x[i])", _IMR, "-k", "trajectories or front"),
+    _m("multirate: a stuck block never updated on time", "ensemble/interface_kernel.py",
+       "or (t_new - tu[i]) + step > dt_osc", "or False", _IMR, "-k", "at_rest"),
+    _m("multirate: the next spinodal not looked for", "ensemble/interface_kernel.py",
+       "\n                    or (x_new[i] - ne[i]) * nd[i] >= 0.0):", "):", _IMR, "-k",
+       "trajectories or catalogue_statistics"),
+    _m("multirate: the fastest block not always updated", "ensemble/interface_kernel.py",
+       "if (i == fastest or path[i]", "if (path[i]", _IMR, "-k", "one_block"),
+    _m("multirate: a sample's short step judged by its own length",
+       "ensemble/interface_kernel.py",
+       "or (t_new - tu[i]) + step > dt_osc", "or (t_new - tu[i]) + dt > dt_osc", _IMR, "-k",
+       "one_block"),
+    _m("multirate: the windows not brought up to date on an early return",
+       "ensemble/interface_kernel.py",
+       "if t < t1:  # an early return: every window up to date at t",
+       "if False:  # an early return: every window up to date at t", _IMR, "-k",
+       "energy or event_driven"),
+    _m("multirate: the per-block state not read again after a quasi-static phase",
+       "ensemble/interface.py",
+       "if multirate:  # settle_chain moved the windows", "if False:", _IMR, "-k",
+       "energy or event_driven"),
+    _m("multirate: the parallel branch over the blocks in order, not the due list",
+       "ensemble/interface_kernel.py",
+       "for k in numba.prange(m):\n                _block_lazy(due[k],",
+       "for k in numba.prange(m):\n                _block_lazy(k,", _IMR, "-k", "threads"),
+    _m("multirate: the [interface] key not passed on", "io/protocol.py",
+       'multirate=i.data.get("multirate", False))', "multirate=False)", _IMR, "-k",
+       "protocol"),
+    # --- end interface5
 )
 
 

@@ -8,6 +8,7 @@ Each test names the plausible mistake it is for (seen failing with it applied, t
 from __future__ import annotations
 
 import functools
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,6 +23,7 @@ from dryfriction.ensemble.interface import (
 from dryfriction.ensemble.interface_result import InterfaceResult
 from dryfriction.ensemble.population import Initial, Track
 from dryfriction.ensemble.result import Output
+from dryfriction.io.protocol import parse_protocol
 from dryfriction.program import Segment, VelocityProgram
 from dryfriction.theory.model import TrapModel
 
@@ -66,6 +68,27 @@ def test_one_block_is_the_every_step_run_bit_for_bit(loading: str) -> None:
     for name in ("slip", "slip_rate", "stress", "load"):
         assert np.array_equal(getattr(runs[0], name), getattr(runs[1], name)), name
     assert runs[0].info["steps"] == runs[1].info["steps"]
+
+
+def test_blocks_at_rest_are_updated_on_time_and_age() -> None:
+    """Four blocks held at rest (side loading, the edge's load point still for 40 ``t0``,
+    then moving): every block is slow, the step is the oscillation bound and every window is
+    due at every step, so the hold is the every-step run's to rounding, the friction of each
+    block changing by up to 0.014 ``F_el`` as its fresh contacts age. Mistake caught: a block
+    updated only on its slip, never on time (its friction then frozen while it rests: 5e-4
+    ``F_el`` off, with 39 % of the updates)."""
+    runs = [simulate_interface(
+        InterfaceModel(TrapModel(eps=0.04), 4, 1.3, 1.2, 0.03, multirate=m),
+        InterfaceDrive("side", 0.0, VelocityProgram([Segment(0.0, duration=40.0),
+                                                     Segment(V, duration=20.0)]),
+                       edge_stiffness=0.07),
+        Initial("rest", track=Track(80.0, "random", seed=3)), Output(every=0.5), threads=1)
+        for m in (False, True)]
+    hold = runs[0].t <= 40.0
+    ageing = float(np.max(np.abs(runs[0].stress[hold] - runs[0].stress[0])))
+    assert ageing > 0.01
+    assert np.max(np.abs(runs[1].stress[hold] - runs[0].stress[hold])) < 1e-9 * ageing
+    assert np.max(np.abs(runs[1].slip - runs[0].slip)) < 1e-4
 
 
 def test_trajectories_follow_the_every_step_run_through_the_first_events() -> None:
@@ -193,3 +216,35 @@ def test_multirate_is_a_boolean_switch() -> None:
     with pytest.raises(ValueError, match="multirate") as err:
         InterfaceModel(TrapModel(), 2, 1.0, 1.0, multirate="yes")  # type: ignore[arg-type]
     assert "\n" not in str(err.value)
+
+
+def test_the_protocol_table_takes_the_switch() -> None:
+    """``multirate`` in the ``[interface]`` table reaches the model (default false); a value
+    that is not true or false is refused in one line naming it, before any work. Mistake
+    caught: the key allowed but not passed on."""
+    text = (Path(__file__).parents[2] / "examples" / "interface_side_loaded.toml").read_text()
+    assert "[interface]\n" in text
+    good = text.replace("[interface]\n", "[interface]\nmultirate = true\n")
+    assert parse_protocol(good, "mr.toml").model.multirate is True
+    assert parse_protocol(text, "dyn.toml").model.multirate is False
+    bad = text.replace("[interface]\n", "[interface]\nmultirate = 1\n")
+    with pytest.raises(ValueError, match="multirate") as err:
+        parse_protocol(bad, "bad.toml")
+    assert "\n" not in str(err.value)
+
+
+def test_multirate_numbers_are_the_same_with_two_threads() -> None:
+    """32 blocks in multirate stepping, where 16 or more blocks due in one step are updated in
+    the parallel loop (in the slow phases every block is due at every step): one thread and
+    two give the same numbers bit for bit (each block's update touches only its own
+    arrays). Mistake caught: the parallel branch updating the blocks in step order instead
+    of the due list."""
+    runs = [simulate_interface(
+        InterfaceModel(TrapModel(eps=0.04), 32, 1.3, 1.2, 0.03, multirate=True),
+        InterfaceDrive("uniform", 0.07, VelocityProgram([Segment(V, slip=2.0)])),
+        Initial("steady", velocity=V, track=Track(60.0, "random", seed=4)),
+        Output(every=0.5), threads=th) for th in (1, 2)]
+    assert runs[1].info["threads"] == 2
+    assert np.max(runs[0].slip_rate) > 10.0 * V  # slips, where few blocks are due
+    for name in ("slip", "slip_rate", "stress", "load"):
+        assert np.array_equal(getattr(runs[0], name), getattr(runs[1], name)), name
