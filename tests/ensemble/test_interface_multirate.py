@@ -56,8 +56,8 @@ def test_one_block_is_the_every_step_run_bit_for_bit(loading: str) -> None:
     """One block is always the fastest, whose window is updated at every step: the multirate
     run is the every-step run (and so the single slider, tests/ensemble/test_interface.py)
     bit for bit, through stick-slip with a sample every 0.5 ``t0`` (the steps cut short by a
-    sample included). Mistake caught: a step cut short by a sample judged by its own length
-    (the block's window then skipped there: 0.78 ``a0`` apart after the first large slip)."""
+    sample included). Mistake caught: the fastest block not always updated (a step cut short
+    by a sample then skips its window: 0.78 ``a0`` apart after the first large slip)."""
     kp, ks = (0.07, 0.0) if loading == "uniform" else (0.0, 0.07)
     runs = [simulate_interface(
         InterfaceModel(TrapModel(eps=0.04), 1, 0.0, 1.3, 0.02, multirate=m),

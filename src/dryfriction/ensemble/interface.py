@@ -82,6 +82,15 @@ threshold is handed to the dynamics, but a drop whose ringing stays below ``v_qs
 settle quasi-statically after one period). :data:`QUASI_STATIC_RATE` is the threshold the
 checks against the dynamic run were made with (tests/ensemble/test_interface_events.py).
 
+Multirate stepping (ours; ``multirate = True``): the chain keeps its one step for the motion
+and the springs, but each block's contact window, the cost, is updated only when that block
+needs it: when it is the fastest block, when it passes the next spinodal of its contacts, or
+after a quarter trap spacing of its own slip or ``dt_osc`` of time; its friction extrapolated
+in between with the window's own stiffness
+(:func:`.interface_kernel.advance_chain_multirate`, docs/explanation/interface.md). One block
+is the every-step run bit for bit; a chain agrees with it to its chaotic scatter
+(tests/ensemble/test_interface_multirate.py).
+
 Not modelled (refused or absent, and said so): the direct effect (``direct > 0`` is refused),
 the quasi-static (``mass = 0``) limit, a long-range (thin-slab) elastic kernel, snapshots of
 the populations.
