@@ -97,7 +97,7 @@ def test_trajectories_follow_the_every_step_run_through_the_first_events() -> No
     window at every step, and the load within 0.2 %; with fewer window updates. Measured
     against the every-step run with a four times finer slip bound: 0.0035 ``a0`` for the
     every-step run itself, 0.012 with its bound halved, 0.020 for the multirate run; the
-    load 0.03 % apart. Mistakes caught: the friction held at its last update (no
+    load 0.06 % apart. Mistakes caught: the friction held at its last update (no
     stiffness term: the contacts' elasticity leaves the fast dynamics), the stiffness term's
     sign, a block updated only on its slip (never on time: a stuck block's contacts stop
     ageing)."""
