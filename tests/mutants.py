@@ -78,6 +78,7 @@ _ARG = "tests/records/test_artifacts_generic.py"
 _SSE = "tests/io/test_stickslip_table_edges.py"
 _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
+_S7EQ = "tests/ensemble/test_equilibrate_sawtooth.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2382,6 +2383,33 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("space-time map: the floor at a tenth of the threshold", "plots/fronts.py",
        "floor = threshold / 100.0", "floor = threshold / 10.0",
        "tests/plots/test_fronts_figures.py"),
+    # --- strengthen7B (issue 25, seventh round): ensemble/balance equilibrate, ensemble/resources
+    # estimate_run and check_run, theory/stability SteadyResponse.nodes, ... Each seen failing
+    # with its test
+    _m("equilibrate: the spinodals passed not among the extremes", "ensemble/balance.py",
+       "extreme = max(extreme, fb) if d > 0 else min(extreme, fb)", "extreme = extreme", _S7EQ),
+    _m("equilibrate: min and max swapped at the root", "ensemble/balance.py",
+       "extreme = max(extreme, fr) if d > 0 else min(extreme, fr)",
+       "extreme = min(extreme, fr) if d > 0 else max(extreme, fr)", _S7EQ),
+    _m("equilibrate: spinodals and exits swapped in the counts", "ensemble/balance.py",
+       "return (o.births, o.spinodal, o.exits)", "return (o.births, o.exits, o.spinodal)", _S7EQ),
+    _m("equilibrate: the second births dropped from a sum", "ensemble/balance.py",
+       "return (a[0] + b[0], a[1] + b[1], a[2] + b[2])",
+       "return (a[0], a[1] + b[1], a[2] + b[2])", _S7EQ),
+    _m("equilibrate: a capped jump not reported a runaway", "ensemble/balance.py",
+       "return extreme, True, add_events(ev, events(ob))",
+       "return extreme, False, add_events(ev, events(ob))", _S7EQ),
+    _m("equilibrate: max_slip counted from the last spinodal", "ensemble/balance.py",
+       "capped = abs(xe - start) > max_slip", "capped = abs(xe - ens.x) > max_slip", _S7EQ),
+    _m("equilibrate: the extreme without the strength", "ensemble/balance.py",
+       "extreme = max(extreme, fb) if d > 0 else min(extreme, fb)",
+       "extreme = max(extreme, pb.force) if d > 0 else min(extreme, pb.force)", _S7EQ),
+    _m("equilibrate: the first event backwards looked for forwards", "ensemble/balance.py",
+       "    if d < 0:  # the next event backwards (the force is the same)\n"
+       "        o = ens.observe(d, stiffness=True)",
+       "    if d < 0:  # the next event backwards (the force is the same)\n"
+       "        o = ens.observe(1, stiffness=True)", _S7EQ),
+    # --- end strengthen7B
 )
 
 
