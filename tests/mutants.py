@@ -79,6 +79,7 @@ _SSE = "tests/io/test_stickslip_table_edges.py"
 _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
 _S7EQ = "tests/ensemble/test_equilibrate_sawtooth.py"
+_S7RC = "tests/ensemble/test_run_estimate_counts.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2409,6 +2410,43 @@ MUTANTS: tuple[Mutant, ...] = (
        "        o = ens.observe(d, stiffness=True)",
        "    if d < 0:  # the next event backwards (the force is the same)\n"
        "        o = ens.observe(1, stiffness=True)", _S7EQ),
+    _m("run estimate: a force drive's uniform count without the hold", "ensemble/resources.py",
+       "samples = (drive.hold + drive.max_force / drive.rate) / output.every",
+       "samples = (drive.max_force / drive.rate) / output.every", _S7RC),
+    _m("run estimate: the hold's log grid times its step", "ensemble/resources.py",
+       "math.log1p(drive.hold) / FORCE_HOLD_LOG_STEP",
+       "math.log1p(drive.hold) * FORCE_HOLD_LOG_STEP", _S7RC),
+    _m("run estimate: the ramp's samples without the contact stiffness", "ensemble/resources.py",
+       "drive.max_force / (float(output.every_slip) * k_c))",
+       "drive.max_force / float(output.every_slip))", _S7RC),
+    _m("run estimate: the snapshots not among the samples", "ensemble/resources.py",
+       "samples += 2.0 + len(output.snapshots)", "samples += 2.0", _S7RC),
+    _m("run estimate: the buffer on one side of the slider", "ensemble/resources.py",
+       "traps = lam * (2.0 * (reach + margin + 2.0) + step_slip) + 4.0",
+       "traps = lam * ((reach + margin + 2.0) + step_slip) + 4.0", _S7RC),
+    _m("run estimate: one random block", "ensemble/resources.py",
+       "traps += 2.0 * 1024", "traps += 1024", _S7RC),
+    _m("run estimate: the contact reach without its + 1", "ensemble/resources.py",
+       "active = lam * (reach + 1.0) + 2.0", "active = lam * reach + 2.0", _S7RC),
+    _m("check run: the ramp's clock floor without max(1, hold)", "ensemble/resources.py",
+       "if not dt > 1e-12 * max(1.0, drive.hold):", "if not dt > 1e-12 * drive.hold:", _S7RC),
+    _m("check run: the ramp's step without the contact stiffness", "ensemble/resources.py",
+       "dt = float(output.every_slip) * model.trap.contact_stiffness / drive.rate",
+       "dt = float(output.every_slip) / drive.rate", _S7RC),
+    _m("work estimate: force control one call a step", "ensemble/resources.py",
+       "        calls = 2.0 * steps\n", "        calls = steps\n", _S7RC),
+    _m("work estimate: one event per pair passed", "ensemble/resources.py",
+       "events = 2.0 * lam * travel", "events = lam * travel", _S7RC),
+    _m("work estimate: the inertial slip bound at half a spacing", "ensemble/resources.py",
+       "travel * lam / 0.25", "travel * lam / 0.5", _S7RC),
+    _m("check run: the pairs' share not naming the density", "ensemble/resources.py",
+       'elif kind == "events" or pair_bound:', 'elif kind == "events":', _S7RC),
+    _m("work estimate: the traps in contact priced once", "ensemble/resources.py",
+       "seconds = calls * (SECONDS_PER_CALL + SECONDS_PER_PAIR * est.active)",
+       "seconds = calls * SECONDS_PER_CALL + SECONDS_PER_PAIR * est.active", _S7RC),
+    _m("check run: the density's key unqualified", "ensemble/resources.py",
+       'lam_key = ("ensemble." if qualified else "") + "traps_per_a0"',
+       'lam_key = "traps_per_a0"', _S7RC),
     # --- end strengthen7B
 )
 
