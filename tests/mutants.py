@@ -80,6 +80,7 @@ _LCG = "tests/fit/test_lawcolumns.py"
 _IDD = "tests/fit/test_identify_definitions.py"
 _S7EQ = "tests/ensemble/test_equilibrate_sawtooth.py"
 _S7RC = "tests/ensemble/test_run_estimate_counts.py"
+_S7RN = "tests/theory/test_response_nodes.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2447,6 +2448,16 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("check run: the density's key unqualified", "ensemble/resources.py",
        'lam_key = ("ensemble." if qualified else "") + "traps_per_a0"',
        'lam_key = "traps_per_a0"', _S7RC),
+    _m("response nodes: a level twice as fine as named", "theory/stability.py",
+       "_MIN_PANELS * 2**level)", "_MIN_PANELS * 2**(level + 1))", _S7RN),
+    _m("response nodes: the first branch only", "theory/stability.py",
+       "            for br in self.branches:\n                T, b, _ = _branch_nodes",
+       "            for br in self.branches[:1]:\n                T, b, _ = _branch_nodes", _S7RN),
+    _m("response nodes: the cache answers any level with the first", "theory/stability.py",
+       "if level not in self.node_cache:", "if not self.node_cache:", _S7RN),
+    _m("response memory: panels for a phase 16 x too large", "theory/stability.py",
+       "need = np.maximum(size * slope / (_PHASE * _MIN_PANELS), 1.0)",
+       "need = np.maximum(size * slope / (16 * _PHASE * _MIN_PANELS), 1.0)", _S7RN),
     # --- end strengthen7B
 )
 
