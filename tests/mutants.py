@@ -81,6 +81,7 @@ _IDD = "tests/fit/test_identify_definitions.py"
 _S7EQ = "tests/ensemble/test_equilibrate_sawtooth.py"
 _S7RC = "tests/ensemble/test_run_estimate_counts.py"
 _S7RN = "tests/theory/test_response_nodes.py"
+_S7TS = "tests/analysis/test_rsf_view_series.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2458,6 +2459,28 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("response memory: panels for a phase 16 x too large", "theory/stability.py",
        "need = np.maximum(size * slope / (_PHASE * _MIN_PANELS), 1.0)",
        "need = np.maximum(size * slope / (16 * _PHASE * _MIN_PANELS), 1.0)", _S7RN),
+    _m("trap series: mu not over mu_el", "analysis/rsf_view.py",
+       "vl * SCALES.velocity_scale, res.mu / model.mu_el,", "vl * SCALES.velocity_scale, res.mu,",
+       _S7TS),
+    _m("trap series: the load velocity in a0/t0", "analysis/rsf_view.py",
+       "vl * SCALES.velocity_scale, res.mu / model.mu_el,", "vl, res.mu / model.mu_el,", _S7TS),
+    _m("trap series: the velocity left-continuous at a step", "analysis/rsf_view.py",
+       "vl = prog.velocity(res.t)  # right-continuous",
+       "vl = prog.velocity(np.maximum(res.t * (1 - 1e-9), 0.0))  # right-continuous", _S7TS),
+    _m("trap series: steady at the program's first velocity", "analysis/rsf_view.py",
+       'res = simulate(model, VelocityDrive(prog), Initial("steady", velocity=u_init, track=track)',
+       'res = simulate(model, VelocityDrive(prog), Initial("steady", velocity=float('
+       'prog.velocities[0]), track=track)', _S7TS),
+    _m("hold peaks: not over mu_el", "analysis/rsf_view.py",
+       "out.append(float(np.max(res.mu)) / model.mu_el)", "out.append(float(np.max(res.mu)))",
+       _S7TS),
+    _m("hold peaks: a reload of 0.02 (1 + y_c)", "analysis/rsf_view.py",
+       "Segment(u0, slip=2.0 * (1.0 + yc))", "Segment(u0, slip=0.02 * (1.0 + yc))", _S7TS),
+    _m("hold peaks: the reload before the hold", "analysis/rsf_view.py",
+       "VelocityDrive([Segment(0.0, float(th)),\n"
+       "                                             Segment(u0, slip=2.0 * (1.0 + yc))])",
+       "VelocityDrive([Segment(u0, slip=2.0 * (1.0 + yc)),\n"
+       "                                             Segment(0.0, float(th))])", _S7TS),
     # --- end strengthen7B
 )
 
