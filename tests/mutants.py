@@ -82,6 +82,7 @@ _S7EQ = "tests/ensemble/test_equilibrate_sawtooth.py"
 _S7RC = "tests/ensemble/test_run_estimate_counts.py"
 _S7RN = "tests/theory/test_response_nodes.py"
 _S7TS = "tests/analysis/test_rsf_view_series.py"
+_S7LS = "tests/analysis/test_linear_summary_edges.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2481,6 +2482,15 @@ MUTANTS: tuple[Mutant, ...] = (
        "                                             Segment(u0, slip=2.0 * (1.0 + yc))])",
        "VelocityDrive([Segment(u0, slip=2.0 * (1.0 + yc)),\n"
        "                                             Segment(0.0, float(th))])", _S7TS),
+    _m("linear summary: stable read as K < K_c", "analysis/linear.py",
+       '"linearly_stable": float(drive.stiffness > res.critical_stiffness)',
+       '"linearly_stable": float(drive.stiffness < res.critical_stiffness)', _S7LS),
+    _m("sweep point: pulled at the first segment's velocity", "io/protocol.py",
+       "return float(drive.program.segments[-1].velocity)",
+       "return float(drive.program.segments[0].velocity)", _S7LS),
+    _m("growth rate: the ill-posed point coded as no root found", "analysis/linear.py",
+       "    if chain == math.inf:\n        return math.nan, -2, root",
+       "    if chain == math.inf:\n        return math.nan, -1, root", _S7LS),
     # --- end strengthen7B
 )
 
