@@ -83,6 +83,7 @@ _S7RC = "tests/ensemble/test_run_estimate_counts.py"
 _S7RN = "tests/theory/test_response_nodes.py"
 _S7TS = "tests/analysis/test_rsf_view_series.py"
 _S7LS = "tests/analysis/test_linear_summary_edges.py"
+_S7TW = "tests/rsf/test_two_state_stability.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2491,6 +2492,21 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("growth rate: the ill-posed point coded as no root found", "analysis/linear.py",
        "    if chain == math.inf:\n        return math.nan, -2, root",
        "    if chain == math.inf:\n        return math.nan, -1, root", _S7LS),
+    _m("two states: the second's Jacobian column with b", "rsf/stepper.py",
+       "dn = -cp * (b2 / a) * s - c * b2 * dgt2", "dn = -cp * (b2 / a) * s - c * b * dgt2",
+       _S7TW),
+    _m("two states: the inertial column with b", "rsf/stepper.py",
+       "jac[2] = -b2 * c / mv", "jac[2] = -b * c / mv", _S7TW),
+    _m("two states: the second's own rate with the first's slope", "rsf/stepper.py",
+       "jac[2 * n + 2] = dgt2", "jac[2 * n + 2] = dgt1", _S7TW),
+    _m("two states: the second evolves over Dc", "rsf/stepper.py",
+       "g2, dgv2, dgt2 = _state_log_rate(law, v, lnth2, p[_LNDC2], p[_INVDC2])",
+       "g2, dgv2, dgt2 = _state_log_rate(law, v, lnth2, p[_LNDC], p[_INVDC])", _S7TW),
+    _m("two states: the second's velocity slope is the first's", "rsf/stepper.py",
+       "jac[2 * n] = dgv2", "jac[2 * n] = dgv1", _S7TW),
+    _m("two states: the slip-rate row with the first's slope twice", "rsf/stepper.py",
+       "dn = -k * v - cp * s - c * (b * dgv1 + b2 * dgv2)",
+       "dn = -k * v - cp * s - c * (b * dgv1 + b2 * dgv1)", _S7TW),
     # --- end strengthen7B
 )
 
