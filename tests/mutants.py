@@ -84,6 +84,7 @@ _S7RN = "tests/theory/test_response_nodes.py"
 _S7TS = "tests/analysis/test_rsf_view_series.py"
 _S7LS = "tests/analysis/test_linear_summary_edges.py"
 _S7TW = "tests/rsf/test_two_state_stability.py"
+_S7SC = "tests/analysis/test_stickslip_classes.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2507,6 +2508,21 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("two states: the slip-rate row with the first's slope twice", "rsf/stepper.py",
        "dn = -k * v - cp * s - c * (b * dgv1 + b2 * dgv2)",
        "dn = -k * v - cp * s - c * (b * dgv1 + b2 * dgv1)", _S7TW),
+    _m("stick-slip: sticking below 0.6 u by default", "analysis/stickslip.py",
+       "    rel_threshold: float = 0.25,\n    stick_fraction: float = 0.5,\n    cv_periodic",
+       "    rel_threshold: float = 0.25,\n    stick_fraction: float = 0.6,\n    cv_periodic",
+       _S7SC),
+    _m("stick-slip: periodic below 12 % variation by default", "analysis/stickslip.py",
+       "    cv_periodic: float = 0.1,\n", "    cv_periodic: float = 0.12,\n", _S7SC),
+    _m("stick-slip: four events needed", "analysis/stickslip.py",
+       "if n < 3 or periods.size < 2:", "if n < 4 or periods.size < 2:", _S7SC),
+    _m("stick-slip: steady at the floor itself", "analysis/stickslip.py",
+       "    if rng < floor:\n", "    if rng <= floor:\n", _S7SC),
+    _m("stick-slip: an oscillation without sticking called periodic", "analysis/stickslip.py",
+       "code = 1 if stick_frac > 0 else 4", "code = 1", _S7SC),
+    _m("stick-slip: periodic when either variation is small", "analysis/stickslip.py",
+       "elif per_cv < cv_periodic and amp_cv < cv_periodic:",
+       "elif per_cv < cv_periodic or amp_cv < cv_periodic:", _S7SC),
     # --- end strengthen7B
 )
 
