@@ -85,6 +85,7 @@ _S7TS = "tests/analysis/test_rsf_view_series.py"
 _S7LS = "tests/analysis/test_linear_summary_edges.py"
 _S7TW = "tests/rsf/test_two_state_stability.py"
 _S7SC = "tests/analysis/test_stickslip_classes.py"
+_S7HJ = "tests/theory/test_hopf_jacobian.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2523,6 +2524,20 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("stick-slip: periodic when either variation is small", "analysis/stickslip.py",
        "elif per_cv < cv_periodic and amp_cv < cv_periodic:",
        "elif per_cv < cv_periodic or amp_cv < cv_periodic:", _S7SC),
+    _m("hopf jacobian: a second-order difference", "theory/hopf.py",
+       "out[:, j] = (fp[0] - 8 * fp[1] + 8 * fp[2] - fp[3]) / (12 * h)",
+       "out[:, j] = (fp[2] - fp[1]) / (2 * h)", _S7HJ),
+    _m("hopf jacobian: the outer weights' sign", "theory/hopf.py",
+       "out[:, j] = (fp[0] - 8 * fp[1] + 8 * fp[2] - fp[3]) / (12 * h)",
+       "out[:, j] = (-fp[0] - 8 * fp[1] + 8 * fp[2] + fp[3]) / (12 * h)", _S7HJ),
+    _m("hopf jacobian: the step without scale", "theory/hopf.py",
+       "            h = _H_FD * scale\n            fp = [",
+       "            h = _H_FD\n            fp = [", _S7HJ),
+    _m("hopf: residual_max 1e-5 by default", "theory/hopf.py",
+       "method: Method = \"complex\", scale: float = 1.0, residual_max: float = 1e-6,",
+       "method: Method = \"complex\", scale: float = 1.0, residual_max: float = 1e-5,", _S7HJ),
+    _m("hopf: the residual not relative to omega", "theory/hopf.py",
+       "residual = abs(float(lam[i].real)) / omega", "residual = abs(float(lam[i].real))", _S7HJ),
     # --- end strengthen7B
 )
 
