@@ -86,6 +86,7 @@ _S7LS = "tests/analysis/test_linear_summary_edges.py"
 _S7TW = "tests/rsf/test_two_state_stability.py"
 _S7SC = "tests/analysis/test_stickslip_classes.py"
 _S7HJ = "tests/theory/test_hopf_jacobian.py"
+_S7DG = "tests/theory/test_dieterich_grid.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2538,6 +2539,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "method: Method = \"complex\", scale: float = 1.0, residual_max: float = 1e-5,", _S7HJ),
     _m("hopf: the residual not relative to omega", "theory/hopf.py",
        "residual = abs(float(lam[i].real)) / omega", "residual = abs(float(lam[i].real))", _S7HJ),
+    _m("dieterich least squares: n ignored", "theory/dieterich.py",
+       "u = np.logspace(np.log10(u_min), np.log10(u_max), int(n))",
+       "u = np.logspace(np.log10(u_min), np.log10(u_max), 81)", _S7DG),
+    _m("dieterich least squares: a linear grid", "theory/dieterich.py",
+       "u = np.logspace(np.log10(u_min), np.log10(u_max), int(n))",
+       "u = np.linspace(u_min, u_max, int(n))", _S7DG),
+    _m("dieterich least squares: the default creep law", "theory/dieterich.py",
+       "    model = TrapModel(alpha, eps, creep)\n    mu_d = steady_friction(model, u)",
+       "    model = TrapModel(alpha, eps)\n    mu_d = steady_friction(model, u)", _S7DG),
+    _m("dieterich least squares: u_max = u_min accepted", "theory/dieterich.py",
+       'u_max = check_scalar("u_max", u_max, u_min, lo_open=True)',
+       'u_max = check_scalar("u_max", u_max, u_min)', _S7DG),
     # --- end strengthen7B
 )
 
