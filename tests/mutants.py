@@ -87,6 +87,7 @@ _S7TW = "tests/rsf/test_two_state_stability.py"
 _S7SC = "tests/analysis/test_stickslip_classes.py"
 _S7HJ = "tests/theory/test_hopf_jacobian.py"
 _S7DG = "tests/theory/test_dieterich_grid.py"
+_S7CP = "tests/analysis/test_trap_check_plan.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2551,6 +2552,19 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("dieterich least squares: u_max = u_min accepted", "theory/dieterich.py",
        'u_max = check_scalar("u_max", u_max, u_min, lo_open=True)',
        'u_max = check_scalar("u_max", u_max, u_min)', _S7DG),
+    _m("trap check plan: periods tripled, not doubled", "analysis/trap_hopf_check.py",
+       "            p *= 2\n", "            p *= 3\n", _S7CP),
+    _m("trap check plan: one bisection start fewer", "analysis/trap_hopf_check.py",
+       "[(d, periods)] * (2 + SUB_STEPS)", "[(d, periods)] * (1 + SUB_STEPS)", _S7CP),
+    _m("trap check cost: without the preparation periods", "analysis/trap_hopf_check.py",
+       "return float(sum((p + 2) * per_period for _, p in plan))",
+       "return float(sum(p * per_period for _, p in plan))", _S7CP),
+    _m("trap check cost: substeps times SUBSTEP_SLIP", "analysis/trap_hopf_check.py",
+       "per_period = (u * T * lam / SUBSTEP_SLIP", "per_period = (u * T * lam * SUBSTEP_SLIP",
+       _S7CP),
+    _m("trap check cost: a substep's pairs without the density", "analysis/trap_hopf_check.py",
+       "* (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * lam * WINDOW))",
+       "* (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * WINDOW))", _S7CP),
     # --- end strengthen7B
 )
 
