@@ -88,6 +88,7 @@ _S7SC = "tests/analysis/test_stickslip_classes.py"
 _S7HJ = "tests/theory/test_hopf_jacobian.py"
 _S7DG = "tests/theory/test_dieterich_grid.py"
 _S7CP = "tests/analysis/test_trap_check_plan.py"
+_S7IS = "tests/analysis/test_interface_summary_columns.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2565,6 +2566,19 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("trap check cost: a substep's pairs without the density", "analysis/trap_hopf_check.py",
        "* (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * lam * WINDOW))",
        "* (CPU_PER_SUBSTEP[0] + CPU_PER_SUBSTEP[1] * WINDOW))", _S7CP),
+    _m("interface summary: the spanning slip over every event", "analysis/interface_sweep.py",
+       '"mean_slip_spanning": mean([e.mean_slip for e in spanning]),',
+       '"mean_slip_spanning": mean([e.mean_slip for e in events]),', _S7IS),
+    _m("interface summary: rho stored as the p-value", "analysis/interface_sweep.py",
+       "precursor_p=trend.p_value,", "precursor_p=trend.rho,", _S7IS),
+    _m("interface summary: the element count from the samples", "analysis/interface_sweep.py",
+       "    n = int(result.x.size)\n", "    n = int(result.t.size)\n", _S7IS),
+    _m("interface summary: 'not significant' coded as decreasing", "analysis/interface_sweep.py",
+       '_TREND_OF = {"undetermined": -1, "not significant": 0, "yes": 1, "decreasing": 2}',
+       '_TREND_OF = {"undetermined": -1, "not significant": 2, "yes": 1, "decreasing": 0}',
+       _S7IS),
+    _m("interface summary: alpha's error over n, not its root", "analysis/catalogue.py",
+       "err = (alpha - 1.0) / math.sqrt(fit.size)", "err = (alpha - 1.0) / fit.size", _S7IS),
     # --- end strengthen7B
 )
 
