@@ -2580,6 +2580,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("interface summary: alpha's error over n, not its root", "analysis/catalogue.py",
        "err = (alpha - 1.0) / math.sqrt(fit.size)", "err = (alpha - 1.0) / fit.size", _S7IS),
     # --- end strengthen7B
+    # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
+    _m("series windows: the final-hold test off by one", "fit/steps.py",
+       "if k + 1 >= len(change) - 1:", "if k + 1 > len(change) - 1:",
+       "tests/fit/test_series_windows_generic.py"),
 )
 
 
