@@ -89,6 +89,7 @@ _S7HJ = "tests/theory/test_hopf_jacobian.py"
 _S7DG = "tests/theory/test_dieterich_grid.py"
 _S7CP = "tests/analysis/test_trap_check_plan.py"
 _S7IS = "tests/analysis/test_interface_summary_columns.py"
+_S7RT = "tests/analysis/test_rsf_twin_stable.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2579,6 +2580,8 @@ MUTANTS: tuple[Mutant, ...] = (
        _S7IS),
     _m("interface summary: alpha's error over n, not its root", "analysis/catalogue.py",
        "err = (alpha - 1.0) / math.sqrt(fit.size)", "err = (alpha - 1.0) / fit.size", _S7IS),
+    _m("rsf twin: no Hopf frequency reported as 0", "analysis/rsf_stability.py",
+       'out["omega_c"] = float("nan")', 'out["omega_c"] = 0.0', _S7RT),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
