@@ -90,6 +90,7 @@ _S7DG = "tests/theory/test_dieterich_grid.py"
 _S7CP = "tests/analysis/test_trap_check_plan.py"
 _S7IS = "tests/analysis/test_interface_summary_columns.py"
 _S7RT = "tests/analysis/test_rsf_twin_stable.py"
+_S7RI = "tests/ensemble/test_run_info_counts.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2582,6 +2583,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "err = (alpha - 1.0) / math.sqrt(fit.size)", "err = (alpha - 1.0) / fit.size", _S7IS),
     _m("rsf twin: no Hopf frequency reported as 0", "analysis/rsf_stability.py",
        'out["omega_c"] = float("nan")', 'out["omega_c"] = 0.0', _S7RT),
+    _m("run info: the slip-event threshold 1 a0", "ensemble/driving.py",
+       "thr = 0.5  # a0", "thr = 1.0  # a0", _S7RI),
+    _m("run info: the last sample's slip as the largest", "ensemble/driving.py",
+       '"largest_sample_slip": float(j.max())', '"largest_sample_slip": float(j[-1])', _S7RI),
+    _m("run info: fast is above the mean velocity", "ensemble/driving.py",
+       "fast = v > 3.0 * v_mean", "fast = v > v_mean", _S7RI),
+    _m("run info: a fast run's slide from its first fast sample", "ensemble/driving.py",
+       "            start = max(i - 1, 0)\n", "            start = i\n", _S7RI),
+    _m("run info: the runaway's time at the sample before", "ensemble/driving.py",
+       "            t_threshold = tj\n", "            t_threshold = t_before\n", _S7RI),
+    _m("run info: the threshold without mu_el", "ensemble/driving.py",
+       '"threshold_mu": ens.model.mu_el * threshold,', '"threshold_mu": threshold,', _S7RI),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
