@@ -91,6 +91,7 @@ _S7CP = "tests/analysis/test_trap_check_plan.py"
 _S7IS = "tests/analysis/test_interface_summary_columns.py"
 _S7RT = "tests/analysis/test_rsf_twin_stable.py"
 _S7RI = "tests/ensemble/test_run_info_counts.py"
+_S7MA = "tests/ensemble/test_mean_age.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2595,6 +2596,12 @@ MUTANTS: tuple[Mutant, ...] = (
        "            t_threshold = tj\n", "            t_threshold = t_before\n", _S7RI),
     _m("run info: the threshold without mu_el", "ensemble/driving.py",
        '"threshold_mu": ens.model.mu_el * threshold,', '"threshold_mu": threshold,', _S7RI),
+    _m("mean age: a (+) trap's age from the step's start", "ensemble/kernel.py",
+       "                nact += 1\n                agesum += t1 - tb\n",
+       "                nact += 1\n                agesum += t1 - t0\n", _S7MA),
+    _m("mean age: a trap changing state aged from the step's start", "ensemble/kernel.py",
+       "            nact += 1\n            agesum += t1 - tb\n",
+       "            nact += 1\n            agesum += t1 - t0\n", _S7MA),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
