@@ -92,6 +92,7 @@ _S7IS = "tests/analysis/test_interface_summary_columns.py"
 _S7RT = "tests/analysis/test_rsf_twin_stable.py"
 _S7RI = "tests/ensemble/test_run_info_counts.py"
 _S7MA = "tests/ensemble/test_mean_age.py"
+_S7PS = "tests/ensemble/test_probe_stiffness.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2602,6 +2603,13 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("mean age: a trap changing state aged from the step's start", "ensemble/kernel.py",
        "            nact += 1\n            agesum += t1 - tb\n",
        "            nact += 1\n            agesum += t1 - t0\n", _S7MA),
+    _m("probe stiffness: r^2 f' on the (+) branch", "ensemble/kernel.py",
+       "                F += R * f\n                K += r * df\n",
+       "                F += R * f\n                K += R * df\n", _S7PS),
+    _m("probe stiffness: the (-) branch's slope negated", "ensemble/kernel.py",
+       "                f = -f\n", "                f = -f\n                df = -df\n", _S7PS),
+    _m("probe stiffness: without the normalisation", "ensemble/population.py",
+       "stiffness=float(o[1]) * self._norm,", "stiffness=float(o[1]),", _S7PS),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
