@@ -93,6 +93,7 @@ _S7RT = "tests/analysis/test_rsf_twin_stable.py"
 _S7RI = "tests/ensemble/test_run_info_counts.py"
 _S7MA = "tests/ensemble/test_mean_age.py"
 _S7PS = "tests/ensemble/test_probe_stiffness.py"
+_S7NE = "tests/ensemble/test_next_event.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2610,6 +2611,10 @@ MUTANTS: tuple[Mutant, ...] = (
        "                f = -f\n", "                f = -f\n                df = -df\n", _S7PS),
     _m("probe stiffness: without the normalisation", "ensemble/population.py",
        "stiffness=float(o[1]) * self._norm,", "stiffness=float(o[1]),", _S7PS),
+    _m("next event: a (+) trap's spinodal without its radius", "ensemble/kernel.py",
+       "                    e = c[i] + yc * r\n", "                    e = c[i] + yc\n", _S7NE),
+    _m("next event: a (-) trap's spinodal on the far side", "ensemble/kernel.py",
+       "                e = c[i] - yc * r\n", "                e = c[i] + yc * r\n", _S7NE),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
