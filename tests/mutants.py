@@ -94,6 +94,7 @@ _S7RI = "tests/ensemble/test_run_info_counts.py"
 _S7MA = "tests/ensemble/test_mean_age.py"
 _S7PS = "tests/ensemble/test_probe_stiffness.py"
 _S7NE = "tests/ensemble/test_next_event.py"
+_S7BT = "tests/ensemble/test_birth_times.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2615,6 +2616,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "                    e = c[i] + yc * r\n", "                    e = c[i] + yc\n", _S7NE),
     _m("next event: a (-) trap's spinodal on the far side", "ensemble/kernel.py",
        "                e = c[i] - yc * r\n", "                e = c[i] + yc * r\n", _S7NE),
+    _m("birth time: a forward birth dated at the step's start", "ensemble/kernel.py",
+       "                    tb = t0 + frac * (t1 - t0)\n                    s = 1\n",
+       "                    tb = t0\n                    s = 1\n", _S7BT),
+    _m("birth time: the forward crossing without the contact edge", "ensemble/kernel.py",
+       "frac = (-1.0 - (x0 - c[i])) / dx", "frac = (-(x0 - c[i])) / dx", _S7BT),
+    _m("birth time: the backward crossing's sign", "ensemble/kernel.py",
+       "frac = (1.0 - (x0 - c[i])) / dx", "frac = (1.0 + (x0 - c[i])) / dx", _S7BT),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
