@@ -95,6 +95,7 @@ _S7MA = "tests/ensemble/test_mean_age.py"
 _S7PS = "tests/ensemble/test_probe_stiffness.py"
 _S7NE = "tests/ensemble/test_next_event.py"
 _S7BT = "tests/ensemble/test_birth_times.py"
+_S7SF = "tests/ensemble/test_snapshot_force_strong.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -2623,6 +2624,11 @@ MUTANTS: tuple[Mutant, ...] = (
        "frac = (-1.0 - (x0 - c[i])) / dx", "frac = (-(x0 - c[i])) / dx", _S7BT),
     _m("birth time: the backward crossing's sign", "ensemble/kernel.py",
        "frac = (1.0 - (x0 - c[i])) / dx", "frac = (1.0 + (x0 - c[i])) / dx", _S7BT),
+    _m("kernel: the (-) branch's force with the (+) sign", "ensemble/kernel.py",
+       "                f = -f\n", "                f = f\n", _S7SF),
+    _m("snapshot: the (-) branch clipped at +y_c", "ensemble/population.py",
+       "force_minus(np.maximum(w, -self._yc), self._alpha)",
+       "force_minus(np.minimum(w, self._yc), self._alpha)", _S7SF),
     # --- end strengthen7B
     # --- stop 37 (lead): a final hold gives no window in series_windows, as in slice_steps
     _m("series windows: the final-hold test off by one", "fit/steps.py",
