@@ -2401,8 +2401,11 @@ MUTANTS: tuple[Mutant, ...] = (
        "floor = threshold / 100.0", "floor = threshold / 10.0",
        "tests/plots/test_fronts_figures.py"),
     # --- strengthen7B (issue 25, seventh round): ensemble/balance equilibrate, ensemble/resources
-    # estimate_run and check_run, theory/stability SteadyResponse.nodes, ... Each seen failing
-    # with its test
+    # estimate_run/check_run/estimate_work, theory/stability SteadyResponse.nodes, rsf_view
+    # trap_series/hold_peaks, analysis.linear, rsf two-state stability, stickslip classes, hopf
+    # jacobian, dieterich least squares, trap check plan/cost, interface sweep columns, run info,
+    # the kernel's mean age, stiffness, next event, birth times and (-) branch. Each seen
+    # failing with its test
     _m("equilibrate: the spinodals passed not among the extremes", "ensemble/balance.py",
        "extreme = max(extreme, fb) if d > 0 else min(extreme, fb)", "extreme = extreme", _S7EQ),
     _m("equilibrate: min and max swapped at the root", "ensemble/balance.py",
