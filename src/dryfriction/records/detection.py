@@ -549,7 +549,8 @@ def detect_program(
     sig_place = sigma if blk == 1 else fl.sigma
     guess = bounds
     bounds, places = place_changes(t, x, bounds, v_now, sig_place, fl.scales, fl.relative,
-                                   fl.absolute, m, weak=weak, periods=periods)
+                                   fl.absolute, m, weak=weak, periods=periods,
+                                   tol=PLACE_TOL if TOL_PLACED else 0.0)
     if HOLD_PLACED:
         bounds, places = _keep_holds(t, x, guess, bounds, places, hold_now, by_rule, v_now,
                                      fits, fl, floor, given, sig_place, m, periods)
@@ -590,6 +591,7 @@ def detect_program(
 
 
 PLACE_TOL = 0.5
+TOL_PLACED = True
 """A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when the probability
 that it lies within the larger of one sample and this many seconds of its time is at least
 :data:`.labsteps.PLACED_P`, s: the tolerance the detection is measured against on the

@@ -277,6 +277,8 @@ records 250 and 322, stops from 0.4-0.5 um/s, placed 0.7 and 2.6 s early without
 RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
 """The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
 not the zoo's 3 s)."""
+HALF_MIN, HALF_MAX = 20.0, 60.0
+HOLD_HALF = 20.0
 WIDEN = 2.0
 """Each side of the change-time interval is this many times the profile's (ours, empirical):
 the profile is that of the model (an OU velocity wander, white noise, a machine oscillation);
@@ -377,7 +379,7 @@ def profile_interval(times: Array, gain: Array, scale: float, left: float, right
 def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2: float,
                    sigma: float, rel: tuple[float, float], ab: tuple[float, float],
                    search: float = 5.0, periods: tuple[float, ...] = (), move: bool = True,
-                   stop: bool = False) -> Placement:
+                   stop: bool = False, tol: float = 0.0) -> Placement:
     """The sample where the velocity changes: the generalised-least-squares hinge (module
     docstring) on the samples ``lo:hi`` around ``guess``, and the 95 % interval of its time
     (:func:`profile_interval`, scaled by the generalised residual variance at the best
@@ -421,7 +423,8 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     tg = float(t[guess])
     # an oscillation's regressors are told from the hinge over two of its periods each side
     small = max(abs(v1), abs(v2)) <= OSC_RATIO * min(abs(v1), abs(v2))
-    half = max(min(max(20.0, 10.0 * tau), 60.0),
+    still = min(abs(v1), abs(v2)) <= RELAX_STOP * max(abs(v1), abs(v2))
+    half = max(min(max(HOLD_HALF if still else HALF_MIN, 10.0 * tau), HALF_MAX),
                2.0 * max(periods, default=0.0) if small else 0.0) + search
     a = max(lo, int(np.searchsorted(t, tg - half)))
     b = min(hi, int(np.searchsorted(t, tg + half)))
@@ -561,6 +564,8 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     left, right = 0.5 * float(tt[c_lo - 1] + tt[c_lo]), 0.5 * float(tt[c_hi - 1] + tt[c_hi])
     lo_t, hi_t, edge = profile_interval(tt[allc], allg, scale, left, right)
     cells, weights = profile_weights(tt[allc], allg, scale, left, right)
+    if move and tol > 0.0:
+        best = a + _most_probable(tt, cells, weights, c_lo, c_hi, tol, best - a)
     at = best if move else guess
     # the interval holds the time reported (a change left where the whole stretches put it
     # may lie outside the profile's own interval): at least its sample's cell; then each side
@@ -574,10 +579,29 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     return Placement(at, lo_t, hi_t, edge, cells, weights, tg)
 
 
+TOL_WIDEN = 1.0
+
+
+def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int, tol: float,
+                   best: int) -> int:
+    """The candidate sample (``c_lo <= k < c_hi``, index into ``tt``) whose time has the most
+    profile mass within the larger of its sample interval and ``tol`` (s); ``best`` unless
+    another holds more."""
+    cum = np.concatenate([[0.0], np.cumsum(weights)])
+    k = np.arange(max(c_lo, 1), c_hi)
+    tk = tt[k]
+    h = np.maximum(tk - tt[k - 1], tol) / TOL_WIDEN
+    mass = np.interp(tk + h, cells, cum) - np.interp(tk - h, cells, cum)
+    j = int(np.argmax(mass))
+    hb = max(float(tt[best] - tt[best - 1]), tol) / TOL_WIDEN
+    mb = float(np.interp(tt[best] + hb, cells, cum) - np.interp(tt[best] - hb, cells, cum))
+    return int(k[j]) if mass[j] > mb + 1e-9 else best
+
+
 def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma: float,
                   scales: Array, relative: Array, absolute: Array, m: int = 3,
-                  weak: Array | None = None, periods: tuple[float, ...] = ()
-                  ) -> tuple[list[int], list[Placement]]:
+                  weak: Array | None = None, periods: tuple[float, ...] = (),
+                  tol: float = 0.0) -> tuple[list[int], list[Placement]]:
     """Each inner boundary of ``bounds`` placed by :func:`change_profile`, in order, each window
     kept ``m`` samples clear of the neighbouring boundaries, with the 95 % interval of its time.
 
@@ -623,7 +647,7 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         stop = (abs(v2) <= RELAX_STOP * abs(v1)
                 and rel[0] * rel[1] * abs(v1) >= RELAX_ABOVE * sigma)
         pl = change_profile(t, x, bounds[j], lo, hi, v1, v2, sigma, rel, ab, periods=periods,
-                            move=move, stop=stop)
+                            move=move, stop=stop, tol=tol)
         if not lo < pl.index < hi:
             pl = Placement(bounds[j], pl.lo, pl.hi, pl.edge, pl.cells, pl.weights, pl.guess)
         out.append(pl.index)
