@@ -551,6 +551,21 @@ def detect_program(
     bounds, places = place_changes(t, x, bounds, v_now, sig_place, fl.scales, fl.relative,
                                    fl.absolute, m, weak=weak, periods=periods,
                                    tol=PLACE_TOL if TOL_PLACED else 0.0)
+    if P_MOVE > 0.0:
+        # a confident change left where the whole stretches put it, whose own profile gives
+        # that place less than P_MOVE of lying within the tolerance: placed by the profile
+        p_at = np.array([placed_probability(pl, float(t[pl.index]), max(
+            float(t[pl.index] - t[pl.index - 1]), PLACE_TOL)) if np.isfinite(pl.lo) else 1.0
+            for pl in places])
+        far = ~weak & (p_at < P_MOVE)
+        for j in np.flatnonzero(far) + 1:  # each between its neighbours as placed
+            sub = [bounds[j - 1], bounds[j], bounds[j + 1]]
+            (_, bj, _), (pl,) = place_changes(
+                t, x, sub, v_now[j - 1:j + 1], sig_place, fl.scales, fl.relative,
+                fl.absolute, m, weak=np.array([True]), periods=periods,
+                tol=PLACE_TOL if TOL_PLACED else 0.0)
+            bounds[j], places[j - 1] = bj, pl
+        weak = weak | far
     if HOLD_PLACED:
         bounds, places = _keep_holds(t, x, guess, bounds, places, hold_now, by_rule, v_now,
                                      fits, fl, floor, given, sig_place, m, periods)
@@ -592,6 +607,7 @@ def detect_program(
 
 PLACE_TOL = 0.5
 TOL_PLACED = True
+P_MOVE = 0.05
 """A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when the probability
 that it lies within the larger of one sample and this many seconds of its time is at least
 :data:`.labsteps.PLACED_P`, s: the tolerance the detection is measured against on the

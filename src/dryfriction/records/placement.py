@@ -278,7 +278,7 @@ RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
 """The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
 not the zoo's 3 s)."""
 HALF_MIN, HALF_MAX = 20.0, 60.0
-HOLD_HALF = 20.0
+HOLD_HALF = 60.0
 WIDEN = 2.0
 """Each side of the change-time interval is this many times the profile's (ours, empirical):
 the profile is that of the model (an OU velocity wander, white noise, a machine oscillation);
@@ -579,7 +579,7 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     return Placement(at, lo_t, hi_t, edge, cells, weights, tg)
 
 
-TOL_WIDEN = 1.0
+TOL_WIDEN = 2.0
 
 
 def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int, tol: float,
