@@ -551,12 +551,12 @@ def detect_program(
     bounds, places = place_changes(t, x, bounds, v_now, sig_place, fl.scales, fl.relative,
                                    fl.absolute, m, weak=weak, periods=periods,
                                    tol=PLACE_TOL if TOL_PLACED else 0.0)
-    if P_MOVE > 0.0:
+    if P_MOVE > 0.0 and _wanders(fl):
         # a confident change left where the whole stretches put it, whose own profile gives
         # that place less than P_MOVE of lying within the tolerance: placed by the profile
         p_at = np.array([placed_probability(pl, float(t[pl.index]), max(
-            float(t[pl.index] - t[pl.index - 1]), PLACE_TOL)) if np.isfinite(pl.lo) else 1.0
-            for pl in places])
+            float(t[pl.index] - t[pl.index - 1]), PLACE_TOL))
+            if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])
         far = ~weak & (p_at < P_MOVE)
         for j in np.flatnonzero(far) + 1:  # each between its neighbours as placed
             sub = [bounds[j - 1], bounds[j], bounds[j + 1]]
