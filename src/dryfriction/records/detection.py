@@ -550,7 +550,8 @@ def detect_program(
     guess = bounds
     bounds, places = place_changes(t, x, bounds, v_now, sig_place, fl.scales, fl.relative,
                                    fl.absolute, m, weak=weak, periods=periods,
-                                   tol=PLACE_TOL if TOL_PLACED else 0.0)
+                                   tol=PLACE_TOL if TOL_PLACED else 0.0, holds=hold_now,
+                                   lag=fl.lag)
     if P_MOVE > 0.0 and _wanders(fl):
         # a confident change left where the whole stretches put it, whose own profile gives
         # that place less than P_MOVE of lying within the tolerance: placed by the profile
@@ -563,7 +564,8 @@ def detect_program(
             (_, bj, _), (pl,) = place_changes(
                 t, x, sub, v_now[j - 1:j + 1], sig_place, fl.scales, fl.relative,
                 fl.absolute, m, weak=np.array([True]), periods=periods,
-                tol=PLACE_TOL if TOL_PLACED else 0.0)
+                tol=PLACE_TOL if TOL_PLACED else 0.0, holds=hold_now[j - 1:j + 1],
+                lag=fl.lag)
             bounds[j], places[j - 1] = bj, pl
         weak = weak | far
     if HOLD_PLACED:
@@ -607,7 +609,7 @@ def detect_program(
 
 PLACE_TOL = 0.5
 TOL_PLACED = True
-P_MOVE = 0.05
+P_MOVE = 0.01
 """A change is *placed* (:class:`.labsteps.Segment`'s ``start_placed``) when the probability
 that it lies within the larger of one sample and this many seconds of its time is at least
 :data:`.labsteps.PLACED_P`, s: the tolerance the detection is measured against on the

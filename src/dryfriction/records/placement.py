@@ -279,6 +279,7 @@ RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
 not the zoo's 3 s)."""
 HALF_MIN, HALF_MAX = 20.0, 60.0
 HOLD_HALF = 60.0
+HOLD_RATIO = 0.01
 WIDEN = 2.0
 """Each side of the change-time interval is this many times the profile's (ours, empirical):
 the profile is that of the model (an OU velocity wander, white noise, a machine oscillation);
@@ -379,7 +380,8 @@ def profile_interval(times: Array, gain: Array, scale: float, left: float, right
 def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, v2: float,
                    sigma: float, rel: tuple[float, float], ab: tuple[float, float],
                    search: float = 5.0, periods: tuple[float, ...] = (), move: bool = True,
-                   stop: bool = False, tol: float = 0.0) -> Placement:
+                   stop: bool = False, tol: float = 0.0, held: bool | None = None,
+                   lag: float = float("inf")) -> Placement:
     """The sample where the velocity changes: the generalised-least-squares hinge (module
     docstring) on the samples ``lo:hi`` around ``guess``, and the 95 % interval of its time
     (:func:`profile_interval`, scaled by the generalised residual variance at the best
@@ -423,7 +425,9 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     tg = float(t[guess])
     # an oscillation's regressors are told from the hinge over two of its periods each side
     small = max(abs(v1), abs(v2)) <= OSC_RATIO * min(abs(v1), abs(v2))
-    still = min(abs(v1), abs(v2)) <= RELAX_STOP * max(abs(v1), abs(v2))
+    fast = max(abs(v1), abs(v2))
+    still = (bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (
+        np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)
     half = max(min(max(HOLD_HALF if still else HALF_MIN, 10.0 * tau), HALF_MAX),
                2.0 * max(periods, default=0.0) if small else 0.0) + search
     a = max(lo, int(np.searchsorted(t, tg - half)))
@@ -601,7 +605,8 @@ def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int
 def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma: float,
                   scales: Array, relative: Array, absolute: Array, m: int = 3,
                   weak: Array | None = None, periods: tuple[float, ...] = (),
-                  tol: float = 0.0) -> tuple[list[int], list[Placement]]:
+                  tol: float = 0.0, holds: Array | None = None, lag: float = float("inf")
+                  ) -> tuple[list[int], list[Placement]]:
     """Each inner boundary of ``bounds`` placed by :func:`change_profile`, in order, each window
     kept ``m`` samples clear of the neighbouring boundaries, with the 95 % interval of its time.
 
@@ -647,7 +652,9 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         stop = (abs(v2) <= RELAX_STOP * abs(v1)
                 and rel[0] * rel[1] * abs(v1) >= RELAX_ABOVE * sigma)
         pl = change_profile(t, x, bounds[j], lo, hi, v1, v2, sigma, rel, ab, periods=periods,
-                            move=move, stop=stop, tol=tol)
+                            move=move, stop=stop, tol=tol,
+                            held=None if holds is None else bool(holds[j - 1] != holds[j]),
+                            lag=lag)
         if not lo < pl.index < hi:
             pl = Placement(bounds[j], pl.lo, pl.hi, pl.edge, pl.cells, pl.weights, pl.guess)
         out.append(pl.index)
