@@ -290,9 +290,10 @@ the rule on every change at a hold or a stop (no guard): on zoo records 0-299 96
 slow-sampled holds)."""
 HOLD_RATIO = 0.01
 """A change between speeds more than ``1 / HOLD_RATIO`` apart is at a hold for the window
-(:data:`HOLD_HALF`), beside the detector's own hold flag (which a hold read before placement
-as a creep of 0.3 % of the slide misses: zoo record 4204); the ratio-30 steps of the zoo are
-not (with 1/20, as for the stops, zoo 3157 went from 0.05 to 1.27 tolerances off; ours)."""
+(:data:`HOLD_HALF`), beside the detector's own hold flag, which misses a hold read before
+placement as a creep (zoo records 4036, 4108 and 5116: the flag alone left 1.23, 2.22 and
+1.31 tolerances off); the ratio-30 steps of the zoo are not (with 1/20, as for the stops,
+zoo 3157 went from 0.05 to 1.27 tolerances off before the position-error guard; ours)."""
 WIDEN = 2.0
 """Each side of the change-time interval is this many times the profile's (ours, empirical):
 the profile is that of the model (an OU velocity wander, white noise, a machine oscillation);
@@ -394,7 +395,7 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
                    sigma: float, rel: tuple[float, float], ab: tuple[float, float],
                    search: float = 5.0, periods: tuple[float, ...] = (), move: bool = True,
                    stop: bool = False, tol: float = 0.0, held: bool | None = None,
-                   lag: float = float("inf")) -> Placement:
+                   lag: float | None = None) -> Placement:
     """The sample where the velocity changes: the generalised-least-squares hinge (module
     docstring) on the samples ``lo:hi`` around ``guess``, and the 95 % interval of its time
     (:func:`profile_interval`, scaled by the generalised residual variance at the best
@@ -435,9 +436,9 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
         The change is to or from a hold (the detector's flag): its window reaches
         :data:`HOLD_HALF` each side where ``lag`` allows; ``None``: by the speeds alone
         (:data:`HOLD_RATIO`).
-    lag : float
+    lag : float, optional
         The servo's position error per unit speed, s (:class:`.detection.Fluctuations`; inf:
-        not measured, hidden by the white noise).
+        hidden by the white noise); ``None`` (not known): no hold window.
 
     Returns
     -------
@@ -451,7 +452,8 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     small = max(abs(v1), abs(v2)) <= OSC_RATIO * min(abs(v1), abs(v2))
     # at a hold, where the white noise hides the servo's position error: a longer window
     fast = max(abs(v1), abs(v2))
-    still = (bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (
+    still = lag is not None and (
+        bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (
         np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)
     half = max(min(max(HOLD_HALF if still else 20.0, 10.0 * tau), 60.0),
                2.0 * max(periods, default=0.0) if small else 0.0) + search
@@ -637,7 +639,7 @@ def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int
 def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma: float,
                   scales: Array, relative: Array, absolute: Array, m: int = 3,
                   weak: Array | None = None, periods: tuple[float, ...] = (),
-                  tol: float = 0.0, holds: Array | None = None, lag: float = float("inf")
+                  tol: float = 0.0, holds: Array | None = None, lag: float | None = None
                   ) -> tuple[list[int], list[Placement]]:
     """Each inner boundary of ``bounds`` placed by :func:`change_profile`, in order, each window
     kept ``m`` samples clear of the neighbouring boundaries, with the 95 % interval of its time.
@@ -666,7 +668,7 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         Tolerance, s (:func:`change_profile`; 0: each moved change at the profile's mode).
     holds : Array of bool, optional
         Which stretches are holds (:func:`change_profile`'s ``held``).
-    lag : float
+    lag : float, optional
         The servo's position error per unit speed, s (:func:`change_profile`).
 
     Returns
