@@ -19,11 +19,24 @@ def test_windows_on_a_shifted_non_uniform_record() -> None:
     w = series_windows(SeriesData(t, v, np.zeros(v.size)))
     got = [(x.index, x.kind, x.i_start, x.i_end, x.v_before, x.v_after) for x in w]
     assert got == [(0, "step", 3, 12, 2e-6, 5e-7),          # a down-step
-                   (1, "shs", 9, 22, 5e-7, 5e-7),           # hold [12, 16) and reload
-                   (2, "step", 19, 26, 5e-7, 0.0)]          # a final hold: no reload to fit
-    assert [x.t_change for x in w] == pytest.approx([t[6], t[12], t[22]], rel=1e-15)
-    assert [x.hold for x in w] == pytest.approx([0.0, t[16] - t[12], 0.0], abs=1e-15)
+                   (1, "shs", 9, 22, 5e-7, 5e-7)]           # hold [12, 16) and reload
+    # the final hold [22, 26) gives no window: nothing slides after it (as slice_steps)
+    assert [x.t_change for x in w] == pytest.approx([t[6], t[12]], rel=1e-15)
+    assert [x.hold for x in w] == pytest.approx([0.0, t[16] - t[12]], abs=1e-15)
     assert w[1].hold > 0.0
+
+
+def test_a_final_hold_gives_no_window_at_any_grid() -> None:
+    """A series that slides at two speeds and ends in a hold has one window, the step between
+    the speeds, ending where the hold starts' stretch ends; a single slide then a hold has
+    none."""
+    v = np.r_[np.full(6, 3e-7), np.full(8, 1.2e-6), np.zeros(3)]
+    t = 40.0 + 0.25 * np.arange(v.size)
+    w = series_windows(SeriesData(t, v, np.zeros(v.size)))
+    assert [(x.kind, x.i_start, x.i_end, x.v_before, x.v_after) for x in w] == [
+        ("step", 3, 14, 3e-7, 1.2e-6)]
+    assert w[0].t_change == pytest.approx(t[6], rel=1e-15)
+    assert series_windows(SeriesData(t[6:], v[6:], np.zeros(v.size - 6))) == ()
 
 
 def test_noise_estimates_from_their_definitions_and_size_edges() -> None:

@@ -94,10 +94,15 @@ residuals (:func:`.statistics.hac_covariance`), ``"white"`` assumes independent 
 
 
 def series_windows(data: SeriesData) -> tuple[StepWindow, ...]:
-    """One window per change of ``v_load`` to a sliding velocity: from halfway through the
+    """One window per change of ``v_load`` from a sliding velocity: from halfway through the
     previous stretch to the end of the stretch after the change (a hold and the reload after
     it make one "shs" window), as :class:`dryfriction.records.labsteps.StepWindow` (``t_change`` in
-    the series' time, s)."""
+    the series' time, s).
+
+    As :func:`dryfriction.records.labsteps.slice_steps` does for a laboratory record, a hold
+    at the very end gives no window: nothing slides after it, so it is neither a velocity step
+    nor a slide-hold-slide. (A series starts sliding, :class:`SeriesData`; every other stretch
+    at rest is a hold followed by its reload.)"""
     v = data.v_load
     change = [0, *(np.flatnonzero(np.diff(v) != 0.0) + 1).tolist(), len(v)]
     out: list[StepWindow] = []
@@ -105,7 +110,9 @@ def series_windows(data: SeriesData) -> tuple[StepWindow, ...]:
     while k < len(change) - 1:
         i0 = (change[k - 1] + change[k]) // 2
         kind, j = "step", k
-        if v[change[k]] == 0.0 and k + 1 < len(change) - 1:
+        if v[change[k]] == 0.0:
+            if k + 1 >= len(change) - 1:
+                break  # a final hold: nothing slides after it
             kind, j = "shs", k + 1
         hold = float(data.t[change[j]] - data.t[change[k]])  # 0 for a plain step (j = k)
         out.append(StepWindow(len(out), kind, i0, change[j + 1], float(data.t[change[k]]),
@@ -587,8 +594,8 @@ def fit_steps(
         drive_info = drive_report(data)
     wins = list(series_windows(data) if windows is None else windows)
     if not wins:
-        raise ValueError(f"{data.source}: no velocity step to fit (the load velocity never "
-                         "changes)")
+        raise ValueError(f"{data.source}: no velocity step or slide-hold-slide to fit (the "
+                         "load velocity never changes, or only to a hold at the end)")
     RSFModel(1.0, law, stiffness, trend=trend, initial=initial)  # the options, before any work
     pieces = [_window_data(data, w) for w in wins]
     fits: list[FitResult] = []
