@@ -616,18 +616,18 @@ artifact zoo (``benchmarks/bench_detect.py``)."""
 TOL_PLACED = True
 """Whether a change placed by the hinge under the wander is put at the time most probably
 within ``PLACE_TOL`` of it (the largest ``start_p``: :func:`.placement._most_probable`),
-not at the profile's mode (ours; detect5)."""
+not at the profile's mode (ours)."""
 
 P_MOVE = 0.01
 """A change confident enough to stay where the whole stretches put it (``LOCAL_Z``) is placed
 by the hinge under the wander after all where its own profile gives that place less than
 this probability of lying within its tolerance (``start_p``), the profile is not cut by the
-times searched, and the record's load point wanders (:func:`_wanders`) (ours; detect5). The
+times searched, and the record's load point wanders (:func:`_wanders`) (ours). The
 whole stretches' kink of a confident step is biased by a wander the stretches share: zoo
 records 123, 3027, 3267, 6051 (ratio-3 and ratio-10 steps of a many-step run, z 500-640),
 1.1-1.7 tolerances off with ``start_p`` < 1e-3, within 0.1 after. 0.01, not 0.05: the shared
 sepiolite record's change (z ~ 1960) has 0.033 and must stay at sample 16451 (with 0.05 it
-moved 3 samples, 0.41 s, earlier; the program of that record is fixed by issue 23). Without
+moved 3 samples, 0.41 s, earlier; that record's program is to stay as it is). Without
 the edge guard, zoo 4088 (a white record sampled 10 times faster from the step on) moved
 1.5 tolerances off."""
 

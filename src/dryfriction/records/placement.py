@@ -278,8 +278,8 @@ RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
 """The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
 not the zoo's 3 s)."""
 HOLD_HALF = 60.0
-"""The window about a change at a hold reaches this far (s) each side, not 20 s (ours;
-detect5): where the servo's position error at the sliding speed (``lag`` times it,
+"""The window about a change at a hold reaches this far (s) each side, not 20 s (ours):
+where the servo's position error at the sliding speed (``lag`` times it,
 :class:`.detection.Fluctuations`) is below ``RELAX_ABOVE`` white-noise standard deviations,
 the kink is placed by the white noise over the two stretches' levels, which fall as the
 samples grow (and the oracle of ``bench_detect_bound`` uses 60 s). Where the position error
