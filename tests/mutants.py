@@ -106,6 +106,7 @@ _RBD = "tests/ensemble/test_results_bounds.py"
 _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
+_CCH = "tests/records/test_change_choice.py"
 _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
@@ -2653,6 +2654,39 @@ MUTANTS: tuple[Mutant, ...] = (
        "force_minus(np.maximum(w, -self._yc), self._alpha)",
        "force_minus(np.minimum(w, self._yc), self._alpha)", _S7BSF),
     # --- end strengthen7B
+    # --- detect5: where a detected change is put (tests/records/test_change_choice.py)
+    _m("placement: the profile's mode, not the time most probably within the tolerance",
+       "records/placement.py",
+       "    return int(k[j]) if mass[j] > mb + 1e-9 else best\n",
+       "    return best\n", _CCH, "-k", "maximises or most_probably"),
+    _m("placement: the tolerance window not widened as the reported probability",
+       "records/placement.py",
+       "    h = np.maximum(tt[k] - tt[k - 1], tol) / WIDEN\n",
+       "    h = np.maximum(tt[k] - tt[k - 1], tol)\n", _CCH, "-k", "maximises"),
+    _m("detection: a confident change never moved by its own profile", "records/detection.py",
+       "        far = ~weak & (p_at < P_MOVE)\n", "        far = ~weak & (p_at < 0.0)\n",
+       _CCH, "-k", "rules_out"),
+    _m("detection: a confident change moved at 5 %", "records/detection.py",
+       "P_MOVE = 0.01\n", "P_MOVE = 0.05\n", "tests/records/test_change_interval.py",
+       "-k", "shared_record_interval"),
+    _m("detection: a profile cut by the search moves a confident change",
+       "records/detection.py",
+       "            if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])",
+       "            if np.isfinite(pl.lo) else 1.0 for pl in places])", _CCH, "-k",
+       "cut_by"),
+    _m("placement: 20 s at a hold as anywhere", "records/placement.py",
+       "HOLD_HALF = 60.0\n", "HOLD_HALF = 20.0\n", _CCH, "-k", "slow_hold"),
+    _m("placement: the hold window at a fast stop too", "records/placement.py",
+       "np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)",
+       "False and lag * fast >= RELAX_ABOVE * sigma)", "tests/records/test_change_interval.py",
+       "-k", "fast_stop"),
+    _m("placement: an unmeasured position error taken for a large one", "records/placement.py",
+       "np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)",
+       "lag * fast >= RELAX_ABOVE * sigma)", _CCH, "-k", "slow_hold"),
+    _m("placement: the hold window by the detector's flag alone", "records/placement.py",
+       "bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (",
+       "bool(held) or min(abs(v1), abs(v2)) <= 0.0 * fast) and not (", _CCH, "-k", "creep"),
+    # --- end detect5
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test
