@@ -15,7 +15,7 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     layout = "regular"           # optional: "regular" | "random"
     seed = 1                     # required for layout = "random"
     initial = "rest"             # required: "rest" | "loaded" | "steady"
-    initial_force = 0.5          # loaded only (units F_el, 0 <= f < 1)
+    initial_force = 0.5          # loaded only (units F_el, -1 < f < 1)
     initial_velocity = 1.0       # steady only (units a0/t0, > 0)
 
     [drive]
