@@ -20,3 +20,15 @@ def test_mutant_applies_exactly_once_and_names_its_tests(mutant) -> None:  # typ
     assert text.count(mutant.original) == 1, "stale: update tests/mutants.py"
     assert mutant.replacement != mutant.original
     assert mutant.tests and (ROOT / mutant.tests[0].split("::")[0]).exists()
+
+
+def test_test_selection_names_are_assigned_once() -> None:
+    """Two helpers' blocks once both named a selection ``_S7LS`` (and two more): the later
+    assignment silently sent the earlier block's mutants to the other block's tests. Every
+    module-level name of tests/mutants.py is assigned once."""
+    import ast
+
+    tree = ast.parse((ROOT / "tests" / "mutants.py").read_text())
+    names = [t.id for node in tree.body if isinstance(node, ast.Assign)
+             for t in node.targets if isinstance(t, ast.Name)]
+    assert len(names) == len(set(names)), sorted({n for n in names if names.count(n) > 1})

@@ -227,6 +227,9 @@ def test_ratio_30_down_steps_are_placed_as_stops(tmp_path: Path,
     import dryfriction.records.detection as detection
 
     assert max(_zoo_hold_errors((3013, 3115), tmp_path, above=20.0)) <= 1.0
+    # with P_MOVE (detect5) a confident stop its own profile rules out is moved anyway
+    # (3013 then 0.42 of its tolerance off even as a step): the mistake seen without it
+    monkeypatch.setattr(detection, "P_MOVE", 0.0)
     monkeypatch.setattr(placement, "RELAX_STOP", 0.01)
     monkeypatch.setattr(detection, "RELAX_STOP", 0.01)
     assert max(_zoo_hold_errors((3013, 3115), tmp_path, above=20.0)) > 1.0
@@ -316,6 +319,9 @@ def test_changes_at_holds_placed_at_any_confidence(tmp_path: Path,
 
     assert detection.HOLD_PLACED is True
     assert max(_zoo_hold_errors((232, 364), tmp_path)) <= 1.0
+    # with P_MOVE (detect5) the two changes, whose own profiles rule out where the whole
+    # stretches put them, are moved anyway (at most 0.83 off): the mistake seen without it
+    monkeypatch.setattr(detection, "P_MOVE", 0.0)
     monkeypatch.setattr(detection, "HOLD_PLACED", False)
     assert max(_zoo_hold_errors((232, 364), tmp_path)) > 1.0
 

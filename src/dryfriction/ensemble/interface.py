@@ -82,6 +82,15 @@ threshold is handed to the dynamics, but a drop whose ringing stays below ``v_qs
 settle quasi-statically after one period). :data:`QUASI_STATIC_RATE` is the threshold the
 checks against the dynamic run were made with (tests/ensemble/test_interface_events.py).
 
+Multirate stepping (ours; ``multirate = True``): the chain keeps its one step for the motion
+and the springs, but each block's contact window, the cost, is updated only when that block
+needs it: when it is the fastest block, when it passes the next spinodal of its contacts, or
+after a quarter trap spacing of its own slip or ``dt_osc`` of time; its friction extrapolated
+in between with the window's own stiffness
+(:func:`.interface_kernel.advance_chain_multirate`, docs/explanation/interface.md). One block
+is the every-step run bit for bit; a chain agrees with it to its chaotic scatter
+(tests/ensemble/test_interface_multirate.py).
+
 Not modelled (refused or absent, and said so): the direct effect (``direct > 0`` is refused),
 the quasi-static (``mass = 0``) limit, a long-range (thin-slab) elastic kernel, snapshots of
 the populations.
@@ -92,6 +101,7 @@ from __future__ import annotations
 import math
 import os
 import time as _time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import ClassVar
 
@@ -115,7 +125,13 @@ from ..validation import (
     check_time,
 )
 from .drives import MASS_MIN, STIFFNESS_MAX
-from .interface_kernel import OUT_SIZE, advance_chain, settle_chain
+from .interface_kernel import (
+    OUT_SIZE,
+    advance_chain,
+    advance_chain_multirate,
+    probe_chain,
+    settle_chain,
+)
 from .interface_result import INTERFACE_UNITS, InterfaceResult
 from .kernel import radius_table
 from .population import Ensemble, Initial, Track
@@ -173,6 +189,12 @@ class InterfaceModel:
         loading to advance quasi-statically (event-driven, module docstring); 0 (the default)
         steps the chain dynamically throughout. :data:`QUASI_STATIC_RATE` is the value the
         event-driven checks were made with.
+    multirate : bool
+        Every block's contact window on its own clock (``False``, the default: every window
+        at every step): a window is updated when its block has slipped a quarter trap spacing
+        or a step bound's time since its last update, its friction extrapolated to first order
+        in between (:func:`.interface_kernel.advance_chain_multirate`; ours, checked against
+        the default in tests/ensemble/test_interface_multirate.py).
     """
 
     law: ClassVar[str] = "cv"
@@ -185,6 +207,7 @@ class InterfaceModel:
     normal_spread: float = 0.0
     density_spread: float = 0.0
     quasi_static_rate: float = 0.0
+    multirate: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.trap, TrapModel):
@@ -209,6 +232,9 @@ class InterfaceModel:
             object.__setattr__(self, name, s)
         object.__setattr__(self, "quasi_static_rate",
                            check_scalar("quasi_static_rate", self.quasi_static_rate, 0.0, U_MAX))
+        if not isinstance(self.multirate, (bool, np.bool_)):
+            raise ValueError(f"multirate = {self.multirate!r} is not allowed: true or false")
+        object.__setattr__(self, "multirate", bool(self.multirate))
 
     @property
     def coupling_eigenvalue_max(self) -> float:
@@ -420,6 +446,7 @@ def simulate_interface(
     velocity: ArrayLike = 0.0,
     threads: int | None = None,
     on_interrupt: str = "raise",
+    progress: Callable[[float, np.ndarray, dict[str, float]], None] | None = None,
 ) -> InterfaceResult:
     """Run the chain under its loading and record the space-time fields (module docstring).
 
@@ -450,6 +477,11 @@ def simulate_interface(
         The numbers are the same either way.
     on_interrupt : {"raise", "partial"}
         On ``KeyboardInterrupt``: re-raise, or return the samples so far marked partial.
+    progress : callable, optional
+        Called after every recorded sample with its time (``t0``), the blocks' slip rates
+        (``a0/t0``, a copy) and the counts so far (``steps``, ``trap_updates``,
+        ``quasi_static_steps``, ``handovers``, ``wall_s``, ``cpu_s``): for a long run's
+        progress (``benchmarks/bench_interface.py``).
 
     Returns
     -------
@@ -558,6 +590,10 @@ def simulate_interface(
     omega_qs = math.sqrt((kp + trap.contact_stiffness * float(np.min(normal))) / model.mass)
     t_settle = 2.0 * math.pi / omega_qs
     nxt = np.full(n, np.inf)
+    # the multirate kernel's last update of every block: position, time, force, stiffness, path
+    xu, tu, fu, ku, path = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    ne, nd = np.full(n, np.inf), np.ones(n)  # its next spinodal, in the direction it moved
+    multirate = model.multirate
     slip = np.empty((n_t, n))
     rate = np.empty((n_t, n))
     stress = np.empty((n_t, n))
@@ -604,6 +640,21 @@ def simulate_interface(
     quasi = False  # the phase: quasi-static loading, or dynamic stepping
     t_min = 0.0  # a dynamic phase lasts at least until then
 
+    args_probe = (tm.alpha, trap.y_c, trap.regime is Regime.STRONG, h, s_tab, ds_tab, outs, xu,
+                  tu, fu, ku, path, ne, nd)
+    if multirate:
+        probe_chain(c, state, birth, off, lo, hi, x, 0.0, fscale, *args_probe)
+
+    def dynamic(t: float, t1: float, t_min: float) -> float:
+        """Dynamic steps from ``t`` towards ``t1`` (every window each step, or multirate)."""
+        if multirate:
+            return advance_chain_multirate(c, state, birth, off, lo, hi, x, v, a, f, fscale, t,
+                                           t1, dt_osc, dx_max, *args_fixed, v_qs, omega_qs,
+                                           t_min, xu, tu, fu, ku, path, ne, nd,
+                                           PARALLEL_MIN_ELEMENTS)
+        return advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc,
+                             dx_max, *args_fixed, v_qs, omega_qs, t_min)
+
     def event_driven(t: float, t1: float) -> float:
         """From ``t`` to the sample ``t1``, alternating the phases (module docstring)."""
         nonlocal quasi, t_min
@@ -616,9 +667,10 @@ def simulate_interface(
                     quasi = False
                     t_min = t + t_settle
                     acc[5] += 1.0
+                    if multirate:  # settle_chain moved the windows
+                        probe_chain(c, state, birth, off, lo, hi, x, t, fscale, *args_probe)
             else:
-                t = advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1,
-                                  dt_osc, dx_max, *args_fixed, v_qs, omega_qs, t_min)
+                t = dynamic(t, t1, t_min)
                 if t < t1 and acc[3] == 0.0:  # every block quiet
                     quasi = True
                     nxt[:] = np.inf
@@ -627,13 +679,16 @@ def simulate_interface(
     def advance(t: float, t1: float) -> float:
         if v_qs > 0.0:
             return event_driven(t, t1)
+        if multirate:
+            return dynamic(t, t1, 0.0)
         return advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc,
                              dx_max, *args_fixed)
 
     try:
         for j in range(1, n_t):
             t1 = float(grid[j])
-            if advance_chain.overloads and (v_qs == 0.0 or settle_chain.overloads):
+            kernel = advance_chain_multirate if multirate else advance_chain
+            if kernel.overloads and (v_qs == 0.0 or settle_chain.overloads):
                 t = advance(t, t1)
             else:  # the first call loads (or compiles) it: signals held back meanwhile
                 with deferred():
@@ -647,6 +702,12 @@ def simulate_interface(
                     "runaway it did not foresee; lower the initial velocity or shorten the drive")
             record(j, t1)
             j_done = j
+            if progress is not None:
+                progress(t1, v.copy(), {
+                    "steps": float(acc[1]), "trap_updates": float(acc[2]),
+                    "quasi_static_steps": float(acc[4]), "handovers": float(acc[5]),
+                    "wall_s": _time.perf_counter() - t_wall,
+                    "cpu_s": _time.process_time() - t_cpu})
     except KeyboardInterrupt:
         if on_interrupt == "raise":
             raise

@@ -27,7 +27,8 @@ import numpy as np
 
 from .kernel import OUT_SIZE, advance_window
 
-__all__ = ["OUT_SIZE", "QS_NEWTON_MAX", "QS_TOL", "advance_chain", "load_position", "settle_chain"]
+__all__ = ["OUT_SIZE", "QS_NEWTON_MAX", "QS_TOL", "advance_chain", "advance_chain_multirate",
+           "load_position", "probe_chain", "settle_chain"]
 
 
 @numba.njit(cache=True)
@@ -160,6 +161,211 @@ def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_os
             if quiet:
                 break
     return t
+
+
+@numba.njit(cache=True)
+def _block_lazy(i, c, state, birth, off, lo, hi, xu, tu, x_new, t_new, f_new, k_new, fscale,
+                alpha, yc, strong, h, s_tab, ds_tab, outs, ne, nd):  # pragma: no cover - compiled
+    """Block ``i``'s window from its last update (``xu[i]`` at ``tu[i]``) to ``x_new[i]`` at
+    ``t_new``, its friction ``f_new[i]``, stiffness ``k_new[i] = dF_i/dx``, and its next
+    contact's spinodal ``ne[i]`` in the direction ``nd[i]`` it moved (ours)."""
+    s0 = off[i]
+    s1 = off[i + 1]
+    direction = 1 if x_new[i] >= xu[i] else -1
+    lo_i, hi_i = advance_window(c[s0:s1], state[s0:s1], birth[s0:s1], lo[i], hi[i], xu[i],
+                                x_new[i], tu[i], t_new, direction, alpha, yc, strong, h, s_tab,
+                                ds_tab, True, True, outs[i])
+    lo[i] = lo_i
+    hi[i] = hi_i
+    f_new[i] = outs[i, 0] * fscale[i]
+    k_new[i] = outs[i, 1] * fscale[i]
+    ne[i] = outs[i, 7]
+    nd[i] = direction
+
+
+@numba.njit(cache=True, parallel=True)
+def advance_chain_multirate(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc,
+                            dx_max, mass, eta, kp, kc, ks, side, plate_fixed, load0, p_times,
+                            p_pos, p_vel, p_x0, alpha, yc, strong, h, s_tab, ds_tab, outs,
+                            wfric, wdamp, acc, serial, v_qs, omega_qs, t_min, xu, tu, fu, ku,
+                            path, ne, nd, par_min):  # pragma: no cover - compiled
+    """:func:`advance_chain` with every block's contact window on its own clock (ours).
+
+    The chain steps together as in :func:`advance_chain` (the same step, set by the fastest
+    block and the stiffest mode; velocity Verlet; the springs at every step), but block ``i``'s
+    window, the cost, is updated only when its own rule asks: when it is the fastest block
+    (which sets the step, so that one block is :func:`advance_chain` bit for bit), when it
+    has passed the next
+    spinodal of its contacts ahead (``ne``, found at the last update at frozen time: ageing
+    only moves a spinodal further, so no contact gives way unseen; the step where a contact
+    gives way is the step where its force drops, as in :func:`advance_chain`), or when the
+    slip path since its last update would pass ``dx_max`` (a quarter trap spacing, the
+    single slider's bound, now per block) after one more step of the present size, or the
+    time since it would pass ``dt_osc``. In between, its friction is the first-order
+    expansion about the last update, ``F_i = fu_i + ku_i (x_i - xu_i)`` (``ku_i = dF_i/dx``
+    of the window then: the contacts' elastic stiffness is kept in the fast dynamics; their
+    ageing over at most ``dt_osc`` and the curvature of ``f_+`` over at most ``dx_max`` are
+    neglected until the next update). An
+    update applies every transition on the block's straight path from ``xu_i`` at ``tu_i``
+    to its present position, as one step of :func:`advance_chain` over that interval would.
+
+    This is multiple time stepping (the idea of r-RESPA, Tuckerman, Berne & Martyna, J. Chem.
+    Phys. 97, 1990 (1992): the expensive force on a slow clock, the cheap ones on the fast
+    one), with the slow force extrapolated rather than applied as impulses (ours). In a step
+    where every block is due, the arithmetic is :func:`advance_chain`'s (the stiffness is
+    computed too, which changes no force).
+
+    ``xu, tu, fu, ku, path, ne, nd`` (per block) carry the last updates between calls; on
+    entry they must describe the windows as they are (:func:`probe_chain` after any other
+    kernel moved them). Energy: the work against the contacts is the trapezoid of the force
+    the blocks felt, so the balance holds as in :func:`advance_chain`. On an early return
+    (every block quiet, or a window's overflow) every block is brought up to date at the time
+    reached, its force replaced by the window's (no slip: no work) and its acceleration by
+    the new force's.
+    ``par_min``: fewest blocks due in one step whose windows are updated in a ``prange``.
+
+    Returns the time reached, as :func:`advance_chain`; ``acc[2]`` counts the trap updates
+    actually made.
+    """
+    n = x.shape[0]
+    x_new = np.empty(n)
+    f_new = np.empty(n)
+    k_new = np.empty(n)
+    due = np.empty(n, np.int64)
+    while t < t1:
+        vmax = 0.0
+        fastest = 0
+        for i in range(n):
+            av = abs(v[i])
+            if av > vmax:
+                vmax = av
+                fastest = i
+        step = dt_osc  # the step's bound, before a sample cuts it short
+        if vmax != 0.0:
+            step = min(step, dx_max / vmax)
+        dt = min(step, t1 - t)
+        if t1 - (t + dt) < 1e-12 * max(1.0, t1):
+            dt = t1 - t
+        t_new = t1 if dt == t1 - t else t + dt
+        m = 0
+        for i in range(n):
+            x_new[i] = x[i] + v[i] * dt + 0.5 * a[i] * dt * dt
+            d = abs(x_new[i] - x[i])
+            path[i] += d
+            # due: the fastest block (it sets the step: one block is advance_chain bit for
+            # bit), a block past its next spinodal, or one that one more step would take past
+            # its slip or time bound
+            if (i == fastest or path[i] + d > dx_max or (t_new - tu[i]) + step > dt_osc
+                    or (x_new[i] - ne[i]) * nd[i] >= 0.0):
+                due[m] = i
+                m += 1
+        if serial or m < par_min:
+            for k in range(m):
+                _block_lazy(due[k], c, state, birth, off, lo, hi, xu, tu, x_new, t_new, f_new,
+                            k_new, fscale, alpha, yc, strong, h, s_tab, ds_tab, outs, ne, nd)
+        else:
+            for k in numba.prange(m):
+                _block_lazy(due[k], c, state, birth, off, lo, hi, xu, tu, x_new, t_new, f_new,
+                            k_new, fscale, alpha, yc, strong, h, s_tab, ds_tab, outs, ne, nd)
+        for i in range(n):
+            f_new[i] = fu[i] + ku[i] * (x_new[i] - xu[i])  # overwritten below if due
+        for k in range(m):
+            i = due[k]
+            f_new[i] = outs[i, 0] * fscale[i]
+            fu[i] = f_new[i]
+            ku[i] = k_new[i]
+            xu[i] = x_new[i]
+            tu[i] = t_new
+            path[i] = 0.0
+            acc[2] += hi[i] - lo[i]
+            if outs[i, 8] != 0.0:
+                acc[3] = 1.0
+        # the driver's position and its springs' force on the chain, before and after
+        l_old = load0 + load_position(t, p_times, p_pos, p_vel) - p_x0
+        l_new = load0 + load_position(t_new, p_times, p_pos, p_vel) - p_x0
+        if side:
+            s_old = ks * (l_old - x[0])
+            s_new = ks * (l_new - x_new[0])
+            plate = plate_fixed
+        else:
+            s_old = 0.0
+            s_new = 0.0
+            for i in range(n):
+                s_old += kp * (l_old - x[i])
+                s_new += kp * (l_new - x_new[i])
+            plate = l_new
+        acc[0] += 0.5 * (s_old + s_new) * (l_new - l_old)
+        for i in range(n):
+            cpl = 0.0
+            if i > 0:
+                cpl += kc * (x_new[i - 1] - x_new[i])
+            if i < n - 1:
+                cpl += kc * (x_new[i + 1] - x_new[i])
+            edge = ks * (l_new - x_new[i]) if (side and i == 0) else 0.0
+            vp = v[i] + a[i] * dt
+            a_new = (kp * (plate - x_new[i]) + cpl + edge - f_new[i] - eta * vp) / mass
+            v_new = v[i] + 0.5 * (a[i] + a_new) * dt
+            wfric[i] += 0.5 * (f[i] + f_new[i]) * (x_new[i] - x[i])
+            wdamp[i] += eta * 0.5 * (v[i] * v[i] + v_new * v_new) * dt
+            x[i] = x_new[i]
+            v[i] = v_new
+            a[i] = a_new
+            f[i] = f_new[i]
+        acc[1] += 1.0
+        t = t_new
+        if acc[3] != 0.0:
+            break
+        if v_qs > 0.0 and t >= t_min and t < t1:
+            quiet = True
+            for i in range(n):
+                if v[i] * v[i] + (a[i] / omega_qs) ** 2 >= v_qs * v_qs:
+                    quiet = False
+                    break
+            if quiet:
+                break
+    if t < t1:  # an early return: every window up to date at t
+        for i in range(n):
+            x_new[i] = x[i]
+        m = 0
+        for i in range(n):
+            if tu[i] < t:
+                due[m] = i
+                m += 1
+        for k in range(m):
+            i = due[k]
+            _block_lazy(i, c, state, birth, off, lo, hi, xu, tu, x_new, t, f_new, k_new,
+                        fscale, alpha, yc, strong, h, s_tab, ds_tab, outs, ne, nd)
+            g = outs[i, 0] * fscale[i]
+            a[i] += (f[i] - g) / mass
+            f[i] = g
+            fu[i] = g
+            ku[i] = k_new[i]
+            xu[i] = x[i]
+            tu[i] = t
+            path[i] = 0.0
+            acc[2] += hi[i] - lo[i]
+            if outs[i, 8] != 0.0:
+                acc[3] = 1.0
+    return t
+
+
+@numba.njit(cache=True)
+def probe_chain(c, state, birth, off, lo, hi, x, t, fscale, alpha, yc, strong, h, s_tab, ds_tab,
+                outs, xu, tu, fu, ku, path, ne, nd):  # pragma: no cover - compiled
+    """The multirate kernel's per-block state from the windows as they are at ``x``, ``t``:
+    ``xu = x``, ``tu = t``, ``fu`` the windows' force and ``ku = dF/dx`` (nothing committed)."""
+    for i in range(x.shape[0]):
+        s0 = off[i]
+        s1 = off[i + 1]
+        advance_window(c[s0:s1], state[s0:s1], birth[s0:s1], lo[i], hi[i], x[i], x[i], t, t, 1,
+                       alpha, yc, strong, h, s_tab, ds_tab, False, True, outs[i])
+        xu[i] = x[i]
+        tu[i] = t
+        fu[i] = outs[i, 0] * fscale[i]
+        ku[i] = outs[i, 1] * fscale[i]
+        path[i] = 0.0
+        ne[i] = outs[i, 7]
+        nd[i] = 1.0
 
 
 @numba.njit(cache=True)

@@ -172,7 +172,7 @@ class Initial(simulation.Initial):
         the steady-sliding population at velocity ``velocity`` (eq. 29).
     force : float, optional
         ``loaded`` only: the tangential force during contact formation, units ``F_el``,
-        ``0 <= force < 1``.
+        ``-1 < force < 1`` (a negative force is the reversed load, the mirror image).
     velocity : float, optional
         ``steady`` only: the reduced sliding velocity ``u > 0`` (units ``a0/t0``).
     track : Track

@@ -15,7 +15,7 @@ A protocol has four tables; unknown tables or keys are errors, not ignored::
     layout = "regular"           # optional: "regular" | "random"
     seed = 1                     # required for layout = "random"
     initial = "rest"             # required: "rest" | "loaded" | "steady"
-    initial_force = 0.5          # loaded only (units F_el, 0 <= f < 1)
+    initial_force = 0.5          # loaded only (units F_el, -1 < f < 1)
     initial_velocity = 1.0       # steady only (units a0/t0, > 0)
 
     [drive]
@@ -70,6 +70,7 @@ of its own::
     normal_spread = 0.1          # optional, 0 <= s < 1: per-block normal load 1 +- s
     density_spread = 0.0         # optional, 0 <= s < 1: per-block trap density 1 +- s
     quasi_static_rate = 0.01     # optional, a0/t0, >= 0: event-driven loading below it (0: off)
+    multirate = true             # optional: every block's contacts on its own clock (false)
 
     [drive]                      # InterfaceDrive
     kind = "side"                # required: "uniform" (top plate) | "side" (edge spring)
@@ -439,7 +440,7 @@ def _check_tables(doc: Mapping[str, Any], tables: tuple[str, ...], source: str,
 
 _INTERFACE_TABLES = ("model", "ensemble", "interface", "drive", "output")
 _INTERFACE_KEYS = ("n_elements", "coupling", "mass", "damping", "disorder", "normal_spread",
-                   "density_spread", "quasi_static_rate")
+                   "density_spread", "quasi_static_rate", "multirate")
 _INTERFACE_DRIVE_KEYS = {
     "uniform": ("kind", "stiffness", "segments"),
     "side": ("kind", "stiffness", "edge_stiffness", "segments"),
@@ -454,7 +455,7 @@ class InterfaceProtocol:
     Tables: ``[model]`` (the traps' law), ``[ensemble]`` (every block's track density, layout,
     seed and initial population), ``[interface]`` (``n_elements``, ``coupling``, ``mass``,
     ``damping``, ``disorder``, ``normal_spread``, ``density_spread``,
-    ``quasi_static_rate``), ``[drive]`` (``kind =
+    ``quasi_static_rate``, ``multirate``), ``[drive]`` (``kind =
     "uniform"`` with ``stiffness`` and ``segments``, or ``kind = "side"`` with ``edge_stiffness``,
     optional ``stiffness`` and ``segments``), ``[output]`` (``every`` or ``every_slip``).
     """
@@ -499,7 +500,8 @@ def _interface_protocol(doc: Mapping[str, Any], source: str) -> InterfaceProtoco
                     disorder=i.string("disorder", "independent"),
                     normal_spread=i.number("normal_spread", 0.0),
                     density_spread=i.number("density_spread", 0.0),
-                    quasi_static_rate=i.number("quasi_static_rate", 0.0))
+                    quasi_static_rate=i.number("quasi_static_rate", 0.0),
+                    multirate=i.data.get("multirate", False))
     d = _Table(source, "drive", doc["drive"])
     kinds = ", ".join(repr(k) for k in _INTERFACE_DRIVE_KEYS)
     kind = d.string("kind", required=True)
