@@ -219,7 +219,9 @@ def step_bounds(n: int, slip: float, lam: float = 100.0) -> None:
 def main() -> None:
     full = "--full" in sys.argv  # the scale: N = 256 through >= 20 events (long)
     if "--scale" in sys.argv:  # the scale only: N = 256 x 200 contacts, 20 events
-        spanning_events(256, 400.0, threads=1, rate=QUASI_STATIC_RATE, lam=80.0,
+        # one thread unless --threads N (two help only on an idle machine: docs)
+        th = int(sys.argv[sys.argv.index("--threads") + 1]) if "--threads" in sys.argv else 1
+        spanning_events(256, 400.0, threads=th, rate=QUASI_STATIC_RATE, lam=80.0,
                         multirate=True, target=20)
         return
     if "--multirate" in sys.argv:  # the multirate cost against N (several CPU minutes)
