@@ -2688,6 +2688,16 @@ MUTANTS: tuple[Mutant, ...] = (
        "bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (",
        "bool(held) or min(abs(v1), abs(v2)) <= 0.0 * fast) and not (", _CCH, "-k", "creep"),
     # --- end detect5
+    # --- detect6: a confident step in an oscillating record placed with the oscillation
+    # (tests/records/test_change_choice.py)
+    _m("detection: a confident step left at the whole stretches' kink in an oscillating record",
+       "records/detection.py", "OSC_PLACED = True\n", "OSC_PLACED = False\n", _CCH, "-k",
+       "oscillating_record"),
+    _m("detection: the small steps placed with the oscillation too", "records/detection.py",
+       "u[:-1]) > OSC_RATIO * np.minimum(u[1:], u[:-1]))\n", "u[:-1]) >= 0.0)\n",
+       "tests/records/test_detect.py",
+       "-k", "oscillation_regressors_place"),
+    # --- end detect6
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test
