@@ -102,3 +102,18 @@ def test_edges_span_ten_dc_range_and_short_window() -> None:
         row = _row(val, {"dc": (dc / 2.0, dc * 2.0)})
         th = np.log([val[s.name] for s in SPECS])
         assert ("short_window" in judge_step(row, SPECS, th, cov, False, Z, d)) is short, dc
+
+
+def test_an_interval_reaching_zero_is_not_identified_in_one_note() -> None:
+    """A fit to noise can give an interval whose lower end is 0 (a parameter fitted on a linear
+    scale, or a robust interval clipped at 0): the note says the interval reaches 0 instead of
+    dividing by it (a new user's record of pure noise stopped on a ZeroDivisionError here)."""
+    d = _data()
+    theta = np.log([VAL[s.name] for s in SPECS])
+    cov = np.diag([0.04, 0.06, 0.09, 0.05]) ** 2
+    row = _row(VAL, {"b": (0.0, 0.02)})
+    words = judge_step(row, SPECS, theta, cov, False, Z, d)
+    assert "not_identified:b" in words
+    note = [n for n in row["notes"] if n.startswith("b = ")]
+    assert len(note) == 1 and "[0, 0.02] reaches 0 or below" in note[0]
+    assert math.isnan(row["b"])

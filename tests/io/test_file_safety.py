@@ -231,9 +231,15 @@ def test_a_dangling_link_made_during_the_run_is_one_line_without_a_temporary(tmp
 def test_an_empty_out_is_refused_not_the_working_folder(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     Path("mine.txt").write_text("mine")
-    proto = examples_path() / "velocity_step.toml"
+    ex = Path(__file__).resolve().parents[2] / "examples"  # the clone's (a src copy has none)
+    proto = ex / "velocity_step.toml"
+    lab = ex / "data" / "lab" / "sepiolite_velstep_0.2-2um_s.txt"
+    # record, fit and reproduce took --out as a path: "" became "." before any check (a new
+    # user's trial wrote record.png, fit.json and the report into the working folder)
     for args in (["simulate", str(proto)], ["simulate", str(proto), "--force"],
-                 ["sweep", str(examples_path() / "phase_diagram.toml")]):
+                 ["sweep", str(ex / "phase_diagram.toml")],
+                 ["record", str(lab)], ["fit", str(lab), "--model", "rsf"], ["reproduce"],
+                 ["reproduce", "--force"]):
         res = runner.invoke(app, [*args, "--out", ""])
         assert res.exit_code == 2, res.output
         assert _one_line(res) == "error: --out is empty: name a folder (--out . for the " \

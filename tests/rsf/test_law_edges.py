@@ -141,3 +141,21 @@ def test_t_eval_within_the_program_both_ends() -> None:
         RSFOutput(every=0.5, t_eval=[1.0])
     with pytest.raises(ValueError, match="^every = 0 is out of range"):
         RSFOutput(every=0.0)
+
+
+def test_unstable_start_without_a_jacobian_is_no_report(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Where the linearisation cannot be evaluated (a fit's trial point with ``a c + eta V =
+    0`` divides by zero in the compiled right-hand side), the start is not reported instead of
+    stopping the run: a new user's fit of a record of pure noise ended on a ZeroDivisionError
+    here. Mistake: only ValueError and LinAlgError caught."""
+    import dryfriction.rsf.growth as growth
+
+    p = RateState(A, B, DC, MU0, V0)
+    drive = _drive(p, 0.6)
+    assert unstable_start(p, drive, VL, DC / VL, None) is not None
+
+    def no_jacobian(*args: object, **kw: object) -> None:
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setattr(growth, "linear_stability", no_jacobian)
+    assert unstable_start(p, drive, VL, DC / VL, None) is None

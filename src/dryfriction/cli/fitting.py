@@ -44,7 +44,7 @@ def fit_command(
                                                "in the header, e.g. V[um/s]. One file in "
                                                "another format is read as a laboratory "
                                                "record (velocity steps, rsf).")],
-    out_dir: Annotated[Path, typer.Option("--out", help="Results folder: fit.json, fit.png "
+    out_dir: Annotated[str, typer.Option("--out", help="Results folder: fit.json, fit.png "
                                           "(written whole or not at all; new, empty, or "
                                           "written by this program before).")],
     model: str | None = typer.Option(_FIT["model"].default, "--model",
@@ -155,7 +155,8 @@ def fit_command(
     # opened at the first update: a record's fit has bars of its own (``bar``)
     with lazy_progress_bar("fit", unit="evaluations") as update:
         done = run(data, out_dir, progress=update, report=say, on_start=compile_notice,
-                   bar=progress_bar, on_program=_print_program, **options)
+                   bar=progress_bar, on_program=lambda segs, rec: _print_program(
+                       segs, rec, to_stderr=json_out), **options)
     if hasattr(done, "steps"):  # a laboratory record
         from .records import print_record_fit
 
@@ -190,8 +191,11 @@ def fit_command(
         raise typer.Exit(1)
 
 
-def _print_program(segments: Any, record: Any) -> None:
-    """A record's load program, printed before its fit (the normal load in its own unit)."""
+def _print_program(segments: Any, record: Any, *, to_stderr: bool = False) -> None:
+    """A record's load program, printed before its fit (the normal load in its own unit):
+    whole, whatever the console's width (a pipe's is 80 columns), and on standard error with
+    ``--json``, so that standard output stays one JSON document."""
     from ..records import lab
 
-    out.print(lab.segments_table(segments, record.normal_unit), highlight=False, markup=False)
+    (err if to_stderr else out).print(lab.segments_table(segments, record.normal_unit),
+                                      highlight=False, markup=False, soft_wrap=True)

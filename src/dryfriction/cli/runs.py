@@ -3,7 +3,6 @@ compare (parse, call one workflow of :mod:`dryfriction.app`, print)."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated, Any
 
 import typer
@@ -38,8 +37,8 @@ _RSF = OPTIONS["rsf"]
 @app.command(cls=many())
 @cli_errors
 def reproduce(
-    out_dir: Annotated[Path, typer.Option("--out", help="Results folder: new, empty, or one "
-                                          "this program wrote before.")],
+    out_dir: Annotated[str, typer.Option("--out", help="Results folder: new, empty, or one "
+                                         "this program wrote before.")],
     force: bool = typer.Option(_REP["force"].default, "--force", help=FORCE_HELP),
     fmt: str = typer.Option(_REP["fmt"].default, "--format", metavar=FORMAT_CHOICES,
                      help=FORMAT_HELP),

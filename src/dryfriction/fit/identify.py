@@ -330,9 +330,10 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
         if not (math.isfinite(lo) and math.isfinite(hi)):
             why.append("the covariance gives no finite interval")
         else:
-            if not span_ok:
-                why.append(f"its 95 % interval [{lo:.3g}, {hi:.3g}] spans a factor "
-                           f"{hi / lo:.3g} (> {MAX_SPAN:g})")
+            if not span_ok:  # lo <= 0: an interval reaching 0 has no finite span
+                span = (f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0
+                        else "reaches 0 or below")
+                why.append(f"its 95 % interval [{lo:.3g}, {hi:.3g}] {span}")
             if not inside:
                 probes = " (the slips this window probes)" if name == "dc" else ""
                 why.append(f"its 95 % interval [{lo:.3g}, {hi:.3g}] leaves the range "

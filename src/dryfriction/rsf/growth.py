@@ -51,7 +51,9 @@ def unstable_start(model: RateState, drive: SpringSlider, v: float, theta: float
     try:
         growth = float(np.max(linear_stability(model, vl, drive.stiffness, drive.damping,
                                                drive.mass).real))
-    except (ValueError, np.linalg.LinAlgError):  # a Jacobian out of floating point (a ~ 1e-308)
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError):
+        # a Jacobian out of floating point (a ~ 1e-308), or none (a c + eta V = 0: a fit's
+        # trial point at a = 0 on pure noise divided by zero here)
         return None
     if not growth > 0.0:
         return None
