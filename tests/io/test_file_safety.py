@@ -486,3 +486,35 @@ def test_a_sweep_folder_holding_a_user_file_is_not_resumed_into(sweep_copy):
     assert _tree(out) == before and computed() == 0
     (out / "notes.txt").unlink()
     _rerun(out, markers)  # the temporary is not the user's: the sweep resumes
+
+
+def test_a_result_of_another_command_is_refused_without_force(tmp_path, monkeypatch):
+    """A folder holding one command's result (a fit that may have cost hours) is not replaced
+    by another command's run unless --force; a re-run of the same command replaces its own.
+    Found by a new user's trial: ``fit ... --out D`` then ``rsf --out D`` removed fit.json.
+    Mistakes: the command not compared; the refusal also under --force."""
+    monkeypatch.chdir(tmp_path)
+    rsf = ["rsf", "--no-figure", "--t1", "3", "--t2", "3"]
+    first = runner.invoke(app, [*rsf, "--out", "d"])
+    assert first.exit_code == 0, first.output
+    before = sorted(os.listdir("d"))
+    proto = Path(__file__).resolve().parents[2] / "examples" / "velocity_step.toml"
+    res = runner.invoke(app, ["simulate", str(proto), "--out", "d", "--no-figure"])
+    assert res.exit_code == 2, res.output
+    line = _one_line(res)
+    assert line.startswith("error: --out d holds a previous rsf result (written ")
+    assert line.endswith("a simulate run would replace it; choose another folder, or add "
+                         "--force to replace it")
+    assert sorted(os.listdir("d")) == before
+    again = runner.invoke(app, [*rsf, "--out", "d"])  # the same command: its own result
+    assert again.exit_code == 0, again.output
+    forced = runner.invoke(app, ["simulate", str(proto), "--out", "d", "--no-figure",
+                                 "--force"])
+    assert forced.exit_code == 0, forced.output
+    assert "replaced the previous rsf result" in forced.output
+    # the writer itself checks too (a Python caller, or a result that appeared meanwhile)
+    with pytest.raises(ValueError, match="holds a previous simulate result .* a fit run would "
+                                         "replace it"):
+        with output_directory("d", command="fit") as d:
+            (d / "fit.json").write_text("{}")
+    assert not Path("d/fit.json").exists()

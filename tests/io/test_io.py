@@ -180,14 +180,15 @@ def test_inputs_are_never_overwritten_or_removed(tmp_path):
     with output_directory(out, command="simulate") as d:
         (d / "timeseries.csv").write_text("t,mu\n")
     data = out / "timeseries.csv"
-    # a second command reads the first one's output and writes into the same folder
-    with output_directory(out, command="fit", inputs=[data]) as d:
+    # a second command reads the first one's output and writes into the same folder (another
+    # command's result is replaced only with force: it is refused otherwise, test_file_safety)
+    with output_directory(out, command="fit", inputs=[data], force=True) as d:
         (d / "fit.json").write_text("{}")
     assert data.read_text() == "t,mu\n"
     assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"fit.json",
                                                                        "timeseries.csv"}
     with pytest.raises(ValueError, match="would overwrite an input"):
-        with output_directory(out, command="simulate", inputs=[data]) as d:
+        with output_directory(out, command="simulate", inputs=[data], force=True) as d:
             (d / "timeseries.csv").write_text("other")
     assert data.read_text() == "t,mu\n"
 

@@ -154,7 +154,7 @@ def fit(data: Sequence[str | Path] | str | Path, out: str | Path, *,
                 raise ValueError(f"{flag} is for the project's CSV files, not a laboratory "
                                  "record (its steps are fitted free; --stiffness K holds "
                                  "the machine)")
-    check_output_dir(out, force=o["force"])
+    check_output_dir(out, force=o["force"], command="fit")
     if record:
         from .records import fit_record
 
@@ -216,7 +216,7 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     paths = [Path(p) for p in paths]
     fixed = parse_fix(o["fix"])
     stiffness = _csv_stiffness(o["stiffness"])
-    check_output_dir(out, force=o["force"])
+    check_output_dir(out, force=o["force"], command="fit")
     datasets = [read_csv(p) for p in paths]
     if on_start is not None:
         on_start()

@@ -97,13 +97,13 @@ def bifurcation(protocol: str | Path, velocities: str | list[float], out: str | 
             check_trap(proto.model, mass, damping)
         except ValueError as exc:
             raise ValueError(f"{protocol}: {exc}") from None
-        check_output_dir(out, force=force)
+        check_output_dir(out, force=force, command="bifurcation")
         rep = trap_bifurcation_table(proto.model, vs, mass, damping, progress=progress,
                                      track=proto.track if check else None)
         rep = with_units({**rep, "protocol": str(protocol)}, TRAP_BIFURCATION_UNITS)
     elif isinstance(proto, RSFProtocol):
         vs = parse_velocities(velocities)
-        check_output_dir(out, force=force)
+        check_output_dir(out, force=force, command="bifurcation")
         rep = bifurcation_table(proto, vs, check, progress=progress)
         rep = with_units({**rep, "protocol": str(protocol)}, BIFURCATION_UNITS)
     else:

@@ -105,7 +105,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
     drive.check_model(params)
     init.resolve(params, drive)
     if out is not None:
-        check_output_dir(out, force=force)
+        check_output_dir(out, force=force, command="rsf")
     if on_start is not None:
         on_start()
     start = time.perf_counter()

@@ -100,7 +100,8 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
     from .records import write_record_files
 
     # checked as given: Path("") is "." (an empty --out must be refused, not the working folder)
-    out_dir = check_output_dir(out, force=force) if out is not None else None
+    out_dir = (check_output_dir(out, force=force, command="record") if out is not None
+               else None)
     rec = read_record(path, parse_column_map(columns) if columns else None)
     det = None if segments is not None else detect_program(rec)
     segs = parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]

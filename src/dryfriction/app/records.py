@@ -173,7 +173,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
 
     check_drive(drive)  # before any work
     check_choice("--initial-state", initial, INITIAL_CHOICES)
-    check_output_dir(out, force=force)
+    check_output_dir(out, force=force, command="fit")
     if on_start is not None:
         on_start()
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)

@@ -111,7 +111,7 @@ def simulate(protocol: str | Path, out: str | Path, *, force: bool = _SIM["force
 
     fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)  # every check before any work
-    check_output_dir(out, force=force)
+    check_output_dir(out, force=force, command="simulate")
     if on_start is not None:
         on_start(proto)
     if isinstance(proto, InterfaceProtocol):
@@ -243,7 +243,7 @@ def compare(protocol: str | Path, out: str | Path, *,
     check_choice("--state-law", state_law, ("ageing", "slip"))
     fmt, dpi = check_figure_format(fmt, dpi)
     proto = load_protocol(protocol)
-    check_output_dir(out, force=force)
+    check_output_dir(out, force=force, command="compare")
     if on_start is not None:
         on_start(proto)
     c = compare_protocol(proto, state_law, progress=progress)
@@ -289,7 +289,8 @@ def reproduce(out: str | Path, *, force: bool = _REP["force"].default,
     from ..validation import check_figure_format
 
     fmt, dpi = check_figure_format(fmt, dpi)
-    check_output_dir(out, force=force)  # a bad --out fails before matplotlib is imported
+    # a bad --out fails before matplotlib is imported
+    check_output_dir(out, force=force, command="reproduce")
     from ..plots.report import DATA_FILES, EXTRA_FILES, FIGURE_FILES
     from ..plots.report import reproduce as run
 

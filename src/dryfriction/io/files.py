@@ -6,8 +6,11 @@ run finishes. The rules for an existing ``--out`` folder (ours):
 
 * a new or empty folder receives the results;
 * a folder holding a previous result of ours (recognised by the manifest :data:`MANIFEST`, which
-  lists every file the run wrote with its SHA-256) gets the new result; the previous run's files
-  are replaced or removed (and this is reported), except files the new run reads;
+  lists every file the run wrote with its SHA-256) gets the new result of the same command; the
+  previous run's files are replaced or removed (and this is reported), except files the new run
+  reads; a previous result of another command (a fit, then an ``rsf`` run into the same
+  folder) is refused before any work unless ``force`` (it may have cost hours: a user who
+  re-runs ``fit`` expects its own result replaced, not a fit lost to another command);
 * a folder holding anything else (a file we did not write, or one of ours changed since) is
   refused before any work, unless ``force``: then the results are written beside those files, a
   file whose name collides with a result is kept under a numbered backup name (``NAME.~1~``), and
@@ -339,7 +342,7 @@ def check_writable_dir(out: str | os.PathLike[str], *, option: str = "--out") ->
 
 
 def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
-                     option: str = "--out") -> Path:
+                     option: str = "--out", command: str | None = None) -> Path:
     """Check, before any work, that ``out`` can receive a result; raise ``ValueError`` if not.
 
     Parameters
@@ -350,11 +353,20 @@ def check_output_dir(out: str | os.PathLike[str], *, force: bool = False,
         Accept a folder that holds other files too (they are kept; see the module docstring).
     option : str
         The option's name in the messages.
+    command : str or None
+        The command that will write the result (as :func:`output_directory` records it): a
+        previous result of another command is refused unless ``force``. ``None``: any.
     """
     out = check_writable_dir(out, option=option)
     if out.is_dir() and not force:
         remove_stale_temporaries(out)
         manifest = _read_manifest(out)
+        old = None if manifest is None else manifest.get("command")
+        if command is not None and old is not None and old != command:
+            raise ValueError(
+                f"{option} {out} holds a previous {old} result (written "
+                f"{manifest.get('written', '?')}): a {command} run would replace it; choose "
+                "another folder, or add --force to replace it")
         foreign = _foreign_files(out, manifest)
         if foreign:
             shown = ", ".join(foreign[:3]) + (" and more" if len(foreign) > 3 else "")
@@ -534,7 +546,7 @@ def output_directory(out: str | os.PathLike[str], *, command: str = "results",
         The files are handed to the user (``examples --copy``): the manifest, of format
         :data:`EXAMPLES_FORMAT`, records them but no later run replaces or removes them.
     """
-    out = check_output_dir(out, force=force, option=option)
+    out = check_output_dir(out, force=force, option=option, command=command)
     protected = _resolved(inputs)
     say = report if report is not None else (lambda line: None)
     existed = out.is_dir()
