@@ -3118,8 +3118,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "out = check_output_dir(out, force=force, option=option)",
        "tests/io/test_file_safety.py", "-k", "another_command"),
     _m("record: --out checked after Path() made '' the working folder", "app/reading.py",
-       "out_dir = check_output_dir(out, force=force) if out is not None else None",
-       "out_dir = check_output_dir(Path(out), force=force) if out is not None else None",
+       'check_output_dir(out, force=force, command="record") if out is not None',
+       'check_output_dir(Path(out), force=force, command="record") if out is not None',
        "tests/io/test_file_safety.py", "-k", "empty_out"),
     # --- interface5 (issue 29): the multirate kernel (every block's window on its own clock)
     _m("multirate: the friction held at its last update", "ensemble/interface_kernel.py",
