@@ -60,6 +60,42 @@ def _block(i, c, state, birth, off, lo, hi, x, x_new, f_new, fscale, t, t_new, a
     f_new[i] = outs[i, 0] * fscale[i]
 
 
+@numba.njit(cache=True)
+def _driver_step(t, t_new, x, x_new, n, side, kp, ks, load0, plate_fixed, p_times, p_pos,
+                 p_vel, p_x0):  # pragma: no cover - compiled
+    """The load point at ``t_new``, the plate the leaf springs pull from, and the driver's
+    work over the step (trapezoid of its springs' force on the chain times the load point's
+    travel): shared by :func:`advance_chain` and :func:`advance_chain_multirate`."""
+    l_old = load0 + load_position(t, p_times, p_pos, p_vel) - p_x0
+    l_new = load0 + load_position(t_new, p_times, p_pos, p_vel) - p_x0
+    if side:
+        s_old = ks * (l_old - x[0])
+        s_new = ks * (l_new - x_new[0])
+        plate = plate_fixed
+    else:
+        s_old = 0.0
+        s_new = 0.0
+        for i in range(n):
+            s_old += kp * (l_old - x[i])
+            s_new += kp * (l_new - x_new[i])
+        plate = l_new
+    return l_new, plate, 0.5 * (s_old + s_new) * (l_new - l_old)
+
+
+@numba.njit(cache=True)
+def _step_spring_force(i, n, x, load, side, plate, kp, kc, ks):  # pragma: no cover - compiled
+    """The springs' force on block ``i`` in the stepping kernels, summed as
+    ``kp (plate - x_i) + coupling + edge`` (that order: :func:`_spring_force` sums in another,
+    which would change the runs in their last bits)."""
+    cpl = 0.0
+    if i > 0:
+        cpl += kc * (x[i - 1] - x[i])
+    if i < n - 1:
+        cpl += kc * (x[i + 1] - x[i])
+    edge = ks * (load - x[i]) if (side and i == 0) else 0.0
+    return kp * (plate - x[i]) + cpl + edge
+
+
 @numba.njit(cache=True, parallel=True)
 def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_osc, dx_max,
                   mass, eta, kp, kc, ks, side, plate_fixed, load0, p_times, p_pos, p_vel, p_x0,
@@ -114,30 +150,13 @@ def advance_chain(c, state, birth, off, lo, hi, x, v, a, f, fscale, t, t1, dt_os
             for i in numba.prange(n):
                 _block(i, c, state, birth, off, lo, hi, x, x_new, f_new, fscale, t, t_new,
                        alpha, yc, strong, h, s_tab, ds_tab, outs)
-        # the driver's position and its springs' force on the chain, before and after
-        l_old = load0 + load_position(t, p_times, p_pos, p_vel) - p_x0
-        l_new = load0 + load_position(t_new, p_times, p_pos, p_vel) - p_x0
-        if side:
-            s_old = ks * (l_old - x[0])
-            s_new = ks * (l_new - x_new[0])
-            plate = plate_fixed
-        else:
-            s_old = 0.0
-            s_new = 0.0
-            for i in range(n):
-                s_old += kp * (l_old - x[i])
-                s_new += kp * (l_new - x_new[i])
-            plate = l_new
-        acc[0] += 0.5 * (s_old + s_new) * (l_new - l_old)
+        l_new, plate, work = _driver_step(t, t_new, x, x_new, n, side, kp, ks, load0,
+                                          plate_fixed, p_times, p_pos, p_vel, p_x0)
+        acc[0] += work
         for i in range(n):
-            cpl = 0.0
-            if i > 0:
-                cpl += kc * (x_new[i - 1] - x_new[i])
-            if i < n - 1:
-                cpl += kc * (x_new[i + 1] - x_new[i])
-            edge = ks * (l_new - x_new[i]) if (side and i == 0) else 0.0
             vp = v[i] + a[i] * dt
-            a_new = (kp * (plate - x_new[i]) + cpl + edge - f_new[i] - eta * vp) / mass
+            a_new = (_step_spring_force(i, n, x_new, l_new, side, plate, kp, kc, ks)
+                     - f_new[i] - eta * vp) / mass
             v_new = v[i] + 0.5 * (a[i] + a_new) * dt
             wfric[i] += 0.5 * (f[i] + f_new[i]) * (x_new[i] - x[i])
             wdamp[i] += eta * 0.5 * (v[i] * v[i] + v_new * v_new) * dt
@@ -280,30 +299,13 @@ def advance_chain_multirate(c, state, birth, off, lo, hi, x, v, a, f, fscale, t,
             acc[2] += hi[i] - lo[i]
             if outs[i, 8] != 0.0:
                 acc[3] = 1.0
-        # the driver's position and its springs' force on the chain, before and after
-        l_old = load0 + load_position(t, p_times, p_pos, p_vel) - p_x0
-        l_new = load0 + load_position(t_new, p_times, p_pos, p_vel) - p_x0
-        if side:
-            s_old = ks * (l_old - x[0])
-            s_new = ks * (l_new - x_new[0])
-            plate = plate_fixed
-        else:
-            s_old = 0.0
-            s_new = 0.0
-            for i in range(n):
-                s_old += kp * (l_old - x[i])
-                s_new += kp * (l_new - x_new[i])
-            plate = l_new
-        acc[0] += 0.5 * (s_old + s_new) * (l_new - l_old)
+        l_new, plate, work = _driver_step(t, t_new, x, x_new, n, side, kp, ks, load0,
+                                          plate_fixed, p_times, p_pos, p_vel, p_x0)
+        acc[0] += work
         for i in range(n):
-            cpl = 0.0
-            if i > 0:
-                cpl += kc * (x_new[i - 1] - x_new[i])
-            if i < n - 1:
-                cpl += kc * (x_new[i + 1] - x_new[i])
-            edge = ks * (l_new - x_new[i]) if (side and i == 0) else 0.0
             vp = v[i] + a[i] * dt
-            a_new = (kp * (plate - x_new[i]) + cpl + edge - f_new[i] - eta * vp) / mass
+            a_new = (_step_spring_force(i, n, x_new, l_new, side, plate, kp, kc, ks)
+                     - f_new[i] - eta * vp) / mass
             v_new = v[i] + 0.5 * (a[i] + a_new) * dt
             wfric[i] += 0.5 * (f[i] + f_new[i]) * (x_new[i] - x[i])
             wdamp[i] += eta * 0.5 * (v[i] * v[i] + v_new * v_new) * dt
