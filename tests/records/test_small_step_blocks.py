@@ -73,18 +73,21 @@ def test_small_steps_at_a_rate_change_placed_better_on_even_blocks() -> None:
     # machine oscillation (seeds 0-39): within max(1 sample, 0.5 s) 35 of 40 on blocks of one
     # duration, 29 of one count (measured). The mistake it is for: blocks of one sample count
     # for a small step (EVEN_BLOCKS off), whose slow side's blocks are ten times longer
+    # (the first count with the detector as it is: the rule must be on by default)
     recs = [_rate_step(seed, 1.3) for seed in range(40)]
     hits = {}
-    for even in (True, False):
-        P.EVEN_BLOCKS = even
+    default = P.EVEN_BLOCKS
+    for even in ("default", False):
+        if even is False:
+            P.EVEN_BLOCKS = False
         try:
             hits[even] = 0
             for rec, tc, tol in recs:
                 segs = detect_program(rec).segments
                 hits[even] += len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
         finally:
-            P.EVEN_BLOCKS = True
-    assert hits[True] >= 34 and hits[True] >= hits[False] + 4, hits
+            P.EVEN_BLOCKS = default
+    assert hits["default"] >= 34 and hits["default"] >= hits[False] + 4, hits
 
 
 def test_large_step_placement_unchanged_by_even_blocks() -> None:
@@ -92,11 +95,12 @@ def test_large_step_placement_unchanged_by_even_blocks() -> None:
     # one count, whatever EVEN_BLOCKS says: the rule is for the small steps only (measured
     # there). The mistake it is for: every change placed on even blocks
     got = {}
+    default = P.EVEN_BLOCKS
     for even in (True, False):
         P.EVEN_BLOCKS = even
         try:
             got[even] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in detect_program(
                 _rate_step(seed, 3.0)[0]).segments) for seed in range(6)]
         finally:
-            P.EVEN_BLOCKS = True
+            P.EVEN_BLOCKS = default
     assert got[True] == got[False]
