@@ -296,15 +296,15 @@ def _relaxes(v1: float, v2: float, rel: tuple[float, float], sigma: float,
 
     Why (ours): the relaxation's amplitude is the position error at the stop, whose rms is
     what ``lag`` measures; ``s tau`` is an extrapolation of the slope scatter, which the OU
-    fit makes 130-250 s long where the wander is bounded or periodic (bursts, a machine
+    fit makes 126-200 s long where the wander is bounded or periodic (bursts, a machine
     oscillation, a servo's error over long windows): every ratio-30 down-step then got the
     relaxation's free amplitude, which takes the kink's place and puts the step early
-    whether the record shows a position error or not (zoo records 3241, 7075, 3073, 7021:
-    0.9-3.6 s early, ``s tau |v1|`` 3-10 times the noise where ``lag |v1|`` is below it or
-    not measured). ``lag`` alone is not enough either way: where the OU's ``s tau |v1|`` is
-    below the noise and ``lag |v1|`` above it, the free amplitude still pulled a hold's start
-    0.5 s early (zoo 5098, with ``lag`` alone); both measures must see the error. Measured:
-    docs/performance.md (detect8).
+    whether the record shows a position error or not (zoo records 3241, 7075, 3073, 7021,
+    7081: 0.9-3.6 s early, ``s tau |v1|`` 6-55 white-noise deviations where ``lag |v1|`` is
+    0.5-1.8 of them or not measured). ``lag`` alone is not enough either way: where the
+    OU's ``s tau |v1|`` is below the noise and ``lag |v1|`` above it, the free amplitude
+    still pulled a hold's start 0.5 s early (zoo 5098, with ``lag`` alone); both measures
+    must see the error. Measured: docs/performance.md (detect8).
     """
     if not abs(v2) <= RELAX_STOP * abs(v1):
         return False
