@@ -78,7 +78,8 @@ def test_placing_again_keeps_the_order_of_the_changes() -> None:
     outside the samples left is refused. Mistakes: the window's right end at the neighbour's
     guess; placed again wherever the neighbour moved earlier at all (zoo 6254 broken so: a
     short step's start 0.59 s off, from 0.33); a placement outside the samples accepted (two
-    changes out of order)."""
+    changes out of order); placed again where the neighbour lay beyond the window (a cost
+    for nothing)."""
     calls = []
 
     def place(j: int, lo: int, hi: int) -> placement.Placement:
@@ -89,8 +90,15 @@ def test_placing_again_keeps_the_order_of_the_changes() -> None:
     guess = [0, 40, 60, 80, 100, 120]
     out = [0, 41, 55, 70, 99, 120]  # 3 and 2 moved earlier by more than m, 4 by 1
     places = [placement.Placement(q, 0.0, 1.0) for q in out[1:-1]]
-    placement._clear_of_neighbours(guess, out, places, 3, place)
+    t = 0.25 * np.arange(121)  # s
+    placement._clear_of_neighbours(guess, out, places, 3, place, t, 60.0)
     assert calls == [(2, 44, 67), (1, 3, 52)]
     assert out == [0, 35, 55, 70, 99, 120]
     assert [p.index for p in places] == [35, 55, 70, 99]
     assert np.all(np.diff(out) > 0)
+    # a neighbour beyond the window's reach (3 s here) is left: change 1's lies 3.75 s after
+    # its guess, change 2's 2.5 s
+    calls.clear()
+    out = [0, 41, 55, 70, 99, 120]
+    placement._clear_of_neighbours(guess, out, places, 3, place, t, 3.0)
+    assert calls == [(2, 44, 67)]

@@ -737,7 +737,10 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         places.append(pl)
     out.append(bounds[-1])
     if NEIGHBOURS_PLACED:
-        _clear_of_neighbours(bounds, out, places, m, place)
+        # no window reaches farther from its guess than this (change_profile's half-width
+        # at its largest, and its search)
+        reach = max(HOLD_HALF, 60.0, 2.0 * max(periods, default=0.0)) + 5.0
+        _clear_of_neighbours(bounds, out, places, m, place, t, reach)
     return out, places
 
 
@@ -748,12 +751,14 @@ ours)."""
 
 
 def _clear_of_neighbours(guess: list[int], out: list[int], places: list[Placement], m: int,
-                         place: Callable[[int, int, int], Placement]) -> None:
+                         place: Callable[[int, int, int], Placement], t: Array,
+                         reach: float) -> None:
     """Each change (in ``out``, placed in order) whose window, which ended ``m`` samples
     before its next neighbour's *guess* (``guess``), held samples at or past where that
     neighbour was then placed, placed again by ``place(j, lo, hi)`` on the samples clear of
     its neighbours as placed (``out`` and ``places`` updated in place), from the last to the
-    first.
+    first; a neighbour placed more than ``reach`` (s) after the change's guess (times ``t``,
+    s) was beyond its window.
 
     Why (ours): the changes are placed in order, so a change's window runs to the next one's
     guess, not to where it lies; a guess late by more than ``m`` samples puts samples of the
@@ -770,7 +775,8 @@ def _clear_of_neighbours(guess: list[int], out: list[int], places: list[Placemen
         lo, hi = out[j - 1] + m, out[j + 1] - m
         # the window held samples at or past the neighbour as placed; kept where the samples
         # left are too few to judge (no interval) or the change would leave them
-        if guess[j + 1] - m > out[j + 1] and lo < guess[j] < hi:
+        if (guess[j + 1] - m > out[j + 1] and lo < guess[j] < hi
+                and t[out[j + 1]] - t[guess[j]] < reach):
             pl = place(j, lo, hi)
             if np.isfinite(pl.lo) and lo < pl.index < hi:
                 out[j], places[j - 1] = pl.index, pl
