@@ -184,7 +184,7 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
         _say(report, note)
     if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
         raise ValueError(lab.no_change_message(rec, det))
-    wins = lab.slice_steps(rec, segs)
+    wins = lab.slice_steps(rec, segs, given=segments is not None)
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
                          "constant velocity (give it with --segments if it is not)")
@@ -206,6 +206,14 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                              progress=update, drive=drive)
     if profile_note:
         res.notes.append(profile_note)
+    for w, row in zip(wins, res.rows, strict=True):
+        if w.normal_changes:  # said beside the step's values (terminal, fit.json)
+            row["notes"].append(
+                "the normal stress changed during its hold (" + lab.normal_change_text(
+                    w.normal_changes, rec.normal_unit) + "); the hold is the whole time at "
+                "rest, but friction is shear over normal stress and the rate-and-state fit "
+                "has no normal-stress effect on the state (Linker & Dieterich 1992): a, b "
+                "and Dc may be biased")
     if res.drive is not None and res.drive.get("kind") == "measured":
         if profile:  # the same rule as the profiles: a fit of its own per step
             from ..fit.steps import compare_with_program

@@ -50,6 +50,8 @@ from .labsteps import (
     Segment,
     StepWindow,
     load_velocity_series,
+    normal_change_text,
+    normal_change_values,
     parse_segments,
     segments_spec,
     segments_table,
@@ -79,6 +81,8 @@ __all__ = [
     "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
+    "normal_change_values",
+    "normal_change_text",
 ]
 
 MIN_ROWS = 10
