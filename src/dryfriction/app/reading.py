@@ -137,6 +137,8 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
     }
     if no_steps:
         rep["no_steps"] = no_steps
+    if rec.notes:  # what the reader skipped or dropped (a preamble, rows with a missing value)
+        rep["reading_notes"] = list(rec.notes)
     if note:
         rep["apparatus_note"] = note.removeprefix("note: ")
     if det is not None:

@@ -179,6 +179,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     det = None if segments is not None else lab.detect_program(rec)
     segs = lab.parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
+    for line in rec.notes:  # a preamble skipped, rows with a missing value dropped
+        _say(report, f"note: {line}")
     note = lab.apparatus_note(rec, [s.velocity for s in segs], given=segments is not None)
     if note:  # before the fit: a record of micrometres read as metres fits for minutes
         _say(report, note)
@@ -236,6 +238,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                               **res.to_dict()}
     if note:
         doc["apparatus_note"] = note.removeprefix("note: ")
+    if rec.notes:
+        doc["reading_notes"] = list(rec.notes)
     normal = next((r["normal_unit"] for r in res.rows if r.get("normal_unit")), "Pa")
     doc = with_units(doc, RECORD_FIT_UNITS, {"normal": normal})
     cv_results: dict[int, Any] = {}  # step -> the trap model's fit (--run-cv), for the figures

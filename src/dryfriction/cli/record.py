@@ -61,6 +61,8 @@ def record_command(
     for role, h in rec.columns.items():
         unit = rec.units.get(role, "") or ("-" if role == "mu" else "none: read as SI")
         print(f"  {role:<9} {h!r:<32} unit {unit}")
+    for line in report.get("reading_notes", []):
+        print(f"note: {line}")
     print(f"\nload program ({report['segments_from']}):")
     print(segments_table(segs, rec.normal_unit))
     print(f"as --segments: {report['segments_option']}")

@@ -781,5 +781,5 @@ def no_change_message(record: LabRecord, det: Detection) -> str:
     return (f"{record.source}: no velocity change found above the apparatus' fluctuations of "
             f"{lim * 1e6:.3g} um/s ({Z_MIN:g} times the scatter of the velocities of the "
             f"record's two halves): it moves at {v * 1e6:.3g} um/s throughout, and a "
-            "one-velocity record has no velocity step to fit; if its program did change, give "
-            f"it with --segments, e.g. {example_segments(record, v)}")
+            "one-velocity record has no velocity step to fit; if its speed did change, give the "
+            f"program with --segments, e.g. {example_segments(record, v)}")
