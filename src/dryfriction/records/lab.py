@@ -5,8 +5,10 @@ A record is a text table (or a spreadsheet ``.xlsx`` or MATLAB ``.mat`` file, re
 brackets after the name (``Time(s)``, ``Displ(microns)``, ``Shear_stress[MPa]``), separated by
 tabs, commas, semicolons or spaces (sniffed). Lines starting with ``#`` and blank lines are
 skipped; a units row under the header (``s  um  -  MPa``) and trailing empty columns are
-tolerated. Columns are recognised by name, case-insensitively (the *role* in brackets is the key
-of the column map):
+tolerated; a preamble above the header without ``#`` is skipped and said (:func:`_find_header`,
+``LabRecord.notes``), and a row with a missing value (:data:`MISSING`) in a needed column is
+dropped and counted, up to :data:`MISSING_MAX` of the rows. Columns are recognised by name,
+case-insensitively (the *role* in brackets is the key of the column map):
 
 * time (``time``): ``t``, ``Time``, ``time[s]``, ``elapsed_time``;
 * load-point displacement (``disp``): ``Displ``, ``Disp``, ``LP_disp``, ``load_point``,
@@ -35,6 +37,7 @@ import io
 import os
 import re
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path
 from types import MappingProxyType
 
@@ -66,6 +69,8 @@ __all__ = [
     "StepWindow",
     "ROLES",
     "MIN_ROWS",
+    "MISSING",
+    "MISSING_MAX",
     "read_record",
     "apparatus_note",
     "FRICTION_MAX",
@@ -630,10 +635,13 @@ def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
         return table[:, usecols], lambda i: sline + i
 
     try:
-        return _finish(str(path), names, columns, hline, sline, row_units, load)
+        rec = _finish(str(path), names, columns, hline, sline, row_units, load)
     except ValueError as exc:  # the same refusal, in the file's own words for a row
         msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
-        raise ValueError(msg.replace(", line ", f", {word} ")) from None
+        raise ValueError(msg.replace(", line ", f", {word} ").replace(
+            "; lines ", f"; {word}s ")) from None
+    # a cell that is not a number is NaN in a form's table: a missing value, by its row
+    return replace(rec, notes=tuple(n.replace("; lines ", f"; {word}s ") for n in rec.notes))
 
 
 def _parse(raw: bytes, skip: int, delim: str | None, usecols: list[int], src: str,

@@ -364,7 +364,7 @@ def slice_steps(
     the segment before, and ends at the next change after it. A hold at the start or at the
     end of the record (no sliding before it, or none after) gives no window. Consecutive
     segments at rest are one hold (a normal-stress change during a hold is a segment
-    boundary, issue 23): its duration is the whole time at rest, the time a contact ages, and
+    boundary): its duration is the whole time at rest, the time a contact ages, and
     the window runs on to the end of the reslide; the changes are in ``normal_changes``.
 
     Parameters
