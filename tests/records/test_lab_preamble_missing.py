@@ -128,3 +128,18 @@ def test_too_many_missing_values_are_refused_in_one_line(tmp_path: Path) -> None
                    "value (empty, NaN) in a needed column ('Friction' (column 3) 6; lines 7, "
                    "14, 21, 28, 35 ...): more than 5 % to drop: fill or remove them, or name "
                    "other columns with --columns")
+
+
+def test_without_a_recognised_name_the_line_above_the_data_is_the_header(
+        tmp_path: Path) -> None:
+    # no name the reader knows (German), a preamble and a units row: the refusal names the
+    # header's line and its names (not the units row's), and --columns then reads it.
+    # Mistake: the units row taken for the header ("found 's', 'um', '-'")
+    lines = ["Versuch p5123", "Bediener: X", "Zeit\tWeg\tReibung", "s\tum\t-", *rows("\t")]
+    p = tmp_path / "rec.txt"
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"rec\.txt, line 3: no time column: found 'Zeit', "
+                                         r"'Weg', 'Reibung'"):
+        read_record(p)
+    r = read_record(p, {"time": "Zeit", "disp": "Weg", "mu": "Reibung"})
+    assert r.first_line == 5 and r.units["disp"] == "um" and np.allclose(r.load_point, X * 1e-6)
