@@ -60,6 +60,22 @@ def test_a_normal_change_mid_hold_keeps_the_hold_whole(
     assert rep["units"]["normal_before"].startswith("Pa")
 
 
+def test_fit_of_a_hold_with_a_normal_change_says_so_beside_the_step(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the hold's length is what a user ages contacts by: 50 s in steps.csv and fit.json; the
+    # fit has no normal-stress effect on the state: said on the step (terminal, fit.json)
+    rec = shs_normal_step(tmp_path / "shs.csv")
+    code, out, err = run(capsys, "fit", str(rec), "--out", str(tmp_path / "f"), "--no-figure",
+                         "--no-profile", "--drive", "program", "--state-law", "ageing")
+    assert code in (0, 1), err
+    note = ("the normal stress changed during its hold (t = 70 s: 5 -> 7 MPa); the hold is "
+            "the whole time at rest")
+    assert f"- step 0: {note}" in out
+    (row,) = json.loads((tmp_path / "f" / "fit.json").read_text())["steps"]
+    assert row["hold"] == pytest.approx(50.0, abs=0.2) and row["kind"] == "shs"
+    assert any(n.startswith(note) for n in row["notes"])
+
+
 def step_with_preamble(path: Path, missing: dict[int, str] | None = None) -> Path:
     """A velocity step 0.5 -> 5 um/s at 100 s (tab separated, 2 Hz), under a three-line
     preamble without '#'; ``missing``: row -> the friction cell's text."""
