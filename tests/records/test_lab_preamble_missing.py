@@ -143,3 +143,20 @@ def test_without_a_recognised_name_the_line_above_the_data_is_the_header(
         read_record(p)
     r = read_record(p, {"time": "Zeit", "disp": "Weg", "mu": "Reibung"})
     assert r.first_line == 5 and r.units["disp"] == "um" and np.allclose(r.load_point, X * 1e-6)
+
+
+def test_columns_named_make_their_line_the_header(tmp_path: Path) -> None:
+    # a preamble line the reader takes for a name ("Time: 12:00") above a header it does not
+    # know: the guess is that line (the refusal names it); --columns names the header's columns,
+    # and the line holding them wins (docs/howto/record-formats.md)
+    lines = ["Time: 12:00", "Zeit\tWeg(um)\tReibung", *rows("\t")]
+    p = tmp_path / "rec.txt"
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"rec\.txt, line 3: 3 cells, the header \(line 1\) "
+                       r"names 1: .*, or, if line 1 is not the header, name the header's "
+                       r"columns with --columns$"):
+        read_record(p)
+    r = read_record(p, {"time": "Zeit", "disp": "Weg", "mu": "Reibung"})
+    assert r.first_line == 3 and len(r) == N and np.allclose(r.load_point, X * 1e-6)
+    assert r.notes == (f"{p}: 1 line(s) above the header (line 2) skipped as a preamble: "
+                       "'Time: 12:00'",)

@@ -494,7 +494,9 @@ def read_record(
     width = len(_cells(sample, delim))
     if width > len(names):
         raise ValueError(f"{src}, line {sline}: {width} cells, the header (line {hline}) names "
-                         f"{len(names)}: separate the columns with tabs or commas")
+                         f"{len(names)}: separate the columns with tabs or commas"
+                         + (f", or, if line {hline} is not the header, name the header's "
+                            "columns with --columns" if hline != sline - 1 else ""))
     row_units = _header_cells(units_row[0], delim) if units_row else []
     notes = []
     if preamble:  # one line: what was skipped, so that a wrong guess shows
