@@ -126,8 +126,7 @@ def test_too_many_missing_values_are_refused_in_one_line(tmp_path: Path) -> None
     msg = str(exc.value)
     assert msg == (f"{p}, line 7, column 3 (Friction): 6 of {N} data rows have a missing "
                    "value (empty, NaN) in a needed column ('Friction' (column 3) 6; lines 7, "
-                   "14, 21, 28, 35 ...): more than 5 % to drop: fill or remove them, or name "
-                   "other columns with --columns")
+                   "14, 21, 28, 35 ...): more than 5 % to drop: fill or remove them")
 
 
 def test_without_a_recognised_name_the_line_above_the_data_is_the_header(

@@ -170,3 +170,5 @@ def test_a_one_velocity_program_is_refused_with_its_reason() -> None:
     with pytest.raises(ValueError, match="one sliding velocity and a hold with no sliding on "
                        "one side"):
         slice_steps(_record(), hold_end, given=True)
+    with pytest.raises(ValueError, match=r"velocities 0 m/s\): the load point does not move"):
+        slice_steps(_record(), make_segments(T, [0, 400], [0.0]))

@@ -621,8 +621,7 @@ def _drop_missing(src: str, data: Array, line_of: Callable[[int], int], names: l
         raise ValueError(f"{src}, line {line_of(i)}, column {usecols[k] + 1} ({names[k]}): "
                          f"{rows.size} of {len(data)} data rows have a missing value (empty, "
                          f"NaN) in a needed column ({where}; lines {first}): more than "
-                         f"{100 * MISSING_MAX:g} % to drop: fill or remove them, or name other "
-                         "columns with --columns")
+                         f"{100 * MISSING_MAX:g} % to drop: fill or remove them")
     keep = np.flatnonzero(~miss.any(axis=1))
     notes.append(f"{src}: {rows.size} of {len(data)} data rows dropped for a missing value "
                  f"(empty, NaN) in a needed column ({where}; lines {first})")

@@ -456,6 +456,8 @@ def no_steps_message(record: LabRecord, segments: tuple[Segment, ...] | list[Seg
     # no window leaves at most one sliding velocity (two differ: a step, or a hold between)
     what = ("a one-velocity record has no velocity step to fit"
             if all(s.velocity != 0.0 for s in segs) else
+            "the load point does not move (a hold throughout): no step to fit"
+            if all(s.velocity == 0.0 for s in segs) else
             "one sliding velocity and a hold with no sliding on one side: no step to fit")
     head = (f"{record.source}: no velocity step or hold in the load program"
             f"{' given with --segments' if given else ''} ({len(segs)} segment(s), "
