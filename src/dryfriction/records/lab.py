@@ -281,6 +281,11 @@ column (ours: a few dropouts of a logger are common; more is a column that was n
 throughout, which dropping would hide): above it the record is refused."""
 
 
+PREAMBLE_MAX = 200
+"""Most lines above a text record's header that are skipped as a preamble (ours: instruments
+write a few to a few dozen)."""
+
+
 def _is_missing(cell: str) -> bool:
     return cell.strip().lower() in MISSING
 
@@ -320,9 +325,18 @@ def _find_header(head: list[str], columns: Mapping[str, str] | None
              if ln.strip() and not ln.strip().startswith("#")]
     if not lines:
         return None, 0, None, 0, None, []
-    numeric = [_numeric_line(ln) for _, ln in lines]
-    start = next((k for k in range(len(lines))
-                  if numeric[k] and (k + 1 == len(lines) or numeric[k + 1])), len(lines))
+    cache: dict[int, bool] = {}
+
+    def numeric(k: int) -> bool:  # on demand: a file of text cells is not scanned twice
+        if k not in cache:
+            cache[k] = _numeric_line(lines[k][1])
+        return cache[k]
+
+    # the preamble is looked for in the first PREAMBLE_MAX lines (a file whose rows hold a
+    # text cell has no line of numbers: its lines are not each scored as a header)
+    top = min(len(lines), PREAMBLE_MAX + 2)
+    start = next((k for k in range(top) if numeric(k) and (k + 1 == len(lines)
+                                                           or numeric(k + 1))), len(lines))
     named = {(v.rpartition(":")[0] if ":" in v else v).strip().lower()
              for v in (columns or {}).values()}
     sample_line = lines[start][1] if start < len(lines) else lines[-1][1]
@@ -337,7 +351,7 @@ def _find_header(head: list[str], columns: Mapping[str, str] | None
     def units_only(line: str) -> bool:
         return bool(cells(line)) and all(_unit_cell(c) for c in cells(line))
 
-    cands = list(range(max(start, 1)))
+    cands = list(range(min(max(start, 1), PREAMBLE_MAX + 1)))
     score = [names(lines[k][1]) for k in cands]
     if max(score) > 0:
         h = score.index(max(score))
@@ -349,7 +363,7 @@ def _find_header(head: list[str], columns: Mapping[str, str] | None
         h = 0
     units_row = None
     k = h + 1
-    if k < len(lines) and not numeric[k] and (units_only(lines[k][1]) or not any(
+    if k < len(lines) and not numeric(k) and (units_only(lines[k][1]) or not any(
             _is_number(c) for c in re.split(r"[\t;, ]+", lines[k][1].strip()))):
         units_row, k = (lines[k][1], lines[k][0]), k + 1
     sample = lines[k] if k < len(lines) else (0, None)
