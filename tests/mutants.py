@@ -3223,6 +3223,8 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record figure: a hold split by a normal change shaded to the change", "plots/record.py",
        "        while hold and k < len(segments) and segments[k].velocity == 0.0:",
        "        while False:", "tests/plots/test_record_figure_data.py", "-k", "split"),
+    _m("fit: the reading notes not said before the fit", "app/records.py",
+       '        _say(report, f"note: {line}")', "        pass", _USB_CLI, "-k", "reading_notes"),
     _m("reader: the header the first line (the preamble taken for it)", "records/lab.py",
        "        h = score.index(max(score))", "        h = 0", _USB_READ, "-k", "preamble"),
     _m("reader: the data taken to start at one line of numbers", "records/lab.py",

@@ -97,7 +97,7 @@ def test_a_preamble_and_missing_cells_are_read_and_said(
     rec = step_with_preamble(tmp_path / "p.txt", {30: "NaN", 31: ""})
     code, out, err = run(capsys, "record", str(rec))
     assert code == 0, err
-    notes = [ln for ln in out.splitlines() if ln.startswith("note:")]
+    notes = [ln for ln in out.splitlines() if ln.startswith(f"note: {rec}")]
     assert notes == [
         f"note: {rec}: 3 line(s) above the header (line 4) skipped as a preamble: "
         "'Experiment p4966', 'Operator: X', 'Sample rate: 2 Hz'",
@@ -112,6 +112,21 @@ def error_line(err: str) -> str:
     """The one error line (a first run's compile notice may precede it on stderr)."""
     (line,) = [ln for ln in err.strip().splitlines() if ln.startswith("error:")]
     return line
+
+
+def test_fit_says_the_same_reading_notes(tmp_path: Path,
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    # before the fit, as record says them, and in fit.json (mistake: read, then not a word)
+    rec = step_with_preamble(tmp_path / "p.txt", {30: "NaN", 31: ""})
+    code, out, err = run(capsys, "fit", str(rec), "--out", str(tmp_path / "f"), "--no-figure",
+                         "--no-profile", "--drive", "program", "--state-law", "ageing")
+    assert code in (0, 1), err
+    # (a first run's compile notice is a note too: not the record's)
+    said = [ln for ln in (out + err).splitlines() if ln.startswith(f"note: {rec}")]
+    assert [n[:40] for n in said] == [f"note: {rec}: 3 line(s) above the header"[:40],
+                                      f"note: {rec}: 2 of 400 data rows dropped"[:40]]
+    doc = json.loads((tmp_path / "f" / "fit.json").read_text())
+    assert doc["reading_notes"] == [n.removeprefix("note: ") for n in said]
 
 
 def one_velocity(path: Path) -> Path:
