@@ -111,6 +111,7 @@ _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
 _CCH = "tests/records/test_change_choice.py"
+_SSB = "tests/records/test_small_step_blocks.py"
 _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
@@ -2700,6 +2701,26 @@ MUTANTS: tuple[Mutant, ...] = (
        "tests/records/test_detect.py",
        "-k", "oscillation_regressors_place"),
     # --- end detect6
+    # --- detect7: a small step placed on block means of one duration
+    # (tests/records/test_small_step_blocks.py)
+    _m("placement: a small step on blocks of one sample count", "records/placement.py",
+       "EVEN_BLOCKS = True\n", "EVEN_BLOCKS = False\n", _SSB, "-k", "placed_better"),
+    _m("placement: every change on blocks of one duration", "records/placement.py",
+       "    fine = EVEN_BLOCKS and small_step(v1, v2)\n", "    fine = EVEN_BLOCKS\n", _SSB,
+       "-k", "large_step"),
+    _m("placement: a block per empty span (a gap)", "records/placement.py",
+       "    return np.flatnonzero(np.diff(np.concatenate([[-1.0], j])) != 0)\n",
+       "    return np.searchsorted(tt, tt[0] + np.arange(count) * (span / count))\n", _SSB,
+       "-k", "one_duration"),
+    _m("placement: the speeds' ratio taken one way only (a stop counted small)",
+       "records/placement.py",
+       "    lo, hi = sorted((abs(v1), abs(v2)))\n    return 0.0 < lo",
+       "    lo, hi = abs(v1), abs(v2)\n    return 0.0 < lo", _SSB, "-k", "twice"),
+    _m("placement: the candidate's block by one count on even blocks", "records/placement.py",
+       "        beta = np.searchsorted(idx, cand, side=\"right\") - 1  # the block holding each\n",
+       "        beta = np.minimum(cand // k, idx.size - 1)  # the block holding each\n", _SSB,
+       "-k", "placed_better"),
+    # --- end detect7
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test
