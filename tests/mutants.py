@@ -3249,8 +3249,9 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("reader: the header the first line (the preamble taken for it)", "records/lab.py",
        "        h = score.index(max(score))", "        h = 0", _USB_READ, "-k", "preamble"),
     _m("reader: the data taken to start at one line of numbers", "records/lab.py",
-       "if numeric[k] and (k + 1 == len(lines) or numeric[k + 1])), len(lines))",
-       "if numeric[k]), len(lines))", _USB_READ, "-k", "preamble"),
+       "if numeric(k) and (k + 1 == len(lines)\n" + " " * 59
+       + "or numeric(k + 1))), len(lines))",
+       "if numeric(k)), len(lines))", _USB_READ, "-k", "preamble"),
     _m("reader: with no name recognised, the units row taken for the header", "records/lab.py",
        "        if h >= 1 and units_only(lines[h][1]):", "        if False:", _USB_READ, "-k",
        "line_above_the_data"),
