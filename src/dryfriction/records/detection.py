@@ -776,10 +776,10 @@ def no_change_message(record: LabRecord, det: Detection) -> str:
     v, d, sxx = fits.table([0, h, len(t)])
     e = det.fluctuations.scatter(d, v, sxx)
     lim = Z_MIN * float(np.hypot(e[0], e[1]))
-    v = det.segments[0].velocity if det.segments else 0.0
+    speed = det.segments[0].velocity if det.segments else 0.0
     # the example from the record's own times and speed (a fixed one lay outside short records)
     return (f"{record.source}: no velocity change found above the apparatus' fluctuations of "
             f"{lim * 1e6:.3g} um/s ({Z_MIN:g} times the scatter of the velocities of the "
-            f"record's two halves): it moves at {v * 1e6:.3g} um/s throughout, and a "
+            f"record's two halves): it moves at {speed * 1e6:.3g} um/s throughout, and a "
             "one-velocity record has no velocity step to fit; if its speed did change, give the "
-            f"program with --segments, e.g. {example_segments(record, v)}")
+            f"program with --segments, e.g. {example_segments(record, speed)}")
