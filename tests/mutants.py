@@ -58,6 +58,9 @@ _DIR = "tests/theory/test_direct.py"
 _DIN = "tests/ensemble/test_direct_inertia.py"
 _FRG = "tests/analysis/test_fronts_generic.py"
 _CRG = "tests/theory/test_creep_generic.py"
+_USB_STEPS = "tests/records/test_labsteps_generic.py"
+_USB_READ = "tests/records/test_lab_preamble_missing.py"
+_USB_CLI = "tests/cli/test_record_new_user.py"
 _THG = "tests/analysis/test_trap_hopf_generic.py"
 _BFC = "tests/analysis/test_bifurcation_classify.py"
 _SFD = "tests/plots/test_step_figure_data.py"
@@ -108,6 +111,7 @@ _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
 _CCH = "tests/records/test_change_choice.py"
+_SSB = "tests/records/test_small_step_blocks.py"
 _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
@@ -841,8 +845,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "{s.i_end - s.i_start},{conf}", "{s.i_end - s.i_start + 1},{conf}",
        "tests/records/test_segments_csv.py"),
     _m("segments.csv: the --segments line's times absolute", "records/labsteps.py",
-       'return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)',
-       'return ",".join(f"{s.t_start:.10g}:{s.velocity:.6g}" for s in segments)',
+       "x = s.t_start - t0\n", "x = s.t_start\n",
        "tests/records/test_segments_csv.py"),
     _m("hold grid: the count of uniform steps rounded down", "ensemble/result.py",
        "n = max(1, math.ceil(hold / every - 1e-9))", "n = max(1, int(hold / every))",
@@ -2022,8 +2025,8 @@ MUTANTS: tuple[Mutant, ...] = (
        '"segments_from": "--segments" if segments is not None else "detected"',
        '"segments_from": "detected" if segments is not None else "--segments"', _RRP),
     _m("record report: the --segments form on the record's clock", "app/reading.py",
-       'rep["segments_option"] = segments_spec(segs, float(t[0]))',
-       'rep["segments_option"] = segments_spec(segs, 0.0)', _RRP),
+       'rep["segments_option"] = segments_spec(segs, float(t[0]), t)',
+       'rep["segments_option"] = segments_spec(segs, 0.0, t)', _RRP),
     _m("record report: the note kept with its prefix", "app/reading.py",
        'rep["apparatus_note"] = note.removeprefix("note: ")', 'rep["apparatus_note"] = note',
        _RRP),
@@ -2283,8 +2286,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "(m100 - m1) / (0.04 * (math.log(101.0) - math.log(2.0)))",
        "(m100 - m1) / (0.04 * math.log(100.0))", "tests/plots/test_reproduce.py"),
     _m("record --out: segments.csv without the record's normal unit", "app/records.py",
-       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)',
-       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]))',
+       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit,',
+       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), "Pa",',
        "tests/app/test_record_report.py"),
     _m("CSV fits: a fitted machine by default", "app/fitting.py",
        'k = parse_stiffness("inf" if value is None else value)',
@@ -2698,6 +2701,26 @@ MUTANTS: tuple[Mutant, ...] = (
        "tests/records/test_detect.py",
        "-k", "oscillation_regressors_place"),
     # --- end detect6
+    # --- detect7: a small step placed on block means of one duration
+    # (tests/records/test_small_step_blocks.py)
+    _m("placement: a small step on blocks of one sample count", "records/placement.py",
+       "EVEN_BLOCKS = True\n", "EVEN_BLOCKS = False\n", _SSB, "-k", "placed_better"),
+    _m("placement: every change on blocks of one duration", "records/placement.py",
+       "    fine = EVEN_BLOCKS and small_step(v1, v2)\n", "    fine = EVEN_BLOCKS\n", _SSB,
+       "-k", "large_step"),
+    _m("placement: a block per empty span (a gap)", "records/placement.py",
+       "    return np.flatnonzero(np.diff(np.concatenate([[-1.0], j])) != 0)\n",
+       "    return np.searchsorted(tt, tt[0] + np.arange(count) * (span / count))\n", _SSB,
+       "-k", "one_duration"),
+    _m("placement: the speeds' ratio taken one way only (a stop counted small)",
+       "records/placement.py",
+       "    lo, hi = sorted((abs(v1), abs(v2)))\n    return 0.0 < lo",
+       "    lo, hi = abs(v1), abs(v2)\n    return 0.0 < lo", _SSB, "-k", "twice"),
+    _m("placement: the candidate's block by one count on even blocks", "records/placement.py",
+       "        beta = np.searchsorted(idx, cand, side=\"right\") - 1  # the block holding each\n",
+       "        beta = np.minimum(cand // k, idx.size - 1)  # the block holding each\n", _SSB,
+       "-k", "placed_better"),
+    # --- end detect7
     # --- detect8: a stop's relaxation, a change clear of its neighbour as placed, one
     # normal-stress ramp after slow sampling (tests/records/test_stop_and_neighbour.py,
     # tests/records/test_artifacts_generic.py)
@@ -3199,6 +3222,102 @@ MUTANTS: tuple[Mutant, ...] = (
        'multirate=i.data.get("multirate", False))', "multirate=False)", _IMR, "-k",
        "protocol"),
     # --- end interface5
+    # --- stop 38 (lead): the rest of a new user's trial: a negative K_c_rsf and rounding
+    # shown as stiffnesses, inputs without units, refusals naming a protocol key, a misspelt
+    # table, a --segments start with its float noise, the legend over a segment's number
+    _m("stability: a velocity-strengthening twin's negative K_c_rsf shown", "app/theory.py",
+       'cols["K_c_rsf"] = [max(t["K_c"], 0.0) for t in twins]',
+       'cols["K_c_rsf"] = [t["K_c"] for t in twins]', "tests/app/test_app_direct.py"),
+    _m("stability: rounding of 0 shown as a stiffness", "app/theory.py",
+       "floor = ROUNDING * abs(r.backward_stiffness)", "floor = 0.0 * abs(r.backward_stiffness)",
+       "tests/app/test_app_direct.py"),
+    _m("theory tables: the inputs without their units", "cli/common.py",
+       'return f"{k} = {v}" + ("" if u in (None, DIMENSIONLESS) else f" {u}")',
+       'return f"{k} = {v}"', "tests/cli/test_words.py"),
+    _m("protocol: a misspelt table without the name meant", "io/protocol.py",
+       "close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)", "close = []",
+       "tests/io/test_protocol.py"),
+    _m("fit: a fixed value's refusal names the bare parameter", "fit/engine.py",
+       'fixed[s.name] = check_scalar(f"--fix {s.name}{unit}", fixed[s.name],',
+       "fixed[s.name] = check_scalar(s.name, fixed[s.name],", "tests/fit/test_fit.py"),
+    _m("--segments form: a start rounded to the nearest decimal", "records/labsteps.py",
+       "y = math.floor(x * 10**d) / 10**d", "y = round(x, d)", "tests/records/test_lab.py",
+       "-k", "shortest"),
+    _m("record.png: the legend inside the top panel", "plots/record.py",
+       'ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), fontsize=7, ncol=6,',
+       'ax.legend(loc="upper left", fontsize=7, ncol=6,',
+       "tests/plots/test_record_figure_data.py", "-k", "legend"),
+    _m("auto law: each law's fits counted from 0 against one law's total", "fit/lawchoice.py",
+       "lambda done, total, j=j: outer(j * total + done, len(laws) * total))",
+       "lambda done, total, j=j: outer(done, total))", "tests/fit/test_state_laws.py", "-k",
+       "progress"),
+    _m("record fit: the joint fit's values without units", "cli/records.py",
+       'return "" if u == DIMENSIONLESS else f" {u}"', 'return ""', "tests/fit/test_steps.py",
+       "-k", "command_record_writes_steps"),
+    # --- end stop 38 (lead)
+    # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
+    # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
+    _m("slice_steps: the hold cut at a normal-stress change (the user's 10 s of 50)",
+       "records/labsteps.py", "while m < len(segs) and segs[m].velocity == 0.0:",
+       "while False:", _USB_STEPS, "-k", "normal_change_during"),
+    _m("slice_steps: the hold's duration its first segment's", "records/labsteps.py",
+       "after.velocity, after.t_start - cur.t_start,", "after.velocity, cur.duration,",
+       _USB_STEPS, "-k", "normal_change_during"),
+    _m("slice_steps: a normal change's stresses before and after swapped",
+       "records/labsteps.py",
+       "changes = tuple((segs[k].t_start, segs[k - 1].normal, segs[k].normal)",
+       "changes = tuple((segs[k].t_start, segs[k].normal, segs[k - 1].normal)",
+       _USB_STEPS, "-k", "normal_change_during"),
+    _m("normal change text: the stress in Pa, not the table's MPa", "records/labsteps.py",
+       'f"t = {t:g} s: {b * scale:.4g} -> {a * scale:.4g} {nu}"',
+       'f"t = {t:g} s: {b:.4g} -> {a:.4g} {nu}"', _USB_STEPS, "-k", "normal_change_values"),
+    _m("record: a hold's normal change not printed under the steps", "cli/record.py",
+       "        if w.normal_changes:  # the hold runs across them", "        if False:",
+       _USB_CLI, "-k", "normal_change_mid_hold"),
+    _m("fit: a hold's normal change not noted on its step", "app/records.py",
+       "        if w.normal_changes:  # said beside", "        if False:  # said beside",
+       _USB_CLI, "-k", "fit_of_a_hold"),
+    _m("record figure: a hold split by a normal change shaded to the change", "plots/record.py",
+       "        while hold and k < len(segments) and segments[k].velocity == 0.0:",
+       "        while False:", "tests/plots/test_record_figure_data.py", "-k", "split"),
+    _m("fit: the reading notes not said before the fit", "app/records.py",
+       '        _say(report, f"note: {line}")', "        pass", _USB_CLI, "-k", "reading_notes"),
+    _m("reader: the header the first line (the preamble taken for it)", "records/lab.py",
+       "        h = score.index(max(score))", "        h = 0", _USB_READ, "-k", "preamble"),
+    _m("reader: the data taken to start at one line of numbers", "records/lab.py",
+       "if numeric(k) and (k + 1 == len(lines)\n" + " " * 59
+       + "or numeric(k + 1))), len(lines))",
+       "if numeric(k)), len(lines))", _USB_READ, "-k", "preamble"),
+    _m("reader: with no name recognised, the units row taken for the header", "records/lab.py",
+       "        if h >= 1 and units_only(lines[h][1]):", "        if False:", _USB_READ, "-k",
+       "line_above_the_data"),
+    _m("reader: the preamble skipped without a word", "records/lab.py",
+       "    if preamble:  # one line", "    if False:  # one line", _USB_READ, "-k",
+       "preamble"),
+    _m("reader: missing values filled with 0, not dropped", "records/lab.py",
+       "    return data[keep], lambda i: line_of(int(keep[min(i, len(keep) - 1)]))",
+       "    return np.nan_to_num(data), line_of", _USB_READ, "-k", "dropped"),
+    _m("reader: the file lines not mapped past the dropped rows", "records/lab.py",
+       "    return data[keep], lambda i: line_of(int(keep[min(i, len(keep) - 1)]))",
+       "    return data[keep], line_of", _USB_READ, "-k", "later_refusal"),
+    _m("reader: the missing-value limit reached refused", "records/lab.py",
+       "if rows.size > MISSING_MAX * len(data):", "if rows.size >= MISSING_MAX * len(data):",
+       _USB_READ, "-k", "too_many"),
+    _m("reader: an empty cell not a missing value (refused as not a number)", "records/lab.py",
+       "            if _is_missing(cell):", '            if cell.strip().lower() == "nan":',
+       _USB_READ, "-k", "dropped"),
+    _m("one velocity: the --segments example fixed at 1200 s (outside a 60-s record)",
+       "records/labsteps.py", 'half = float(f"{0.5 * float(t[-1] - t[0]):.3g}")',
+       "half = 1200.0", _USB_STEPS, "-k", "one_velocity"),
+    _m("one velocity: the example's speed not the record's", "records/labsteps.py",
+       "    v = abs(float(velocity))\n", "    v = 2e-7\n", _USB_STEPS, "-k", "one_velocity"),
+    _m("one velocity: a program given by hand sent back to --segments", "records/labsteps.py",
+       "    if given:\n        return head", "    if False:\n        return head", _USB_STEPS,
+       "-k", "one_velocity"),
+    _m("record: --segments not passed on as given to slice_steps", "app/reading.py",
+       "steps = tuple(slice_steps(rec, segs, given=segments is not None))",
+       "steps = tuple(slice_steps(rec, segs))", _USB_CLI, "-k", "one_velocity"),
+    # --- end userfixB
 )
 
 
