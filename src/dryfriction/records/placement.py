@@ -272,9 +272,10 @@ the wander itself (zoo records 3013 and 3115 of 3000-3299, down-steps of ratio 3
 value from 0.034 to 0.1 the same."""
 RELAX_ABOVE = 3.0
 """The relaxation is looked for only where the position error before the stop (the relative
-wander's rms times its correlation time times the speed) is at least this many white-noise
-standard deviations (ours): a free regressor below the noise only pulls the hinge (zoo
-records 250 and 322, stops from 0.4-0.5 um/s, placed 0.7 and 2.6 s early without this)."""
+wander's rms times its correlation time times the speed, and the measured ``lag`` times the
+speed: :func:`_relaxes`) is at least this many white-noise standard deviations (ours): a free
+regressor below the noise only pulls the hinge (zoo records 250 and 322, stops from 0.4-0.5
+um/s, placed 0.7 and 2.6 s early without this)."""
 RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
 """The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
 not the zoo's 3 s)."""
