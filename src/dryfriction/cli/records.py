@@ -13,7 +13,7 @@ from rich.table import Table
 from ..io.files import to_jsonable
 from .common import err, out
 
-__all__ = ["print_record_fit", "flagged_line"]
+__all__ = ["print_record_fit", "flagged_line", "drive_comparison_lines"]
 
 
 def _cell(x: Any) -> str:
@@ -21,6 +21,11 @@ def _cell(x: Any) -> str:
     if isinstance(x, float):
         return "—" if math.isnan(x) else f"{x:.4g}"
     return str(x)
+
+
+def _isfinite(x: Any) -> bool:
+    """Whether a cell holds a reported number (not NaN, not None)."""
+    return isinstance(x, (int, float)) and math.isfinite(x)
 
 
 def _fitted(fit: Any) -> str:
@@ -90,6 +95,29 @@ def flagged_line(rows: list[dict[str, Any]]) -> str:
     return f"{n} of {len(rows)} steps flagged: read their flags and notes"
 
 
+def drive_comparison_lines(comparison: list[dict[str, Any]]) -> list[str]:
+    """The terminal's lines of ``fit.json``'s ``drive.comparison``: per step, ``k`` and ``a``
+    under the measured and the program drive. The program's values are its refit's raw ones
+    (:func:`dryfriction.fit.steps.compare_with_program`), so they are printed only beside a
+    measured value the data identify, and not at all where the refit did not succeed
+    (userfixA: a noise record's "program drive k = 150.1 /m ... (rms ... against 10)")."""
+    lines = []
+    for c in comparison:
+        m, p = c["measured"], c["program"]
+        if "not_run" in p:
+            continue
+        head = (f"step {c['index']}: measured drive k = {_cell(m['stiffness'])} /m, "
+                f"a = {_cell(m['a'])}; ")
+        if not p.get("success", True):
+            lines.append(head + f"the refit on the program drive did not succeed (rms "
+                                f"{_cell(p['rms'])}): no values")
+            continue
+        pk, pa = (_cell(p[n]) if _isfinite(m[n]) else "—" for n in ("stiffness", "a"))
+        lines.append(head + f"program drive k = {pk} /m, a = {pa} (rms {_cell(m['rms'])} "
+                            f"against {_cell(p['rms'])})")
+    return lines
+
+
 def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                      figure: bool) -> None:
     """Print a record's fit (:class:`dryfriction.app.outcome.RecordFitOutcome`): fit.json
@@ -133,14 +161,8 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                       f"{c['sigma_t_change']:.2g} s (given {c['t_given']:.6g} s), "
                       f"{c['v_before']:.4g} -> {c['v_after']:.4g} m/s", highlight=False,
                       soft_wrap=True)
-        for c in (res.drive or {}).get("comparison", []):
-            m, p = c["measured"], c["program"]
-            if "not_run" in p:
-                continue
-            out.print(f"step {c['index']}: measured drive k = {_cell(m['stiffness'])} /m, "
-                      f"a = {_cell(m['a'])}; program drive k = {_cell(p['stiffness'])} /m, "
-                      f"a = {_cell(p['a'])} (rms {_cell(m['rms'])} against "
-                      f"{_cell(p['rms'])})", highlight=False, soft_wrap=True)
+        for line in drive_comparison_lines((res.drive or {}).get("comparison", [])):
+            out.print(line, highlight=False, soft_wrap=True)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:

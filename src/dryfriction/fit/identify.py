@@ -293,16 +293,18 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
     row["slip_after"] = slip_after
 
     def var(g: Array) -> float:
+        # a variance <= 0 is a degenerate covariance, not an exact value (no interval)
         if singular:
             return math.nan
         v = float(g @ cov @ g)
-        return v if math.isfinite(v) and v >= 0 else math.nan
+        return v if math.isfinite(v) and v > 0 else math.nan
 
     if "stiffness" in names:
         j = names.index("stiffness")
+        g_k = np.zeros(len(names))
+        g_k[j] = 1.0
         row["stiffness_lo"], row["stiffness_hi"] = _interval(specs[j], theta[j],
-                                                             math.sqrt(max(cov[j, j], 0.0))
-                                                             if not singular else math.nan, z)
+                                                             math.sqrt(var(g_k)), z)
     else:
         row["stiffness_lo"] = row["stiffness_hi"] = math.nan
     words: list[str] = []
@@ -317,7 +319,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
         on_bound = (math.isfinite(val) and val > 0
                     and min(abs(math.log(val / spec.lo)), abs(math.log(spec.hi / val)))
                     < _BOUND_REL)
-        span_ok = math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi / lo <= MAX_SPAN
+        # hi > lo: a zero-width interval is a degenerate covariance, never a measurement
+        span_ok = (math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi > lo
+                   and hi / lo <= MAX_SPAN)
         inside = math.isfinite(lo) and math.isfinite(hi) and lo >= rlo and hi <= rhi
         noise_only = bool(no_transient) and name in ("a", "b", "dc")
         if span_ok and inside and not on_bound and not noise_only:
@@ -331,7 +335,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
             why.append("the covariance gives no finite interval")
         else:
             if not span_ok:  # lo <= 0: an interval reaching 0 has no finite span
-                span = (f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0
+                span = ("has zero width (a degenerate covariance, not a measurement)"
+                        if hi <= lo else
+                        f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0
                         else "reaches 0 or below")
                 why.append(f"its 95 % interval [{lo:.3g}, {hi:.3g}] {span}")
             if not inside:

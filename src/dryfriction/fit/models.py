@@ -381,6 +381,15 @@ class CVModel:
             n.append(f"time series simulated on a {_machine_note(self.stiffness, self.trend)}")
         return n
 
+    def allowed_trend(self, kind: str) -> tuple[int, str] | None:
+        """The sign the model allows for a data kind's curve against ``ln x``, and why (``None``:
+        either sign). Static friction grows with the hold time for every ``eps > 0`` (eq. 27:
+        the aged contacts' threshold rises as ``a_r(t_w/t0)`` grows, eq. 17)."""
+        if kind == "static":
+            return 1, ("the trap model's static friction grows with hold time (ageing, eq. 27, "
+                       "eps > 0)")
+        return None
+
     def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
         x = d.x if x is None else x
         if d.kind == "static":
@@ -688,6 +697,14 @@ class RSFModel:
             n.append(f"time series simulated with {self.state_law} law, "
                      f"{_machine_note(self.stiffness, self.trend)}")
         return n
+
+    def allowed_trend(self, kind: str) -> tuple[int, str] | None:
+        """As :meth:`CVModel.allowed_trend`: healing ``mu_s = mu0 + b ln(1 + t_w V0/Dc)`` grows with
+        the hold time for every ``b > 0`` (ageing law, Ruina 1983)."""
+        if kind == "static":
+            return 1, ("rate-and-state healing, mu0 + b ln(1 + t_w V0/Dc) with b > 0, grows "
+                       "with hold time")
+        return None
 
     def _params(self, v: Mapping[str, float]) -> RateState:
         assert self.v0 is not None

@@ -79,6 +79,12 @@ class FitResult:
 
     ``success`` is False when the optimiser did not converge (``message`` says why) or a
     parameter sits on its search bound; the values are then not to be trusted.
+
+    ``flags`` (the words of a record's ``flags`` column, where they apply):
+    ``against_model:<source>`` (the data's own trend has the sign the model forbids, e.g.
+    static friction falling with hold time: the per-data-set ``trend`` in
+    ``per_dataset``), ``at_bound:<name>`` (the value is its search bound),
+    ``not_identified:<name>`` (bounded on one side only, or not at all); the notes say why.
     """
 
     model: str
@@ -100,6 +106,7 @@ class FitResult:
     notes: tuple[str, ...]
     sources: tuple[str, ...]
     fitted_model: Model = field(repr=False)
+    flags: tuple[str, ...] = ()
 
     @property
     def values(self) -> dict[str, float]:
@@ -147,6 +154,7 @@ class FitResult:
             "information_criteria": self.information,
             "consistency": self.consistency,
             "identifiability_notes": list(self.notes),
+            "flags": list(self.flags),
             "data_files": list(self.sources),
             "starts": list(self.starts),
         }
