@@ -52,6 +52,7 @@ def _m(name: str, file: str, original: str, replacement: str, *tests: str) -> Mu
 
 
 _DRV = "tests/ensemble/test_driving.py"
+_HFO = "tests/fit/test_honest_fit_outputs.py"
 _RSF = "tests/rsf/test_rsf.py"
 _LAB = "tests/records/test_lab.py"
 _DIR = "tests/theory/test_direct.py"
@@ -3163,6 +3164,57 @@ MUTANTS: tuple[Mutant, ...] = (
        'multirate=i.data.get("multirate", False))', "multirate=False)", _IMR, "-k",
        "protocol"),
     # --- end interface5
+    # --- userfixA: a new user's trial, honest fit outputs (items 5, 10 and the noise
+    # record's "150.1 [150.1, 150.1]"); each seen failing its selection
+    _m("fit: no check of the data's trend against the model's sign", "fit/engine.py",
+       "    flags = _against_model(prob, per, notes)\n", "    flags: list[str] = []\n",
+       _HFO, "-k", "contradict"),
+    _m("fit: static data flagged when the trend's lower end is below 0", "fit/engine.py",
+       "against = (sign * iv[1] < 0 if sign > 0", "against = (sign * iv[0] < 0 if sign > 0",
+       _HFO, "-k", "rising_or_flat"),
+    _m("fit: the trend per decade with a factor 10, not ln 10", "fit/engine.py",
+       '"per_decade": slope * math.log(10.0),', '"per_decade": slope * 10.0,',
+       _HFO, "-k", "contradict"),
+    _m("log_slope: weights 1/sigma, not 1/sigma^2", "fit/statistics.py",
+       "else 1.0 / np.asarray(sigma, float)[keep] ** 2",
+       "else 1.0 / np.asarray(sigma, float)[keep]", _HFO, "-k", "log_slope"),
+    _m("log_slope: n - 1 degrees of freedom", "fit/statistics.py",
+       "se = math.sqrt(float(np.sum(w * resid**2)) / (n - 2) / sxx)",
+       "se = math.sqrt(float(np.sum(w * resid**2)) / (n - 1) / sxx)", _HFO, "-k", "log_slope"),
+    _m("profile: a limit set by another parameter's bound kept", "fit/statistics.py",
+       "pinned.append(pins if crossing is not None else ())", "pinned.append(())",
+       _HFO, "-k", "bound_and_the_limits"),
+    _m("fit: the bound's side swapped in the label", "fit/engine.py",
+       'side = "lower" if theta[j] - lo_b[j] < hi_b[j] - theta[j] else "upper"',
+       'side = "lower" if theta[j] - lo_b[j] > hi_b[j] - theta[j] else "upper"',
+       _HFO, "-k", "bound_and_the_limits"),
+    _m("fit table: the +- printed whenever the Jacobian gives one", "cli/fitting.py",
+       'pm = "" if p.stderr is None or (p.profile_95 is not None',
+       'pm = "" if p.stderr is None or (p.profile_95 is None', _HFO, "-k", "plus_minus"),
+    _m("local covariance: the time-lag sandwich kept when it is no covariance",
+       "fit/statistics.py",
+       "if score.singular or local.singular or not positive_semidefinite(local.matrix):",
+       "if score.singular or local.singular:", "tests/fit/test_hac.py", "-k", "local_cov"),
+    _m("score HAC: an indefinite sandwich returned as a covariance", "fit/statistics.py",
+       "    if not positive_semidefinite(cov):\n        # the sandwich",
+       "    if False:\n        # the sandwich", "tests/fit/test_hac.py", "-k", "indefinite"),
+    _m("judge: a variance of 0 taken as an exact value", "fit/identify.py",
+       "return v if math.isfinite(v) and v > 0 else math.nan",
+       "return v if math.isfinite(v) and v >= 0 else math.nan",
+       "tests/fit/test_judge_generic.py", "-k", "degenerate_variance"),
+    _m("judge: a zero-width interval passes the span test", "fit/identify.py",
+       "span_ok = (math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi > lo",
+       "span_ok = (math.isfinite(lo) and math.isfinite(hi) and lo > 0",
+       "tests/fit/test_judge_generic.py", "-k", "zero_width"),
+    _m("record table: the program drive's raw values beside unidentified ones",
+       "cli/records.py",
+       'pk, pa = (_cell(p[n]) if _isfinite(m[n]) else "—" for n in ("stiffness", "a"))',
+       'pk, pa = (_cell(p[n]) for n in ("stiffness", "a"))',
+       "tests/cli/test_records_table.py", "-k", "drive_comparison"),
+    _m("record table: 'fixed' for every stiffness without an interval", "cli/records.py",
+       'held = fits is not None and "k" not in _fitted(fits[i]).split(", ")',
+       "held = fits is not None", "tests/cli/test_records_table.py", "-k", "reads_fixed"),
+    # --- end userfixA
 )
 
 

@@ -91,3 +91,21 @@ def test_drive_comparison_prints_no_raw_value_the_measured_drive_does_not_identi
     assert "program drive k = — /m, a = —" in two
     assert "150.1" not in three and "did not succeed (rms 10)" in three
     assert "measured drive k = 450 /m" in three
+
+
+def test_a_stiffness_held_at_a_given_value_reads_fixed() -> None:
+    """userfixA: with --stiffness K the step's k is not fitted and has no interval; the
+    intervals table said "[—, —]" under "not given by the data". It reads "fixed"; a free k
+    the data do not bound keeps the dash, and the record's one machine (held, with its own
+    interval) keeps that interval. Mistake: "fixed" written for every k without an interval
+    (a free one the data do not fix then looks given)."""
+    held = _row(0, "", "Pa", 1e7)
+    held["stiffness_lo"] = held["stiffness_hi"] = math.nan
+    lost = _row(1, "not_identified:stiffness", "Pa", 1e7)
+    lost["stiffness_lo"] = lost["stiffness_hi"] = math.nan
+    record = _row(2, "", "Pa", 1e7)  # the record's one machine: held, its interval given
+    cells = _cells(_intervals_table([held, lost, record],
+                                    [_fit("a", "b", "dc", "trend"),
+                                     _fit("a", "b", "dc", "stiffness", "trend"),
+                                     _fit("a", "b", "dc", "trend")]))
+    assert cells["stiffness[1/m]"] == ["fixed", "[—, —]", "[2.9e+04, 3.8e+04]"]

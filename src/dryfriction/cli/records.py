@@ -69,18 +69,24 @@ INTERVALS = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
 """The 95 % intervals the terminal shows (columns ``<name>_lo``, ``<name>_hi`` of steps.csv)."""
 
 
-def _intervals_table(rows: list[dict[str, Any]]) -> Table:
+def _intervals_table(rows: list[dict[str, Any]], fits: list[Any] | None = None) -> Table:
+    """The 95 % intervals, one row per step; a stiffness the step held at a given value
+    (``--stiffness K``: not among its fit's free parameters, no interval) reads ``fixed``,
+    not ``[—, —]`` (which says the data do not give it)."""
     from rich.text import Text
 
     from ..io.units import STEP_UNITS, header
 
-    table = Table(title="95 % intervals (— : not given by the data)")
+    table = Table(title="95 % intervals (— : not given by the data; fixed: held at a given "
+                        "value)")
     table.add_column("index", justify="right")
     for c in INTERVALS:
         table.add_column(Text(header(c, STEP_UNITS[c])), justify="right")
-    for r in rows:
-        table.add_row(str(r["index"]), *(f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]"
-                                         for c in INTERVALS))
+    for i, r in enumerate(rows):
+        held = fits is not None and "k" not in _fitted(fits[i]).split(", ")
+        table.add_row(str(r["index"]), *(
+            "fixed" if c == "stiffness" and held and not _isfinite(r[c + "_lo"])
+            else f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]" for c in INTERVALS))
     return table
 
 
@@ -136,7 +142,7 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
         wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI; v0 = "
                                 "v_before, mu0 the steady friction at v0; fitted: the "
                                 "machine's parameters left free)", res.fits))
-        wide.print(_intervals_table(res.rows))
+        wide.print(_intervals_table(res.rows, res.fits))
         out.print(LEGEND, highlight=False, soft_wrap=True)
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
             for note in row["notes"][len(f.notes):]:
