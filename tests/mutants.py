@@ -3039,9 +3039,9 @@ MUTANTS: tuple[Mutant, ...] = (
        'g_ratio[names.index("b")], g_ratio[names.index("dc")] = 1.0, -1.0',
        'g_ratio[names.index("b")], g_ratio[names.index("dc")] = 1.0, 1.0', _S7JG),
     _m("judge: the stiffness's interval from its variance", "fit/identify.py",
-       "math.sqrt(max(cov[j, j], 0.0))", "max(cov[j, j], 0.0)", _S7JG),
+       "math.sqrt(var(g_k)), z)", "var(g_k), z)", _S7JG),
     _m("judge: a span of 10 itself not identified", "fit/identify.py",
-       "lo > 0 and hi / lo <= MAX_SPAN", "lo > 0 and hi / lo < MAX_SPAN", _S7JG),
+       "and hi / lo <= MAX_SPAN)", "and hi / lo < MAX_SPAN)", _S7JG),
     _m("judge: Dc's range from the velocity before the change", "fit/identify.py",
        "ranges = dict(PHYSICAL, dc=(dt_after * float(d.v_load[-1]), slip_after))",
        "ranges = dict(PHYSICAL, dc=(dt_after * float(d.v_load[0]), slip_after))", _S7JG),
@@ -3100,8 +3100,8 @@ MUTANTS: tuple[Mutant, ...] = (
     # --- stop 37 (lead): a new user's trial (usertrial): a traceback on a record of noise,
     # fit --json's stdout, an empty --out taken for the working folder
     _m("judge: the span note divides by an interval's lower end of 0", "fit/identify.py",
-       'span = (f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0',
-       'span = (f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo >= 0',
+       'f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0',
+       'f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo >= 0',
        "tests/fit/test_judge_generic.py"),
     _m("unstable start: a division by zero in the Jacobian not caught", "rsf/growth.py",
        "except (ValueError, ArithmeticError, np.linalg.LinAlgError):",
@@ -3214,6 +3214,9 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record table: 'fixed' for every stiffness without an interval", "cli/records.py",
        'held = fits is not None and "k" not in _fitted(fits[i]).split(", ")',
        "held = fits is not None", "tests/cli/test_records_table.py", "-k", "reads_fixed"),
+    _m("fit figure: a file against the model titled as any other", "plots/fits.py",
+       'against = f"against_model:{d.source}" in getattr(result, "flags", ())',
+       "against = False", _HFO, "-k", "figure"),
     # --- end userfixA
 )
 

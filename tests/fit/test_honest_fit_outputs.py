@@ -194,3 +194,23 @@ def test_cli_says_the_data_contradict_the_model_in_its_last_line(
     assert f"against_model:{src}" in doc["flags"]
     assert doc["per_dataset"][0]["trend"]["against_model"] is True
     assert "unit" in doc["per_dataset"][0]["trend"]
+
+
+def test_the_figure_says_so_too() -> None:
+    """fit.png: the panel of a file against the model says so in its title, and the values
+    in the figure's title carry what they are worth ('at bound', 'not identified'). Mistake:
+    the figure left as it was (a flat line through falling points, titled as a fit)."""
+    from dryfriction.plots.fits import plot_fit
+
+    d = _falling(4, False)
+    r = fit(d, "cv", profile=False)
+    fig, axes = plot_fit(r, [d])
+    titles = [ax.get_title() for ax in fig.axes]
+    assert any("AGAINST THE MODEL" in t for t in titles), titles
+    d = _log_linear(0)
+    r = fit_static(d, "cv")
+    fig, _ = plot_fit(r, [d])
+    head = " ".join(fig.get_suptitle().split())
+    assert "t0 = 1e-12 s (at bound)" in head and "eps = " in head
+    assert "(not identified)" in head
+    assert not any("AGAINST" in ax.get_title() for ax in fig.axes)
