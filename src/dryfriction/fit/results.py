@@ -31,7 +31,9 @@ class ParameterEstimate:
         Held fixed by the user.
     stderr : float or None
         Standard error from the Jacobian (delta method for log parameters); ``None`` when the
-        parameter is fixed or not identified.
+        parameter is fixed, not identified or at a bound. Quote it only where
+        ``identifiability`` is "identified"; where it says "use profile_95", the profile
+        interval is the one to quote (the table then prints no ``+-``).
     interval_95 : tuple or None
         Wald 95 % interval (``theta +- q se`` in the fitted variable, mapped back; ``q`` the
         normal 97.5 % quantile with given uncertainties, Student t with ``n - p`` otherwise).
@@ -41,7 +43,9 @@ class ParameterEstimate:
     identifiability : str
         "identified", "identified (nonlinear: use profile_95)", "bounded above only",
         "bounded below only", "not identified", "poorly determined (Jacobian; no profile)",
-        or "fixed".
+        "at lower bound (<bound> <unit>)" / "at upper bound (...)" (the value is its search
+        bound: no error bar), or "fixed". A profile limit reached while another parameter
+        sat on its search bound counts as open (the note quotes it).
     note : str
         A sentence saying the same in words.
     """
