@@ -395,8 +395,12 @@ def _against_model(prob: Problem, per: list[dict[str, Any]], notes: list[str]) -
     flags ``against_model:<source>`` and puts the reason first among the notes (ours)."""
     flags: list[str] = []
     for d, entry in zip(prob.datasets, per, strict=True):
-        allowed = prob.model.allowed_trend(d.kind)
-        if allowed is None or isinstance(d, SeriesData):
+        if isinstance(d, SeriesData):
+            continue
+        # a model that does not say (a step windows' joint model) allows either sign
+        rule = getattr(prob.model, "allowed_trend", None)
+        allowed = None if rule is None else rule(d.kind)
+        if allowed is None:
             continue
         sign, why = allowed
         tr = log_slope(d.x, d.y, d.sigma)
