@@ -3217,6 +3217,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fit figure: a file against the model titled as any other", "plots/fits.py",
        'against = f"against_model:{d.source}" in getattr(result, "flags", ())',
        "against = False", _HFO, "-k", "figure"),
+    _m("judge: no transient, yet the stiffness identified", "fit/identify.py",
+       'noise_only = bool(no_transient) and name in ("a", "b", "dc", "stiffness")',
+       'noise_only = bool(no_transient) and name in ("a", "b", "dc")',
+       "tests/fit/test_judge_generic.py", "-k", "no_transient"),
     # --- end userfixA
 )
 

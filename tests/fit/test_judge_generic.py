@@ -158,3 +158,25 @@ def test_a_zero_width_interval_is_not_identified() -> None:
     assert "not_identified:b" in words
     note = [n for n in row["notes"] if n.startswith("b = ")]
     assert len(note) == 1 and "zero width" in note[0]
+
+
+def test_no_transient_leaves_the_stiffness_unidentified_too() -> None:
+    """userfixA: a noise record's step (white noise displacement and friction, one change
+    given by --segments) printed "what the data fix (95 %): ... stiffness = 13.76 [5.227,
+    36.2]" from a fit no better than a straight line. k enters only through the transient,
+    so without one it is no more identified than a, b, Dc, whatever its interval (here a
+    clean one, within a decade and the physical range). Mistake: the transient test applied
+    to a, b, Dc only."""
+    d = _data()
+    theta = np.log([VAL[s.name] for s in SPECS])
+    cov = np.diag([0.04, 0.06, 0.09, 0.05]) ** 2
+    row = _row(VAL)
+    words = judge_step(row, SPECS, theta, cov, False, Z, d,
+                       "the fit is no better than a straight line (F test, p = 0.28)")
+    assert {f"not_identified:{n}" for n in ("a", "b", "dc", "stiffness")} <= set(words)
+    assert math.isnan(row["stiffness"])
+    fixed = [n for n in row["notes"] if n.startswith("what the data fix")]
+    assert fixed and "stiffness" not in fixed[0]
+    # with a transient the same interval identifies it
+    row = _row(VAL)
+    assert judge_step(row, SPECS, theta, cov, False, Z, d) == []

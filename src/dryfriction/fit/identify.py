@@ -11,7 +11,7 @@ identified when its 95 % interval (the row's: the autocorrelation-robust Wald in
 range (:data:`PHYSICAL`; for ``Dc`` the slips the window probes: from one sample's
 load-point slip at the velocity after the change to the slip after the change) and spans at most
 :data:`MAX_SPAN` (a factor of 10: an interval wider than a decade fixes only an order of
-magnitude), the value is not on its search bound, and (for ``a``, ``b``, ``Dc``) the step
+magnitude), the value is not on its search bound, and the step
 shows a transient at all (:func:`transient_test`: a fit to noise alone can have narrow Wald
 intervals). Otherwise the value and its standard
 error are not reported (NaN), an interval end outside the range is dropped, and the step
@@ -279,8 +279,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
     ``specs``, ``theta``, ``cov``: the fitted variables, the optimum and their covariance
     (the row's: robust where it is); ``z`` the 95 % quantile used for the row's intervals.
     ``no_transient``: why the data show no transient beyond the noise
-    (:func:`transient_test`); then ``a``, ``b``, ``dc`` are not identified whatever their
-    intervals say (a fit to noise can have narrow Wald intervals).
+    (:func:`transient_test`); then ``a``, ``b``, ``dc`` and the stiffness (which enters
+    only through the transient) are not identified whatever their intervals say (a fit to
+    noise can have narrow Wald intervals).
     """
     names = [s.name for s in specs]
     notes: list[str] = row.setdefault("notes", [])
@@ -323,7 +324,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
         span_ok = (math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi > lo
                    and hi / lo <= MAX_SPAN)
         inside = math.isfinite(lo) and math.isfinite(hi) and lo >= rlo and hi <= rhi
-        noise_only = bool(no_transient) and name in ("a", "b", "dc")
+        # k too: it enters only through the transient (userfixA: a noise record's step gave
+        # "stiffness = 13.76 [5.227, 36.2]" as what the data fix, from a fit no better than a line)
+        noise_only = bool(no_transient) and name in ("a", "b", "dc", "stiffness")
         if span_ok and inside and not on_bound and not noise_only:
             continue
         unidentified.append(name)
