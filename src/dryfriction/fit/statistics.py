@@ -593,7 +593,9 @@ def classify(s: ParamSpec, th: float, se: float, lo_c: float | None, hi_c: float
     times, for ``V*`` the velocities, for ``Dc`` the slips ``V0 t_w``). A profile limit more
     than three decades outside it rests only on the model's higher-order curvature (e.g.
     ``t0`` far below the shortest waiting time, where eq. 27 is log-linear in ``t_w``): that
-    side is reported as practically open, with the far limit quoted (ours).
+    side is reported as practically open, with the far limit quoted (ours). A parameter
+    fitted in ``ln p`` whose two-sided interval spans more than three decades is not
+    identified either (ours: an order of magnitude at best).
     """
     u = f" {s.unit}" if s.unit else ""
     f = s.from_internal
@@ -602,6 +604,13 @@ def classify(s: ParamSpec, th: float, se: float, lo_c: float | None, hi_c: float
     open_lo, open_hi = lo_c is None or far_lo, hi_c is None or far_hi
     if not open_lo and not open_hi:
         assert lo_c is not None and hi_c is not None
+        if s.log and hi_c - lo_c > _FAR:
+            # bounded, but over more than three decades: an order of magnitude at best, not
+            # a measurement (userfixA: a +- of 50 times the value was printed "identified")
+            return ("not identified",
+                    f"{s.name}: its 95 % profile interval [{format_value(f(lo_c), s.unit)}, "
+                    f"{format_value(f(hi_c), s.unit)}] spans {(hi_c - lo_c) / math.log(10):.2g}"
+                    " decades (more than three): the data do not fix it")
         if math.isfinite(se) and se > 0:
             off = max(abs(th - z * se - lo_c), abs(th + z * se - hi_c))
             if off > 0.2 * z * se:
