@@ -3221,6 +3221,9 @@ MUTANTS: tuple[Mutant, ...] = (
        'noise_only = bool(no_transient) and name in ("a", "b", "dc", "stiffness")',
        'noise_only = bool(no_transient) and name in ("a", "b", "dc")',
        "tests/fit/test_judge_generic.py", "-k", "no_transient"),
+    _m("classify: the three decades compared in ln units", "fit/statistics.py",
+       "if s.log and hi_c - lo_c > _FAR:", "if s.log and hi_c - lo_c > 3.0:",
+       _HFO, "-k", "three_decades"),
     # --- end userfixA
 )
 
