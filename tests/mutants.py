@@ -109,6 +109,7 @@ _FED = "tests/io/test_files_edges.py"
 _APD = "tests/app/test_app_direct.py"
 _RHE = "tests/records/test_records_helpers.py"
 _CCH = "tests/records/test_change_choice.py"
+_SSB = "tests/records/test_small_step_blocks.py"
 _PSW = "tests/app/test_prepare_sweep.py"
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
@@ -330,7 +331,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "q_res < 0.5 * q_noise", "q_res < 0.5 * 0.5",
        "tests/fit/test_identify.py", "-k", "shared_record"),
     _m("identify: no test for a transient at all", "fit/identify.py",
-       'noise_only = bool(no_transient) and name in ("a", "b", "dc")', "noise_only = False",
+       'noise_only = bool(no_transient) and name in ("a", "b", "dc", "stiffness")',
+       "noise_only = False",
        "tests/fit/test_identify.py", "-k", "fit_to_noise"),
     _m("identify: Dc's lower limit at the fastest velocity", "fit/identify.py",
        "dt_after * float(d.v_load[-1])", "dt_after * float(np.max(d.v_load))",
@@ -842,8 +844,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "{s.i_end - s.i_start},{conf}", "{s.i_end - s.i_start + 1},{conf}",
        "tests/records/test_segments_csv.py"),
     _m("segments.csv: the --segments line's times absolute", "records/labsteps.py",
-       'return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)',
-       'return ",".join(f"{s.t_start:.10g}:{s.velocity:.6g}" for s in segments)',
+       "x = s.t_start - t0\n", "x = s.t_start\n",
        "tests/records/test_segments_csv.py"),
     _m("hold grid: the count of uniform steps rounded down", "ensemble/result.py",
        "n = max(1, math.ceil(hold / every - 1e-9))", "n = max(1, int(hold / every))",
@@ -2023,8 +2024,8 @@ MUTANTS: tuple[Mutant, ...] = (
        '"segments_from": "--segments" if segments is not None else "detected"',
        '"segments_from": "detected" if segments is not None else "--segments"', _RRP),
     _m("record report: the --segments form on the record's clock", "app/reading.py",
-       'rep["segments_option"] = segments_spec(segs, float(t[0]))',
-       'rep["segments_option"] = segments_spec(segs, 0.0)', _RRP),
+       'rep["segments_option"] = segments_spec(segs, float(t[0]), t)',
+       'rep["segments_option"] = segments_spec(segs, 0.0, t)', _RRP),
     _m("record report: the note kept with its prefix", "app/reading.py",
        'rep["apparatus_note"] = note.removeprefix("note: ")', 'rep["apparatus_note"] = note',
        _RRP),
@@ -2284,8 +2285,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "(m100 - m1) / (0.04 * (math.log(101.0) - math.log(2.0)))",
        "(m100 - m1) / (0.04 * math.log(100.0))", "tests/plots/test_reproduce.py"),
     _m("record --out: segments.csv without the record's normal unit", "app/records.py",
-       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)',
-       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]))',
+       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit,',
+       'write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), "Pa",',
        "tests/app/test_record_report.py"),
     _m("CSV fits: a fitted machine by default", "app/fitting.py",
        'k = parse_stiffness("inf" if value is None else value)',
@@ -2699,6 +2700,26 @@ MUTANTS: tuple[Mutant, ...] = (
        "tests/records/test_detect.py",
        "-k", "oscillation_regressors_place"),
     # --- end detect6
+    # --- detect7: a small step placed on block means of one duration
+    # (tests/records/test_small_step_blocks.py)
+    _m("placement: a small step on blocks of one sample count", "records/placement.py",
+       "EVEN_BLOCKS = True\n", "EVEN_BLOCKS = False\n", _SSB, "-k", "placed_better"),
+    _m("placement: every change on blocks of one duration", "records/placement.py",
+       "    fine = EVEN_BLOCKS and small_step(v1, v2)\n", "    fine = EVEN_BLOCKS\n", _SSB,
+       "-k", "large_step"),
+    _m("placement: a block per empty span (a gap)", "records/placement.py",
+       "    return np.flatnonzero(np.diff(np.concatenate([[-1.0], j])) != 0)\n",
+       "    return np.searchsorted(tt, tt[0] + np.arange(count) * (span / count))\n", _SSB,
+       "-k", "one_duration"),
+    _m("placement: the speeds' ratio taken one way only (a stop counted small)",
+       "records/placement.py",
+       "    lo, hi = sorted((abs(v1), abs(v2)))\n    return 0.0 < lo",
+       "    lo, hi = abs(v1), abs(v2)\n    return 0.0 < lo", _SSB, "-k", "twice"),
+    _m("placement: the candidate's block by one count on even blocks", "records/placement.py",
+       "        beta = np.searchsorted(idx, cand, side=\"right\") - 1  # the block holding each\n",
+       "        beta = np.minimum(cand // k, idx.size - 1)  # the block holding each\n", _SSB,
+       "-k", "placed_better"),
+    # --- end detect7
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test
@@ -3225,6 +3246,39 @@ MUTANTS: tuple[Mutant, ...] = (
        "if s.log and hi_c - lo_c > _FAR:", "if s.log and hi_c - lo_c > 3.0:",
        _HFO, "-k", "three_decades"),
     # --- end userfixA
+    # --- stop 38 (lead): the rest of a new user's trial: a negative K_c_rsf and rounding
+    # shown as stiffnesses, inputs without units, refusals naming a protocol key, a misspelt
+    # table, a --segments start with its float noise, the legend over a segment's number
+    _m("stability: a velocity-strengthening twin's negative K_c_rsf shown", "app/theory.py",
+       'cols["K_c_rsf"] = [max(t["K_c"], 0.0) for t in twins]',
+       'cols["K_c_rsf"] = [t["K_c"] for t in twins]', "tests/app/test_app_direct.py"),
+    _m("stability: rounding of 0 shown as a stiffness", "app/theory.py",
+       "floor = ROUNDING * abs(r.backward_stiffness)", "floor = 0.0 * abs(r.backward_stiffness)",
+       "tests/app/test_app_direct.py"),
+    _m("theory tables: the inputs without their units", "cli/common.py",
+       'return f"{k} = {v}" + ("" if u in (None, DIMENSIONLESS) else f" {u}")',
+       'return f"{k} = {v}"', "tests/cli/test_words.py"),
+    _m("protocol: a misspelt table without the name meant", "io/protocol.py",
+       "close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)", "close = []",
+       "tests/io/test_protocol.py"),
+    _m("fit: a fixed value's refusal names the bare parameter", "fit/engine.py",
+       'fixed[s.name] = check_scalar(f"--fix {s.name}{unit}", fixed[s.name],',
+       "fixed[s.name] = check_scalar(s.name, fixed[s.name],", "tests/fit/test_fit.py"),
+    _m("--segments form: a start rounded to the nearest decimal", "records/labsteps.py",
+       "y = math.floor(x * 10**d) / 10**d", "y = round(x, d)", "tests/records/test_lab.py",
+       "-k", "shortest"),
+    _m("record.png: the legend inside the top panel", "plots/record.py",
+       'ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), fontsize=7, ncol=6,',
+       'ax.legend(loc="upper left", fontsize=7, ncol=6,',
+       "tests/plots/test_record_figure_data.py", "-k", "legend"),
+    _m("auto law: each law's fits counted from 0 against one law's total", "fit/lawchoice.py",
+       "lambda done, total, j=j: outer(j * total + done, len(laws) * total))",
+       "lambda done, total, j=j: outer(done, total))", "tests/fit/test_state_laws.py", "-k",
+       "progress"),
+    _m("record fit: the joint fit's values without units", "cli/records.py",
+       'return "" if u == DIMENSIONLESS else f" {u}"', 'return ""', "tests/fit/test_steps.py",
+       "-k", "command_record_writes_steps"),
+    # --- end stop 38 (lead)
 )
 
 

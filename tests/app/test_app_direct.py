@@ -103,12 +103,47 @@ def test_stability_columns_are_the_theory_functions_values() -> None:
         got = [out.columns[c][i] for c in ("K_c", "omega_c", "forward_stiffness",
                                            "backward_stiffness", "dmu_d_du", "K_c_rsf")]
         want = [r.critical_stiffness, r.omega, r.forward_stiffness, r.backward_stiffness,
-                r.velocity_slope, rsf_stability_prediction(v, model, M, eta)["K_c"]]
+                r.velocity_slope, max(rsf_stability_prediction(v, model, M, eta)["K_c"], 0.0)]
         np.testing.assert_equal(got, want)  # NaN where no onset (u = 2.2: K_c = 0)
+    # u = 2.2: the twin is velocity strengthening (its formula's K_c < 0), shown as 0
+    assert rsf_stability_prediction(2.2, model, M, eta)["K_c"] < 0 < out.columns["K_c_rsf"][0]
     assert out.units == {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "rad/t0",
                          "forward_stiffness": "F_el/a0", "backward_stiffness": "F_el/a0",
                          "dmu_d_du": "F_el t0/a0", "K_c_rsf": "F_el/a0"}
     assert out.params["mass"] == M and out.params["damping"] == eta
+
+
+def test_stability_rounding_and_a_strengthening_twin_are_zero_and_said() -> None:
+    # the mistakes: a negative K_c_rsf printed as a stiffness (a velocity-strengthening twin,
+    # b - a < 0, is stable at every stiffness: K_c = 0 as the model's column says), and the
+    # athermal model's K_c = 1.5e-14 (rounding of an exact 0) printed as a value
+    from dryfriction.analysis.rsf_stability import rsf_stability_prediction
+
+    u = [0.037, 1.7, 23.0]
+    out = app_theory.stability(0.083, u, direct=0.27, v_ref=0.61)
+    model = TrapModel(0.13, 0.083, "log", direct=0.27, v_ref=0.61)
+    raw = [rsf_stability_prediction(v, model)["K_c"] for v in u]
+    assert all(k < -0.01 for k in raw)  # the formula's value: strengthening at every u
+    assert out.columns["K_c_rsf"] == [0.0, 0.0, 0.0]
+    (note,) = out.notes
+    assert note.startswith("K_c_rsf = 0 at u = 0.037, 1.7, 23 a0/t0: the rate-and-state twin "
+                           "is velocity strengthening there (b - a = -")
+    assert out.as_dict()["notes"] == out.notes
+    # a weakening twin keeps its positive K_c and no note
+    weak = app_theory.stability(0.083, [1.7])
+    assert weak.columns["K_c_rsf"][0] > 0.01 and weak.notes == [] and "notes" not in \
+        weak.as_dict()
+    # eps = 0: K_c and the forward stiffness are rounding of 0 (below 1e-13 of the backward
+    # stiffness), shown as 0 with omega_c NaN, and said
+    zero = app_theory.stability(0.0, [0.041, 3.3])
+    assert zero.columns["K_c"] == [0.0, 0.0]
+    assert zero.columns["forward_stiffness"] == [0.0, 0.0]
+    assert all(np.isnan(zero.columns["omega_c"]))
+    assert zero.columns["backward_stiffness"][0] > 0.5
+    assert "rounding" in zero.notes[0] and "u = 0.041, 3.3 a0/t0" in zero.notes[0]
+    # a small true K_c (eps = 1e-9, 7.5e-10 at u = 1) is kept
+    small = app_theory.stability(1e-9, [1.3])
+    assert 1e-10 < small.columns["K_c"][0] < 1e-8 and small.notes == []
 
 
 def test_stability_mass_and_damping_edges() -> None:

@@ -55,6 +55,20 @@ def test_stability_table_is_whole_at_80_columns_with_units():
         assert f"{k:.10g}" in r.stdout  # every digit printed
 
 
+def test_theory_tables_say_the_units_of_their_inputs_and_their_notes():
+    # a new user read "a0 = 1e-06, t0 = 0.01" without units, and a negative K_c_rsf without
+    # a word on it
+    r = invoke("steady", "--eps", "0.07", "--V", "3e-6", "--a0", "2e-6", "--t0", "0.04")
+    assert r.exit_code == 0, r.output
+    assert "a0 = 2e-06 m, t0 = 0.04 s" in r.stdout and "eps = 0.07," in r.stdout
+    r = invoke("stability", "--eps", "0.083", "--u", "1.7", "--direct", "0.27")
+    assert r.exit_code == 0, r.output
+    assert "mass = 0.0 F_el t0^2/a0" in r.stdout
+    assert "\nnote: K_c_rsf = 0 at u = 1.7 a0/t0: the rate-and-state twin" in r.stdout
+    assert json.loads(invoke("stability", "--eps", "0.083", "--u", "1.7", "--direct", "0.27",
+                             "--json").stdout)["notes"][0].startswith("K_c_rsf = 0")
+
+
 def test_stability_with_mass_and_no_damping_is_refused_as_ill_posed():
     r = invoke("stability", "--eps", "0.04", "--u", "0.1", "--M", "10")
     assert r.exit_code == 2

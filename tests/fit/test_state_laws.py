@@ -252,3 +252,29 @@ def test_cli_refuses_what_a_csv_series_cannot_take(tmp_path: Path, args: list[st
                                  "--out", str(tmp_path / "out")])
     assert r.exit_code == 2 and says in r.output, r.output
     assert not (tmp_path / "out").exists()
+
+
+def test_auto_progress_counts_every_law_once_forward(monkeypatch: pytest.MonkeyPatch):
+    # the mistake: each law's fits counted from 0 against one law's total (a new user's bar
+    # with --state-law auto went back to 0 when the second law began)
+    from dryfriction.fit import lawchoice
+
+    calls: list[tuple[int, int]] = []
+
+    def fake_run(record, wins, segments, stiffness, *, law, initial, progress, **kw):
+        for i in range(len(wins)):
+            progress(i + 1, len(wins))
+        return law
+
+    monkeypatch.setattr(lawchoice, "_run", fake_run)
+    monkeypatch.setattr(lawchoice, "_choose", lambda results: list(results))
+    wins = [object()] * 3
+    got = lawchoice.fit_steps_laws(object(), wins, [], law="auto", initial="steady",
+                                   progress=lambda done, total: calls.append((done, total)))
+    n = len(lawchoice.FIT_LAWS)
+    assert got == list(lawchoice.FIT_LAWS) and n >= 2
+    assert calls == [(k, 3 * n) for k in range(1, 3 * n + 1)]
+    calls.clear()
+    lawchoice.fit_steps_laws(object(), wins, [], law="slip", initial="steady",
+                             progress=lambda done, total: calls.append((done, total)))
+    assert calls == [(1, 3), (2, 3), (3, 3)]

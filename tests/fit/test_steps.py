@@ -282,9 +282,16 @@ def test_command_record_writes_steps(tmp_path: Path):
     out = tmp_path / "out"
     r = runner.invoke(app, ["fit", str(rec), "--model", "cv", "--out", str(out)])
     _one_line_exit_2(r, out, "--run-cv", "would take about")
-    r = runner.invoke(app, ["fit", str(rec), "--model", "rsf", "--out", str(out)])
+    r = runner.invoke(app, ["fit", str(rec), "--model", "rsf", "--out", str(out), "--joint"])
     assert r.exit_code == 0, r.output
     import json
+    import re
+
+    # the joint fit's line says every unit (a new user read "dc = 1.1e-05" bare), whole on
+    # a pipe's 80 columns
+    joint = next(ln for ln in r.stdout.splitlines() if ln.startswith("joint fit (all steps)"))
+    assert re.search(r"dc = \S+ \+- \S+ m(, stiffness = \S+ \+- \S+ 1/m)?$", joint), joint
+    assert re.search(r"a = \S+ \+- [^ ,]+, b = ", joint), joint  # a and b bare: dimensionless
 
     rows = read_rows(out / "steps.csv")
     assert len(rows) == 2

@@ -93,6 +93,15 @@ BAD = [
     (_edit("every_slip = 0.01", "every_slip = 0.01\nevery = 1"), r"in output: give exactly one"),
     (_edit("every_slip = 0.01", "every_slip = 0"), r"in output: every_slip = 0 is out of range"),
     (GOOD + "\n[extra]\nx = 1\n", r"unknown table\(s\) extra"),
+    # a misspelt table is answered with the name meant, and a sweep's table with where it
+    # belongs (a new user's [modle] got a list without the other kinds' tables)
+    (GOOD.replace("[model]", "[modle]"),
+     r"unknown table\(s\) modle: allowed model, ensemble, drive, output "
+     r"\(\[modle\]: did you mean \[model\]\?; an \[interface\] table makes it an "
+     r"extended-interface protocol\)$"),
+    (GOOD + "\n[interfase]\nx = 1\n", r"\[interfase\]: did you mean \[interface\]\?\)$"),
+    (GOOD + "\n[stickslip]\nx = 1\n",
+     r"\[stickslip\] belongs to a sweep protocol, run with dryfriction sweep"),
     (GOOD.replace("[output]\nevery_slip = 0.01\nsnapshots = [1, 2.5]\n", ""),
      r"table 'output' is missing"),
 ]

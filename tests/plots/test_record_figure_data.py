@@ -87,3 +87,27 @@ def test_record_velocity_axis_symlog_beyond_a_ratio_of_30(slow: float, log: bool
     if log:
         assert ax.yaxis.get_transform().linthresh == pytest.approx(slow * 1e6, rel=1e-12)
     assert info.marks == {}
+
+
+@pytest.mark.parametrize("unplaced", [False, True])
+def test_record_legend_hides_no_segment_number_nor_the_title(unplaced: bool) -> None:
+    # the mistake: the legend inside the top panel's upper left, over the number of a step
+    # starting early in the record (a new user's segment 1 at 60 s of 200 s); and, moved
+    # above the panel, over the title's second line (a change not placed)
+    rec, segs = _record(2.3e-6, 0.41e-6)
+    segs[1].start_placed = not unplaced
+    det = SimpleNamespace(rate_changes=[T0 + 200.0], gaps=[T0 + 77.7], resets=[T0 + 33.0],
+                          normal_changes=[T0 + 450.0])
+    fig, info = plot_record(rec, segs, det)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    r = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(r)
+    ax_v = fig.axes[info.panels.index("velocity")]
+    leg = ax_v.get_legend().get_window_extent(r)
+    box = ax_v.get_window_extent(r)
+    assert leg.y0 >= box.y1 - 1.0  # above the panel, not in it
+    assert not leg.overlaps(fig._suptitle.get_window_extent(r))
+    labels = [t for t in ax_v.texts if t.get_text().startswith(("1", "2"))]
+    assert len(labels) == 2 and not any(leg.overlaps(t.get_window_extent(r)) for t in labels)
+    assert len(ax_v.get_legend().get_texts()) == 6  # velocity, program, four kinds of mark

@@ -334,6 +334,40 @@ def test_segments_given_by_hand() -> None:
             parse_segments(bad, rec)
 
 
+def test_the_segments_form_is_the_shortest_decimal_that_reads_back() -> None:
+    # the mistakes: a start printed with its float noise (a new user was given 139.99998 for
+    # a record whose clock ran in minutes), and a start rounded to the nearest decimal (140
+    # would select the next sample)
+    from dryfriction.records.labsteps import make_segments, segments_spec
+
+    rng = np.random.default_rng(38)
+    for trial in range(40):
+        # a clock in minutes written with 7 decimals, a first sample off 0, a jittered rate
+        dt = rng.choice([0.05, 0.02, 0.1, 1.0 / 3.0]) * (1 + 0.01 * rng.standard_normal(900))
+        t = np.round((417.3 + np.cumsum(dt)) / 60.0, 7) * 60.0
+        idx = sorted(rng.choice(np.arange(5, 895), 3, replace=False).tolist())
+        vel = [2.3e-6, 7.1e-6, 0.0, 1.9e-6]
+        segs = make_segments(t, [0, *idx, t.size], vel)
+        rec = LabRecord("m.txt", t, np.zeros(t.size), None, np.full(t.size, 0.6), None, "",
+                        {}, 2)
+        spec = segments_spec(segs, float(t[0]), t)
+        back = parse_segments(spec, rec)
+        assert [g.i_start for g in back] == [g.i_start for g in segs], (trial, spec)
+        for item, g in zip(spec.split(",")[1:], segs[1:], strict=True):
+            start = item.split(":")[0]
+            x, prev = t[g.i_start] - t[0], t[g.i_start - 1] - t[0]
+            assert prev < float(start) <= x
+            # shortest: one decimal fewer falls at or before the sample before
+            d = len(start.partition(".")[2])
+            if d:
+                assert np.floor(x * 10 ** (d - 1)) / 10 ** (d - 1) <= prev
+    # the user's case: a sample 2e-5 s before 140 s, its predecessor 0.05 s earlier
+    t = np.append(np.arange(0.0, 139.96, 0.05), [139.99998, 140.04998, 140.09998])
+    segs = make_segments(t, [0, t.size - 3, t.size], [1e-6, 1e-5])
+    assert segments_spec(segs, 0.0, t) == "0:1e-06,139.99:1e-05"
+    assert segments_spec(segs, 0.0) == "0:1e-06,139.99998:1e-05"  # without the clock
+
+
 def test_shared_record_program_and_step() -> None:
     r = read_record(SHARED)
     segs = detect_segments(r)

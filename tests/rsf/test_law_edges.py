@@ -123,7 +123,11 @@ def test_machine_ranges_and_initial_defaults() -> None:
     assert SpringSlider(seg).critical_stiffness(p, VL) is None
     # the kinematic machine with the standard law cannot hold (ln V); the regularised one can
     holding = SpringSlider([Segment(VL, 1.0), Segment(0.0, 1.0)])
-    with pytest.raises(ValueError, match=r"segments\[1\]\.velocity = 0 m/s is out of range"):
+    # the fix names the option and the protocol key (a new user read "regularized = true" as
+    # a command-line word)
+    with pytest.raises(ValueError, match=r"segments\[1\]\.velocity = 0 m/s is out of range.*"
+                       r"use the regularized law for holds \(--regularized; regularized = "
+                       r"true in a protocol's \[model\]\)$"):
         holding.check_model(p)
     holding.check_model(RateState(A, B, DC, MU0, V0, regularized=True))
 

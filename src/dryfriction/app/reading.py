@@ -136,7 +136,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         rep["rate_changes_s"] = list(det.rate_changes)
         rep["gaps_s"] = list(det.gaps)
         rep["normal_changes_s"] = list(det.normal_changes)
-    rep["segments_option"] = segments_spec(segs, float(t[0]))
+    rep["segments_option"] = segments_spec(segs, float(t[0]), t)
     rep = with_units(rep, RECORD_UNITS, {"normal": rec.normal_unit or "Pa"})
     files: list[str] = []
     if out_dir is not None:

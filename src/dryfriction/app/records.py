@@ -76,7 +76,8 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
     from ..plots.style import save_figure
     from ..records.lab import write_segments_csv
 
-    write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit)
+    write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit,
+                       rec.time)
     fig, _ = plot_record(rec, segs, det, given=given)
     save_figure(fig, folder / f"record.{fmt}", fmt, dpi)
 
@@ -199,7 +200,11 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                          f"{cost:.3g} s CPU for {len(wins)} step(s), against seconds for rsf: "
                          "drop --model (a record is fitted with rsf) and add --run-cv "
                          "[--direct A] to fit both and compare")
-    with bar("fitting steps", len(wins), unit="steps") as update:
+    from ..fit.laws import FIT_LAWS
+
+    laws = FIT_LAWS if law == "auto" else (law,)
+    with bar(f"fitting steps ({' and '.join(laws)} law{'s' if len(laws) > 1 else ''})",
+             len(wins) * len(laws), unit="fits") as update:
         # one machine (stiffness "record"), the law (or every law: auto) and the initial state
         res = fit_steps_laws(rec, wins, segs, law=law, initial=initial, stiffness=stiffness,
                              trend=trend, joint=joint, profile=profile, errors=errors,

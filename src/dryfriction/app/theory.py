@@ -36,19 +36,24 @@ class TableOutcome:
         Column name -> values (one per velocity or waiting time); empty for ``trap``.
     units : dict
         Column name -> unit.
+    notes : list of str
+        What the numbers do not say themselves (a value replaced by its exact limit, a
+        column's reading at some rows); the table prints them, the JSON keeps them.
     """
 
     title: str
     params: dict[str, Any]
     columns: dict[str, Any] = field(default_factory=dict)
     units: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
 
     def as_dict(self) -> dict[str, Any]:
         """The parameters and the columns in one mapping (the ``--json`` output), with the
-        ``units`` of every number (:mod:`dryfriction.io.units`)."""
+        ``units`` of every number (:mod:`dryfriction.io.units`) and the ``notes`` if any."""
         from ..io.units import THEORY_UNITS, with_units
 
-        return with_units({**self.params, **self.columns}, THEORY_UNITS, self.units)
+        done = with_units({**self.params, **self.columns}, THEORY_UNITS, self.units)
+        return {**done, "notes": list(self.notes)} if self.notes else done
 
 
 def trap(alpha: float = _TRAP["alpha"].default) -> TableOutcome:
@@ -222,20 +227,54 @@ def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].defaul
     twins = [rsf_stability_prediction(v, model, mass, damping) for v in u] if eps > 0 else []
     params = {"eps": eps, "alpha": alpha, "mass": mass, "damping": damping, "creep": creep,
               **_direct_params(direct, v_ref)}
+    notes: list[str] = []
+    # a stiffness within rounding of 0 (eps = 0: the forward stiffness A + edge cancels
+    # exactly, K_c = 0; a new user read K_c = 1.49e-14 as a value) is 0, said in a note
+    k_c, omega, fwd = ([r.critical_stiffness for r in res], [r.omega for r in res],
+                       [r.forward_stiffness for r in res])
+    rounded = []
+    for i, r in enumerate(res):
+        floor = ROUNDING * abs(r.backward_stiffness)
+        if 0.0 < abs(k_c[i]) <= floor or 0.0 < abs(fwd[i]) <= floor:
+            rounded.append(f"{u[i]:g}")
+            if abs(k_c[i]) <= floor:
+                k_c[i], omega[i] = 0.0, float("nan")
+            if abs(fwd[i]) <= floor:
+                fwd[i] = 0.0
+    if rounded:
+        notes.append(f"at u = {', '.join(rounded)} a0/t0 a stiffness within {ROUNDING:g} of "
+                     "the backward stiffness (rounding) is shown as 0; K_c = 0: no onset, "
+                     "omega_c undefined (NaN)")
     cols = {
         "u": list(u),
-        "K_c": [r.critical_stiffness for r in res],
-        "omega_c": [r.omega for r in res],
-        "forward_stiffness": [r.forward_stiffness for r in res],
+        "K_c": k_c,
+        "omega_c": omega,
+        "forward_stiffness": fwd,
         "backward_stiffness": [r.backward_stiffness for r in res],
         "dmu_d_du": [r.velocity_slope for r in res],
     }
     if twins:  # rate-and-state with the model's effective a, b, Dc (Rice & Ruina 1983)
-        cols["K_c_rsf"] = [t["K_c"] for t in twins]
+        # b - a' <= 0 (velocity strengthening): the formula's negative k_c means stable at
+        # every stiffness, i.e. K_c = 0 as the model's column says (a new user read -10.17)
+        cols["K_c_rsf"] = [max(t["K_c"], 0.0) for t in twins]
+        strong = [(v, t) for v, t in zip(u, twins, strict=True) if t["K_c"] < 0.0]
+        if strong:
+            notes.append(
+                "K_c_rsf = 0 at u = " + ", ".join(f"{v:g}" for v, _ in strong) + " a0/t0: the "
+                "rate-and-state twin is velocity strengthening there (b - a = "
+                + ", ".join(f"{t['b'] - t['a']:.4g}" for _, t in strong) + " F_el), stable "
+                "at every stiffness")
     units = {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "rad/t0",
              "forward_stiffness": "F_el/a0", "backward_stiffness": "F_el/a0",
              "dmu_d_du": "F_el t0/a0", "K_c_rsf": "F_el/a0"}
-    return TableOutcome("linear stability of steady sliding", params, cols, units)
+    return TableOutcome("linear stability of steady sliding", params, cols, units, notes)
+
+
+ROUNDING = 1e-12
+"""A stiffness of ``stability`` whose size is at most this fraction of the backward stiffness is
+rounding of 0 (ours: at ``eps = 0`` the sums give 1.5e-14 to 4.5e-14 of it; a true ``K_c`` grows
+as ``0.75 eps`` of it at u = 1, 7.5e-12 at ``eps = 1e-11``, so below ``eps`` of about 1e-12 the
+model's own ``K_c`` is itself at the rounding's level)."""
 
 
 def no_pinning_display(summary: dict[str, Any]) -> dict[str, Any]:

@@ -7,7 +7,7 @@ import json
 import re
 import time
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -389,7 +389,9 @@ def many(*flags: str) -> type[_ManyValues]:
 
 
 def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
-            units: dict[str, str] | None = None) -> None:
+            units: dict[str, str] | None = None,
+            param_units: Mapping[str, str | None] | None = None,
+            notes: Sequence[str] = ()) -> None:
     """Print ``params`` on one line, then ``cols`` as a table of numbers, whole.
 
     Parameters
@@ -403,11 +405,23 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
     units : dict, optional
         Column name -> unit, shown in the header as ``name[unit]`` (the CSV headers'
         convention, :mod:`dryfriction.io.units`).
+    param_units : mapping, optional
+        Parameter name -> unit, said after each value of the first line (a new user read
+        ``a0 = 1e-06, t0 = 0.01`` without units); a dimensionless one is written bare.
+    notes : sequence of str
+        Lines said after the table, each as ``note: ...``.
     """
-    from ..io.units import header
+    from ..io.units import DIMENSIONLESS, csv_unit, header
 
     units = units or {}
-    out.print(f"{title}: " + ", ".join(f"{k} = {v}" for k, v in params.items()),
+    pu = param_units or {}
+
+    def said(k: str, v: Any) -> str:
+        u = pu.get(k)
+        u = None if u is None else csv_unit(u)
+        return f"{k} = {v}" + ("" if u in (None, DIMENSIONLESS) else f" {u}")
+
+    out.print(f"{title}: " + ", ".join(said(k, v) for k, v in params.items()),
               markup=False, highlight=False, soft_wrap=True)
     from rich.table import Table
     from rich.text import Text
@@ -419,3 +433,5 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
     for row in zip(*cols.values(), strict=True):
         table.add_row(*(f"{float(v):.10g}" for v in row))
     print_whole(table)
+    for note in notes:
+        out.print(f"note: {note}", markup=False, highlight=False, soft_wrap=True)

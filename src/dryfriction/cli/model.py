@@ -16,10 +16,12 @@ _TRAP, _STA, _STE, _STB = (OPTIONS[k] for k in ("trap", "static", "steady", "sta
 
 def _print(done: Any, json_out: bool) -> None:
     """A :class:`dryfriction.app.theory.TableOutcome` as JSON or as a table with units."""
+    from ..io.units import THEORY_UNITS
+
     if json_out:
         emit(done.as_dict(), True, done.title)
     else:
-        columns(done.title, done.params, done.columns, done.units)
+        columns(done.title, done.params, done.columns, done.units, THEORY_UNITS, done.notes)
 
 
 @app.command()

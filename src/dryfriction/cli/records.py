@@ -90,6 +90,15 @@ def _intervals_table(rows: list[dict[str, Any]], fits: list[Any] | None = None) 
     return table
 
 
+def _unit(unit: str | None) -> str:
+    """`` unit`` after a value, nothing for a dimensionless one (a new user read the joint
+    fit's ``dc = 1.1e-05`` and a cv fit's ``t0 = 0.01`` without units)."""
+    from ..io.units import DIMENSIONLESS, csv_unit
+
+    u = csv_unit(unit) if unit else DIMENSIONLESS
+    return "" if u == DIMENSIONLESS else f" {u}"
+
+
 def flagged_line(rows: list[dict[str, Any]]) -> str:
     """The last line of a record fit: how many steps carry flags."""
     n = sum(bool(r["flags"]) for r in rows)
@@ -152,7 +161,9 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
             out.print("joint fit (all steps): " + ", ".join(
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
-                for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False)
+                + _unit(est[n].unit)
+                for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False,
+                soft_wrap=True)
         for line in levels_lines(res.levels):
             out.print(line, highlight=False, soft_wrap=True)
         if res.stiffness is not None:
@@ -161,7 +172,7 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
             out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "
                       f"(95 %, steps {', '.join(map(str, k['steps'])) or 'none'}"
                       + (f", {n_load} elastic loading(s)" if n_load else "") + ")",
-                      highlight=False)
+                      highlight=False, soft_wrap=True)
         for c in (res.drive or {}).get("changes", []):
             out.print(f"measured drive: change at {c['t_change']:.6g} s +- "
                       f"{c['sigma_t_change']:.2g} s (given {c['t_given']:.6g} s), "
@@ -180,12 +191,13 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
             out.print(f"step {f['step']} cv: " + ", ".join(
                 f"{n} = {p['value']:.4g}" + ("" if rob.get(n, p).get("stderr") is None
                                              else f" +- {rob.get(n, p)['stderr']:.2g}")
+                + _unit(p.get("unit"))
                 for n, p in f["parameters"].items()) + f"; {verdicts.get(f['step'])}",
                 highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"
                   + (f", step_*.{fmt}, steps_summary.{fmt}, record.{fmt}, segments.csv"
-                     if figure else ""), highlight=False)
-        out.print(flagged_line(res.rows), highlight=False)
+                     if figure else ""), highlight=False, soft_wrap=True)
+        out.print(flagged_line(res.rows), highlight=False, soft_wrap=True)
     if not res.success:
         err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)
         raise typer.Exit(1)

@@ -100,13 +100,17 @@ def _problem(ds: list[Dataset], m: Model, specs_all: Sequence[ParamSpec],
     fixed = dict(fix or {})
     for k in list(fixed) + list(start or {}):
         if k not in names:
-            raise ValueError(f"unknown parameter {k!r} for model {m.name} with "
+            given = "--fix" if k in fixed else "a start value"
+            raise ValueError(f"{given} names unknown parameter {k!r} for model {m.name} with "
                              f"{'+'.join(sorted(kinds))} data: the parameters are "
                              f"{', '.join(names)}")
     for s in specs_all:
         if s.name in fixed:
-            fixed[s.name] = check_scalar(s.name, fixed[s.name], s.lo if s.log else None,
-                                         lo_open=s.log)
+            # the name the user typed (--fix t0=...; fix= in Python), not the bare parameter
+            # (a new user read "t0 = -1 is out of range" as a protocol key)
+            unit = f" [{s.unit}]" if s.unit else ""
+            fixed[s.name] = check_scalar(f"--fix {s.name}{unit}", fixed[s.name],
+                                         s.lo if s.log else None, lo_open=s.log)
     specs = [s for s in specs_all if s.name not in fixed]
     has_sigma = [d.sigma is not None for d in ds]
     if any(has_sigma) and not all(has_sigma):

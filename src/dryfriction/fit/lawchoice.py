@@ -155,9 +155,15 @@ def fit_steps_laws(record: Any, windows: Sequence[Any] | None = None,
         windows = series_windows(record)
     wins = list(windows)
     results: dict[str, StepsResult] = {}
-    for L in laws:
+    outer = kwargs.pop("progress", None)
+    for j, L in enumerate(laws):
+        # one count over every law's fits (each law's own count went back to 0 when the
+        # next began: a new user's bar with --state-law auto went backwards)
+        tick = None if outer is None else (
+            lambda done, total, j=j: outer(j * total + done, len(laws) * total))
         res = _run(record, wins, segments, stiffness, law=L,
-                   initial="free" if initial == "free" else "steady", **kwargs)
+                   initial="free" if initial == "free" else "steady", progress=tick,
+                   **kwargs)
         if initial == "auto":
             _free_start(res, record, wins, segments, stiffness, L, kwargs)
         results[L] = res

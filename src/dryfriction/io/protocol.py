@@ -425,6 +425,35 @@ def _population(doc: Mapping[str, Any], source: str) -> tuple[Track, Initial]:
     return track, initial
 
 
+_SWEEP_TABLES = ("sweep", "stickslip", "catalogue")
+"""Tables of a sweep protocol that ``dryfriction sweep`` takes off before each point is read
+as a protocol (:mod:`dryfriction.app.sweeps`)."""
+
+
+def _tables_hint(unknown: list[str], tables: tuple[str, ...]) -> str:
+    """What an unknown table may have meant (ours; a new user's ``[modle]`` was answered with
+    a list that left out the tables other kinds of protocol take): the closest allowed name,
+    and where the other kinds' tables belong."""
+    import difflib
+
+    said = []
+    for name in unknown:
+        known = (*tables, *(() if "ensemble" not in tables else ("interface",)))
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        if close:
+            said.append(f"[{name}]: did you mean [{close[0]}]?")
+    other = [t for t in unknown if t in _SWEEP_TABLES]
+    if other:
+        said.append(f"[{'], ['.join(other)}] {'belongs' if len(other) == 1 else 'belong'} "
+                    "to a sweep protocol, run with dryfriction sweep")
+    if "interface" not in tables and "interface" in unknown:
+        said.append("[interface] is for the trap model (model.law = 'cv')")
+    if "ensemble" in tables and "interface" not in tables and not any(
+            "interface" in x for x in said):
+        said.append("an [interface] table makes it an extended-interface protocol")
+    return " (" + "; ".join(said) + ")" if said else ""
+
+
 def _check_tables(doc: Mapping[str, Any], tables: tuple[str, ...], source: str,
                   missing_hint: str = "") -> None:
     """Exactly ``tables`` at the top of a protocol file: one line naming an unknown or a
@@ -432,7 +461,7 @@ def _check_tables(doc: Mapping[str, Any], tables: tuple[str, ...], source: str,
     unknown = sorted(set(doc) - set(tables))
     if unknown:
         raise ValueError(f"{source}: unknown table(s) {', '.join(unknown)}: allowed "
-                         f"{', '.join(tables)}")
+                         f"{', '.join(tables)}{_tables_hint(unknown, tables)}")
     for t in tables:
         if t not in doc:
             raise ValueError(f"{source}: table '{t}' is missing{missing_hint}")
@@ -530,7 +559,8 @@ def _rsf_protocol(doc: Mapping[str, Any], source: str) -> RSFProtocol:
     if unknown:
         why = " (the ensemble table applies to law = 'cv')" if "ensemble" in unknown else ""
         raise ValueError(f"{source}: table(s) {', '.join(unknown)} not allowed with "
-                         f"model.law = 'rsf'{why}: allowed {', '.join(_RSF_TABLES)}")
+                         f"model.law = 'rsf'{why}: allowed {', '.join(_RSF_TABLES)}"
+                         f"{_tables_hint([u for u in unknown if u != 'ensemble'], _RSF_TABLES)}")
     for t in ("model", "drive"):
         if t not in doc:
             raise ValueError(f"{source}: table '{t}' is missing")

@@ -153,7 +153,10 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
                 a.axvline(tm - t0, color=color, ls=ls, lw=0.9,
                           label=kind if (k == 0 and a is ax) else None)
     info.marks = {k: [float(v) for v in vs] for k, vs in marks.items() if vs}
-    ax.legend(loc="upper left", fontsize=7, ncol=2)
+    # above the top panel, not in it: inside, it hid the number of a step starting early
+    # in the record (a new user's segment 1 at 60 s of 200 s)
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), fontsize=7, ncol=6,
+              frameon=False, borderaxespad=0.1)
     axes[-1].set_xlabel(f"time from the first sample  [s]  (t0 = {t0:g} s)")
     n_steps = sum(1 for j in info.shaded if segments[j].velocity != 0.0)
     n_holds = len(info.shaded) - n_steps
@@ -163,6 +166,6 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
                     f"in segments.csv): segment(s) {', '.join(map(str, info.unplaced))}"
                     if info.unplaced else ""),
                  fontsize=9)
-    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=0.91 if info.unplaced else 0.93,
-                        hspace=0.08)
+    top = 1.0 - (0.62 + (0.3 if info.unplaced else 0.14)) / fig.get_figheight()
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=top, hspace=0.08)
     return fig, info

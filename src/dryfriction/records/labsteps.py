@@ -8,6 +8,7 @@ cycles, as one would choose them by hand.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -217,27 +218,46 @@ SEGMENTS_SYNTAX = (
 """The full syntax of ``--segments`` (its CLI help)."""
 
 
-def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float) -> str:
-    """The program in the ``--segments`` form (starts in s from ``t0``, the first sample)."""
-    return ",".join(f"{s.t_start - t0:.10g}:{s.velocity:.6g}" for s in segments)
+def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float,
+                  time: Array | None = None) -> str:
+    """The program in the ``--segments`` form (starts in s from ``t0``, the first sample).
+
+    With the record's ``time``, each start is the shortest decimal that
+    :func:`parse_segments` maps back to the same first sample: at most the sample's own time
+    and above the sample before it (a new user was given ``139.99998`` for a change at a
+    sample 2e-5 s before 140 s; rounding up to 140 would move it one sample later)."""
+    def start(s: Segment) -> str:
+        x = s.t_start - t0
+        if time is None or not 0 < s.i_start < len(time):
+            return f"{x:.10g}"
+        x = float(time[s.i_start]) - t0
+        prev = float(time[s.i_start - 1]) - t0
+        for d in range(11):
+            y = math.floor(x * 10**d) / 10**d
+            if prev < y <= x:
+                return f"{y:.{d}f}".rstrip("0").rstrip(".") if d else f"{y:.0f}"
+        return f"{x:.10g}"
+
+    return ",".join(f"{start(s)}:{s.velocity:.6g}" for s in segments)
 
 
 def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
-                       normal_unit: str = "Pa") -> None:
+                       normal_unit: str = "Pa", time: Array | None = None) -> None:
     """Write the load program as CSV, one row per segment, units in the headers
     (``name[unit]``, :mod:`dryfriction.io.units`); the ``--segments`` form of the whole
     program in a comment line on top. ``t_start_lo[s]`` and ``t_start_hi[s]`` are the 95 %
     interval of the change at the segment's start (record time; empty where none was
     computed), ``t_start_p`` the probability that the change lies within the larger of one
     sample and 0.5 s of ``t_start`` and ``t_start_placed`` whether that is at least
-    :data:`PLACED_P` (:class:`Segment`)."""
+    :data:`PLACED_P` (:class:`Segment`). With the record's ``time``, the ``--segments`` line
+    gives each start as its shortest decimal (:func:`segments_spec`)."""
     from ..io.units import SEGMENT_UNITS, header
 
     what, _, scale = _normal_column(normal_unit)
     names = ("segment", "kind", "t_start", "t_end", "t_from_first", "duration", "velocity",
              "velocity_um", "i_start", "i_end", "samples", "confidence", "t_start_lo",
              "t_start_hi", "t_start_placed", "t_start_p", what.replace(" ", "_"))
-    rows = [f"# --segments {segments_spec(segments, t0)}",
+    rows = [f"# --segments {segments_spec(segments, t0, time)}",
             ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
     for j, s in enumerate(segments):
         prev = segments[j - 1].velocity if j else None

@@ -294,6 +294,62 @@ HOLD_RATIO = 0.01
 placement as a creep (zoo records 4036, 4108 and 5116: the flag alone left 1.23, 2.22 and
 1.31 tolerances off); the ratio-30 steps of the zoo are not (with 1/20, as for the stops,
 zoo 3157 went from 0.05 to 1.27 tolerances off before the position-error guard; ours)."""
+BLOCKS = 128
+"""Most block means the hinge is fitted on (:func:`change_profile`): the Cholesky factor of
+their covariance costs ``BLOCKS**3 / 3``."""
+FINE_RATIO = 2.0
+"""A change between speeds at most this ratio apart is a *small step* (:func:`small_step`)."""
+FINE_BLOCKS = 256
+"""Most block means a small step is placed on (:data:`EVEN_BLOCKS`): where blocks of one
+duration would be more (a window mostly sampled slower than its median), they are made longer;
+256 costs 8 times :data:`BLOCKS`' Cholesky factor, for the small steps of uneven windows only."""
+EVEN_BLOCKS = True
+"""A small step (:data:`FINE_RATIO`) is placed on block means of one duration, that of the
+``k`` samples of a block at the window's median sampling interval, not of one sample count
+(:func:`even_blocks`; at most :data:`FINE_BLOCKS`; ours).
+
+Why: a block mean keeps one number of the samples within it, so the hinge's profile sees
+where the kink lies inside a block only through that number, and a change is placed by the
+profile's mass within the tolerance (0.5 s, :func:`_most_probable`): the blocks' duration is
+the placement's resolution. Blocks of one count are as long as that count of samples: ten
+times longer on the slow side of a 10-fold sampling-rate change (the zoo's ``rate``, often at
+the change itself), longer across a gap; a small step's window is the longest (two
+oscillation periods each side, :data:`OSC_RATIO`: 190 s with the zoo's 45 s), and its
+profile, spread over several tolerances (its information goes as the squared velocity
+change), is where that resolution decides. On evenly sampled times the blocks are those of
+one count (the same placements: ``bench_detect_oracle``'s records unchanged). Measured
+(``detect7``: a diagnostic that replays each placement of the detector with only the blocks
+changed, on the zoo's ratio-1.3 and ratio-2 steps of records 0-449 and 3000-8299 placed by
+the hinge): ratio 1.3, 40 of 139 off the tolerance before, 29 after (11 fixed, none broken);
+ratio 2, 8 of 106 before, 7 after (1 fixed). Tried there: blocks of one duration cut into 128
+equal spans of the window (34 and 6; it moved ``bench_detect_oracle``'s evenly sampled
+records: 19 of 27 ratio-1.3 steps within the tolerance against 20, the test in
+``tests/records/test_detect.py``), 512 blocks of one count (32 and 6; twice the detection's CPU on
+``bench_detect_oracle``'s ratio-1.3 records, 9.1 against 4.8 s per 1e6 rows), 256 of one
+count (31 and 9)."""
+
+
+def small_step(v1: float, v2: float) -> bool:
+    """Whether a change from ``v1`` to ``v2`` (m/s) is a small step: both moving, at most
+    :data:`FINE_RATIO` apart."""
+    lo, hi = sorted((abs(v1), abs(v2)))
+    return 0.0 < lo and hi <= FINE_RATIO * lo
+
+
+def even_blocks(tt: Array, width: float, most: int) -> Array:
+    """The first sample of each block when the times ``tt`` (s, increasing) are cut into
+    spans of ``width`` s from the first (at most ``most`` of them: longer spans where more
+    would be needed); an empty span (a gap) gives no block. On evenly sampled times, spans of
+    ``k`` sample intervals are the blocks of ``k`` samples."""
+    span = float(tt[-1] - tt[0])
+    if not (span > 0.0 and width > 0.0):
+        return np.arange(1)
+    width = max(width, span / max(most, 1) * (1.0 + 1e-8))
+    # a sample on a span's edge (up to rounding) opens the span
+    j = np.floor((tt - tt[0]) / width + 1e-9)
+    return np.flatnonzero(np.diff(np.concatenate([[-1.0], j])) != 0)
+
+
 WIDEN = 2.0
 """Each side of the change-time interval is this many times the profile's (ours, empirical):
 the profile is that of the model (an OU velocity wander, white noise, a machine oscillation);
@@ -464,9 +520,12 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     tt = t[a:b]
     # block means, at most 128: the wander is smooth within a block, the white noise of a
     # block falls as 1/count (256 before: 8 times the Cholesky factor's cost; its effect on
-    # the placements alone was not measured apart)
-    k = max(1, int(np.ceil((b - a) / 128)))
-    idx = np.arange(0, b - a, k)
+    # the placements alone was not measured apart); for a small step, blocks of one duration,
+    # that of k samples at the window's median interval (EVEN_BLOCKS)
+    fine = EVEN_BLOCKS and small_step(v1, v2)
+    k = max(1, int(np.ceil((b - a) / BLOCKS)))
+    idx = (even_blocks(tt, k * float(np.median(np.diff(tt))), FINE_BLOCKS) if fine and k > 1
+           else np.arange(0, b - a, k))
     cnt = np.diff(np.append(idx, b - a)).astype(float)
     tb = np.add.reduceat(tt, idx) / cnt
     xb = np.add.reduceat(x[a:b] - x[a], idx) / cnt
@@ -538,8 +597,8 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
         mean ``mean (t - t_c)+`` exact, also in the block that holds the candidate."""
         c = tt[cand]
         Hb = np.maximum(tb[:, None] - c[None, :], 0.0)
-        beta = cand // k
-        e = np.minimum((beta + 1) * k, b - a)
+        beta = np.searchsorted(idx, cand, side="right") - 1  # the block holding each
+        e = np.append(idx[1:], b - a)[beta]
         Hb[beta, np.arange(cand.size)] = (cs[e] - cs[cand] - c * (e - cand)) / cnt[beta]
         Hw = solve_triangular(L, Hb, lower=True, check_finite=False)
         Hp = Hw - Qb @ (Qb.T @ Hw)
@@ -569,8 +628,10 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
         return best
 
     # candidates: the samples within `search` s (>= 10 samples) of the guess, coarse first
-    c_lo = max(3 * k, min(int(np.searchsorted(tt, tg - search)), guess - a - 10))
-    c_hi = min(b - a - 3 * k, max(int(np.searchsorted(tt, tg + search)), guess - a + 10))
+    # (three blocks clear of the window's ends)
+    c_lo = max(int(idx[3]), min(int(np.searchsorted(tt, tg - search)), guess - a - 10))
+    c_hi = min(int(idx[-3]) if fine else b - a - 3 * k,
+               max(int(np.searchsorted(tt, tg + search)), guess - a + 10))
     if c_hi <= c_lo:
         return Placement(guess)
     step = max(1, -(-(c_hi - c_lo) // 100))

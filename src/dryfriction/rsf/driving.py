@@ -244,7 +244,7 @@ def _check_bounds(res: RSFResult, travel: float, slip_integral: float | None,
         "friction below 0 on a slider that slides forward means that the law mu0 + "
         "a ln(V/V0) + b ln(V0 theta/Dc) is outside its domain here "
         f"(mu0 = {p.mu0:g}, V0 = {p.v0:g} m/s); check mu0 and v0, or use the regularised law "
-        "(--regularized, regularized = true)")
+        "(--regularized; regularized = true in a protocol's [model])")
     check_physical("rate-and-state run", res.t, res.x, res.v, res.mu, unit="m", forward=True,
                    tol=tol, slip_max=travel + give_back, slip_integral=slip_integral,
                    mu_min=0.0, mu_why=why)

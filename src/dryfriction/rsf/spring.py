@@ -135,7 +135,7 @@ class SpringSlider(simulation.Drive):
                     raise ValueError(
                         f"segments[{i}].velocity = {vl:g} m/s is out of range: the kinematic "
                         "machine with the standard law needs > 0 (ln V); use the regularized "
-                        "law (regularized = true) for holds"
+                        "law for holds (--regularized; regularized = true in a protocol's [model])"
                     )
 
     def critical_stiffness(self, model: RateState, v: float) -> float | None:
