@@ -3245,6 +3245,9 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("classify: the three decades compared in ln units", "fit/statistics.py",
        "if s.log and hi_c - lo_c > _FAR:", "if s.log and hi_c - lo_c > 3.0:",
        _HFO, "-k", "three_decades"),
+    _m("profile: a physical bound taken as the search's reach", "fit/statistics.py",
+       "return not spec.physical[0 if th - lo_b < hi_b - th else 1]", "return True",
+       _HFO, "-k", "physical_bound"),
     # --- end userfixA
     # --- stop 38 (lead): the rest of a new user's trial: a negative K_c_rsf and rounding
     # shown as stiffnesses, inputs without units, refusals naming a protocol key, a misspelt

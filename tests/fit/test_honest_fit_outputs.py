@@ -268,3 +268,17 @@ def test_an_interval_over_more_than_three_decades_is_not_identified(decades: flo
     assert label.startswith("identified") is identified, (label, note)
     if not identified:
         assert label == "not identified" and f"spans {decades:.2g} decades" in note
+
+
+def test_a_limit_at_a_physical_bound_is_the_models_own() -> None:
+    """eps's lower bound 1e-6 stands for eps = 0 (no ageing), a limit of the model, not of
+    the search: a profile limit reached with eps there is the data's, and mu_el (the level,
+    with t0 held) stays identified. Only bounds that are the search's reach (t0's 1e-12 s,
+    Dc's 1 m) open a side. Mistake: every bound taken as the search's (mu_el 'not
+    identified' on data that fix its level to 4 %)."""
+    d = _falling(11, False)
+    r = fit(d, "cv", fix={"t0": 1.0})
+    assert r["eps"].identifiability == "at lower bound (1e-06)"
+    assert r["mu_el"].identifiability.startswith("identified"), r["mu_el"]
+    lo, hi = r["mu_el"].profile_95
+    assert lo is not None and hi is not None and hi / lo < 1.1

@@ -76,6 +76,11 @@ class ParamSpec:
         Fitted as ``ln p`` (a positive scale).
     lo, hi : float
         Search bounds in the parameter's own units.
+    physical : (bool, bool)
+        Whether ``lo``/``hi`` stands for a physical limit the parameter cannot pass (``eps``,
+        ``a``, ``b`` at 1e-6 for 0; the direct effect's ``0 <= A``), not only the search's
+        reach: a profile limit reached with another parameter there is the model's, not the
+        search's (:func:`.statistics.profile_interval`'s ``pinned``).
     """
 
     name: str
@@ -83,6 +88,7 @@ class ParamSpec:
     log: bool
     lo: float
     hi: float
+    physical: tuple[bool, bool] = (False, False)
 
     def to_internal(self, p: float) -> float:
         return math.log(p) if self.log else float(p)
@@ -352,14 +358,15 @@ class CVModel:
         return opts
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
-        eps = ParamSpec("eps", "", True, 1e-6, 1.0)
+        eps = ParamSpec("eps", "", True, 1e-6, 1.0, (True, False))  # 1e-6: no ageing
         mu_el = ParamSpec("mu_el", "", True, 1e-3, 10.0)
         t0 = ParamSpec("t0", "s", True, 1e-12, 1e9)
         if self.direct and "static" in kinds:
             raise ValueError("the direct effect (direct) cannot be fitted to static data: the "
                              "threshold depends on the pull velocity, which a t_w,mu_s file "
                              "does not give; fit steady or time-series data")
-        extra = (ParamSpec("direct", "", False, 0.0, DIRECT_MAX),) if self.direct else ()
+        extra = (ParamSpec("direct", "", False, 0.0, DIRECT_MAX, (True, False)),) \
+            if self.direct else ()
         if kinds == {"static"}:
             return eps, t0, mu_el
         if kinds == {"steady"}:
@@ -674,8 +681,8 @@ class RSFModel:
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
         mu0 = ParamSpec("mu0", "", False, -5.0, 5.0)
-        a = ParamSpec("a", "", True, 1e-6, 1.0)
-        b = ParamSpec("b", "", True, 1e-6, 1.0)
+        a = ParamSpec("a", "", True, 1e-6, 1.0, (True, False))  # 1e-6 for 0
+        b = ParamSpec("b", "", True, 1e-6, 1.0, (True, False))
         dc = ParamSpec("dc", "m", True, 1e-12, 1.0)
         if kinds == {"steady"}:
             return mu0, ParamSpec("a_minus_b", "", False, -1.0, 1.0)

@@ -507,6 +507,15 @@ def on_search_bound(spec: ParamSpec, th: float) -> bool:
     return bool(min(th - lo_b, hi_b - th) < 1e-6 * max(1.0, abs(th)))
 
 
+def _on_reach(spec: ParamSpec, th: float) -> bool:
+    """On a search bound that is only the search's reach, not a physical limit
+    (:attr:`.models.ParamSpec.physical`)."""
+    if not on_search_bound(spec, th):
+        return False
+    lo_b, hi_b = spec.bounds
+    return not spec.physical[0 if th - lo_b < hi_b - th else 1]
+
+
 def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int, se: float,
                      thr: float = PROFILE_THRESHOLD,
                      pinned: list[tuple[int, ...]] | None = None) -> tuple[
@@ -519,7 +528,8 @@ def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int
     threshold (then bisects the crossing) or the search bound is reached.
 
     ``pinned``, if given, gets one tuple per side (lower, then upper): the other parameters
-    that sit on their search bounds (:func:`on_search_bound`) where the profile crosses the
+    that sit on their search bounds (:func:`on_search_bound`; not a bound that stands for a
+    physical limit, :attr:`.models.ParamSpec.physical`) where the profile crosses the
     threshold (empty where none, or where it does not cross). Such a limit is set by that
     bound, not by the data: with the other parameter free beyond it the profile would rise
     more slowly (userfixA: ``t0`` on its 1e-12 s bound made ``eps`` and ``mu_el`` look
@@ -565,8 +575,8 @@ def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int
                 del a_d
                 if pinned is not None:
                     pins = tuple(k for k in range(prob.p) if k != j and (
-                        on_search_bound(prob.specs[k], float(a_t[k]))
-                        or on_search_bound(prob.specs[k], float(b_t[k]))))
+                        _on_reach(prob.specs[k], float(a_t[k]))
+                        or _on_reach(prob.specs[k], float(b_t[k]))))
                 break
             if at_bound:
                 break
