@@ -59,6 +59,9 @@ _DIR = "tests/theory/test_direct.py"
 _DIN = "tests/ensemble/test_direct_inertia.py"
 _FRG = "tests/analysis/test_fronts_generic.py"
 _CRG = "tests/theory/test_creep_generic.py"
+_USB_STEPS = "tests/records/test_labsteps_generic.py"
+_USB_READ = "tests/records/test_lab_preamble_missing.py"
+_USB_CLI = "tests/cli/test_record_new_user.py"
 _THG = "tests/analysis/test_trap_hopf_generic.py"
 _BFC = "tests/analysis/test_bifurcation_classify.py"
 _SFD = "tests/plots/test_step_figure_data.py"
@@ -2377,7 +2380,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "continue  # a boundary set by the normal stress alone",
        "pass  # a boundary set by the normal stress alone", _RFD),
     _m("record.png: shading in record time", "plots/record.py",
-       "a.axvspan(s.t_start - t0, s.t_end - t0,", "a.axvspan(s.t_start, s.t_end,", _RFD),
+       "a.axvspan(s.t_start - t0, end - t0,", "a.axvspan(s.t_start, end,", _RFD),
     _m("record.png: marks in record time", "plots/record.py",
        "a.axvline(tm - t0, color=color,", "a.axvline(tm, color=color,", _RFD),
     _m("record.png: normal force N -> kN by 1e-6", "plots/record.py",
@@ -2859,8 +2862,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "if prev.velocity == 0.0 or cur.velocity == prev.velocity:",
        "if prev.velocity == 0.0:", _S7LS),
     _m("slice steps: shs v_after the hold's", "records/labsteps.py",
-       "prev.velocity, after.velocity, cur.duration", "prev.velocity, cur.velocity, cur.duration",
-       _S7LS),
+       "prev.velocity, after.velocity, after.t_start - cur.t_start,",
+       "prev.velocity, cur.velocity, after.t_start - cur.t_start,", _S7LS),
     _m("slice steps: shs ends with the hold", "records/labsteps.py",
        'StepWindow(len(out), "shs", i0, after.i_end', 'StepWindow(len(out), "shs", i0, cur.i_end',
        _S7LS),
@@ -3282,6 +3285,69 @@ MUTANTS: tuple[Mutant, ...] = (
        'return "" if u == DIMENSIONLESS else f" {u}"', 'return ""', "tests/fit/test_steps.py",
        "-k", "command_record_writes_steps"),
     # --- end stop 38 (lead)
+    # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
+    # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
+    _m("slice_steps: the hold cut at a normal-stress change (the user's 10 s of 50)",
+       "records/labsteps.py", "while m < len(segs) and segs[m].velocity == 0.0:",
+       "while False:", _USB_STEPS, "-k", "normal_change_during"),
+    _m("slice_steps: the hold's duration its first segment's", "records/labsteps.py",
+       "after.velocity, after.t_start - cur.t_start,", "after.velocity, cur.duration,",
+       _USB_STEPS, "-k", "normal_change_during"),
+    _m("slice_steps: a normal change's stresses before and after swapped",
+       "records/labsteps.py",
+       "changes = tuple((segs[k].t_start, segs[k - 1].normal, segs[k].normal)",
+       "changes = tuple((segs[k].t_start, segs[k].normal, segs[k - 1].normal)",
+       _USB_STEPS, "-k", "normal_change_during"),
+    _m("normal change text: the stress in Pa, not the table's MPa", "records/labsteps.py",
+       'f"t = {t:g} s: {b * scale:.4g} -> {a * scale:.4g} {nu}"',
+       'f"t = {t:g} s: {b:.4g} -> {a:.4g} {nu}"', _USB_STEPS, "-k", "normal_change_values"),
+    _m("record: a hold's normal change not printed under the steps", "cli/record.py",
+       "        if w.normal_changes:  # the hold runs across them", "        if False:",
+       _USB_CLI, "-k", "normal_change_mid_hold"),
+    _m("fit: a hold's normal change not noted on its step", "app/records.py",
+       "        if w.normal_changes:  # said beside", "        if False:  # said beside",
+       _USB_CLI, "-k", "fit_of_a_hold"),
+    _m("record figure: a hold split by a normal change shaded to the change", "plots/record.py",
+       "        while hold and k < len(segments) and segments[k].velocity == 0.0:",
+       "        while False:", "tests/plots/test_record_figure_data.py", "-k", "split"),
+    _m("fit: the reading notes not said before the fit", "app/records.py",
+       '        _say(report, f"note: {line}")', "        pass", _USB_CLI, "-k", "reading_notes"),
+    _m("reader: the header the first line (the preamble taken for it)", "records/lab.py",
+       "        h = score.index(max(score))", "        h = 0", _USB_READ, "-k", "preamble"),
+    _m("reader: the data taken to start at one line of numbers", "records/lab.py",
+       "if numeric(k) and (k + 1 == len(lines)\n" + " " * 59
+       + "or numeric(k + 1))), len(lines))",
+       "if numeric(k)), len(lines))", _USB_READ, "-k", "preamble"),
+    _m("reader: with no name recognised, the units row taken for the header", "records/lab.py",
+       "        if h >= 1 and units_only(lines[h][1]):", "        if False:", _USB_READ, "-k",
+       "line_above_the_data"),
+    _m("reader: the preamble skipped without a word", "records/lab.py",
+       "    if preamble:  # one line", "    if False:  # one line", _USB_READ, "-k",
+       "preamble"),
+    _m("reader: missing values filled with 0, not dropped", "records/lab.py",
+       "    return data[keep], lambda i: line_of(int(keep[min(i, len(keep) - 1)]))",
+       "    return np.nan_to_num(data), line_of", _USB_READ, "-k", "dropped"),
+    _m("reader: the file lines not mapped past the dropped rows", "records/lab.py",
+       "    return data[keep], lambda i: line_of(int(keep[min(i, len(keep) - 1)]))",
+       "    return data[keep], line_of", _USB_READ, "-k", "later_refusal"),
+    _m("reader: the missing-value limit reached refused", "records/lab.py",
+       "if rows.size > MISSING_MAX * len(data):", "if rows.size >= MISSING_MAX * len(data):",
+       _USB_READ, "-k", "too_many"),
+    _m("reader: an empty cell not a missing value (refused as not a number)", "records/lab.py",
+       "            if _is_missing(cell):", '            if cell.strip().lower() == "nan":',
+       _USB_READ, "-k", "dropped"),
+    _m("one velocity: the --segments example fixed at 1200 s (outside a 60-s record)",
+       "records/labsteps.py", 'half = float(f"{0.5 * float(t[-1] - t[0]):.3g}")',
+       "half = 1200.0", _USB_STEPS, "-k", "one_velocity"),
+    _m("one velocity: the example's speed not the record's", "records/labsteps.py",
+       "    v = abs(float(velocity))\n", "    v = 2e-7\n", _USB_STEPS, "-k", "one_velocity"),
+    _m("one velocity: a program given by hand sent back to --segments", "records/labsteps.py",
+       "    if given:\n        return head", "    if False:\n        return head", _USB_STEPS,
+       "-k", "one_velocity"),
+    _m("record: --segments not passed on as given to slice_steps", "app/reading.py",
+       "steps = tuple(slice_steps(rec, segs, given=segments is not None))",
+       "steps = tuple(slice_steps(rec, segs))", _USB_CLI, "-k", "one_velocity"),
+    # --- end userfixB
 )
 
 
