@@ -392,8 +392,10 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
         return g
 
     def se_of(g: Array) -> float:
+        # a variance <= 0 of a fitted quantity is a degenerate covariance, not an exact value:
+        # no error (NaN), never 0 (userfixA: a noise record's k printed "150.1 [150.1, 150.1]")
         v = float(g @ cov.matrix @ g) if np.any(g) and not cov.singular else math.nan
-        return math.sqrt(max(v, 0.0)) if math.isfinite(v) else math.nan
+        return math.sqrt(v) if math.isfinite(v) and v > 0 else math.nan
 
     def se(name: str) -> float:
         return se_of(grad(name)) if name in names else math.nan
@@ -404,6 +406,8 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
         if name not in names or cov.singular:
             return math.nan, math.nan
         j = names.index(name)
+        if not float(cov.matrix[j, j]) > 0:  # stderr is sqrt|C_jj|: a negative one is no error
+            return math.nan, math.nan
         h = z * float(cov.stderr[j])
         return (sc.specs[j].from_internal(sc.theta[j] - h),
                 sc.specs[j].from_internal(sc.theta[j] + h))
