@@ -3321,6 +3321,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record fit: the joint fit's values without units", "cli/records.py",
        'return "" if u == DIMENSIONLESS else f" {u}"', 'return ""', "tests/fit/test_steps.py",
        "-k", "command_record_writes_steps"),
+    _m("record fit: the joint fit's white errors not said", "fit/steps.py",
+       'if joint_fit is not None and errors == "hac":',
+       'if joint_fit is not None and errors == "white":', "tests/fit/test_steps.py", "-k",
+       "command_record_writes_steps"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

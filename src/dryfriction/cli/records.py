@@ -158,12 +158,16 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                 out.print(f"- step {row['index']}: {note}", highlight=False, soft_wrap=True)
         if res.joint is not None:
             est = {p.name: p for p in res.joint.parameters}
-            out.print("joint fit (all steps): " + ", ".join(
+            white = any("white-noise ones" in n for n in res.joint.notes)
+            out.print("joint fit (all steps" + ("; +- white-noise, a lower bound: see the "
+                                                "note" if white else "") + "): " + ", ".join(
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
                 + _unit(est[n].unit)
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False,
                 soft_wrap=True)
+            for note in res.joint.notes:
+                out.print(f"- joint fit: {note}", highlight=False, soft_wrap=True)
         for line in levels_lines(res.levels):
             out.print(line, highlight=False, soft_wrap=True)
         if res.stiffness is not None:
