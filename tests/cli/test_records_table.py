@@ -65,3 +65,47 @@ def test_the_flagged_line_counts_steps_not_flags() -> None:
     assert flagged_line(some) == "1 of 3 steps flagged: read their flags and notes"
     every = [_row(0, "misfit", "Pa", 1.0), _row(1, "bound;misfit", "Pa", 1.0)]
     assert flagged_line(every).startswith("every step is flagged (2 of 2)")
+
+
+def test_drive_comparison_prints_no_raw_value_the_measured_drive_does_not_identify() -> None:
+    """userfixA: a noise record printed "measured drive k = — /m ...; program drive k = 150.1
+    /m, a = 0.000274 (rms 0.003037 against 10)": the program refit's raw values beside
+    values the data do not identify, from a refit that had failed. The program's k and a are
+    printed only beside an identified measured one, and a failed refit gives no values.
+    Mistakes: the raw values printed whatever the measured ones (the old line), a failed
+    refit's values printed."""
+    from dryfriction.cli.records import drive_comparison_lines
+
+    ok = {"index": 0, "measured": {"stiffness": 2009.0, "a": 0.0213, "rms": 1.66e-3},
+          "program": {"stiffness": 2066.0, "a": 0.02123, "rms": 1.67e-3, "success": True}}
+    lost = {"index": 1, "measured": {"stiffness": math.nan, "a": math.nan, "rms": 3.0e-3},
+            "program": {"stiffness": 150.1, "a": 2.74e-4, "rms": 3.1e-3, "success": True}}
+    failed = {"index": 2, "measured": {"stiffness": 450.0, "a": math.nan, "rms": 3.0e-3},
+              "program": {"stiffness": 150.1, "a": 2.74e-4, "rms": 10.0, "success": False}}
+    skipped = {"index": 3, "measured": {"stiffness": 1.0, "a": 0.01, "rms": 1e-3},
+               "program": {"not_run": "why"}}
+    one, two, three = drive_comparison_lines([ok, skipped, lost, failed])
+    assert one == ("step 0: measured drive k = 2009 /m, a = 0.0213; program drive k = 2066 /m,"
+                   " a = 0.02123 (rms 0.00166 against 0.00167)")
+    assert "150.1" not in two and "0.000274" not in two
+    assert "program drive k = — /m, a = —" in two
+    assert "150.1" not in three and "did not succeed (rms 10)" in three
+    assert "measured drive k = 450 /m" in three
+
+
+def test_a_stiffness_held_at_a_given_value_reads_fixed() -> None:
+    """userfixA: with --stiffness K the step's k is not fitted and has no interval; the
+    intervals table said "[—, —]" under "not given by the data". It reads "fixed"; a free k
+    the data do not bound keeps the dash, and the record's one machine (held, with its own
+    interval) keeps that interval. Mistake: "fixed" written for every k without an interval
+    (a free one the data do not fix then looks given)."""
+    held = _row(0, "", "Pa", 1e7)
+    held["stiffness_lo"] = held["stiffness_hi"] = math.nan
+    lost = _row(1, "not_identified:stiffness", "Pa", 1e7)
+    lost["stiffness_lo"] = lost["stiffness_hi"] = math.nan
+    record = _row(2, "", "Pa", 1e7)  # the record's one machine: held, its interval given
+    cells = _cells(_intervals_table([held, lost, record],
+                                    [_fit("a", "b", "dc", "trend"),
+                                     _fit("a", "b", "dc", "stiffness", "trend"),
+                                     _fit("a", "b", "dc", "trend")]))
+    assert cells["stiffness[1/m]"] == ["fixed", "[—, —]", "[2.9e+04, 3.8e+04]"]

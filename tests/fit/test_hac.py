@@ -196,3 +196,66 @@ def test_held_parameter_covariance_is_the_two_step_estimators():
         gap = np.max(np.abs(np.diag(no_cross) / np.diag(exact) - 1.0))
         assert (gap > 0.02) if cross_matters else (gap < 1e-9), (red, gap)
         assert np.all(np.diag(full) > np.diag(held_only) * 1.01), (red, full, held_only)
+
+
+def test_local_covariance_is_a_covariance_where_the_time_lag_one_is_not():
+    """userfixA (a new user's record of pure noise: the step's stiffness printed as
+    ``150.1 [150.1, 150.1]``). The time-lag sandwich averages each lag's products over its
+    pairs, so it need not be positive semidefinite: on these 60 samples of AR(1) noise (rho
+    0.95, steps of 0.5 and 1 s; found by a seeded search) it gives a negative variance for
+    the third coefficient. :func:`local_covariance` must then return the score HAC, which is
+    a covariance (Bartlett weights), not a matrix whose ``sqrt|C_ii|`` hides the sign.
+    Mistake caught: the positive-semidefinite check left out (the negative variance kept)."""
+    from dryfriction.fit.statistics import (
+        local_covariance,
+        positive_semidefinite,
+        time_hac_covariance,
+    )
+
+    rng = np.random.default_rng(8)
+    n = 60
+    t = np.cumsum(rng.choice([0.5, 1.0], n))
+    e = rng.normal(size=n)
+    r = np.zeros(n)
+    for i in range(n):
+        r[i] = 0.95 * (r[i - 1] if i else 0.0) + e[i]
+    J = np.column_stack([np.ones(n), np.exp(-(t - t[0]) / 3.0),
+                         rng.normal(size=n) * np.exp(-(t - t[0]) / 5.0)])
+    lag = time_hac_covariance(J, r, t)[0]
+    assert not lag.singular and np.diag(lag.matrix)[2] < 0  # the case this test is for
+    assert not positive_semidefinite(lag.matrix)
+    got, lags = local_covariance(J, r, t)
+    score, score_lags = hac_covariance(J, r)
+    assert positive_semidefinite(got.matrix) and np.all(np.diag(got.matrix) > 0)
+    assert np.array_equal(got.matrix, score.matrix) and lags == score_lags
+    # round-off is allowed: a covariance with a -1e-14 eigenvalue is still one
+    assert positive_semidefinite(np.diag([1.0, 2.0, -1e-14]))
+    assert not positive_semidefinite(np.diag([1.0, 2.0, -1e-6]))
+
+
+def test_an_indefinite_sandwich_is_singular_not_a_number(monkeypatch):
+    """userfixA: on a noise record's slide-hold-slide window the score HAC gave ``ln a``,
+    ``ln b``, ``ln Dc``, ``ln k`` and the trend negative variances (``Omega``'s round-off,
+    1e-16 of its largest eigenvalue, times the bread's largest eigenvalue squared); the
+    standard errors ``sqrt|C_ii|`` hid it and the row printed k as ``150.1 [150.1, 150.1]``.
+    Here ``Omega`` gets a negative eigenvalue of 1e-3 of its largest (the case in
+    miniature): the result must be singular (no interval), and on a well-conditioned problem
+    the same code is untouched (mistake caught: the check left out)."""
+    import dryfriction.fit.statistics as st
+
+    rng = np.random.default_rng(5)
+    X = _design(400)
+    r = _ar1(rng, 400, 0.5)
+    good, L = hac_covariance(X, r)
+    assert not good.singular and L > 0 and st.positive_semidefinite(good.matrix)
+    orig = st._bartlett
+
+    def indefinite(u, lags):
+        om = orig(u, lags)
+        w, v = np.linalg.eigh(om)
+        w[0] = -1e-3 * w[-1]
+        return (v * w) @ v.T
+
+    monkeypatch.setattr(st, "_bartlett", indefinite)
+    bad, L = hac_covariance(X, r)
+    assert bad.singular and L == 0 and np.all(np.isinf(bad.stderr))

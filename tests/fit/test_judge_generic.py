@@ -117,3 +117,66 @@ def test_an_interval_reaching_zero_is_not_identified_in_one_note() -> None:
     note = [n for n in row["notes"] if n.startswith("b = ")]
     assert len(note) == 1 and "[0, 0.02] reaches 0 or below" in note[0]
     assert math.isnan(row["b"])
+
+
+@pytest.mark.parametrize("var_k", [0.0, -4.0e-3])
+def test_a_degenerate_variance_is_no_interval(var_k: float) -> None:
+    """userfixA: a covariance that gives the stiffness a variance of 0 or below (a robust
+    sandwich that is not positive semidefinite) is no measurement. The stiffness gets no
+    interval and ``not_identified:stiffness``, and 'what the data fix' leaves it out. The
+    mistake it is for: the variance clipped to 0, which printed a new user's noise record's
+    k as ``150.1 [150.1, 150.1]`` (a zero-width interval inside the physical range and
+    within a decade, so 'identified')."""
+    d = _data()
+    theta = np.log([VAL[s.name] for s in SPECS])
+    cov = np.diag([0.04, 0.06, 0.09, 0.05]) ** 2
+    cov[3, 3] = var_k
+    row = _row(VAL)
+    words = judge_step(row, SPECS, theta, cov, False, Z, d)
+    assert "not_identified:stiffness" in words
+    assert math.isnan(row["stiffness_lo"]) and math.isnan(row["stiffness_hi"])
+    assert math.isnan(row["stiffness"])
+    fixed = [n for n in row["notes"] if n.startswith("what the data fix")]
+    assert fixed and "stiffness" not in fixed[0]
+    # the same for a - b: a zero variance of the combination is no interval either
+    cov0 = np.diag([0.04, 0.06, 0.09, 0.05]) ** 2
+    cov0[0, 0] = cov0[1, 1] = cov0[0, 1] = cov0[1, 0] = 0.0
+    row = _row(VAL)
+    judge_step(row, SPECS, theta, cov0, False, Z, d)
+    assert math.isnan(row["a_minus_b_lo"]) and math.isnan(row["a_minus_b"])
+
+
+def test_a_zero_width_interval_is_not_identified() -> None:
+    """userfixA: an interval with ``lo == hi`` (a profile or covariance that collapsed) is
+    not a measurement: ``not_identified`` with a note that says so (mistake: the span test
+    ``hi/lo <= 10`` alone, which a zero width passes)."""
+    d = _data()
+    theta = np.log([VAL[s.name] for s in SPECS])
+    cov = np.diag([0.04, 0.06, 0.09, 0.05]) ** 2
+    row = _row(VAL, {"b": (VAL["b"], VAL["b"])})
+    words = judge_step(row, SPECS, theta, cov, False, Z, d)
+    assert "not_identified:b" in words
+    note = [n for n in row["notes"] if n.startswith("b = ")]
+    assert len(note) == 1 and "zero width" in note[0]
+
+
+def test_no_transient_leaves_the_stiffness_unidentified_too() -> None:
+    """userfixA: a noise record's step (white noise displacement and friction, one change
+    given by --segments) printed "what the data fix (95 %): ... stiffness = 13.76 [5.227,
+    36.2]" from a fit no better than a straight line. k enters only through the transient,
+    so without one it is no more identified than a, b, Dc, whatever its interval (here a
+    clean one, within a decade and the physical range). Mistake: the transient test applied
+    to a, b, Dc only."""
+    d = _data()
+    theta = np.log([VAL[s.name] for s in SPECS])
+    cov = np.diag([0.04, 0.06, 0.09, 0.05]) ** 2
+    row = _row(VAL)
+    words = judge_step(row, SPECS, theta, cov, False, Z, d,
+                       "the fit is no better than a straight line (F test, p = 0.28)")
+    assert {f"not_identified:{n}" for n in ("a", "b", "dc", "stiffness")} <= set(words)
+    assert math.isnan(row["stiffness"])
+    fixed = [n for n in row["notes"] if n.startswith("what the data fix")]
+    assert fixed and "stiffness" not in fixed[0]
+    # with a transient the same interval identifies it
+    row = _row(VAL)
+    assert judge_step(row, SPECS, theta, cov, False, Z, d) == []

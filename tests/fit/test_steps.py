@@ -289,9 +289,14 @@ def test_command_record_writes_steps(tmp_path: Path):
 
     # the joint fit's line says every unit (a new user read "dc = 1.1e-05" bare), whole on
     # a pipe's 80 columns
-    joint = next(ln for ln in r.stdout.splitlines() if ln.startswith("joint fit (all steps)"))
+    joint = next(ln for ln in r.stdout.splitlines() if ln.startswith("joint fit (all steps"))
     assert re.search(r"dc = \S+ \+- \S+ m(, stiffness = \S+ \+- \S+ 1/m)?$", joint), joint
     assert re.search(r"a = \S+ \+- [^ ,]+, b = ", joint), joint  # a and b bare: dimensionless
+    # its +- is the engine's white one, said on the line, in a note and in fit.json (the
+    # steps' are autocorrelation-robust: a user would have quoted the narrower joint ones)
+    assert joint.startswith("joint fit (all steps; +- white-noise, a lower bound: see the "
+                            "note): a = "), joint
+    assert "- joint fit: the joint fit's standard errors are white-noise ones" in r.stdout
 
     rows = read_rows(out / "steps.csv")
     assert len(rows) == 2
@@ -301,6 +306,7 @@ def test_command_record_writes_steps(tmp_path: Path):
     assert float(rows[0]["v_after"]) == pytest.approx(3e-6, rel=0.02)
     rep = json.loads((out / "fit.json").read_text())
     assert len(rep["steps"]) == 2
+    assert any("white-noise ones" in n for n in rep["joint"]["identifiability_notes"])
     assert rep["steps"][1]["dc"] == pytest.approx(float(rows[1]["dc"]), rel=1e-12)
     assert (out / "step_0.png").exists() and (out / "steps_summary.png").exists()
     assert (out / "record.png").exists() and (out / "segments.csv").exists()  # issue 23

@@ -111,3 +111,19 @@ def test_record_legend_hides_no_segment_number_nor_the_title(unplaced: bool) -> 
     labels = [t for t in ax_v.texts if t.get_text().startswith(("1", "2"))]
     assert len(labels) == 2 and not any(leg.overlaps(t.get_window_extent(r)) for t in labels)
     assert len(ax_v.get_legend().get_texts()) == 6  # velocity, program, four kinds of mark
+
+
+def test_a_hold_split_by_a_normal_change_is_shaded_whole() -> None:
+    # userfixB: the hold 200-300 s with the normal force changed at 250 s (two segments at
+    # rest) is one hold, shaded to its end as slice_steps cuts it (mistake: shaded to 250 s)
+    rec, segs = _record(2.3e-6, 0.41e-6)
+    segs = [segs[0], SimpleNamespace(t_start=T0 + 200.0, t_end=T0 + 250.0, velocity=0.0,
+                                     start_placed=True),
+            SimpleNamespace(t_start=T0 + 250.0, t_end=T0 + 300.0, velocity=0.0,
+                            start_placed=True), *segs[2:]]
+    fig, info = plot_record(rec, segs, None)
+    assert info.shaded == [1, 3]
+    for name in info.panels:
+        spans = [(p.get_x(), p.get_x() + p.get_width()) for p in info.artists[name]]
+        np.testing.assert_allclose(spans, [(200.0, 300.0), (300.0, 450.0)], atol=1e-9)
+    assert "1 velocity change(s), 1 hold(s)" in fig._suptitle.get_text()

@@ -70,3 +70,18 @@ def test_normal_stress_change_up_and_down(level_after: float) -> None:
     sn = np.where(np.arange(t.size) < 1234, 5.3e6, level_after) + rng.normal(0, 2e3, t.size)
     (i,) = normal_changes(t, sn)
     assert i == 1234
+
+
+@pytest.mark.parametrize("ramp", [20.0, 30.0])
+def test_normal_stress_ramp_in_slow_sampling_is_one_change(ramp: float) -> None:
+    # mistake (detect8): split points of one ramp merged only when within 30 s (or ten blocks
+    # at the record's median interval): after a 10-fold slower sampling a block of 18 samples
+    # spans 18 s, the ramp's split points two blocks (36 s) apart were two changes, both
+    # placed at the same half-way crossing (zoo records 7049, 7186, 8125)
+    rng = np.random.default_rng(23)
+    t = _times((0.1, 30000), (1.0, 6000))
+    start = 6141.3
+    sn = 30e6 - 18e6 * np.clip((t - start) / ramp, 0.0, 1.0) + rng.normal(0, 1e3, t.size)
+    (i,) = normal_changes(t, sn)
+    # the half-way crossing, to the sample (1 s here)
+    assert t[i] == pytest.approx(start + 0.5 * ramp, abs=1.01)

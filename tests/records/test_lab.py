@@ -165,10 +165,13 @@ GOOD = "Time(s)\tDispl(microns)\tFriction\n" + "".join(
     (GOOD.replace("5\t10\t0.6", "5\t1O\t0.6"), "line 7, column 2", r"'1O' is not a number"),
     ("# c\n" + GOOD.replace("\n5\t10\t", "\n\n# gap\n5\t1O\t"), "line 10, column 2",
      r"'1O' is not a number"),
-    (GOOD.replace("5\t10\t0.6", "5\t10\tnan"), "line 7, column 3", r"not a finite number"),
+    # a missing value in 1 of 12 rows is more than MISSING_MAX to drop (test_missing_values)
+    (GOOD.replace("5\t10\t0.6", "5\t10\tnan"), "line 7, column 3",
+     r"1 of 12 data rows have a missing value.*more than 5 %"),
     (GOOD.replace("5\t10\t0.6", "4\t10\t0.6"), "line 7, column 1",
      r"time 4 does not increase \(previous 4\)"),
-    (GOOD.replace("5\t10\t0.6", "5\t\t0.6"), "line 7, column 2", r"empty cell"),
+    (GOOD.replace("5\t10\t0.6", "5\t\t0.6"), "line 7, column 2",
+     r"1 of 12 data rows have a missing value \(empty, NaN\)"),
     ("Time(s)\tDispl(um)\tFriction\n" + "1\t2\t0.6\n2\t3\t0.6\n", "line 3",
      r"only 2 data rows"),
     ("Time(s)\tDispl(um)\tShear(MPa)\tNormal(kN)\n" + "".join(f"{i}\t1\t2\t3\n"

@@ -109,3 +109,66 @@ def test_program_table_in_um_per_s_and_kn_with_the_unplaced_note() -> None:
     pa = segments_table((Segment(1000.0, 1080.0, 2.5e-6, 0, 160, normal=7.5e6),), "Pa")
     assert pa.splitlines()[1].split()[-1] == "7.5" and "MPa" in pa.splitlines()[0]
     assert len(pa.splitlines()) == 3
+
+
+# --- userfixB (6, 15): a hold split by a normal-stress change; a program without a step
+def test_a_normal_change_during_a_hold_leaves_one_hold_and_its_reslide() -> None:
+    # 2 um/s to 1050 s; at rest 1050-1110 s with the normal stress 5 -> 7 MPa at 1080 s
+    # (two segments, as detection gives them: a normal-stress change is a boundary); 3 um/s
+    # after. Lead min(0.5 x 50 s, 50 um / 2 um/s = 25 s) = 25 s -> from 1025 s (sample 50).
+    # Mistakes: the hold cut at the change (30 s, the window ending at 1110 s with v_after 0:
+    # the user's report), the reslide's segment skipped, before and after swapped
+    from dataclasses import replace
+
+    segs = make_segments(T, [0, 100, 160, 220, 400], [2e-6, 0.0, 0.0, 3e-6])
+    segs = tuple(replace(s, normal=n) for s, n in zip(segs, (5e6, 5e6, 7e6, 7e6), strict=True))
+    (w,) = slice_steps(_record(), segs)
+    assert (w.kind, w.i_start, w.i_end, w.t_change, w.v_before, w.v_after, w.hold) == (
+        "shs", 50, 400, 1050.0, 2e-6, 3e-6, 60.0)
+    assert w.normal_changes == ((1080.0, 5e6, 7e6),)
+    # a hold without a normal change has none; one split at its end gives no window
+    (plain,) = slice_steps(_record(), make_segments(T, [0, 100, 220, 400], [2e-6, 0.0, 3e-6]))
+    assert plain.hold == 60.0 and plain.normal_changes == ()
+    with pytest.raises(ValueError, match="no velocity step or hold"):
+        slice_steps(_record(), make_segments(T, [0, 100, 220, 300], [2e-6, 0.0, 0.0]))
+
+
+def test_normal_change_values_and_text_in_the_tables_units() -> None:
+    from dataclasses import replace
+
+    from dryfriction.records.labsteps import normal_change_text, normal_change_values
+
+    segs = make_segments(T, [0, 100, 160, 400], [2e-6, 0.0, 0.0])
+    segs = tuple(replace(s, normal=n) for s, n in zip(segs, (5e6, 5.5e6, 7.25e6), strict=True))
+    # the change reported at 1080.02 s finds the boundary at 1080 s (segment 2)
+    ch = normal_change_values(segs, [1080.02])
+    assert ch == ((1080.02, 5.5e6, 7.25e6),)
+    assert normal_change_text(ch) == "t = 1080.02 s: 5.5 -> 7.25 MPa"
+    assert normal_change_text(((1080.0, 2500.0, 3750.0),), "N") == "t = 1080 s: 2.5 -> 3.75 kN"
+
+
+def test_a_one_velocity_program_is_refused_with_its_reason() -> None:
+    # given by hand: the reason, not "give the program with --segments" (what the user did);
+    # detected: an example inside the record, at its speed, that parse_segments accepts
+    from dryfriction.records.labsteps import parse_segments
+
+    one = make_segments(T, [0, 400], [2.5e-6])
+    with pytest.raises(ValueError) as exc:
+        slice_steps(_record(), one, given=True)
+    assert str(exc.value) == ("bench.csv: no velocity step or hold in the load program given "
+                              "with --segments (1 segment(s), velocities 2.5e-06 m/s): a "
+                              "one-velocity record has no velocity step to fit")
+    with pytest.raises(ValueError) as exc:
+        slice_steps(_record(), one)
+    msg = str(exc.value)
+    assert "--segments, e.g. 0:2.5e-06,99.8:2.5e-05 (2.5 um/s, then 25 um/s from 99.8 s" in msg
+    example = msg.split("e.g. ")[1].split(" ")[0]
+    segs = parse_segments(example, _record())
+    assert [s.velocity for s in segs] == [2.5e-6, 2.5e-5]
+    assert len(slice_steps(_record(), segs)) == 1
+    hold_end = make_segments(T, [0, 200, 400], [2.5e-6, 0.0])
+    with pytest.raises(ValueError, match="one sliding velocity and a hold with no sliding on "
+                       "one side"):
+        slice_steps(_record(), hold_end, given=True)
+    with pytest.raises(ValueError, match=r"velocities 0 m/s\): the load point does not move"):
+        slice_steps(_record(), make_segments(T, [0, 400], [0.0]))

@@ -195,7 +195,19 @@ def test_no_change_message_states_the_smallest_change_of_the_two_halves() -> Non
         sxx.append(float(np.sum((t[a:b] - t[a:b].mean()) ** 2)))
     e = det.fluctuations.scatter(np.array(d), np.array(v), np.array(sxx))
     lim = Z_MIN * math.hypot(e[0], e[1])
-    assert no_change_message(rec, det) == (
+    msg = no_change_message(rec, det)
+    assert msg.startswith(
         f"flat.txt: no velocity change found above the apparatus' fluctuations of "
         f"{lim * 1e6:.3g} um/s ({Z_MIN:g} times the scatter of the velocities of the record's "
-        "two halves); give the program with --segments, e.g. 0:2e-7,1200:2e-6")
+        "two halves): it moves at 1.3 um/s throughout, and a one-velocity record has no "
+        "velocity step to fit; if its speed did change, give the program with --segments, "
+        "e.g. "), msg
+    # userfixB (15): the example is this record's own (it was 0:2e-7,1200:2e-6, outside a
+    # 120-s record): a program --segments accepts, inside the record, at its speed
+    from dryfriction.records.lab import parse_segments, slice_steps
+
+    example = msg.split("e.g. ")[1].split(" ")[0]
+    segs = parse_segments(example, rec)
+    assert [s.velocity for s in segs] == pytest.approx([1.3e-6, 1.3e-5], rel=0.01)
+    assert 0.3 * 119.8 < segs[1].t_start - t[0] < 0.7 * 119.8
+    assert len(slice_steps(rec, segs)) == 1

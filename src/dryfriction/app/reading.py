@@ -53,6 +53,12 @@ class RecordOutcome:
     files: list[str] = field(default_factory=list)
 
 
+def _changes(changes: Any) -> list[dict[str, float]]:
+    """``(time, before, after)`` normal-stress changes as JSON objects (s; Pa or N)."""
+    return [{"t_normal_change": t, "normal_before": b, "normal_after": a}
+            for t, b, a in changes]
+
+
 def record(path: str | Path, *, columns: str | None = _O["columns"],
            segments: str | None = _O["segments"], out: str | Path | None = _O["out"],
            force: bool = _O["force"], report: Callable[[str], None] | None = None,
@@ -91,6 +97,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         apparatus_note,
         detect_program,
         no_change_message,
+        normal_change_values,
         parse_column_map,
         parse_segments,
         read_record,
@@ -111,7 +118,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
     if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
         raise ValueError(no_change_message(rec, det))
     try:
-        steps = tuple(slice_steps(rec, segs))
+        steps = tuple(slice_steps(rec, segs, given=segments is not None))
         no_steps = ""
     except ValueError as exc:  # worth showing, not an error of this read-only workflow
         steps, no_steps = (), str(exc)
@@ -125,10 +132,13 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
                     for role, h in rec.columns.items()},
         "segments_from": "--segments" if segments is not None else "detected",
         "segments": [vars(s) for s in segs],
-        "steps": [vars(w) for w in steps],
+        # a hold's normal-stress changes as objects (time and stresses have different units)
+        "steps": [{**vars(w), "normal_changes": _changes(w.normal_changes)} for w in steps],
     }
     if no_steps:
         rep["no_steps"] = no_steps
+    if rec.notes:  # what the reader skipped or dropped (a preamble, rows with a missing value)
+        rep["reading_notes"] = list(rec.notes)
     if note:
         rep["apparatus_note"] = note.removeprefix("note: ")
     if det is not None:
@@ -136,6 +146,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         rep["rate_changes_s"] = list(det.rate_changes)
         rep["gaps_s"] = list(det.gaps)
         rep["normal_changes_s"] = list(det.normal_changes)
+        rep["normal_changes"] = _changes(normal_change_values(segs, det.normal_changes))
     rep["segments_option"] = segments_spec(segs, float(t[0]), t)
     rep = with_units(rep, RECORD_UNITS, {"normal": rec.normal_unit or "Pa"})
     files: list[str] = []

@@ -180,12 +180,14 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
     rec = lab.read_record(path, lab.parse_column_map(columns) if columns else None)
     det = None if segments is not None else lab.detect_program(rec)
     segs = lab.parse_segments(segments, rec) if segments is not None else det.segments  # type: ignore[union-attr]
+    for line in rec.notes:  # a preamble skipped, rows with a missing value dropped
+        _say(report, f"note: {line}")
     note = lab.apparatus_note(rec, [s.velocity for s in segs], given=segments is not None)
     if note:  # before the fit: a record of micrometres read as metres fits for minutes
         _say(report, note)
     if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
         raise ValueError(lab.no_change_message(rec, det))
-    wins = lab.slice_steps(rec, segs)
+    wins = lab.slice_steps(rec, segs, given=segments is not None)
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
                          "constant velocity (give it with --segments if it is not)")
@@ -211,6 +213,14 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                              progress=update, drive=drive)
     if profile_note:
         res.notes.append(profile_note)
+    for w, row in zip(wins, res.rows, strict=True):
+        if w.normal_changes:  # said beside the step's values (terminal, fit.json)
+            row["notes"].append(
+                "the normal stress changed during its hold (" + lab.normal_change_text(
+                    w.normal_changes, rec.normal_unit) + "); the hold is the whole time at "
+                "rest, but friction is shear over normal stress and the rate-and-state fit "
+                "has no normal-stress effect on the state (Linker & Dieterich 1992): a, b "
+                "and Dc may be biased")
     if res.drive is not None and res.drive.get("kind") == "measured":
         if profile:  # the same rule as the profiles: a fit of its own per step
             from ..fit.steps import compare_with_program
@@ -233,6 +243,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                               **res.to_dict()}
     if note:
         doc["apparatus_note"] = note.removeprefix("note: ")
+    if rec.notes:
+        doc["reading_notes"] = list(rec.notes)
     normal = next((r["normal_unit"] for r in res.rows if r.get("normal_unit")), "Pa")
     doc = with_units(doc, RECORD_FIT_UNITS, {"normal": normal})
     cv_results: dict[int, Any] = {}  # step -> the trap model's fit (--run-cv), for the figures

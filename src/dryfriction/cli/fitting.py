@@ -176,8 +176,14 @@ def fit_command(
             iv = p.profile_95 or p.interval_95
             ivs = "" if iv is None else ("[" + ", ".join("open" if x is None else f"{x:.4g}"
                                                           for x in iv) + "]")
-            cells = (header(p.name, p.unit or "1"), f"{p.value:.6g}",
-                     "" if p.stderr is None else f"{p.stderr:.2g}", ivs, p.identifiability)
+            # the +- only where the Wald interval is the one to quote: beside a profile
+            # interval it disagrees with ("use profile_95") it would contradict it silently
+            # (docs/tutorials/lab-record.md, "Reading the table")
+            pm = "" if p.stderr is None or (p.profile_95 is not None
+                                            and p.identifiability != "identified") \
+                else f"{p.stderr:.2g}"
+            cells = (header(p.name, p.unit or "1"), f"{p.value:.6g}", pm, ivs,
+                     p.identifiability)
             table.add_row(*(Text(c) for c in cells))  # "[open, 0.2]" is no Rich markup
         print_whole(table)
         for note in result.notes:
@@ -185,6 +191,11 @@ def fit_command(
         if "comparison" in report and "verdict" in report["comparison"]:
             out.print(f"comparison: {report['comparison']['verdict']}", highlight=False)
         out.print(f"wrote {out_dir}/" + ", ".join(done.files), highlight=False)
+        against = [f.split(":", 1)[1] for f in result.flags if f.startswith("against_model:")]
+        if against:  # the last line, where a user looks (as a record's "every step is flagged")
+            out.print(f"the data contradict the model ({', '.join(against)}: its trend has "
+                      "the sign the model forbids): read the first note before using any "
+                      "value", highlight=False, soft_wrap=True)
     if not result.success:
         err.print(f"[bold red]fit did not converge:[/] {result.message}", highlight=False,
                   soft_wrap=True)

@@ -47,7 +47,7 @@ def record_command(
     and the steps it is cut into. A record in which no velocity change stands above the
     fluctuations is refused (exit 2): give its program with --segments."""
     from ..app.reading import record as run
-    from ..records.lab import segments_table
+    from ..records.lab import normal_change_text, normal_change_values, segments_table
 
     done = run(path, columns=columns, segments=segments, out=out, force=force, report=say,
                on_note=lambda line: print(line, file=sys.stderr))
@@ -61,14 +61,18 @@ def record_command(
     for role, h in rec.columns.items():
         unit = rec.units.get(role, "") or ("-" if role == "mu" else "none: read as SI")
         print(f"  {role:<9} {h!r:<32} unit {unit}")
+    for line in report.get("reading_notes", []):
+        print(f"note: {line}")
     print(f"\nload program ({report['segments_from']}):")
     print(segments_table(segs, rec.normal_unit))
     print(f"as --segments: {report['segments_option']}")
     for key, what in (("resets_s", "displacement resets taken out"),
-                      ("rate_changes_s", "sampling-rate changes"), ("gaps_s", "gaps"),
-                      ("normal_changes_s", "normal-stress changes (segment boundaries)")):
+                      ("rate_changes_s", "sampling-rate changes"), ("gaps_s", "gaps")):
         if report.get(key):
             print(f"{what} at t = " + ", ".join(f"{v:g}" for v in report[key]) + " s")
+    if report.get("normal_changes_s"):  # with the stresses either side, as the table gives
+        print("normal-stress changes (segment boundaries): " + normal_change_text(
+            normal_change_values(segs, report["normal_changes_s"]), rec.normal_unit))
     if out_dir is not None:
         print(f"wrote {out_dir}/record.png, segments.csv")
     if no_steps:
@@ -80,4 +84,8 @@ def record_command(
     for w in steps:
         print(f"{w.index:>3} {w.kind:>5} {w.t_change:>13.6g} {w.v_before * 1e6:>16.4g} "
                   f"{w.v_after * 1e6:>15.4g} {w.hold:>9.4g} {w.i_start:>7d}-{w.i_end:<8d}")
+    for w in steps:
+        if w.normal_changes:  # the hold runs across them: its duration is the time at rest
+            print(f"step {w.index}: the normal stress changed during its hold, "
+                  + normal_change_text(w.normal_changes, rec.normal_unit))
 

@@ -13,7 +13,7 @@ from rich.table import Table
 from ..io.files import to_jsonable
 from .common import err, out
 
-__all__ = ["print_record_fit", "flagged_line"]
+__all__ = ["print_record_fit", "flagged_line", "drive_comparison_lines"]
 
 
 def _cell(x: Any) -> str:
@@ -21,6 +21,11 @@ def _cell(x: Any) -> str:
     if isinstance(x, float):
         return "—" if math.isnan(x) else f"{x:.4g}"
     return str(x)
+
+
+def _isfinite(x: Any) -> bool:
+    """Whether a cell holds a reported number (not NaN, not None)."""
+    return isinstance(x, (int, float)) and math.isfinite(x)
 
 
 def _fitted(fit: Any) -> str:
@@ -64,18 +69,24 @@ INTERVALS = ("a", "b", "a_minus_b", "dc", "b_over_dc", "stiffness")
 """The 95 % intervals the terminal shows (columns ``<name>_lo``, ``<name>_hi`` of steps.csv)."""
 
 
-def _intervals_table(rows: list[dict[str, Any]]) -> Table:
+def _intervals_table(rows: list[dict[str, Any]], fits: list[Any] | None = None) -> Table:
+    """The 95 % intervals, one row per step; a stiffness the step held at a given value
+    (``--stiffness K``: not among its fit's free parameters, no interval) reads ``fixed``,
+    not ``[—, —]`` (which says the data do not give it)."""
     from rich.text import Text
 
     from ..io.units import STEP_UNITS, header
 
-    table = Table(title="95 % intervals (— : not given by the data)")
+    table = Table(title="95 % intervals (— : not given by the data; fixed: held at a given "
+                        "value)")
     table.add_column("index", justify="right")
     for c in INTERVALS:
         table.add_column(Text(header(c, STEP_UNITS[c])), justify="right")
-    for r in rows:
-        table.add_row(str(r["index"]), *(f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]"
-                                         for c in INTERVALS))
+    for i, r in enumerate(rows):
+        held = fits is not None and "k" not in _fitted(fits[i]).split(", ")
+        table.add_row(str(r["index"]), *(
+            "fixed" if c == "stiffness" and held and not _isfinite(r[c + "_lo"])
+            else f"[{_cell(r[c + '_lo'])}, {_cell(r[c + '_hi'])}]" for c in INTERVALS))
     return table
 
 
@@ -99,6 +110,29 @@ def flagged_line(rows: list[dict[str, Any]]) -> str:
     return f"{n} of {len(rows)} steps flagged: read their flags and notes"
 
 
+def drive_comparison_lines(comparison: list[dict[str, Any]]) -> list[str]:
+    """The terminal's lines of ``fit.json``'s ``drive.comparison``: per step, ``k`` and ``a``
+    under the measured and the program drive. The program's values are its refit's raw ones
+    (:func:`dryfriction.fit.steps.compare_with_program`), so they are printed only beside a
+    measured value the data identify, and not at all where the refit did not succeed
+    (userfixA: a noise record's "program drive k = 150.1 /m ... (rms ... against 10)")."""
+    lines = []
+    for c in comparison:
+        m, p = c["measured"], c["program"]
+        if "not_run" in p:
+            continue
+        head = (f"step {c['index']}: measured drive k = {_cell(m['stiffness'])} /m, "
+                f"a = {_cell(m['a'])}; ")
+        if not p.get("success", True):
+            lines.append(head + f"the refit on the program drive did not succeed (rms "
+                                f"{_cell(p['rms'])}): no values")
+            continue
+        pk, pa = (_cell(p[n]) if _isfinite(m[n]) else "—" for n in ("stiffness", "a"))
+        lines.append(head + f"program drive k = {pk} /m, a = {pa} (rms {_cell(m['rms'])} "
+                            f"against {_cell(p['rms'])})")
+    return lines
+
+
 def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                      figure: bool) -> None:
     """Print a record's fit (:class:`dryfriction.app.outcome.RecordFitOutcome`): fit.json
@@ -117,19 +151,23 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
         wide.print(_steps_table(res.rows, f"rsf fit of {path}, one row per step (SI; v0 = "
                                 "v_before, mu0 the steady friction at v0; fitted: the "
                                 "machine's parameters left free)", res.fits))
-        wide.print(_intervals_table(res.rows))
+        wide.print(_intervals_table(res.rows, res.fits))
         out.print(LEGEND, highlight=False, soft_wrap=True)
         for row, f in zip(res.rows, res.fits, strict=True):  # what raised each flag
             for note in row["notes"][len(f.notes):]:
                 out.print(f"- step {row['index']}: {note}", highlight=False, soft_wrap=True)
         if res.joint is not None:
             est = {p.name: p for p in res.joint.parameters}
-            out.print("joint fit (all steps): " + ", ".join(
+            white = any("white-noise ones" in n for n in res.joint.notes)
+            out.print("joint fit (all steps" + ("; +- white-noise, a lower bound: see the "
+                                                "note" if white else "") + "): " + ", ".join(
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
                 + _unit(est[n].unit)
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False,
                 soft_wrap=True)
+            for note in res.joint.notes:
+                out.print(f"- joint fit: {note}", highlight=False, soft_wrap=True)
         for line in levels_lines(res.levels):
             out.print(line, highlight=False, soft_wrap=True)
         if res.stiffness is not None:
@@ -144,14 +182,8 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                       f"{c['sigma_t_change']:.2g} s (given {c['t_given']:.6g} s), "
                       f"{c['v_before']:.4g} -> {c['v_after']:.4g} m/s", highlight=False,
                       soft_wrap=True)
-        for c in (res.drive or {}).get("comparison", []):
-            m, p = c["measured"], c["program"]
-            if "not_run" in p:
-                continue
-            out.print(f"step {c['index']}: measured drive k = {_cell(m['stiffness'])} /m, "
-                      f"a = {_cell(m['a'])}; program drive k = {_cell(p['stiffness'])} /m, "
-                      f"a = {_cell(p['a'])} (rms {_cell(m['rms'])} against "
-                      f"{_cell(p['rms'])})", highlight=False, soft_wrap=True)
+        for line in drive_comparison_lines((res.drive or {}).get("comparison", [])):
+            out.print(line, highlight=False, soft_wrap=True)
         for note in res.notes:
             out.print(f"- {note}", highlight=False, soft_wrap=True)
         if not run_cv:

@@ -33,6 +33,8 @@ from .statistics import (
     covariance,
     format_value,
     information_criteria,
+    log_slope,
+    on_search_bound,
     profile_interval,
     quantile_95,
     runs_test,
@@ -41,12 +43,15 @@ from .statistics import (
 __all__ = ["fit", "fit_static", "fit_steady", "fit_joint", "compare_models"]
 
 
-Profiles = dict[int, tuple[float | None, float | None, float, float]]
-"""Per free parameter: profile limits (``None`` where open) and how far each side was searched,
-in the internal variables."""
+Profiles = dict[int, tuple[float | None, float | None, float, float,
+                           tuple[int, ...], tuple[int, ...]]]
+"""Per free parameter: profile limits (``None`` where open), how far each side was searched,
+in the internal variables, and the other parameters on their search bounds at each limit
+(:func:`.statistics.profile_interval`'s ``pinned``)."""
 
-_UNBOUNDED = ("bounded", "not", "poorly")
-"""Identifiability labels that mean the data do not bound the parameter on some side."""
+_UNBOUNDED = ("bounded", "not", "poorly", "at ")
+"""Identifiability labels that mean the data do not bound the parameter on some side (``at
+lower bound (...)``, ``at upper bound (...)``: the value is a search bound)."""
 
 
 @dataclass
@@ -205,13 +210,14 @@ def _profiles(prob: Problem, opt: _Optimum, z: float, notes: list[str],
         for j in range(prob.p):
             track.begin("profile", f"profile of {prob.specs[j].name} "
                                    f"({j + 1} of {prob.p})")
+            pinned: list[tuple[int, ...]] = []
             lo_c, hi_c, r_lo, r_hi, better = profile_interval(
-                prob, opt.theta, opt.cost, s2, j, float(cov.stderr[j]), z * z)
+                prob, opt.theta, opt.cost, s2, j, float(cov.stderr[j]), z * z, pinned)
             track.end()
             if better is not None:
                 improved = better
                 break
-            profiles[j] = (lo_c, hi_c, r_lo, r_hi)
+            profiles[j] = (lo_c, hi_c, r_lo, r_hi, pinned[0], pinned[1])
         if improved is None:
             break
         # the profiles and the Jacobian run again from the better optimum
@@ -225,6 +231,14 @@ def _profiles(prob: Problem, opt: _Optimum, z: float, notes: list[str],
                      "restarted from there")
         profiles = {}
     return profiles, cov
+
+
+def _bound_words(spec: ParamSpec, th: float) -> str:
+    """``"t0's lower search bound (1e-12 s)"``: which bound an internal value sits on."""
+    lo_b, hi_b = spec.bounds
+    side = "lower" if th - lo_b < hi_b - th else "upper"
+    return (f"{spec.name}'s {side} search bound "
+            f"({format_value(spec.lo if side == 'lower' else spec.hi, spec.unit)})")
 
 
 def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov: Covariance,
@@ -249,32 +263,53 @@ def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov
             stderr = val * sej if s.log else sej
         ident = "identified"
         note = ""
-        at_bound = min(theta[j] - lo_b[j], hi_b[j] - theta[j]) < 1e-6 * max(1.0, abs(theta[j]))
+        at_bound = on_search_bound(s, float(theta[j]))
         prof: tuple[float | None, float | None] | None = None
         searched: tuple[float, float] | None = None
         if j in profiles:
-            lo_c, hi_c, r_lo, r_hi = profiles[j]
+            lo_c, hi_c, r_lo, r_hi, pin_lo, pin_hi = profiles[j]
+            # a limit reached while another parameter sat on its search bound is that bound's,
+            # not the data's: that side is open (its value quoted in the note)
+            set_by = [(side, c, pins) for side, c, pins in (("lower", lo_c, pin_lo),
+                                                            ("upper", hi_c, pin_hi))
+                      if c is not None and pins]
+            lo_c = None if pin_lo else lo_c
+            hi_c = None if pin_hi else hi_c
             prof = (None if lo_c is None else s.from_internal(lo_c),
                     None if hi_c is None else s.from_internal(hi_c))
             searched = (s.from_internal(r_lo), s.from_internal(r_hi))
             ident, note = classify(s, theta[j], sej, lo_c, hi_c, r_lo, r_hi,
                                    m.data_window(s.name, ds), z)
+            if set_by:
+                note = (note + "; " if note else f"{s.name}: ") + "; ".join(
+                    f"its {side} 95 % profile limit {format_value(s.from_internal(c), s.unit)}"
+                    " is set by " + ", ".join(_bound_words(specs[k], theta[k]) for k in pins)
+                    + ", not by the data (with "
+                    + ("it" if len(pins) == 1 else "them") + " free beyond, the profile "
+                    "would go on): that side is open"
+                    for side, c, pins in set_by)
         elif not math.isfinite(sej) or (s.log and sej > 2.0):
             ident = "poorly determined (Jacobian; no profile)"
             note = (f"{s.name}: the Jacobian gives a relative error of {sej:.3g} in ln "
                     f"{s.name}; run with the profile to see what the data bound" if s.log else
                     f"{s.name}: the Jacobian gives no finite standard error; run with the "
                     "profile to see what the data bound")
+        if at_bound:
+            if ident == "identified":
+                opt.success = False
+            side = "lower" if theta[j] - lo_b[j] < hi_b[j] - theta[j] else "upper"
+            bound = s.lo if side == "lower" else s.hi
+            ident = f"at {side} bound ({format_value(bound, s.unit)})"
+            note = (f"{s.name} = {format_value(val, s.unit)} sits on its {side} search bound "
+                    f"{format_value(bound, s.unit)} (allowed [{s.lo:g}, {s.hi:g}]"
+                    + (f" {s.unit}" if s.unit else "") + "): the data push it out of the "
+                    "allowed range, so the value is the bound, not an estimate, and it has no "
+                    "error bar" + (f"; {note}" if note else ""))
         if ident.startswith(_UNBOUNDED):
             stderr, wald = None, None
             notes.append(note)
         elif note:
             notes.append(note)
-        if at_bound:
-            notes.append(f"{s.name} = {format_value(val, s.unit)} sits on its search bound "
-                         f"[{s.lo:g}, {s.hi:g}]: the data push it out of the allowed range")
-            if ident == "identified":
-                opt.success = False
         estimates.append(ParameterEstimate(s.name, s.unit, val, False, stderr, wald, prof,
                                            searched, ident, note))
     return estimates
@@ -353,6 +388,48 @@ def _goodness(prob: Problem, theta: Array, cost: float, s2: float, notes: list[s
                          f"{entry['runs_test_p']:.2g}): a systematic misfit")
         per.append(entry)
     return goodness, per
+
+
+def _against_model(prob: Problem, per: list[dict[str, Any]], notes: list[str]) -> list[str]:
+    """Each data set's own trend against ``ln x`` (:func:`.statistics.log_slope`) where the
+    model allows one sign only (:meth:`.models.CVModel.allowed_trend`): written into its ``per``
+    entry as ``trend``; a trend whose 95 % interval lies wholly on the forbidden side (or,
+    with no noise estimate, a slope on that side) contradicts the model, which then fits
+    only a flat line through the data and reports parameters that mean nothing. Returns the
+    flags ``against_model:<source>`` and puts the reason first among the notes (ours)."""
+    flags: list[str] = []
+    for d, entry in zip(prob.datasets, per, strict=True):
+        if isinstance(d, SeriesData):
+            continue
+        # a model that does not say (a step windows' joint model) allows either sign
+        rule = getattr(prob.model, "allowed_trend", None)
+        allowed = None if rule is None else rule(d.kind)
+        if allowed is None:
+            continue
+        sign, why = allowed
+        tr = log_slope(d.x, d.y, d.sigma)
+        if tr["slope"] is None:
+            continue
+        slope, iv = tr["slope"], tr["interval_95"]
+        against = (sign * iv[1] < 0 if sign > 0 else sign * iv[0] < 0) if iv is not None \
+            else sign * slope < 0
+        entry["trend"] = {
+            "quantity": f"d {d.y_name}/d ln {d.x_name}", "value": slope,
+            "stderr": tr["stderr"], "interval_95": iv, "per_decade": slope * math.log(10.0),
+            "unit": f"1 ({d.y_name} per e-fold of {d.x_name}; per_decade: per factor 10)",
+            "model_allows": "growth" if sign > 0 else "decrease", "against_model": against}
+        if not against:
+            continue
+        flags.append(f"against_model:{d.source}")
+        verb = "falls" if slope < 0 else "grows"
+        ivs = ("no error estimate with two points" if iv is None else
+               f"95 %: {iv[0]:.3g} to {iv[1]:.3g}")
+        notes.insert(0, f"{d.source}: the data contradict the model: {d.y_name} {verb} with "
+                        f"{d.x_name}, d {d.y_name}/d ln {d.x_name} = {slope:.3g} ({ivs}; "
+                        f"{slope * math.log(10.0):.3g} per decade of {d.x_name}; "
+                        f"{d.y_name} dimensionless), while {why}: the fit can only flatten "
+                        "the curve, and its parameters mean nothing")
+    return flags
 
 
 def _consistency(prob: Problem, cost: float, track: EvaluationTracker) -> dict[str, Any]:
@@ -476,6 +553,10 @@ def fit(
     estimates = _estimates(prob, specs_all, opt, cov, profiles, z, notes)
     derived = _derived(prob, opt.theta, cov, estimates)
     goodness, per = _goodness(prob, opt.theta, opt.cost, s2, notes)
+    flags = _against_model(prob, per, notes)
+    flags += [f"at_bound:{e.name}" for e in estimates if e.identifiability.startswith("at ")]
+    flags += [f"not_identified:{e.name}" for e in estimates
+              if e.identifiability.startswith(("bounded", "not", "poorly"))]
     cons: dict[str, Any] | None = None
     if consistency and len(ds) > 1 and opt.success:
         cons = _consistency(prob, opt.cost, track)
@@ -495,7 +576,7 @@ def fit(
         per_dataset=tuple(per),
         information=information_criteria(opt.cost, prob.n, prob.p, prob.sigma_given),
         consistency=cons, notes=tuple(dict.fromkeys(notes)),
-        sources=tuple(d.source for d in ds), fitted_model=m,
+        sources=tuple(d.source for d in ds), fitted_model=m, flags=tuple(flags),
     )
 
 

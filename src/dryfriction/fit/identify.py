@@ -11,7 +11,7 @@ identified when its 95 % interval (the row's: the autocorrelation-robust Wald in
 range (:data:`PHYSICAL`; for ``Dc`` the slips the window probes: from one sample's
 load-point slip at the velocity after the change to the slip after the change) and spans at most
 :data:`MAX_SPAN` (a factor of 10: an interval wider than a decade fixes only an order of
-magnitude), the value is not on its search bound, and (for ``a``, ``b``, ``Dc``) the step
+magnitude), the value is not on its search bound, and the step
 shows a transient at all (:func:`transient_test`: a fit to noise alone can have narrow Wald
 intervals). Otherwise the value and its standard
 error are not reported (NaN), an interval end outside the range is dropped, and the step
@@ -279,8 +279,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
     ``specs``, ``theta``, ``cov``: the fitted variables, the optimum and their covariance
     (the row's: robust where it is); ``z`` the 95 % quantile used for the row's intervals.
     ``no_transient``: why the data show no transient beyond the noise
-    (:func:`transient_test`); then ``a``, ``b``, ``dc`` are not identified whatever their
-    intervals say (a fit to noise can have narrow Wald intervals).
+    (:func:`transient_test`); then ``a``, ``b``, ``dc`` and the stiffness (which enters
+    only through the transient) are not identified whatever their intervals say (a fit to
+    noise can have narrow Wald intervals).
     """
     names = [s.name for s in specs]
     notes: list[str] = row.setdefault("notes", [])
@@ -293,16 +294,18 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
     row["slip_after"] = slip_after
 
     def var(g: Array) -> float:
+        # a variance <= 0 is a degenerate covariance, not an exact value (no interval)
         if singular:
             return math.nan
         v = float(g @ cov @ g)
-        return v if math.isfinite(v) and v >= 0 else math.nan
+        return v if math.isfinite(v) and v > 0 else math.nan
 
     if "stiffness" in names:
         j = names.index("stiffness")
+        g_k = np.zeros(len(names))
+        g_k[j] = 1.0
         row["stiffness_lo"], row["stiffness_hi"] = _interval(specs[j], theta[j],
-                                                             math.sqrt(max(cov[j, j], 0.0))
-                                                             if not singular else math.nan, z)
+                                                             math.sqrt(var(g_k)), z)
     else:
         row["stiffness_lo"] = row["stiffness_hi"] = math.nan
     words: list[str] = []
@@ -317,9 +320,13 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
         on_bound = (math.isfinite(val) and val > 0
                     and min(abs(math.log(val / spec.lo)), abs(math.log(spec.hi / val)))
                     < _BOUND_REL)
-        span_ok = math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi / lo <= MAX_SPAN
+        # hi > lo: a zero-width interval is a degenerate covariance, never a measurement
+        span_ok = (math.isfinite(lo) and math.isfinite(hi) and lo > 0 and hi > lo
+                   and hi / lo <= MAX_SPAN)
         inside = math.isfinite(lo) and math.isfinite(hi) and lo >= rlo and hi <= rhi
-        noise_only = bool(no_transient) and name in ("a", "b", "dc")
+        # k too: it enters only through the transient (userfixA: a noise record's step gave
+        # "stiffness = 13.76 [5.227, 36.2]" as what the data fix, from a fit no better than a line)
+        noise_only = bool(no_transient) and name in ("a", "b", "dc", "stiffness")
         if span_ok and inside and not on_bound and not noise_only:
             continue
         unidentified.append(name)
@@ -331,7 +338,9 @@ def judge_step(row: dict[str, Any], specs: Sequence[ParamSpec], theta: Array, co
             why.append("the covariance gives no finite interval")
         else:
             if not span_ok:  # lo <= 0: an interval reaching 0 has no finite span
-                span = (f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0
+                span = ("has zero width (a degenerate covariance, not a measurement)"
+                        if hi <= lo else
+                        f"spans a factor {hi / lo:.3g} (> {MAX_SPAN:g})" if lo > 0
                         else "reaches 0 or below")
                 why.append(f"its 95 % interval [{lo:.3g}, {hi:.3g}] {span}")
             if not inside:

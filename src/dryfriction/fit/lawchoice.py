@@ -162,8 +162,8 @@ def fit_steps_laws(record: Any, windows: Sequence[Any] | None = None,
         tick = None if outer is None else (
             lambda done, total, j=j: outer(j * total + done, len(laws) * total))
         res = _run(record, wins, segments, stiffness, law=L,
-                   initial="free" if initial == "free" else "steady", progress=tick,
-                   **kwargs)
+                   initial="free" if initial == "free" else "steady",
+                   **kwargs, **({} if tick is None else {"progress": tick}))
         if initial == "auto":
             _free_start(res, record, wins, segments, stiffness, L, kwargs)
         results[L] = res

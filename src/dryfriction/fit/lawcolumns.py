@@ -58,8 +58,9 @@ def add_law_columns(row: dict[str, Any], law: str, information: Mapping[str, Any
             continue
         j = names.index(name)
         sp = specs[j]
+        # a variance of 0 is a degenerate covariance: no interval, not a zero-width one
         se = math.sqrt(cov[j, j]) if not singular and np.isfinite(cov[j, j]) \
-            and cov[j, j] >= 0 else math.nan
+            and cov[j, j] > 0 else math.nan
         val = sp.from_internal(float(theta[j]))
         lo, hi = ((sp.from_internal(float(theta[j]) - z * se),
                    sp.from_internal(float(theta[j]) + z * se)) if math.isfinite(se)

@@ -76,6 +76,11 @@ class ParamSpec:
         Fitted as ``ln p`` (a positive scale).
     lo, hi : float
         Search bounds in the parameter's own units.
+    physical : (bool, bool)
+        Whether ``lo``/``hi`` stands for a physical limit the parameter cannot pass (``eps``,
+        ``a``, ``b`` at 1e-6 for 0; the direct effect's ``0 <= A``), not only the search's
+        reach: a profile limit reached with another parameter there is the model's, not the
+        search's (:func:`.statistics.profile_interval`'s ``pinned``).
     """
 
     name: str
@@ -83,6 +88,7 @@ class ParamSpec:
     log: bool
     lo: float
     hi: float
+    physical: tuple[bool, bool] = (False, False)
 
     def to_internal(self, p: float) -> float:
         return math.log(p) if self.log else float(p)
@@ -352,14 +358,15 @@ class CVModel:
         return opts
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
-        eps = ParamSpec("eps", "", True, 1e-6, 1.0)
+        eps = ParamSpec("eps", "", True, 1e-6, 1.0, (True, False))  # 1e-6: no ageing
         mu_el = ParamSpec("mu_el", "", True, 1e-3, 10.0)
         t0 = ParamSpec("t0", "s", True, 1e-12, 1e9)
         if self.direct and "static" in kinds:
             raise ValueError("the direct effect (direct) cannot be fitted to static data: the "
                              "threshold depends on the pull velocity, which a t_w,mu_s file "
                              "does not give; fit steady or time-series data")
-        extra = (ParamSpec("direct", "", False, 0.0, DIRECT_MAX),) if self.direct else ()
+        extra = (ParamSpec("direct", "", False, 0.0, DIRECT_MAX, (True, False)),) \
+            if self.direct else ()
         if kinds == {"static"}:
             return eps, t0, mu_el
         if kinds == {"steady"}:
@@ -380,6 +387,15 @@ class CVModel:
         if "series" in kinds and (self.stiffness != math.inf or self.trend):
             n.append(f"time series simulated on a {_machine_note(self.stiffness, self.trend)}")
         return n
+
+    def allowed_trend(self, kind: str) -> tuple[int, str] | None:
+        """The sign the model allows for a data kind's curve against ``ln x``, and why (``None``:
+        either sign). Static friction grows with the hold time for every ``eps > 0`` (eq. 27:
+        the aged contacts' threshold rises as ``a_r(t_w/t0)`` grows, eq. 17)."""
+        if kind == "static":
+            return 1, ("the trap model's static friction grows with hold time (ageing, eq. 27, "
+                       "eps > 0)")
+        return None
 
     def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:
         x = d.x if x is None else x
@@ -665,8 +681,8 @@ class RSFModel:
 
     def parameters(self, kinds: frozenset[str]) -> tuple[ParamSpec, ...]:
         mu0 = ParamSpec("mu0", "", False, -5.0, 5.0)
-        a = ParamSpec("a", "", True, 1e-6, 1.0)
-        b = ParamSpec("b", "", True, 1e-6, 1.0)
+        a = ParamSpec("a", "", True, 1e-6, 1.0, (True, False))  # 1e-6 for 0
+        b = ParamSpec("b", "", True, 1e-6, 1.0, (True, False))
         dc = ParamSpec("dc", "m", True, 1e-12, 1.0)
         if kinds == {"steady"}:
             return mu0, ParamSpec("a_minus_b", "", False, -1.0, 1.0)
@@ -688,6 +704,14 @@ class RSFModel:
             n.append(f"time series simulated with {self.state_law} law, "
                      f"{_machine_note(self.stiffness, self.trend)}")
         return n
+
+    def allowed_trend(self, kind: str) -> tuple[int, str] | None:
+        """As :meth:`CVModel.allowed_trend`: healing ``mu_s = mu0 + b ln(1 + t_w V0/Dc)`` grows with
+        the hold time for every ``b > 0`` (ageing law, Ruina 1983)."""
+        if kind == "static":
+            return 1, ("rate-and-state healing, mu0 + b ln(1 + t_w V0/Dc) with b > 0, grows "
+                       "with hold time")
+        return None
 
     def _params(self, v: Mapping[str, float]) -> RateState:
         assert self.v0 is not None

@@ -31,7 +31,9 @@ class ParameterEstimate:
         Held fixed by the user.
     stderr : float or None
         Standard error from the Jacobian (delta method for log parameters); ``None`` when the
-        parameter is fixed or not identified.
+        parameter is fixed, not identified or at a bound. Quote it only where
+        ``identifiability`` is "identified"; where it says "use profile_95", the profile
+        interval is the one to quote (the table then prints no ``+-``).
     interval_95 : tuple or None
         Wald 95 % interval (``theta +- q se`` in the fitted variable, mapped back; ``q`` the
         normal 97.5 % quantile with given uncertainties, Student t with ``n - p`` otherwise).
@@ -41,7 +43,9 @@ class ParameterEstimate:
     identifiability : str
         "identified", "identified (nonlinear: use profile_95)", "bounded above only",
         "bounded below only", "not identified", "poorly determined (Jacobian; no profile)",
-        or "fixed".
+        "at lower bound (<bound> <unit>)" / "at upper bound (...)" (the value is its search
+        bound: no error bar), or "fixed". A profile limit reached while another parameter
+        sat on its search bound counts as open (the note quotes it).
     note : str
         A sentence saying the same in words.
     """
@@ -79,6 +83,12 @@ class FitResult:
 
     ``success`` is False when the optimiser did not converge (``message`` says why) or a
     parameter sits on its search bound; the values are then not to be trusted.
+
+    ``flags`` (the words of a record's ``flags`` column, where they apply):
+    ``against_model:<source>`` (the data's own trend has the sign the model forbids, e.g.
+    static friction falling with hold time: the per-data-set ``trend`` in
+    ``per_dataset``), ``at_bound:<name>`` (the value is its search bound),
+    ``not_identified:<name>`` (bounded on one side only, or not at all); the notes say why.
     """
 
     model: str
@@ -100,6 +110,7 @@ class FitResult:
     notes: tuple[str, ...]
     sources: tuple[str, ...]
     fitted_model: Model = field(repr=False)
+    flags: tuple[str, ...] = ()
 
     @property
     def values(self) -> dict[str, float]:
@@ -147,6 +158,7 @@ class FitResult:
             "information_criteria": self.information,
             "consistency": self.consistency,
             "identifiability_notes": list(self.notes),
+            "flags": list(self.flags),
             "data_files": list(self.sources),
             "starts": list(self.starts),
         }

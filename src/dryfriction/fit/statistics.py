@@ -28,14 +28,17 @@ __all__ = [
     "hac_bandwidth",
     "time_hac_covariance",
     "local_covariance",
+    "positive_semidefinite",
     "held_parameter_covariance",
     "with_stderr",
     "lag1_autocorrelation",
     "quantile_95",
     "runs_test",
     "information_criteria",
+    "log_slope",
     "format_value",
     "profile_interval",
+    "on_search_bound",
     "classify",
     "consistency_test",
 ]
@@ -169,7 +172,10 @@ def hac_covariance(J: Array, r: Array, lags: int | None = None) -> tuple[Covaria
     Returns
     -------
     Covariance, int
-        The covariance and the bandwidth ``L`` used (0 where ``J`` is singular).
+        The covariance and the bandwidth ``L`` used (0 where ``J`` is singular). Singular
+        also where rounding made the sandwich indefinite (:func:`positive_semidefinite`):
+        a near-singular ``J`` whose bread amplifies ``Omega``'s round-off beyond the small
+        directions' variance.
     """
     n, p = J.shape
     if p == 0:
@@ -190,6 +196,14 @@ def hac_covariance(J: Array, r: Array, lags: int | None = None) -> tuple[Covaria
     bread = base.matrix  # (J^T J)^-1
     cov = bread @ omega @ bread * (n / (n - p))
     cov = 0.5 * (cov + cov.T)
+    if not positive_semidefinite(cov):
+        # the sandwich is a covariance in exact arithmetic; a negative variance here is
+        # rounding: Omega's round-off (1e-16 of its largest eigenvalue) times the bread's
+        # largest eigenvalue squared, which a near-singular Jacobian makes larger than the
+        # small directions' true variance (userfixA: a noise record's shs window, Omega's
+        # eigenvalues 1.6e6 down to -3e-10, the bread's up to 1.1e7: variances of -1.6e4).
+        # No number is better than a wrong one: singular, as a singular Jacobian.
+        return Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True), 0
     return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), L
 
 
@@ -283,6 +297,26 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
     return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), (lags + 1) * delta
 
 
+def positive_semidefinite(mat: Array, tol: float = 1e-10) -> bool:
+    """Whether the symmetric ``mat`` is a covariance at all: finite, no eigenvalue below
+    ``-tol`` times the largest in magnitude (round-off allowed).
+
+    Why (ours): the time-lag sandwich (:func:`time_hac_covariance`) averages each lag's
+    products over the pairs at that lag, which, unlike the Bartlett estimate of
+    :func:`hac_covariance`, need not give a positive semidefinite matrix. On a record of pure
+    noise with a hold (a new user's trial) it gave negative variances for ``ln a``, ``ln b``,
+    ``ln Dc``, ``ln k`` and the trend; the standard errors ``sqrt|C_ii|`` hid the sign, and the
+    step's stiffness was printed as ``150.1 [150.1, 150.1]`` (a variance clipped to 0).
+    """
+    mat = np.asarray(mat, float)
+    if mat.size == 0:
+        return True
+    if not np.all(np.isfinite(mat)):
+        return False
+    eig = np.linalg.eigvalsh(0.5 * (mat + mat.T))
+    return bool(eig[0] >= -tol * max(float(np.max(np.abs(eig))), 1e-300))
+
+
 def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
     """The covariance of a rate-and-state step fit (ours): the time-lag sandwich
     :func:`time_hac_covariance`, each standard error floored at the score HAC's
@@ -299,6 +333,8 @@ def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
     and its 95 % intervals held the truth in 21, 15, 28 of 40; not a bandwidth matter (at the
     time-lag one's bandwidth: 14, 12, 25 of 40); this one: 1.04, 1.04, 0.94 and 37, 38, 39 of
     40. The floor keeps the score HAC's where the residuals are not stationary (a misfit).
+    Where the time-lag sandwich is not a covariance (:func:`positive_semidefinite`: a
+    negative variance), the score HAC's, which is.
 
     Parameters
     ----------
@@ -316,7 +352,7 @@ def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
     """
     score, lags = hac_covariance(J, r)
     local = time_hac_covariance(J, r, t)[0]
-    if score.singular or local.singular:
+    if score.singular or local.singular or not positive_semidefinite(local.matrix):
         return score, lags
     scale = np.ones(len(local.stderr))
     ok = local.stderr > 0
@@ -403,6 +439,51 @@ def runs_test(r: Array) -> float | None:
     return float(2.0 * stats.norm.sf(abs(runs - mean) / math.sqrt(var)))
 
 
+def log_slope(x: Array, y: Array, sigma: Array | None = None) -> dict[str, Any]:
+    """The measured trend of ``y`` against ``ln x``: the weighted least-squares line
+    ``y = c + s ln x`` over ``x > 0`` (ours; model-free, so that a fit can say when the data's
+    own trend has the wrong sign for the model).
+
+    Parameters
+    ----------
+    x, y : ndarray
+        Abscissa (any unit: the slope per e-fold does not depend on it) and ordinate.
+    sigma : ndarray, optional
+        Uncertainties of ``y``: weights ``1/sigma^2`` and a normal 95 % quantile; without
+        them the noise is estimated from the line's residuals (Student t, ``n - 2``).
+
+    Returns
+    -------
+    dict
+        ``slope`` (``dy/d ln x``; ``ln 10`` times it per decade of ``x``), ``stderr`` and
+        ``interval_95`` (``None`` with two points and no uncertainties: no noise estimate),
+        ``n``; ``slope`` ``None`` where fewer than two distinct ``x > 0``.
+    """
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    keep = (x > 0) & np.isfinite(y)
+    lx, yy = np.log(x[keep]), y[keep]
+    w = np.ones(lx.size) if sigma is None else 1.0 / np.asarray(sigma, float)[keep] ** 2
+    n = int(lx.size)
+    out: dict[str, Any] = {"slope": None, "stderr": None, "interval_95": None, "n": n}
+    if n < 2 or np.ptp(lx) == 0:
+        return out
+    xm = float(np.sum(w * lx) / np.sum(w))
+    sxx = float(np.sum(w * (lx - xm) ** 2))
+    slope = float(np.sum(w * (lx - xm) * yy) / sxx)
+    out["slope"] = slope
+    resid = yy - (float(np.sum(w * yy) / np.sum(w)) + slope * (lx - xm))
+    if sigma is not None:
+        se, q = math.sqrt(1.0 / sxx), Z95
+    elif n > 2:
+        se = math.sqrt(float(np.sum(w * resid**2)) / (n - 2) / sxx)
+        q = float(stats.t.ppf(0.975, n - 2))
+    else:
+        return out
+    out["stderr"] = se
+    out["interval_95"] = (slope - q * se, slope + q * se)
+    return out
+
+
 def information_criteria(cost: float, n: int, p: int, sigma_given: bool) -> dict[str, float]:
     """AIC, AICc and BIC from the Gaussian likelihood (constants dropped consistently)."""
     if sigma_given:
@@ -419,8 +500,25 @@ def format_value(x: float, unit: str) -> str:
     return f"{x:.3g}" + (f" {unit}" if unit else "")
 
 
+def on_search_bound(spec: ParamSpec, th: float) -> bool:
+    """Whether the internal value ``th`` sits on ``spec``'s search bound (within ``1e-6``
+    relative, as the optimiser leaves it there)."""
+    lo_b, hi_b = spec.bounds
+    return bool(min(th - lo_b, hi_b - th) < 1e-6 * max(1.0, abs(th)))
+
+
+def _on_reach(spec: ParamSpec, th: float) -> bool:
+    """On a search bound that is only the search's reach, not a physical limit
+    (:attr:`.models.ParamSpec.physical`)."""
+    if not on_search_bound(spec, th):
+        return False
+    lo_b, hi_b = spec.bounds
+    return not spec.physical[0 if th - lo_b < hi_b - th else 1]
+
+
 def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int, se: float,
-                     thr: float = PROFILE_THRESHOLD) -> tuple[
+                     thr: float = PROFILE_THRESHOLD,
+                     pinned: list[tuple[int, ...]] | None = None) -> tuple[
                          float | None, float | None, float, float, tuple[Array, float] | None]:
     """95 % profile interval of parameter ``j`` (internal variable); ``None`` for open sides.
 
@@ -428,6 +526,14 @@ def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int
     standard error and doubling while the profile stays flat, re-minimising over the other
     parameters from the previous point, until ``2 (cost - cost_min)/s^2`` exceeds the
     threshold (then bisects the crossing) or the search bound is reached.
+
+    ``pinned``, if given, gets one tuple per side (lower, then upper): the other parameters
+    that sit on their search bounds (:func:`on_search_bound`; not a bound that stands for a
+    physical limit, :attr:`.models.ParamSpec.physical`) where the profile crosses the
+    threshold (empty where none, or where it does not cross). Such a limit is set by that
+    bound, not by the data: with the other parameter free beyond it the profile would rise
+    more slowly (userfixA: ``t0`` on its 1e-12 s bound made ``eps`` and ``mu_el`` look
+    identified).
     """
     spec = prob.specs[j]
     lo_b, hi_b = spec.bounds
@@ -443,6 +549,7 @@ def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int
         step = min(max(step, 1e-3 if spec.log else 1e-9), max_step)
         prev_t, prev_d = theta.copy(), 0.0
         crossing: float | None = None
+        pins: tuple[int, ...] = ()
         for _ in range(60):
             x = prev_t[j] + direction * step
             at_bound = (x - bound) * direction >= 0
@@ -466,12 +573,18 @@ def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int
                         a_t, a_d = m, d_m
                 crossing = 0.5 * (a_t[j] + b_t[j])
                 del a_d
+                if pinned is not None:
+                    pins = tuple(k for k in range(prob.p) if k != j and (
+                        _on_reach(prob.specs[k], float(a_t[k]))
+                        or _on_reach(prob.specs[k], float(b_t[k]))))
                 break
             if at_bound:
                 break
             if d < thr / 8:
                 step = min(2.0 * step, max_step)
             prev_t, prev_d = t_new, d
+        if pinned is not None:
+            pinned.append(pins if crossing is not None else ())
         ends.append(crossing)
         reached.append(float(t_try[j]))
     return ends[0], ends[1], reached[0], reached[1], better
@@ -490,7 +603,9 @@ def classify(s: ParamSpec, th: float, se: float, lo_c: float | None, hi_c: float
     times, for ``V*`` the velocities, for ``Dc`` the slips ``V0 t_w``). A profile limit more
     than three decades outside it rests only on the model's higher-order curvature (e.g.
     ``t0`` far below the shortest waiting time, where eq. 27 is log-linear in ``t_w``): that
-    side is reported as practically open, with the far limit quoted (ours).
+    side is reported as practically open, with the far limit quoted (ours). A parameter
+    fitted in ``ln p`` whose two-sided interval spans more than three decades is not
+    identified either (ours: an order of magnitude at best).
     """
     u = f" {s.unit}" if s.unit else ""
     f = s.from_internal
@@ -499,6 +614,13 @@ def classify(s: ParamSpec, th: float, se: float, lo_c: float | None, hi_c: float
     open_lo, open_hi = lo_c is None or far_lo, hi_c is None or far_hi
     if not open_lo and not open_hi:
         assert lo_c is not None and hi_c is not None
+        if s.log and hi_c - lo_c > _FAR:
+            # bounded, but over more than three decades: an order of magnitude at best, not
+            # a measurement (userfixA: a +- of 50 times the value was printed "identified")
+            return ("not identified",
+                    f"{s.name}: its 95 % profile interval [{format_value(f(lo_c), s.unit)}, "
+                    f"{format_value(f(hi_c), s.unit)}] spans {(hi_c - lo_c) / math.log(10):.2g}"
+                    " decades (more than three): the data do not fix it")
         if math.isfinite(se) and se > 0:
             off = max(abs(th - z * se - lo_c), abs(th + z * se - hi_c))
             if off > 0.2 * z * se:

@@ -392,8 +392,10 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
         return g
 
     def se_of(g: Array) -> float:
+        # a variance <= 0 of a fitted quantity is a degenerate covariance, not an exact value:
+        # no error (NaN), never 0 (userfixA: a noise record's k printed "150.1 [150.1, 150.1]")
         v = float(g @ cov.matrix @ g) if np.any(g) and not cov.singular else math.nan
-        return math.sqrt(max(v, 0.0)) if math.isfinite(v) else math.nan
+        return math.sqrt(v) if math.isfinite(v) and v > 0 else math.nan
 
     def se(name: str) -> float:
         return se_of(grad(name)) if name in names else math.nan
@@ -404,6 +406,8 @@ def _row(w: Any, d: SeriesData, r: FitResult, model: RSFModel, sc: StepCovarianc
         if name not in names or cov.singular:
             return math.nan, math.nan
         j = names.index(name)
+        if not float(cov.matrix[j, j]) > 0:  # stderr is sqrt|C_jj|: a negative one is no error
+            return math.nan, math.nan
         h = z * float(cov.stderr[j])
         return (sc.specs[j].from_internal(sc.theta[j] - h),
                 sc.specs[j].from_internal(sc.theta[j] + h))
@@ -642,6 +646,20 @@ def fit_steps(
         if progress is not None:
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
+    if joint_fit is not None and errors == "hac":
+        # the joint fit's covariance is the engine's white one: with a record's autocorrelated
+        # residuals (each step's resid_rho1) it is too narrow, as the steps' were before their
+        # HAC; said where the values are read (ours: no robust joint covariance is computed)
+        rho = [float(r["resid_rho1"]) for r in rows
+               if math.isfinite(float(r.get("resid_rho1", math.nan)))]
+        joint_fit = replace(joint_fit, notes=(
+            *joint_fit.notes,
+            "the joint fit's standard errors are white-noise ones (residuals taken as "
+            "independent), not autocorrelation-robust as each step's"
+            + (f" (the steps' lag-1 residual autocorrelation: {min(rho):.2f} to "
+               f"{max(rho):.2f})" if rho else "")
+            + ": with correlated residuals they are too small; quote the steps' intervals, "
+            "or read the joint +- as a lower bound"))
     annotate_steps(rows, record, wins, profile)  # normal stress, level, hold (fit.experiment)
     if len({int(r.get("normal_level", 0)) for r in rows}) > 1:
         one, each = level_stiffness(rows)  # k = K/sigma_n: one machine per level

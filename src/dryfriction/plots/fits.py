@@ -3,6 +3,7 @@ size (big data are drawn binned, so a million samples draw in about a second).""
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -116,14 +117,25 @@ def plot_fit(result: FitResult, datasets: Sequence[Dataset], path: Any = None,
         if not isinstance(d, SeriesData):
             top.set_xscale("log")
         top.set_ylabel(d.y_name)
-        top.set_title(str(d.source).split("/")[-1], fontsize=9)
+        against = f"against_model:{d.source}" in getattr(result, "flags", ())
+        top.set_title(str(d.source).split("/")[-1]
+                      + (f"\nAGAINST THE MODEL: its {d.y_name} trend has the wrong sign"
+                         if against else ""), fontsize=9, color="C3" if against else "k")
         top.legend(fontsize=8)
         bot.set_ylabel("residual")
         bot.set_xlabel(f"{d.x_name} ({d.x_unit})")
     status = "" if result.success else "  [NOT CONVERGED]"
     # each value with its unit (a0 = 8.266e-07 m), as a user copies it
-    fig.suptitle(", ".join(f"{p.name} = {p.value:.4g}" + (f" {p.unit}" if p.unit else "")
-                           for p in result.parameters) + status, fontsize=8)
+    # and what it is worth where it is no estimate: "t0 = 1e-12 s (at bound)"
+    def worth(p: Any) -> str:
+        w = getattr(p, "identifiability", "identified")
+        return ("" if w.startswith("identified") or w == "fixed" else
+                " (at bound)" if w.startswith("at ") else " (not identified)")
+
+    fig.suptitle(textwrap.fill(", ".join(f"{p.name} = {p.value:.4g}"
+                                         + (f" {p.unit}" if p.unit else "") + worth(p)
+                                         for p in result.parameters),
+                               width=70 * max(1, len(datasets))) + status, fontsize=8)
     if path is not None:
         save_png(fig, path)
     return fig, axes

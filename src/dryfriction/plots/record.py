@@ -130,8 +130,11 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
             continue  # a boundary set by the normal stress alone
         hold = s.velocity == 0.0
         info.shaded.append(j)
+        end, k = s.t_end, j + 1
+        while hold and k < len(segments) and segments[k].velocity == 0.0:
+            end, k = segments[k].t_end, k + 1  # a hold split by a normal change: one hold
         for name, a in zip(names, axes, strict=True):
-            info.artists[name].append(a.axvspan(s.t_start - t0, s.t_end - t0,
+            info.artists[name].append(a.axvspan(s.t_start - t0, end - t0,
                                                 color="C0" if hold else "C2",
                                                 alpha=0.12 if hold else 0.08, lw=0))
         if not s.start_placed:

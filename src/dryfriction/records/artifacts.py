@@ -19,6 +19,13 @@ _RESET_K = 15.0  # a reset's jump, in robust scales of the increments' scatter
 _NORMAL_REL = 0.03  # a normal-stress change: at least 3 % of the level ...
 _NORMAL_K = 10.0  # ... and 10 robust scales of its block-to-block scatter
 _RATE_FACTOR = 1.5  # a sampling-rate change: the median interval changes by this factor
+NORMAL_BLOCKS = 10
+"""Normal-stress changes found within this many blocks of each other are one (a ramp split
+several times), whatever the time between them (ours): the blocks are of a fixed count of
+samples, so where the sampling is slow (a 10-fold rate change) or a gap lies between two
+blocks, 30 s held only two or three blocks, and one ramp was reported as two changes, at
+the same sample (zoo records 7049, 7186, 8125: each cluster's half-way crossing is looked
+for within two blocks of it) or beside each other (208, 5160)."""
 
 
 def _median5(a: Array, b: Array, c: Array, d: Array, e: Array) -> Array:
@@ -211,7 +218,8 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     gap = max(30.0, 10 * block * float(np.median(np.diff(t))))
     clusters: list[list[int]] = []
     for kk in sorted(out):
-        if clusters and tb[kk] - tb[clusters[-1][-1]] <= gap:
+        if clusters and (tb[kk] - tb[clusters[-1][-1]] <= gap
+                         or kk - clusters[-1][-1] <= NORMAL_BLOCKS):
             clusters[-1].append(kk)
         else:
             clusters.append([kk])

@@ -52,7 +52,7 @@ import numpy as np
 
 from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
-from .labsteps import PLACED_P, Segment, make_segments
+from .labsteps import PLACED_P, Segment, example_segments, make_segments
 from .placement import OSC_RATIO, RELAX_STOP, oscillation_periods, place_changes, placed_probability
 from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
@@ -776,6 +776,10 @@ def no_change_message(record: LabRecord, det: Detection) -> str:
     v, d, sxx = fits.table([0, h, len(t)])
     e = det.fluctuations.scatter(d, v, sxx)
     lim = Z_MIN * float(np.hypot(e[0], e[1]))
+    speed = det.segments[0].velocity if det.segments else 0.0
+    # the example from the record's own times and speed (a fixed one lay outside short records)
     return (f"{record.source}: no velocity change found above the apparatus' fluctuations of "
             f"{lim * 1e6:.3g} um/s ({Z_MIN:g} times the scatter of the velocities of the "
-            "record's two halves); give the program with --segments, e.g. 0:2e-7,1200:2e-6")
+            f"record's two halves): it moves at {speed * 1e6:.3g} um/s throughout, and a "
+            "one-velocity record has no velocity step to fit; if its speed did change, give the "
+            f"program with --segments, e.g. {example_segments(record, speed)}")

@@ -5,8 +5,10 @@ A record is a text table (or a spreadsheet ``.xlsx`` or MATLAB ``.mat`` file, re
 brackets after the name (``Time(s)``, ``Displ(microns)``, ``Shear_stress[MPa]``), separated by
 tabs, commas, semicolons or spaces (sniffed). Lines starting with ``#`` and blank lines are
 skipped; a units row under the header (``s  um  -  MPa``) and trailing empty columns are
-tolerated. Columns are recognised by name, case-insensitively (the *role* in brackets is the key
-of the column map):
+tolerated; a preamble above the header without ``#`` is skipped and said (:func:`_find_header`,
+``LabRecord.notes``), and a row with a missing value (:data:`MISSING`) in a needed column is
+dropped and counted, up to :data:`MISSING_MAX` of the rows. Columns are recognised by name,
+case-insensitively (the *role* in brackets is the key of the column map):
 
 * time (``time``): ``t``, ``Time``, ``time[s]``, ``elapsed_time``;
 * load-point displacement (``disp``): ``Displ``, ``Disp``, ``LP_disp``, ``load_point``,
@@ -35,6 +37,7 @@ import io
 import os
 import re
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path
 from types import MappingProxyType
 
@@ -50,6 +53,8 @@ from .labsteps import (
     Segment,
     StepWindow,
     load_velocity_series,
+    normal_change_text,
+    normal_change_values,
     parse_segments,
     segments_spec,
     segments_table,
@@ -64,6 +69,8 @@ __all__ = [
     "StepWindow",
     "ROLES",
     "MIN_ROWS",
+    "MISSING",
+    "MISSING_MAX",
     "read_record",
     "apparatus_note",
     "FRICTION_MAX",
@@ -79,6 +86,8 @@ __all__ = [
     "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
+    "normal_change_values",
+    "normal_change_text",
 ]
 
 MIN_ROWS = 10
@@ -263,6 +272,104 @@ def _header_cells(line: str, delim: str | None) -> list[str]:
     return cells
 
 
+MISSING = ("", "nan", "na", "n/a", "#n/a", "null", "none")
+"""Cells read as a missing value (case-insensitive): empty, NaN and the spreadsheets' marks.
+A row with one in a needed column is dropped and counted (:data:`MISSING_MAX`)."""
+MISSING_MAX = 0.05
+"""Largest fraction of a record's rows that may be dropped for a missing value in a needed
+column (ours: a few dropouts of a logger are common; more is a column that was not recorded
+throughout, which dropping would hide): above it the record is refused."""
+
+
+PREAMBLE_MAX = 200
+"""Most lines above a text record's header that are skipped as a preamble (ours: instruments
+write a few to a few dozen)."""
+
+
+def _is_missing(cell: str) -> bool:
+    return cell.strip().lower() in MISSING
+
+
+def _numeric_line(s: str) -> bool:
+    """A data row: at least two cells, all numbers or missing marks, at least one a number."""
+    cells = [c for c in re.split(r"[\t;, ]+", s.strip()) if c]
+    return (len(cells) >= 2 and all(_is_number(c) or _is_missing(c) for c in cells)
+            and any(_is_number(c) and not _is_missing(c) for c in cells))
+
+
+def _unit_cell(cell: str) -> bool:
+    u = cell.strip().strip("()[]").strip()
+    if u in _NONE:
+        return True
+    num, sep, den = u.partition("/")
+    if sep:
+        return (_lookup(num.strip(), _LENGTH) is not None
+                and _lookup(den.strip(), _TIME) is not None)
+    return any(_lookup(u, table) is not None for table in (_TIME, _LENGTH, _STRESS, _FORCE))
+
+
+def _find_header(head: list[str], columns: Mapping[str, str] | None
+                 ) -> tuple[str | None, int, str | None, int, tuple[str, int] | None,
+                            list[tuple[int, str]]]:
+    """``(header, its line, first data line, its line, units row, preamble)`` of a text record.
+
+    The header is, of the lines above the first two that read as numbers (comment and blank
+    lines aside), the first with the most column names the reader recognises (or the column
+    map names); without any, the last of them (above a units row, ``s um - MPa``). A line
+    right under it with no number, or only units, is a units row; the data start under
+    those. The lines above the header are a preamble (an instrument's ``Experiment p4966``,
+    ``Sample rate: 50 Hz`` without ``#``): skipped, and returned to be reported. Lines are
+    1-based, as an editor counts.
+    """
+    lines = [(n, ln) for n, ln in enumerate(head, start=1)
+             if ln.strip() and not ln.strip().startswith("#")]
+    if not lines:
+        return None, 0, None, 0, None, []
+    cache: dict[int, bool] = {}
+
+    def numeric(k: int) -> bool:  # on demand: a file of text cells is not scanned twice
+        if k not in cache:
+            cache[k] = _numeric_line(lines[k][1])
+        return cache[k]
+
+    # the preamble is looked for in the first PREAMBLE_MAX lines (a file whose rows hold a
+    # text cell has no line of numbers: its lines are not each scored as a header)
+    top = min(len(lines), PREAMBLE_MAX + 2)
+    start = next((k for k in range(top) if numeric(k) and (k + 1 == len(lines)
+                                                           or numeric(k + 1))), len(lines))
+    named = {(v.rpartition(":")[0] if ":" in v else v).strip().lower()
+             for v in (columns or {}).values()}
+    sample_line = lines[start][1] if start < len(lines) else lines[-1][1]
+
+    def cells(line: str) -> list[str]:
+        return _header_cells(line, _sniff(line, sample_line))
+
+    def names(line: str) -> int:
+        parts = [_split_cell(c)[0] for c in cells(line)]
+        return sum(_guess_role(c)[0] is not None or c.lower() in named for c in parts)
+
+    def units_only(line: str) -> bool:
+        return bool(cells(line)) and all(_unit_cell(c) for c in cells(line))
+
+    cands = list(range(min(max(start, 1), PREAMBLE_MAX + 1)))
+    score = [names(lines[k][1]) for k in cands]
+    if max(score) > 0:
+        h = score.index(max(score))
+    elif start < len(lines):  # no name recognised: the line above the data (and units)
+        h = start - 1
+        if h >= 1 and units_only(lines[h][1]):
+            h -= 1
+    else:
+        h = 0
+    units_row = None
+    k = h + 1
+    if k < len(lines) and not numeric(k) and (units_only(lines[k][1]) or not any(
+            _is_number(c) for c in re.split(r"[\t;, ]+", lines[k][1].strip()))):
+        units_row, k = (lines[k][1], lines[k][0]), k + 1
+    sample = lines[k] if k < len(lines) else (0, None)
+    return lines[h][1], lines[h][0], sample[1], sample[0], units_row, lines[:h]
+
+
 def _decode(raw: bytes) -> str:
     try:
         return raw.decode("utf-8-sig")
@@ -390,19 +497,7 @@ def read_record(
     head = _decode(chunk).splitlines()
     if len(chunk) == 1 << 20 and len(head) > 1:
         head.pop()  # may be cut short
-    header, hline, sample, sline, units_row = None, 0, None, 0, None
-    for n, line in enumerate(head, start=1):
-        s = line.strip()
-        if not s or s.startswith("#"):
-            continue
-        if header is None:
-            header, hline = line, n
-        elif sample is None and units_row is None and not any(
-                _is_number(c) for c in re.split(r"[\t;, ]+", s)):
-            units_row = (line, n)
-        else:
-            sample, sline = line, n
-            break
+    header, hline, sample, sline, units_row, preamble = _find_header(head, columns)
     if header is None:
         raise ValueError(f"{src}: no header line with column names")
     if sample is None:
@@ -413,8 +508,16 @@ def read_record(
     width = len(_cells(sample, delim))
     if width > len(names):
         raise ValueError(f"{src}, line {sline}: {width} cells, the header (line {hline}) names "
-                         f"{len(names)}: separate the columns with tabs or commas")
+                         f"{len(names)}: separate the columns with tabs or commas"
+                         + (f", or, if line {hline} is not the header, name the header's "
+                            "columns with --columns" if hline != sline - 1 else ""))
     row_units = _header_cells(units_row[0], delim) if units_row else []
+    notes = []
+    if preamble:  # one line: what was skipped, so that a wrong guess shows
+        shown = ", ".join(repr(ln.strip()[:40]) for _, ln in preamble[:3])
+        more = f" and {len(preamble) - 3} more" if len(preamble) > 3 else ""
+        notes.append(f"{src}: {len(preamble)} line(s) above the header (line {hline}) skipped "
+                     f"as a preamble: {shown}{more}")
 
     def load(usecols: list[int], roles: list[str]) -> tuple[Array, Callable[[int], int]]:
         need = size + size / max(len(sample), 8) * (120 + 24 * len(usecols))
@@ -428,15 +531,18 @@ def read_record(
         data = _parse(raw, sline - 1, delim, usecols, src, names, roles)
         return data, _line_mapper(raw, sline, len(data))
 
-    return _finish(src, names, columns, hline, sline, row_units, load)
+    return _finish(src, names, columns, hline, sline, row_units, load, notes)
 
 
 def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline: int,
             sline: int, row_units: list[str],
-            load: Callable[[list[int], list[str]], tuple[Array, Callable[[int], int]]]
-            ) -> LabRecord:
+            load: Callable[[list[int], list[str]], tuple[Array, Callable[[int], int]]],
+            notes: list[str] | None = None) -> LabRecord:
     """The columns assigned and their units checked, then the data ``load``-ed (the used
-    columns and a row -> file line map), checked and turned into a :class:`LabRecord`."""
+    columns and a row -> file line map), checked and turned into a :class:`LabRecord`. A row
+    with a missing value (NaN) in a used column is dropped and counted in the record's
+    ``notes``, up to :data:`MISSING_MAX` of the rows; more is refused."""
+    notes = list(notes or [])
     idx, forced = _assign(src, hline, names, columns)
     roles = list(idx)
     factors: dict[str, float] = {}
@@ -461,6 +567,8 @@ def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline
                          "unit with --columns, e.g. shear=NAME:MPa)")
     usecols = [idx[r] for r in roles]
     data, line_of = load(usecols, roles)
+    data, line_of = _drop_missing(src, data, line_of, [names[idx[r]].strip() for r in roles],
+                                  usecols, notes)
     vals: dict[str, Array] = {}
     for k, role in enumerate(roles):
         j, col = idx[role], data[:, k]
@@ -504,7 +612,34 @@ def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline
         source=src, time=t, load_point=vals.get("disp"), load_velocity=vals.get("velocity"),
         friction=friction, normal_stress=normal, normal_unit=normal_unit,
         columns=MappingProxyType({r: names[idx[r]].strip() for r in roles}),
-        first_line=sline, units=MappingProxyType(units))
+        first_line=sline, units=MappingProxyType(units), notes=tuple(notes))
+
+
+def _drop_missing(src: str, data: Array, line_of: Callable[[int], int], names: list[str],
+                  usecols: list[int], notes: list[str]
+                  ) -> tuple[Array, Callable[[int], int]]:
+    """``data`` without its rows that hold a missing value (NaN: an empty cell, ``NaN``,
+    ``#N/A``) in a used column, and the row -> file line map of the rows kept; one line added
+    to ``notes`` (how many, the first lines). Never filled. More than :data:`MISSING_MAX` of
+    the rows: refused in one line (how many, where)."""
+    miss = np.isnan(data)
+    rows = np.flatnonzero(miss.any(axis=1))
+    if rows.size == 0:
+        return data, line_of
+    per = miss.sum(axis=0)
+    where = ", ".join(f"{n!r} (column {j + 1}) {int(c)}" for n, j, c in
+                      zip(names, usecols, per, strict=True) if c)
+    first = ", ".join(str(line_of(int(i))) for i in rows[:5]) + (" ..." if rows.size > 5 else "")
+    if rows.size > MISSING_MAX * len(data):
+        i, k = int(rows[0]), int(np.argmax(miss[rows[0]]))
+        raise ValueError(f"{src}, line {line_of(i)}, column {usecols[k] + 1} ({names[k]}): "
+                         f"{rows.size} of {len(data)} data rows have a missing value (empty, "
+                         f"NaN) in a needed column ({where}; lines {first}): more than "
+                         f"{100 * MISSING_MAX:g} % to drop: fill or remove them")
+    keep = np.flatnonzero(~miss.any(axis=1))
+    notes.append(f"{src}: {rows.size} of {len(data)} data rows dropped for a missing value "
+                 f"(empty, NaN) in a needed column ({where}; lines {first})")
+    return data[keep], lambda i: line_of(int(keep[min(i, len(keep) - 1)]))
 
 
 def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
@@ -515,10 +650,13 @@ def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
         return table[:, usecols], lambda i: sline + i
 
     try:
-        return _finish(str(path), names, columns, hline, sline, row_units, load)
+        rec = _finish(str(path), names, columns, hline, sline, row_units, load)
     except ValueError as exc:  # the same refusal, in the file's own words for a row
         msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
-        raise ValueError(msg.replace(", line ", f", {word} ")) from None
+        raise ValueError(msg.replace(", line ", f", {word} ").replace(
+            "; lines ", f"; {word}s ")) from None
+    # a cell that is not a number is NaN in a form's table: a missing value, by its row
+    return replace(rec, notes=tuple(n.replace("; lines ", f"; {word}s ") for n in rec.notes))
 
 
 def _parse(raw: bytes, skip: int, delim: str | None, usecols: list[int], src: str,
@@ -537,17 +675,24 @@ def _parse(raw: bytes, skip: int, delim: str | None, usecols: list[int], src: st
         return np.loadtxt([ln for _, ln in keep], **kw)  # type: ignore[call-overload]
     except ValueError:
         pass
-    for n, ln in keep:
-        cells = _cells(ln.split("#", 1)[0], delim)
-        for j, role in zip(usecols, roles, strict=True):
+    # cell by cell: a missing value (empty, NaN, #N/A: MISSING) is NaN, for _finish to drop
+    out = np.empty((len(keep), len(usecols)))
+    for r, (n, ln) in enumerate(keep):
+        body = re.sub(r"#n/a", "NaN", ln, flags=re.IGNORECASE).split("#", 1)[0]
+        cells = body.split(delim) if delim else body.split()  # empty cells kept
+        for k, (j, role) in enumerate(zip(usecols, roles, strict=True)):
             where = f"{src}, line {n}, column {j + 1} ({names[j].strip()})"
             if j >= len(cells):
-                raise ValueError(f"{where}: missing: the line has {len(cells)} cells, the "
-                                 f"header {len(names)}")
-            if not _is_number(cells[j]):
-                what = "empty cell" if not cells[j].strip() else f"{cells[j].strip()!r}"
-                raise ValueError(f"{where}: {what} is not a number ({ROLES[role]})")
-    raise ValueError(f"{src}: the data lines cannot be read as numbers")
+                raise ValueError(f"{where}: missing: the line has {len(_cells(body, delim))} "
+                                 f"cells, the header {len(names)}")
+            cell = cells[j]
+            if _is_missing(cell):
+                out[r, k] = np.nan
+            elif _is_number(cell):
+                out[r, k] = float(cell)
+            else:
+                raise ValueError(f"{where}: {cell.strip()!r} is not a number ({ROLES[role]})")
+    return out
 
 
 def _line_mapper(raw: bytes, first: int, rows: int):  # type: ignore[no-untyped-def]

@@ -28,6 +28,10 @@ __all__ = [
     "SEGMENTS_SYNTAX",
     "load_velocity_series",
     "slice_steps",
+    "no_steps_message",
+    "example_segments",
+    "normal_change_values",
+    "normal_change_text",
 ]
 
 PLACED_P = 0.9
@@ -173,6 +177,30 @@ def _normal_column(normal_unit: str) -> tuple[str, str, float]:
     if normal_unit == "N":
         return "normal force", "kN", 1e-3
     return "normal stress", "MPa", 1e-6
+
+
+def normal_change_values(segments: tuple[Segment, ...] | list[Segment],
+                         times: tuple[float, ...] | list[float]
+                         ) -> tuple[tuple[float, float, float], ...]:
+    """``(time, before, after)`` of each normal-stress change at ``times`` (s, record time; a
+    segment boundary, :class:`.detection.Detection`'s ``normal_changes``): the mean normal
+    stress (Pa) or force (N) of the segments either side of the boundary there."""
+    starts = np.array([s.t_start for s in segments])
+    out = []
+    for tc in times:
+        k = int(np.argmin(np.abs(starts - tc))) if len(starts) else 0
+        if k > 0:
+            out.append((float(tc), segments[k - 1].normal, segments[k].normal))
+    return tuple(out)
+
+
+def normal_change_text(changes: tuple[tuple[float, float, float], ...] | list[
+                       tuple[float, float, float]], normal_unit: str = "Pa") -> str:
+    """``"t = 70 s: 5 -> 7 MPa"`` for each ``(time, before, after)``, in the unit of the
+    segments table (MPa for a stress, kN for a force: ``normal_unit`` "Pa" or "N")."""
+    _, nu, scale = _normal_column(normal_unit)
+    return "; ".join(f"t = {t:g} s: {b * scale:.4g} -> {a * scale:.4g} {nu}"
+                     for t, b, a in changes)
 
 
 def segments_table(segments: tuple[Segment, ...] | list[Segment],
@@ -321,6 +349,11 @@ class StepWindow:
     t_change_lo, t_change_hi : float
         95 % interval of ``t_change``, s (:class:`Segment`'s ``start_lo``, ``start_hi``); NaN
         where none was computed.
+    normal_changes : tuple of (float, float, float)
+        The normal-stress changes inside the hold of an ``"shs"`` window (a segment boundary
+        at which the load point stays at rest): ``(time, before, after)``, s and the record's
+        normal unit (Pa, or N for a force; the segments' means either side). The hold runs
+        across them: ``hold`` is the whole time at rest.
     """
 
     index: int
@@ -333,6 +366,7 @@ class StepWindow:
     hold: float
     t_change_lo: float = float("nan")
     t_change_hi: float = float("nan")
+    normal_changes: tuple[tuple[float, float, float], ...] = ()
 
 
 def slice_steps(
@@ -341,13 +375,17 @@ def slice_steps(
     *,
     pre_slip: float = 50e-6,
     pre_fraction: float = 0.5,
+    given: bool = False,
 ) -> tuple[StepWindow, ...]:
     """Cut a record into its velocity steps and slide-hold-slide cycles.
 
     Each window starts before the change by ``pre_slip`` of load-point travel at the velocity
     before (enough steady sliding to pin the level), but by no more than ``pre_fraction`` of
     the segment before, and ends at the next change after it. A hold at the start or at the
-    end of the record (no sliding before it, or none after) gives no window.
+    end of the record (no sliding before it, or none after) gives no window. Consecutive
+    segments at rest are one hold (a normal-stress change during a hold is a segment
+    boundary): its duration is the whole time at rest, the time a contact ages, and
+    the window runs on to the end of the reslide; the changes are in ``normal_changes``.
 
     Parameters
     ----------
@@ -359,6 +397,9 @@ def slice_steps(
         Load-point displacement before the change, m, ``> 0``.
     pre_fraction : float
         Largest part of the segment before the change to include, ``0 < pre_fraction <= 1``.
+    given : bool
+        The program was given by hand (``--segments``): the refusal does not send the user
+        back to ``--segments`` (:func:`no_steps_message`).
 
     Raises
     ------
@@ -386,17 +427,56 @@ def slice_steps(
             out.append(StepWindow(len(out), "step", i0, cur.i_end, cur.t_start, prev.velocity,
                                   cur.velocity, 0.0, cur.start_lo, cur.start_hi))
             j += 1
-        elif j + 1 < len(segs):
-            after = segs[j + 1]
-            out.append(StepWindow(len(out), "shs", i0, after.i_end, cur.t_start,
-                                  prev.velocity, after.velocity, cur.duration, cur.start_lo,
-                                  cur.start_hi))
-            j += 2
         else:
-            break  # a final hold: nothing slides after it
+            m = j + 1  # the hold runs on across boundaries at rest (normal-stress changes)
+            while m < len(segs) and segs[m].velocity == 0.0:
+                m += 1
+            if m == len(segs):
+                break  # a final hold: nothing slides after it
+            after = segs[m]
+            changes = tuple((segs[k].t_start, segs[k - 1].normal, segs[k].normal)
+                            for k in range(j + 1, m))
+            out.append(StepWindow(len(out), "shs", i0, after.i_end, cur.t_start,
+                                  prev.velocity, after.velocity, after.t_start - cur.t_start,
+                                  cur.start_lo, cur.start_hi, changes))
+            j = m + 1
     if not out:
-        vs = ", ".join(f"{s.velocity:.3g}" for s in segs)
-        raise ValueError(f"{record.source}: no velocity step or hold in the load program "
-                         f"({len(segs)} segment(s), velocities {vs} m/s): give the program "
-                         "with --segments if it was missed")
+        raise ValueError(no_steps_message(record, segs, given=given))
     return tuple(out)
+
+
+def no_steps_message(record: LabRecord, segments: tuple[Segment, ...] | list[Segment], *,
+                     given: bool = False) -> str:
+    """The one line for a load program with no velocity step and no hold followed by sliding
+    (:func:`slice_steps`): what the program is, and, for a detected one, the ``--segments``
+    that would give a step, built from the record's own times and speed
+    (:func:`example_segments`); a program given by hand is not sent back to ``--segments``."""
+    segs = list(segments)
+    vs = ", ".join(f"{s.velocity:.3g}" for s in segs)
+    # no window leaves at most one sliding velocity (two differ: a step, or a hold between)
+    what = ("a one-velocity record has no velocity step to fit"
+            if all(s.velocity != 0.0 for s in segs) else
+            "the load point does not move (a hold throughout): no step to fit"
+            if all(s.velocity == 0.0 for s in segs) else
+            "one sliding velocity and a hold with no sliding on one side: no step to fit")
+    head = (f"{record.source}: no velocity step or hold in the load program"
+            f"{' given with --segments' if given else ''} ({len(segs)} segment(s), "
+            f"velocities {vs} m/s): {what}")
+    if given:
+        return head
+    return (head + "; if its program did change, give it with --segments, e.g. "
+            + example_segments(record, segs[0].velocity if segs else 0.0))
+
+
+def example_segments(record: LabRecord, velocity: float) -> str:
+    """An example ``--segments`` value for ``record`` that :func:`parse_segments` accepts: its
+    own speed ``velocity`` (m/s; 1 um/s if it is 0 or out of range) from its first sample,
+    then ten times that from about half-way (ours: a form to edit, inside the record's own
+    time, not a guess at its program)."""
+    t = np.asarray(record.time, float)
+    v = abs(float(velocity))
+    if not (V_MIN <= v and 10.0 * v <= V_MAX):
+        v = 1e-6
+    half = float(f"{0.5 * float(t[-1] - t[0]):.3g}")  # rounded: a value a user types
+    return (f"0:{v:.3g},{half:g}:{10.0 * v:.3g} ({v * 1e6:.3g} um/s, then "
+            f"{10.0 * v * 1e6:.3g} um/s from {half:g} s after the first sample)")

@@ -27,6 +27,7 @@ section 3.8): with ``C(u) = s**2 exp(-|u| / tau)``,
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -271,12 +272,48 @@ the wander itself (zoo records 3013 and 3115 of 3000-3299, down-steps of ratio 3
 value from 0.034 to 0.1 the same."""
 RELAX_ABOVE = 3.0
 """The relaxation is looked for only where the position error before the stop (the relative
-wander's rms times its correlation time times the speed) is at least this many white-noise
-standard deviations (ours): a free regressor below the noise only pulls the hinge (zoo
-records 250 and 322, stops from 0.4-0.5 um/s, placed 0.7 and 2.6 s early without this)."""
+wander's rms times its correlation time times the speed, and the measured ``lag`` times the
+speed: :func:`_relaxes`) is at least this many white-noise standard deviations (ours): a free
+regressor below the noise only pulls the hinge (zoo records 250 and 322, stops from 0.4-0.5
+um/s, placed 0.7 and 2.6 s early without this)."""
 RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
 """The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
 not the zoo's 3 s)."""
+RELAX_BY_LAG = True
+"""Whether the relaxation also needs the record's measured position error (``lag`` times the
+speed, :class:`.detection.Fluctuations`) above the noise, beside the fitted OU wander's
+``s tau`` times it (:func:`_relaxes`; ours)."""
+
+
+def _relaxes(v1: float, v2: float, rel: tuple[float, float], sigma: float,
+             lag: float | None) -> bool:
+    """Whether a change from ``v1`` to ``v2`` (m/s) is placed as a stop with the servo's
+    relaxation (:data:`RELAX_STOP`): a change to below ``RELAX_STOP`` of the speed whose
+    position error before it stands :data:`RELAX_ABOVE` white-noise deviations ``sigma`` (m)
+    above the noise by both of the record's measures of it: the fitted OU wander's ``s tau
+    |v1|`` (``rel = (s, tau)``) and, with :data:`RELAX_BY_LAG` where it is known (not None),
+    the measured ``lag |v1|`` (``lag`` the position error per unit speed, s; inf where the
+    white noise hides it: no relaxation).
+
+    Why (ours): the relaxation's amplitude is the position error at the stop, whose rms is
+    what ``lag`` measures; ``s tau`` is an extrapolation of the slope scatter, which the OU
+    fit makes 126-200 s long where the wander is bounded or periodic (bursts, a machine
+    oscillation, a servo's error over long windows): every ratio-30 down-step then got the
+    relaxation's free amplitude, which takes the kink's place and puts the step early
+    whether the record shows a position error or not (zoo records 3241, 7075, 3073, 7021,
+    7081: 0.9-3.6 s early, ``s tau |v1|`` 6-55 white-noise deviations where ``lag |v1|`` is
+    0.5-1.8 of them or not measured). ``lag`` alone is not enough either way: where the
+    OU's ``s tau |v1|`` is below the noise and ``lag |v1|`` above it, the free amplitude
+    still pulled a hold's start 0.5 s early (zoo 5098, with ``lag`` alone); both measures
+    must see the error. Measured: docs/performance.md (detect8).
+    """
+    if not abs(v2) <= RELAX_STOP * abs(v1):
+        return False
+    above = rel[0] * rel[1] * abs(v1) >= RELAX_ABOVE * sigma
+    if RELAX_BY_LAG and lag is not None:
+        return bool(above and np.isfinite(lag) and lag * abs(v1) >= RELAX_ABOVE * sigma)
+    return above
+
 HOLD_HALF = 60.0
 """The window about a change at a hold reaches this far (s) each side, not 20 s (ours):
 where the servo's position error at the sliding speed (``lag`` times it,
@@ -741,23 +778,67 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
     """
     rel = ou_parameters(scales, relative)
     ab = ou_parameters(scales, absolute)
-    out = [0]
-    places: list[Placement] = []
-    for j in range(1, len(bounds) - 1):
-        move = weak is None or bool(weak[j - 1])
-        lo = out[-1] + m
-        hi = bounds[j + 1] - m
+
+    def place(j: int, lo: int, hi: int) -> Placement:
+        """Change ``j`` (an index into ``bounds``) placed on the samples ``lo:hi``."""
         v1, v2 = float(velocity[j - 1]), float(velocity[j])
-        # a stop whose position error (the wander's displacement over its correlation time
-        # at the speed before) stands above the white noise
-        stop = (abs(v2) <= RELAX_STOP * abs(v1)
-                and rel[0] * rel[1] * abs(v1) >= RELAX_ABOVE * sigma)
+        stop = _relaxes(v1, v2, rel, sigma, lag)
         pl = change_profile(t, x, bounds[j], lo, hi, v1, v2, sigma, rel, ab, periods=periods,
-                            move=move, stop=stop, tol=tol,
+                            move=weak is None or bool(weak[j - 1]), stop=stop, tol=tol,
                             held=None if holds is None else bool(holds[j - 1] != holds[j]),
                             lag=lag)
         if not lo < pl.index < hi:
             pl = Placement(bounds[j], pl.lo, pl.hi, pl.edge, pl.cells, pl.weights, pl.guess)
+        return pl
+
+    out = [0]
+    places: list[Placement] = []
+    for j in range(1, len(bounds) - 1):
+        pl = place(j, out[-1] + m, bounds[j + 1] - m)
         out.append(pl.index)
         places.append(pl)
-    return out + [bounds[-1]], places
+    out.append(bounds[-1])
+    if NEIGHBOURS_PLACED:
+        # no window reaches farther from its guess than this (change_profile's half-width
+        # at its largest, and its search)
+        reach = max(HOLD_HALF, 60.0, 2.0 * max(periods, default=0.0)) + 5.0
+        _clear_of_neighbours(bounds, out, places, m, place, t, reach)
+    return out, places
+
+
+NEIGHBOURS_PLACED = True
+"""Whether a change whose window held samples at or past where its next neighbour was then
+placed is placed again, its window ending before that neighbour (:func:`_clear_of_neighbours`;
+ours)."""
+
+
+def _clear_of_neighbours(guess: list[int], out: list[int], places: list[Placement], m: int,
+                         place: Callable[[int, int, int], Placement], t: Array,
+                         reach: float) -> None:
+    """Each change (in ``out``, placed in order) whose window, which ended ``m`` samples
+    before its next neighbour's *guess* (``guess``), held samples at or past where that
+    neighbour was then placed, placed again by ``place(j, lo, hi)`` on the samples clear of
+    its neighbours as placed (``out`` and ``places`` updated in place), from the last to the
+    first; a neighbour placed more than ``reach`` (s) after the change's guess (times ``t``,
+    s) was beyond its window.
+
+    Why (ours): the changes are placed in order, so a change's window runs to the next one's
+    guess, not to where it lies; a guess late by more than ``m`` samples puts samples of the
+    next stretch in the window, at a velocity the hinge's two-velocity model does not hold.
+    Where that stretch is fast and the window's other side slow (a stop before a short hold:
+    a restart's slip of a few tenths of a micrometre against nanometres of noise in a
+    velocity column's integral) the hinge's likelihood is ruled by those few samples (zoo
+    records 4204 and 7264: hold starts placed 5.3 and 4.7 s late, at the end of the times
+    searched; within the tolerance placed again). Only where the window did reach the
+    neighbour as placed: placed again wherever the neighbour moved earlier at all, a short
+    step's start whose window had ended before it (zoo 6254) moved from 0.33 to 0.59 s off.
+    """
+    for j in range(len(out) - 2, 0, -1):
+        lo, hi = out[j - 1] + m, out[j + 1] - m
+        # the window held samples at or past the neighbour as placed; kept where the samples
+        # left are too few to judge (no interval) or the change would leave them
+        if (guess[j + 1] - m > out[j + 1] and lo < guess[j] < hi
+                and t[out[j + 1]] - t[guess[j]] < reach):
+            pl = place(j, lo, hi)
+            if np.isfinite(pl.lo) and lo < pl.index < hi:
+                out[j], places[j - 1] = pl.index, pl

@@ -42,6 +42,9 @@ class LabRecord:
         File line (1-based) of the first data row.
     units : Mapping[str, str]
         Role -> unit as written in the file (``""``: none, read as SI).
+    notes : tuple of str
+        One line for each thing the reader did that the user should know: a preamble above
+        the header skipped, rows with a missing value dropped (how many, where).
     """
 
     source: str
@@ -54,6 +57,7 @@ class LabRecord:
     columns: Mapping[str, str]
     first_line: int
     units: Mapping[str, str] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
     def __len__(self) -> int:
         return len(self.time)
