@@ -93,15 +93,7 @@ def simulate(rng: np.random.Generator, ratio: float, up: bool, wob: bool) -> Sim
     v1, v2, d1, d2, fs = draw(rng, ratio, up)
     t = np.arange(0.0, d1 + d2, 1 / fs)
     t0 = d1
-    vc = np.where(t >= t0, v2, v1)
-    eps = np.zeros_like(t)
-    if wob:
-        for amp, per in z.WOBBLE:
-            eps += amp * np.sin(2 * np.pi * t / per + rng.uniform(0, 2 * np.pi))
-    vt = vc * (1 + eps)
-    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
-    x += z.servo_error(t, vc, rng) + rng.normal(0, z.WHITE, t.size)
-    x = np.round(x / z.QUANTUM) * z.QUANTUM
+    x = z.step_displacement(t, np.where(t >= t0, v2, v1), rng, wob)
     return Sim(t, x, t0, v1, v2, fs, wob)
 
 

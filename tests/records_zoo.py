@@ -228,6 +228,23 @@ def servo_error(t: np.ndarray, v: np.ndarray, rng: np.random.Generator) -> np.nd
     return e
 
 
+def step_displacement(t: np.ndarray, vc: np.ndarray, rng: np.random.Generator,
+                      wobble: bool = True) -> np.ndarray:
+    """The load point's measured displacement (m) at times ``t`` under the commanded velocity
+    ``vc`` (m/s), as the oracle's and the small-step tests' records draw it: the machine
+    oscillation (:data:`WOBBLE`, random phases) relative to ``vc`` where ``wobble``,
+    integrated by the trapezoid, the servo's position error (:func:`servo_error`), the
+    transducer's white noise (:data:`WHITE`) and its quantum (:data:`QUANTUM`)."""
+    eps = np.zeros_like(t)
+    if wobble:
+        for amp, per in WOBBLE:
+            eps += amp * np.sin(2 * np.pi * t / per + rng.uniform(0, 2 * np.pi))
+    vt = vc * (1 + eps)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
+    x += servo_error(t, vc, rng) + rng.normal(0, WHITE, t.size)
+    return np.round(x / QUANTUM) * QUANTUM
+
+
 def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: str,
                 seed: int = 0) -> ZooRecord:
     """The zoo record ``index`` (its own seed: ``seed * 100003 + index``)."""

@@ -28,14 +28,7 @@ def _rate_step(seed: int, ratio: float) -> tuple[LabRecord, float, float]:
     v1, v2, d1, d2, fs = draw(rng, ratio, bool(seed % 2))
     f2 = 10.0 if fs < 10.0 else 0.1
     t = np.concatenate([np.arange(0.0, d1, 1 / fs), np.arange(d1, d1 + d2, 1 / (fs * f2))])
-    vc = np.where(t >= d1, v2, v1)
-    eps = np.zeros_like(t)
-    for amp, per in z.WOBBLE:
-        eps += amp * np.sin(2 * np.pi * t / per + rng.uniform(0, 2 * np.pi))
-    vt = vc * (1 + eps)
-    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
-    x += z.servo_error(t, vc, rng) + rng.normal(0, z.WHITE, t.size)
-    x = np.round(x / z.QUANTUM) * z.QUANTUM
+    x = z.step_displacement(t, np.where(t >= d1, v2, v1), rng)
     rec = LabRecord("r.txt", t + 100.0, x, None, np.full(t.size, 0.6), None, "", {}, 2)
     return rec, d1 + 100.0, z.tolerance(t, d1)
 
