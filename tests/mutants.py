@@ -143,6 +143,10 @@ _S7JG = "tests/fit/test_judge_generic.py"
 _S7FD = "tests/fit/test_fit_defaults.py"
 _S7SD = "tests/fit/test_step_data.py"
 _S7SL = "tests/plots/test_style_layout.py"
+# fixD
+_FXF = "tests/app/test_fit_files.py"
+_FXS = "tests/records/test_csv_semicolons.py"
+_FXP = "tests/records/test_labforms_preamble.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -3389,6 +3393,37 @@ MUTANTS: tuple[Mutant, ...] = (
        "steps = tuple(slice_steps(rec, segs, given=segments is not None))",
        "steps = tuple(slice_steps(rec, segs))", _USB_CLI, "-k", "one_velocity"),
     # --- end userfixB
+    # --- fixD (a second new user's trial: fit's inputs)
+    _m("fixD: a file given twice fitted as twice the data", "app/fitting.py",
+       "        if key in seen:\n", "        if False:\n", _FXF, "-k", "twice"),
+    _m("fixD: another spelling of a file not the same file", "app/fitting.py",
+       "        key = p.resolve()", "        key = p", _FXF, "-k", "twice"),
+    _m("fixD: a record among CSV files read as a CSV file", "app/fitting.py",
+       "    if len(paths) < 2:\n        return\n", "    if True:\n        return\n", _FXF,
+       "-k", "fitted_alone"),
+    _m("fixD: a broken CSV among several called a record", "app/fitting.py",
+       "            except ValueError:\n                continue",
+       "            except ValueError:\n                pass", _FXF, "-k", "fitted_alone"),
+    _m("fixD: a ';' header read with commas", "records/data.py",
+       'return ";" if ";" in header and "," not in header else ","', 'return ","', _FXS),
+    _m("fixD: ';' chosen where the header has commas too", "records/data.py",
+       'return ";" if ";" in header and "," not in header else ","',
+       'return ";" if ";" in header else ","', _FXS, "-k", "separator_rule"),
+    _m("fixD: decimal commas not read", "records/data.py",
+       'x = float(cell.replace(",", ".") if sep == ";" else cell)', "x = float(cell)", _FXS,
+       "-k", "decimal_commas"),
+    _m("fixD: the dispatch splits the header at commas only", "app/fitting.py",
+       "for c in s.split(csv_separator(s))}", 'for c in s.split(",")}', _FXS, "-k",
+       "decimal_commas"),
+    _m("fixD: a sheet's header its first non-empty row", "records/labforms.py",
+       "    h = _header_index(lines, is_name) if is_name is not None else 0",
+       "    h = 0", _FXP, "-k", "metadata_block"),
+    _m("fixD: a sheet's preamble skipped without a word", "records/labforms.py",
+       "    if h:  # one line", "    if False:  # one line", _FXP, "-k", "metadata_block"),
+    _m("fixD: the first of several sheets read without a word", "records/labforms.py",
+       "    if len(wb.worksheets) > 1:  # said", "    if False:  # said", _FXP, "-k",
+       "several_sheets"),
+    # --- end fixD
 )
 
 

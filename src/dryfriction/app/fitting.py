@@ -27,24 +27,62 @@ _RECORD_ONLY = ("columns", "segments", "joint", "run_cv", "errors", "drive", "in
 
 def is_project_csv(path: str | Path) -> bool:
     """Whether ``path`` is in the project's own CSV format (:mod:`dryfriction.records.data`): its
-    first line that is not a comment or blank is a comma-separated header holding the columns
-    of one data kind. Anything else is read as a laboratory record."""
+    first line that is not a comment or blank is a header (comma- or semicolon-separated,
+    :func:`dryfriction.records.data.csv_separator`) holding the columns of one data kind.
+    Anything else is read as a laboratory record."""
     import re
 
     from ..io.textfile import check_text_file
+    from ..records.data import csv_separator
     from ..records.labforms import FORMS
 
     if Path(path).suffix.lower() in FORMS:  # a .xlsx or .mat is a record, as `record` reads it
         return False
     check_text_file(path)  # a compressed or UTF-16 file is named here, whatever it holds
+    s = _header_line(path)
+    names = {re.sub(r"\[.*?\]", "", c).strip().lower() for c in s.split(csv_separator(s))}
+    return bool(s) and any(cols <= names for cols in _PROJECT_COLUMNS)
+
+
+def _header_line(path: str | Path) -> str:
+    """The first line of a text file that is not blank or a comment ("" if none)."""
     with open(path, encoding="utf-8", errors="replace") as fh:
         for line in fh:
             s = line.strip()
-            if not s or s.startswith("#"):
+            if s and not s.startswith("#"):
+                return s
+    return ""
+
+
+def _check_files(paths: Sequence[Path]) -> None:
+    """Refuse, in one line naming the files, a file given twice (its rows would count twice
+    and narrow every interval) and a laboratory record given with other files (a record is
+    fitted alone, :func:`dryfriction.app.records.fit_record`)."""
+    from ..records.lab import read_record
+    from ..records.labforms import FORMS
+
+    seen: dict[Path, Path] = {}
+    for p in paths:
+        key = p.resolve()  # the same file by another spelling (./a.csv, a link) too
+        if key in seen:
+            same = f"{p}" if str(seen[key]) == str(p) else f"{seen[key]} and {p}"
+            raise ValueError(f"{same}: the same file is given more than once: each file is "
+                             "fitted once (its rows would count twice); give it once")
+        seen[key] = p
+    if len(paths) < 2:
+        return
+    for p in paths:
+        if not p.is_file() or is_project_csv(p):
+            continue
+        if p.suffix.lower() not in FORMS:
+            try:  # a text file of neither kind is refused by the CSV reader, in its words
+                read_record(p)
+            except ValueError:
                 continue
-            names = {re.sub(r"\[.*?\]", "", c).strip().lower() for c in s.split(",")}
-            return any(cols <= names for cols in _PROJECT_COLUMNS)
-    return False
+        others = ", ".join(str(q) for q in paths if q is not p)
+        raise ValueError(f"{p} is a laboratory record, and a record is fitted alone "
+                         f"(dryfriction fit {p} --out DIR); the project's CSV files "
+                         f"({others}) are fitted together, without it")
 
 
 def parse_stiffness(text: str | float) -> float | str:
@@ -142,6 +180,7 @@ def fit(data: Sequence[str | Path] | str | Path, out: str | Path, *,
     check_fit_options(alpha=o["alpha"], creep=o["creep"], v0=o["v0"], state_law=o["state_law"],
                       errors=o["errors"], traps_per_a0=o["traps_per_a0"], direct=o["direct"],
                       v_ref=o["v_ref"])
+    _check_files(paths)
     record = len(paths) == 1 and not is_project_csv(paths[0])
     if o["model"] is None:  # chosen by the input (OPTIONS["fit"]["model"])
         o["model"] = "rsf" if record else "cv"
@@ -207,7 +246,7 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     from ..fit import fit as run_fit
     from ..io.files import check_output_dir, output_directory, write_json
     from ..io.units import DIMENSIONLESS, FIT_UNITS, with_units
-    from ..records.data import read_csv
+    from ..records.data import csv_separator, read_csv
     from ..theory.model import TrapModel
     from ..validation import check_figure_format
 
@@ -218,6 +257,10 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     stiffness = _csv_stiffness(o["stiffness"])
     check_output_dir(out, force=o["force"], command="fit")
     datasets = [read_csv(p) for p in paths]
+    for p in paths:  # the reading chosen, said: a ';' file might have been meant otherwise
+        if report is not None and csv_separator(_header_line(p)) == ";":
+            report(f"note: {p}: read as the project's CSV with ';' separators and decimal "
+                   "commas")
     if on_start is not None:
         on_start()
     model = o["model"]

@@ -14,6 +14,11 @@ Each may carry an uncertainty column ``sigma_<quantity>`` (``sigma_mu_s``, ``sig
 ignored. Lines starting with ``#`` are comments (the shipped synthetic data say so there);
 blank lines are skipped; the first other line is the header.
 
+**Separator**: commas; or semicolons with decimal commas (``t[s];v_load[um/s];mu`` then
+``0,5;1;0,5998``), as a spreadsheet set to a European locale saves "CSV": the same columns
+and checks (:func:`csv_separator`). A header line holding a ``;`` and no ``,`` is read that
+way; a cell ``1.000,5`` (a thousands point) is refused as not a number.
+
 **Units** go in the header after the name, in square brackets: ``t_w[min]``, ``V[um/s]``,
 ``t[ms]``. Without brackets the quantity is in SI (s, m/s). Accepted:
 
@@ -52,6 +57,7 @@ __all__ = [
     "SeriesData",
     "Dataset",
     "read_csv",
+    "csv_separator",
     "TIME_UNITS",
     "LENGTH_UNITS",
 ]
@@ -344,6 +350,16 @@ def _parse_header(cells: list[str], src: str, line: int) -> dict[str, tuple[int,
     return found
 
 
+def csv_separator(header: str) -> str:
+    """The separator of a CSV file of ours, from its header line: ``";"`` (its numbers then
+    carry decimal commas) where the line holds a ``;`` and no ``,``, else ``","``.
+
+    Ours: a spreadsheet in a European locale saves "CSV" with semicolons because the comma is
+    its decimal mark; a comma-separated header never holds a ``;`` (no name or unit of
+    :mod:`dryfriction.records.data` has one)."""
+    return ";" if ";" in header and "," not in header else ","
+
+
 def read_csv(path: str | os.PathLike[str]) -> Dataset:
     """Read a friction data set from a CSV file (see the module docstring for the format).
 
@@ -373,7 +389,10 @@ def read_csv(path: str | os.PathLike[str]) -> Dataset:
     header: list[str] | None = None
     header_line = 0
     rows: list[tuple[int, list[str]]] = []
-    for lineno, cells in enumerate(csv.reader(text.splitlines()), start=1):
+    first = next((ln for ln in text.splitlines()
+                  if ln.strip() and not ln.lstrip().startswith("#")), "")
+    sep = csv_separator(first)
+    for lineno, cells in enumerate(csv.reader(text.splitlines(), delimiter=sep), start=1):
         if not cells or all(c.strip() == "" for c in cells) or cells[0].lstrip().startswith("#"):
             continue
         if header is None:
@@ -408,7 +427,8 @@ def read_csv(path: str | os.PathLike[str]) -> Dataset:
             if cell == "":
                 raise ValueError(f"{where}: empty cell")
             try:
-                x = float(cell)
+                # decimal commas with semicolons (csv_separator); the cell is named as written
+                x = float(cell.replace(",", ".") if sep == ";" else cell)
             except ValueError:
                 raise ValueError(f"{where}: {cell!r} is not a number") from None
             if math.isnan(x):

@@ -47,7 +47,7 @@ from ..io.textfile import HEAD_BYTES, check_text
 from ..validation import FRICTION_MAX, Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import Detection, detect_program, detect_segments, no_change_message
-from .labforms import FORMS, read_table
+from .labforms import FORMS, PREAMBLE_MAX, read_table
 from .labsteps import (
     SEGMENTS_SYNTAX,
     Segment,
@@ -281,9 +281,8 @@ column (ours: a few dropouts of a logger are common; more is a column that was n
 throughout, which dropping would hide): above it the record is refused."""
 
 
-PREAMBLE_MAX = 200
-"""Most lines above a text record's header that are skipped as a preamble (ours: instruments
-write a few to a few dozen)."""
+# PREAMBLE_MAX (most lines above a header skipped as a preamble) is labforms': a spreadsheet's
+# header is found by the same rule (labforms._header_index), and labforms cannot import this
 
 
 def _is_missing(cell: str) -> bool:
@@ -644,13 +643,21 @@ def _drop_missing(src: str, data: Array, line_of: Callable[[int], int], names: l
 
 def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
     """:func:`read_record` for a ``.xlsx`` or ``.mat`` file: its table read as a text one."""
-    names, table, hline, sline, row_units, word = read_table(path)
+    notes: list[str] = []
+    named = {(v.rpartition(":")[0] if ":" in v else v).strip().lower()
+             for v in (columns or {}).values()}
+
+    def is_name(cell: str) -> bool:  # as _find_header scores a text record's lines
+        name = _split_cell(cell)[0]
+        return _guess_role(name)[0] is not None or name.lower() in named
+
+    names, table, hline, sline, row_units, word = read_table(path, is_name, notes)
 
     def load(usecols: list[int], roles: list[str]) -> tuple[Array, Callable[[int], int]]:
         return table[:, usecols], lambda i: sline + i
 
     try:
-        rec = _finish(str(path), names, columns, hline, sline, row_units, load)
+        rec = _finish(str(path), names, columns, hline, sline, row_units, load, notes)
     except ValueError as exc:  # the same refusal, in the file's own words for a row
         msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
         raise ValueError(msg.replace(", line ", f", {word} ").replace(

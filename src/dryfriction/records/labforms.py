@@ -3,8 +3,11 @@ openpyxl, the optional extra ``dryfriction[xlsx]``) and a MATLAB file (``.mat``,
 SciPy). Each is turned into the header names and a table of numbers, then read exactly as a
 text record is (:func:`.lab.read_record`: the same column recognition, units and refusals).
 
-* ``.xlsx``: the first sheet; its first non-empty row holds the column names (units in
-  parentheses or brackets, ``Time (s)``), an optional row of units under it, numbers below.
+* ``.xlsx``: the first sheet (said where there are more); its header row holds the column
+  names (units in parentheses or brackets, ``Time (s)``), an optional row of units under it,
+  numbers below. The header is found as in a text record: the row with the most recognised
+  names above the first rows of numbers; rows above it (a metadata block) are a preamble,
+  skipped and said.
   Rows are numbered as the spreadsheet numbers them (``row 5``).
 * ``.mat``: either one struct whose fields are the columns, or top-level variables of equal
   length (``Time``, ``Displ``, ...); a MATLAB name cannot hold a unit, so the names
@@ -16,13 +19,18 @@ text record is (:func:`.lab.read_record`: the same column recognition, units and
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from ..validation import Array, check_memory
 
-__all__ = ["FORMS", "read_table"]
+__all__ = ["FORMS", "PREAMBLE_MAX", "read_table"]
+
+PREAMBLE_MAX = 200
+"""Most lines (rows) above a record's header that are skipped as a preamble (ours: instruments
+write a few to a few dozen); the text reader's too (:func:`.lab._find_header`)."""
 
 FORMS = (".xlsx", ".xlsm", ".mat")
 """File suffixes read here rather than as text."""
@@ -40,10 +48,17 @@ def _name_with_unit(name: str) -> str:
     return f"{m.group(1)} ({unit})"
 
 
-def read_table(path: Path) -> tuple[list[str], Array, int, int, list[str], str]:
+def read_table(path: Path, is_name: Callable[[str], bool] | None = None,
+               notes: list[str] | None = None
+               ) -> tuple[list[str], Array, int, int, list[str], str]:
     """The header names, the numbers (rows x columns, NaN where a cell is not a number), the
     header's and the first data row's numbers, the units row (or ``[]``) and the word for a
     row in messages (``"row"``).
+
+    ``is_name(cell)``: whether a header cell is a column name the reader recognises; with it a
+    spreadsheet's header is the row with the most of them above the first two rows of numbers
+    (the text reader's rule, :func:`.lab._find_header`), the rows above it a preamble. What
+    the reader skipped (a preamble, the other sheets) is appended to ``notes``.
 
     Raises
     ------
@@ -58,10 +73,11 @@ def read_table(path: Path) -> tuple[list[str], Array, int, int, list[str], str]:
                  "export it as a text table and split it")
     if path.suffix.lower() == ".mat":
         return _read_mat(path, src)
-    return _read_xlsx(path, src)
+    return _read_xlsx(path, src, is_name, notes if notes is not None else [])
 
 
-def _read_xlsx(path: Path, src: str) -> tuple[list[str], Array, int, int, list[str], str]:
+def _read_xlsx(path: Path, src: str, is_name: Callable[[str], bool] | None, notes: list[str]
+               ) -> tuple[list[str], Array, int, int, list[str], str]:
     try:
         import openpyxl
     except ImportError:
@@ -73,13 +89,28 @@ def _read_xlsx(path: Path, src: str) -> tuple[list[str], Array, int, int, list[s
         raise ValueError(f"{src}: not a readable .xlsx spreadsheet ({type(exc).__name__}: "
                          f"{exc})") from None
     ws = wb.worksheets[0]
-    header, hrow, units_row, rows, first = None, 0, [], [], 0
+    sheets = ""
+    if len(wb.worksheets) > 1:  # said: a record on another sheet would otherwise be missed
+        sheets = (f"{len(wb.worksheets)} sheets: the first, {ws.title!r}, is read (save "
+                  "another as its own file to read it)")
+        notes.append(f"{src}: {sheets}")
+    lines: list[tuple[int, list[object]]] = []  # the non-empty rows, by their number
     for r, row in enumerate(ws.iter_rows(values_only=True), start=1):
         cells = list(row)
         while cells and cells[-1] in (None, ""):
             cells.pop()
-        if not cells:
-            continue
+        if cells:
+            lines.append((r, cells))
+    wb.close()
+    h = _header_index(lines, is_name) if is_name is not None else 0
+    if h:  # one line: what was skipped, so that a wrong guess shows
+        shown = ", ".join(repr(" ".join(str(c) for c in cells if c not in (None, ""))[:40])
+                          for _, cells in lines[:min(h, 3)])
+        more = f" and {h - 3} more" if h > 3 else ""
+        notes.append(f"{src}: {h} row(s) above the header (row {lines[h][0]}) skipped as a "
+                     f"preamble: {shown}{more}")
+    header, hrow, units_row, rows, first = None, 0, [], [], 0
+    for r, cells in lines[h:]:
         if header is None:
             header, hrow = ["" if c is None else str(c) for c in cells], r
             continue
@@ -91,16 +122,33 @@ def _read_xlsx(path: Path, src: str) -> tuple[list[str], Array, int, int, list[s
             first = r
         rows.append([float(c) if isinstance(c, (int, float)) and not isinstance(c, bool)
                      else _number(c) for c in cells])
-    wb.close()
+    also = f"; {sheets}" if sheets else ""
     if header is None:
-        raise ValueError(f"{src}: the first sheet has no header row with column names")
+        raise ValueError(f"{src}: the first sheet has no header row with column names{also}")
     if not rows:
-        raise ValueError(f"{src}: no data rows under the header (row {hrow})")
+        raise ValueError(f"{src}: no data rows under the header (row {hrow}){also}")
     width = len(header)
     data = np.full((len(rows), width), np.nan)
     for i, row in enumerate(rows):
         data[i, : min(len(row), width)] = row[:width]
     return header, data, hrow, first, units_row, "row"
+
+
+def _header_index(lines: list[tuple[int, list[object]]], is_name: Callable[[str], bool]
+                  ) -> int:
+    """Index in ``lines`` of a sheet's header: of the rows above the first two rows of numbers
+    (at most PREAMBLE_MAX + 1 of them), the first with the most recognised column names; 0
+    (the first row) where none has one. The text reader's rule (:func:`.lab._find_header`)."""
+    def numeric(cells: list[object]) -> bool:  # a data row: two cells or more, all numbers
+        vals = [c for c in cells if c not in (None, "")]
+        return len(vals) >= 2 and all(not np.isnan(_number(c)) for c in vals)
+
+    top = min(len(lines), PREAMBLE_MAX + 2)
+    start = next((k for k in range(top) if numeric(lines[k][1])
+                  and (k + 1 == len(lines) or numeric(lines[k + 1][1]))), top)
+    score = [sum(is_name(str(c)) for c in cells if c not in (None, ""))
+             for _, cells in lines[:max(min(start, PREAMBLE_MAX + 1), 1)]]
+    return score.index(max(score)) if score and max(score) > 0 else 0
 
 
 def _number(cell: object) -> float:
