@@ -3423,6 +3423,12 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fixD: the first of several sheets read without a word", "records/labforms.py",
        "    if len(wb.worksheets) > 1:  # said", "    if False:  # said", _FXP, "-k",
        "several_sheets"),
+    _m("fixD: the ';' reading chosen in silence", "app/fitting.py",
+       'if report is not None and csv_separator(_header_line(p)) == ";":',
+       "if False:", _FXF, "-k", "semicolon"),
+    _m("fixD: the ';' note said for a comma file too", "app/fitting.py",
+       'if report is not None and csv_separator(_header_line(p)) == ";":',
+       "if report is not None:", _FXF, "-k", "semicolon"),
     # --- end fixD
 )
 

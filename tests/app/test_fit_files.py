@@ -69,3 +69,26 @@ def test_a_record_with_csv_files_is_refused_as_fitted_alone(tmp_path: Path,
         read_csv(bad)
     app.fit([CSV, bad], out)  # routed to the data fit (replaced here), which refuses it
     assert calls == [[CSV, bad]]
+
+
+class _Stop(Exception):
+    pass
+
+
+def test_a_semicolon_csv_is_fitted_as_ours_and_said(tmp_path: Path) -> None:
+    # mistake: the reading chosen in silence (a ';' file might have been meant otherwise);
+    # the note said for a comma file too
+    semi = tmp_path / "semi.csv"
+    semi.write_text("V[um/s];mu_d\n0,25;0,6113\n2,5;0,6021\n25;0,5987\n")
+    comma = tmp_path / "comma.csv"
+    comma.write_text("V[um/s],mu_d\n0.25,0.6113\n2.5,0.6021\n25,0.5987\n")
+    notes: list[str] = []
+
+    def stop() -> None:  # after the reading and its notes, before the fit
+        raise _Stop
+
+    for p in (semi, comma):
+        with pytest.raises(_Stop):
+            fitting.fit_data([p], tmp_path / "o", report=notes.append, on_start=stop)
+    assert notes == [f"note: {semi}: read as the project's CSV with ';' separators and "
+                     "decimal commas"]
