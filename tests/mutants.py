@@ -3329,7 +3329,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "app/theory.py", 'if t["b"] > t["a"] else " (velocity strengthening)")',
        'if t["b"] < t["a"] else " (velocity strengthening)")', "tests/app/test_app_direct.py"),
     _m("static: a reversed load past the edge's range refused by an inner name",
-       "theory/static.py", "        if d_w <= -1.0:\n", "        if False:\n",
+       "theory/static.py", 'if hold == "position" and d_w <= -1.0:', "if False:",
        "tests/theory/test_static.py", "-k", "reversed_load"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by

@@ -251,7 +251,9 @@ def test_a_reversed_load_is_refused_by_its_own_range() -> None:
     assert np.all(np.isfinite(ok)) and np.all(ok >= 1.0)
     for load in (-0.7, -(lim + 1e-4)):
         with pytest.raises(ValueError, match=rf"^load = {load:g} is out of range: allowed "
-                           rf"-{lim:.4g} < load < 1 at alpha = 0\.13 "):
+                           rf"-{lim:.4g} < load < 1 at alpha = 0\.13 with the position held"):
             static_friction(m, [1.7], load=load)
+        # the force held: the edge creeps back, the load's whole range is taken
+        assert np.isfinite(static_friction(m, [1.7], load=load, hold="force")).all()
     # alpha with y_c < 1: the edge never reaches -a0, the whole -1 < load < 1 is allowed
     assert np.isfinite(static_friction(TM(0.31, 0.043, "log"), [1.7], load=-0.97)).all()
