@@ -3331,6 +3331,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("static: a reversed load past the edge's range refused by an inner name",
        "theory/static.py", 'if hold == "position" and d_w <= -1.0:', "if False:",
        "tests/theory/test_static.py", "-k", "reversed_load"),
+    _m("record stiffness: two disagreeing steps said consistent", "fit/identify.py",
+       '"unit": "1/m", "steps": keep, "consistent": not split,',
+       '"unit": "1/m", "steps": keep, "consistent": True,',
+       "tests/fit/test_identify_definitions.py"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

@@ -191,6 +191,7 @@ RECORD_FIT_UNITS: dict[str, str | None] = {
                                                       "i_start", "i_end", "confidence",
                                                       "duration")},
     "t_given": "s", "sigma_t_change": "s", "start_lo": "s", "start_hi": "s",
+    "consistent": LABEL,
     "start_p": SEGMENT_UNITS["t_start_p"],
     "displacement_noise": "m", "level": LABEL, "steps": LABEL, "step": LABEL,
     "rise": "1 (friction)", "mean_normal": "Pa",
