@@ -3326,6 +3326,12 @@ MUTANTS: tuple[Mutant, ...] = (
        'if joint_fit is not None and errors == "hac":',
        'if joint_fit is not None and errors == "white":', "tests/fit/test_steps.py", "-k",
        "command_record_writes_steps"),
+    _m("stability: a twin stabilised by the damping called velocity strengthening",
+       "app/theory.py", 'if t["b"] > t["a"] else " (velocity strengthening)")',
+       'if t["b"] < t["a"] else " (velocity strengthening)")', "tests/app/test_app_direct.py"),
+    _m("static: a reversed load past the edge's range refused by an inner name",
+       "theory/static.py", "        if d_w <= -1.0:\n", "        if False:\n",
+       "tests/theory/test_static.py", "-k", "reversed_load"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

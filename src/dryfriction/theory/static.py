@@ -124,7 +124,17 @@ def _loaded_edge_loose(f_w: float, alpha: float = 0.13) -> float:
     if f_w == 0.0:
         return 0.0
     if f_w < 0.0:  # mirror symmetry p -> -p of the rest population
-        return -_loaded_edge_loose(-f_w, alpha)
+        d_w = -_loaded_edge_loose(-f_w, alpha)
+        if d_w <= -1.0:
+            # the pull's population (eqs. 25-27, ours for a loaded wait) needs the edge above
+            # -a0; a second new user's --load -0.7 was refused as "d_w = -1.04", a name no
+            # user gave: the load's own range instead
+            lim = float(_fresh_force_loose(1.0, alpha))
+            raise ValueError(f"load = {f_w:g} is out of range: allowed {-lim:.4g} < load < 1 "
+                             f"at alpha = {alpha:g} (a reversed load beyond {lim:.4g} F_el puts "
+                             "the population's edge at or past -a0, where the loaded wait's "
+                             "pull is not defined)")
+        return d_w
     yc = Trap(alpha).y_c
     from scipy.optimize import brentq  # lazily: SciPy's optimizers are slow to import
 
