@@ -114,6 +114,7 @@ _RHE = "tests/records/test_records_helpers.py"
 _CCH = "tests/records/test_change_choice.py"
 _SSB = "tests/records/test_small_step_blocks.py"
 _PSW = "tests/app/test_prepare_sweep.py"
+_CMN = "tests/cli/test_compare_notes.py"  # fixC
 _IDH = "tests/fit/test_identify_helpers.py"
 _RRP = "tests/app/test_record_report.py"
 _PGE = "tests/fit/test_progress_estimate.py"
@@ -3329,6 +3330,16 @@ MUTANTS: tuple[Mutant, ...] = (
        'if joint_fit is not None and errors == "hac":',
        'if joint_fit is not None and errors == "white":', "tests/fit/test_steps.py", "-k",
        "command_record_writes_steps"),
+    _m("stability: a twin stabilised by the damping called velocity strengthening",
+       "app/theory.py", 'if t["b"] > t["a"] else " (velocity strengthening)")',
+       'if t["b"] < t["a"] else " (velocity strengthening)")', "tests/app/test_app_direct.py"),
+    _m("static: a reversed load past the edge's range refused by an inner name",
+       "theory/static.py", 'if hold == "position" and d_w <= -1.0:', "if False:",
+       "tests/theory/test_static.py", "-k", "reversed_load"),
+    _m("record stiffness: two disagreeing steps said consistent", "fit/identify.py",
+       '"unit": "1/m", "steps": keep, "consistent": not split,',
+       '"unit": "1/m", "steps": keep, "consistent": True,',
+       "tests/fit/test_identify_definitions.py"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
@@ -3393,6 +3404,33 @@ MUTANTS: tuple[Mutant, ...] = (
        "steps = tuple(slice_steps(rec, segs, given=segments is not None))",
        "steps = tuple(slice_steps(rec, segs))", _USB_CLI, "-k", "one_velocity"),
     # --- end userfixB
+    # --- fixC: a second new user's trial: compare's notes (none printed, wrapped, on stdout
+    # with --json), the twin's v0 note in SI beside reduced units, refusals naming the wrong
+    # table or the wrong reason; each seen failing its selection
+    _m("compare: no notes printed under the table", "cli/runs.py",
+       'for note in (*report["notes"], *report["fit"]["notes"]):', "for note in ():",
+       _CMN, "-k", "prints_every_note"),
+    _m("compare: notes on standard output with --json", "cli/runs.py",
+       "(err if json_out else _STDOUT).print(", "_STDOUT.print(", _CMN, "-k",
+       "json_keeps"),
+    _m("compare: notes wrapped at the pipe's width", "cli/runs.py",
+       'print(f"- {note}", markup=False, highlight=False,\n'
+       "                                             soft_wrap=True)",
+       'print(f"- {note}", markup=False, highlight=False,\n'
+       "                                             soft_wrap=False)",
+       _CMN, "-k", "prints_every_note"),
+    _m("compare: the twin's v0 note left in the SI of the fit's scales", "analysis/rsf_view.py",
+       'notes = tuple(v0_note(u0, "a0/t0") if n == si else n for n in r.notes)',
+       "notes = tuple(r.notes)", _CMN, "-k", "prints_every_note"),
+    _m("fit: every rate-and-state fit's v0 note in a0/t0", "fit/models.py",
+       "n = [v0_note(self.v0)]", 'n = [v0_note(self.v0, "a0/t0")]', _CMN, "-k", "si_fit"),
+    _m("interface protocol: model.direct refused as 'in interface: direct'", "io/protocol.py",
+       "    if trap.direct != 0.0:  # a [model] key", "    if False:  # a [model] key",
+       "tests/io/test_interface_model_keys.py"),
+    _m("compare: an interface protocol told it needs model.law = 'cv'", "analysis/rsf_view.py",
+       "if isinstance(proto, InterfaceProtocol):", "if False:", _CMN, "-k",
+       "interface_protocol"),
+    # --- end fixC
     # --- fixD (a second new user's trial: fit's inputs)
     _m("fixD: a file given twice fitted as twice the data", "app/fitting.py",
        "        if key in seen:\n", "        if False:\n", _FXF, "-k", "twice"),

@@ -126,9 +126,21 @@ def test_stability_rounding_and_a_strengthening_twin_are_zero_and_said() -> None
     assert all(k < -0.01 for k in raw)  # the formula's value: strengthening at every u
     assert out.columns["K_c_rsf"] == [0.0, 0.0, 0.0]
     (note,) = out.notes
-    assert note.startswith("K_c_rsf = 0 at u = 0.037, 1.7, 23 a0/t0: the rate-and-state twin "
-                           "is velocity strengthening there (b - a = -")
+    assert note.startswith("K_c_rsf = 0 where the rate-and-state twin is stable at every "
+                           "stiffness, b - a - eta u <= 0: u = 0.037 a0/t0: b - a - eta u = -")
+    assert note.count("(velocity strengthening)") == 3 and "damping" not in note
     assert out.as_dict()["notes"] == out.notes
+    # the mistake a second user found: the damping, not the law, makes a weakening twin
+    # (b - a > 0) stable, b - a - eta u <= 0; the note must not call it strengthening
+    damped = app_theory.stability(0.043, [0.13, 1.1], mass=10.0, damping=0.1)
+    twin = rsf_stability_prediction(1.1, TrapModel(0.13, 0.043, "log"), 10.0, 0.1)
+    assert twin["b"] - twin["a"] > 0 > twin["b"] - twin["a"] - 0.1 * 1.1
+    assert damped.columns["K_c_rsf"][1] == 0.0 < damped.columns["K_c_rsf"][0]
+    (note,) = damped.notes
+    assert note.endswith(f"u = 1.1 a0/t0: b - a - eta u = "
+                         f"{twin['b'] - twin['a'] - 0.11:.4g} F_el (b - a = "
+                         f"{twin['b'] - twin['a']:.4g} F_el: the damping stabilises it)")
+    assert "strengthening" not in note
     # a weakening twin keeps its positive K_c and no note
     weak = app_theory.stability(0.083, [1.7])
     assert weak.columns["K_c_rsf"][0] > 0.01 and weak.notes == [] and "notes" not in \

@@ -64,7 +64,8 @@ def test_theory_tables_say_the_units_of_their_inputs_and_their_notes():
     r = invoke("stability", "--eps", "0.083", "--u", "1.7", "--direct", "0.27")
     assert r.exit_code == 0, r.output
     assert "mass = 0.0 F_el t0^2/a0" in r.stdout
-    assert "\nnote: K_c_rsf = 0 at u = 1.7 a0/t0: the rate-and-state twin" in r.stdout
+    assert "\nnote: K_c_rsf = 0 where the rate-and-state twin is stable at every " in r.stdout
+    assert "u = 1.7 a0/t0: b - a - eta u = " in r.stdout
     assert json.loads(invoke("stability", "--eps", "0.083", "--u", "1.7", "--direct", "0.27",
                              "--json").stdout)["notes"][0].startswith("K_c_rsf = 0")
 

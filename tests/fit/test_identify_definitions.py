@@ -94,3 +94,23 @@ def test_record_stiffness_is_the_inverse_variance_mean_of_ln_k_by_its_definition
     assert rec["lo"] == pytest.approx(math.exp(m - z * s), rel=1e-12)
     assert rec["hi"] == pytest.approx(math.exp(m + z * s), rel=1e-12)
     assert all(r["flags"] == "" for r in rows)
+
+
+def test_two_disagreeing_steps_are_kept_and_the_method_says_so() -> None:
+    # the mistake (a second new user): two steps flagged k_inconsistent, both kept in the
+    # record's k (nothing says which is right), while the method said "over the steps where
+    # k is identified and consistent"
+    from dryfriction.fit.identify import record_stiffness
+
+    rows = [{"stiffness": k, "stiffness_lo": 0.9 * k, "stiffness_hi": 1.1 * k, "flags": ""}
+            for k in (2.3e3, 4.1e3)]
+    rec = record_stiffness(rows)
+    assert rec is not None and rec["steps"] == [0, 1] and rec["consistent"] is False
+    assert all("k_inconsistent" in r["flags"] for r in rows)
+    assert "the two steps disagree (both flagged k_inconsistent)" in rec["method"]
+    assert "identified and consistent" not in rec["method"]
+    agree = [{"stiffness": k, "stiffness_lo": 0.9 * k, "stiffness_hi": 1.1 * k, "flags": ""}
+             for k in (3.1e3, 3.2e3)]
+    rec = record_stiffness(agree)
+    assert rec is not None and rec["consistent"] is True
+    assert "identified and consistent" in rec["method"]

@@ -45,8 +45,11 @@ SHS = EXAMPLES / "slide_hold_slide.toml"
      "--no-figure", "--no-compare", "--no-profile"),
     ("fit", str(EXAMPLES / "data" / "synthetic_static_paper.csv"),
      str(EXAMPLES / "data" / "synthetic_steady_paper.csv"), "--no-figure", "--no-profile"),
+    # the force and spring drives' own summary keys (threshold, slips: found without units)
+    ("simulate", str(EXAMPLES / "static_threshold_loaded.toml"), "--no-figure"),
+    ("simulate", str(EXAMPLES / "spring_stick_slip.toml"), "--no-figure"),
 ], ids=["simulate-cv", "simulate-rsf", "rsf-step", "rsf-shs", "bifurcation", "fit-csv",
-        "fit-csv-cv"])
+        "fit-csv-cv", "simulate-force", "simulate-spring"])
 def test_every_column_has_a_unit(tmp_path: Path, args: tuple[str, ...]) -> None:
     out = tmp_path / "out"
     _run(*args, "--out", str(out))

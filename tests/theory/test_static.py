@@ -236,3 +236,24 @@ def test_force_hold_rear_exits_lower_the_loaded_threshold():
     position = float(static_friction(TrapModel(eps=0.04), 100.0, load=0.5, hold="position"))
     assert force == pytest.approx(1.2474, abs=4e-4)
     assert position - force > 1e-3
+
+
+def test_a_reversed_load_is_refused_by_its_own_range() -> None:
+    # the mistake: a reversed load whose mirrored edge is at or past -a0 refused as
+    # "d_w = -1.03882 is out of range" (a second new user's --load -0.7), a name no user gave
+    from dryfriction.theory.model import TrapModel as TM
+    from dryfriction.theory.static import fresh_force, loaded_edge, static_friction
+
+    m = TM(0.13, 0.043, "log")
+    lim = float(fresh_force(m, 1.0))  # the load whose edge is exactly at a0
+    assert 0.67 < lim < 0.68 and loaded_edge(m, -(lim - 1e-6)) > -1.0
+    ok = static_friction(m, [1.7, 170.0], load=-(lim - 1e-4))
+    assert np.all(np.isfinite(ok)) and np.all(ok >= 1.0)
+    for load in (-0.7, -(lim + 1e-4)):
+        with pytest.raises(ValueError, match=rf"^load = {load:g} is out of range: allowed "
+                           rf"-{lim:.4g} < load < 1 at alpha = 0\.13 with the position held"):
+            static_friction(m, [1.7], load=load)
+        # the force held: the edge creeps back, the load's whole range is taken
+        assert np.isfinite(static_friction(m, [1.7], load=load, hold="force")).all()
+    # alpha with y_c < 1: the edge never reaches -a0, the whole -1 < load < 1 is allowed
+    assert np.isfinite(static_friction(TM(0.31, 0.043, "log"), [1.7], load=-0.97)).all()

@@ -49,6 +49,7 @@ import numpy as np
 from ..ensemble.driving import Output, SimulationResult, VelocityDrive, simulate
 from ..ensemble.population import Initial, Track, TrapModel
 from ..fit import FitResult, RSFModel, fit
+from ..fit.models import v0_note
 from ..program import Segment, VelocityProgram
 from ..records.data import SeriesData, StaticData
 from ..rsf.driving import RSFInitial, RSFOutput, SpringSlider
@@ -198,9 +199,13 @@ def _twin_from_fit(r: FitResult, law: str, what: str, u0: float) -> RSFTwin:
     se: dict[str, float | None] = {}
     for p in r.parameters:
         se[p.name] = None if p.stderr is None else p.stderr * scale[p.name]
+    # the fit ran in SI through SCALES (v0 = u0 * velocity_scale m/s); the twin is reported in
+    # reduced units, so is its reference velocity: u0 a0/t0
+    si = v0_note(u0 * SCALES.velocity_scale)
+    notes = tuple(v0_note(u0, "a0/t0") if n == si else n for n in r.notes)
     return RSFTwin(law, what, v["a"], v["b"], v["dc"] / SCALES.a0, v["mu0"], u0, se,
                    {d["source"]: d["rms_residual"] for d in r.per_dataset}, r.success,
-                   r.notes)
+                   notes)
 
 
 def fit_rsf_twin(series: Sequence[SeriesData], u0: float, state_law: str = "ageing",
@@ -565,8 +570,12 @@ def compare_protocol(proto: Any, state_law: str = "ageing",
     -------
     Comparison
     """
-    from ..io.protocol import Protocol
+    from ..io.protocol import InterfaceProtocol, Protocol
 
+    if isinstance(proto, InterfaceProtocol):  # a cv protocol too: say what compare lacks
+        raise ValueError(f"{proto.source}: compare does not take an extended-interface protocol "
+                         "(an [interface] table): it runs one trap-model slider (model.law = "
+                         "'cv', no [interface] table) next to its rate-and-state twin")
     if not isinstance(proto, Protocol):
         raise ValueError(f"{getattr(proto, 'source', 'protocol')}: compare runs a trap-model "
                          "protocol (model.law = 'cv') next to its rate-and-state twin")

@@ -256,14 +256,19 @@ def stability(eps: float, u: list[float], *, alpha: float = _STB["alpha"].defaul
     if twins:  # rate-and-state with the model's effective a, b, Dc (Rice & Ruina 1983)
         # b - a' <= 0 (velocity strengthening): the formula's negative k_c means stable at
         # every stiffness, i.e. K_c = 0 as the model's column says (a new user read -10.17)
+        # with the damping, the twin's a' = a + eta u (RateState.critical_stiffness): b - a'
+        # <= 0 is stable at every stiffness, whatever the sign of b - a (a second new user
+        # read "velocity strengthening (b - a = 0.03776)" where the damping did it)
         cols["K_c_rsf"] = [max(t["K_c"], 0.0) for t in twins]
-        strong = [(v, t) for v, t in zip(u, twins, strict=True) if t["K_c"] < 0.0]
-        if strong:
+        stable = [(v, t) for v, t in zip(u, twins, strict=True) if t["K_c"] < 0.0]
+        if stable:
             notes.append(
-                "K_c_rsf = 0 at u = " + ", ".join(f"{v:g}" for v, _ in strong) + " a0/t0: the "
-                "rate-and-state twin is velocity strengthening there (b - a = "
-                + ", ".join(f"{t['b'] - t['a']:.4g}" for _, t in strong) + " F_el), stable "
-                "at every stiffness")
+                "K_c_rsf = 0 where the rate-and-state twin is stable at every stiffness, "
+                "b - a - eta u <= 0: " + "; ".join(
+                    f"u = {v:g} a0/t0: b - a - eta u = {t['b'] - t['a'] - damping * v:.4g} F_el"
+                    + (f" (b - a = {t['b'] - t['a']:.4g} F_el: the damping stabilises it)"
+                       if t["b"] > t["a"] else " (velocity strengthening)")
+                    for v, t in stable))
     units = {"u": "a0/t0", "K_c": "F_el/a0", "omega_c": "rad/t0",
              "forward_stiffness": "F_el/a0", "backward_stiffness": "F_el/a0",
              "dmu_d_du": "F_el t0/a0", "K_c_rsf": "F_el/a0"}

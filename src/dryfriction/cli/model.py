@@ -78,7 +78,8 @@ def static(
                                 help="Trap stiffness, dimensionless, 0 < alpha < 1."),
     load: float = typer.Option(
         _STA["load"].default, "--load", help="Tangential force during the wait [F_el], "
-        "-1 < f_w < 1."
+        "-1 < f_w < 1; with --hold position a reversed load down to the value that puts "
+        "the population's edge at -a0 (-0.674 at alpha = 0.13)."
     ),
     hold: str = typer.Option(
         _STA["hold"].default, "--hold", metavar=one_of(_STA["hold"].choices),

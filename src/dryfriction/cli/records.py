@@ -175,7 +175,9 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
             n_load = sum(ld["used"] for ld in k.get("loadings", []))
             out.print(f"one machine: k = {k['value']:.4g} /m [{k['lo']:.4g}, {k['hi']:.4g}] "
                       f"(95 %, steps {', '.join(map(str, k['steps'])) or 'none'}"
-                      + (f", {n_load} elastic loading(s)" if n_load else "") + ")",
+                      + (f", {n_load} elastic loading(s)" if n_load else "") + ")"
+                      + ("; the two steps disagree (k_inconsistent): no one machine's value"
+                         if k.get("consistent") is False else ""),
                       highlight=False, soft_wrap=True)
         for c in (res.drive or {}).get("changes", []):
             out.print(f"measured drive: change at {c['t_change']:.6g} s +- "

@@ -19,6 +19,7 @@ from .common import (
     cli_errors,
     compile_notice,
     emit,
+    err,
     lazy_progress_bar,
     many,
     one_of,
@@ -32,6 +33,7 @@ from .painter import draw_figure
 
 _REP, _SIM, _CMP = OPTIONS["reproduce"], OPTIONS["simulate"], OPTIONS["compare"]
 _RSF = OPTIONS["rsf"]
+_STDOUT = out  # the console, for compare, whose --out parameter is named out
 
 
 @app.command(cls=many())
@@ -208,3 +210,9 @@ def compare(
     units = {**report["units"], **{f"misfit_{k}": report["units"].get(k)
                                    for k in done.result.misfit}}
     emit(report if json_out else brief, json_out, f"compare {protocol} -> {out}", units)
+    # what the table cannot hold, where the user reads it (as fit's notes): the comparison's
+    # own notes, then the twin's fit notes (a parameter on its bound, a systematic misfit);
+    # whole on a pipe, and on standard error with --json so that standard output stays JSON
+    for note in (*report["notes"], *report["fit"]["notes"]):
+        (err if json_out else _STDOUT).print(f"- {note}", markup=False, highlight=False,
+                                             soft_wrap=True)

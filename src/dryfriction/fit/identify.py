@@ -496,7 +496,14 @@ def record_stiffness(rows: list[dict[str, Any]], z: float = 1.96) -> dict[str, A
         flag(worst[1], worst[2], worst[0])
         keep.remove(worst[1])
     m, s = mean(keep)
+    # two steps that disagree are both kept (nothing says which is right) and both flagged:
+    # the method must say so (a second new user read "consistent" beside two flagged steps)
+    split = len(keep) == 2 and all("k_inconsistent" in split_flags(rows[i]["flags"])
+                                   for i in keep)
     return {"value": math.exp(m), "lo": math.exp(m - z * s), "hi": math.exp(m + z * s),
-            "unit": "1/m", "steps": keep,
+            "unit": "1/m", "steps": keep, "consistent": not split,
             "method": "inverse-variance weighted mean of ln k over the steps where k is "
-                      "identified and consistent (fit.identify.record_stiffness)"}
+                      + ("identified; the two steps disagree (both flagged k_inconsistent) and "
+                         "nothing says which is right, so both are kept: the value is no "
+                         "one machine's" if split else "identified and consistent")
+                      + " (fit.identify.record_stiffness)"}

@@ -591,6 +591,13 @@ def rsf_series(model: RSFModel, values: Mapping[str, float], data: SeriesData) -
     return mu
 
 
+def v0_note(v0: float, unit: str = "m/s") -> str:
+    """The fit's note on its fixed reference velocity ``V0`` (Dieterich 1979), in ``unit``: m/s
+    for a fit in SI, ``a0/t0`` where the caller reports the fit in reduced units
+    (:func:`dryfriction.analysis.rsf_view.fit_rsf_twin`)."""
+    return f"v0 = {v0:g} {unit} fixed (reference velocity)"
+
+
 @dataclass(frozen=True)
 class RSFModel:
     """Rate-and-state friction for fitting (SI; module docstring).
@@ -693,7 +700,7 @@ class RSFModel:
                 *_machine_specs(kinds, self.stiffness, self.trend))
 
     def notes(self, kinds: frozenset[str]) -> list[str]:
-        n = [f"v0 = {self.v0:g} m/s fixed (reference velocity)"]
+        n = [v0_note(self.v0)]
         if kinds == {"steady"}:
             n.append("steady-state data determine only a - b and mu0 (mu_ss = mu0 + (a - b) "
                      "ln(V/V0), Ruina 1983): a, b and Dc separately need transients")

@@ -517,6 +517,10 @@ def _interface_protocol(doc: Mapping[str, Any], source: str) -> InterfaceProtoco
     _check_tables(doc, _INTERFACE_TABLES, source,
                   f" (an [interface] protocol has {', '.join(_INTERFACE_TABLES)})")
     trap = _trap_model(doc, source)
+    if trap.direct != 0.0:  # a [model] key: named there, not in [interface] (InterfaceModel's)
+        raise ValueError(f"{source}: model.direct = {trap.direct:g} is not allowed with an "
+                         "[interface] table: allowed 0 (the chain's blocks have no direct "
+                         "effect yet)")
     _, initial = _population(doc, source)
     i = _Table(source, "interface", doc["interface"])
     i.allow(_INTERFACE_KEYS)

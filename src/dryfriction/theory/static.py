@@ -346,6 +346,15 @@ def _static_friction_loose(
     check_age(T, eps, creep)
     check_choice("hold", hold, HOLDS)
     d_w = _loaded_edge_loose(load, alpha)
+    if hold == "position" and d_w <= -1.0:
+        # the held population's pull (pull_force) needs the edge above -a0; a second new
+        # user's --load -0.7 was refused there as "d_w = -1.04", a name no user gave: the
+        # load's own range instead (a force hold creeps the edge back: no such limit)
+        lim = float(_fresh_force_loose(1.0, alpha))
+        raise ValueError(f"load = {load:g} is out of range: allowed {-lim:.4g} < load < 1 "
+                         f"at alpha = {alpha:g} with the position held (a reversed load beyond "
+                         f"{lim:.4g} F_el puts the population's edge at or past -a0, where the "
+                         "pull is not defined; hold = 'force' takes -1 < load < 1)")
     if hold == "force" and load != 0.0:
         Tb, eb = np.broadcast_arrays(T, eps)
         mu = np.array([_force_hold(float(t), float(e), alpha, creep, float(load))[0]
