@@ -3340,6 +3340,9 @@ MUTANTS: tuple[Mutant, ...] = (
        '"unit": "1/m", "steps": keep, "consistent": not split,',
        '"unit": "1/m", "steps": keep, "consistent": True,',
        "tests/fit/test_identify_definitions.py"),
+    _m("measured drive: a velocity column's change placed finer than its sampling",
+       "fit/loadpoint.py", "from_velocity=getattr(record, \"load_point\", None) is None)",
+       "from_velocity=False)", "tests/fit/test_loadpoint.py", "-k", "velocity_column"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

@@ -234,3 +234,27 @@ def test_a_change_the_displacement_cannot_place_keeps_the_program():
     (c,) = measured_drive(t, x + np.random.default_rng(5).normal(0.0, 2e-9, t.size),
                           v).changes
     assert c.placed and abs(c.t - 99.6) < 0.1
+
+
+def test_a_velocity_column_places_a_change_no_finer_than_its_sampling() -> None:
+    # the mistake (a second new user): a velocity column sampled every 0.5 s, integrated,
+    # has an exact corner; its Wald error (nanoseconds) was reported as the change time's
+    from dryfriction.fit.loadpoint import measured_drive
+
+    dt = 0.47
+    t = 3.1 + dt * np.arange(120)
+    v_load = np.where(t < 3.1 + 41 * dt, 1.7e-6, 6.3e-6)  # the program, as detected
+    v = np.where(t < 3.1 + 41 * dt - 0.2, 1.7e-6, 6.3e-6)  # the true change mid-interval
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+    wald = measured_drive(t, x, v_load).changes[0]
+    assert wald.sigma < 1e-6  # the integral's corner: exact to rounding
+    (c,) = measured_drive(t, x, v_load, from_velocity=True).changes
+    assert c.sigma == pytest.approx(dt / np.sqrt(12.0), rel=1e-12) and c.placed
+    assert abs(c.t - (3.1 + 41 * dt - 0.2)) < dt  # within its interval
+    # and through a record whose only load-point column is the velocity
+    from dryfriction.records.data import SeriesData
+    from dryfriction.records.record import LabRecord
+
+    rec = LabRecord("v.txt", t, None, v, np.full(t.size, 0.6), None, "", {}, 2)
+    drive = measured_series(SeriesData(t, v_load, np.full(t.size, 0.6)), rec).drive
+    assert drive.changes[0].sigma == pytest.approx(dt / np.sqrt(12.0), rel=1e-12)

@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -200,7 +200,8 @@ def _side(t: Array, i_lo: int, i_hi: int, v: float, at: float, before: bool) -> 
 
 
 def measured_drive(t: Array, x: Array, v_load: Array,
-                   shift: dict[int, float] | None = None) -> LoadPointDrive:
+                   shift: dict[int, float] | None = None,
+                   from_velocity: bool = False) -> LoadPointDrive:
     """The denoised load point of a record (module docstring).
 
     Parameters
@@ -214,6 +215,12 @@ def measured_drive(t: Array, x: Array, v_load: Array,
     shift : dict, optional
         Hold change ``j``'s time at its estimate plus ``shift[j]`` s (for the drive's
         uncertainty: :func:`drive_sensitivity`).
+    from_velocity : bool
+        ``x`` is a velocity column integrated: each change's standard error is at least
+        ``dt / sqrt(12)``, ``dt`` the sampling interval holding it (ours: a sampled velocity
+        says only that the change lies in that interval, uniform there; the integral's
+        corner is exact to rounding, and its Wald error, nanoseconds on a second new user's
+        record sampled every 0.5 s, said otherwise).
     """
     from scipy.interpolate import make_smoothing_spline
 
@@ -230,6 +237,8 @@ def measured_drive(t: Array, x: Array, v_load: Array,
         hi = _side(t, i, min(half1 + 1, a1), float(v_load[i]), float(t[i]), False)
         lo, hi = max(min(lo, i - 4), 0), min(max(hi, i + 4), t.size)  # >= 4 samples a side
         est = estimate_change(t[lo:hi], x[lo:hi], float(t[i]))
+        if from_velocity:
+            est = replace(est, sigma=max(est.sigma, float(t[i] - t[i - 1]) / math.sqrt(12.0)))
         # placed from the displacement only where that beats the program's own placement,
         # to within the sampling interval at the change (else the load point's wander,
         # not the change, sets the corner: on records_zoo's slide-hold-slide with 8 %
@@ -296,7 +305,8 @@ def measured_series(data: SeriesData, record: Any,
         raise ValueError(f"{data.source}: --drive measured needs a laboratory record with a "
                          "load-point displacement (or velocity) column; use --drive program")
     x, _ = find_resets(np.asarray(record.time, float), displacement(record))
-    drive = measured_drive(data.t, np.asarray(x, float), data.v_load, shift)
+    drive = measured_drive(data.t, np.asarray(x, float), data.v_load, shift,
+                           from_velocity=getattr(record, "load_point", None) is None)
     return DrivenSeries(data.t, data.v_load, data.mu, data.sigma, data.source, drive=drive)
 
 
