@@ -90,8 +90,10 @@ def test_too_many_checks_and_trap_model_without_direct_refused(tmp_path: Path) -
     assert r.exit_code == 2 and "at most 12" in r.stderr and not out.exists()
     cv = Path(__file__).resolve().parents[2] / "examples" / "velocity_step.toml"
     r = run(str(cv), "--velocities", "1e-6", "--out", str(out))
-    # a trap protocol without the direct effect: no finite K_c (dryfriction.analysis.trap_hopf)
+    # a trap protocol without the direct effect: no normal form (analysis.trap_hopf); its K_c
+    # is finite (stability), the onset frequency is not: the refusal must not say otherwise
     assert r.exit_code == 2 and "model.direct = 0" in r.stderr and not out.exists()
+    assert "no finite K_c" not in r.stderr and "omega_c = inf" in r.stderr
 
 
 def test_supercritical_check_columns(tmp_path: Path) -> None:

@@ -181,8 +181,14 @@ def check_trap(model: TrapModel, mass: float, damping: float) -> None:
     """``ValueError`` in one line naming the protocol's parameter where
     :func:`.trap_hopf.trap_hopf` does not apply (before any work)."""
     if model.direct == 0.0:
-        raise ValueError("model.direct = 0 is not allowed here: the quasi-static trap slider has "
-                         "no finite K_c without the direct effect; allowed 0 < direct <= 1")
+        # a second new user read "no finite K_c" against stability's finite K_c: the
+        # athermal slider's K_c is finite, its onset frequency is not (a supremum at omega ->
+        # inf), and the normal form is written with the direct effect only
+        raise ValueError("model.direct = 0 is not allowed here: the Hopf normal form is "
+                         "written for the trap slider with the direct effect; without it the "
+                         "massless slider's K_c is reached only as the frequency grows without "
+                         "bound (dryfriction stability gives K_c, omega_c = inf); allowed "
+                         "0 < direct <= 1")
     if model.alpha >= ALPHA0:
         raise ValueError(f"model.alpha = {model.alpha:g} is not allowed here: the normal form is "
                          f"written for very strong pinning; allowed 0 < alpha < {ALPHA0:.4f}")
