@@ -255,9 +255,13 @@ def _start(scheduler: str | None, n_workers: int | None, connect_timeout: float)
             raise ValueError(f"--scheduler {scheduler}: cannot reach it ({exc})") from None
     n = n_workers or os.cpu_count() or 1
     quiet_scheduler, quiet_worker = _quiet_class("_QuietScheduler"), _quiet_class("_QuietWorker")
+    # the workers' own logs at CRITICAL only: on a Ctrl-C under load a worker's heartbeat
+    # can meet the closing scheduler and log "Failed to communicate with scheduler" with a
+    # CommClosedError traceback above the one line that says how to resume (seen in CI at a
+    # load of 5); a point's failure reaches the sweep through its future, not these logs
     worker = {"cls": Nanny, "options": {"nthreads": 1, "host": "127.0.0.1",
                                         "worker_class": quiet_worker, "dashboard": False,
-                                        "silence_logs": logging.ERROR}}
+                                        "silence_logs": logging.CRITICAL}}
     method = "forkserver" if fork_server_running() else "spawn"
     with (_sigint_held() as caught,
           dask.config.set({"distributed.worker.multiprocessing-method": method,
