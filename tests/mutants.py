@@ -3343,6 +3343,12 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("measured drive: a velocity column's change placed finer than its sampling",
        "fit/loadpoint.py", "from_velocity=getattr(record, \"load_point\", None) is None)",
        "from_velocity=False)", "tests/fit/test_loadpoint.py", "-k", "velocity_column"),
+    _m("theory: --u-ref without --direct taken and ignored", "app/theory.py",
+       'if not direct and v_ref != _STA["v_ref"].default:', "if False:",
+       "tests/app/test_app_direct.py", "-k", "options_without"),
+    _m("sweeps: load_sweep of a results folder", "sweeps/sweep.py",
+       "    if p.is_dir():\n        p = p / \"sweep.nc\"\n", "", "tests/sweeps/test_sweep.py",
+       "-k", "round_trips"),
     # --- end stop 38 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

@@ -328,3 +328,20 @@ def test_the_stability_of_steady_sliding_is_one_function() -> None:
     assert dryfriction.rsf_linear_stability is stability.linear_stability
     ev = stability.linear_stability(LAB, 1.1e-6, 0.5 * LAB.critical_stiffness(1.1e-6))
     assert np.max(ev.real) > 0.0 and math.isfinite(float(np.max(ev.real)))
+
+
+def test_the_parts_a_run_composes_are_exported_where_the_docs_use_them() -> None:
+    # the mistake (a second new user): the docs' Initial("rest", track=Track(1000)) and
+    # SpringSlider(...) importable only from inner modules; lazily, as the other names
+    import importlib
+
+    import dryfriction as df
+
+    where = {"Initial": "ensemble.population", "Track": "ensemble.population",
+             "VelocityDrive": "ensemble.drives", "ForceDrive": "ensemble.drives",
+             "SpringDrive": "ensemble.drives", "Output": "ensemble.result",
+             "SpringSlider": "rsf.spring", "RSFInitial": "rsf.spring",
+             "RSFOutput": "rsf.spring"}
+    for name, mod in where.items():
+        assert name in df.__all__
+        assert getattr(df, name) is getattr(importlib.import_module(f"dryfriction.{mod}"), name)

@@ -50,8 +50,14 @@ _PUBLIC: dict[str, str] = {
     "steady_friction_si": "theory.units",
     # programs
     "Segment": "program", "VelocityProgram": "program",
-    # simulators (simulate, below, runs either law)
+    # simulators (simulate, below, runs either law) and the parts a run composes (a second
+    # new user found the docs' Initial, Track and SpringSlider importable only from inner
+    # modules)
     "Result": "simulation",
+    "Initial": "ensemble.population", "Track": "ensemble.population",
+    "VelocityDrive": "ensemble.drives", "ForceDrive": "ensemble.drives",
+    "SpringDrive": "ensemble.drives", "Output": "ensemble.result",
+    "SpringSlider": "rsf.spring", "RSFInitial": "rsf.spring", "RSFOutput": "rsf.spring",
     "RateState": "rsf.law", "RateStateModel": "rsf.law",
     "RSFResult": "rsf.driving", "SolverError": "rsf.driving", "simulate_rsf": "rsf.driving",
     # files, fitting

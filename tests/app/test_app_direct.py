@@ -293,3 +293,18 @@ def test_cv_cost_scales_one_run_by_the_windows_durations(monkeypatch: pytest.Mon
     assert made[-1][2] == 37.0
     clock = iter([0.0])  # the refused run: read once, before it
     assert app_records.cv_cost([SimpleNamespace(t=np.array([-1.0, 1.0]))], 0.2, "log") == math.inf
+
+
+def test_direct_effect_options_without_the_direct_effect_are_refused() -> None:
+    # the mistake (a second new user): --u-ref and --pull-velocity taken and ignored without
+    # --direct; each is now refused by its own name, before any work
+    for run in (lambda: app_theory.steady(0.043, u=[0.37], v_ref=2.3),
+                lambda: app_theory.stability(0.043, [0.37], v_ref=2.3),
+                lambda: app_theory.static(0.043, T=[3.7], v_ref=2.3)):
+        with pytest.raises(ValueError, match=r"^--u-ref 2\.3 applies only with --direct > 0"):
+            run()
+    with pytest.raises(ValueError, match=r"^--pull-velocity 0\.37 applies only with --direct"):
+        app_theory.static(0.043, T=[3.7], pull_velocity=0.37)
+    # with the direct effect both are taken
+    out = app_theory.static(0.043, T=[3.7], direct=0.02, v_ref=2.3, pull_velocity=0.37)
+    assert out.params["v_ref"] == 2.3 and out.params["pull_velocity"] == 0.37

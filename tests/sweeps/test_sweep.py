@@ -43,6 +43,11 @@ def test_grid_runs_on_two_workers_and_round_trips(tmp_path):
     back = load_sweep(tmp_path / "out" / "sweep.nc")
     np.testing.assert_allclose(back["sum"].values, x + y)
     assert list(back.dims) == ["test.x", "test.y"]
+    # the results folder reads its sweep.nc (a new user's load_sweep('out') raised
+    # IsADirectoryError); a folder without one is one line naming the file
+    np.testing.assert_allclose(load_sweep(tmp_path / "out")["sum"].values, x + y)
+    with pytest.raises(FileNotFoundError, match=r"m/sweep\.nc: no such sweep file"):
+        load_sweep(markers)
 
 
 def test_failed_point_is_recorded_and_sweep_goes_on(tmp_path):

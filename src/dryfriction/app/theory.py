@@ -67,6 +67,10 @@ def trap(alpha: float = _TRAP["alpha"].default) -> TableOutcome:
 
 def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
     # given only with the direct effect, so the athermal output is unchanged
+    if not direct and v_ref != _STA["v_ref"].default:
+        # taken and ignored before (a second new user's --u-ref 2 without --direct)
+        raise ValueError(f"--u-ref {v_ref:g} applies only with --direct > 0 (the direct "
+                         "effect's reference velocity, a0/t0): give --direct or drop --u-ref")
     return {"direct": direct, "v_ref": v_ref} if direct else {}
 
 
@@ -123,6 +127,10 @@ def static(eps: float, T: list[float] | None = None, t_w: list[float] | None = N
                               "creep": creep, **_direct_params(direct, v_ref)}
     if direct:
         params["pull_velocity"] = pull_velocity
+    elif pull_velocity is not None:
+        raise ValueError(f"--pull-velocity {pull_velocity:g} applies only with --direct > 0 "
+                         "(without the direct effect the threshold does not depend on how fast "
+                         "it is pulled): give --direct or drop --pull-velocity")
     if scales is None:
         if mu_el is not None:
             raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "

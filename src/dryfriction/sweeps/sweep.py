@@ -632,8 +632,18 @@ def _netcdf_bytes(ds: Any) -> bytes:
 
 
 def load_sweep(path: str | os.PathLike[str]) -> Any:
-    """Read a ``sweep.nc`` back as an :class:`xarray.Dataset` (loaded into memory)."""
+    """Read a ``sweep.nc`` back as an :class:`xarray.Dataset` (loaded into memory).
+
+    ``path`` may be the sweep's results folder (``--out``): its ``sweep.nc`` is read (a new
+    user gave the folder and got ``IsADirectoryError``); a missing file is one
+    ``FileNotFoundError`` line naming it."""
     import xarray as xr
 
-    with xr.open_dataset(path, engine="scipy") as ds:
+    p = Path(path)
+    if p.is_dir():
+        p = p / "sweep.nc"
+    if not p.is_file():
+        raise FileNotFoundError(f"{p}: no such sweep file (a sweep's --out folder holds "
+                                "sweep.nc once the sweep has finished)")
+    with xr.open_dataset(p, engine="scipy") as ds:
         return ds.load()
