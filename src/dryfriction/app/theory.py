@@ -67,8 +67,9 @@ def trap(alpha: float = _TRAP["alpha"].default) -> TableOutcome:
 
 def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
     # given only with the direct effect, so the athermal output is unchanged
-    if not direct and v_ref != _STA["v_ref"].default:
-        # taken and ignored before (a second new user's --u-ref 2 without --direct)
+    if not direct and v_ref != _STA["v_ref"].default and math.isfinite(v_ref) and v_ref > 0:
+        # taken and ignored before (a second new user's --u-ref 2 without --direct); a value
+        # out of its own range is refused as such first (by the model's check)
         raise ValueError(f"--u-ref {v_ref:g} applies only with --direct > 0 (the direct "
                          "effect's reference velocity, a0/t0): give --direct or drop --u-ref")
     return {"direct": direct, "v_ref": v_ref} if direct else {}
