@@ -472,13 +472,10 @@ def log_slope(x: Array, y: Array, sigma: Array | None = None) -> dict[str, Any]:
     slope = float(np.sum(w * (lx - xm) * yy) / sxx)
     out["slope"] = slope
     resid = yy - (float(np.sum(w * yy) / np.sum(w)) + slope * (lx - xm))
-    if sigma is not None:
-        se, q = math.sqrt(1.0 / sxx), Z95
-    elif n > 2:
-        se = math.sqrt(float(np.sum(w * resid**2)) / (n - 2) / sxx)
-        q = float(stats.t.ppf(0.975, n - 2))
-    else:
-        return out
+    if sigma is None and n <= 2:
+        return out  # no noise estimate from two points
+    se = math.sqrt((1.0 if sigma is not None else float(np.sum(w * resid**2)) / (n - 2)) / sxx)
+    q = quantile_95(sigma is not None, n - 2)
     out["stderr"] = se
     out["interval_95"] = (slope - q * se, slope + q * se)
     return out
