@@ -3250,9 +3250,8 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("profile: a limit set by another parameter's bound kept", "fit/statistics.py",
        "pinned.append(pins if crossing is not None else ())", "pinned.append(())",
        _HFO, "-k", "bound_and_the_limits"),
-    _m("fit: the bound's side swapped in the label", "fit/engine.py",
-       'side = "lower" if theta[j] - lo_b[j] < hi_b[j] - theta[j] else "upper"',
-       'side = "lower" if theta[j] - lo_b[j] > hi_b[j] - theta[j] else "upper"',
+    _m("fit: the bound's side swapped in the label", "fit/statistics.py",
+       "return 0 if th - lo_b < hi_b - th else 1", "return 1 if th - lo_b < hi_b - th else 0",
        _HFO, "-k", "bound_and_the_limits"),
     _m("fit table: the +- printed whenever the Jacobian gives one", "cli/fitting.py",
        'pm = "" if p.stderr is None or (p.profile_95 is not None',
@@ -3291,7 +3290,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "if s.log and hi_c - lo_c > _FAR:", "if s.log and hi_c - lo_c > 3.0:",
        _HFO, "-k", "three_decades"),
     _m("profile: a physical bound taken as the search's reach", "fit/statistics.py",
-       "return not spec.physical[0 if th - lo_b < hi_b - th else 1]", "return True",
+       "return on_search_bound(spec, th) and not spec.physical[nearer_bound(spec, th)]",
+       "return on_search_bound(spec, th)",
        _HFO, "-k", "physical_bound"),
     # --- end userfixA
     # --- stop 38 (lead): the rest of a new user's trial: a negative K_c_rsf and rounding

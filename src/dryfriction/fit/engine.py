@@ -34,6 +34,7 @@ from .statistics import (
     format_value,
     information_criteria,
     log_slope,
+    nearer_bound,
     on_search_bound,
     profile_interval,
     quantile_95,
@@ -235,10 +236,9 @@ def _profiles(prob: Problem, opt: _Optimum, z: float, notes: list[str],
 
 def _bound_words(spec: ParamSpec, th: float) -> str:
     """``"t0's lower search bound (1e-12 s)"``: which bound an internal value sits on."""
-    lo_b, hi_b = spec.bounds
-    side = "lower" if th - lo_b < hi_b - th else "upper"
-    return (f"{spec.name}'s {side} search bound "
-            f"({format_value(spec.lo if side == 'lower' else spec.hi, spec.unit)})")
+    k = nearer_bound(spec, th)
+    return (f"{spec.name}'s {('lower', 'upper')[k]} search bound "
+            f"({format_value((spec.lo, spec.hi)[k], spec.unit)})")
 
 
 def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov: Covariance,
@@ -246,7 +246,6 @@ def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov
     """Value, standard error, Wald and profile intervals and identifiability of every
     parameter; a parameter on its search bound makes the fit unsuccessful."""
     m, ds, specs, theta = prob.model, prob.datasets, prob.specs, opt.theta
-    lo_b, hi_b = prob.bounds if prob.p else (np.zeros(0), np.zeros(0))
     estimates: list[ParameterEstimate] = []
     for s in specs_all:
         if s.name in prob.fixed:
@@ -297,8 +296,8 @@ def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov
         if at_bound:
             if ident == "identified":
                 opt.success = False
-            side = "lower" if theta[j] - lo_b[j] < hi_b[j] - theta[j] else "upper"
-            bound = s.lo if side == "lower" else s.hi
+            k = nearer_bound(s, float(theta[j]))
+            side, bound = ("lower", "upper")[k], (s.lo, s.hi)[k]
             ident = f"at {side} bound ({format_value(bound, s.unit)})"
             note = (f"{s.name} = {format_value(val, s.unit)} sits on its {side} search bound "
                     f"{format_value(bound, s.unit)} (allowed [{s.lo:g}, {s.hi:g}]"

@@ -39,6 +39,7 @@ __all__ = [
     "format_value",
     "profile_interval",
     "on_search_bound",
+    "nearer_bound",
     "classify",
     "consistency_test",
 ]
@@ -504,13 +505,17 @@ def on_search_bound(spec: ParamSpec, th: float) -> bool:
     return bool(min(th - lo_b, hi_b - th) < 1e-6 * max(1.0, abs(th)))
 
 
+def nearer_bound(spec: ParamSpec, th: float) -> int:
+    """Which of ``spec``'s search bounds the internal value ``th`` is nearer: 0 the lower,
+    1 the upper (the side :func:`on_search_bound` means)."""
+    lo_b, hi_b = spec.bounds
+    return 0 if th - lo_b < hi_b - th else 1
+
+
 def _on_reach(spec: ParamSpec, th: float) -> bool:
     """On a search bound that is only the search's reach, not a physical limit
     (:attr:`.models.ParamSpec.physical`)."""
-    if not on_search_bound(spec, th):
-        return False
-    lo_b, hi_b = spec.bounds
-    return not spec.physical[0 if th - lo_b < hi_b - th else 1]
+    return on_search_bound(spec, th) and not spec.physical[nearer_bound(spec, th)]
 
 
 def profile_interval(prob: Problem, theta: Array, cost: float, s2: float, j: int, se: float,
