@@ -388,6 +388,16 @@ def many(*flags: str) -> type[_ManyValues]:
     return type("ManyValues", (_ManyValues,), {"many": flags})
 
 
+def unit_after(unit: str | None) -> str:
+    """`` unit`` to write after a value, nothing for a dimensionless one or none (a new user
+    read ``a0 = 1e-06``, the joint fit's ``dc = 1.1e-05`` and a cv fit's ``t0 = 0.01``
+    without units)."""
+    from ..io.units import DIMENSIONLESS, csv_unit
+
+    u = csv_unit(unit) if unit else DIMENSIONLESS
+    return "" if u == DIMENSIONLESS else f" {u}"
+
+
 def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
             units: dict[str, str] | None = None,
             param_units: Mapping[str, str | None] | None = None,
@@ -411,17 +421,12 @@ def columns(title: str, params: dict[str, Any], cols: dict[str, Any],
     notes : sequence of str
         Lines said after the table, each as ``note: ...``.
     """
-    from ..io.units import DIMENSIONLESS, csv_unit, header
+    from ..io.units import header
 
     units = units or {}
     pu = param_units or {}
-
-    def said(k: str, v: Any) -> str:
-        u = pu.get(k)
-        u = None if u is None else csv_unit(u)
-        return f"{k} = {v}" + ("" if u in (None, DIMENSIONLESS) else f" {u}")
-
-    out.print(f"{title}: " + ", ".join(said(k, v) for k, v in params.items()),
+    out.print(f"{title}: " + ", ".join(f"{k} = {v}{unit_after(pu.get(k))}"
+                                       for k, v in params.items()),
               markup=False, highlight=False, soft_wrap=True)
     from rich.table import Table
     from rich.text import Text

@@ -11,7 +11,7 @@ from rich.console import Console
 from rich.table import Table
 
 from ..io.files import to_jsonable
-from .common import err, out
+from .common import err, out, unit_after
 
 __all__ = ["print_record_fit", "flagged_line", "drive_comparison_lines"]
 
@@ -90,15 +90,6 @@ def _intervals_table(rows: list[dict[str, Any]], fits: list[Any] | None = None) 
     return table
 
 
-def _unit(unit: str | None) -> str:
-    """`` unit`` after a value, nothing for a dimensionless one (a new user read the joint
-    fit's ``dc = 1.1e-05`` and a cv fit's ``t0 = 0.01`` without units)."""
-    from ..io.units import DIMENSIONLESS, csv_unit
-
-    u = csv_unit(unit) if unit else DIMENSIONLESS
-    return "" if u == DIMENSIONLESS else f" {u}"
-
-
 def flagged_line(rows: list[dict[str, Any]]) -> str:
     """The last line of a record fit: how many steps carry flags."""
     n = sum(bool(r["flags"]) for r in rows)
@@ -163,7 +154,7 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                                                 "note" if white else "") + "): " + ", ".join(
                 f"{n} = {est[n].value:.4g}" + ("" if est[n].stderr is None
                                                else f" +- {est[n].stderr:.2g}")
-                + _unit(est[n].unit)
+                + unit_after(est[n].unit)
                 for n in ("a", "b", "dc", "stiffness") if n in est), highlight=False,
                 soft_wrap=True)
             for note in res.joint.notes:
@@ -197,7 +188,7 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
             out.print(f"step {f['step']} cv: " + ", ".join(
                 f"{n} = {p['value']:.4g}" + ("" if rob.get(n, p).get("stderr") is None
                                              else f" +- {rob.get(n, p)['stderr']:.2g}")
-                + _unit(p.get("unit"))
+                + unit_after(p.get("unit"))
                 for n, p in f["parameters"].items()) + f"; {verdicts.get(f['step'])}",
                 highlight=False, soft_wrap=True)
         out.print(f"wrote {out_dir}/fit.json, steps.csv"
