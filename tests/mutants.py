@@ -102,6 +102,7 @@ _S7BBT = "tests/ensemble/test_birth_times.py"
 _S7BSF = "tests/ensemble/test_snapshot_force_strong.py"
 _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
+_CNT = "tests/records/test_count_causes.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
 _HTE = "tests/analysis/test_hopf_table_edges.py"
@@ -2765,6 +2766,50 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("normal stress: one ramp's split points merged by time alone", "records/artifacts.py",
        "NORMAL_BLOCKS = 10\n", "NORMAL_BLOCKS = 0\n", _ARG, "-k", "slow_sampling"),
     # --- end detect8
+    # --- detect11: the records whose count of changes was wrong, by cause: a drift-sized
+    # change, a burst beside a change, a reset's offset across a change
+    # (tests/records/test_count_causes.py)
+    _m("detection: the wander measured about every boundary (a split hides the drift)",
+       "records/detection.py", "DRIFT_SIZED = True\n", "DRIFT_SIZED = False\n", _CNT, "-k",
+       "drift_is_one"),
+    _m("detection: the wander measured about every boundary, the jump test left on",
+       "records/detection.py",
+       "            mb = _drift_bounds(bounds, v_now) if DRIFT_SIZED else bounds\n",
+       "            mb = bounds\n", _CNT, "-k", "drift_is_one"),
+    _m("detection: the record's end dropped with the drift-sized boundaries",
+       "records/detection.py",
+       "if not small[j]] + [bounds[-1]]\n", "if not small[j]]\n", _CNT, "-k",
+       "drift_bounds"),
+    _m("detection: the speed around a boundary from its own two stretches only",
+       "records/detection.py",
+       "    big[:-1] = np.maximum(big[:-1], u[2:])\n    return np.abs(np.diff(",
+       "    big[:-1] = big[:-1]\n    return np.abs(np.diff(", _CNT, "-k", "drift_sized"),
+    _m("detection: a reset's excursion in a hold judged by rel_tol alone",
+       "records/detection.py", "  HOLD_RATIO if DRIFT_SIZED else 0.0) if (", "  0.0) if (",
+       _CNT, "-k", "reset_in_a_hold"),
+    _m("artifacts: two pieces of a hold the same velocity by rel_tol alone",
+       "records/artifacts.py",
+       "max(abs(va), abs(vb)) or abs(vb - va) < drift * around\n",
+       "max(abs(va), abs(vb))\n", _CNT, "-k", "drift_sized_neighbours"),
+    _m("detection: a burst beside a change judged by rel_tol", "records/detection.py",
+       "EDGE_BURSTS = True\n", "EDGE_BURSTS = False\n", _CNT, "-k", "beside_a_short_step"),
+    _m("detection: the burst taken as the longer of the two stretches", "records/detection.py",
+       "and not big[k + 1] and d[k] < d[k + 1]", "and not big[k + 1] and d[k] > d[k + 1]",
+       _CNT, "-k", "edge_bursts_flag"),
+    _m("detection: a hold taken for the stretch a burst belongs to", "records/detection.py",
+       "    for k in range(len(v)):\n        if hold[k]:\n            continue\n",
+       "    for k in range(len(v)):\n", _CNT, "-k", "edge_bursts_flag"),
+    _m("detection: the record's ends not counted as changes", "records/detection.py",
+       "    big = np.concatenate([[True], rel > EXCURSION_REL, [True]])\n",
+       "    big = np.concatenate([[False], rel > EXCURSION_REL, [False]])\n", _CNT, "-k",
+       "edge_bursts_flag"),
+    _m("artifacts: a reset's offset from one line across a velocity change",
+       "records/artifacts.py", "RESET_KINK = True\n", "RESET_KINK = False\n", _CNT, "-k",
+       "reset_before_a_step"),
+    _m("artifacts: a reset's kink always used", "records/artifacts.py",
+       "    if gain[k] > RESET_KINK_PENALTY * sigma2 * np.log(len(tt)):\n",
+       "    if gain[k] > 0.0:\n", _CNT, "-k", "earns_its_place"),
+    # --- end detect11
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test
