@@ -41,14 +41,15 @@ def _zoo_counts(indices: tuple[int, ...], tmp: Path) -> list[tuple[int, int]]:
 def test_a_change_below_hold_ratio_of_the_speed_around_is_drift_sized() -> None:
     """``_drift_sized`` at generic speeds (slides at 2.7 um/s): a hold's two pieces read at
     0.009 and 0.002 um/s (the drift; 0.0026 of the slides' speed) are drift-sized, as is a
-    slow stretch after a ratio-30 down-step read at 0.0089 and 0.0078 um/s; a ratio-30
+    slow stretch after a ratio-30 down-step read at 0.089 and 0.078 um/s; a ratio-30
     down-step to a hold (1/30), a 1 -> 3 -> 10 staircase and a change just above HOLD_RATIO
     of the speed around are not. Mistakes: the speed around from the boundary's own two
     stretches only (two slow pieces are then 70 % apart: not drift-sized); the comparison the
-    wrong way."""
+    wrong way; the stretch before or after the boundary's two left out."""
     v = 2.7e-6
     assert _drift_sized(np.array([v, 9e-9, 2e-9, v])).tolist() == [False, True, False]
-    assert _drift_sized(np.array([v, 8.9e-9, 7.8e-9])).tolist() == [False, True]
+    assert _drift_sized(np.array([v, 8.9e-8, 7.8e-8])).tolist() == [False, True]
+    assert _drift_sized(np.array([9e-9, 2e-9, v])).tolist() == [True, False]
     assert not _drift_sized(np.array([v, v / 30.0, 0.0, v])).any()
     assert not _drift_sized(np.array([1e-6, 3e-6, 10e-6])).any()
     near = HOLD_RATIO * v
@@ -72,12 +73,12 @@ def test_a_hold_or_slow_stretch_with_drift_is_one(tmp_path: Path,
 
 
 def test_a_small_reset_in_a_hold_read_with_drift_is_a_jump(tmp_path: Path) -> None:
-    """Zoo record 11218 (a slide-hold-slide, a re-zeroing 3.6 s into its second hold under a
-    coarse quantum, the hold's pieces read at -0.006 and 0 um/s beside a 2-s excursion):
-    the right count (4). Mistake, seen failing: the hold's pieces compared by ``rel_tol``
-    alone in ``jump_excursions`` (drift 0: 6 changes found; measured); the same with the
-    drift-sized boundaries on, so this is the jump's own test."""
-    assert _zoo_counts((11218,), tmp_path) == [(4, 4)]
+    """Zoo record 11140 (a slide-hold-slide at 0.35 um/s with every artifact; a re-zeroing in
+    its second hold under a coarse quantum left a 27-s excursion of -0.013 um/s between the
+    hold's pieces, read at -0.0024 and -0.0018 um/s with the drift): the right count (4).
+    Mistake, seen failing: the hold's pieces compared by ``rel_tol`` alone in
+    ``jump_excursions`` (drift 0 in the detector's call: 6 changes found; measured)."""
+    assert _zoo_counts((11140,), tmp_path) == [(4, 4)]
 
 
 def test_jump_excursions_takes_drift_sized_neighbours_as_the_same_velocity() -> None:
@@ -133,6 +134,9 @@ def test_edge_bursts_flag_a_burst_beside_a_change_only() -> None:
     assert flags([u, 3 * u, 3.3 * u, 3.6 * u], [60, 60, 6, 60]) == [False, False, False]
     assert flags([u, 1.2 * u, 1.44 * u], [60, 40, 60]) == [False, False]
     assert flags([u, 0.0, 0.1 * u], [60, 2, 60], [False, True, False]) == [False, False]
+    # a hold read at 1.0 nm/s beside a creep of 1.1 nm/s: neither is a burst of the other
+    assert flags([u, 1.0e-9, 1.1e-9], [60, 2, 60], [False, True, False]) == [False, False]
+    assert flags([u, 1.1e-9, 1.0e-9], [60, 2, 60], [False, False, True]) == [False, False]
     # the record's start and end count as changes: a burst there
     assert flags([0.88 * u, u, 10 * u], [3, 57, 60]) == [True, False]
     assert flags([10 * u, u, 1.12 * u], [60, 57, 3]) == [False, True]
