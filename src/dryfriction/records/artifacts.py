@@ -179,6 +179,10 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         Velocities within this fraction are the same (an excursion returns to it).
     m : int
         Samples either side of the excursion's boundaries where the jump may lie.
+    drift : float
+        Velocities apart by less than this fraction of the fastest speed around (the
+        excursion, its neighbours and theirs) are the same too (two pieces of one hold, each
+        read with the drift: :data:`.detection.DRIFT_SIZED`); 0 for ``rel_tol`` alone.
     """
     out: list[tuple[int, int, float]] = []
     for j in range(1, len(bounds) - 2):
