@@ -148,6 +148,8 @@ _S7SL = "tests/plots/test_style_layout.py"
 _FXF = "tests/app/test_fit_files.py"
 _FXS = "tests/records/test_csv_semicolons.py"
 _FXP = "tests/records/test_labforms_preamble.py"
+# fixE
+_FXU = "tests/records/test_assumed_units.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1957,14 +1959,14 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("apparatus note: the largest velocity signed", "records/lab.py",
        "v = float(np.max(np.abs(velocities)))", "v = float(np.max(velocities))", _RHE),
     _m("apparatus note: the span limit inclusive", "records/lab.py",
-       "if not (v > APPARATUS_V_MAX or span > APPARATUS_X_MAX):",
-       "if not (v > APPARATUS_V_MAX or span >= APPARATUS_X_MAX):", _RHE),
+       "odd = v > APPARATUS_V_MAX or span > APPARATUS_X_MAX",
+       "odd = v > APPARATUS_V_MAX or span >= APPARATUS_X_MAX", _RHE),
     _m("apparatus note: the span as the last position", "records/lab.py",
        "span = float(np.ptp(x))", "span = float(x[-1])", _RHE),
     _m("apparatus note: um for a velocity column", "records/lab.py",
-       'fix = "um" if role == "disp" else "um/s"', 'fix = "um"', _RHE),
+       'unit = u + ("/s" if role == "velocity" else "")', "unit = u", _RHE),
     _m("apparatus note: a given program blamed whatever the span", "records/lab.py",
-       "if given and span <= APPARATUS_X_MAX:", "if given:", _RHE),
+       "if given and odd and span <= APPARATUS_X_MAX:", "if given and odd:", _RHE),
     _m("segmentation: intercept at t = 0", "records/segmentation.py",
        "return slope, float(xm), sxx", "return slope, float(xm - slope * t.mean()), sxx", _RHE,
        "-k", "line_fit"),
@@ -2036,8 +2038,7 @@ MUTANTS: tuple[Mutant, ...] = (
        'rep["segments_option"] = segments_spec(segs, float(t[0]), t)',
        'rep["segments_option"] = segments_spec(segs, 0.0, t)', _RRP),
     _m("record report: the note kept with its prefix", "app/reading.py",
-       'rep["apparatus_note"] = note.removeprefix("note: ")', 'rep["apparatus_note"] = note',
-       _RRP),
+       'rep["apparatus_note"] = note_text(note)', 'rep["apparatus_note"] = note', _RRP),
     _m("progress: a Jacobian of p evaluations", "fit/progress.py",
        "            return 2.0 * self.p\n", "            return float(self.p)\n", _PGE),
     _m("progress: the profiles' cost not shared over p", "fit/progress.py",
@@ -3478,6 +3479,31 @@ MUTANTS: tuple[Mutant, ...] = (
        'if report is not None and csv_separator(_header_line(p)) == ";":',
        "if report is not None:", _FXF, "-k", "semicolon"),
     # --- end fixD
+    # --- fixE (a second new user's trial: the problems left open); each seen failing
+    _m("fixE: a unit-less column said only when implausible", "records/lab.py",
+       "    if assumed:\n        return _assumed_note(", "    if assumed and odd:\n"
+       "        return _assumed_note(", _FXU, "-k", "quiet_note"),
+    _m("fixE: an impossible SI reading only noted", "records/lab.py",
+       "    if lo <= v <= hi and span <= APPARATUS_X_TYPICAL or v == 0.0 and span == 0.0:",
+       "    if True:", _FXU, "-k", "louder"),
+    _m("fixE: the unit suggested scaled the wrong way", "records/lab.py",
+       "        w = v if given else v * f  #", "        w = v if given else v / f  #", _FXU,
+       "-k", "louder"),
+    _m("fixE: a clock in ms not suggested", "records/lab.py",
+       '("ms", 1e3), ("min", 1 / 60.0)', '("min", 1 / 60.0)', _FXU, "-k", "milliseconds"),
+    _m("fixE: the fit's warning not repeated last", "cli/records.py",
+       '    if report.get("units_implausible"):  # said before', "    if False:  # said before",
+       _FXU, "-k", "fit_says"),
+    _m("fixE: record's JSON without units_implausible", "app/reading.py",
+       'rep["units_implausible"] = note.startswith("warning: ")',
+       'rep["units_implausible"] = False', _FXU, "-k", "record_command"),
+    _m("fixE: fit.json without the units assumed", "app/records.py",
+       "    if lab.assumed_units(rec):  # what the reader assumed",
+       "    if False:  # what the reader assumed", _FXU, "-k", "fit_says"),
+    _m("fixE: the record table's unit line without its entry", "cli/record.py",
+       '            unit += f": read in {assumed[role]} (--columns {role}={h}:UNIT if not)"',
+       '            unit += ": read as SI"', _FXU, "-k", "record_command"),
+    # --- end fixE
 )
 
 
