@@ -150,6 +150,7 @@ _FXS = "tests/records/test_csv_semicolons.py"
 _FXP = "tests/records/test_labforms_preamble.py"
 # fixE
 _FXU = "tests/records/test_assumed_units.py"
+_FXA = "tests/app/test_fit_applies.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -3503,6 +3504,23 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fixE: the record table's unit line without its entry", "cli/record.py",
        '            unit += f": read in {assumed[role]} (--columns {role}={h}:UNIT if not)"',
        '            unit += ": read as SI"', _FXU, "-k", "record_command"),
+    _m("fixE: --stiffness, --trend, --traps-per-a0 taken for steady data", "app/checks.py",
+       '    if "series" not in kinds:\n', "    if False:\n", _FXA, "-k", "refused_by_name"),
+    _m("fixE: an option's default counted as given", "app/checks.py",
+       "return options[name] is not None and options[name] != defaults[name]",
+       "return options[name] is not None", _FXA, "-k", "does_apply"),
+    _m("fixE: the comparison's model forgotten", "app/checks.py",
+       'fitted = {model, *({"cv", "rsf"} - {model} if options["compare"] else ())}',
+       "fitted = {model}", _FXA, "-k", "does_apply"),
+    _m("fixE: --state-law taken for steady data alone", "app/checks.py",
+       '    if kinds == {"steady"} and given("state_law"):', "    if False:", _FXA, "-k",
+       "refused_by_name"),
+    _m("fixE: --v-ref taken without --direct", "app/checks.py",
+       '    if given("v_ref") and not options["direct"]:', "    if False:", _FXA, "-k",
+       "refused_by_name"),
+    _m("fixE: the fit's applicability not checked", "app/fitting.py",
+       "    check_fit_applies(o, _D, {d.kind for d in datasets}, [str(p) for p in paths])",
+       "    pass", _FXA, "-k", "refused_by_name"),
     # --- end fixE
 )
 

@@ -8,7 +8,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from .checks import check_fit_options
+from .checks import check_fit_applies, check_fit_options
 from .options import CSV_TRAPS_PER_A0, OPTIONS
 from .outcome import FitOutcome, RecordFitOutcome
 
@@ -257,6 +257,8 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     stiffness = _csv_stiffness(o["stiffness"])
     check_output_dir(out, force=o["force"], command="fit")
     datasets = [read_csv(p) for p in paths]
+    # an option these data or models do not use, refused by name before the fit (fixE)
+    check_fit_applies(o, _D, {d.kind for d in datasets}, [str(p) for p in paths])
     for p in paths:  # the reading chosen, said: a ';' file might have been meant otherwise
         if report is not None and csv_separator(_header_line(p)) == ";":
             report(f"note: {p}: read as the project's CSV with ';' separators and decimal "
