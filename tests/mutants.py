@@ -151,6 +151,7 @@ _FXP = "tests/records/test_labforms_preamble.py"
 # fixE
 _FXU = "tests/records/test_assumed_units.py"
 _FXA = "tests/app/test_fit_applies.py"
+_FXM = "tests/records/test_labforms_matrix.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -3521,6 +3522,15 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fixE: the fit's applicability not checked", "app/fitting.py",
        "    check_fit_applies(o, _D, {d.kind for d in datasets}, [str(p) for p in paths])",
        "    pass", _FXA, "-k", "refused_by_name"),
+    _m("fixE: a .mat matrix flattened into one column", "records/labforms.py",
+       "    found = _split_matrices(found, src, notes)\n", "", _FXM),
+    _m("fixE: a k x N matrix taken as k rows", "records/labforms.py",
+       "flipped = v.shape[1] > v.shape[0]", "flipped = False", _FXM, "-k", "numbered"),
+    _m("fixE: a matrix's columns numbered from 0", "records/labforms.py",
+       'names = [f"{k}_{j + 1}" for j in range(m.shape[1])]',
+       'names = [f"{k}_{j}" for j in range(m.shape[1])]', _FXM, "-k", "numbered"),
+    _m("fixE: a matrix refused with the hint that cannot work", "records/lab.py",
+       'if split and "--columns" in msg and not columns:', "if False:", _FXM, "-k", "hint"),
     # --- end fixE
 )
 

@@ -47,7 +47,7 @@ from ..io.textfile import HEAD_BYTES, check_text
 from ..validation import FRICTION_MAX, Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import Detection, detect_program, detect_segments, no_change_message
-from .labforms import FORMS, PREAMBLE_MAX, read_table
+from .labforms import FORMS, MATRIX_NOTE, PREAMBLE_MAX, read_table
 from .labsteps import (
     SEGMENTS_SYNTAX,
     Segment,
@@ -743,6 +743,13 @@ def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
         rec = _finish(str(path), names, columns, hline, sline, row_units, load, notes)
     except ValueError as exc:  # the same refusal, in the file's own words for a row
         msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
+        split = [n for n in notes if MATRIX_NOTE in n]
+        if split and "--columns" in msg and not columns:  # no name to guess: map them all
+            m = re.search(r"(\S+)_1 \.\. ", split[0])
+            stem = m.group(1) if m else "data"
+            msg += (f" (a matrix's columns have no names: map each, e.g. --columns "
+                    f"time={stem}_1,disp={stem}_2:UNIT,mu={stem}_3, or shear=...,normal=... "
+                    "for friction from stresses)")
         raise ValueError(msg.replace(", line ", f", {word} ").replace(
             "; lines ", f"; {word}s ")) from None
     # a cell that is not a number is NaN in a form's table: a missing value, by its row
