@@ -152,6 +152,7 @@ _FXP = "tests/records/test_labforms_preamble.py"
 _FXU = "tests/records/test_assumed_units.py"
 _FXA = "tests/app/test_fit_applies.py"
 _FXM = "tests/records/test_labforms_matrix.py"
+_FXN = "tests/fit/test_fit_typed_names.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -3531,6 +3532,19 @@ MUTANTS: tuple[Mutant, ...] = (
        'names = [f"{k}_{j}" for j in range(m.shape[1])]', _FXM, "-k", "numbered"),
     _m("fixE: a matrix refused with the hint that cannot work", "records/lab.py",
        'if split and "--columns" in msg and not columns:', "if False:", _FXM, "-k", "hint"),
+    _m("fixE: the command line's --fix in a Python refusal", "fit/engine.py",
+       'check_scalar(f"fix[{s.name!r}]{unit}"', 'check_scalar(f"--fix {s.name}{unit}"', _FXN,
+       "-k", "python"),
+    _m("fixE: a start outside the fit's range clipped in silence", "fit/engine.py",
+       '            check_scalar(f"start[{s.name!r}]{unit}", start[s.name], s.lo, s.hi)',
+       "            pass", _FXN, "-k", "python"),
+    _m("fixE: a fixed value's upper bound left to the model", "fit/engine.py",
+       "fixed[s.name], s.lo, s.hi,", "fixed[s.name], s.lo, None,", _FXN, "-k", "python"),
+    _m("fixE: a start beside a fix of the same parameter taken", "fit/engine.py",
+       "            if s.name in fixed:\n                held =",
+       "            if False:\n                held =", _FXN, "-k", "python"),
+    _m("fixE: the library's fix['t0'] shown on the command line", "app/fitting.py",
+       "raise ValueError(as_typed(str(exc))) from None", "raise", _FXN, "-k", "command_line"),
     # --- end fixE
 )
 

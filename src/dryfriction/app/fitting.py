@@ -13,7 +13,7 @@ from .options import CSV_TRAPS_PER_A0, OPTIONS
 from .outcome import FitOutcome, RecordFitOutcome
 
 __all__ = ["fit", "fit_data", "check_fit_options", "parse_stiffness", "is_project_csv",
-           "Progress"]
+           "Progress", "as_typed"]
 
 Progress = Callable[..., None]
 """``progress(done, total, what)``."""
@@ -109,6 +109,15 @@ def _csv_stiffness(value: Any) -> float | str:
         raise ValueError("--stiffness record is for a laboratory record (its steps' one "
                          "machine), not the project's CSV files: fit, slope or a number (1/m)")
     return k
+
+
+def as_typed(message: str) -> str:
+    """A fit's refusal in the command line's words: the library names a fixed value as the
+    Python caller gave it (``fix['t0'] [s] = -1 is out of range``), the command line user
+    typed ``--fix t0=-1`` (``--fix t0 [s] = -1 is out of range``)."""
+    import re
+
+    return re.sub(r"^fix\['(\w+)'\]", r"--fix \1", message)
 
 
 def parse_fix(items: Sequence[str] | dict[str, float] | None) -> dict[str, float]:
@@ -286,6 +295,8 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
                          progress=fit_progress, **opts)
     except NotImplementedError as exc:
         raise ValueError(str(exc)) from None
+    except ValueError as exc:  # fix['t0'] is --fix t0 here (the options' names)
+        raise ValueError(as_typed(str(exc))) from None
     report_ = result.to_dict()
     if o["compare"]:
         other = "rsf" if model == "cv" else "cv"
