@@ -153,6 +153,7 @@ _FXU = "tests/records/test_assumed_units.py"
 _FXA = "tests/app/test_fit_applies.py"
 _FXM = "tests/records/test_labforms_matrix.py"
 _FXN = "tests/fit/test_fit_typed_names.py"
+_FXS = "tests/fit/test_steady_against_model.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -3545,6 +3546,20 @@ MUTANTS: tuple[Mutant, ...] = (
        "            if False:\n                held =", _FXN, "-k", "python"),
     _m("fixE: the library's fix['t0'] shown on the command line", "app/fitting.py",
        "raise ValueError(as_typed(str(exc))) from None", "raise", _FXN, "-k", "command_line"),
+    _m("fixE: steady data never against the athermal model", "fit/models.py",
+       '        if kind == "steady" and not self.direct and athermal_steady_weakens(',
+       "        if False and athermal_steady_weakens(", _FXS, "-k", "rising"),
+    _m("fixE: the athermal steady friction said to rise", "fit/models.py",
+       '            return -1, (f"the athermal', '            return 1, (f"the athermal', _FXS),
+    _m("fixE: the direct effect's rise forbidden", "fit/models.py",
+       'if kind == "steady" and not self.direct and', 'if kind == "steady" and', _FXS, "-k",
+       "can_make"),
+    _m("fixE: a rise of eq. 34 at large alpha not seen", "theory/steady.py",
+       "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            return False",
+       "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            pass", _FXS),
+    _m("fixE: the slope's rounding counted as a rise", "theory/steady.py",
+       "slope[np.isfinite(slope)] > 1e-6 * eps", "slope[np.isfinite(slope)] > 0.0", _FXS,
+       "-k", "two_routes"),
     # --- end fixE
 )
 
