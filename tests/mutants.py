@@ -154,6 +154,7 @@ _FXA = "tests/app/test_fit_applies.py"
 _FXM = "tests/records/test_labforms_matrix.py"
 _FXN = "tests/fit/test_fit_typed_names.py"
 _FXS = "tests/fit/test_steady_against_model.py"
+_FXW = "tests/io/test_summary_units.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -3560,6 +3561,14 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fixE: the slope's rounding counted as a rise", "theory/steady.py",
        "slope[np.isfinite(slope)] > 1e-6 * eps", "slope[np.isfinite(slope)] > 0.0", _FXS,
        "-k", "two_routes"),
+    _m("fixE: a Python summary's units the columns' table as it is", "results.py",
+       '        "units": summary_units(units),', '        "units": dict(units),', _FXW),
+    _m("fixE: an interface's work_load 'per element' in summary.json",
+       "ensemble/interface_result.py",
+       '    "work_load": "F_el a0",', '    "work_load": "F_el a0 per element",', _FXW),
+    _m("fixE: a summary's dimensionless written ''", "results.py",
+       "    u = {k: v or DIMENSIONLESS for k, v in units.items()}",
+       "    u = dict(units)", _FXW),
     # --- end fixE
 )
 
