@@ -28,7 +28,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from benchmarks.bench_k_coverage import _seeds, rate_interval  # noqa: E402
+from benchmarks.bench_k_coverage import _seeds, rate_text  # noqa: E402
 from dryfriction.fit.statistics import quantile_95  # noqa: E402
 from dryfriction.fit.steps import fit_steps, step_covariance  # noqa: E402
 from dryfriction.records.data import SeriesData  # noqa: E402
@@ -81,11 +81,7 @@ def main() -> None:
     for kind in kinds:
         t0 = time.process_time()
         c = coverage(kind, seeds)
-
-        def rate(k: int, n: int) -> str:
-            lo, hi = rate_interval(k, n)
-            return f"{k}/{n} [{100 * lo:.0f}-{100 * hi:.0f} %]"
-
+        rate = rate_text
         print(f"{kind} seeds {seeds.start}:{seeds.stop}: " + ", ".join(
             f"{p} robust {rate(c['hits'][p], c['n'])} white {rate(c['white'][p], c['n'])} "
             f"se ratio {c['ratio'][p]:.2f}" for p in NAMES)
