@@ -153,7 +153,7 @@ _FXU = "tests/records/test_assumed_units.py"
 _FXA = "tests/app/test_fit_applies.py"
 _FXM = "tests/records/test_labforms_matrix.py"
 _FXN = "tests/fit/test_fit_typed_names.py"
-_FXS = "tests/fit/test_steady_against_model.py"
+_FXT = "tests/fit/test_steady_against_model.py"
 _FXW = "tests/io/test_summary_units.py"
 
 MUTANTS: tuple[Mutant, ...] = (
@@ -3316,7 +3316,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)", "close = []",
        "tests/io/test_protocol.py"),
     _m("fit: a fixed value's refusal names the bare parameter", "fit/engine.py",
-       'fixed[s.name] = check_scalar(f"--fix {s.name}{unit}", fixed[s.name],',
+       'fixed[s.name] = check_scalar(f"fix[{s.name!r}]{unit}", fixed[s.name],',
        "fixed[s.name] = check_scalar(s.name, fixed[s.name],", "tests/fit/test_fit.py"),
     _m("--segments form: a start rounded to the nearest decimal", "records/labsteps.py",
        "y = math.floor(x * 10**d) / 10**d", "y = round(x, d)", "tests/records/test_lab.py",
@@ -3564,17 +3564,17 @@ MUTANTS: tuple[Mutant, ...] = (
        "raise ValueError(as_typed(str(exc))) from None", "raise", _FXN, "-k", "command_line"),
     _m("fixE: steady data never against the athermal model", "fit/models.py",
        '        if kind == "steady" and not self.direct and athermal_steady_weakens(',
-       "        if False and athermal_steady_weakens(", _FXS, "-k", "rising"),
+       "        if False and athermal_steady_weakens(", _FXT, "-k", "rising"),
     _m("fixE: the athermal steady friction said to rise", "fit/models.py",
-       '            return -1, (f"the athermal', '            return 1, (f"the athermal', _FXS),
+       '            return -1, (f"the athermal', '            return 1, (f"the athermal', _FXT),
     _m("fixE: the direct effect's rise forbidden", "fit/models.py",
-       'if kind == "steady" and not self.direct and', 'if kind == "steady" and', _FXS, "-k",
+       'if kind == "steady" and not self.direct and', 'if kind == "steady" and', _FXT, "-k",
        "can_make"),
     _m("fixE: a rise of eq. 34 at large alpha not seen", "theory/steady.py",
        "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            return False",
-       "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            pass", _FXS),
+       "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            pass", _FXT),
     _m("fixE: the slope's rounding counted as a rise", "theory/steady.py",
-       "slope[np.isfinite(slope)] > 1e-6 * eps", "slope[np.isfinite(slope)] > 0.0", _FXS,
+       "slope[np.isfinite(slope)] > 1e-6 * eps", "slope[np.isfinite(slope)] > 0.0", _FXT,
        "-k", "two_routes"),
     _m("fixE: a Python summary's units the columns' table as it is", "results.py",
        '        "units": summary_units(units),', '        "units": dict(units),', _FXW),
