@@ -104,6 +104,7 @@ apparatus (ours: rotary shear reaches ~1 m/s, but a velocity-step record of 0.2 
 more often micrometres read as metres)."""
 APPARATUS_X_MAX = 1.0
 """Load-point displacement span (m) above which a record is flagged likewise."""
+"""Fewest data rows a record may have (fewer cannot show a transient)."""
 APPARATUS_V_TYPICAL = (1e-9, 1e-3)
 """Load velocities (m/s) of the apparatus whose velocity-step records this package reads
 (ours): servo-controlled biaxial (double-direct shear) and triaxial machines step between
@@ -117,7 +118,6 @@ APPARATUS_X_TYPICAL = 0.05
 cm at most, a triaxial saw-cut a few mm)."""
 _SI_UNIT = {"time": "s", "disp": "m", "velocity": "m/s"}
 _SI_WORD = {"time": "seconds", "disp": "metres", "velocity": "m/s"}
-"""Fewest data rows a record may have (fewer cannot show a transient)."""
 
 ROLES: dict[str, str] = {
     "time": "time",
