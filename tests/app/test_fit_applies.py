@@ -91,3 +91,41 @@ def test_the_u_ref_refusal_reads_as_before() -> None:
         app.steady(0.04, u=[0.1], v_ref=2.0)
     assert str(exc.value) == ("--u-ref 2 applies only with --direct > 0 (the direct effect's "
                               "reference velocity, a0/t0): give --direct or drop --u-ref")
+
+
+def _record(path: Path) -> Path:
+    t = 0.1 * np.arange(600)
+    v = np.where(t < 30.0, 1e-6, 1e-5)
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * 0.1)])
+    mu = 0.6 + 0.003 * np.where(t >= 30.0, np.exp(-(t - 30.0) / 2.0), 0.0)
+    path.write_text("Time(s)\tDispl(um)\tFriction\n" + "".join(
+        f"{a:.2f}\t{b * 1e6:.5f}\t{c:.6f}\n" for a, b, c in zip(t, x, mu, strict=True)))
+    return path
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--traps-per-a0", "50"], "--traps-per-a0 50 applies only to a trap-model fit (on a "
+     "record: --run-cv; this run fits rate-and-state alone): drop --traps-per-a0 or add "
+     "--run-cv"),
+    (["--alpha", "0.2"], "--alpha 0.2 applies only to a trap-model fit"),
+    (["--direct", "0.05"], "--direct 0.05 applies only to a trap-model fit"),
+    (["--regularized"], "--regularized applies only to the project's CSV files (a record's "
+     "steps take the regularised law across a hold"),
+    (["--no-compare"], "--no-compare applies only to the project's CSV files"),
+])
+def test_a_record_refuses_what_its_fit_does_not_use(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], argv: list[str],
+        words: str) -> None:
+    """``fit RECORD --traps-per-a0 50 --alpha 0.2`` fitted rate-and-state alone, exit 0.
+    Mistake: the record's fit left out of the check."""
+    rec = _record(tmp_path / "r.txt")
+    capsys.readouterr()
+    code = main(["fit", str(rec), "--out", str(tmp_path / "o"), *argv])
+    err = capsys.readouterr().err
+    assert code == 2 and words in err and len(err.strip().splitlines()) == 1, err
+    assert not (tmp_path / "o").exists()
+    # with --run-cv the trap model's options are its own (checked without running it)
+    from dryfriction.app.checks import check_record_applies
+
+    check_record_applies({**D, "model": "rsf", "run_cv": True, "alpha": 0.2,
+                          "traps_per_a0": 50.0}, D)

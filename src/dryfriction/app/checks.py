@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["check_fit_options", "not_applicable", "check_fit_applies"]
+__all__ = ["check_fit_options", "not_applicable", "check_fit_applies", "check_record_applies"]
 
 
 def not_applicable(flag: str, value: str, only: str, why: str, remedy: str) -> ValueError:
@@ -14,6 +14,48 @@ def not_applicable(flag: str, value: str, only: str, why: str, remedy: str) -> V
     --u-ref``. ``value`` as typed ("" for a flag without one)."""
     shown = f"{flag} {value}" if value else flag
     return ValueError(f"{shown} applies only {only} ({why}): {remedy}")
+
+
+def _given(options: dict[str, Any], defaults: dict[str, Any]) -> Any:
+    """``given(name)``: the option differs from its default (was typed)."""
+    return lambda name: options[name] is not None and options[name] != defaults[name]
+
+
+def _typed(options: dict[str, Any]) -> Any:
+    """``typed(name)``: ``(flag, value)`` as the command line spells the option given."""
+    def typed(name: str) -> tuple[str, str]:
+        v = options[name]
+        if isinstance(v, bool):  # a switch: its own spelling
+            on, off = {"trend": ("--trend", "--no-trend"),
+                       "compare": ("--compare", "--no-compare")}.get(
+                name, (f"--{name.replace('_', '-')}", f"--no-{name.replace('_', '-')}"))
+            return (on if v else off), ""
+        return f"--{name.replace('_', '-')}", f"{v:g}" if isinstance(v, float) else str(v)
+
+    return typed
+
+
+def check_record_applies(options: dict[str, Any], defaults: dict[str, Any]) -> None:
+    """Refuse, in one line naming it, an option of ``fit`` that a laboratory record's fit does
+    not use, before any work (``fit RECORD --traps-per-a0 50 --alpha 0.2`` fitted rsf, exit
+    0): the trap model's options without ``--run-cv`` (``--alpha``, ``--creep``, ``--direct``,
+    ``--v-ref``, ``--traps-per-a0``; ``--model cv`` is refused with its cost estimate), and
+    ``--regularized`` and ``--no-compare``, which only the project's CSV files read."""
+    given, typed = _given(options, defaults), _typed(options)
+    if not options["run_cv"] and options["model"] != "cv":
+        for name in ("alpha", "creep", "direct", "v_ref", "traps_per_a0"):
+            if given(name):
+                flag, value = typed(name)
+                raise not_applicable(flag, value, "to a trap-model fit", "on a record: "
+                                     "--run-cv; this run fits rate-and-state alone",
+                                     f"drop {flag} or add --run-cv")
+    for name, why in (("regularized", "a record's steps take the regularised law across a "
+                       "hold and the standard one at a velocity step"),
+                      ("compare", "a record's comparison with the trap model is --run-cv")):
+        if given(name):
+            flag, value = typed(name)
+            raise not_applicable(flag, value, "to the project's CSV files", why,
+                                 f"drop {flag}")
 
 
 _KIND_WORDS = {"static": "static friction (t_w,mu_s)", "steady": "steady friction (V,mu_d)",
@@ -40,16 +82,7 @@ def check_fit_applies(options: dict[str, Any], defaults: dict[str, Any], kinds: 
     ``options`` and ``defaults`` are keyed as :data:`dryfriction.app.options.OPTIONS`
     ``["fit"]``; an option is given where it differs from its default.
     """
-    def given(name: str) -> bool:
-        return options[name] is not None and options[name] != defaults[name]
-
-    def typed(name: str) -> tuple[str, str]:
-        v = options[name]
-        if isinstance(v, bool):  # a switch: its own spelling
-            return ("--trend" if v else "--no-trend") if name == "trend" else \
-                f"--{name.replace('_', '-')}", ""
-        return f"--{name.replace('_', '-')}", f"{v:g}" if isinstance(v, float) else str(v)
-
+    given, typed = _given(options, defaults), _typed(options)
     held = " and ".join(sorted(_KIND_WORDS[k] for k in kinds if k != "series"))
     files = ", ".join(sources)
     if "series" not in kinds:

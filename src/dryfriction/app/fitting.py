@@ -8,7 +8,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from .checks import check_fit_applies, check_fit_options
+from .checks import check_fit_applies, check_fit_options, check_record_applies
 from .options import CSV_TRAPS_PER_A0, OPTIONS
 from .outcome import FitOutcome, RecordFitOutcome
 
@@ -202,6 +202,7 @@ def fit(data: Sequence[str | Path] | str | Path, out: str | Path, *,
                 raise ValueError(f"{flag} is for the project's CSV files, not a laboratory "
                                  "record (its steps are fitted free; --stiffness K holds "
                                  "the machine)")
+        check_record_applies(o, _D)  # the trap model's options without --run-cv (fixE)
     check_output_dir(out, force=o["force"], command="fit")
     if record:
         from .records import fit_record
