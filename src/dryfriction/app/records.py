@@ -242,7 +242,10 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                                                           "drive": drive},
                               **res.to_dict()}
     if note:
-        doc["apparatus_note"] = note.removeprefix("note: ")
+        doc["apparatus_note"] = lab.note_text(note)
+    if lab.assumed_units(rec):  # what the reader assumed, by column, and whether plausible
+        doc["units_assumed"] = lab.assumed_units(rec)
+        doc["units_implausible"] = note.startswith("warning: ")
     if rec.notes:
         doc["reading_notes"] = list(rec.notes)
     normal = next((r["normal_unit"] for r in res.rows if r.get("normal_unit")), "Pa")
@@ -307,4 +310,4 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
                       *(f"step_{i}.{fmt}" for i in range(len(res.rows))),
                       f"steps_summary.{fmt}"]
     return RecordFitOutcome(Path(out), files, doc, res, rec, list(segs), det,
-                            note.removeprefix("note: ") if note else None, fmt)
+                            lab.note_text(note) if note else None, fmt)
