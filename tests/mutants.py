@@ -103,6 +103,7 @@ _S7BSF = "tests/ensemble/test_snapshot_force_strong.py"
 _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _CNT = "tests/records/test_count_causes.py"
+_MIS = "tests/records/test_missed_changes.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
 _HTE = "tests/analysis/test_hopf_table_edges.py"
@@ -2823,6 +2824,33 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if gain[k] > RESET_KINK_PENALTY * sigma2 * np.log(len(tt)):\n",
        "    if gain[k] > 0.0:\n", _CNT, "-k", "earns_its_place"),
     # --- end detect11
+    # --- detect12: changes missed: a large change re-placed within its shorter stretch
+    # (tests/records/test_missed_changes.py)
+    _m("detection: a re-placed boundary anywhere between its neighbours", "records/detection.py",
+       "REPLACE_REACH = True\n", "REPLACE_REACH = False\n", _MIS, "-k", "short_hold_in_a_long"),
+    _m("detection: the reach not applied in the pruning", "records/detection.py",
+       "{q: reach.get(q, len(t)) for q in near}", "{q: len(t) for q in near}", _MIS, "-k",
+       "short_hold_in_a_long"),
+    _m("detection: the reach not applied from block means to samples", "records/detection.py",
+       "{q: reach.get(q, n) for q in full[1:-1]}", "{q: n for q in full[1:-1]}", _MIS, "-k",
+       "short_hold_in_a_long"),
+    _m("detection: the reach the longer stretch", "records/detection.py",
+       "    return {bounds[j]: min(bounds[j] - bounds[j - 1], bounds[j + 1] - bounds[j])\n",
+       "    return {bounds[j]: max(bounds[j] - bounds[j - 1], bounds[j + 1] - bounds[j])\n",
+       _MIS, "-k", "reach_only"),
+    _m("detection: the reach for small changes, not large", "records/detection.py",
+       "    large = (hi > FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0)\n",
+       "    large = (hi < FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0)\n", _MIS, "-k", "reach_only"),
+    _m("detection: the reach for every change (a burst's ends kept)", "records/detection.py",
+       "    large = (hi > FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0)\n",
+       "    large = hi >= 0.0\n", _MIS, "-k", "reach_only"),
+    _m("detection: the reach ignored in the re-placement", "records/detection.py",
+       "        a, b = max(out[j - 1], q - reach[q]), min(out[j + 1], q + reach[q])\n",
+       "        a, b = out[j - 1], out[j + 1]\n", _MIS, "-k", "hold_end"),
+    _m("detection: the reach on the earlier side only", "records/detection.py",
+       "        a, b = max(out[j - 1], q - reach[q]), min(out[j + 1], q + reach[q])\n",
+       "        a, b = max(out[j - 1], q - reach[q]), out[j + 1]\n", _MIS, "-k", "hold_end"),
+    # --- end detect12
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test

@@ -54,6 +54,7 @@ from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
 from .labsteps import PLACED_P, Segment, example_segments, make_segments
 from .placement import (
+    FINE_RATIO,
     HOLD_RATIO,
     OSC_RATIO,
     RELAX_STOP,
@@ -62,7 +63,7 @@ from .placement import (
     placed_probability,
 )
 from .record import LabRecord
-from .segmentation import hinge_segments, line_fit, noise_level, refine
+from .segmentation import best_hinge, hinge_segments, line_fit, noise_level
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "PLACE_TOL", "Z_MIN"]
@@ -484,8 +485,79 @@ def _prune(t: Array, x: Array, xs: Array, bounds: list[int], fl: Fluctuations, f
         go = set((np.flatnonzero(weak & (score <= s[:-2]) & (score < s[2:])) + 1).tolist())
         near = {bounds[j + d] for j in go for d in (-1, 1)} - {0, len(t)}
         bounds = [q for j, q in enumerate(bounds) if j not in go]
-        bounds = refine(t, xs, bounds, m, 0.0, only=near)
+        # a large change re-placed within its shorter stretch as it now stands (REPLACE_REACH)
+        reach = _reach(bounds, fits.table(bounds)[0]) if REPLACE_REACH else {}
+        bounds = _replace(t, xs, bounds, {q: reach.get(q, len(t)) for q in near}, m)
     return bounds
+
+
+REPLACE_REACH = True
+"""Whether a boundary of a large change (velocities more than :data:`.placement.FINE_RATIO`
+apart, a hold, a reversal: :func:`_reach`) is re-placed only within the length of its
+shorter stretch, each side of where it stands (:func:`_replace`), not anywhere between its
+neighbours: in the pruning, once a weak neighbour is removed, and when the changes found on
+block means are moved to the samples (ours; detect12).
+
+Why: removing a weak boundary merges two stretches, and the best hinge between the new
+neighbours of the boundary beside it may then be another feature of the merged, longer
+stretch (a servo's wobble over hundreds of seconds outweighs the kink of a short hold), so
+a short stretch lost one end and, its other end alone no longer a change, the whole of it.
+Zoo 3112: a 19-s hold's end (confidence 21.5) moved 300 s into the slide when a weak
+boundary beyond it went, and the hold was lost; 11290 the same with a 12.6-s hold, 278 and
+7058 with short steps (docs/performance.md). A re-placement corrects a kink's place for the
+change of its stretch; a move beyond its shorter stretch is no longer that kink, and a
+change there stays a candidate of the search. Small changes (a servo burst read at 26-34 %)
+move as before: with the reach, bursts' ends beside each other were kept as two changes
+(with the reach for every change, 4278, 5145, 5170, 5177, 7018 and 7262 read
+one or more changes too many)"""
+
+
+def _reach(bounds: list[int], v: Array) -> dict[int, int]:
+    """How far each inner boundary of a large change may be re-placed (:data:`REPLACE_REACH`):
+    the length of its shorter stretch, samples; a change is large when its two velocities
+    (``v``, m/s, one per stretch) are more than :data:`.placement.FINE_RATIO` apart or of
+    opposite signs or one is zero (a hold). Boundaries of small changes are not listed."""
+    u = np.asarray(v, float)
+    lo = np.minimum(np.abs(u[1:]), np.abs(u[:-1]))
+    hi = np.maximum(np.abs(u[1:]), np.abs(u[:-1]))
+    large = (hi > FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0)
+    return {bounds[j]: min(bounds[j] - bounds[j - 1], bounds[j + 1] - bounds[j])
+            for j in np.flatnonzero(large) + 1}
+
+
+def _replace(t: Array, xs: Array, bounds: list[int], reach: dict[int, int], m: int
+             ) -> list[int]:
+    """Each inner boundary found in ``reach`` (sample index -> samples) moved to the best hinge
+    (:func:`.segmentation.best_hinge`) between its neighbours and within ``reach`` of where
+    it stands, one pass in order (:data:`REPLACE_REACH`).
+
+    Parameters
+    ----------
+    t, xs : Array
+        Times (s) and the displacement in units of the white noise.
+    bounds : list[int]
+        Sample indices of the boundaries, the ends included.
+    reach : dict[int, int]
+        Boundaries to re-place and how far each may move, samples.
+    m : int
+        Shortest stretch, samples.
+
+    Returns
+    -------
+    list[int]
+        The boundaries re-placed.
+    """
+    out = list(bounds)
+    for j in range(1, len(out) - 1):
+        q = out[j]
+        if q not in reach:
+            continue
+        # the hinge on the samples within reach (the stretches' lines over them only)
+        a, b = max(out[j - 1], q - reach[q]), min(out[j + 1], q + reach[q])
+        k, _ = best_hinge(t[a:b], xs[a:b], m, 0.0)
+        if k > 0:
+            out[j] = a + k
+    return out
 
 
 def detect_program(
@@ -586,8 +658,13 @@ def detect_program(
         # each change found on block means moved to the best hinge on the samples between
         # its neighbours (one vectorised pass per change: O(n) each, few changes)
         sigma_all = max(noise_level(x_all), 1e-9 * span, 1e-300)
-        bounds = refine(t_all, (x_all - x_all[0]) / sigma_all,
-                        [b * blk for b in bounds[:-1]] + [n], max(3, min_samples), 0.0)
+        full = [b * blk for b in bounds[:-1]] + [n]
+        xs_all = (x_all - x_all[0]) / sigma_all
+        # a large change within its shorter stretch (REPLACE_REACH), the others between
+        # their neighbours
+        reach = _reach(full, fits.table(bounds)[0]) if REPLACE_REACH else {}
+        bounds = _replace(t_all, xs_all, full, {q: reach.get(q, n) for q in full[1:-1]},
+                          max(3, min_samples))
         fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
         t, x = t_all, x_all
         fits = _Fits(t, x)
