@@ -507,9 +507,8 @@ boundary beyond it went, and the hold was lost; 11290 the same with a 12.6-s hol
 7058 with short steps (docs/performance.md). A re-placement corrects a kink's place for the
 change of its stretch; a move beyond its shorter stretch is no longer that kink, and a
 change there stays a candidate of the search. Small changes (a servo burst read at 26-34 %)
-move as before: with the reach, bursts' ends beside each other were kept as two changes
-(with the reach for every change, 4278, 5145, 5170, 5177, 7018 and 7262 read
-one or more changes too many)"""
+move as before: with the reach for every change, zoo 4278, 5145, 5170, 5177, 7018 and 7262
+read one or more changes too many."""
 
 
 def _reach(bounds: list[int], v: Array) -> dict[int, int]:
