@@ -2827,13 +2827,13 @@ MUTANTS: tuple[Mutant, ...] = (
     # --- detect12: changes missed: a large change re-placed within its shorter stretch
     # (tests/records/test_missed_changes.py)
     _m("detection: a re-placed boundary anywhere between its neighbours", "records/detection.py",
-       "REPLACE_REACH = True\n", "REPLACE_REACH = False\n", _MIS, "-k", "short_hold_in_a_long"),
+       "REPLACE_REACH = True\n", "REPLACE_REACH = False\n", _MIS, "-k", "short_stretch_in_a_long"),
     _m("detection: the reach not applied in the pruning", "records/detection.py",
        "{q: reach.get(q, len(t)) for q in near}", "{q: len(t) for q in near}", _MIS, "-k",
-       "short_hold_in_a_long"),
+       "short_stretch_in_a_long"),
     _m("detection: the reach not applied from block means to samples", "records/detection.py",
        "{q: reach.get(q, n) for q in full[1:-1]}", "{q: n for q in full[1:-1]}", _MIS, "-k",
-       "short_hold_in_a_long"),
+       "short_stretch_in_a_long"),
     _m("detection: the reach the longer stretch", "records/detection.py",
        "    return {bounds[j]: min(bounds[j] - bounds[j - 1], bounds[j + 1] - bounds[j])\n",
        "    return {bounds[j]: max(bounds[j] - bounds[j - 1], bounds[j + 1] - bounds[j])\n",
@@ -2845,11 +2845,11 @@ MUTANTS: tuple[Mutant, ...] = (
        "    large = (hi > FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0)\n",
        "    large = hi >= 0.0\n", _MIS, "-k", "reach_only"),
     _m("detection: the reach ignored in the re-placement", "records/detection.py",
-       "        a, b = max(out[j - 1], q - reach[q]), min(out[j + 1], q + reach[q])\n",
-       "        a, b = out[j - 1], out[j + 1]\n", _MIS, "-k", "hold_end"),
+       "        if k > 0 and abs(a + k - q) > reach[q]:\n", "        if False:\n", _MIS, "-k",
+       "hold_end"),
     _m("detection: the reach on the earlier side only", "records/detection.py",
-       "        a, b = max(out[j - 1], q - reach[q]), min(out[j + 1], q + reach[q])\n",
-       "        a, b = max(out[j - 1], q - reach[q]), out[j + 1]\n", _MIS, "-k", "hold_end"),
+       "            a, b = max(a, q - reach[q]), min(b, q + reach[q])\n",
+       "            a, b = max(a, q - reach[q]), b\n", _MIS, "-k", "hold_end"),
     # --- end detect12
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py

@@ -493,22 +493,26 @@ def _prune(t: Array, x: Array, xs: Array, bounds: list[int], fl: Fluctuations, f
 
 REPLACE_REACH = True
 """Whether a boundary of a large change (velocities more than :data:`.placement.FINE_RATIO`
-apart, a hold, a reversal: :func:`_reach`) is re-placed only within the length of its
-shorter stretch, each side of where it stands (:func:`_replace`), not anywhere between its
-neighbours: in the pruning, once a weak neighbour is removed, and when the changes found on
-block means are moved to the samples (ours; detect12).
+apart, a hold, a reversal: :func:`_reach`) that the re-placement would move beyond the
+length of its shorter stretch is placed by the best hinge within that reach instead
+(:func:`_replace`): in the pruning, once a weak neighbour is removed, and when the changes
+found on block means are moved to the samples (ours; detect12). A move within the reach is
+kept as before.
 
 Why: removing a weak boundary merges two stretches, and the best hinge between the new
 neighbours of the boundary beside it may then be another feature of the merged, longer
 stretch (a servo's wobble over hundreds of seconds outweighs the kink of a short hold), so
 a short stretch lost one end and, its other end alone no longer a change, the whole of it.
 Zoo 3112: a 19-s hold's end (confidence 21.5) moved 300 s into the slide when a weak
-boundary beyond it went, and the hold was lost; 11290 the same with a 12.6-s hold, 278 and
-7058 with short steps (docs/performance.md). A re-placement corrects a kink's place for the
-change of its stretch; a move beyond its shorter stretch is no longer that kink, and a
-change there stays a candidate of the search. Small changes (a servo burst read at 26-34 %)
-move as before: with the reach for every change, zoo 4278, 5145, 5170, 5177, 7018 and 7262
-read one or more changes too many."""
+boundary beyond it went, and the hold was lost; 278 (a short step) and 9000 the same
+(docs/performance.md). A re-placement corrects a kink's place for the change of its
+stretch; a move beyond its shorter stretch is no longer that kink, and a change there stays
+a candidate of the search. Small changes (a servo burst read at 26-34 %) move as before:
+with the reach for every change (in an earlier form, every change placed within its reach),
+zoo 4278, 5145, 5170, 5177, 7018 and 7262 read one or more changes too many. Placing every
+large change within its reach, not only those moved beyond it, fixed 11290 and 7058 too but
+moved nine records' times off (short steps' starts 2.7-3.4 s) and widened a change's
+interval (``tests/records/test_change_interval.py``)"""
 
 
 def _reach(bounds: list[int], v: Array) -> dict[int, int]:
@@ -527,8 +531,9 @@ def _reach(bounds: list[int], v: Array) -> dict[int, int]:
 def _replace(t: Array, xs: Array, bounds: list[int], reach: dict[int, int], m: int
              ) -> list[int]:
     """Each inner boundary found in ``reach`` (sample index -> samples) moved to the best hinge
-    (:func:`.segmentation.best_hinge`) between its neighbours and within ``reach`` of where
-    it stands, one pass in order (:data:`REPLACE_REACH`).
+    (:func:`.segmentation.best_hinge`) between its neighbours, or, where that lies beyond
+    ``reach`` of where it stands, to the best hinge on the samples within reach; one pass in
+    order (:data:`REPLACE_REACH`).
 
     Parameters
     ----------
@@ -551,9 +556,13 @@ def _replace(t: Array, xs: Array, bounds: list[int], reach: dict[int, int], m: i
         q = out[j]
         if q not in reach:
             continue
-        # the hinge on the samples within reach (the stretches' lines over them only)
-        a, b = max(out[j - 1], q - reach[q]), min(out[j + 1], q + reach[q])
+        a, b = out[j - 1], out[j + 1]
         k, _ = best_hinge(t[a:b], xs[a:b], m, 0.0)
+        if k > 0 and abs(a + k - q) > reach[q]:
+            # moved beyond its reach: the hinge on the samples within reach instead (the
+            # stretches' lines over them only)
+            a, b = max(a, q - reach[q]), min(b, q + reach[q])
+            k, _ = best_hinge(t[a:b], xs[a:b], m, 0.0)
         if k > 0:
             out[j] = a + k
     return out
