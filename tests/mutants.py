@@ -3423,6 +3423,16 @@ MUTANTS: tuple[Mutant, ...] = (
        "tests/fit/test_joint_covariance.py"),
     _m("step covariance: the drive's change-time error left out", "fit/steps.py",
        "var += 0.0 if tc is None else tc**2", "var += 0.0", "tests/fit/test_kcoverage.py"),
+    _m("segments.csv: a unit assumed not said in it", "app/records.py",
+       "rec.time, notes=(note,) if note else ())", "rec.time, notes=())",
+       "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("record.png: a unit assumed not in its title", "app/records.py",
+       "fig, _ = plot_record(rec, segs, det, given=given, note=short)",
+       "fig, _ = plot_record(rec, segs, det, given=given, note=None)",
+       "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("record.png: the title's extra line dropped", "plots/record.py",
+       'if info.unplaced else "") + (f"\\n{note}" if note else ""),',
+       'if info.unplaced else ""),', "tests/records/test_assumed_units.py", "-k", "keeps"),
     # --- end stop 39 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
