@@ -3433,6 +3433,9 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record.png: the title's extra line dropped", "plots/record.py",
        'if info.unplaced else "") + (f"\\n{note}" if note else ""),',
        'if info.unplaced else ""),', "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("fit: --direct with static data refused in the library's words", "app/checks.py",
+       'if "static" in kinds and "cv" in fitted and given("direct"):', "if False:",
+       "tests/app/test_fit_applies.py", "-k", "static_data"),
     # --- end stop 39 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
