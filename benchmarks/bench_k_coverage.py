@@ -153,6 +153,12 @@ def rate_interval(k: int, n: int) -> tuple[float, float]:
     return lo, hi
 
 
+def rate_text(k: int, n: int) -> str:
+    """``k/n [lo-hi %]``, the rate with its Clopper-Pearson interval (:func:`rate_interval`)."""
+    lo, hi = rate_interval(k, n)
+    return f"{k}/{n} [{100 * lo:.0f}-{100 * hi:.0f} %]"
+
+
 def _seeds(args: list[str]) -> range:
     for a in args:
         if a.isdigit():
@@ -170,11 +176,7 @@ def main() -> None:
         t0 = time.process_time()
         c = coverage(kind, seeds)
         h, s = c["hits"], c["steps"]
-
-        def rate(k: int, n: int) -> str:
-            lo, hi = rate_interval(k, n)
-            return f"{k}/{n} [{100 * lo:.0f}-{100 * hi:.0f} %]"
-
+        rate = rate_text
         parts = [f"{p} {rate(h[key], s)} width {c['width'][key]:.3f}"
                  for p, key in (("k", "stiffness"), ("a", "a"), ("b", "b"), ("Dc", "dc"))]
         line = f"{kind} seeds {seeds.start}:{seeds.stop}: " + ", ".join(parts)

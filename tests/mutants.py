@@ -182,7 +182,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "return Z95",
        "tests/fit/test_fit.py", "-k", "student_t"),
     _m("HAC covariance: prewhitened scores not recoloured", "fit/statistics.py",
-       "    omega = color @ omega_e @ color.T\n", "    omega = omega_e\n",
+       "    return color @ omega_e @ color.T, L\n", "    return omega_e, L\n",
        "tests/fit/test_hac.py"),
     _m("step intervals: robust inflation ignored", "fit/steps.py",
        "        return self.white if self.robust is None else self.robust\n",
@@ -3344,7 +3344,7 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("record fit: the joint fit's values without units", "cli/records.py",
        "+ unit_after(est[n].unit)", "+ unit_after(None)", "tests/fit/test_steps.py",
        "-k", "command_record_writes_steps"),
-    _m("record fit: the joint fit's white errors not said", "fit/steps.py",
+    _m("record fit: the joint fit's white errors kept (no robust covariance)", "fit/steps.py",
        'if joint_fit is not None and errors == "hac":',
        'if joint_fit is not None and errors == "white":', "tests/fit/test_steps.py", "-k",
        "command_record_writes_steps"),
@@ -3369,6 +3369,21 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if p.is_dir():\n        p = p / \"sweep.nc\"\n", "", "tests/sweeps/test_sweep.py",
        "-k", "round_trips"),
     # --- end stop 38 (lead)
+    # --- stop 39 (lead): the joint fit's covariance, each window its own block
+    _m("joint covariance: one window's long-run covariance replaces the others'",
+       "fit/statistics.py", "time_m[np.ix_(cols, cols)] += _time_meat(Jb, rb, tb)[0]",
+       "time_m[np.ix_(cols, cols)] = _time_meat(Jb, rb, tb)[0]",
+       "tests/fit/test_joint_covariance.py"),
+    _m("joint fit: the robust errors computed but the white ones reported", "fit/steps.py",
+       "if p.name in est and p.stderr is not None else p for p in r.parameters)",
+       "if False else p for p in r.parameters)", "tests/fit/test_joint_covariance.py"),
+    _m("joint fit: a - b's error the white one", "fit/steps.py",
+       "return replace(r, parameters=params, derived=derived,",
+       "return replace(r, parameters=params, derived=r.derived,",
+       "tests/fit/test_joint_covariance.py"),
+    _m("step covariance: the drive's change-time error left out", "fit/steps.py",
+       "var += 0.0 if tc is None else tc**2", "var += 0.0", "tests/fit/test_kcoverage.py"),
+    # --- end stop 39 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
     _m("slice_steps: the hold cut at a normal-stress change (the user's 10 s of 50)",

@@ -292,11 +292,11 @@ def test_command_record_writes_steps(tmp_path: Path):
     joint = next(ln for ln in r.stdout.splitlines() if ln.startswith("joint fit (all steps"))
     assert re.search(r"dc = \S+ \+- \S+ m(, stiffness = \S+ \+- \S+ 1/m)?$", joint), joint
     assert re.search(r"a = \S+ \+- [^ ,]+, b = ", joint), joint  # a and b bare: dimensionless
-    # its +- is the engine's white one, said on the line, in a note and in fit.json (the
-    # steps' are autocorrelation-robust: a user would have quoted the narrower joint ones)
-    assert joint.startswith("joint fit (all steps; +- white-noise, a lower bound: see the "
-                            "note): a = "), joint
-    assert "- joint fit: the joint fit's standard errors are white-noise ones" in r.stdout
+    # its +- is autocorrelation-robust as the steps' are (each window its own block), said
+    # in a note and in fit.json; no "white-noise lower bound" label on the line
+    assert joint.startswith("joint fit (all steps): a = "), joint
+    assert ("- joint fit: the joint fit's +- and 95 % intervals are autocorrelation-robust"
+            in r.stdout)
 
     rows = read_rows(out / "steps.csv")
     assert len(rows) == 2
@@ -306,7 +306,7 @@ def test_command_record_writes_steps(tmp_path: Path):
     assert float(rows[0]["v_after"]) == pytest.approx(3e-6, rel=0.02)
     rep = json.loads((out / "fit.json").read_text())
     assert len(rep["steps"]) == 2
-    assert any("white-noise ones" in n for n in rep["joint"]["identifiability_notes"])
+    assert any("autocorrelation-robust" in n for n in rep["joint"]["identifiability_notes"])
     assert rep["steps"][1]["dc"] == pytest.approx(float(rows[1]["dc"]), rel=1e-12)
     assert (out / "step_0.png").exists() and (out / "steps_summary.png").exists()
     assert (out / "record.png").exists() and (out / "segments.csv").exists()  # issue 23

@@ -4,7 +4,7 @@ covariance, profiles and identifiability, and reports; :func:`fit_static`,
 different models to the same data.
 
 :func:`fit` is a sequence of named steps (``_prepare``, ``_problem``, ``_best_of_starts``,
-``_check_optimum``, ``_profiles``, ``_estimates``, ``_derived``, ``_goodness``,
+``_check_optimum``, ``_profiles``, ``_estimates``, ``derived_estimates``, ``_goodness``,
 ``_consistency``) that share an :class:`_Optimum` and a list of notes; the models are in
 :mod:`.models`, the statistics in :mod:`.statistics`.
 """
@@ -314,7 +314,7 @@ def _estimates(prob: Problem, specs_all: Sequence[ParamSpec], opt: _Optimum, cov
     return estimates
 
 
-def _derived(prob: Problem, theta: Array, cov: Covariance,
+def derived_estimates(prob: Problem, theta: Array, cov: Covariance,
              estimates: Sequence[ParameterEstimate]) -> dict[str, dict[str, Any]]:
     """The model's derived quantities (delta method in the internal variables) and the
     data-fixed combinations: level and slope of each curve at the data's centre."""
@@ -550,7 +550,7 @@ def fit(
                      "determined by the data at all")
 
     estimates = _estimates(prob, specs_all, opt, cov, profiles, z, notes)
-    derived = _derived(prob, opt.theta, cov, estimates)
+    derived = derived_estimates(prob, opt.theta, cov, estimates)
     goodness, per = _goodness(prob, opt.theta, opt.cost, s2, notes)
     flags = _against_model(prob, per, notes)
     flags += [f"at_bound:{e.name}" for e in estimates if e.identifiability.startswith("at ")]

@@ -9,6 +9,7 @@ are described in the package docstring.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,6 +29,7 @@ __all__ = [
     "hac_bandwidth",
     "time_hac_covariance",
     "local_covariance",
+    "blocked_meats",
     "positive_semidefinite",
     "held_parameter_covariance",
     "with_stderr",
@@ -184,16 +186,7 @@ def hac_covariance(J: Array, r: Array, lags: int | None = None) -> tuple[Covaria
     base = covariance(J, 1.0)
     if base.singular or n <= 2 * p + 2:
         return Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True), 0
-    u = J * r[:, None]
-    # VAR(1) of the scores: u_t^T = u_{t-1}^T A^T + e_t^T
-    At = np.linalg.lstsq(u[:-1], u[1:], rcond=None)[0]
-    U, S, Vt = np.linalg.svd(At)
-    At = (U * np.minimum(S, PREWHITEN_CAP)) @ Vt
-    e = u[1:] - u[:-1] @ At
-    L = hac_bandwidth(e) if lags is None else int(lags)
-    omega_e = _bartlett(e, L) * (n / (n - 1.0))
-    color = np.linalg.inv(np.eye(p) - At.T)
-    omega = color @ omega_e @ color.T
+    omega, L = _score_meat(J, r, lags)
     bread = base.matrix  # (J^T J)^-1
     cov = bread @ omega @ bread * (n / (n - p))
     cov = 0.5 * (cov + cov.T)
@@ -206,6 +199,22 @@ def hac_covariance(J: Array, r: Array, lags: int | None = None) -> tuple[Covaria
         # No number is better than a wrong one: singular, as a singular Jacobian.
         return Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True), 0
     return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), L
+
+
+def _score_meat(J: Array, r: Array, lags: int | None = None) -> tuple[Array, int]:
+    """The long-run covariance ``Omega`` of the scores ``u_t = J_t r_t`` of
+    :func:`hac_covariance` (VAR(1)-prewhitened Bartlett, recoloured) and its bandwidth."""
+    n, p = J.shape
+    u = J * r[:, None]
+    # VAR(1) of the scores: u_t^T = u_{t-1}^T A^T + e_t^T
+    At = np.linalg.lstsq(u[:-1], u[1:], rcond=None)[0]
+    U, S, Vt = np.linalg.svd(At)
+    At = (U * np.minimum(S, PREWHITEN_CAP)) @ Vt
+    e = u[1:] - u[:-1] @ At
+    L = hac_bandwidth(e) if lags is None else int(lags)
+    omega_e = _bartlett(e, L) * (n / (n - 1.0))
+    color = np.linalg.inv(np.eye(p) - At.T)
+    return color @ omega_e @ color.T, L
 
 
 def _lag_products(r: Array, t: Array, delta: float, most: int) -> tuple[Array, Array]:
@@ -271,9 +280,19 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
     n, p = J.shape
     t = np.asarray(t, float)
     base = covariance(J, 1.0)
-    dt = np.diff(t)
-    if p == 0 or base.singular or n <= 2 * p + 2 or not np.any(dt > 0):
+    if p == 0 or base.singular or n <= 2 * p + 2 or not np.any(np.diff(t) > 0):
         return Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True), 0.0
+    omega, h = _time_meat(J, r, t)
+    cov = base.matrix @ omega @ base.matrix * (n / (n - p))
+    cov = 0.5 * (cov + cov.T)
+    return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), h
+
+
+def _time_meat(J: Array, r: Array, t: Array) -> tuple[Array, float]:
+    """The middle of :func:`time_hac_covariance`'s sandwich, ``sum_ij w gamma J_i J_j^T``,
+    and its bandwidth ``h`` (s); ``t`` increasing with at least one positive step."""
+    n = len(r)
+    dt = np.diff(t)
     delta = float(np.min(dt[dt > 0]))
     e = np.asarray(r, float) - float(np.mean(r))
     s, c = _lag_products(e, t, delta, 2)
@@ -293,9 +312,7 @@ def time_hac_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, float
             continue
         half = (J[:-lag] * w[:, None]).T @ J[lag:]
         omega += half + half.T
-    cov = base.matrix @ omega @ base.matrix * (n / (n - p))
-    cov = 0.5 * (cov + cov.T)
-    return Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False), (lags + 1) * delta
+    return omega, (lags + 1) * delta
 
 
 def positive_semidefinite(mat: Array, tol: float = 1e-10) -> bool:
@@ -318,7 +335,8 @@ def positive_semidefinite(mat: Array, tol: float = 1e-10) -> bool:
     return bool(eig[0] >= -tol * max(float(np.max(np.abs(eig))), 1e-300))
 
 
-def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
+def local_covariance(J: Array, r: Array, t: Array, blocks: Sequence[slice] | None = None
+                     ) -> tuple[Covariance, int]:
     """The covariance of a rate-and-state step fit (ours): the time-lag sandwich
     :func:`time_hac_covariance`, each standard error floored at the score HAC's
     (:func:`hac_covariance`; the time-lag one's correlations kept, ``D C D`` with ``D``
@@ -344,15 +362,21 @@ def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
     r : ndarray
         The ``n`` residuals at the optimum.
     t : ndarray
-        The ``n`` sample times (s), increasing.
+        The ``n`` sample times (s), increasing (within each block).
+    blocks : sequence of slice, optional
+        Rows of independent windows (:func:`blocked_meats`): each sandwich's middle is the
+        sum of the windows' own; ``None``: one window.
 
     Returns
     -------
     Covariance, int
-        The covariance and the score HAC's Bartlett bandwidth (lags).
+        The covariance and the score HAC's Bartlett bandwidth (lags; the largest window's).
     """
-    score, lags = hac_covariance(J, r)
-    local = time_hac_covariance(J, r, t)[0]
+    if blocks is None:
+        score, lags = hac_covariance(J, r)
+        local = time_hac_covariance(J, r, t)[0]
+    else:
+        score, lags, local = blocked_meats(J, r, t, blocks)
     if score.singular or local.singular or not positive_semidefinite(local.matrix):
         return score, lags
     scale = np.ones(len(local.stderr))
@@ -360,6 +384,66 @@ def local_covariance(J: Array, r: Array, t: Array) -> tuple[Covariance, int]:
     scale[ok] = np.maximum(local.stderr[ok], score.stderr[ok]) / local.stderr[ok]
     mat = local.matrix * np.outer(scale, scale)
     return Covariance(mat, np.sqrt(np.abs(np.diag(mat))), False), lags
+
+
+def blocked_meats(J: Array, r: Array, t: Array, blocks: Sequence[slice]
+                  ) -> tuple[Covariance, int, Covariance]:
+    """The score HAC (:func:`hac_covariance`) and the time-lag sandwich
+    (:func:`time_hac_covariance`) of a fit to several independent windows, each window its
+    own block::
+
+        C = (J^T J)^-1 [sum_w Omega_w] (J^T J)^-1 n/(n - p)
+
+    ``Omega_w`` the long-run covariance of window ``w``'s scores alone (its own residual mean,
+    correlation and bandwidth; the columns that are zero in the window left out). The
+    cluster sandwich (Liang & Zeger, Biometrika 73, 13 (1986); Arellano, Oxford Bull. Econ.
+    Stat. 49, 431 (1987)) with each cluster's middle the HAC one (ours: its use here).
+
+    Why (ours): the windows of a record's steps (a joint fit, :func:`.steps.fit_steps`) are
+    apart in time and each has its own level, noise and correlation; one HAC over their rows
+    placed end to end would sum products across the seams between windows (their ends are
+    not neighbours) and estimate one correlation for all.
+
+    Parameters
+    ----------
+    J : ndarray
+        ``n x p`` Jacobian of the residuals, the windows' rows in ``blocks``.
+    r : ndarray
+        The ``n`` residuals at the optimum.
+    t : ndarray
+        The ``n`` sample times (s), increasing within each block.
+    blocks : sequence of slice
+        The rows of each window; together every row once.
+
+    Returns
+    -------
+    Covariance, int, Covariance
+        The score HAC, its largest bandwidth (lags), and the time-lag sandwich; both singular
+        (``inf``) where ``J`` is or a window has too few samples for its columns.
+    """
+    n, p = J.shape
+    bad = Covariance(np.full((p, p), np.inf), np.full(p, np.inf), True)
+    base = covariance(J, 1.0)
+    if p == 0 or base.singular or n <= 2 * p + 2:
+        return bad, 0, bad
+    t = np.asarray(t, float)
+    score_m, time_m, most = np.zeros((p, p)), np.zeros((p, p)), 0
+    for b in blocks:
+        cols = np.flatnonzero(np.any(J[b] != 0.0, axis=0))
+        Jb, rb, tb = J[b][:, cols], np.asarray(r[b], float), t[b]
+        if len(rb) <= 2 * cols.size + 2 or not np.any(np.diff(tb) > 0):
+            return bad, 0, bad
+        om, lags = _score_meat(Jb, rb)
+        score_m[np.ix_(cols, cols)] += om
+        most = max(most, lags)
+        time_m[np.ix_(cols, cols)] += _time_meat(Jb, rb, tb)[0]
+    out = []
+    for omega in (score_m, time_m):
+        cov = base.matrix @ omega @ base.matrix * (n / (n - p))
+        cov = 0.5 * (cov + cov.T)
+        out.append(Covariance(cov, np.sqrt(np.abs(np.diag(cov))), False)
+                   if positive_semidefinite(cov) else bad)
+    return out[0], most, out[1]
 
 
 def held_parameter_covariance(J: Array, cov: Array, j: int, var: float, share: float

@@ -47,7 +47,7 @@ from .elastic import machine_stiffness_record
 from .engine import fit
 from .experiment import EXPERIMENT_COLUMNS, annotate_steps, level_stiffness, levels_report
 from .identify import assess_step, worse_than_noise
-from .joint import fit_joint
+from .joint import JointStepsModel, fit_joint
 from .lawcolumns import LAW_COLUMNS, add_law_columns
 from .laws import FIT_LAWS, INITIAL_STATES
 from .machine import hold_remnant
@@ -243,18 +243,22 @@ class StepCovariance:
         return r / w if w > 0 and math.isfinite(r) else math.inf
 
 
-def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac",
+def step_covariance(r: FitResult, d: SeriesData | Sequence[SeriesData], errors: str = "hac",
                     held: tuple[float, float] | None = None) -> StepCovariance:
     """The covariance of a window's fit ``r`` on data ``d`` (ours): rate-and-state, or the
-    trap model (:mod:`.cvsteps`), parameters held fixed in the fit held fixed here.
+    trap model (:mod:`.cvsteps`), parameters held fixed in the fit held fixed here; or of the
+    joint fit (:class:`.joint.JointStepsModel`) on its windows ``d``, each window its own
+    block.
 
     ``"white"``: ``s^2 (J^T J)^-1`` with ``s^2 = RSS/(n - p)``, as the engine gives.
     ``"hac"``: also the autocorrelation-robust sandwich: a measured record's residuals are
     correlated over many samples (apparatus fluctuations, slow drifts), so the white intervals
-    are far too narrow there. Rate-and-state: :func:`.statistics.local_covariance` and the
-    drive's change time (:func:`.loadpoint.change_time_effect`); the trap model: the score
-    HAC. ``held``: ``(var ln k, this window's share in it)``, the stiffness held at the
-    record's: its error carried (:func:`.statistics.held_parameter_covariance`).
+    are far too narrow there. Rate-and-state: :func:`.statistics.local_covariance` (the joint
+    fit: its windows as independent blocks, :func:`.statistics.blocked_meats`) and the
+    drive's change times (:func:`.loadpoint.change_time_effect`, each window's, summed in
+    quadrature); the trap model: the score HAC. ``held``: ``(var ln k, this window's share in
+    it)``, the stiffness held at the record's: its error carried
+    (:func:`.statistics.held_parameter_covariance`).
     """
     from .loadpoint import change_time_effect
     from .problem import Problem
@@ -262,10 +266,12 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac",
 
     check_choice("errors", errors, ERRORS)
     m = r.fitted_model
+    windows = [d] if isinstance(d, SeriesData) else list(d)
+    joint = isinstance(m, JointStepsModel)
     val = {p.name: p.value for p in r.parameters}
     fixed = {p.name: p.value for p in r.parameters if p.fixed}
     specs = tuple(s for s in m.parameters(frozenset({"series"})) if s.name not in fixed)
-    prob = Problem(m, [d], specs, fixed)
+    prob = Problem(m, windows, specs, fixed)
     theta = np.array([s.to_internal(val[s.name]) for s in specs])
     res = prob.residuals(theta)
     cost = 0.5 * float(res @ res)
@@ -273,14 +279,34 @@ def step_covariance(r: FitResult, d: SeriesData, errors: str = "hac",
     J = prob.jacobian(theta)
     white = covariance(J, 2.0 * cost / dof)
     rho1 = float(lag1_autocorrelation(res)[0])
-    rsf, robust, lags = isinstance(m, RSFModel), None, 0
+    ends = np.cumsum([0, *(len(w) for w in windows)])
+    blocks = [slice(int(a), int(b)) for a, b in zip(ends[:-1], ends[1:], strict=True)]
+
+    def moved(i: int) -> Callable[[SeriesData], Array]:
+        """The residuals of the whole fit with window ``i`` replaced by ``x`` (its drive
+        moved): the others' rows are unchanged."""
+        if not joint:
+            return lambda x: Problem(m, [x], specs, fixed).residuals(theta)
+
+        def whole(x: SeriesData) -> Array:
+            mi = replace(m, windows=tuple(x if k == i else w for k, w in enumerate(windows)))
+            out = res.copy()
+            out[blocks[i]] = Problem(mi, [x], specs, fixed).residuals(theta)
+            return out
+        return whole
+
+    rsf, robust, lags = isinstance(m, RSFModel) or joint, None, 0
     if errors == "hac" and not rsf:
         robust, lags = hac_covariance(J, res)
     elif errors == "hac":
-        robust, lags = local_covariance(J, res, d.t)
-        tc = change_time_effect(lambda x: Problem(m, [x], specs, fixed).residuals(theta), d, J)
-        for j in range(len(specs) if tc is not None and not robust.singular else 0):
-            robust = with_stderr(robust, j, math.hypot(robust.stderr[j], tc[j]))  # independent
+        t = np.concatenate([w.t for w in windows])
+        robust, lags = local_covariance(J, res, t, blocks if joint else None)
+        var = np.zeros(len(specs))
+        for i, w in enumerate(windows):  # the windows' change times are independent
+            tc = change_time_effect(moved(i), w, J)
+            var += 0.0 if tc is None else tc**2
+        for j in range(len(specs) if np.any(var > 0) and not robust.singular else 0):
+            robust = with_stderr(robust, j, math.hypot(robust.stderr[j], math.sqrt(var[j])))
     base = white if robust is None else robust
     if held is not None and rsf and not isinstance(m.stiffness, str) and not base.singular:
         mk = replace(m, stiffness="fit")  # k free at its held value: how the others move with it
@@ -311,6 +337,53 @@ def robust_estimates(sc: StepCovariance) -> dict[str, dict[str, float]]:
                           "hi": spec.from_internal(sc.theta[j] + z * se),
                           "inflation": sc.inflation(j)}
     return out
+
+
+def robust_joint(r: FitResult, pieces: Sequence[SeriesData], rows: Sequence[Mapping[str, Any]]
+                 ) -> FitResult:
+    """The joint fit ``r`` (:func:`.joint.fit_joint`) with autocorrelation-robust standard
+    errors and Wald intervals (ours): :func:`step_covariance` on its windows, each window an
+    independent block (:func:`.statistics.blocked_meats`) with its change time's error, as
+    each step's own fit has; ``a - b`` by the delta method on that covariance. Parameters
+    without an error bar (at a bound, not identified) keep none. Where the robust covariance
+    is singular the white one stays, said in a note as a lower bound (``rows``: the steps'
+    table, for their residual autocorrelation)."""
+    from .engine import derived_estimates
+    from .problem import Problem
+
+    sc = step_covariance(r, pieces, "hac")
+    if sc.robust is None or sc.robust.singular:
+        rho = [float(w["resid_rho1"]) for w in rows
+               if math.isfinite(float(w.get("resid_rho1", math.nan)))]
+        return replace(r, notes=(
+            *r.notes,
+            "the joint fit's standard errors are white-noise ones (residuals taken as "
+            "independent; the autocorrelation-robust covariance is singular here), not "
+            "autocorrelation-robust as each step's"
+            + (f" (the steps' lag-1 residual autocorrelation: {min(rho):.2f} to "
+               f"{max(rho):.2f})" if rho else "")
+            + ": with correlated residuals they are too small; quote the steps' intervals, "
+            "or read the joint +- as a lower bound"))
+    est = robust_estimates(sc)
+    params = tuple(
+        replace(p, stderr=est[p.name]["stderr"], interval_95=(est[p.name]["lo"],
+                                                              est[p.name]["hi"]))
+        if p.name in est and p.stderr is not None else p for p in r.parameters)
+    fixed = {p.name: p.value for p in r.parameters if p.fixed}
+    prob = Problem(r.fitted_model, list(pieces), sc.specs, fixed)
+    derived = {**r.derived, **derived_estimates(prob, sc.theta, sc.robust, params)}
+    wider = [est[n]["inflation"] for n in ("a", "b", "dc") if n in est
+             and math.isfinite(est[n]["inflation"])]
+    names = [sp.name for sp in sc.specs]
+    order = [names.index(n) for n in r.free]
+    corr = sc.robust.correlation[np.ix_(order, order)]
+    return replace(r, parameters=params, derived=derived, correlation=corr, notes=(
+        *r.notes,
+        "the joint fit's +- and 95 % intervals are autocorrelation-robust: the time-lag "
+        "sandwich with each step's window its own block (the windows' residuals independent "
+        "of each other) and each window's change-time error"
+        + (f"; {min(wider):.2g} to {max(wider):.2g} times those for independent residuals "
+           "(a, b, dc)" if wider else "")))
 
 
 def quick_profile(r: FitResult, d: SeriesData, names: Sequence[str] = PROFILED,
@@ -647,19 +720,7 @@ def fit_steps(
             progress(i + 1, len(wins))
     joint_fit = fit_joint(pieces, fits, law, stiffness, trend) if joint else None
     if joint_fit is not None and errors == "hac":
-        # the joint fit's covariance is the engine's white one: with a record's autocorrelated
-        # residuals (each step's resid_rho1) it is too narrow, as the steps' were before their
-        # HAC; said where the values are read (ours: no robust joint covariance is computed)
-        rho = [float(r["resid_rho1"]) for r in rows
-               if math.isfinite(float(r.get("resid_rho1", math.nan)))]
-        joint_fit = replace(joint_fit, notes=(
-            *joint_fit.notes,
-            "the joint fit's standard errors are white-noise ones (residuals taken as "
-            "independent), not autocorrelation-robust as each step's"
-            + (f" (the steps' lag-1 residual autocorrelation: {min(rho):.2f} to "
-               f"{max(rho):.2f})" if rho else "")
-            + ": with correlated residuals they are too small; quote the steps' intervals, "
-            "or read the joint +- as a lower bound"))
+        joint_fit = robust_joint(joint_fit, pieces, rows)
     annotate_steps(rows, record, wins, profile)  # normal stress, level, hold (fit.experiment)
     if len({int(r.get("normal_level", 0)) for r in rows}) > 1:
         one, each = level_stiffness(rows)  # k = K/sigma_n: one machine per level
