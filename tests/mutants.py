@@ -102,6 +102,7 @@ _S7BBT = "tests/ensemble/test_birth_times.py"
 _S7BSF = "tests/ensemble/test_snapshot_force_strong.py"
 _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
+_CNT = "tests/records/test_count_causes.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
 _HTE = "tests/analysis/test_hopf_table_edges.py"
@@ -148,6 +149,13 @@ _S7SL = "tests/plots/test_style_layout.py"
 _FXF = "tests/app/test_fit_files.py"
 _FXS = "tests/records/test_csv_semicolons.py"
 _FXP = "tests/records/test_labforms_preamble.py"
+# fixE
+_FXU = "tests/records/test_assumed_units.py"
+_FXA = "tests/app/test_fit_applies.py"
+_FXM = "tests/records/test_labforms_matrix.py"
+_FXN = "tests/fit/test_fit_typed_names.py"
+_FXT = "tests/fit/test_steady_against_model.py"
+_FXW = "tests/io/test_summary_units.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # --- the survivors of the earlier measurement (issue 13) --------------------------------
@@ -1957,14 +1965,14 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("apparatus note: the largest velocity signed", "records/lab.py",
        "v = float(np.max(np.abs(velocities)))", "v = float(np.max(velocities))", _RHE),
     _m("apparatus note: the span limit inclusive", "records/lab.py",
-       "if not (v > APPARATUS_V_MAX or span > APPARATUS_X_MAX):",
-       "if not (v > APPARATUS_V_MAX or span >= APPARATUS_X_MAX):", _RHE),
+       "odd = v > APPARATUS_V_MAX or span > APPARATUS_X_MAX",
+       "odd = v > APPARATUS_V_MAX or span >= APPARATUS_X_MAX", _RHE),
     _m("apparatus note: the span as the last position", "records/lab.py",
        "span = float(np.ptp(x))", "span = float(x[-1])", _RHE),
     _m("apparatus note: um for a velocity column", "records/lab.py",
-       'fix = "um" if role == "disp" else "um/s"', 'fix = "um"', _RHE),
+       'unit = u + ("/s" if role == "velocity" else "")', "unit = u", _RHE),
     _m("apparatus note: a given program blamed whatever the span", "records/lab.py",
-       "if given and span <= APPARATUS_X_MAX:", "if given:", _RHE),
+       "if given and odd and span <= APPARATUS_X_MAX:", "if given and odd:", _RHE),
     _m("segmentation: intercept at t = 0", "records/segmentation.py",
        "return slope, float(xm), sxx", "return slope, float(xm - slope * t.mean()), sxx", _RHE,
        "-k", "line_fit"),
@@ -2036,8 +2044,7 @@ MUTANTS: tuple[Mutant, ...] = (
        'rep["segments_option"] = segments_spec(segs, float(t[0]), t)',
        'rep["segments_option"] = segments_spec(segs, 0.0, t)', _RRP),
     _m("record report: the note kept with its prefix", "app/reading.py",
-       'rep["apparatus_note"] = note.removeprefix("note: ")', 'rep["apparatus_note"] = note',
-       _RRP),
+       'rep["apparatus_note"] = note_text(note)', 'rep["apparatus_note"] = note', _RRP),
     _m("progress: a Jacobian of p evaluations", "fit/progress.py",
        "            return 2.0 * self.p\n", "            return float(self.p)\n", _PGE),
     _m("progress: the profiles' cost not shared over p", "fit/progress.py",
@@ -2787,6 +2794,57 @@ MUTANTS: tuple[Mutant, ...] = (
        "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo\n", "tests/records/test_osc_wide.py",
        "-k", "short_step"),
     # --- end detect10
+    # --- detect11: the records whose count of changes was wrong, by cause: a drift-sized
+    # change, a burst beside a change, a reset's offset across a change
+    # (tests/records/test_count_causes.py)
+    _m("detection: the wander measured about every boundary (a split hides the drift)",
+       "records/detection.py", "DRIFT_SIZED = True\n", "DRIFT_SIZED = False\n", _CNT, "-k",
+       "drift_is_one"),
+    _m("detection: the wander measured about every boundary, the jump test left on",
+       "records/detection.py",
+       "            mb = _drift_bounds(bounds, v_now) if DRIFT_SIZED else bounds\n",
+       "            mb = bounds\n", _CNT, "-k", "drift_is_one"),
+    _m("detection: the record's end dropped with the drift-sized boundaries",
+       "records/detection.py",
+       "if not small[j]] + [bounds[-1]]\n", "if not small[j]]\n", _CNT, "-k",
+       "drift_bounds"),
+    _m("detection: the speed around a boundary without the stretch after its two",
+       "records/detection.py",
+       "    big[:-1] = np.maximum(big[:-1], u[2:])\n    return np.abs(np.diff(",
+       "    big[:-1] = big[:-1]\n    return np.abs(np.diff(", _CNT, "-k", "drift_sized"),
+    _m("detection: the speed around a boundary from its own two stretches only",
+       "records/detection.py",
+       "    big[1:] = np.maximum(big[1:], u[:-2])\n    big[:-1] = np.maximum(big[:-1], u[2:])\n"
+       "    return np.abs(np.diff(", "    return np.abs(np.diff(", _CNT, "-k", "drift_sized"),
+    _m("detection: a reset's excursion in a hold judged by rel_tol alone",
+       "records/detection.py", "  HOLD_RATIO if DRIFT_SIZED else 0.0) if (", "  0.0) if (",
+       _CNT, "-k", "reset_in_a_hold"),
+    _m("artifacts: two pieces of a hold the same velocity by rel_tol alone",
+       "records/artifacts.py",
+       "max(abs(va), abs(vb)) or abs(vb - va) < drift * around\n",
+       "max(abs(va), abs(vb))\n", _CNT, "-k", "drift_sized_neighbours"),
+    _m("detection: a burst beside a change judged by rel_tol", "records/detection.py",
+       "EDGE_BURSTS = True\n", "EDGE_BURSTS = False\n", _CNT, "-k", "beside_a_short_step"),
+    _m("detection: the burst taken as the longer of the two stretches", "records/detection.py",
+       "and not big[k + 1] and d[k] < d[k + 1]", "and not big[k + 1] and d[k] > d[k + 1]",
+       _CNT, "-k", "edge_bursts_flag"),
+    _m("detection: a hold taken for the stretch a burst belongs to", "records/detection.py",
+       "    for k in range(len(v)):\n        if hold[k]:\n            continue\n",
+       "    for k in range(len(v)):\n", _CNT, "-k", "edge_bursts_flag"),
+    _m("detection: a burst beside a hold (the hold its longer neighbour)",
+       "records/detection.py", "d[k] < d[k + 1] and not hold[k + 1]:\n", "d[k] < d[k + 1]:\n",
+       _CNT, "-k", "edge_bursts_flag"),
+    _m("detection: the record's ends not counted as changes", "records/detection.py",
+       "    big = np.concatenate([[True], rel > EXCURSION_REL, [True]])\n",
+       "    big = np.concatenate([[False], rel > EXCURSION_REL, [False]])\n", _CNT, "-k",
+       "edge_bursts_flag"),
+    _m("artifacts: a reset's offset from one line across a velocity change",
+       "records/artifacts.py", "RESET_KINK = True\n", "RESET_KINK = False\n", _CNT, "-k",
+       "reset_before_a_step"),
+    _m("artifacts: a reset's kink always used", "records/artifacts.py",
+       "    if gain[k] > RESET_KINK_PENALTY * sigma2 * np.log(len(tt)):\n",
+       "    if gain[k] > 0.0:\n", _CNT, "-k", "earns_its_place"),
+    # --- end detect11
     # --- strengthen7A (issue 25, seventh round): plots/report.py (the summary's numbers and
     # the page's cells), plots/runs.py (titles and drawn data), fit/joint.py, fit/cvsteps.py
     # (the search's stop and the verdict). Each seen failing with its test
@@ -3332,7 +3390,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)", "close = []",
        "tests/io/test_protocol.py"),
     _m("fit: a fixed value's refusal names the bare parameter", "fit/engine.py",
-       'fixed[s.name] = check_scalar(f"--fix {s.name}{unit}", fixed[s.name],',
+       'fixed[s.name] = check_scalar(f"fix[{s.name!r}]{unit}", fixed[s.name],',
        "fixed[s.name] = check_scalar(s.name, fixed[s.name],", "tests/fit/test_fit.py"),
     _m("--segments form: a start rounded to the nearest decimal", "records/labsteps.py",
        "y = math.floor(x * 10**d) / 10**d", "y = round(x, d)", "tests/records/test_lab.py",
@@ -3387,6 +3445,19 @@ MUTANTS: tuple[Mutant, ...] = (
        "tests/fit/test_joint_covariance.py"),
     _m("step covariance: the drive's change-time error left out", "fit/steps.py",
        "var += 0.0 if tc is None else tc**2", "var += 0.0", "tests/fit/test_kcoverage.py"),
+    _m("segments.csv: a unit assumed not said in it", "app/records.py",
+       "rec.time, notes=(note,) if note else ())", "rec.time, notes=())",
+       "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("record.png: a unit assumed not in its title", "app/records.py",
+       "fig, _ = plot_record(rec, segs, det, given=given, note=short)",
+       "fig, _ = plot_record(rec, segs, det, given=given, note=None)",
+       "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("record.png: the title's extra line dropped", "plots/record.py",
+       'if info.unplaced else "") + (f"\\n{note}" if note else ""),',
+       'if info.unplaced else ""),', "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("fit: --direct with static data refused in the library's words", "app/checks.py",
+       'if "static" in kinds and "cv" in fitted and given("direct"):', "if False:",
+       "tests/app/test_fit_applies.py", "-k", "static_data"),
     # --- end stop 39 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
@@ -3515,6 +3586,98 @@ MUTANTS: tuple[Mutant, ...] = (
        'if report is not None and csv_separator(_header_line(p)) == ";":',
        "if report is not None:", _FXF, "-k", "semicolon"),
     # --- end fixD
+    # --- fixE (a second new user's trial: the problems left open); each seen failing
+    _m("fixE: a unit-less column said only when implausible", "records/lab.py",
+       "    if assumed:\n        return _assumed_note(", "    if assumed and odd:\n"
+       "        return _assumed_note(", _FXU, "-k", "quiet_note"),
+    _m("fixE: an impossible SI reading only noted", "records/lab.py",
+       "    if lo <= v <= hi and span <= APPARATUS_X_TYPICAL or v == 0.0 and span == 0.0:",
+       "    if True:", _FXU, "-k", "louder"),
+    _m("fixE: the unit suggested scaled the wrong way", "records/lab.py",
+       "        w = v if given else v * f  #", "        w = v if given else v / f  #", _FXU,
+       "-k", "louder"),
+    _m("fixE: a clock in ms not suggested", "records/lab.py",
+       '("ms", 1e3), ("min", 1 / 60.0)', '("min", 1 / 60.0)', _FXU, "-k", "milliseconds"),
+    _m("fixE: the fit's warning not repeated last", "cli/records.py",
+       '    if report.get("units_implausible"):  # said before', "    if False:  # said before",
+       _FXU, "-k", "fit_says"),
+    _m("fixE: record's JSON without units_implausible", "app/reading.py",
+       'rep["units_implausible"] = note.startswith("warning: ")',
+       'rep["units_implausible"] = False', _FXU, "-k", "record_command"),
+    _m("fixE: fit.json without the units assumed", "app/records.py",
+       "    if lab.assumed_units(rec):  # what the reader assumed",
+       "    if False:  # what the reader assumed", _FXU, "-k", "fit_says"),
+    _m("fixE: the record table's unit line without its entry", "cli/record.py",
+       '            unit += f": read in {assumed[role]} (--columns {role}={h}:UNIT if not)"',
+       '            unit += ": read as SI"', _FXU, "-k", "record_command"),
+    _m("fixE: --stiffness, --trend, --traps-per-a0 taken for steady data", "app/checks.py",
+       '    if "series" not in kinds:\n', "    if False:\n", _FXA, "-k", "refused_by_name"),
+    _m("fixE: an option's default counted as given", "app/checks.py",
+       "lambda name: options[name] is not None and options[name] != defaults[name]",
+       "lambda name: options[name] is not None", _FXA, "-k", "does_apply"),
+    _m("fixE: the comparison's model forgotten", "app/checks.py",
+       'fitted = {model, *({"cv", "rsf"} - {model} if options["compare"] else ())}',
+       "fitted = {model}", _FXA, "-k", "does_apply"),
+    _m("fixE: --state-law taken for steady data alone", "app/checks.py",
+       '    if kinds == {"steady"} and given("state_law"):', "    if False:", _FXA, "-k",
+       "refused_by_name"),
+    _m("fixE: --v-ref taken without --direct", "app/checks.py",
+       '    if given("v_ref") and not options["direct"]:', "    if False:", _FXA, "-k",
+       "refused_by_name"),
+    _m("fixE: the fit's applicability not checked", "app/fitting.py",
+       "    check_fit_applies(o, _D, {d.kind for d in datasets}, [str(p) for p in paths])",
+       "    pass", _FXA, "-k", "refused_by_name"),
+    _m("fixE: a record's fit not checked for options it does not use", "app/fitting.py",
+       "        check_record_applies(o, _D)  # the trap model's",
+       "        pass  # the trap model's", _FXA, "-k", "record_refuses"),
+    _m("fixE: a record's trap-model options refused with --run-cv too", "app/checks.py",
+       '    if not options["run_cv"] and options["model"] != "cv":',
+       '    if options["model"] != "cv":', _FXA, "-k", "record_refuses"),
+    _m("fixE: a .mat matrix flattened into one column", "records/labforms.py",
+       "    found = _split_matrices(found, src, notes)\n", "", _FXM),
+    _m("fixE: a k x N matrix taken as k rows", "records/labforms.py",
+       "flipped = v.shape[1] > v.shape[0]", "flipped = False", _FXM, "-k", "numbered"),
+    _m("fixE: a matrix's columns numbered from 0", "records/labforms.py",
+       'names = [f"{k}_{j + 1}" for j in range(m.shape[1])]',
+       'names = [f"{k}_{j}" for j in range(m.shape[1])]', _FXM, "-k", "numbered"),
+    _m("fixE: a matrix refused with the hint that cannot work", "records/lab.py",
+       'if split and "--columns" in msg and not columns:', "if False:", _FXM, "-k", "hint"),
+    _m("fixE: the command line's --fix in a Python refusal", "fit/engine.py",
+       'check_scalar(f"fix[{s.name!r}]{unit}"', 'check_scalar(f"--fix {s.name}{unit}"', _FXN,
+       "-k", "python"),
+    _m("fixE: a start outside the fit's range clipped in silence", "fit/engine.py",
+       '            check_scalar(f"start[{s.name!r}]{unit}", start[s.name], s.lo, s.hi)',
+       "            pass", _FXN, "-k", "python"),
+    _m("fixE: a fixed value's upper bound left to the model", "fit/engine.py",
+       "fixed[s.name], s.lo, s.hi,", "fixed[s.name], s.lo, None,", _FXN, "-k", "python"),
+    _m("fixE: a start beside a fix of the same parameter taken", "fit/engine.py",
+       "            if s.name in fixed:\n                held =",
+       "            if False:\n                held =", _FXN, "-k", "python"),
+    _m("fixE: the library's fix['t0'] shown on the command line", "app/fitting.py",
+       "raise ValueError(as_typed(str(exc))) from None", "raise", _FXN, "-k", "command_line"),
+    _m("fixE: steady data never against the athermal model", "fit/models.py",
+       '        if kind == "steady" and not self.direct and athermal_steady_weakens(',
+       "        if False and athermal_steady_weakens(", _FXT, "-k", "rising"),
+    _m("fixE: the athermal steady friction said to rise", "fit/models.py",
+       '            return -1, (f"the athermal', '            return 1, (f"the athermal', _FXT),
+    _m("fixE: the direct effect's rise forbidden", "fit/models.py",
+       'if kind == "steady" and not self.direct and', 'if kind == "steady" and', _FXT, "-k",
+       "can_make"),
+    _m("fixE: a rise of eq. 34 at large alpha not seen", "theory/steady.py",
+       "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            return False",
+       "        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):\n            pass", _FXT),
+    _m("fixE: the slope's rounding counted as a rise", "theory/steady.py",
+       "slope[np.isfinite(slope)] > 1e-6 * eps", "slope[np.isfinite(slope)] > 0.0", _FXT,
+       "-k", "two_routes"),
+    _m("fixE: a Python summary's units the columns' table as it is", "results.py",
+       '        "units": summary_units(units),', '        "units": dict(units),', _FXW),
+    _m("fixE: an interface's work_load 'per element' in summary.json",
+       "ensemble/interface_result.py",
+       '    "work_load": "F_el a0",', '    "work_load": "F_el a0 per element",', _FXW),
+    _m("fixE: a summary's dimensionless written ''", "results.py",
+       "    u = {k: v or DIMENSIONLESS for k, v in units.items()}",
+       "    u = dict(units)", _FXW),
+    # --- end fixE
 )
 
 

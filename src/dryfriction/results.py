@@ -27,7 +27,8 @@ Both :class:`dryfriction.ensemble.driving.SimulationResult` and
     mean_mu         time average of the friction (trapezoid rule)
     slip            ``x[-1] - x[0]``; ``path_length`` the sum of ``|dx|``
     v_max           largest sampled slider velocity
-    units           ``{column: unit}`` for every column (``""``: dimensionless)
+    units           ``{name: unit}`` for every column and every key above (``"1"``:
+                    dimensionless, as the summary.json of ``simulate`` and ``rsf`` says it)
     ==============  ==============================================================
 
     and then the simulator's extras (solver statistics and the spring for rate-and-state;
@@ -44,8 +45,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["COMMON_COLUMNS", "COMMON_SUMMARY_KEYS", "ImpossibleResultError", "check_physical",
-           "dataset_records", "records", "records_dict", "summarize", "to_dataframe"]
+__all__ = ["COMMON_COLUMNS", "COMMON_SUMMARY_KEYS", "DIMENSIONLESS", "ImpossibleResultError",
+           "check_physical", "dataset_records", "records", "records_dict", "summarize",
+           "summary_units", "to_dataframe"]
+
+DIMENSIONLESS = "1"
+"""The unit of a dimensionless number (a friction coefficient, a count, a ratio): one
+spelling for the Python results and every file written (:mod:`dryfriction.io.units`)."""
 
 COMMON_COLUMNS: tuple[str, ...] = ("t", "x", "v", "mu")
 
@@ -53,6 +59,18 @@ COMMON_SUMMARY_KEYS: tuple[str, ...] = (
     "law", "partial", "samples", "duration", "peak_mu", "peak_t", "peak_x", "final_mu",
     "mean_mu", "slip", "path_length", "v_max", "units",
 )
+
+
+def summary_units(units: Mapping[str, str]) -> dict[str, str]:
+    """The ``units`` of a summary: every column's (an empty unit, the older tables'
+    dimensionless, as :data:`DIMENSIONLESS`) and the common keys' from their columns'
+    (``duration`` and ``peak_t`` in ``t``'s unit, ``peak_mu`` in ``mu``'s, ...), as
+    summary.json declares them."""
+    u = {k: v or DIMENSIONLESS for k, v in units.items()}
+    t, x, v, mu = (u.get(c, DIMENSIONLESS) for c in COMMON_COLUMNS)
+    return {**u, "samples": DIMENSIONLESS, "duration": t, "peak_mu": mu, "peak_t": t,
+            "peak_x": x, "final_mu": mu, "mean_mu": mu, "slip": x, "path_length": x,
+            "v_max": v}
 
 
 def summarize(
@@ -105,7 +123,7 @@ def summarize(
         "slip": float(x[-1] - x[0]),
         "path_length": float(np.sum(np.abs(np.diff(x)))),
         "v_max": float(np.nanmax(v)) if np.any(np.isfinite(v)) else float("nan"),
-        "units": dict(units),
+        "units": summary_units(units),
     }
     for key, value in (extra or {}).items():
         if key in out:

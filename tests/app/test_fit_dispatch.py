@@ -104,6 +104,7 @@ def test_csv_series_fit_machine_defaults_to_kinematic(tmp_path: Path, given: Any
 
     monkeypatch.setattr(fit_pkg, "fit", record_call)
     opts = {} if given is None else {"stiffness": given}
+    series = ROOT / "examples" / "data" / "synthetic_velocity_step_rsf.csv"  # a machine's data
     with pytest.raises(_Stop):
-        fitting.fit_data([CSV], tmp_path / "o", model="rsf", **opts)
+        fitting.fit_data([series], tmp_path / "o", model="rsf", **opts)
     assert seen["stiffness"] == expect

@@ -71,13 +71,16 @@ def test_the_report_of_a_given_program(tmp_path: Path) -> None:
 
 def test_a_unitless_displacement_gets_its_note_and_one_segment_no_steps(tmp_path: Path) -> None:
     # micrometres written without a unit: read as metres, 3 m/s: the note, said as soon as
-    # known and kept in the report without its "note: " prefix
+    # known and kept in the report without its "warning: " prefix (fixE: louder, as the span
+    # of 44 m is no friction apparatus')
     path = _write(tmp_path / "r.txt", "Displ", 1e6)
     heard: list[str] = []
     done = app.record(path, segments="0:3", on_note=heard.append)
-    assert len(heard) == 1 and heard[0].startswith("note: ")
+    assert len(heard) == 1 and heard[0].startswith("warning: ")
     assert done.note == heard[0]
-    assert done.report["apparatus_note"] == heard[0].removeprefix("note: ")
+    assert done.report["apparatus_note"] == heard[0].removeprefix("warning: ")
+    assert done.report["units_assumed"] == {"disp": "m"}
+    assert done.report["units_implausible"] is True
     assert "--columns disp=Displ:um" in done.note
     one = app.record(_write(tmp_path / "s.txt"), segments="0:1e-6")
     assert one.steps == () and "no_steps" in one.report and one.files == []

@@ -34,7 +34,11 @@ def test_every_key_by_its_definition() -> None:
     path = sum(abs(X[i + 1] - X[i]) for i in range(len(X) - 1))
     assert s["path_length"] == pytest.approx(path, rel=1e-12) and path > s["slip"] * 1.5
     assert s["v_max"] == 1.1e-6  # the largest finite velocity, signed (a NaN beside it)
-    assert s["units"] == UNITS and s["units"] is not UNITS
+    # every column's unit ("" the dimensionless "1", fixE) and the common keys' from theirs
+    assert s["units"] == {"t": "s", "x": "m", "v": "m/s", "mu": "1", "samples": "1",
+                          "duration": "s", "peak_mu": "1", "peak_t": "s", "peak_x": "m",
+                          "final_mu": "1", "mean_mu": "1", "slip": "m", "path_length": "m",
+                          "v_max": "m/s"}
     assert s["solver"] == "lsoda"
 
 

@@ -19,34 +19,38 @@ from dryfriction.records.segmentation import line_fit, prune, refine, rss
 # --- lab.apparatus_note -----------------------------------------------------------------------
 
 
-def _rec(span: float | None, unit: str = "", role: str = "disp") -> LabRecord:
+def _rec(span: float | None, unit: str = "", role: str = "disp", time_unit: str = "s"
+         ) -> LabRecord:
     t = np.linspace(3.0, 40.0, 20)
     x = None if span is None else 0.2 + span * (t - t[0]) / (t[-1] - t[0])
+    units = {k: u for k, u in (("time", time_unit), (role, unit)) if u}
     return LabRecord("r.txt", t, x, None if x is not None else np.full(20, 1e-6),
                      np.full(20, 0.6), None, "", {"time": "Time", role: "Displ" if
-                                                   role == "disp" else "Vel"}, 2,
-                     {role: unit} if unit else {})
+                                                   role == "disp" else "Vel"}, 2, units)
 
 
 def test_apparatus_note_edges_are_strict() -> None:
-    # at each limit: no note; just above either: one (a velocity down counts by its size)
-    assert apparatus_note(_rec(APPARATUS_X_MAX), [APPARATUS_V_MAX, -APPARATUS_V_MAX]) is None
-    assert apparatus_note(_rec(0.3), [2e-7, -3e-6]) is None
-    assert apparatus_note(_rec(0.3), [1e-6, -APPARATUS_V_MAX * 1.001]) is not None
-    assert apparatus_note(_rec(APPARATUS_X_MAX * 1.001), [1e-6]) is not None
-    note = apparatus_note(_rec(1.5), [2e-6, -0.02, 0.005])
+    # units written (m): at each limit no note; just above either: one (a velocity down
+    # counts by its size)
+    assert apparatus_note(_rec(APPARATUS_X_MAX, "m"), [APPARATUS_V_MAX, -APPARATUS_V_MAX]) \
+        is None
+    assert apparatus_note(_rec(0.3, "m"), [2e-7, -3e-6]) is None
+    assert apparatus_note(_rec(0.3, "m"), [1e-6, -APPARATUS_V_MAX * 1.001]) is not None
+    assert apparatus_note(_rec(APPARATUS_X_MAX * 1.001, "m"), [1e-6]) is not None
+    note = apparatus_note(_rec(1.5, "m"), [2e-6, -0.02, 0.005])
     assert note == ("note: r.txt: load velocities up to 0.02 m/s and 1.5 m of displacement are "
-                    "odd for a friction apparatus; column 'Displ' has no unit, so it is read as "
-                    "SI (m, m/s): if it is in micrometres, give --columns disp=Displ:um")
+                    "odd for a friction apparatus; column 'Displ' has the unit 'm': is it "
+                    "right?")
 
 
 def test_apparatus_note_names_the_column_and_what_to_give() -> None:
-    # no displacement column: the velocity column is named, with um/s; no velocities: 0 m/s
+    # no displacement column: the velocity column is named, with um/s
     note = apparatus_note(_rec(None, role="velocity"), [0.5])
-    assert note is not None and note.endswith("give --columns velocity=Vel:um/s")
-    assert "up to 0.5 m/s and 0 m of displacement" in note
-    note = apparatus_note(_rec(2.0), [])
-    assert note is not None and "up to 0 m/s and 2 m of displacement" in note
+    assert note is not None and note.startswith("warning: ")
+    assert "--columns velocity=Vel:um/s gives up to 500 nm/s" in note
+    assert note.endswith("give the unit with --columns velocity=Vel:UNIT (SI written out, "
+                         "e.g. :m, keeps this reading and silences this line)")
+    assert "up to 500 mm/s over 0 nm" in note
     # a unit written: asked whether it is right, or (a given program, a plausible span)
     # reminded that --segments is in m/s
     assert apparatus_note(_rec(2.0, "mm"), [1e-6]).endswith(  # type: ignore[union-attr]

@@ -8,12 +8,12 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from .checks import check_fit_options
+from .checks import check_fit_applies, check_fit_options, check_record_applies
 from .options import CSV_TRAPS_PER_A0, OPTIONS
 from .outcome import FitOutcome, RecordFitOutcome
 
 __all__ = ["fit", "fit_data", "check_fit_options", "parse_stiffness", "is_project_csv",
-           "Progress"]
+           "Progress", "as_typed"]
 
 Progress = Callable[..., None]
 """``progress(done, total, what)``."""
@@ -111,6 +111,15 @@ def _csv_stiffness(value: Any) -> float | str:
     return k
 
 
+def as_typed(message: str) -> str:
+    """A fit's refusal in the command line's words: the library names a fixed value as the
+    Python caller gave it (``fix['t0'] [s] = -1 is out of range``), the command line user
+    typed ``--fix t0=-1`` (``--fix t0 [s] = -1 is out of range``)."""
+    import re
+
+    return re.sub(r"^fix\['(\w+)'\]", r"--fix \1", message)
+
+
 def parse_fix(items: Sequence[str] | dict[str, float] | None) -> dict[str, float]:
     """``--fix name=value`` (repeatable) as ``{name: value}``; a dict is taken as it is."""
     if isinstance(items, dict):
@@ -193,6 +202,7 @@ def fit(data: Sequence[str | Path] | str | Path, out: str | Path, *,
                 raise ValueError(f"{flag} is for the project's CSV files, not a laboratory "
                                  "record (its steps are fitted free; --stiffness K holds "
                                  "the machine)")
+        check_record_applies(o, _D)  # the trap model's options without --run-cv (fixE)
     check_output_dir(out, force=o["force"], command="fit")
     if record:
         from .records import fit_record
@@ -257,6 +267,8 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
     stiffness = _csv_stiffness(o["stiffness"])
     check_output_dir(out, force=o["force"], command="fit")
     datasets = [read_csv(p) for p in paths]
+    # an option these data or models do not use, refused by name before the fit (fixE)
+    check_fit_applies(o, _D, {d.kind for d in datasets}, [str(p) for p in paths])
     for p in paths:  # the reading chosen, said: a ';' file might have been meant otherwise
         if report is not None and csv_separator(_header_line(p)) == ";":
             report(f"note: {p}: read as the project's CSV with ';' separators and decimal "
@@ -284,6 +296,8 @@ def fit_data(paths: Sequence[str | Path], out: str | Path, *,
                          progress=fit_progress, **opts)
     except NotImplementedError as exc:
         raise ValueError(str(exc)) from None
+    except ValueError as exc:  # fix['t0'] is --fix t0 here (the options' names)
+        raise ValueError(as_typed(str(exc))) from None
     report_ = result.to_dict()
     if o["compare"]:
         other = "rsf" if model == "cv" else "cv"

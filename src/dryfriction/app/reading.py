@@ -95,9 +95,11 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
     from ..io.units import RECORD_UNITS, with_units
     from ..records.lab import (
         apparatus_note,
+        assumed_units,
         detect_program,
         no_change_message,
         normal_change_values,
+        note_text,
         parse_column_map,
         parse_segments,
         read_record,
@@ -140,7 +142,10 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
     if rec.notes:  # what the reader skipped or dropped (a preamble, rows with a missing value)
         rep["reading_notes"] = list(rec.notes)
     if note:
-        rep["apparatus_note"] = note.removeprefix("note: ")
+        rep["apparatus_note"] = note_text(note)
+    if assumed_units(rec):  # what the reader assumed, by column, and whether it is plausible
+        rep["units_assumed"] = assumed_units(rec)
+        rep["units_implausible"] = note.startswith("warning: ")
     if det is not None:
         rep["resets_s"] = list(det.resets)
         rep["rate_changes_s"] = list(det.rate_changes)

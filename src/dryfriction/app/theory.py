@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from .checks import not_applicable
 from .options import OPTIONS
 
 __all__ = ["TableOutcome", "trap", "static", "steady", "stability", "LOAD_MAX"]
@@ -70,8 +71,8 @@ def _direct_params(direct: float, v_ref: float) -> dict[str, float]:
     if not direct and v_ref != _STA["v_ref"].default and math.isfinite(v_ref) and v_ref > 0:
         # taken and ignored before (a second new user's --u-ref 2 without --direct); a value
         # out of its own range is refused as such first (by the model's check)
-        raise ValueError(f"--u-ref {v_ref:g} applies only with --direct > 0 (the direct "
-                         "effect's reference velocity, a0/t0): give --direct or drop --u-ref")
+        raise not_applicable("--u-ref", f"{v_ref:g}", "with --direct > 0", "the direct "
+                             "effect's reference velocity, a0/t0", "give --direct or drop --u-ref")
     return {"direct": direct, "v_ref": v_ref} if direct else {}
 
 
@@ -129,9 +130,9 @@ def static(eps: float, T: list[float] | None = None, t_w: list[float] | None = N
     if direct:
         params["pull_velocity"] = pull_velocity
     elif pull_velocity is not None:
-        raise ValueError(f"--pull-velocity {pull_velocity:g} applies only with --direct > 0 "
-                         "(without the direct effect the threshold does not depend on how fast "
-                         "it is pulled): give --direct or drop --pull-velocity")
+        raise not_applicable("--pull-velocity", f"{pull_velocity:g}", "with --direct > 0",
+                             "without the direct effect the threshold does not depend on how "
+                             "fast it is pulled", "give --direct or drop --pull-velocity")
     if scales is None:
         if mu_el is not None:
             raise ValueError("--mu-el converts the friction of SI inputs: give --t-w and --t0, "

@@ -58,8 +58,11 @@ def record_command(
         return
     print(f"{rec.source}: {len(rec):,} rows from line {rec.first_line}, t = {t[0]:g} .. "
               f"{t[-1]:g} s")
+    assumed = report.get("units_assumed", {})
     for role, h in rec.columns.items():
-        unit = rec.units.get(role, "") or ("-" if role == "mu" else "none: read as SI")
+        unit = rec.units.get(role, "") or ("-" if role == "mu" else "none")
+        if role in assumed:  # what was assumed, and the entry that changes it
+            unit += f": read in {assumed[role]} (--columns {role}={h}:UNIT if not)"
         print(f"  {role:<9} {h!r:<32} unit {unit}")
     for line in report.get("reading_notes", []):
         print(f"note: {line}")

@@ -195,6 +195,9 @@ def print_record_fit(done: Any, *, json_out: bool, run_cv: bool, fmt: str,
                   + (f", step_*.{fmt}, steps_summary.{fmt}, record.{fmt}, segments.csv"
                      if figure else ""), highlight=False, soft_wrap=True)
         out.print(flagged_line(res.rows), highlight=False, soft_wrap=True)
+    if report.get("units_implausible"):  # said before the fit; again last, where one looks
+        err.print(f"warning: {report['apparatus_note']}", highlight=False, markup=False,
+                  soft_wrap=True)
     if not res.success:
         err.print("[bold red]a step's fit did not succeed[/] (see the notes)", highlight=False)
         raise typer.Exit(1)

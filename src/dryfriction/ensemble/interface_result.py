@@ -37,16 +37,19 @@ INTERFACE_UNITS: dict[str, str] = {
     "slip": "a0",
     "slip_rate": "a0/t0",
     "stress": "F_el per element",
-    "load": "F_el per element (sum over the chain of the loading springs' forces)",
+    "load": "F_el",
     "load_point": "a0",
-    "work_load": "F_el a0 per element",
-    "elastic_energy": "F_el a0 per element",
-    "kinetic_energy": "F_el a0 per element",
-    "work_friction": "F_el a0 per element",
-    "work_damping": "F_el a0 per element",
-    "work_quasi_static": "F_el a0 per element",
+    "work_load": "F_el a0",
+    "elastic_energy": "F_el a0",
+    "kinetic_energy": "F_el a0",
+    "work_friction": "F_el a0",
+    "work_damping": "F_el a0",
+    "work_quasi_static": "F_el a0",
 }
-"""Unit of every field of :class:`InterfaceResult` (``element``: the spacing of the blocks)."""
+"""Unit of every field of :class:`InterfaceResult` (``element``: the spacing of the blocks).
+``load`` and the energies are the whole chain's, in one element's ``F_el`` (and ``a0``): the
+same units as load.csv and summary.json of ``simulate`` (:mod:`dryfriction.io.units`), which
+had read "F_el a0 per element" in one and "F_el a0" in the other."""
 
 
 @dataclass(frozen=True)

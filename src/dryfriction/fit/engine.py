@@ -99,19 +99,29 @@ def _problem(ds: list[Dataset], m: Model, specs_all: Sequence[ParamSpec],
     kinds = data_kinds(ds)
     names = [s.name for s in specs_all]
     fixed = dict(fix or {})
+    # each refusal names what the caller typed, fix['t0'] or start['eps'] (the command line
+    # says --fix t0: app.fitting.as_typed), not the bare parameter (a new user read "t0 = -1
+    # is out of range" as a protocol key) nor an option a Python caller does not have
     for k in list(fixed) + list(start or {}):
         if k not in names:
-            given = "--fix" if k in fixed else "a start value"
-            raise ValueError(f"{given} names unknown parameter {k!r} for model {m.name} with "
-                             f"{'+'.join(sorted(kinds))} data: the parameters are "
+            given = "fix" if k in fixed else "start"
+            raise ValueError(f"{given}[{k!r}] names an unknown parameter for model {m.name} "
+                             f"with {'+'.join(sorted(kinds))} data: the parameters are "
                              f"{', '.join(names)}")
     for s in specs_all:
+        unit = f" [{s.unit}]" if s.unit else ""
         if s.name in fixed:
-            # the name the user typed (--fix t0=...; fix= in Python), not the bare parameter
-            # (a new user read "t0 = -1 is out of range" as a protocol key)
-            unit = f" [{s.unit}]" if s.unit else ""
-            fixed[s.name] = check_scalar(f"--fix {s.name}{unit}", fixed[s.name],
-                                         s.lo if s.log else None, lo_open=s.log)
+            # the fit's range for the parameter: its search bounds, the lower one open for a
+            # positive scale (its lower bound stands for 0); eps = 5 had reached the model
+            fixed[s.name] = check_scalar(f"fix[{s.name!r}]{unit}", fixed[s.name], s.lo, s.hi,
+                                         lo_open=s.log)
+        if start is not None and s.name in start:
+            if s.name in fixed:
+                held = f"{fixed[s.name]:g}" + (f" {s.unit}" if s.unit else "")
+                raise ValueError(f"start[{s.name!r}] is given for a parameter fix holds at "
+                                 f"{held}: drop one of them")
+            # a start outside the search bounds was clipped onto them in silence
+            check_scalar(f"start[{s.name!r}]{unit}", start[s.name], s.lo, s.hi)
     specs = [s for s in specs_all if s.name not in fixed]
     has_sigma = [d.sigma is not None for d in ds]
     if any(has_sigma) and not all(has_sigma):

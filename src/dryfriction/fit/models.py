@@ -26,7 +26,7 @@ from ..rsf.spring import check_spring
 from ..theory.dieterich import dieterich_constant_asymptotic
 from ..theory.model import TRAP_PARAMETERS, TRAPS_PER_A0, OldTheoryFormWarning, TrapModel
 from ..theory.static import static_friction_first_order
-from ..theory.steady import steady_friction_first_order
+from ..theory.steady import athermal_steady_weakens, steady_friction_first_order
 from ..theory.units import static_friction_si, steady_friction_si
 from ..validation import DIRECT_MAX, Array, check_choice, check_scalar
 from .cvseries import cv_series as _old_cv_series
@@ -391,10 +391,20 @@ class CVModel:
     def allowed_trend(self, kind: str) -> tuple[int, str] | None:
         """The sign the model allows for a data kind's curve against ``ln x``, and why (``None``:
         either sign). Static friction grows with the hold time for every ``eps > 0`` (eq. 27:
-        the aged contacts' threshold rises as ``a_r(t_w/t0)`` grows, eq. 17)."""
+        the aged contacts' threshold rises as ``a_r(t_w/t0)`` grows, eq. 17). The athermal
+        model's steady friction (eq. 34, no direct effect) falls with velocity at every ``eps``
+        and ``u`` for this ``alpha`` and creep law where
+        :func:`~dryfriction.theory.steady.athermal_steady_weakens` finds so (``alpha <= 0.3``:
+        faster sliding, younger traps, eq. 35); with the direct effect fitted it may rise."""
         if kind == "static":
             return 1, ("the trap model's static friction grows with hold time (ageing, eq. 27, "
                        "eps > 0)")
+        if kind == "steady" and not self.direct and athermal_steady_weakens(self.alpha,
+                                                                              self.creep):
+            return -1, (f"the athermal trap model's steady friction (eq. 34, alpha = "
+                        f"{self.alpha:g}, {self.creep} creep) falls with velocity at every eps "
+                        "and V: faster sliding leaves the traps younger, less aged (eq. 35: "
+                        "d mu_d/d ln V -> -(3/2) eps at low V); --direct A lets it rise")
         return None
 
     def predict(self, v: Mapping[str, float], d: Dataset, x: Array | None = None) -> Array:

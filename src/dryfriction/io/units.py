@@ -34,14 +34,13 @@ import re
 from collections.abc import Iterator, Mapping
 from typing import Any
 
+from ..results import DIMENSIONLESS  # one spelling for the Python results and the files
+
 __all__ = ["DIMENSIONLESS", "LABEL", "Units", "header", "split_header", "csv_unit",
            "labelled", "with_units", "read_rows", "undeclared", "STEP_UNITS", "RECORD_FIT_UNITS",
            "SUMMARY_UNITS", "FIT_UNITS", "COMPARE_UNITS", "SEGMENT_UNITS",
            "REPRODUCE_UNITS", "BIFURCATION_UNITS", "TRAP_BIFURCATION_UNITS", "SNAPSHOT_UNITS",
            "RECORD_UNITS", "THEORY_UNITS", "INTERFACE_SUMMARY_UNITS", "INTERFACE_LOAD_UNITS"]
-
-DIMENSIONLESS = "1"
-"""The unit of a dimensionless number (a friction coefficient, a count, a ratio)."""
 
 LABEL = None
 """The "unit" of a column that holds no quantity: words, flags, an index (written bare)."""

@@ -89,8 +89,63 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         a, b = max(edges[j], i + 1 - 30), min(edges[j + 2], i + 1 + 30)
         tt = t[a:b] - t[i]
         A = np.column_stack([np.ones(b - a), tt, (np.arange(a, b) > i).astype(float)])
-        fix[i + 1:] -= np.linalg.lstsq(A, x[a:b], rcond=None)[0][2]
+        fix[i + 1:] -= _reset_offset(tt, A, x[a:b], scale) if RESET_KINK else np.linalg.lstsq(
+            A, x[a:b], rcond=None)[0][2]
     return x + fix, [int(i) for i in jump]
+
+
+RESET_KINK = True
+"""A reset's offset is fitted with a kink of the line allowed in its window (ours, detect11):
+the window is up to 30 samples a side, 6-36 s in a slowly sampled record, and a velocity
+change within it bent the one line, whose step then took 1-2 um that was slip; that offset
+read as a stretch of its own beside the change (zoo 3210, a reset 17 s before an up-step at
+0.8 Hz; 6058, 2.4 s before a restart at 5 Hz)."""
+
+RESET_KINK_PENALTY = 10.0
+"""The kink is used where it lowers the residual sum of squares by more than this many
+``sigma**2 ln n`` (the penalty of :func:`.segmentation.hinge_segments` as the detector calls
+it: two more parameters, the kink and its place)."""
+
+
+def _reset_offset(tt: Array, A: Array, x: Array, scale: float) -> float:
+    """The step of ``x`` (m) at a reset, from a line with a step and, where
+    :data:`RESET_KINK_PENALTY` says so, a kink at the best sample of the window (ours).
+
+    Parameters
+    ----------
+    tt : Array
+        Times from the jump, s.
+    A : Array
+        Design of the line with a step: columns 1, ``tt`` and the step (0 before, 1 after).
+    x : Array
+        Displacement, m.
+    scale : float
+        Robust scale of the increments' scatter, m (``sqrt 2`` times the samples' noise).
+
+    Returns
+    -------
+    float
+        The step, m.
+    """
+    coef = np.linalg.lstsq(A, x, rcond=None)[0]
+    r = x - A @ coef
+    step = float(coef[2])
+    if len(tt) < 5:
+        return step
+    # each kink's gain over the line with a step, all at once: its column less its
+    # projection on A's, then (r . h)**2 / |h|**2 (one more column of a least-squares fit)
+    q, _ = np.linalg.qr(A)
+    H = np.maximum(tt[:, None] - tt[None, 2:len(tt) - 2], 0.0)
+    H = H - q @ (q.T @ H)
+    norm = np.einsum("ij,ij->j", H, H)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        gain = np.where(norm > 1e-9 * norm.max(), (r @ H) ** 2 / norm, 0.0)
+    k = int(np.argmax(gain))
+    sigma2 = 0.5 * scale**2  # the increments' scatter is sqrt(2) the samples'
+    if gain[k] > RESET_KINK_PENALTY * sigma2 * np.log(len(tt)):
+        Ak = np.column_stack([A, np.maximum(tt - tt[k + 2], 0.0)])
+        step = float(np.linalg.lstsq(Ak, x, rcond=None)[0][2])
+    return step
 
 
 JUMP_REL = 0.1
@@ -99,8 +154,8 @@ of the three stretches' residual sum of squares (ours; zoo record 123, a 3-um re
 Hz under a 0.12-um quantum: 6 %)."""
 
 
-def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: float, m: int
-             ) -> list[tuple[int, int, float]]:
+def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: float, m: int,
+                    drift: float = 0.0) -> list[tuple[int, int, float]]:
     """Excursions (a stretch between two of the same velocity) that one line with a jump of
     the displacement fits as well: ``(j, k, jump)``, ``j`` the excursion's first boundary
     (index in ``bounds``), ``k`` the first sample after the jump, ``jump`` in m.
@@ -124,14 +179,22 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         Velocities within this fraction are the same (an excursion returns to it).
     m : int
         Samples either side of the excursion's boundaries where the jump may lie.
+    drift : float
+        Velocities apart by less than this fraction of the fastest speed around (the
+        excursion, its neighbours and theirs) are the same too (two pieces of one hold, each
+        read with the drift: :data:`.detection.DRIFT_SIZED`); 0 for ``rel_tol`` alone.
     """
     out: list[tuple[int, int, float]] = []
     for j in range(1, len(bounds) - 2):
         if out and out[-1][0] >= j - 1:
             continue
         va, vb = v[j - 1], v[j + 1]
-        if abs(vb - va) > rel_tol * max(abs(va), abs(vb)) or abs(v[j] - va) <= rel_tol * abs(
-                va):
+        # the same velocity on both sides: within rel_tol, or (with drift) apart by less than
+        # that fraction of the fastest speed around (two pieces of one hold, each read with
+        # the drift's creep)
+        around = float(np.max(np.abs(v[max(j - 2, 0):j + 3])))
+        same = abs(vb - va) <= rel_tol * max(abs(va), abs(vb)) or abs(vb - va) < drift * around
+        if not same or abs(v[j] - va) <= rel_tol * abs(va):
             continue
         # near the excursion only (twice its length and m samples each side): the
         # neighbours' own wander far from it is no evidence either way

@@ -53,7 +53,14 @@ import numpy as np
 from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
 from .labsteps import PLACED_P, Segment, example_segments, make_segments
-from .placement import OSC_RATIO, RELAX_STOP, oscillation_periods, place_changes, placed_probability
+from .placement import (
+    HOLD_RATIO,
+    OSC_RATIO,
+    RELAX_STOP,
+    oscillation_periods,
+    place_changes,
+    placed_probability,
+)
 from .record import LabRecord
 from .segmentation import hinge_segments, line_fit, noise_level, refine
 
@@ -382,6 +389,51 @@ EXCURSION_REL = 0.2
 when it differs from them by this fraction too (a ratio of 1.25; the steps are >= 1.3)."""
 
 
+EDGE_BURSTS = True
+"""A servo burst at the edge of a commanded stretch, beside a change, must differ from the
+stretch by ``EXCURSION_REL`` too (:func:`_edge_bursts`; ours, detect11). The excursion rule
+asks it of a stretch between two of the same velocity; a burst (+-12 % for 0.5-3 s in the
+zoo, as in the issue's records) that lies against a change has the change on one side, so it
+was judged by ``rel_tol`` (10 %) and stood at confidence 10-47: a short step read as three
+(zoo 272, 5294, 9128, 10256: 11-15 % beside steps of ratio 3 and 10)."""
+
+
+def _edge_bursts(v: Array, d: Array, rel: Array, hold: Array) -> Array:
+    """Whether each inner boundary is a burst's at the edge of a commanded stretch (ours):
+    between a stretch ``k`` with a change beyond ``EXCURSION_REL`` (or the record's start or
+    end) on its other side and a longer stretch within ``EXCURSION_REL`` of it, neither a
+    hold.
+
+    Parameters
+    ----------
+    v : Array
+        Velocity of each stretch, m/s.
+    d : Array
+        Duration of each stretch, s.
+    rel : Array
+        Each inner boundary's velocity change over the faster of its two velocities (1).
+    hold : Array
+        Whether each stretch is a hold.
+
+    Returns
+    -------
+    Array
+        One flag per inner boundary: judged by ``EXCURSION_REL`` instead of ``rel_tol``.
+    """
+    # big[k] and big[k + 1]: the changes on either side of stretch k; the record's ends count
+    # as changes (a burst at its start has no history before it)
+    big = np.concatenate([[True], rel > EXCURSION_REL, [True]])
+    out = np.zeros(len(rel), bool)
+    for k in range(len(v)):
+        if hold[k]:
+            continue
+        if k + 1 < len(v) and big[k] and not big[k + 1] and d[k] < d[k + 1] and not hold[k + 1]:
+            out[k] = True
+        if k > 0 and big[k + 1] and not big[k] and d[k] < d[k - 1] and not hold[k - 1]:
+            out[k - 1] = True
+    return out
+
+
 def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_min: float,
             floor: float, given: bool, m: int = 0) -> Array:
     """Each inner boundary's standing: ``min(z / z_min, rel / rel_tol)`` (< 1: remove), 0
@@ -398,6 +450,8 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         exc = np.zeros(len(v), bool)
         exc[1:-1] = back & ~hold[1:-1]
         tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
+        if EDGE_BURSTS:
+            tol = np.where(_edge_bursts(v, d, rel, hold), max(rel_tol, EXCURSION_REL), tol)
     score = np.minimum(np.minimum(z / z_min, rel / tol), _slip_ratio(v, d, fl) / SLIP_MIN)
     one = hold[1:] ^ hold[:-1]
     score = np.where(one, np.minimum(z / z_min, _slip_ratio(v, d, fl) / SLIP_MIN), score)
@@ -494,7 +548,11 @@ def detect_program(
     for _ in range(2):
         for _ in range(6):  # the wander about the boundaries left, until they settle
             v_now = fits.table(bounds)[0]
-            fl = measure_fluctuations(t, x, sigma, bounds, v_now)
+            # the wander measured about the broken line less its drift-sized boundaries
+            # (DRIFT_SIZED): a boundary must not hide the fluctuation it is judged by
+            mb = _drift_bounds(bounds, v_now) if DRIFT_SIZED else bounds
+            fl = measure_fluctuations(t, x, sigma, mb,
+                                      v_now if mb == bounds else fits.table(mb)[0])
             vmax = float(np.max(np.abs(v_now)))
             floor = hold_velocity if given else 1e-4 * vmax
             new = _prune(t, x, xs, bounds, fl, fits, rel_tol, z_min, floor, given, m)
@@ -505,7 +563,8 @@ def detect_program(
         # for find_resets (a few quanta): taken out, and the boundaries searched again
         # (on the samples: a block mean smears a jump into a ramp)
         full = [b * blk for b in bounds[:-1]] + [n]
-        off = jump_excursions(t_all, x_all, full, fits.table(bounds)[0], rel_tol, m * blk) if (
+        off = jump_excursions(t_all, x_all, full, fits.table(bounds)[0], rel_tol, m * blk,
+                              HOLD_RATIO if DRIFT_SIZED else 0.0) if (
             record.load_point is not None) else []
         if not off:
             break
@@ -667,6 +726,55 @@ MAX_POINTS = 2_000
 """Longest signal searched sample by sample; a longer one is searched on block means."""
 MAX_CANDIDATES = 80
 """Most candidate stretches (the largest white-noise gains) judged against the fluctuations."""
+
+
+DRIFT_SIZED = True
+"""Whether the fluctuations are measured about the broken line less its drift-sized
+boundaries (a velocity change below :data:`.placement.HOLD_RATIO`, 1/100, of the fastest
+speed around it: :func:`_drift_sized`), and two stretches so close are the same velocity
+for an excursion that a jump explains (:func:`.artifacts.jump_excursions`) (ours; detect11).
+
+Why: the displacement transducer's drift (the zoo's: 2 um over the record) moves a hold or
+a slow stretch by 0.002-0.02 um/s and bends it, and a boundary that splits the stretch
+hides it from the measurement it is judged by: each piece's line takes up the curvature
+(zoo 5050: ``a(T) = 0`` at every scale with the split, 1.8e-3 um/s about the true program),
+so the split stood at confidence 7-13 (a hold read as a hold and a creep: 5050, 8110, 9238;
+a slow stretch after a ratio-30 down-step read as two: 10165, 11245), and a reset's small
+excursion in a hold was not taken for a jump, the hold's two pieces reading 25-40 % apart
+(11140, 11218). Measured without the split, every pair of windows in the stretch sees the
+drift's curvature, and the median takes it; a genuine change so left out is seen only by
+the few pairs across it, which the median ignores (``tests/records/test_lab.py``'s 300 ->
+0.1 um/s record with a hold, 1/3000 of the speed around, keeps its program; removing such
+boundaries outright broke it)."""
+
+
+def _drift_bounds(bounds: list[int], v: Array) -> list[int]:
+    """``bounds`` (sample indices, the ends included) less the inner ones whose change is
+    drift-sized (:func:`_drift_sized`; ``v`` the stretches' velocities, m/s)."""
+    small = _drift_sized(v)
+    return [bounds[0]] + [b for j, b in enumerate(bounds[1:-1]) if not small[j]] + [bounds[-1]]
+
+
+def _drift_sized(v: Array) -> Array:
+    """Whether each inner boundary's velocity change is below :data:`.placement.HOLD_RATIO`
+    of the fastest speed around it: its two stretches and their outer neighbours, as the
+    speed a servo's error comes from in :func:`_slip_ratio` (ours, :data:`DRIFT_SIZED`).
+
+    Parameters
+    ----------
+    v : Array
+        Velocity of each stretch, m/s.
+
+    Returns
+    -------
+    Array
+        One flag per inner boundary.
+    """
+    u = np.abs(np.asarray(v, float))
+    big = np.maximum(u[1:], u[:-1])
+    big[1:] = np.maximum(big[1:], u[:-2])
+    big[:-1] = np.maximum(big[:-1], u[2:])
+    return np.abs(np.diff(np.asarray(v, float))) < HOLD_RATIO * big
 
 
 def _wanders(fl: Fluctuations) -> bool:

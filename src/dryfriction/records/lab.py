@@ -47,7 +47,7 @@ from ..io.textfile import HEAD_BYTES, check_text
 from ..validation import FRICTION_MAX, Array, check_memory
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import Detection, detect_program, detect_segments, no_change_message
-from .labforms import FORMS, PREAMBLE_MAX, read_table
+from .labforms import FORMS, MATRIX_NOTE, PREAMBLE_MAX, read_table
 from .labsteps import (
     SEGMENTS_SYNTAX,
     Segment,
@@ -73,6 +73,10 @@ __all__ = [
     "MISSING_MAX",
     "read_record",
     "apparatus_note",
+    "assumed_units",
+    "note_text",
+    "APPARATUS_V_TYPICAL",
+    "APPARATUS_X_TYPICAL",
     "FRICTION_MAX",
     "parse_column_map",
     "Detection",
@@ -101,6 +105,19 @@ more often micrometres read as metres)."""
 APPARATUS_X_MAX = 1.0
 """Load-point displacement span (m) above which a record is flagged likewise."""
 """Fewest data rows a record may have (fewer cannot show a transient)."""
+APPARATUS_V_TYPICAL = (1e-9, 1e-3)
+"""Load velocities (m/s) of the apparatus whose velocity-step records this package reads
+(ours): servo-controlled biaxial (double-direct shear) and triaxial machines step between
+about 0.01 um/s and 1 mm/s (1 nm/s: the slowest creep and hold tests). A record read with a
+column *without a unit* is checked against this range and :data:`APPARATUS_X_TYPICAL`: where
+its SI reading falls outside, the reading is flagged louder (a warning naming the unit that
+would fit). Rotary-shear machines go beyond both (to m/s and metres): their records give the
+unit (``--columns disp=NAME:m``), which silences it; a missing unit is never refused."""
+APPARATUS_X_TYPICAL = 0.05
+"""Load-point displacement span (m) of those apparatus (ours: a biaxial layer travels a few
+cm at most, a triaxial saw-cut a few mm)."""
+_SI_UNIT = {"time": "s", "disp": "m", "velocity": "m/s"}
+_SI_WORD = {"time": "seconds", "disp": "metres", "velocity": "m/s"}
 
 ROLES: dict[str, str] = {
     "time": "time",
@@ -425,12 +442,40 @@ def _assign(
     return idx, forced
 
 
+def assumed_units(record: LabRecord) -> dict[str, str]:
+    """The SI unit the reader assumed for each of the record's time, displacement and velocity
+    columns that has no unit in the file (``{"disp": "m"}``); ``{}`` when every one has its
+    own. Friction is dimensionless; stresses and forces enter only as their ratio."""
+    return {role: _SI_UNIT[role] for role in ("time", "disp", "velocity")
+            if role in record.columns and not record.units.get(role, "")}
+
+
+def _speeds(v: float, span: float) -> str:
+    """``up to 10 um/s over 0.94 mm``: a velocity and a span in the units a lab uses."""
+    def length(x: float, per: str = "") -> str:
+        for unit, f in (("m", 1.0), ("mm", 1e-3), ("um", 1e-6), ("nm", 1e-9)):
+            if x >= f or unit == "nm":
+                return f"{x / f:.3g} {unit}{per}"
+        return ""  # pragma: no cover
+
+    return f"up to {length(v, '/s')} over {length(span)}"
+
+
 def apparatus_note(record: LabRecord, velocities: Array | list[float],
                    given: bool = False) -> str | None:
-    """One line when the record's numbers imply an implausible friction apparatus: load
-    velocities above :data:`APPARATUS_V_MAX` or a displacement span above
-    :data:`APPARATUS_X_MAX` (most often a column without a unit, micrometres read as metres);
-    it names the column and the ``--columns`` entry that gives its unit. ``None`` otherwise.
+    """One line on the units of the record's time, displacement and velocity columns, where the
+    user reads it (``record``, ``fit`` and their JSON): ``None`` when every one has its unit
+    and the numbers are plausible.
+
+    * A column without a unit is read as SI: the line (``note: ...``) names it, the unit
+      assumed and the ``--columns ROLE=NAME:UNIT`` entry that changes it. Where that reading
+      makes the load velocities leave :data:`APPARATUS_V_TYPICAL` or the displacement span
+      exceed :data:`APPARATUS_X_TYPICAL`, it is louder (``warning: ...``) and names the units
+      that would bring the record into that range (millimetres or micrometres read as metres,
+      minutes read as seconds are the usual causes).
+    * A unit written, but load velocities above :data:`APPARATUS_V_MAX` or a displacement
+      span above :data:`APPARATUS_X_MAX`: asks whether the unit is right, or (a program given
+      in other units than m/s) reminds that ``--segments`` is in m/s.
 
     Parameters
     ----------
@@ -443,19 +488,57 @@ def apparatus_note(record: LabRecord, velocities: Array | list[float],
     v = float(np.max(np.abs(velocities))) if len(velocities) else 0.0
     x = record.load_point
     span = float(np.ptp(x)) if x is not None and len(x) else 0.0
-    if not (v > APPARATUS_V_MAX or span > APPARATUS_X_MAX):
-        return None
     role = "disp" if x is not None else "velocity"
     header, unit = record.columns.get(role, role), record.units.get(role, "")
-    head = (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
-            "displacement are odd for a friction apparatus; ")
-    if not unit:
-        fix = "um" if role == "disp" else "um/s"
-        return (head + f"column {header!r} has no unit, so it is read as SI (m, m/s): if it "
-                f"is in micrometres, give --columns {role}={header}:{fix}")
-    if given and span <= APPARATUS_X_MAX:
-        return head + "--segments takes velocities in m/s (2e-7 for 0.2 um/s)"
-    return head + f"column {header!r} has the unit {unit!r}: is it right?"
+    assumed = assumed_units(record)
+    odd = v > APPARATUS_V_MAX or span > APPARATUS_X_MAX
+    if given and odd and span <= APPARATUS_X_MAX:  # the program's m/s, not a column's unit
+        return (f"note: {record.source}: load velocities up to {v:.3g} m/s are odd for a "
+                "friction apparatus; --segments takes velocities in m/s (2e-7 for 0.2 um/s)")
+    if assumed:
+        return _assumed_note(record, assumed, v, span, role, given)
+    if not odd:
+        return None
+    return (f"note: {record.source}: load velocities up to {v:.3g} m/s and {span:.3g} m of "
+            f"displacement are odd for a friction apparatus; column {header!r} has the unit "
+            f"{unit!r}: is it right?")
+
+
+def _assumed_note(record: LabRecord, assumed: dict[str, str], v: float, span: float,
+                  role: str, given: bool) -> str:
+    """:func:`apparatus_note` for a record with columns read as SI for want of a unit."""
+    cols = record.columns
+    said = " and ".join(f"{cols[r]!r}" + (" is read" if k == 0 else "") + f" in {_SI_WORD[r]}"
+                        for k, r in enumerate(assumed))
+    entry = "--columns " + ",".join(f"{r}={cols[r]}:UNIT" for r in assumed)
+    lo, hi = APPARATUS_V_TYPICAL
+    head = f"{record.source}: no unit in the header, so {said} (SI): load velocities "
+    if lo <= v <= hi and span <= APPARATUS_X_TYPICAL or v == 0.0 and span == 0.0:
+        return f"note: {head}{_speeds(v, span)}; if a unit is another, give {entry}"
+    # the SI reading is out of the apparatus' range: which unit would bring it in
+    fits = []
+    for u, f in (("mm", 1e-3), ("um", 1e-6)):
+        if role not in assumed:
+            break
+        w = v if given else v * f  # a given program's velocities are its own m/s
+        if (given or lo <= w <= hi) and span * f <= APPARATUS_X_TYPICAL:
+            unit = u + ("/s" if role == "velocity" else "")
+            fits.append(f"--columns {role}={cols[role]}:{unit} gives {_speeds(w, span * f)}")
+    if "time" in assumed:  # a clock in ms (too slow) or in minutes or hours (too fast)
+        for u, f in (("ms", 1e3), ("min", 1 / 60.0), ("h", 1 / 3600.0)):
+            if not fits and lo <= v * f <= hi and span <= APPARATUS_X_TYPICAL:
+                fits.append(f"--columns time={cols['time']}:{u} gives {_speeds(v * f, span)}")
+    hint = "; ".join(fits) + "; " if fits else ""
+    return (f"warning: {head}{_speeds(v, span)}, outside what biaxial and triaxial friction "
+            f"apparatus do ({lo:g} to {hi:g} m/s over at most {APPARATUS_X_TYPICAL:g} m): the "
+            f"unit is most likely not SI; {hint}give the unit with {entry} (SI written out, "
+            "e.g. :m, keeps this reading and silences this line)")
+
+
+def note_text(line: str) -> str:
+    """An :func:`apparatus_note` line without its ``note:`` or ``warning:`` prefix and the
+    space after it (as the JSON reports keep it)."""
+    return re.sub(r"^(note|warning): ", "", line)
 
 
 def read_record(
@@ -660,6 +743,13 @@ def _read_form(path: Path, columns: Mapping[str, str] | None) -> LabRecord:
         rec = _finish(str(path), names, columns, hline, sline, row_units, load, notes)
     except ValueError as exc:  # the same refusal, in the file's own words for a row
         msg = str(exc).replace(", line 0", "") if hline == 0 else str(exc)
+        split = [n for n in notes if MATRIX_NOTE in n]
+        if split and "--columns" in msg and not columns:  # no name to guess: map them all
+            m = re.search(r"(\S+)_1 \.\. ", split[0])
+            stem = m.group(1) if m else "data"
+            msg += (f" (a matrix's columns have no names: map each, e.g. --columns "
+                    f"time={stem}_1,disp={stem}_2:UNIT,mu={stem}_3, or shear=...,normal=... "
+                    "for friction from stresses)")
         raise ValueError(msg.replace(", line ", f", {word} ").replace(
             "; lines ", f"; {word}s ")) from None
     # a cell that is not a number is NaN in a form's table: a missing value, by its row

@@ -13,6 +13,9 @@ text record is (:func:`.lab.read_record`: the same column recognition, units and
   length (``Time``, ``Displ``, ...); a MATLAB name cannot hold a unit, so the names
   ``Time_s``, ``Displ_um``, ``Shear_stress_MPa`` are read as ``Time (s)``, ... when the part
   after the last underscore is a unit, and ``--columns disp=Displ:um`` gives any other.
+  A numeric matrix (``data``, N x k: MATLAB's ``[t x tau sigma]``) is read as k columns
+  named by their numbers, ``data_1`` .. ``data_k`` (its long side taken as the rows, said);
+  no name can be guessed there, so ``--columns time=data_1,disp=data_2:mm,...`` maps them.
   Rows are numbered from 1.
 """
 
@@ -72,7 +75,7 @@ def read_table(path: Path, is_name: Callable[[str], bool] | None = None,
     check_memory(f"{src}: reading this {size / 1e6:.0f} MB file needs", 40.0 * size,
                  "export it as a text table and split it")
     if path.suffix.lower() == ".mat":
-        return _read_mat(path, src)
+        return _read_mat(path, src, notes if notes is not None else [])
     return _read_xlsx(path, src, is_name, notes if notes is not None else [])
 
 
@@ -158,7 +161,35 @@ def _number(cell: object) -> float:
         return float("nan")
 
 
-def _read_mat(path: Path, src: str) -> tuple[list[str], Array, int, int, list[str], str]:
+MATRIX_NOTE = "is read as columns"
+"""Words of the note :func:`read_table` adds for a ``.mat`` matrix split into columns (the
+reader's refusal then says how to map them)."""
+
+
+def _split_matrices(found: dict[str, object], src: str, notes: list[str]
+                    ) -> dict[str, object]:
+    """``found`` with every 2-D numeric matrix (both sides > 1) replaced by its columns
+    ``NAME_1`` .. ``NAME_k``, numbered from 1 as MATLAB and the reader's messages count;
+    the long side is the rows (a k x N matrix is transposed, and that said). One note each."""
+    out: dict[str, object] = {}
+    for k, v in found.items():
+        if not (isinstance(v, np.ndarray) and v.dtype.kind in "fiu" and v.ndim == 2
+                and min(v.shape) > 1):
+            out[k] = v
+            continue
+        flipped = v.shape[1] > v.shape[0]
+        m = v.T if flipped else v
+        names = [f"{k}_{j + 1}" for j in range(m.shape[1])]
+        out.update({n: m[:, j] for j, n in enumerate(names)})
+        notes.append(f"{src}: the {v.shape[0]} x {v.shape[1]} matrix {k!r} {MATRIX_NOTE} "
+                     f"{names[0]} .. {names[-1]}"
+                     + (" (its rows: a column a row in the file, transposed)" if flipped
+                        else ""))
+    return out
+
+
+def _read_mat(path: Path, src: str, notes: list[str]
+              ) -> tuple[list[str], Array, int, int, list[str], str]:
     from scipy.io import loadmat
     from scipy.io.matlab import MatReadError  # not a ValueError: a truncated or false .mat
 
@@ -173,6 +204,7 @@ def _read_mat(path: Path, src: str) -> tuple[list[str], Array, int, int, list[st
     if len(structs) == 1:
         st = structs[0].reshape(-1)[0]
         found = {f: st[f] for f in structs[0].dtype.names}
+    found = _split_matrices(found, src, notes)
     cols = {k: np.asarray(v, float).ravel() for k, v in found.items()
             if isinstance(v, np.ndarray) and v.dtype.kind in "fiu" and v.size > 1}
     if not cols:

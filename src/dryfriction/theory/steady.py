@@ -55,6 +55,7 @@ __all__ = [
     "steady_log_slope_low_velocity",
     "low_velocity_constant",
     "DYNAMIC_SLOPE_PER_EPS",
+    "athermal_steady_weakens",
 ]
 
 
@@ -374,6 +375,42 @@ def steady_log_slope(model: TrapModel, u: ArrayLike) -> Array:
     """
     return _steady_log_slope_loose(u, model.eps, model.alpha, model.creep, model.direct,
                                    model.v_ref)
+
+
+@lru_cache(maxsize=64)
+def athermal_steady_weakens(alpha: float, creep: str = "log") -> bool:
+    """Whether the athermal model's steady friction (eq. 34, ``direct = 0``) at trap stiffness
+    ``alpha`` falls with velocity everywhere: ``d mu_d/d ln u <= 0`` at every ``eps`` and ``u``
+    (ours, numerical: :func:`steady_log_slope` on ``eps`` = 1e-4 .. 1, 13 values, and ``u`` =
+    1e-20 .. 1e20, 81 values, within the creep law's range, :func:`min_velocity`; a slope above
+    ``1e-6 eps`` counts as growth, the rest is the central difference's rounding).
+
+    The traps of faster sliding die younger (eq. 29), less aged (eq. 17): ``-(3/2) eps`` at
+    ``u << 1`` (eq. 35). It holds for ``alpha <= 0.3`` with both creep laws; from about 0.35
+    (0.4 with the log law) ``mu_d`` rises over some velocities, so data that rise do not
+    contradict the model there. Steady data whose friction grows with velocity contradict the
+    first kind (:meth:`dryfriction.fit.models.CVModel.allowed_trend`).
+
+    Parameters
+    ----------
+    alpha : float
+        Trap stiffness.
+    creep : str
+        Creep law (:data:`CREEP_LAWS`).
+    """
+    u = np.logspace(-20.0, 20.0, 81)
+    for eps in np.logspace(-4.0, 0.0, 13):
+        model = TrapModel(alpha, float(eps), creep)
+        lo = min_velocity(model) * 1.01  # the Eyring-Nabarro law's range
+        inside = u[u > lo]
+        if not inside.size:
+            continue
+        # the exact law's exponentials overflow at the range's far end: not a slope there
+        with np.errstate(over="ignore", invalid="ignore"):
+            slope = steady_log_slope(model, inside)
+        if np.any(slope[np.isfinite(slope)] > 1e-6 * eps):
+            return False
+    return True
 
 
 def _steady_death_point_loose(

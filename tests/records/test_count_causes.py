@@ -1,0 +1,202 @@
+"""The records whose count of changes was wrong, by cause (issue 23, detect11;
+records/detection.py's DRIFT_SIZED and EDGE_BURSTS, records/artifacts.py's RESET_KINK).
+
+A drift split a hold or a slow stretch in two; a servo burst beside a change stood as a
+change of its own; a reset's offset, fitted across a velocity change, left a stretch of its
+own. The zoo records named are from the ranges already used (0-449, 3000-3299, ...,
+11000-11299); each test names the mistake it is for, and each was seen failing with it
+applied (the numbers measured are in the docstrings).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dryfriction.records.artifacts as artifacts
+import dryfriction.records.detection as detection
+from dryfriction.records.artifacts import _reset_offset, find_resets
+from dryfriction.records.detection import EXCURSION_REL, _drift_sized, _edge_bursts
+from dryfriction.records.placement import HOLD_RATIO
+
+
+def _zoo_counts(indices: tuple[int, ...], tmp: Path) -> list[tuple[int, int]]:
+    """(changes found, true changes) of each of these zoo records, written in its dialect and
+    read back as bench_detect does."""
+    from dryfriction.records.lab import detect_program, read_record
+    from records_zoo import make_record, score, specs, write
+
+    out = []
+    for i, prog, arts, dialect in specs(max(indices) + 1):
+        if i in indices:
+            rec = make_record(i, prog, arts, dialect)
+            s = score(rec, detect_program(read_record(write(rec, tmp))), 0.0)
+            out.append((s.found, len(rec.changes)))
+    return out
+
+
+# ------------------------------------------------------------------------ drift-sized changes
+def test_a_change_below_hold_ratio_of_the_speed_around_is_drift_sized() -> None:
+    """``_drift_sized`` at generic speeds (slides at 2.7 um/s): a hold's two pieces read at
+    0.009 and 0.002 um/s (the drift; 0.0026 of the slides' speed) are drift-sized, as is a
+    slow stretch after a ratio-30 down-step read at 0.089 and 0.078 um/s; a ratio-30
+    down-step to a hold (1/30), a 1 -> 3 -> 10 staircase and a change just above HOLD_RATIO
+    of the speed around are not. Mistakes: the speed around from the boundary's own two
+    stretches only (two slow pieces are then 70 % apart: not drift-sized); the comparison the
+    wrong way; the stretch before or after the boundary's two left out."""
+    v = 2.7e-6
+    assert _drift_sized(np.array([v, 9e-9, 2e-9, v])).tolist() == [False, True, False]
+    assert _drift_sized(np.array([v, 8.9e-8, 7.8e-8])).tolist() == [False, True]
+    assert _drift_sized(np.array([9e-9, 2e-9, v])).tolist() == [True, False]
+    assert not _drift_sized(np.array([v, v / 30.0, 0.0, v])).any()
+    assert not _drift_sized(np.array([1e-6, 3e-6, 10e-6])).any()
+    near = HOLD_RATIO * v
+    assert _drift_sized(np.array([v, 0.0, 0.9 * near, v])).tolist() == [False, True, False]
+    assert not _drift_sized(np.array([v, 0.0, 1.1 * near, v]))[1]
+
+
+def test_a_hold_or_slow_stretch_with_drift_is_one(tmp_path: Path,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo records 5050, 8110 and 9238 (slide-hold-slides with the transducer's drift, no
+    servo error; a hold read as a hold and a creep of 0.004-0.01 um/s): the right count
+    when the fluctuations are measured without the drift-sized boundaries (DRIFT_SIZED).
+    Mistake, seen failing: measured about every boundary, the split hiding the drift it is
+    judged by (DRIFT_SIZED = False: 5 changes found against 4 in each; measured)."""
+    assert detection.DRIFT_SIZED is True
+    counts = _zoo_counts((5050, 8110, 9238), tmp_path)
+    assert all(f == n for f, n in counts), counts
+    monkeypatch.setattr(detection, "DRIFT_SIZED", False)
+    counts = _zoo_counts((5050, 8110, 9238), tmp_path)
+    assert all(f > n for f, n in counts), counts
+
+
+def test_a_small_reset_in_a_hold_read_with_drift_is_a_jump(tmp_path: Path) -> None:
+    """Zoo record 11140 (a slide-hold-slide at 0.35 um/s with every artifact; a re-zeroing in
+    its second hold under a coarse quantum left a 27-s excursion of -0.013 um/s between the
+    hold's pieces, read at -0.0024 and -0.0018 um/s with the drift): the right count (4).
+    Mistake, seen failing: the hold's pieces compared by ``rel_tol`` alone in
+    ``jump_excursions`` (drift 0 in the detector's call: 6 changes found; measured)."""
+    assert _zoo_counts((11140,), tmp_path) == [(4, 4)]
+
+
+def test_jump_excursions_takes_drift_sized_neighbours_as_the_same_velocity() -> None:
+    """A hold at 0 um/s with a drift (0.003 um/s before a re-zeroing of 0.4 um, 0.0022 after,
+    25 % apart) between slides at 0.35 um/s, 10 Hz, 0.17 um of white noise: with ``drift =
+    HOLD_RATIO`` the excursion the re-zeroing leaves is found as a jump of its size (within
+    0.1 um); with ``drift = 0`` (by ``rel_tol`` alone) it is not."""
+    rng = np.random.default_rng(11218)
+    t = np.arange(0.0, 400.0, 0.1)
+    v = np.where((t >= 100.0) & (t < 300.0), np.where(t < 200.0, 3e-9, 2.2e-9), 0.35e-6)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * 0.1)])
+    k = int(np.searchsorted(t, 190.0))
+    x[k:] -= 0.4e-6
+    x += rng.normal(0.0, 0.17e-6, t.size)
+    bounds = [0, 1000, k - 20, k + 20, 3000, t.size]
+    speeds = np.array([0.35e-6, 3e-9, -10e-9, 2.2e-9, 0.35e-6])
+    (found,) = artifacts.jump_excursions(t, x, bounds, speeds, 0.1, 10, HOLD_RATIO)
+    assert found[0] == 2 and abs(found[2] + 0.4e-6) < 0.1e-6
+    assert artifacts.jump_excursions(t, x, bounds, speeds, 0.1, 10, 0.0) == []
+
+
+def test_drift_bounds_leave_out_the_drift_sized_boundaries_only() -> None:
+    """``_drift_bounds`` at generic speeds: between a slide at 2.7 um/s and a hold read as a
+    creep of 0.009 um/s and a hold, and within the slow stretch of a ratio-30 down-step read
+    as two pieces 12 % apart (0.089 and 0.078 um/s), only the drift-sized boundary goes; the
+    ends stay, and a 1 -> 3 -> 10 um/s staircase keeps every boundary."""
+    hold = np.array([2.7e-6, 9e-9, 2e-9, 2.7e-6])
+    assert detection._drift_bounds([0, 10, 20, 30, 40], hold) == [0, 10, 30, 40]
+    slow = np.array([2.7e-6, 0.089e-6, 0.078e-6])
+    assert detection._drift_bounds([0, 5, 9, 20], slow) == [0, 5, 20]
+    steps = np.array([1e-6, 3e-6, 10e-6])
+    assert detection._drift_bounds([0, 5, 9, 20], steps) == [0, 5, 9, 20]
+
+
+# ------------------------------------------------------------------------ bursts beside a change
+def test_edge_bursts_flag_a_burst_beside_a_change_only() -> None:
+    """``_edge_bursts`` at generic speeds (2.3 um/s, a short step of ratio 3): a +12 % burst of
+    2 s at the start of the 6-s step, and one at its end, are flagged; a long stretch after a
+    change, followed by a shorter one 10 % faster (a small step, not a burst at the long
+    one's edge), is not, nor a step 1.2 times a longer stretch in a staircase of small
+    changes, nor a burst beside a hold; a burst at the record's start or end is. Mistakes:
+    the burst's stretch taken as the longer one; a hold counted as the stretch the burst
+    belongs to; the record's ends not counted as changes."""
+    def flags(v: list[float], d: list[float], hold: list[bool] | None = None) -> list[bool]:
+        va = np.array(v)
+        rel = np.abs(np.diff(va)) / np.maximum(np.abs(va[1:]), np.abs(va[:-1]))
+        h = np.zeros(len(v), bool) if hold is None else np.array(hold)
+        return _edge_bursts(va, np.array(d), rel, h).tolist()
+
+    u = 2.3e-6
+    assert flags([u, 3.36 * u, 3 * u, u], [60, 2, 6, 60]) == [False, True, False]
+    assert flags([u, 3 * u, 3.36 * u, u], [60, 6, 2, 60]) == [False, True, False]
+    assert flags([u, 3 * u, 3.3 * u, 3.6 * u], [60, 60, 6, 60]) == [False, False, False]
+    assert flags([u, 1.2 * u, 1.44 * u], [60, 40, 60]) == [False, False]
+    assert flags([u, 0.0, 0.1 * u], [60, 2, 60], [False, True, False]) == [False, False]
+    # a hold read at 1.0 nm/s beside a creep of 1.1 nm/s: neither is a burst of the other
+    assert flags([u, 1.0e-9, 1.1e-9], [60, 2, 60], [False, True, False]) == [False, False]
+    assert flags([u, 1.1e-9, 1.0e-9], [60, 2, 60], [False, False, True]) == [False, False]
+    # the record's start and end count as changes: a burst there
+    assert flags([0.88 * u, u, 10 * u], [3, 57, 60]) == [True, False]
+    assert flags([10 * u, u, 1.12 * u], [60, 57, 3]) == [False, True]
+    assert 0.12 < EXCURSION_REL
+
+
+def test_a_burst_beside_a_short_step_is_no_change(tmp_path: Path,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo records 272 and 9128 (short steps of ratio 3 and 10 with bursts; 11.6 % and 11.9 %
+    beside the change): the right count (2) with EDGE_BURSTS. Mistake, seen failing: the
+    burst judged by ``rel_tol`` (EDGE_BURSTS = False: 3 changes found in each; measured)."""
+    assert detection.EDGE_BURSTS is True
+    assert _zoo_counts((272, 9128), tmp_path) == [(2, 2), (2, 2)]
+    monkeypatch.setattr(detection, "EDGE_BURSTS", False)
+    assert _zoo_counts((272, 9128), tmp_path) == [(3, 2), (3, 2)]
+
+
+# ------------------------------------------------------------------------ a reset near a change
+def _reset_before_a_step(seed: int) -> tuple[np.ndarray, np.ndarray, float, int]:
+    """0.22 -> 0.66 um/s at 1346 s, sampled at 0.73 Hz, a re-zeroing of 37 um 17 s before
+    the step, 0.17 um of white noise: times (s), displacement (m), the jump (m), its sample."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 1900.0, 1.0 / 0.73)
+    v = np.where(t >= 1346.0, 0.66e-6, 0.22e-6)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+    i = int(np.searchsorted(t, 1329.0))
+    x[i:] -= 37e-6
+    return t, x + rng.normal(0.0, 0.17e-6, t.size), -37e-6, i
+
+
+def test_a_reset_before_a_step_is_taken_out_with_its_own_size(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """A reset 17 s (12 samples) before an up-step of ratio 3 at 0.73 Hz: the displacement
+    with it taken out is continuous there, the offset left under 0.3 um in each of 5 seeds
+    (measured: at most 0.15 um). Mistake, seen failing: the offset from one line across the
+    step (RESET_KINK = False: 1.1-1.3 um left, which read as a stretch of its own; zoo 3210,
+    6058)."""
+    def left(seed: int) -> float:
+        t, x, jump, i = _reset_before_a_step(seed)
+        y, found = find_resets(t, x)
+        assert found == [i - 1]
+        clean = x.copy()
+        clean[i:] -= jump
+        return float(np.mean((y - clean)[i:]))
+
+    assert artifacts.RESET_KINK is True
+    assert max(abs(left(s)) for s in range(5)) < 0.3e-6
+    monkeypatch.setattr(artifacts, "RESET_KINK", False)
+    assert min(abs(left(s)) for s in range(5)) > 0.6e-6
+
+
+def test_a_reset_offset_uses_a_kink_only_where_it_earns_its_place() -> None:
+    """Where the window holds no velocity change, the offset is the plain line-with-a-step fit
+    (the kink's gain stays under its penalty), in each of 20 seeds. Mistake: the kink always
+    used (a free kink follows the noise: another offset)."""
+    for seed in range(20):
+        rng = np.random.default_rng(seed)
+        tt = np.arange(-30, 31) * 0.37
+        step = (tt > 0).astype(float)
+        x = 0.22e-6 * tt + 5e-6 * step + rng.normal(0.0, 0.17e-6, tt.size)
+        A = np.column_stack([np.ones(tt.size), tt, step])
+        plain = float(np.linalg.lstsq(A, x, rcond=None)[0][2])
+        assert _reset_offset(tt, A, x, 0.17e-6 * np.sqrt(2.0)) == plain
