@@ -2772,6 +2772,28 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("normal stress: one ramp's split points merged by time alone", "records/artifacts.py",
        "NORMAL_BLOCKS = 10\n", "NORMAL_BLOCKS = 0\n", _ARG, "-k", "slow_sampling"),
     # --- end detect8
+    # --- detect10: a step of ratio up to OSC_WIDE_RATIO placed on two oscillation periods
+    # each side where its stretches hold them (tests/records/test_osc_wide.py)
+    _m("placement: a ratio-2 step's window not widened for the oscillation",
+       "records/placement.py", "OSC_WIDE = True\n", "OSC_WIDE = False\n",
+       "tests/records/test_osc_wide.py", "-k", "placed_better"),
+    _m("placement: the wider window for the small steps only (its bound at OSC_RATIO)",
+       "records/placement.py",
+       "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo and room >= 2.0 * period\n",
+       "    return False\n", "tests/records/test_osc_wide.py", "-k", "placed_better"),
+    _m("placement: the wider window's ratio taken one way only", "records/placement.py",
+       "    lo, hi = sorted((abs(v1), abs(v2)))\n    if hi <= OSC_RATIO * lo:\n",
+       "    lo, hi = abs(v1), abs(v2)\n    if hi <= OSC_RATIO * lo:\n",
+       "tests/records/test_osc_wide.py", "-k", "with_room"),
+    _m("placement: every moving step on two oscillation periods each side",
+       "records/placement.py", "OSC_WIDE_RATIO = 2.5\n", "OSC_WIDE_RATIO = 1e9\n",
+       "tests/records/test_osc_wide.py", "-k", "ratio_3"),
+    _m("placement: a short step's long side widened alone (the room not looked at)",
+       "records/placement.py",
+       "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo and room >= 2.0 * period\n",
+       "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo\n", "tests/records/test_osc_wide.py",
+       "-k", "short_step"),
+    # --- end detect10
     # --- detect11: the records whose count of changes was wrong, by cause: a drift-sized
     # change, a burst beside a change, a reset's offset across a change
     # (tests/records/test_count_causes.py)
