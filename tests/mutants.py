@@ -2773,6 +2773,28 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("normal stress: one ramp's split points merged by time alone", "records/artifacts.py",
        "NORMAL_BLOCKS = 10\n", "NORMAL_BLOCKS = 0\n", _ARG, "-k", "slow_sampling"),
     # --- end detect8
+    # --- detect10: a step of ratio up to OSC_WIDE_RATIO placed on two oscillation periods
+    # each side where its stretches hold them (tests/records/test_osc_wide.py)
+    _m("placement: a ratio-2 step's window not widened for the oscillation",
+       "records/placement.py", "OSC_WIDE = True\n", "OSC_WIDE = False\n",
+       "tests/records/test_osc_wide.py", "-k", "placed_better"),
+    _m("placement: the wider window for the small steps only (its bound at OSC_RATIO)",
+       "records/placement.py",
+       "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo and room >= 2.0 * period\n",
+       "    return False\n", "tests/records/test_osc_wide.py", "-k", "placed_better"),
+    _m("placement: the wider window's ratio taken one way only", "records/placement.py",
+       "    lo, hi = sorted((abs(v1), abs(v2)))\n    if hi <= OSC_RATIO * lo:\n",
+       "    lo, hi = abs(v1), abs(v2)\n    if hi <= OSC_RATIO * lo:\n",
+       "tests/records/test_osc_wide.py", "-k", "with_room"),
+    _m("placement: every moving step on two oscillation periods each side",
+       "records/placement.py", "OSC_WIDE_RATIO = 2.5\n", "OSC_WIDE_RATIO = 1e9\n",
+       "tests/records/test_osc_wide.py", "-k", "ratio_3"),
+    _m("placement: a short step's long side widened alone (the room not looked at)",
+       "records/placement.py",
+       "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo and room >= 2.0 * period\n",
+       "    return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo\n", "tests/records/test_osc_wide.py",
+       "-k", "short_step"),
+    # --- end detect10
     # --- detect11: the records whose count of changes was wrong, by cause: a drift-sized
     # change, a burst beside a change, a reset's offset across a change
     # (tests/records/test_count_causes.py)
@@ -3451,6 +3473,19 @@ MUTANTS: tuple[Mutant, ...] = (
        "tests/fit/test_joint_covariance.py"),
     _m("step covariance: the drive's change-time error left out", "fit/steps.py",
        "var += 0.0 if tc is None else tc**2", "var += 0.0", "tests/fit/test_kcoverage.py"),
+    _m("segments.csv: a unit assumed not said in it", "app/records.py",
+       "rec.time, notes=(note,) if note else ())", "rec.time, notes=())",
+       "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("record.png: a unit assumed not in its title", "app/records.py",
+       "fig, _ = plot_record(rec, segs, det, given=given, note=short)",
+       "fig, _ = plot_record(rec, segs, det, given=given, note=None)",
+       "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("record.png: the title's extra line dropped", "plots/record.py",
+       'if info.unplaced else "") + (f"\\n{note}" if note else ""),',
+       'if info.unplaced else ""),', "tests/records/test_assumed_units.py", "-k", "keeps"),
+    _m("fit: --direct with static data refused in the library's words", "app/checks.py",
+       'if "static" in kinds and "cv" in fitted and given("direct"):', "if False:",
+       "tests/app/test_fit_applies.py", "-k", "static_data"),
     # --- end stop 39 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

@@ -109,6 +109,9 @@ class ZooRecord:
     # bursts, 1) and the displacement added by the drift and the reset (m)
     eps: np.ndarray | None = None
     x_known: np.ndarray | None = None
+    # the servo bursts alone (``bursts``): (start s from the first sample, duration s, relative
+    # velocity excursion 1), part of ``eps``; their displacement is :func:`burst_displacement`
+    bursts: list[tuple[float, float, float]] = field(default_factory=list)
 
     @property
     def rows(self) -> int:
@@ -276,10 +279,13 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     if "wobble" in artifacts:
         for amp, per in WOBBLE:
             eps += amp * np.sin(2 * np.pi * t / per + rng.uniform(0, 2 * np.pi))
+    bursts: list[tuple[float, float, float]] = []
     if "bursts" in artifacts:
         for _ in range(int(rng.integers(3, 9))):
             s, w = float(rng.uniform(0, end)), float(rng.uniform(0.5, 3.0))
-            eps += np.where((t >= s) & (t < s + w), rng.choice([-0.12, 0.12]), 0.0)
+            amp = float(rng.choice([-0.12, 0.12]))
+            eps += np.where((t >= s) & (t < s + w), amp, 0.0)
+            bursts.append((s, w, amp))
     vt = vl * (1.0 + eps)
     x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
     if "red" in artifacts:
@@ -317,7 +323,28 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     v_read = np.round(vt * (1.0 + rng.normal(0.0, 0.02, t.size)) / QUANTUM) * QUANTUM
     return ZooRecord(f"zoo_{index:03d}_{program}_{'+'.join(artifacts) or 'plain'}",
                      program, artifacts, dialect, t + 100.0, x, mu, sn, changes,
-                     normal_changes, ramp, v_read, [v for _, v in prog], q, eps, x_known)
+                     normal_changes, ramp, v_read, [v for _, v in prog], q, eps, x_known,
+                     bursts)
+
+
+def burst_velocity(rec: ZooRecord) -> np.ndarray:
+    """The servo bursts' part of the load point's velocity (m/s) at ``rec.t``: the commanded
+    velocity times their relative excursions (:attr:`ZooRecord.bursts`), as
+    :func:`make_record` adds them."""
+    t = rec.t - float(rec.t[0])
+    eb = np.zeros_like(t)
+    for s, w, amp in rec.bursts:
+        eb += np.where((t >= s) & (t < s + w), amp, 0.0)
+    ch = np.asarray(rec.changes, float)
+    vl = np.asarray(rec.velocities, float)[np.searchsorted(ch, t, side="right")]
+    return vl * eb
+
+
+def burst_displacement(rec: ZooRecord) -> np.ndarray:
+    """The servo bursts' displacement (m) at ``rec.t``: :func:`burst_velocity` integrated by
+    the trapezoid, as :func:`make_record` integrates the velocity."""
+    vb = burst_velocity(rec)
+    return np.concatenate([[0.0], np.cumsum(0.5 * (vb[1:] + vb[:-1]) * np.diff(rec.t))])
 
 
 def specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:

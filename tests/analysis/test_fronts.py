@@ -256,14 +256,15 @@ def test_interface_result_is_read_with_its_units():
                           params={"model": {"mu_el": 0.4}, "interface": {"coupling": 8.0,
                                   "mass": 0.5}, "drive": {"loading": "side"}})
     st = from_result(res)
-    assert st.units["x"] == "element" and st.units["load"] == "F_el per element"
+    # the load is the whole chain's, in one element's F_el (as load.csv and summary.json)
+    assert st.units["x"] == "element" and st.units["load"] == "F_el"
     (e,) = detect_events(st, THR)
     assert e.extent == pytest.approx(8.0) and e.fronts[1].mean_speed == pytest.approx(2.0)
     assert interface_normal_load(res) == pytest.approx(12 / 0.4)
     assert interface_loaded_edge(res) == "left" and interface_sound_speed(res) == 4.0
     _, units = catalogue_columns([e], st, THR)
     assert units["moment"] == "a0*element" and units["speed_right"] == "element/t0"
-    assert units["load_arrest"] == "F_el per element"
+    assert units["load_arrest"] == "F_el"  # the load's unit
     # N = 1 (the single slider): its one element is one spacing long
     one = InterfaceResult(t=t, x=x[:1], slip=s[:, :1], slip_rate=v[:, :1],
                           stress=np.zeros_like(v[:, :1]), load=0.2 * t, load_point=0.01 * t,

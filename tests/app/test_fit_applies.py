@@ -129,3 +129,24 @@ def test_a_record_refuses_what_its_fit_does_not_use(
 
     check_record_applies({**D, "model": "rsf", "run_cv": True, "alpha": 0.2,
                           "traps_per_a0": 50.0}, D)
+
+
+def test_the_direct_effect_with_static_data_is_refused_as_typed(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``fit static.csv --direct 0.1`` was refused in the library's words (``the direct effect
+    (direct)``), not the option typed; now by ``--direct``, one line, exit 2, nothing written,
+    and with static data beside steady data too (the model takes no static data with the
+    direct effect). Steady data with ``--direct`` stay accepted. Mistake: the rule left out."""
+    t_w = np.geomspace(1.0, 1e4, 6)
+    static = tmp_path / "static.csv"
+    static.write_text("t_w[s],mu_s\n" + "".join(f"{a:.6g},{0.7 + 0.01 * np.log(a):.6f}\n"
+                                                 for a in t_w))
+    for files in ([static], [static, _steady(tmp_path / "steady.csv")]):
+        capsys.readouterr()
+        code = main(["fit", *map(str, files), "--direct", "0.07", "--out",
+                     str(tmp_path / "o")])
+        err = capsys.readouterr().err
+        assert code == 2 and len(err.strip().splitlines()) == 1, err
+        assert "--direct 0.07 applies only to steady or time-series data" in err
+        assert not (tmp_path / "o").exists()
+    check_fit_applies(_o(direct=0.07), D, {"steady"}, ["s.csv"])

@@ -136,3 +136,41 @@ def test_a_fit_says_it_before_last_and_in_fit_json(
     assert doc["units_assumed"] == {"time": "s", "disp": "m"}
     assert doc["units_implausible"] is True
     assert "--columns disp=LP_disp:mm" in doc["apparatus_note"]
+
+
+def test_the_files_a_user_keeps_say_it_too(tmp_path: Path) -> None:
+    """``record --out``: segments.csv carries the note as a comment line under its
+    ``--segments`` line (still read by ``read_rows``), and record.png's title a short form of
+    it; a record whose units are all given gets neither. The mistake: the note said on the
+    console only, so the files a user keeps of the detection read mm as m without a word."""
+    from dryfriction.io.units import read_rows
+    from dryfriction.plots import record as plots
+
+    seen: list[str | None] = []
+    real = plots.plot_record
+
+    def spy(*args, **kw):  # the title's extra line, as drawn
+        fig, info = real(*args, **kw)
+        seen.append(fig._suptitle.get_text())
+        return fig, info
+
+    plots.plot_record = spy
+    try:
+        for name, disp, time, factor in (("mm.txt", "LP_disp", "Time", 1e3),
+                                         ("um.txt", "LP_disp (um)", "Time (s)", 1e6)):
+            path = _write(tmp_path / name, factor, disp=disp, time=time)
+            out = tmp_path / f"out_{name}"
+            assert main(["record", str(path), "--out", str(out)]) == 0
+            lines = (out / "segments.csv").read_text().splitlines()
+            assert lines[0].startswith("# --segments ")
+            assert len(read_rows(out / "segments.csv")) == 2
+            if "(" in disp:
+                assert not lines[1].startswith("#")
+                assert "no unit in the header" not in seen[-1]
+            else:
+                assert lines[1].startswith("# warning: ") and "'LP_disp'" in lines[1]
+                assert "--columns disp=LP_disp:mm" in lines[1]
+                assert ("warning: no unit in the header: 'Time' read in s, 'LP_disp' read in m"
+                        in seen[-1])
+    finally:
+        plots.plot_record = real

@@ -77,7 +77,8 @@ def check_fit_applies(options: dict[str, Any], defaults: dict[str, Any], kinds: 
     * rate-and-state options (``--v0``, ``--state-law``, ``--regularized``) where only the trap
       model is fitted (``--model cv --no-compare``), the trap model's (``--alpha``,
       ``--creep``, ``--direct``, ``--v-ref``, ``--traps-per-a0``) where only rate-and-state
-      is; ``--v-ref`` without ``--direct``.
+      is; ``--v-ref`` without ``--direct``; ``--direct`` with static data (the model raises
+      it too, in its own words: the threshold needs the pull velocity).
 
     ``options`` and ``defaults`` are keyed as :data:`dryfriction.app.options.OPTIONS`
     ``["fit"]``; an option is given where it differs from its default.
@@ -115,6 +116,12 @@ def check_fit_applies(options: dict[str, Any], defaults: dict[str, Any], kinds: 
                 raise not_applicable(flag, value, f"to {words}", f"--model {other}, or the "
                                      f"comparison --compare; this run fits --model {model} "
                                      "alone", f"drop {flag} or --no-compare")
+    if "static" in kinds and "cv" in fitted and given("direct"):
+        flag, value = typed("direct")
+        raise not_applicable(flag, value, "to steady or time-series data", f"{files} hold(s) "
+                             "static friction: with the direct effect the threshold depends "
+                             "on the pull velocity, which a t_w,mu_s file does not give",
+                             f"drop {flag}, or fit the static file without it")
     if given("v_ref") and not options["direct"]:
         flag, value = typed("v_ref")
         raise not_applicable(flag, value, "with --direct > 0", "the direct effect's "

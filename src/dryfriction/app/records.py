@@ -74,11 +74,20 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
     step finder saw it (``dryfriction record --out``, and beside a record's fit)."""
     from ..plots.record import plot_record
     from ..plots.style import save_figure
-    from ..records.lab import write_segments_csv
+    from ..records.lab import apparatus_note, assumed_units, write_segments_csv
 
+    # a unit assumed for want of one in the header is said in these files too: they are
+    # what a user keeps of the detection (a new user's mm column read as m)
+    note = apparatus_note(rec, [s.velocity for s in segs], given=given)
+    assumed = assumed_units(rec)
+    short = None if not assumed else (
+        ("warning" if note and note.startswith("warning") else "note")
+        + ": no unit in the header: " + ", ".join(f"{rec.columns[r]!r} read in {u}"
+                                                  for r, u in assumed.items())
+        + " (give the units with --columns ROLE=NAME:UNIT if not)")
     write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit,
-                       rec.time)
-    fig, _ = plot_record(rec, segs, det, given=given)
+                       rec.time, notes=(note,) if note else ())
+    fig, _ = plot_record(rec, segs, det, given=given, note=short)
     save_figure(fig, folder / f"record.{fmt}", fmt, dpi)
 
 

@@ -65,7 +65,7 @@ def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float) -> tuple[np.nd
 
 def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment],
                 detection: Detection | None = None, x: np.ndarray | None = None,
-                given: bool = False) -> tuple[Figure, RecordFigure]:
+                given: bool = False, note: str | None = None) -> tuple[Figure, RecordFigure]:
     """Draw the record and its load program.
 
     Parameters
@@ -81,6 +81,8 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
         Load-point displacement, m (resets taken out); default from the record.
     given : bool
         The program was given with ``--segments`` (said in the title).
+    note : str, optional
+        One more line for the title (a unit assumed for want of one in the header).
 
     Returns
     -------
@@ -167,8 +169,9 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
                  f"{n_holds} hold(s); shaded and numbered as in segments.csv"
                  + ("\n* change time not placed within max(0.5 s, one sample) (95 % interval "
                     f"in segments.csv): segment(s) {', '.join(map(str, info.unplaced))}"
-                    if info.unplaced else ""),
+                    if info.unplaced else "") + (f"\n{note}" if note else ""),
                  fontsize=9)
-    top = 1.0 - (0.62 + (0.3 if info.unplaced else 0.14)) / fig.get_figheight()
+    top = 1.0 - (0.62 + (0.3 if info.unplaced else 0.14) + (0.16 if note else 0.0)
+                 ) / fig.get_figheight()
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=top, hspace=0.08)
     return fig, info

@@ -536,8 +536,8 @@ def _assumed_note(record: LabRecord, assumed: dict[str, str], v: float, span: fl
 
 
 def note_text(line: str) -> str:
-    """An :func:`apparatus_note` line without its ``note: `` or ``warning: `` prefix (as the
-    JSON reports keep it)."""
+    """An :func:`apparatus_note` line without its ``note:`` or ``warning:`` prefix and the
+    space after it (as the JSON reports keep it)."""
     return re.sub(r"^(note|warning): ", "", line)
 
 

@@ -9,6 +9,7 @@ cycles, as one would choose them by hand.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -270,7 +271,8 @@ def segments_spec(segments: tuple[Segment, ...] | list[Segment], t0: float,
 
 
 def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segment], t0: float,
-                       normal_unit: str = "Pa", time: Array | None = None) -> None:
+                       normal_unit: str = "Pa", time: Array | None = None,
+                       notes: Sequence[str] = ()) -> None:
     """Write the load program as CSV, one row per segment, units in the headers
     (``name[unit]``, :mod:`dryfriction.io.units`); the ``--segments`` form of the whole
     program in a comment line on top. ``t_start_lo[s]`` and ``t_start_hi[s]`` are the 95 %
@@ -278,7 +280,8 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
     computed), ``t_start_p`` the probability that the change lies within the larger of one
     sample and 0.5 s of ``t_start`` and ``t_start_placed`` whether that is at least
     :data:`PLACED_P` (:class:`Segment`). With the record's ``time``, the ``--segments`` line
-    gives each start as its shortest decimal (:func:`segments_spec`)."""
+    gives each start as its shortest decimal (:func:`segments_spec`). Each of ``notes`` (e.g.
+    a unit assumed for want of one in the header) is a comment line under it."""
     from ..io.units import SEGMENT_UNITS, header
 
     what, _, scale = _normal_column(normal_unit)
@@ -286,7 +289,7 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
              "velocity_um", "i_start", "i_end", "samples", "confidence", "t_start_lo",
              "t_start_hi", "t_start_placed", "t_start_p", what.replace(" ", "_"))
     rows = [f"# --segments {segments_spec(segments, t0, time)}",
-            ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
+            *(f"# {n}" for n in notes), ",".join(header(n, SEGMENT_UNITS[n]) for n in names)]
     for j, s in enumerate(segments):
         prev = segments[j - 1].velocity if j else None
         kind = ("hold" if s.velocity == 0.0 else "start" if j == 0 else
