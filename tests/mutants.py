@@ -3486,6 +3486,9 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fit: --direct with static data refused in the library's words", "app/checks.py",
        'if "static" in kinds and "cv" in fitted and given("direct"):', "if False:",
        "tests/app/test_fit_applies.py", "-k", "static_data"),
+    _m("normal change: the first sample past the level taken across a gap",
+       "records/artifacts.py", "if not NEAREST_CROSSING or j < 2 or sn[j] == sn[j - 1]:",
+       "if True:", "tests/records/test_artifacts_generic.py", "-k", "gap_just"),
     # --- end stop 39 (lead)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)

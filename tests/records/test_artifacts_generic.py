@@ -85,3 +85,22 @@ def test_normal_stress_ramp_in_slow_sampling_is_one_change(ramp: float) -> None:
     (i,) = normal_changes(t, sn)
     # the half-way crossing, to the sample (1 s here)
     assert t[i] == pytest.approx(start + 0.5 * ramp, abs=1.01)
+
+
+@pytest.mark.parametrize("level_after, lead", [(11.3e6, 0.004), (47.0e6, 0.031)])
+def test_normal_stress_ramp_cut_by_a_gap_just_after_half_way(level_after: float,
+                                                             lead: float) -> None:
+    """A gap of 6.3 s opening ``lead`` s after a ramp's half-way time (down and up): the
+    change is the sample before the gap, nearest the crossing interpolated across it, not the
+    first sample after the gap (zoo 12014: the change reported 6.3 s late). Mistake: the
+    first sample past the level taken across a gap."""
+    rng = np.random.default_rng(31)
+    t = _times((0.02, 3000))
+    start, ramp = 31.4, 8.5
+    half = start + 0.5 * ramp
+    t = t[(t < half + lead) | (t > half + lead + 6.3)]
+    sn = 29.6e6 + (level_after - 29.6e6) * np.clip((t - start) / ramp, 0.0, 1.0)
+    sn = sn + rng.normal(0, 1e3, t.size)
+    (i,) = normal_changes(t, sn)
+    assert t[i] == pytest.approx(half, abs=0.05)
+    assert t[i + 1] - t[i] > 6.0  # the gap follows it
