@@ -88,6 +88,19 @@ def test_ratio_2_steps_placed_better_on_two_periods_each_side() -> None:
     assert on >= 59 and on >= off + 1, (on, off)
 
 
+def _placements(recs: list[LabRecord]) -> dict[bool, list[tuple]]:
+    """Each record's segments (first sample, 95 % interval) with ``OSC_WIDE`` on and off."""
+    default, got = P.OSC_WIDE, {}
+    for wide in (True, False):
+        P.OSC_WIDE = wide
+        try:
+            got[wide] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in
+                               detect_program(r).segments) for r in recs]
+        finally:
+            P.OSC_WIDE = default
+    return got
+
+
 def _short(seed: int, ratio: float) -> LabRecord:
     """A short step: 0.3-10 um/s for 150-300 s, ``ratio`` times that for 8-20 s, back for
     150-300 s, 10 Hz, the zoo's oscillation, servo error, white noise and quantum
@@ -106,16 +119,7 @@ def test_short_step_placement_unchanged_by_osc_wide() -> None:
     # guard, 16 of 20 placements moved, measured; on the zoo, short steps of ratio 3 widened
     # without it broke: 194, 5018, 7238, 11234). The mistake it is for: the room not looked
     # at (the long side widened alone)
-    got = {}
-    default = P.OSC_WIDE
-    recs = [_short(seed, 2.0) for seed in range(12)]
-    for wide in (True, False):
-        P.OSC_WIDE = wide
-        try:
-            got[wide] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in
-                               detect_program(r).segments) for r in recs]
-        finally:
-            P.OSC_WIDE = default
+    got = _placements([_short(seed, 2.0) for seed in range(12)])
     assert all(len(g) == 3 for g in got[True])
     assert got[True] == got[False]
 
@@ -124,14 +128,5 @@ def test_ratio_3_placement_unchanged_by_osc_wide() -> None:
     # ratio-3 steps with the zoo's oscillation (seeds 0-11) are placed as before whatever
     # OSC_WIDE says: the wider window is for ratios up to OSC_WIDE_RATIO only (every moving
     # step widened moves 3 of these 12, measured). The mistake it is for: every step widened
-    got = {}
-    default = P.OSC_WIDE
-    recs = [_step(seed, 3.0, z.WOBBLE)[0] for seed in range(12)]
-    for wide in (True, False):
-        P.OSC_WIDE = wide
-        try:
-            got[wide] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in
-                               detect_program(r).segments) for r in recs]
-        finally:
-            P.OSC_WIDE = default
+    got = _placements([_step(seed, 3.0, z.WOBBLE)[0] for seed in range(12)])
     assert got[True] == got[False]
