@@ -189,27 +189,20 @@ def displacement(record: LabRecord) -> Array:
 
 
 # ------------------------------------------------------------------------------ fluctuations
-def _window_slopes(t: Array, x: Array, width: float, offset: float
-                   ) -> tuple[Array, Array, Array, Array, Array]:
-    """OLS slope of each window ``[offset + m width, offset + (m+1) width)``, its ``Sxx``,
-    whether it is usable (>= 3 samples spread over at least half the window), each sample's
-    window (from 0) and each window's sample count."""
-    w = np.floor((t - offset) / width).astype(np.int64)
-    w0 = int(w[0])
-    w -= w0
-    tt = t - (offset + (w + w0) * width)  # in [0, width): well-conditioned sums
-    nw = int(w[-1]) + 1
-    n = np.bincount(w, minlength=nw).astype(float)
-    st = np.bincount(w, tt, nw)
-    sx = np.bincount(w, x, nw)
-    stt = np.bincount(w, tt * tt, nw)
-    stx = np.bincount(w, tt * x, nw)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        var_t = stt / n - (st / n) ** 2
-        slope = (stx / n - st * sx / n**2) / var_t
-    # a window at least half covered: var_t of a uniform spread over width/2 is width**2/48
-    ok = (n >= 3) & (var_t >= width**2 / 48.0) & np.isfinite(slope)
-    return slope, n * var_t, ok, w, n
+def _window_pairs(t: Array, x: Array, speed: Array, width: float, offset: float,
+                  half_s2: float) -> tuple[Array, Array]:
+    """For each pair of adjacent usable windows ``[offset + m width, offset + (m+1) width)``:
+    ``(s2 - s1)**2 / 2 - half_s2 (1/Sxx1 + 1/Sxx2)`` (``s`` the windows' OLS slopes of
+    ``x(t)``, ``Sxx`` their times' sums of squares) and the mean of the two windows' mean
+    ``speed``. A window is usable with >= 3 samples spread over at least half of it (a uniform
+    spread over ``width / 2`` has the time variance ``width**2 / 48``) and a finite slope.
+    Compiled (:func:`.hinge_kernel.window_pairs`: each window's sums over its samples, times
+    from the window's start, in one pass)."""
+    from .hinge_kernel import window_pairs  # Numba: imported on first use only
+
+    return window_pairs(np.ascontiguousarray(t, np.float64), np.ascontiguousarray(x, np.float64),
+                        np.ascontiguousarray(speed, np.float64), float(width), float(offset),
+                        float(half_s2), width**2 / 48.0)
 
 
 def _median(a: Array) -> float:
@@ -282,13 +275,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):
             if off in (0.25 * T, 0.75 * T) and sum(len(q) for q in ys) >= 100:
                 break  # pairs enough from two offsets (the other two only for long T)
-            s, sxx, ok, w, cnt = _window_slopes(t, res, T, float(t[0]) - off)
-            u = np.bincount(w, speed, len(s)) / np.maximum(cnt, 1)
-            pair = ok[1:] & ok[:-1]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                w2 = 0.5 * sigma**2 * (1.0 / sxx[1:] + 1.0 / sxx[:-1])
-            ys.append((0.5 * (s[1:] - s[:-1]) ** 2 - w2)[pair])
-            us.append((0.5 * (u[1:] + u[:-1]))[pair])
+            # each pair's (s2 - s1)**2 / 2 less its white part w**2, and its mean speed
+            y_off, u_off = _window_pairs(t, res, speed, T, float(t[0]) - off, 0.5 * sigma**2)
+            ys.append(y_off)
+            us.append(u_off)
         y, u = np.concatenate(ys), np.concatenate(us)
         if y.size >= 24:
             # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the

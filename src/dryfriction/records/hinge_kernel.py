@@ -1,10 +1,13 @@
-"""The best hinge of a stretch in one compiled pass (Numba; the kernel of
-:func:`.segmentation.best_hinge`, which documents the model).
+"""The detector's compiled kernels (Numba): the best hinge of a stretch in one pass (the kernel
+of :func:`.segmentation.best_hinge`, which documents the model), and the slopes of adjacent
+windows of one duration (the kernel of :func:`.detection.measure_fluctuations`).
 
 The candidate search calls the best hinge of a stretch thousands of times per record, each on
 tens to thousands of samples: vectorised NumPy spends its time in the calls' overhead there,
 one compiled pass does not. Same sums, same formulas (the normal equations of
-``x = c + v1 min(t - tk, 0) + v2 max(t - tk, 0)``), accumulated sample by sample.
+``x = c + v1 min(t - tk, 0) + v2 max(t - tk, 0)``), accumulated sample by sample. The window
+slopes are taken at some 20 durations and offsets per fluctuation measurement, several
+measurements per record: one pass over the samples each, not a dozen NumPy calls.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["hinge_scan"]
+__all__ = ["hinge_scan", "window_pairs"]
 
 
 @numba.njit(cache=True)
@@ -85,3 +88,61 @@ def hinge_scan(t: np.ndarray, x: np.ndarray, m: int, min_dur: float) -> tuple[in
     if best_k < 0:
         return -1, 0.0
     return best_k, best_g
+
+
+@numba.njit(cache=True, error_model="numpy")
+def window_pairs(t: np.ndarray, x: np.ndarray, speed: np.ndarray, width: float, offset: float,
+                 half_s2: float, min_var: float) -> tuple[np.ndarray, np.ndarray]:
+    """For each pair of adjacent usable windows ``[offset + m width, offset + (m+1) width)``
+    of ``x(t)``: ``(s2 - s1)**2 / 2 - half_s2 (1/Sxx1 + 1/Sxx2)`` (``s`` the windows' OLS
+    slopes) and the mean of the two windows' mean ``speed``; a window is usable with >= 3
+    samples, a time variance of at least ``min_var`` and a finite slope.
+
+    The sums and formulas of :func:`.detection.measure_fluctuations` (which documents them:
+    its ``_window_slopes``, ``np.bincount`` per window, with times taken from each window's
+    start), in the same order: the same numbers to the last bit, in one pass."""
+    n = t.size
+    w0 = np.int64(np.floor((t[0] - offset) / width))
+    nw = np.int64(np.floor((t[n - 1] - offset) / width)) - w0 + 1
+    cnt = np.zeros(nw)
+    st = np.zeros(nw)
+    sx = np.zeros(nw)
+    stt = np.zeros(nw)
+    stx = np.zeros(nw)
+    su = np.zeros(nw)
+    for i in range(n):
+        wi = np.int64(np.floor((t[i] - offset) / width))
+        k = wi - w0
+        tt = t[i] - (offset + wi * width)  # in [0, width): well-conditioned sums
+        cnt[k] += 1.0
+        st[k] += tt
+        sx[k] += x[i]
+        stt[k] += tt * tt
+        stx[k] += tt * x[i]
+        su[k] += speed[i]
+    slope = np.empty(nw)
+    sxx = np.empty(nw)
+    u = np.empty(nw)
+    ok = np.zeros(nw, np.bool_)
+    for k in range(nw):
+        c = cnt[k]
+        mt = st[k] / c
+        var_t = stt[k] / c - mt * mt
+        slope[k] = (stx[k] / c - st[k] * sx[k] / (c * c)) / var_t
+        sxx[k] = c * var_t
+        u[k] = su[k] / max(c, 1.0)
+        ok[k] = c >= 3.0 and var_t >= min_var and np.isfinite(slope[k])
+    m = 0
+    for k in range(nw - 1):
+        if ok[k] and ok[k + 1]:
+            m += 1
+    y = np.empty(m)
+    up = np.empty(m)
+    j = 0
+    for k in range(nw - 1):
+        if ok[k] and ok[k + 1]:
+            d = slope[k + 1] - slope[k]
+            y[j] = 0.5 * (d * d) - half_s2 * (1.0 / sxx[k + 1] + 1.0 / sxx[k])
+            up[j] = 0.5 * (u[k + 1] + u[k])
+            j += 1
+    return y, up
