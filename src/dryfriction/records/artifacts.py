@@ -42,13 +42,13 @@ def _local_rate(rate: Array, side: str, k: int = 5) -> Array:
     (the record's first or last rate standing in beyond its ends)."""
     n = len(rate)
     pad = np.concatenate([np.full(k, rate[0]), rate, np.full(k, rate[-1])])
-    win = np.lib.stride_tricks.sliding_window_view(pad, k)
     # window j covers pad[j:j+k] = rate[j-k:j]: before increment i is window i, after is i+k+1
-    idx = np.arange(n) + (0 if side == "before" else k + 1)
-    w = win[np.minimum(idx, len(win) - 1)]
-    if k == 5:  # a network, not a sort per row (a tenth of the time)
-        return _median5(*(w[:, j] for j in range(5)))
-    return np.median(w, axis=1)
+    o = 0 if side == "before" else k + 1
+    if k == 5:  # a network, not a sort per row (a tenth of the time); the windows' j-th
+        # members are the slice pad[o + j:o + j + n], no copy of the n x k windows
+        return _median5(*(pad[o + j:o + j + n] for j in range(5)))
+    win = np.lib.stride_tricks.sliding_window_view(pad, k)
+    return np.median(win[np.arange(n) + o], axis=1)
 
 
 def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:

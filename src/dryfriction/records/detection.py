@@ -309,11 +309,27 @@ class _Fits:
 
     def __init__(self, t: Array, x: Array) -> None:
         self.t, self.x = t, x
+        # the tables asked for, by their bounds: the pruning asks for the same bounds several
+        # times (its scores, their confidences, the reach); read-only, as they are shared
+        self._memo: dict[tuple[int, ...], tuple[Array, Array, Array]] = {}
 
     def table(self, bounds: list[int]) -> tuple[Array, Array, Array]:
         """Velocities (m/s), durations (s) and ``Sxx`` (s^2) of the stretches between
         ``bounds`` (increasing sample indices; only the samples between the first and the last
-        are read)."""
+        are read); read-only arrays, computed once for each ``bounds``."""
+        key = tuple(bounds)
+        got = self._memo.get(key)
+        if got is None:
+            got = self._table(bounds)
+            for q in got:
+                q.flags.writeable = False
+            if len(self._memo) >= 256:
+                self._memo.clear()
+            self._memo[key] = got
+        return got
+
+    def _table(self, bounds: list[int]) -> tuple[Array, Array, Array]:
+        """:meth:`table`, computed."""
         b = np.asarray(bounds, np.int64)
         lo = int(b[0])
         t, x = self.t[lo:b[-1]], self.x[lo:b[-1]]
@@ -443,9 +459,10 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
         if EDGE_BURSTS:
             tol = np.where(_edge_bursts(v, d, rel, hold), max(rel_tol, EXCURSION_REL), tol)
-    score = np.minimum(np.minimum(z / z_min, rel / tol), _slip_ratio(v, d, fl) / SLIP_MIN)
+    slip = _slip_ratio(v, d, fl) / SLIP_MIN
+    score = np.minimum(np.minimum(z / z_min, rel / tol), slip)
     one = hold[1:] ^ hold[:-1]
-    score = np.where(one, np.minimum(z / z_min, _slip_ratio(v, d, fl) / SLIP_MIN), score)
+    score = np.where(one, np.minimum(z / z_min, slip), score)
     score = np.where(hold[1:] & hold[:-1], 0.0, score)
     if len(v) >= 3 and m > 0:
         # a transition: a stretch of < 2m samples between its neighbours' velocities (a
