@@ -278,7 +278,9 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     # a ramp splits many times: changes within 30 s (or 10 blocks) of each other are one,
     # placed where the level crosses half-way between the levels outside the cluster
     tb = t[: m * block].reshape(m, block)[:, 0]
-    gap = max(30.0, 10 * block * float(np.median(np.diff(t))))
+    # (the record's median interval, a pass over every sample, only where two changes may
+    # be one)
+    gap = max(30.0, 10 * block * float(np.median(np.diff(t)))) if len(out) > 1 else 0.0
     clusters: list[list[int]] = []
     for kk in sorted(out):
         if clusters and (tb[kk] - tb[clusters[-1][-1]] <= gap
@@ -316,7 +318,10 @@ def _nearest_crossing(t: Array, sn: Array, j: int, mid: float) -> int:
     if not NEAREST_CROSSING or j < 2 or sn[j] == sn[j - 1]:
         return j
     dt = t[j] - t[j - 1]
-    if not dt > 10.0 * max(float(np.median(np.diff(t))), float(t[j - 1] - t[j - 2])):
+    # the interval before first: the record's median interval (a pass over every sample) is
+    # needed only where the gap stands out from it
+    if not dt > 10.0 * float(t[j - 1] - t[j - 2]) or not dt > 10.0 * max(
+            float(np.median(np.diff(t))), float(t[j - 1] - t[j - 2])):
         return j
     tc = t[j - 1] + (mid - sn[j - 1]) / (sn[j] - sn[j - 1]) * (t[j] - t[j - 1])
     return j - 1 if tc - t[j - 1] < t[j] - tc else j

@@ -54,6 +54,14 @@ def line_fit(t: Array, x: Array) -> tuple[float, float, float]:
     return slope, float(xm), sxx
 
 
+def _plain(a: Array) -> bool:
+    """Whether ``a`` is a contiguous, writable float64 ndarray (as the compiled kernel takes)."""
+    if type(a) is not np.ndarray or a.dtype != np.float64:
+        return False
+    f = a.flags
+    return bool(f.c_contiguous and f.writeable)
+
+
 def best_hinge(t: Array, x: Array, m: int, min_dur: float, compiled: bool = True
                ) -> tuple[int, float]:
     """Best hinge sample ``k`` (``m <= k <= n - m``) and the RSS it saves over one line.
@@ -63,9 +71,12 @@ def best_hinge(t: Array, x: Array, m: int, min_dur: float, compiled: bool = True
     if compiled:
         from .hinge_kernel import hinge_scan  # Numba: imported on first use only
 
-        # contiguous, writable float64: one compiled specialisation (the one warm-up builds)
-        k, g = hinge_scan(np.require(t, np.float64, ["C", "W"]),
-                          np.require(x, np.float64, ["C", "W"]), int(m), float(min_dur))
+        # contiguous, writable float64: one compiled specialisation (the one warm-up builds);
+        # a slice of the detector's arrays is one already (np.require's checks cost more than
+        # the scan of a short stretch: tested here first)
+        k, g = hinge_scan(t if _plain(t) else np.require(t, np.float64, ["C", "W"]),
+                          x if _plain(x) else np.require(x, np.float64, ["C", "W"]), int(m),
+                          float(min_dur))
         return int(k), float(g)
     n = len(t)
     if n < 2 * m + 1:
