@@ -1,6 +1,7 @@
 """The detector's compiled kernels (Numba): the best hinge of a stretch in one pass (the kernel
 of :func:`.segmentation.best_hinge`, which documents the model), and the slopes of adjacent
-windows of one duration (the kernel of :func:`.detection.measure_fluctuations`).
+windows of one duration and the residuals about each stretch's line (the kernels of
+:func:`.detection.measure_fluctuations`).
 
 The candidate search calls the best hinge of a stretch thousands of times per record, each on
 tens to thousands of samples: vectorised NumPy spends its time in the calls' overhead there,
@@ -15,7 +16,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["hinge_scan", "window_pairs"]
+__all__ = ["hinge_scan", "pairwise_sum", "stretch_residuals", "window_pairs"]
 
 
 @numba.njit(cache=True)
@@ -146,3 +147,78 @@ def window_pairs(t: np.ndarray, x: np.ndarray, speed: np.ndarray, width: float, 
             up[j] = 0.5 * (u[k + 1] + u[k])
             j += 1
     return y, up
+
+
+@numba.njit(cache=True)
+def pairwise_sum(a: np.ndarray, lo: int, n: int) -> float:
+    """``a[lo:lo + n].sum()`` as NumPy sums a contiguous float64 array (its pairwise summation:
+    blocks of at most 128 summed in eight interleaved partial sums, longer runs halved at a
+    multiple of 8), so that the same numbers give the same sum to the last bit."""
+    if n < 8:
+        res = 0.0
+        for i in range(n):
+            res += a[lo + i]
+        return res
+    if n <= 128:
+        r0 = a[lo]
+        r1 = a[lo + 1]
+        r2 = a[lo + 2]
+        r3 = a[lo + 3]
+        r4 = a[lo + 4]
+        r5 = a[lo + 5]
+        r6 = a[lo + 6]
+        r7 = a[lo + 7]
+        i = 8
+        while i < n - n % 8:
+            r0 += a[lo + i]
+            r1 += a[lo + i + 1]
+            r2 += a[lo + i + 2]
+            r3 += a[lo + i + 3]
+            r4 += a[lo + i + 4]
+            r5 += a[lo + i + 5]
+            r6 += a[lo + i + 6]
+            r7 += a[lo + i + 7]
+            i += 8
+        res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+        while i < n:
+            res += a[lo + i]
+            i += 1
+        return res
+    n2 = n // 2
+    n2 -= n2 % 8
+    return pairwise_sum(a, lo, n2) + pairwise_sum(a, lo + n2, n - n2)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def stretch_residuals(t: np.ndarray, x: np.ndarray, bounds: np.ndarray, velocity: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The residuals of ``x(t)`` about the least-squares line of each stretch between
+    ``bounds`` and each sample's stretch speed ``|velocity|``: per stretch, as
+    :func:`.segmentation.line_fit` and :func:`.detection.measure_fluctuations` compute them
+    with NumPy (means and sums by :func:`pairwise_sum`, the same operations in the same
+    order), the same numbers to the last bit, without a dozen NumPy calls per stretch."""
+    n = t.size
+    res = np.empty(n)
+    speed = np.empty(n)
+    tc = np.empty(n)
+    prod = np.empty(n)
+    for j in range(bounds.size - 1):
+        a = bounds[j]
+        b = bounds[j + 1]
+        m = b - a
+        if m <= 0:
+            continue
+        tm = pairwise_sum(t, a, m) / m
+        xm = pairwise_sum(x, a, m) / m
+        for i in range(a, b):
+            tc[i] = t[i] - tm
+            prod[i] = tc[i] * tc[i]
+        sxx = pairwise_sum(prod, a, m)
+        for i in range(a, b):
+            prod[i] = tc[i] * (x[i] - xm)
+        slope = pairwise_sum(prod, a, m) / sxx if sxx > 0 else 0.0
+        u = abs(velocity[j])
+        for i in range(a, b):
+            res[i] = (x[i] - xm) - slope * tc[i]
+            speed[i] = u
+    return res, speed
