@@ -57,29 +57,39 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     A reset is one increment outside the range that the velocities just before and just after
     it explain, by more than :data:`_RESET_K` robust scales of the increments' scatter (ours).
     """
-    d = np.diff(x)
-    dt = np.diff(t)
-    if d.size < 12:
+    if len(x) - 1 < 12:
         return x, []
-    rate = d / dt
-    vb, va = _local_rate(rate, "before"), _local_rate(rate, "after")
-    vb = np.where(np.isfinite(vb), vb, va)
-    va = np.where(np.isfinite(va), va, vb)
-    lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
-    e = d - vb * dt  # the increment less the slip the velocity just before gives
-    e = e[np.isfinite(e)]
+    if COMPILED_RESETS:
+        from .hinge_kernel import reset_increments, reset_jumps  # Numba: on first use only
+
+        t, x = np.ascontiguousarray(t, np.float64), np.ascontiguousarray(x, np.float64)
+        # the lines below in one compiled pass (the same numbers): the medians stay NumPy's
+        d, dt, lo, hi, e, r, quantum = reset_increments(t, x)
+    else:
+        d = np.diff(x)
+        dt = np.diff(t)
+        rate = d / dt
+        vb, va = _local_rate(rate, "before"), _local_rate(rate, "after")
+        vb = np.where(np.isfinite(vb), vb, va)
+        va = np.where(np.isfinite(va), va, vb)
+        lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
+        e = d - vb * dt  # the increment less the slip the velocity just before gives
+        e = e[np.isfinite(e)]
+        nz = np.abs(d[d != 0.0])
+        quantum = float(nz.min()) if nz.size else 0.0
+        r = (rate - vb)[np.isfinite(rate - vb)]
     spread = 1.4826 * float(np.median(np.abs(e - np.median(e)))) if e.size else 0.0
-    nz = np.abs(d[d != 0.0])
-    quantum = float(nz.min()) if nz.size else 0.0
     scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
     # the local rates are medians of 5 noisy increment rates: their error, times an
     # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
     # hundreds of intervals), so it widens the range by 3 of its scales (1.2533: a median's)
-    r = (rate - vb)[np.isfinite(rate - vb)]
     s_v = 1.2533 * 1.4826 * float(np.median(np.abs(r - np.median(r)))) / np.sqrt(5.0) if (
         r.size) else 0.0
-    lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
-    jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
+    if COMPILED_RESETS:
+        jump = reset_jumps(d, dt, lo, hi, 3.0 * s_v, _RESET_K * scale)
+    else:
+        lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
+        jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
     if jump.size == 0:
         return x, []
     fix = np.zeros_like(x)
@@ -93,6 +103,12 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
             A, x[a:b], rcond=None)[0][2]
     return x + fix, [int(i) for i in jump]
 
+
+COMPILED_RESETS = True
+"""Whether :func:`find_resets` tests the increments in one compiled pass
+(:func:`.hinge_kernel.reset_increments`, :func:`.hinge_kernel.reset_jumps`) rather than
+NumPy's dozen passes over the record: the same operations, the same resets (a speed change
+only; the NumPy form is kept as the reference the tests compare with)."""
 
 RESET_KINK = True
 """A reset's offset is fitted with a kink of the line allowed in its window (ours, detect11):

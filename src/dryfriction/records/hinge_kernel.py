@@ -1,7 +1,8 @@
 """The detector's compiled kernels (Numba): the best hinge of a stretch in one pass (the kernel
 of :func:`.segmentation.best_hinge`, which documents the model), and the slopes of adjacent
 windows of one duration and the residuals about each stretch's line (the kernels of
-:func:`.detection.measure_fluctuations`).
+:func:`.detection.measure_fluctuations`), and the increments' tests of
+:func:`.artifacts.find_resets`.
 
 The candidate search calls the best hinge of a stretch thousands of times per record, each on
 tens to thousands of samples: vectorised NumPy spends its time in the calls' overhead there,
@@ -16,7 +17,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["hinge_scan", "pairwise_sum", "stretch_residuals", "window_pairs"]
+__all__ = ["hinge_scan", "pairwise_sum", "reset_increments", "reset_jumps", "stretch_residuals",
+           "window_pairs"]
 
 
 @numba.njit(cache=True)
@@ -222,3 +224,104 @@ def stretch_residuals(t: np.ndarray, x: np.ndarray, bounds: np.ndarray, velocity
             res[i] = (x[i] - xm) - slope * tc[i]
             speed[i] = u
     return res, speed
+
+
+@numba.njit(cache=True)
+def _nmin(a: float, b: float) -> float:
+    """``np.minimum`` of two floats (a NaN propagates)."""
+    if a != a:
+        return a
+    if b != b:
+        return b
+    return a if a <= b else b
+
+
+@numba.njit(cache=True)
+def _nmax(a: float, b: float) -> float:
+    """``np.maximum`` of two floats (a NaN propagates)."""
+    if a != a:
+        return a
+    if b != b:
+        return b
+    return a if a >= b else b
+
+
+@numba.njit(cache=True)
+def _median5(a: float, b: float, c: float, d: float, e: float) -> float:
+    """The selection network of :func:`.artifacts.find_resets`' local rates, on five floats."""
+    f = _nmax(_nmin(a, b), _nmin(c, d))
+    g = _nmin(_nmax(a, b), _nmax(c, d))
+    return _nmax(_nmin(f, g), _nmin(_nmax(f, g), e))
+
+
+@numba.njit(cache=True, error_model="numpy")
+def reset_increments(t: np.ndarray, x: np.ndarray):  # type: ignore[no-untyped-def]
+    """The increments of :func:`.artifacts.find_resets` (which documents them) in one pass:
+    ``d``, ``dt``, the range ``lo``, ``hi`` the local rates before and after each increment
+    explain (the median of 5 rates each side, the record's first or last rate beyond its
+    ends), the finite ``d - vb dt`` and ``rate - vb``, and the smallest nonzero ``|d|`` (0:
+    none). The same operations as the NumPy form, element by element: the same numbers."""
+    n = x.size - 1
+    d = np.empty(n)
+    dt = np.empty(n)
+    rate = np.empty(n)
+    for i in range(n):
+        d[i] = x[i + 1] - x[i]
+        dt[i] = t[i + 1] - t[i]
+        rate[i] = d[i] / dt[i]
+    lo = np.empty(n)
+    hi = np.empty(n)
+    e = np.empty(n)
+    r = np.empty(n)
+    ne = 0
+    nr = 0
+    quantum = np.inf
+    nz = False
+    w = np.empty(10)
+    for i in range(n):
+        # pad[j] = rate[0] (j < 5), rate[j - 5], rate[n - 1] (j >= n + 5): before increment i
+        # the window pad[i:i + 5], after it pad[i + 6:i + 11]
+        for k in range(5):
+            for side in range(2):
+                j = i + k + 6 * side
+                w[5 * side + k] = rate[0] if j < 5 else (rate[j - 5] if j < n + 5 else
+                                                          rate[n - 1])
+        vb = _median5(w[0], w[1], w[2], w[3], w[4])
+        va = _median5(w[5], w[6], w[7], w[8], w[9])
+        if not np.isfinite(vb):
+            vb = va
+        if not np.isfinite(va):
+            va = vb
+        lo[i] = _nmin(vb, va) * dt[i]
+        hi[i] = _nmax(vb, va) * dt[i]
+        ei = d[i] - vb * dt[i]
+        if np.isfinite(ei):
+            e[ne] = ei
+            ne += 1
+        ri = rate[i] - vb
+        if np.isfinite(ri):
+            r[nr] = ri
+            nr += 1
+        if d[i] != 0.0:
+            a = abs(d[i])
+            if nz:
+                quantum = _nmin(quantum, a)
+            else:
+                quantum = a
+                nz = True
+    return d, dt, lo, hi, e[:ne], r[:nr], quantum if nz else 0.0
+
+
+@numba.njit(cache=True)
+def reset_jumps(d: np.ndarray, dt: np.ndarray, lo: np.ndarray, hi: np.ndarray, widen: float,
+                margin: float) -> np.ndarray:
+    """The increments outside ``[lo - widen dt - margin, hi + widen dt + margin]``
+    (:func:`.artifacts.find_resets`: the same operations, in the same order)."""
+    out = np.empty(d.size, np.int64)
+    m = 0
+    for i in range(d.size):
+        w = widen * dt[i]
+        if d[i] < (lo[i] - w) - margin or d[i] > (hi[i] + w) + margin:
+            out[m] = i
+            m += 1
+    return out[:m]
