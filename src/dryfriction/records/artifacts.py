@@ -107,8 +107,10 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
 COMPILED_RESETS = True
 """Whether :func:`find_resets` tests the increments in one compiled pass
 (:func:`.hinge_kernel.reset_increments`, :func:`.hinge_kernel.reset_jumps`) rather than
-NumPy's dozen passes over the record: the same operations, the same resets (a speed change
-only; the NumPy form is kept as the reference the tests compare with)."""
+NumPy's dozen passes over the record, and the block medians of :func:`sampling_changes` and
+:func:`normal_changes` are compiled (:func:`.hinge_kernel.row_medians`): the same operations,
+the same numbers (a speed change only; the NumPy forms are kept as the reference the tests
+compare with)."""
 
 RESET_KINK = True
 """A reset's offset is fitted with a kink of the line allowed in its window (ours, detect11):
@@ -245,6 +247,16 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
     return out
 
 
+def _block_medians(a: Array) -> Array:
+    """``np.median(a, axis=1)`` of blocks of samples (rows), compiled where it is the same
+    (:func:`.hinge_kernel.row_medians`: a float64 array, :data:`COMPILED_RESETS`)."""
+    if not COMPILED_RESETS or a.dtype != np.float64 or a.shape[1] == 0:
+        return np.median(a, axis=1)
+    from .hinge_kernel import row_medians  # Numba: imported on first use only
+
+    return row_medians(np.ascontiguousarray(a))
+
+
 def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float]]:
     """Times of sampling-rate changes and of gaps (see :class:`Detection`)."""
     dt = np.diff(t)
@@ -252,7 +264,7 @@ def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float
         return [], []
     med = float(np.median(dt))
     m = dt.size // block
-    bm = np.median(dt[: m * block].reshape(m, block), axis=1)
+    bm = _block_medians(dt[: m * block].reshape(m, block))
     changes: list[float] = []
     ratio = bm[1:] / bm[:-1]
     for j in np.flatnonzero((ratio > _RATE_FACTOR) | (ratio < 1.0 / _RATE_FACTOR)):
@@ -271,7 +283,7 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     sn = np.asarray(sn, float)
     block = max(min_samples // 2, len(sn) // 2000, 1)
     m = len(sn) // block
-    bm = np.median(sn[: m * block].reshape(m, block), axis=1)
+    bm = _block_medians(sn[: m * block].reshape(m, block))
     noise = 1.4826 * float(np.median(np.abs(np.diff(bm) - np.median(np.diff(bm)))))
     out: list[int] = []
     todo = [(0, m)]

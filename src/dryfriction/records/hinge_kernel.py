@@ -1,8 +1,8 @@
 """The detector's compiled kernels (Numba): the best hinge of a stretch in one pass (the kernel
 of :func:`.segmentation.best_hinge`, which documents the model), and the slopes of adjacent
 windows of one duration and the residuals about each stretch's line (the kernels of
-:func:`.detection.measure_fluctuations`), and the increments' tests of
-:func:`.artifacts.find_resets`.
+:func:`.detection.measure_fluctuations`), the increments' tests of
+:func:`.artifacts.find_resets`, and the medians of short blocks (:func:`row_medians`).
 
 The candidate search calls the best hinge of a stretch thousands of times per record, each on
 tens to thousands of samples: vectorised NumPy spends its time in the calls' overhead there,
@@ -17,8 +17,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["hinge_scan", "pairwise_sum", "reset_increments", "reset_jumps", "stretch_residuals",
-           "window_pairs"]
+__all__ = ["hinge_scan", "pairwise_sum", "reset_increments", "reset_jumps", "row_medians",
+           "stretch_residuals", "window_pairs"]
 
 
 @numba.njit(cache=True)
@@ -325,3 +325,34 @@ def reset_jumps(d: np.ndarray, dt: np.ndarray, lo: np.ndarray, hi: np.ndarray, w
             out[m] = i
             m += 1
     return out[:m]
+
+
+@numba.njit(cache=True)
+def row_medians(a: np.ndarray) -> np.ndarray:
+    """``np.median(a, axis=1)`` of a C-contiguous 2-d float64 array of short rows (blocks of a
+    few to a few tens of samples): each row sorted by insertion, the middle value or the mean
+    of the two middle ones (``(p + q) / 2``, as NumPy's mean of them), NaN for a row that holds
+    one, as NumPy's: the same numbers, without a partition call per row."""
+    m, k = a.shape
+    out = np.empty(m)
+    s = np.empty(k)
+    h = k // 2
+    for i in range(m):
+        nan = False
+        for j in range(k):
+            v = a[i, j]
+            if v != v:
+                nan = True
+            # insertion: s[:j] sorted
+            p = j
+            while p > 0 and s[p - 1] > v:
+                s[p] = s[p - 1]
+                p -= 1
+            s[p] = v
+        if nan:
+            out[i] = np.nan
+        elif k % 2:
+            out[i] = s[h]
+        else:
+            out[i] = (s[h - 1] + s[h]) / 2.0
+    return out

@@ -219,11 +219,14 @@ def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
     peaks = peaks[np.argsort(pb[peaks])[::-1][: 4 * max_peaks]]  # the strongest only
     out: list[float] = []
     for j in peaks:  # strongest first; none within the main lobe (4 / span) of a stronger one
-        near = np.abs(lf - lf[j]) <= np.log(2.0)
+        if len(out) >= max_peaks:
+            break  # (a later period would not be returned, nor change those that are)
         fj = float(f[idx[j]])
-        if p[idx[j]] >= OSC_K * float(np.median(pb[near])) and all(
-                abs(fj - 1.0 / q) > 4.0 / span for q in out):
-            out.append(1.0 / fj)
+        # the cheap test first: a peak in a stronger one's lobe needs no median
+        if all(abs(fj - 1.0 / q) > 4.0 / span for q in out):
+            near = np.abs(lf - lf[j]) <= np.log(2.0)
+            if p[idx[j]] >= OSC_K * float(np.median(pb[near])):
+                out.append(1.0 / fj)
     return tuple(out[:max_peaks])
 
 
