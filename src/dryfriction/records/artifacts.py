@@ -249,8 +249,9 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
 
 def _block_medians(a: Array) -> Array:
     """``np.median(a, axis=1)`` of blocks of samples (rows), compiled where it is the same
-    (:func:`.hinge_kernel.row_medians`: a float64 array, :data:`COMPILED_RESETS`)."""
-    if not COMPILED_RESETS or a.dtype != np.float64 or a.shape[1] == 0:
+    and faster (:func:`.hinge_kernel.row_medians`, an insertion sort: a float64 array of rows
+    of at most 32, :data:`COMPILED_RESETS`)."""
+    if not COMPILED_RESETS or a.dtype != np.float64 or not 0 < a.shape[1] <= 32:
         return np.median(a, axis=1)
     from .hinge_kernel import row_medians  # Numba: imported on first use only
 
