@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..validation import Array
-from .segmentation import line_fit
+from .segmentation import line_fit, median
 
 __all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
 
@@ -78,12 +78,12 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         nz = np.abs(d[d != 0.0])
         quantum = float(nz.min()) if nz.size else 0.0
         r = (rate - vb)[np.isfinite(rate - vb)]
-    spread = 1.4826 * float(np.median(np.abs(e - np.median(e)))) if e.size else 0.0
+    spread = 1.4826 * median(np.abs(e - median(e))) if e.size else 0.0
     scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
     # the local rates are medians of 5 noisy increment rates: their error, times an
     # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
     # hundreds of intervals), so it widens the range by 3 of its scales (1.2533: a median's)
-    s_v = 1.2533 * 1.4826 * float(np.median(np.abs(r - np.median(r)))) / np.sqrt(5.0) if (
+    s_v = 1.2533 * 1.4826 * median(np.abs(r - median(r))) / np.sqrt(5.0) if (
         r.size) else 0.0
     if COMPILED_RESETS:
         jump = reset_jumps(d, dt, lo, hi, 3.0 * s_v, _RESET_K * scale)
@@ -263,7 +263,7 @@ def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float
     dt = np.diff(t)
     if dt.size < 2 * block:
         return [], []
-    med = float(np.median(dt))
+    med = median(dt)
     m = dt.size // block
     bm = _block_medians(dt[: m * block].reshape(m, block))
     changes: list[float] = []
@@ -285,7 +285,7 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     block = max(min_samples // 2, len(sn) // 2000, 1)
     m = len(sn) // block
     bm = _block_medians(sn[: m * block].reshape(m, block))
-    noise = 1.4826 * float(np.median(np.abs(np.diff(bm) - np.median(np.diff(bm)))))
+    noise = 1.4826 * median(np.abs(np.diff(bm) - median(np.diff(bm))))
     out: list[int] = []
     todo = [(0, m)]
     while todo:
@@ -309,7 +309,7 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     tb = t[: m * block].reshape(m, block)[:, 0]
     # (the record's median interval, a pass over every sample, only where two changes may
     # be one)
-    gap = max(30.0, 10 * block * float(np.median(np.diff(t)))) if len(out) > 1 else 0.0
+    gap = max(30.0, 10 * block * median(np.diff(t))) if len(out) > 1 else 0.0
     clusters: list[list[int]] = []
     for kk in sorted(out):
         if clusters and (tb[kk] - tb[clusters[-1][-1]] <= gap
@@ -350,7 +350,7 @@ def _nearest_crossing(t: Array, sn: Array, j: int, mid: float) -> int:
     # the interval before first: the record's median interval (a pass over every sample) is
     # needed only where the gap stands out from it
     if not dt > 10.0 * float(t[j - 1] - t[j - 2]) or not dt > 10.0 * max(
-            float(np.median(np.diff(t))), float(t[j - 1] - t[j - 2])):
+            median(np.diff(t)), float(t[j - 1] - t[j - 2])):
         return j
     tc = t[j - 1] + (mid - sn[j - 1]) / (sn[j] - sn[j - 1]) * (t[j] - t[j - 1])
     return j - 1 if tc - t[j - 1] < t[j] - tc else j

@@ -63,7 +63,7 @@ from .placement import (
     placed_probability,
 )
 from .record import LabRecord
-from .segmentation import best_hinge, hinge_segments, noise_level
+from .segmentation import best_hinge, hinge_segments, median, noise_level
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "PLACE_TOL", "Z_MIN"]
@@ -208,12 +208,13 @@ def _window_pairs(t: Array, x: Array, speed: Array, width: float, offset: float,
 def _median(a: Array) -> float:
     """The median of a non-empty 1-d array, as ``np.median`` (the mean of the two middle
     values for an even count) without its general-axis overhead: it is taken twice per time
-    scale of every fluctuation measurement."""
+    scale of every fluctuation measurement. One partition at the upper middle rank, the lower
+    one the largest value below it (a partition at both ranks costs about five times more)."""
     k = a.size // 2
+    p = np.partition(a, k)
     if a.size % 2:
-        return float(np.partition(a, k)[k])
-    p = np.partition(a, (k - 1, k))
-    return float(0.5 * (p[k - 1] + p[k]))
+        return float(p[k])
+    return float(0.5 * (p[:k].max() + p[k]))
 
 
 def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
@@ -258,7 +259,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     lag = float("inf")
     if fast.sum() >= 24 and speed.max() > 0:
         q = (res[fast] ** 2 - sigma**2) / speed[fast] ** 2
-        lag2 = 2.198 * float(np.median(q))
+        lag2 = 2.198 * median(q)
         lag = float(np.sqrt(lag2)) if lag2 > 0 else float("inf")
     if n > 200_000:  # time-averaged blocks: windows of >= 5 blocks see the same slopes
         bl = n // 100_000
@@ -266,7 +267,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         t, res, speed = (q[: m * bl].reshape(m, bl).mean(axis=1) for q in (t, res, speed))
         sigma = sigma / np.sqrt(bl)
     span = float(t[-1] - t[0])
-    dt = float(np.median(np.diff(t)))
+    dt = median(np.diff(t))
     scales: list[float] = []
     rel: list[float] = []
     ab: list[float] = []

@@ -35,6 +35,7 @@ import numpy as np
 from scipy.linalg import cho_factor, solve_triangular
 
 from ..validation import Array
+from .segmentation import median
 
 __all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
            "ou_parameters", "place_change", "place_changes", "placed_probability",
@@ -208,7 +209,7 @@ def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
     # a Hann window: a strong line's sidelobes (5 % of it unwindowed) are no lines of their own
     p = np.abs(np.fft.rfft(yg * np.hanning(n), 2 * n)) ** 2
     f = np.fft.rfftfreq(2 * n, dt)
-    pmin = max(5.0, 10.0 * float(np.median(np.diff(tt))))
+    pmin = max(5.0, 10.0 * median(np.diff(tt)))
     band = (f >= 3.0 / span) & (f <= 1.0 / pmin)
     idx = np.flatnonzero(band)
     if idx.size < 8:
@@ -225,7 +226,7 @@ def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
         # the cheap test first: a peak in a stronger one's lobe needs no median
         if all(abs(fj - 1.0 / q) > 4.0 / span for q in out):
             near = np.abs(lf - lf[j]) <= np.log(2.0)
-            if p[idx[j]] >= OSC_K * float(np.median(pb[near])):
+            if p[idx[j]] >= OSC_K * median(pb[near]):
                 out.append(1.0 / fj)
     return tuple(out[:max_peaks])
 
@@ -607,7 +608,7 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     # that of k samples at the window's median interval (EVEN_BLOCKS)
     fine = EVEN_BLOCKS and small_step(v1, v2)
     k = max(1, int(np.ceil((b - a) / BLOCKS)))
-    idx = (even_blocks(tt, k * float(np.median(np.diff(tt))), FINE_BLOCKS) if fine and k > 1
+    idx = (even_blocks(tt, k * median(np.diff(tt)), FINE_BLOCKS) if fine and k > 1
            else np.arange(0, b - a, k))
     cnt = np.diff(np.append(idx, b - a)).astype(float)
     tb = np.add.reduceat(tt, idx) / cnt

@@ -16,7 +16,28 @@ import numpy as np
 
 from ..validation import Array
 
-__all__ = ["noise_level", "line_fit", "rss", "best_hinge", "hinge_segments", "refine", "prune"]
+__all__ = ["median", "noise_level", "line_fit", "rss", "best_hinge", "hinge_segments", "refine",
+           "prune"]
+
+
+def median(a: Array) -> float:
+    """The median of an array's values, ``np.median``'s to the last bit (the middle value, or
+    the mean of the two middle ones, ``(p + q) / 2``; NaN where one is NaN or there is none).
+
+    From one partition at the upper middle rank and the largest value below it: NumPy's median
+    partitions at both middle ranks and at the last (its NaN check), about five times the cost
+    on a record of 20 000 samples, where the detector takes a dozen medians a record."""
+    a = np.asarray(a, float).ravel()
+    n = a.size
+    if n == 0:
+        return float("nan")
+    k = n // 2
+    p = np.partition(a, k)
+    if np.isnan(p[k:]).any():  # a NaN sorts last: none before a NaN at k
+        return float("nan")
+    if n % 2:
+        return float(p[k])
+    return float((p[:k].max() + p[k]) / 2.0)
 
 
 def noise_level(x: Array) -> float:
@@ -28,7 +49,7 @@ def noise_level(x: Array) -> float:
     d2 = np.diff(np.asarray(x, float), 2)
     if d2.size == 0:
         return 0.0
-    mad = 1.4826 * float(np.median(np.abs(d2 - np.median(d2))))
+    mad = 1.4826 * median(np.abs(d2 - median(d2)))
     a = np.abs(d2)
     trimmed = a[a <= np.quantile(a, 0.99)]
     rms = float(np.sqrt(np.mean(trimmed**2))) if trimmed.size else 0.0
