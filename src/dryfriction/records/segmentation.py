@@ -16,8 +16,8 @@ import numpy as np
 
 from ..validation import Array
 
-__all__ = ["median", "noise_level", "line_fit", "rss", "best_hinge", "hinge_segments", "refine",
-           "prune"]
+__all__ = ["median", "quantile", "noise_level", "line_fit", "rss", "best_hinge", "hinge_segments",
+           "refine", "prune"]
 
 
 def median(a: Array) -> float:
@@ -40,6 +40,35 @@ def median(a: Array) -> float:
     return float((p[:k].max() + p[k]) / 2.0)
 
 
+def quantile(a: Array, q: float) -> float:
+    """The ``q`` quantile of an array's values, ``np.quantile``'s (its default, linear
+    interpolation between the order statistics at ``floor((n - 1) q)`` and the next, by its
+    own formula) to the last bit; NaN where one is NaN.
+
+    From one partition at the upper rank and the largest value below it: NumPy partitions at
+    both ranks and at the first and the last, about five times the cost on a long record."""
+    a = np.asarray(a, float).ravel()
+    n = a.size
+    if n == 0:
+        return float("nan")
+    vi = (n - 1) * q
+    if vi >= n - 1 or vi < 0:  # beyond the ends: the largest or the smallest
+        i = n - 1 if vi >= n - 1 else 0
+        p = np.partition(a, i)
+        if np.isnan(p[i:]).any():
+            return float("nan")
+        return float(p[i])
+    i = int(np.floor(vi))
+    p = np.partition(a, i + 1)
+    if np.isnan(p[i + 1:]).any():
+        return float("nan")
+    lo, hi = p[:i + 1].max(), p[i + 1]
+    g = vi - i
+    d = hi - lo
+    # NumPy's lerp: from the lower end, or for a weight of 1/2 or more from the upper one
+    return float(hi - d * (1 - g) if g >= 0.5 else lo + d * g)
+
+
 def noise_level(x: Array) -> float:
     """Standard deviation of the white noise on a smooth signal, from its second differences.
 
@@ -51,7 +80,7 @@ def noise_level(x: Array) -> float:
         return 0.0
     mad = 1.4826 * median(np.abs(d2 - median(d2)))
     a = np.abs(d2)
-    trimmed = a[a <= np.quantile(a, 0.99)]
+    trimmed = a[a <= quantile(a, 0.99)]
     rms = float(np.sqrt(np.mean(trimmed**2))) if trimmed.size else 0.0
     return max(mad, rms) / np.sqrt(6.0)  # var(x[i+1] - 2x[i] + x[i-1]) = 6 sigma^2
 
