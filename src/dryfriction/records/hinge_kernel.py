@@ -264,11 +264,19 @@ def reset_increments(t: np.ndarray, x: np.ndarray):  # type: ignore[no-untyped-d
     n = x.size - 1
     d = np.empty(n)
     dt = np.empty(n)
-    rate = np.empty(n)
+    # pad[j] = rate[0] (j < 5), rate[j - 5], rate[n - 1] (j >= n + 5): before increment i the
+    # window pad[i:i + 5], after it pad[i + 6:i + 11], the median of window j med[j]
+    pad = np.empty(n + 10)
     for i in range(n):
         d[i] = x[i + 1] - x[i]
         dt[i] = t[i + 1] - t[i]
-        rate[i] = d[i] / dt[i]
+        pad[i + 5] = d[i] / dt[i]
+    for j in range(5):
+        pad[j] = pad[5]
+        pad[n + 5 + j] = pad[n + 4]
+    med = np.empty(n + 6)
+    for j in range(n + 6):
+        med[j] = _median5(pad[j], pad[j + 1], pad[j + 2], pad[j + 3], pad[j + 4])
     lo = np.empty(n)
     hi = np.empty(n)
     e = np.empty(n)
@@ -277,17 +285,9 @@ def reset_increments(t: np.ndarray, x: np.ndarray):  # type: ignore[no-untyped-d
     nr = 0
     quantum = np.inf
     nz = False
-    w = np.empty(10)
     for i in range(n):
-        # pad[j] = rate[0] (j < 5), rate[j - 5], rate[n - 1] (j >= n + 5): before increment i
-        # the window pad[i:i + 5], after it pad[i + 6:i + 11]
-        for k in range(5):
-            for side in range(2):
-                j = i + k + 6 * side
-                w[5 * side + k] = rate[0] if j < 5 else (rate[j - 5] if j < n + 5 else
-                                                          rate[n - 1])
-        vb = _median5(w[0], w[1], w[2], w[3], w[4])
-        va = _median5(w[5], w[6], w[7], w[8], w[9])
+        vb = med[i]
+        va = med[i + 6]
         if not np.isfinite(vb):
             vb = va
         if not np.isfinite(va):
@@ -298,7 +298,7 @@ def reset_increments(t: np.ndarray, x: np.ndarray):  # type: ignore[no-untyped-d
         if np.isfinite(ei):
             e[ne] = ei
             ne += 1
-        ri = rate[i] - vb
+        ri = pad[i + 5] - vb
         if np.isfinite(ri):
             r[nr] = ri
             nr += 1
