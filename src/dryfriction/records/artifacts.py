@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..validation import Array
-from .segmentation import line_fit, median
+from .segmentation import kernel_input, line_fit, median
 
 __all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
 
@@ -62,9 +62,8 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     if COMPILED_RESETS:
         from .hinge_kernel import reset_increments, reset_jumps  # Numba: on first use only
 
-        t, x = np.ascontiguousarray(t, np.float64), np.ascontiguousarray(x, np.float64)
         # the lines below in one compiled pass (the same numbers): the medians stay NumPy's
-        d, dt, lo, hi, e, r, quantum = reset_increments(t, x)
+        d, dt, lo, hi, e, r, quantum = reset_increments(kernel_input(t), kernel_input(x))
     else:
         d = np.diff(x)
         dt = np.diff(t)
@@ -255,7 +254,7 @@ def _block_medians(a: Array) -> Array:
         return np.median(a, axis=1)
     from .hinge_kernel import row_medians  # Numba: imported on first use only
 
-    return row_medians(np.ascontiguousarray(a))
+    return row_medians(kernel_input(a))
 
 
 def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float]]:

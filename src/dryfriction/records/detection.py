@@ -63,7 +63,7 @@ from .placement import (
     placed_probability,
 )
 from .record import LabRecord
-from .segmentation import best_hinge, hinge_segments, median, noise_level
+from .segmentation import best_hinge, hinge_segments, kernel_input, median, noise_level
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "PLACE_TOL", "Z_MIN"]
@@ -200,9 +200,8 @@ def _window_pairs(t: Array, x: Array, speed: Array, width: float, offset: float,
     from the window's start, in one pass)."""
     from .hinge_kernel import window_pairs  # Numba: imported on first use only
 
-    return window_pairs(np.ascontiguousarray(t, np.float64), np.ascontiguousarray(x, np.float64),
-                        np.ascontiguousarray(speed, np.float64), float(width), float(offset),
-                        float(half_s2), width**2 / 48.0)
+    return window_pairs(kernel_input(t), kernel_input(x), kernel_input(speed), float(width),
+                        float(offset), float(half_s2), width**2 / 48.0)
 
 
 def _median(a: Array) -> float:
@@ -246,12 +245,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     n = len(t)
     if len(velocity) != len(bounds) - 1:
         raise ValueError(f"{len(bounds) - 1} stretches but {len(velocity)} velocities")
+    t, x = kernel_input(t), kernel_input(x)  # once here, not per window (a read-only record)
     # each stretch's residuals about its line (segmentation.line_fit's, to the last bit) and
     # its speed, compiled: one Python call, not a dozen NumPy calls per stretch
-    res, speed = stretch_residuals(np.ascontiguousarray(t, np.float64),
-                                   np.ascontiguousarray(x, np.float64),
-                                   np.asarray(bounds, np.int64),
-                                   np.ascontiguousarray(velocity, np.float64))
+    res, speed = stretch_residuals(t, x, np.array(bounds, np.int64), kernel_input(velocity))
     # the position error per unit speed, from the samples moving at least 5 % of the top
     # speed (ours): the median of (res**2 - sigma**2) / speed**2, 2.198 times (a Gaussian's
     # median of squares); unmeasured (inf) where the white noise hides it

@@ -16,8 +16,8 @@ import numpy as np
 
 from ..validation import Array
 
-__all__ = ["median", "quantile", "noise_level", "line_fit", "rss", "best_hinge", "hinge_segments",
-           "refine", "prune"]
+__all__ = ["kernel_input", "median", "quantile", "noise_level", "line_fit", "rss", "best_hinge",
+           "hinge_segments", "refine", "prune"]
 
 
 def median(a: Array) -> float:
@@ -110,6 +110,14 @@ def _plain(a: Array) -> bool:
         return False
     f = a.flags
     return bool(f.c_contiguous and f.writeable)
+
+
+def kernel_input(a: Array) -> Array:
+    """``a`` as the compiled kernels take it (:mod:`.hinge_kernel`): a contiguous, writable
+    float64 array (the same values; a copy only where it is not one: the reader's arrays are
+    read-only). One array type, so one compiled specialisation per kernel, the one
+    ``python -m dryfriction.warm`` builds."""
+    return a if _plain(a) else np.require(a, np.float64, ["C", "W"])
 
 
 def best_hinge(t: Array, x: Array, m: int, min_dur: float, compiled: bool = True
