@@ -798,8 +798,8 @@ Why: the guard is there for a hinge that takes samples of the slide into the hol
 gives the hold the slide's slope. A move that shortens the hold takes samples out of it and
 cannot give it a slope of the slide's; where such a move makes the hold fail the hold test,
 it took slide samples *out* of the hold that had hidden its drift (zoo 4132: a restart
-guessed 0.94 s late, placed 0.12 s late, and the hold, without the slide's 0.9 s at 0.19
-um/s at its end, read as a drift of -9e-4 um/s beyond its scatter; sent back to the guess).
+guessed 0.94 s late, placed 0.12 s late, and the hold, without 0.8 s of the 0.19-um/s slide
+at its end, read as a drift of -9e-4 um/s beyond its scatter; sent back to the guess).
 The stop beside it, moved 0.08 s earlier into the slide, still goes back, and then the hold
 reads as a hold. Where no move lengthened a hold that is lost, every moved change beside it
 goes back as before, so every hold stays a hold. Measured: docs/performance.md

@@ -412,15 +412,14 @@ servo's position error there) is placed on block means of one duration, as a sma
 (:data:`EVEN_BLOCKS`), at most :data:`BLOCKS` of them (ours; ``holdfix``).
 
 Why: the window of a hold is 60 s each side, so its blocks of one sample count (at most
-:data:`BLOCKS`) hold 5-50 samples; where the sampling rate changes 10-fold in the window (the
-zoo's ``rate``, often at the change itself) the blocks on the slow side are ten times longer
-than on the fast one, several seconds against a 0.5-s tolerance, and the hinge sees where the
-kink lies inside a block only through that block's mean. Blocks of one duration (the window
-cut into spans of ``k`` median intervals, or into :data:`BLOCKS` equal spans where more would
-be needed) keep the resolution the same on both sides, and on an evenly sampled window they
-are the blocks of one count (the same placements). At most :data:`BLOCKS`, not
-:data:`FINE_BLOCKS`: a hold's kink is placed by the whole slide's velocity, not by the profile
-of a small step spread over several tolerances, and the cost stays that of one count.
+:data:`BLOCKS`) hold up to about 100 samples; where the sampling rate changes 10-fold in the
+window (the zoo's ``rate``, often at the change itself) the blocks on the slow side are ten
+times longer than on the fast one, several seconds against a 0.5-s tolerance, and the hinge sees
+where the kink lies inside a block only through that block's mean. Blocks of one duration (the
+window cut into spans of ``k`` median intervals, or into :data:`BLOCKS` equal spans where more
+would be needed) keep the resolution the same on both sides, and on an evenly sampled window
+they are the blocks of one count (the same placements). At most :data:`BLOCKS`, not
+:data:`FINE_BLOCKS`: the same zoo records either way (measured), at the cost of one count.
 Measured: docs/performance.md (holdfix), zoo records 5122, 5128, 9076, 10096 (hold changes
 0.55-1.98 s off, every one with ``rate``) within the tolerance, none broken."""
 
