@@ -68,6 +68,8 @@ _SFD = "tests/plots/test_step_figure_data.py"
 _FSG = ("tests/plots/test_fronts_figures.py::"
         "test_speed_figure_open_intervals_reach_twice_the_highest_bound_and_log_rule")
 _FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar_and_limits"
+_HFX = "tests/records/test_hold_fix.py"
+_HFX_K = (_HFX, "-k", "shortens or lengthened")
 _RFD = "tests/plots/test_record_figure_data.py"
 _S6NQ = "tests/theory/test_nyquist_generic.py"
 _S6RB = "tests/theory/test_response_bounds.py"
@@ -2722,7 +2724,7 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: a small step on blocks of one sample count", "records/placement.py",
        "EVEN_BLOCKS = True\n", "EVEN_BLOCKS = False\n", _SSB, "-k", "placed_better"),
     _m("placement: every change on blocks of one duration", "records/placement.py",
-       "    fine = EVEN_BLOCKS and small_step(v1, v2)\n", "    fine = EVEN_BLOCKS\n", _SSB,
+       "    small = EVEN_BLOCKS and small_step(v1, v2)\n", "    small = EVEN_BLOCKS\n", _SSB,
        "-k", "large_step"),
     _m("placement: a block per empty span (a gap)", "records/placement.py",
        "    return np.flatnonzero(np.diff(np.concatenate([[-1.0], j])) != 0)\n",
@@ -3709,6 +3711,27 @@ MUTANTS: tuple[Mutant, ...] = (
        "    u = {k: v or DIMENSIONLESS for k, v in units.items()}",
        "    u = dict(units)", _FXW),
     # --- end fixE
+    # --- stop 40 (holdfix): where a change to or from a hold is put
+    _m("holdfix: a hold at a rate change placed on blocks of one count", "records/placement.py",
+       "    fine = small or (HOLD_EVEN and still)\n", "    fine = small\n", _HFX, "-k",
+       "rate_change"),
+    _m("holdfix: every move beside a hold lost sent back", "records/detection.py",
+       "or (lost[j] and bounds[j] < guess[j])] if HOLD_SHRUNK else moved",
+       "or (lost[j] and bounds[j] < guess[j])] if False else moved", *_HFX_K),
+    _m("holdfix: the moves that shortened a hold lost sent back, not those that lengthened it",
+       "records/detection.py",
+       "        bad = [j for j in moved if (lost[j - 1] and bounds[j] > guess[j])\n"
+       "               or (lost[j] and bounds[j] < guess[j])]",
+       "        bad = [j for j in moved if (lost[j - 1] and bounds[j] < guess[j])\n"
+       "               or (lost[j] and bounds[j] > guess[j])]", *_HFX_K),
+    _m("holdfix: a hold lost by shortening moves alone left lost", "records/detection.py",
+       "        bad = bad or moved\n", "", *_HFX_K),
+    _m("holdfix: a hold's window cut into BLOCKS equal spans", "records/placement.py",
+       "k * median(np.diff(tt)), FINE_BLOCKS if small else BLOCKS)",
+       "k * median(np.diff(tt)) if small else float(tt[-1] - tt[0]) / BLOCKS,"
+       " FINE_BLOCKS if small else BLOCKS)",
+       _HFX, "-k", "evenly"),
+    # --- end stop 40 (holdfix)
 )
 
 
