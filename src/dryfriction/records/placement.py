@@ -172,6 +172,39 @@ def osc_wide(v1: float, v2: float, room: float, period: float) -> bool:
     return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo and room >= 2.0 * period
 
 
+OSC_WHOLE = True
+"""A moving step of ratio beyond :data:`OSC_WIDE_RATIO` short of a stop (the slower above
+:data:`RELAX_STOP` of the faster) is placed on a window of one oscillation period (the longest
+found) each side, where the samples between its neighbours reach one period on each side
+(:func:`osc_whole`; ours; branch stepfix).
+
+Why: with the amplitude following the velocity (:data:`OSC_FOLLOW`) a period enters the
+hinge only where the window holds it whole on each side of the change, and the window of a
+step of ratio 3 or 10 (20-60 s each side by the wander's correlation time, 25 s for the
+zoo's servo error, whose fitted correlation time is about 1 s) holds the zoo's 22-s period
+but not its 45-s one. That line's displacement, ``A v P / (2 pi)`` (0.29 s times the speed at
+4 % and 45 s), over a window of less than a period is a curvature of the load point's path
+that the OU wander of 1 s cannot take up, and the hinge's kink takes it instead: the
+ratio-3 steps of zoo 277, 397, 5196, 6231, 11173 and 12183 were 1.3-1.4 tolerances off with
+``start_p`` 0.2-0.7. One period each side is the least window in which the line enters, and
+the narrowest widening: two periods each side (as :data:`OSC_WIDE`) for every moving step
+fixed four zoo records and broke two (``OSC_WIDE``'s note). Where the nearer neighbour is
+closer than one period (a short step of 8-20 s) the window stays as it was: widened on the
+long side alone the period could not enter, and the long side's wander would only pull the
+hinge. Measured on the zoo's used ranges: docs/performance.md (stepfix)."""
+
+
+def osc_whole(v1: float, v2: float, room: float, period: float) -> bool:
+    """Whether a change from ``v1`` to ``v2`` (m/s) is placed on a window of one oscillation
+    period each side (:data:`OSC_WHOLE`): both moving, more than :data:`OSC_WIDE_RATIO` apart
+    and not a stop (the slower above :data:`RELAX_STOP` of the faster), its samples reaching
+    ``room`` (s, the nearer of the two sides) at least the longest ``period`` (s; 0: none
+    found)."""
+    lo, hi = sorted((abs(v1), abs(v2)))
+    return (OSC_WHOLE and period > 0.0 and OSC_WIDE_RATIO * lo < hi
+            and lo > RELAX_STOP * hi and room >= period)
+
+
 def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
                         ) -> tuple[float, ...]:
     """Periods (s) of a machine oscillation in the relative wander ``res / speed`` (s).
@@ -591,8 +624,12 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     still = lag is not None and (
         bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (
         np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)
+    # a larger step, not a stop, one period each side where its samples hold one (OSC_WHOLE)
+    longest = max(periods, default=0.0)
+    whole = not still and osc_whole(v1, v2, min(tg - float(t[lo]), float(t[hi - 1]) - tg),
+                                    longest)
     half = max(min(max(HOLD_HALF if still else 20.0, 10.0 * tau), 60.0),
-               2.0 * max(periods, default=0.0) if wide else 0.0) + search
+               2.0 * longest if wide else longest if whole else 0.0) + search
     a = max(lo, int(np.searchsorted(t, tg - half)))
     b = min(hi, int(np.searchsorted(t, tg + half)))
     if b - a < 12 or not a < guess < b:
