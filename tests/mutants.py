@@ -3490,6 +3490,21 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/artifacts.py", "if not NEAREST_CROSSING or j < 2 or sn[j] == sn[j - 1]:",
        "if True:", "tests/records/test_artifacts_generic.py", "-k", "gap_just"),
     # --- end stop 39 (lead)
+    # --- stop 40 (stepfix): a moving step of ratio beyond OSC_WIDE_RATIO, not a stop, placed
+    # on one oscillation period each side where its neighbours leave room for one
+    # (tests/records/test_osc_whole.py)
+    _m("osc whole: a ratio-3 step's window not widened to hold the long period",
+       "records/placement.py", "OSC_WHOLE = True\n", "OSC_WHOLE = False\n",
+       "tests/records/test_osc_whole.py", "-k", "placed_better"),
+    _m("osc whole: the room for one period not looked at (a short step widened)",
+       "records/placement.py", "            and lo > RELAX_STOP * hi and room >= period)",
+       "            and lo > RELAX_STOP * hi)", "tests/records/test_osc_whole.py", "-k",
+       "short_step"),
+    _m("osc whole: the stops widened too", "records/placement.py",
+       "            and lo > RELAX_STOP * hi and room >= period)",
+       "            and room >= period)", "tests/records/test_osc_whole.py", "-k",
+       "stop_placement"),
+    # --- end stop 40 (stepfix)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
     _m("slice_steps: the hold cut at a normal-stress change (the user's 10 s of 50)",
