@@ -883,10 +883,14 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         """Change ``j`` (an index into ``bounds``) placed on the samples ``lo:hi``."""
         v1, v2 = float(velocity[j - 1]), float(velocity[j])
         stop = _relaxes(v1, v2, rel, sigma, lag)
+        move = weak is None or bool(weak[j - 1])
+        held = None if holds is None else bool(holds[j - 1] != holds[j])
         pl = change_profile(t, x, bounds[j], lo, hi, v1, v2, sigma, rel, ab, periods=periods,
-                            move=weak is None or bool(weak[j - 1]), stop=stop, tol=tol,
-                            held=None if holds is None else bool(holds[j - 1] != holds[j]),
-                            lag=lag)
+                            move=move, stop=stop, tol=tol, held=held, lag=lag)
+        if SEARCH_AGAIN and move and _search_again(pl, t, lo, hi, v1, v2):
+            pl = change_profile(t, x, pl.index, lo, hi, v1, v2, sigma, rel, ab,
+                                periods=periods, move=True, stop=stop, tol=tol, held=held,
+                                lag=lag)
         if not lo < pl.index < hi:
             pl = Placement(bounds[j], pl.lo, pl.hi, pl.edge, pl.cells, pl.weights, pl.guess)
         return pl
@@ -904,6 +908,41 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         reach = max(HOLD_HALF, 60.0, 2.0 * max(periods, default=0.0)) + 5.0
         _clear_of_neighbours(bounds, out, places, m, place, t, reach)
     return out, places
+
+
+SEARCH_AGAIN = True
+"""Whether a change whose profile is cut by the times searched, its best time within
+:data:`SEARCH_END` of their end, is placed once more with the search about that time
+(:func:`_search_again`; ours; branch stepfix).
+
+Why: the change is looked for within ``search`` (5 s) of the whole stretches' guess, and the
+guess of a step under a large servo error (a measured position error of 1.5-2.8 s per unit
+speed) can lie farther than that from the change: zoo 336, 11281 and 11293 (ratio 3 and 2,
+guesses 8.1, 13.9 and 5.9 s off) were placed at the end of the times searched, 2.1-6.4
+tolerances off, the profile giving the truth ``start_p`` 0.000. A profile cut by the search
+with its best at the end says the likelihood still rises beyond it, and a search about that
+best reaches the change (within the tolerance, all three). Not at a reversal between two
+moving speeds: the zoo commands none, and the one the detector read (zoo 9000, a 4-s
+stretch at -35 um/s between two of +4.5 and +5.6) was moved 10 s and split the record's count.
+Measured on the zoo's used ranges: docs/performance.md (stepfix)."""
+SEARCH_END = 1.0
+"""How near the end of the times searched (s) the best time of a cut profile must lie to be
+searched again (:data:`SEARCH_AGAIN`; ours: two tolerances, :data:`.detection.PLACE_TOL`)."""
+
+
+def _search_again(pl: Placement, t: Array, lo: int, hi: int, v1: float, v2: float) -> bool:
+    """Whether the change placed at ``pl`` (on the samples ``lo:hi`` of the times ``t``, s, from
+    ``v1`` to ``v2``, m/s) is searched again about its place (:data:`SEARCH_AGAIN`): its
+    profile is cut by the times searched (``pl.edge``), its best time within
+    :data:`SEARCH_END` of their first or last (``pl.cells``), and it is no reversal between
+    two moving speeds (the slower above :data:`HOLD_RATIO` of the faster)."""
+    slow, fast = sorted((abs(v1), abs(v2)))
+    if v1 * v2 < 0.0 and slow > HOLD_RATIO * fast:
+        return False
+    if not (pl.edge and pl.cells is not None and lo < pl.index < hi):
+        return False
+    ta = float(t[pl.index])
+    return min(ta - float(pl.cells[0]), float(pl.cells[-1]) - ta) <= SEARCH_END
 
 
 NEIGHBOURS_PLACED = True
