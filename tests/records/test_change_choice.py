@@ -76,16 +76,11 @@ def test_a_confident_change_its_profile_rules_out_is_moved(
     assert max(_zoo_hold_errors((123, 3267), tmp_path, above=0.0)) > 1.0
 
 
-def test_a_profile_cut_by_the_search_moves_nothing(tmp_path: Path,
-                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_profile_cut_by_the_search_moves_nothing(tmp_path: Path) -> None:
     """Zoo record 4088 (a white record, ratio-3 short step, sampled 10 times faster from the
     step on): the first change's profile is cut by the times searched (start_edge) and gives
     the whole stretches' place less than 1e-3; it stays there, within the tolerance (measured
-    0.00 of it). Mistake, seen failing: P_MOVE without the edge guard (1.52 tolerances off).
-    Since EVEN_EVERY (branch stepfix) the profile on blocks of one duration no longer rules
-    that place out, so the guard is also checked on blocks of one count (EVEN_EVERY off)."""
-    assert max(_zoo_hold_errors((4088,), tmp_path, above=0.0)) <= 1.0
-    monkeypatch.setattr(placement, "EVEN_EVERY", False)
+    0.00 of it). Mistake, seen failing: P_MOVE without the edge guard (1.52 tolerances off)."""
     assert max(_zoo_hold_errors((4088,), tmp_path, above=0.0)) <= 1.0
 
 

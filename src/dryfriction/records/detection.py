@@ -774,8 +774,7 @@ whole stretches' kink of a confident step is biased by a wander the stretches sh
 records 123, 3027, 3267, 6051 (ratio-3 and ratio-10 steps of a many-step run, z 500-640),
 1.1-1.7 tolerances off with ``start_p`` < 1e-3, within 0.1 after. 0.01, not 0.05: the shared
 sepiolite record's change (z ~ 1960) has 0.033 and must stay at sample 16451 (with 0.05 it
-moved 3 samples, 0.41 s, earlier; that record's program is to stay as it is); on blocks of
-one duration (:data:`.placement.EVEN_EVERY`, branch stepfix) it has 0.052. Without
+moved 3 samples, 0.41 s, earlier; that record's program is to stay as it is). Without
 the edge guard, zoo 4088 (a white record sampled 10 times faster from the step on) moved
 1.5 tolerances off."""
 
