@@ -2719,11 +2719,8 @@ MUTANTS: tuple[Mutant, ...] = (
     # --- end detect6
     # --- detect7: a small step placed on block means of one duration
     # (tests/records/test_small_step_blocks.py)
-    # (since EVEN_EVERY, branch stepfix, EVEN_BLOCKS = False leaves the small steps on blocks
-    # of one duration, at most BLOCKS: the mistake is the small steps taken out of them)
     _m("placement: a small step on blocks of one sample count", "records/placement.py",
-       "    even = fine or EVEN_EVERY  # every change on blocks of one duration (EVEN_EVERY)\n",
-       "    even = EVEN_EVERY and not small_step(v1, v2)\n", _SSB, "-k", "placed_better"),
+       "EVEN_BLOCKS = True\n", "EVEN_BLOCKS = False\n", _SSB, "-k", "placed_better"),
     _m("placement: every change on the small steps' blocks (FINE_BLOCKS)",
        "records/placement.py",
        "    fine = EVEN_BLOCKS and small_step(v1, v2)\n", "    fine = EVEN_BLOCKS\n", _SSB,

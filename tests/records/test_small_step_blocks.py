@@ -66,23 +66,20 @@ def test_small_steps_at_a_rate_change_placed_better_on_even_blocks() -> None:
     # machine oscillation (seeds 0-39): within max(1 sample, 0.5 s) 35 of 40 on blocks of one
     # duration, 29 of one count (measured). The mistake it is for: blocks of one sample count
     # for a small step (EVEN_BLOCKS off), whose slow side's blocks are ten times longer
-    # (the first count with the detector as it is: the rule must be on by default). Since
-    # EVEN_EVERY (branch stepfix) every change is on blocks of one duration (at most BLOCKS),
-    # the small steps too without EVEN_BLOCKS (36 of 40, measured): the mistake is applied
-    # with EVEN_EVERY off
+    # (the first count with the detector as it is: the rule must be on by default)
     recs = [_rate_step(seed, 1.3) for seed in range(40)]
     hits = {}
-    default, every = P.EVEN_BLOCKS, P.EVEN_EVERY
+    default = P.EVEN_BLOCKS
     for even in ("default", False):
         if even is False:
-            P.EVEN_BLOCKS = P.EVEN_EVERY = False
+            P.EVEN_BLOCKS = False
         try:
             hits[even] = 0
             for rec, tc, tol in recs:
                 segs = detect_program(rec).segments
                 hits[even] += len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
         finally:
-            P.EVEN_BLOCKS, P.EVEN_EVERY = default, every
+            P.EVEN_BLOCKS = default
     assert hits["default"] >= 34 and hits["default"] >= hits[False] + 4, hits
 
 
