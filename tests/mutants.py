@@ -2721,8 +2721,7 @@ MUTANTS: tuple[Mutant, ...] = (
     # (tests/records/test_small_step_blocks.py)
     _m("placement: a small step on blocks of one sample count", "records/placement.py",
        "EVEN_BLOCKS = True\n", "EVEN_BLOCKS = False\n", _SSB, "-k", "placed_better"),
-    _m("placement: every change on the small steps' blocks (FINE_BLOCKS)",
-       "records/placement.py",
+    _m("placement: every change on blocks of one duration", "records/placement.py",
        "    fine = EVEN_BLOCKS and small_step(v1, v2)\n", "    fine = EVEN_BLOCKS\n", _SSB,
        "-k", "large_step"),
     _m("placement: a block per empty span (a gap)", "records/placement.py",

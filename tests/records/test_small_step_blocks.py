@@ -84,11 +84,9 @@ def test_small_steps_at_a_rate_change_placed_better_on_even_blocks() -> None:
 
 
 def test_large_step_placement_unchanged_by_even_blocks() -> None:
-    # a ratio-3 step (not small) at the same rate change is placed as before whatever
-    # EVEN_BLOCKS says: the rule is for the small steps only (measured there); a larger step
-    # is placed on at most BLOCKS blocks (of one duration since EVEN_EVERY, branch stepfix),
-    # not the small steps' FINE_BLOCKS. The mistake it is for: every change placed on the
-    # small steps' blocks
+    # a ratio-3 step (not small) at the same rate change is placed as before, on blocks of
+    # one count, whatever EVEN_BLOCKS says: the rule is for the small steps only (measured
+    # there). The mistake it is for: every change placed on even blocks
     got = {}
     default = P.EVEN_BLOCKS
     for even in (True, False):
