@@ -3492,8 +3492,7 @@ MUTANTS: tuple[Mutant, ...] = (
     # --- end stop 39 (lead)
     # --- stop 40 (stepfix): a moving step of ratio beyond OSC_WIDE_RATIO, not a stop, placed
     # on one oscillation period each side where its neighbours leave room for one
-    # (tests/records/test_osc_whole.py); every change on blocks of one duration
-    # (tests/records/test_even_every.py); a change searched again about its best where its
+    # (tests/records/test_osc_whole.py); a change searched again about its best where its
     # profile is cut at the search's end (tests/records/test_search_again.py)
     _m("osc whole: a ratio-3 step's window not widened to hold the long period",
        "records/placement.py", "OSC_WHOLE = True\n", "OSC_WHOLE = False\n",
@@ -3506,18 +3505,6 @@ MUTANTS: tuple[Mutant, ...] = (
        "            and lo > RELAX_STOP * hi and room >= period)",
        "            and room >= period)", "tests/records/test_osc_whole.py", "-k",
        "stop_placement"),
-    _m("even every: a large step placed on blocks of one sample count (a rate change's slow "
-       "side in blocks of 4-5 s)", "records/placement.py", "EVEN_EVERY = True\n",
-       "EVEN_EVERY = False\n", "tests/records/test_even_every.py", "-k", "end_at_a_rate"),
-    _m("even every: the last candidate three count-blocks clear of the window's end",
-       "records/placement.py", "    c_hi = min(int(idx[-3]) if even else b - a - 3 * k,",
-       "    c_hi = min(int(idx[-3]) if fine else b - a - 3 * k,",
-       "tests/records/test_even_every.py", "-k", "start_at_a_rate"),
-    _m("even every: blocks of twice the duration of k samples", "records/placement.py",
-       "    idx = (even_blocks(tt, k * float(np.median(np.diff(tt))), FINE_BLOCKS if fine else "
-       "BLOCKS)",
-       "    idx = (even_blocks(tt, 2 * k * float(np.median(np.diff(tt))), FINE_BLOCKS if fine "
-       "else BLOCKS)", "tests/records/test_even_every.py", "-k", "evenly_sampled"),
     _m("search again: a change beyond the search left at its end", "records/placement.py",
        "SEARCH_AGAIN = True\n", "SEARCH_AGAIN = False\n", "tests/records/test_search_again.py",
        "-k", "beyond_the_search"),
