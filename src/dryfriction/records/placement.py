@@ -439,25 +439,6 @@ records: 19 of 27 ratio-1.3 steps within the tolerance against 20, the test in
 count (31 and 9)."""
 
 
-EVEN_EVERY = True
-"""Every change, not only a small step (:data:`EVEN_BLOCKS`), is placed on block means of one
-duration, that of the ``k`` samples of a block at the window's median sampling interval (at
-most :data:`BLOCKS` of them; :data:`FINE_BLOCKS` for a small step; ours; branch stepfix).
-
-Why: a block mean keeps one number of its samples, so a block's duration is the hinge's
-resolution, and the candidate times start and end three blocks inside the window. Blocks of
-one sample count are ten times longer on the slow side of a 10-fold sampling-rate change
-(the zoo's ``rate``, half the time at a change itself): at the end of a short step (8 s of
-the faster speed, a window of 8 s on that side and 60 s on the other), the slow side's 8 s
-were one or two blocks of 4-5 s, so the three blocks the candidates keep clear of the
-window's end covered the true time, and the change could only be placed past it (zoo 10016,
-10124, 10160, 8144, 4268: the short step's end 1.05-6.8 tolerances late, its own profile
-giving the truth ``start_p`` 0.000; the start of one, 332, 380, 9242, as early). Blocks of
-one duration give both sides the same resolution; on evenly sampled times they are the
-blocks of one count (:func:`even_blocks`). Measured on the zoo's used ranges:
-docs/performance.md (stepfix)."""
-
-
 def small_step(v1: float, v2: float) -> bool:
     """Whether a change from ``v1`` to ``v2`` (m/s) is a small step: both moving, at most
     :data:`FINE_RATIO` apart."""
@@ -659,10 +640,9 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     # the placements alone was not measured apart); for a small step, blocks of one duration,
     # that of k samples at the window's median interval (EVEN_BLOCKS)
     fine = EVEN_BLOCKS and small_step(v1, v2)
-    even = fine or EVEN_EVERY  # every change on blocks of one duration (EVEN_EVERY)
     k = max(1, int(np.ceil((b - a) / BLOCKS)))
-    idx = (even_blocks(tt, k * float(np.median(np.diff(tt))), FINE_BLOCKS if fine else BLOCKS)
-           if even and k > 1 else np.arange(0, b - a, k))
+    idx = (even_blocks(tt, k * float(np.median(np.diff(tt))), FINE_BLOCKS) if fine and k > 1
+           else np.arange(0, b - a, k))
     cnt = np.diff(np.append(idx, b - a)).astype(float)
     tb = np.add.reduceat(tt, idx) / cnt
     xb = np.add.reduceat(x[a:b] - x[a], idx) / cnt
@@ -767,7 +747,7 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     # candidates: the samples within `search` s (>= 10 samples) of the guess, coarse first
     # (three blocks clear of the window's ends)
     c_lo = max(int(idx[3]), min(int(np.searchsorted(tt, tg - search)), guess - a - 10))
-    c_hi = min(int(idx[-3]) if even else b - a - 3 * k,
+    c_hi = min(int(idx[-3]) if fine else b - a - 3 * k,
                max(int(np.searchsorted(tt, tg + search)), guess - a + 10))
     if c_hi <= c_lo:
         return Placement(guess)
