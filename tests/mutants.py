@@ -874,7 +874,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "grid = np.exp(math.log1p(hold) * np.arange(1, n + 1) / n)",
        "tests/ensemble/test_hold_grid.py"),
     _m("noise level: the RMS trimmed at the 90 % quantile", "records/segmentation.py",
-       "trimmed = a[a <= np.quantile(a, 0.99)]", "trimmed = a[a <= np.quantile(a, 0.9)]",
+       "trimmed = a[a <= quantile(a, 0.99)]", "trimmed = a[a <= quantile(a, 0.9)]",
        "tests/records/test_noise_level_definition.py"),
     _m("steady tail: the drift not capped at DRIFT_BLOCKS", "fit/cvtail.py",
        "drift = d2 * min(left / BLOCK_SLIP, DRIFT_BLOCKS)", "drift = d2 * left / BLOCK_SLIP",

@@ -88,13 +88,21 @@ def warm() -> float:
             for i, doc in enumerate(WARM_PROTOCOLS):
                 protocol_from_dict(doc, f"warm-up protocol {i}").run()
     linear_stability(RateState(0.005, 0.01, 1e-5, 0.6, 1e-6), 1e-6, 1e3)
-    # the load-program detector's hinge kernel (records/hinge_kernel.py, small: about 2 s to
-    # compile, so it is not in KERNEL_MODULES' notice)
+    # the load-program detector's kernels (records/hinge_kernel.py, small: about 5 s to
+    # compile in all, so it is not in KERNEL_MODULES' notice), each with the argument types
+    # the detector gives it (segmentation.kernel_input: writable float64 arrays)
     import numpy as np
 
+    from .records import hinge_kernel as hk
     from .records.segmentation import best_hinge
 
-    best_hinge(np.linspace(0.0, 1.0, 16), np.zeros(16), 3, 0.0)
+    t, x = np.linspace(0.0, 1.0, 16), np.zeros(16)
+    best_hinge(t, x, 3, 0.0)
+    hk.window_pairs(t, x, x, 0.5, 0.0, 0.0, 0.0)
+    hk.stretch_residuals(t, x, np.array([0, 8, 16], np.int64), np.zeros(2))
+    d, dt, lo, hi, _, _, _ = hk.reset_increments(t, x)
+    hk.reset_jumps(d, dt, lo, hi, 0.0, 0.0)
+    hk.row_medians(np.zeros((2, 4)))
     return time.perf_counter() - start
 
 

@@ -56,15 +56,15 @@ def test_a_gap_of_years_in_a_record_asks_for_a_bounded_number_of_windows(monkeyp
     x = 2e-7 * t + 1e-8 * rng.standard_normal(n)
     t[n // 3:] += 1e9  # the clock jumps by 31 years; the displacement goes on
     asked: list[float] = []
-    slopes = detection._window_slopes
+    pairs = detection._window_pairs
 
-    def counted(tt, xx, width, offset):
+    def counted(tt, xx, uu, width, offset, half_s2):
         asked.append((tt[-1] - tt[0]) / width)
         if asked[-1] > 100 * len(tt):
             raise AssertionError(f"{asked[-1]:.3g} windows for {len(tt)} samples")
-        return slopes(tt, xx, width, offset)
+        return pairs(tt, xx, uu, width, offset, half_s2)
 
-    monkeypatch.setattr(detection, "_window_slopes", counted)
+    monkeypatch.setattr(detection, "_window_pairs", counted)
     detection.measure_fluctuations(t, x, 1e-8, [0, n], np.array([2e-7]))
     assert asked and max(asked) <= 10 * n + 1
 

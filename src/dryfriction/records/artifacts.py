@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..validation import Array
-from .segmentation import line_fit
+from .segmentation import kernel_input, line_fit, median
 
 __all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
 
@@ -42,13 +42,13 @@ def _local_rate(rate: Array, side: str, k: int = 5) -> Array:
     (the record's first or last rate standing in beyond its ends)."""
     n = len(rate)
     pad = np.concatenate([np.full(k, rate[0]), rate, np.full(k, rate[-1])])
-    win = np.lib.stride_tricks.sliding_window_view(pad, k)
     # window j covers pad[j:j+k] = rate[j-k:j]: before increment i is window i, after is i+k+1
-    idx = np.arange(n) + (0 if side == "before" else k + 1)
-    w = win[np.minimum(idx, len(win) - 1)]
-    if k == 5:  # a network, not a sort per row (a tenth of the time)
-        return _median5(*(w[:, j] for j in range(5)))
-    return np.median(w, axis=1)
+    o = 0 if side == "before" else k + 1
+    if k == 5:  # a network, not a sort per row (a tenth of the time); the windows' j-th
+        # members are the slice pad[o + j:o + j + n], no copy of the n x k windows
+        return _median5(*(pad[o + j:o + j + n] for j in range(5)))
+    win = np.lib.stride_tricks.sliding_window_view(pad, k)
+    return np.median(win[np.arange(n) + o], axis=1)
 
 
 def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
@@ -57,29 +57,38 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     A reset is one increment outside the range that the velocities just before and just after
     it explain, by more than :data:`_RESET_K` robust scales of the increments' scatter (ours).
     """
-    d = np.diff(x)
-    dt = np.diff(t)
-    if d.size < 12:
+    if len(x) - 1 < 12:
         return x, []
-    rate = d / dt
-    vb, va = _local_rate(rate, "before"), _local_rate(rate, "after")
-    vb = np.where(np.isfinite(vb), vb, va)
-    va = np.where(np.isfinite(va), va, vb)
-    lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
-    e = d - vb * dt  # the increment less the slip the velocity just before gives
-    e = e[np.isfinite(e)]
-    spread = 1.4826 * float(np.median(np.abs(e - np.median(e)))) if e.size else 0.0
-    nz = np.abs(d[d != 0.0])
-    quantum = float(nz.min()) if nz.size else 0.0
+    if COMPILED_RESETS:
+        from .hinge_kernel import reset_increments, reset_jumps  # Numba: on first use only
+
+        # the lines below in one compiled pass (the same numbers): the medians stay NumPy's
+        d, dt, lo, hi, e, r, quantum = reset_increments(kernel_input(t), kernel_input(x))
+    else:
+        d = np.diff(x)
+        dt = np.diff(t)
+        rate = d / dt
+        vb, va = _local_rate(rate, "before"), _local_rate(rate, "after")
+        vb = np.where(np.isfinite(vb), vb, va)
+        va = np.where(np.isfinite(va), va, vb)
+        lo, hi = np.minimum(vb, va) * dt, np.maximum(vb, va) * dt
+        e = d - vb * dt  # the increment less the slip the velocity just before gives
+        e = e[np.isfinite(e)]
+        nz = np.abs(d[d != 0.0])
+        quantum = float(nz.min()) if nz.size else 0.0
+        r = (rate - vb)[np.isfinite(rate - vb)]
+    spread = 1.4826 * median(np.abs(e - median(e))) if e.size else 0.0
     scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
     # the local rates are medians of 5 noisy increment rates: their error, times an
     # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
     # hundreds of intervals), so it widens the range by 3 of its scales (1.2533: a median's)
-    r = (rate - vb)[np.isfinite(rate - vb)]
-    s_v = 1.2533 * 1.4826 * float(np.median(np.abs(r - np.median(r)))) / np.sqrt(5.0) if (
+    s_v = 1.2533 * 1.4826 * median(np.abs(r - median(r))) / np.sqrt(5.0) if (
         r.size) else 0.0
-    lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
-    jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
+    if COMPILED_RESETS:
+        jump = reset_jumps(d, dt, lo, hi, 3.0 * s_v, _RESET_K * scale)
+    else:
+        lo, hi = lo - 3.0 * s_v * dt, hi + 3.0 * s_v * dt
+        jump = np.flatnonzero((d < lo - _RESET_K * scale) | (d > hi + _RESET_K * scale))
     if jump.size == 0:
         return x, []
     fix = np.zeros_like(x)
@@ -93,6 +102,14 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
             A, x[a:b], rcond=None)[0][2]
     return x + fix, [int(i) for i in jump]
 
+
+COMPILED_RESETS = True
+"""Whether :func:`find_resets` tests the increments in one compiled pass
+(:func:`.hinge_kernel.reset_increments`, :func:`.hinge_kernel.reset_jumps`) rather than
+NumPy's dozen passes over the record, and the block medians of :func:`sampling_changes` and
+:func:`normal_changes` are compiled (:func:`.hinge_kernel.row_medians`): the same operations,
+the same numbers (a speed change only; the NumPy forms are kept as the reference the tests
+compare with)."""
 
 RESET_KINK = True
 """A reset's offset is fitted with a kink of the line allowed in its window (ours, detect11):
@@ -229,14 +246,25 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
     return out
 
 
+def _block_medians(a: Array) -> Array:
+    """``np.median(a, axis=1)`` of blocks of samples (rows), compiled where it is the same
+    and faster (:func:`.hinge_kernel.row_medians`, an insertion sort: a float64 array of rows
+    of at most 32, :data:`COMPILED_RESETS`)."""
+    if not COMPILED_RESETS or a.dtype != np.float64 or not 0 < a.shape[1] <= 32:
+        return np.median(a, axis=1)
+    from .hinge_kernel import row_medians  # Numba: imported on first use only
+
+    return row_medians(kernel_input(a))
+
+
 def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float]]:
     """Times of sampling-rate changes and of gaps (see :class:`Detection`)."""
     dt = np.diff(t)
     if dt.size < 2 * block:
         return [], []
-    med = float(np.median(dt))
+    med = median(dt)
     m = dt.size // block
-    bm = np.median(dt[: m * block].reshape(m, block), axis=1)
+    bm = _block_medians(dt[: m * block].reshape(m, block))
     changes: list[float] = []
     ratio = bm[1:] / bm[:-1]
     for j in np.flatnonzero((ratio > _RATE_FACTOR) | (ratio < 1.0 / _RATE_FACTOR)):
@@ -255,8 +283,8 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     sn = np.asarray(sn, float)
     block = max(min_samples // 2, len(sn) // 2000, 1)
     m = len(sn) // block
-    bm = np.median(sn[: m * block].reshape(m, block), axis=1)
-    noise = 1.4826 * float(np.median(np.abs(np.diff(bm) - np.median(np.diff(bm)))))
+    bm = _block_medians(sn[: m * block].reshape(m, block))
+    noise = 1.4826 * median(np.abs(np.diff(bm) - median(np.diff(bm))))
     out: list[int] = []
     todo = [(0, m)]
     while todo:
@@ -278,7 +306,9 @@ def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[in
     # a ramp splits many times: changes within 30 s (or 10 blocks) of each other are one,
     # placed where the level crosses half-way between the levels outside the cluster
     tb = t[: m * block].reshape(m, block)[:, 0]
-    gap = max(30.0, 10 * block * float(np.median(np.diff(t))))
+    # (the record's median interval, a pass over every sample, only where two changes may
+    # be one)
+    gap = max(30.0, 10 * block * median(np.diff(t))) if len(out) > 1 else 0.0
     clusters: list[list[int]] = []
     for kk in sorted(out):
         if clusters and (tb[kk] - tb[clusters[-1][-1]] <= gap
@@ -316,7 +346,10 @@ def _nearest_crossing(t: Array, sn: Array, j: int, mid: float) -> int:
     if not NEAREST_CROSSING or j < 2 or sn[j] == sn[j - 1]:
         return j
     dt = t[j] - t[j - 1]
-    if not dt > 10.0 * max(float(np.median(np.diff(t))), float(t[j - 1] - t[j - 2])):
+    # the interval before first: the record's median interval (a pass over every sample) is
+    # needed only where the gap stands out from it
+    if not dt > 10.0 * float(t[j - 1] - t[j - 2]) or not dt > 10.0 * max(
+            median(np.diff(t)), float(t[j - 1] - t[j - 2])):
         return j
     tc = t[j - 1] + (mid - sn[j - 1]) / (sn[j] - sn[j - 1]) * (t[j] - t[j - 1])
     return j - 1 if tc - t[j - 1] < t[j] - tc else j

@@ -63,7 +63,7 @@ from .placement import (
     placed_probability,
 )
 from .record import LabRecord
-from .segmentation import best_hinge, hinge_segments, line_fit, noise_level
+from .segmentation import best_hinge, hinge_segments, kernel_input, median, noise_level
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
            "displacement", "no_change_message", "PLACE_TOL", "Z_MIN"]
@@ -189,38 +189,31 @@ def displacement(record: LabRecord) -> Array:
 
 
 # ------------------------------------------------------------------------------ fluctuations
-def _window_slopes(t: Array, x: Array, width: float, offset: float
-                   ) -> tuple[Array, Array, Array, Array, Array]:
-    """OLS slope of each window ``[offset + m width, offset + (m+1) width)``, its ``Sxx``,
-    whether it is usable (>= 3 samples spread over at least half the window), each sample's
-    window (from 0) and each window's sample count."""
-    w = np.floor((t - offset) / width).astype(np.int64)
-    w0 = int(w[0])
-    w -= w0
-    tt = t - (offset + (w + w0) * width)  # in [0, width): well-conditioned sums
-    nw = int(w[-1]) + 1
-    n = np.bincount(w, minlength=nw).astype(float)
-    st = np.bincount(w, tt, nw)
-    sx = np.bincount(w, x, nw)
-    stt = np.bincount(w, tt * tt, nw)
-    stx = np.bincount(w, tt * x, nw)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        var_t = stt / n - (st / n) ** 2
-        slope = (stx / n - st * sx / n**2) / var_t
-    # a window at least half covered: var_t of a uniform spread over width/2 is width**2/48
-    ok = (n >= 3) & (var_t >= width**2 / 48.0) & np.isfinite(slope)
-    return slope, n * var_t, ok, w, n
+def _window_pairs(t: Array, x: Array, speed: Array, width: float, offset: float,
+                  half_s2: float) -> tuple[Array, Array]:
+    """For each pair of adjacent usable windows ``[offset + m width, offset + (m+1) width)``:
+    ``(s2 - s1)**2 / 2 - half_s2 (1/Sxx1 + 1/Sxx2)`` (``s`` the windows' OLS slopes of
+    ``x(t)``, ``Sxx`` their times' sums of squares) and the mean of the two windows' mean
+    ``speed``. A window is usable with >= 3 samples spread over at least half of it (a uniform
+    spread over ``width / 2`` has the time variance ``width**2 / 48``) and a finite slope.
+    Compiled (:func:`.hinge_kernel.window_pairs`: each window's sums over its samples, times
+    from the window's start, in one pass)."""
+    from .hinge_kernel import window_pairs  # Numba: imported on first use only
+
+    return window_pairs(kernel_input(t), kernel_input(x), kernel_input(speed), float(width),
+                        float(offset), float(half_s2), width**2 / 48.0)
 
 
 def _median(a: Array) -> float:
     """The median of a non-empty 1-d array, as ``np.median`` (the mean of the two middle
     values for an even count) without its general-axis overhead: it is taken twice per time
-    scale of every fluctuation measurement."""
+    scale of every fluctuation measurement. One partition at the upper middle rank, the lower
+    one the largest value below it (a partition at both ranks costs about five times more)."""
     k = a.size // 2
+    p = np.partition(a, k)
     if a.size % 2:
-        return float(np.partition(a, k)[k])
-    p = np.partition(a, (k - 1, k))
-    return float(0.5 * (p[k - 1] + p[k]))
+        return float(p[k])
+    return float(0.5 * (p[:k].max() + p[k]))
 
 
 def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
@@ -247,13 +240,15 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     velocity : Array
         Fitted velocity of each stretch, m/s.
     """
+    from .hinge_kernel import stretch_residuals  # Numba: imported on first use only
+
     n = len(t)
-    res = np.empty(n)
-    speed = np.empty(n)
-    for (a, b), v in zip(zip(bounds[:-1], bounds[1:], strict=True), velocity, strict=True):
-        slope, mean, _ = line_fit(t[a:b], x[a:b])
-        res[a:b] = x[a:b] - mean - slope * (t[a:b] - t[a:b].mean())
-        speed[a:b] = abs(v)
+    if len(velocity) != len(bounds) - 1:
+        raise ValueError(f"{len(bounds) - 1} stretches but {len(velocity)} velocities")
+    t, x = kernel_input(t), kernel_input(x)  # once here, not per window (a read-only record)
+    # each stretch's residuals about its line (segmentation.line_fit's, to the last bit) and
+    # its speed, compiled: one Python call, not a dozen NumPy calls per stretch
+    res, speed = stretch_residuals(t, x, np.array(bounds, np.int64), kernel_input(velocity))
     # the position error per unit speed, from the samples moving at least 5 % of the top
     # speed (ours): the median of (res**2 - sigma**2) / speed**2, 2.198 times (a Gaussian's
     # median of squares); unmeasured (inf) where the white noise hides it
@@ -261,7 +256,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     lag = float("inf")
     if fast.sum() >= 24 and speed.max() > 0:
         q = (res[fast] ** 2 - sigma**2) / speed[fast] ** 2
-        lag2 = 2.198 * float(np.median(q))
+        lag2 = 2.198 * median(q)
         lag = float(np.sqrt(lag2)) if lag2 > 0 else float("inf")
     if n > 200_000:  # time-averaged blocks: windows of >= 5 blocks see the same slopes
         bl = n // 100_000
@@ -269,7 +264,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         t, res, speed = (q[: m * bl].reshape(m, bl).mean(axis=1) for q in (t, res, speed))
         sigma = sigma / np.sqrt(bl)
     span = float(t[-1] - t[0])
-    dt = float(np.median(np.diff(t)))
+    dt = median(np.diff(t))
     scales: list[float] = []
     rel: list[float] = []
     ab: list[float] = []
@@ -282,13 +277,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):
             if off in (0.25 * T, 0.75 * T) and sum(len(q) for q in ys) >= 100:
                 break  # pairs enough from two offsets (the other two only for long T)
-            s, sxx, ok, w, cnt = _window_slopes(t, res, T, float(t[0]) - off)
-            u = np.bincount(w, speed, len(s)) / np.maximum(cnt, 1)
-            pair = ok[1:] & ok[:-1]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                w2 = 0.5 * sigma**2 * (1.0 / sxx[1:] + 1.0 / sxx[:-1])
-            ys.append((0.5 * (s[1:] - s[:-1]) ** 2 - w2)[pair])
-            us.append((0.5 * (u[1:] + u[:-1]))[pair])
+            # each pair's (s2 - s1)**2 / 2 less its white part w**2, and its mean speed
+            y_off, u_off = _window_pairs(t, res, speed, T, float(t[0]) - off, 0.5 * sigma**2)
+            ys.append(y_off)
+            us.append(u_off)
         y, u = np.concatenate(ys), np.concatenate(us)
         if y.size >= 24:
             # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the
@@ -319,11 +311,27 @@ class _Fits:
 
     def __init__(self, t: Array, x: Array) -> None:
         self.t, self.x = t, x
+        # the tables asked for, by their bounds: the pruning asks for the same bounds several
+        # times (its scores, their confidences, the reach); read-only, as they are shared
+        self._memo: dict[tuple[int, ...], tuple[Array, Array, Array]] = {}
 
     def table(self, bounds: list[int]) -> tuple[Array, Array, Array]:
         """Velocities (m/s), durations (s) and ``Sxx`` (s^2) of the stretches between
         ``bounds`` (increasing sample indices; only the samples between the first and the last
-        are read)."""
+        are read); read-only arrays, computed once for each ``bounds``."""
+        key = tuple(bounds)
+        got = self._memo.get(key)
+        if got is None:
+            got = self._table(bounds)
+            for q in got:
+                q.flags.writeable = False
+            if len(self._memo) >= 256:
+                self._memo.clear()
+            self._memo[key] = got
+        return got
+
+    def _table(self, bounds: list[int]) -> tuple[Array, Array, Array]:
+        """:meth:`table`, computed."""
         b = np.asarray(bounds, np.int64)
         lo = int(b[0])
         t, x = self.t[lo:b[-1]], self.x[lo:b[-1]]
@@ -453,9 +461,10 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
         if EDGE_BURSTS:
             tol = np.where(_edge_bursts(v, d, rel, hold), max(rel_tol, EXCURSION_REL), tol)
-    score = np.minimum(np.minimum(z / z_min, rel / tol), _slip_ratio(v, d, fl) / SLIP_MIN)
+    slip = _slip_ratio(v, d, fl) / SLIP_MIN
+    score = np.minimum(np.minimum(z / z_min, rel / tol), slip)
     one = hold[1:] ^ hold[:-1]
-    score = np.where(one, np.minimum(z / z_min, _slip_ratio(v, d, fl) / SLIP_MIN), score)
+    score = np.where(one, np.minimum(z / z_min, slip), score)
     score = np.where(hold[1:] & hold[:-1], 0.0, score)
     if len(v) >= 3 and m > 0:
         # a transition: a stretch of < 2m samples between its neighbours' velocities (a

@@ -35,6 +35,7 @@ import numpy as np
 from scipy.linalg import cho_factor, solve_triangular
 
 from ..validation import Array
+from .segmentation import median
 
 __all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
            "ou_parameters", "place_change", "place_changes", "placed_probability",
@@ -43,14 +44,34 @@ __all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
 
 def _g(y: Array, tau: float) -> Array:
     """``g(y) = tau |y| + tau**2 (exp(-|y|/tau) - 1)``, the double antiderivative of the OU
-    correlation (module docstring)."""
+    correlation (module docstring). The same operations as ``tau * a + tau * tau *
+    np.expm1(-a / tau)`` (``a = |y|``), in two arrays, not six: the covariance of a window's
+    256 blocks is 65 536 numbers, and a temporary each costs its allocation."""
     a = np.abs(y)
-    return tau * a + tau * tau * np.expm1(-a / tau)
+    if not isinstance(a, np.ndarray) or a.ndim == 0:
+        return tau * a + tau * tau * np.expm1(-a / tau)
+    b = np.divide(a, tau)
+    np.negative(b, out=b)  # -(a / tau) is (-a) / tau exactly
+    np.expm1(b, out=b)
+    b *= tau * tau
+    a *= tau
+    a += b
+    return a
 
 
 def _cov_int(p: Array, q: Array, r: Array, w: Array, tau: float) -> Array:
-    """``cov(int_p^q eps, int_r^w eps) / s**2`` for unit-rms OU ``eps`` (module docstring)."""
-    return _g(q - r, tau) - _g(p - r, tau) - _g(q - w, tau) + _g(p - w, tau)
+    """``cov(int_p^q eps, int_r^w eps) / s**2`` for unit-rms OU ``eps`` (module docstring):
+    ``g(q - r) - g(p - r) - g(q - w) + g(p - w)``, evaluated in that order, the largest term
+    (``q - w``, both ends arrays) taking the others in place."""
+    big = _g(q - w, tau)
+    first = _g(q - r, tau) - _g(p - r, tau)
+    last = _g(p - w, tau)
+    if not (isinstance(big, np.ndarray) and big.shape == np.broadcast_shapes(
+            np.shape(first), big.shape, np.shape(last))):
+        return first - big + last
+    np.subtract(first, big, out=big)
+    big += last
+    return big
 
 
 @lru_cache(maxsize=1)
@@ -241,7 +262,7 @@ def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
     # a Hann window: a strong line's sidelobes (5 % of it unwindowed) are no lines of their own
     p = np.abs(np.fft.rfft(yg * np.hanning(n), 2 * n)) ** 2
     f = np.fft.rfftfreq(2 * n, dt)
-    pmin = max(5.0, 10.0 * float(np.median(np.diff(tt))))
+    pmin = max(5.0, 10.0 * median(np.diff(tt)))
     band = (f >= 3.0 / span) & (f <= 1.0 / pmin)
     idx = np.flatnonzero(band)
     if idx.size < 8:
@@ -252,11 +273,14 @@ def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
     peaks = peaks[np.argsort(pb[peaks])[::-1][: 4 * max_peaks]]  # the strongest only
     out: list[float] = []
     for j in peaks:  # strongest first; none within the main lobe (4 / span) of a stronger one
-        near = np.abs(lf - lf[j]) <= np.log(2.0)
+        if len(out) >= max_peaks:
+            break  # (a later period would not be returned, nor change those that are)
         fj = float(f[idx[j]])
-        if p[idx[j]] >= OSC_K * float(np.median(pb[near])) and all(
-                abs(fj - 1.0 / q) > 4.0 / span for q in out):
-            out.append(1.0 / fj)
+        # the cheap test first: a peak in a stronger one's lobe needs no median
+        if all(abs(fj - 1.0 / q) > 4.0 / span for q in out):
+            near = np.abs(lf - lf[j]) <= np.log(2.0)
+            if p[idx[j]] >= OSC_K * median(pb[near]):
+                out.append(1.0 / fj)
     return tuple(out[:max_peaks])
 
 
@@ -641,7 +665,7 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     # that of k samples at the window's median interval (EVEN_BLOCKS)
     fine = EVEN_BLOCKS and small_step(v1, v2)
     k = max(1, int(np.ceil((b - a) / BLOCKS)))
-    idx = (even_blocks(tt, k * float(np.median(np.diff(tt))), FINE_BLOCKS) if fine and k > 1
+    idx = (even_blocks(tt, k * median(np.diff(tt)), FINE_BLOCKS) if fine and k > 1
            else np.arange(0, b - a, k))
     cnt = np.diff(np.append(idx, b - a)).astype(float)
     tb = np.add.reduceat(tt, idx) / cnt
