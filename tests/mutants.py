@@ -1999,7 +1999,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "lim = Z_MIN * float(np.hypot(e[0], e[1]))", "lim = Z_MIN * float(e[0] + e[1])", _RHE,
        "-k", "no_change"),
     _m("placement: weak ignored", "records/placement.py",
-       "move=weak is None or bool(weak[j - 1]), stop=stop,", "move=True, stop=stop,", _RHE, "-k",
+       "        move = weak is None or bool(weak[j - 1])\n", "        move = True\n", _RHE, "-k",
        "place_changes"),
     _m("simulate: progress as a fraction", "app/runs.py",
        "progress(100.0 * fraction)", "progress(fraction)", "tests/app/test_simulate_files.py"),
@@ -3492,6 +3492,34 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/artifacts.py", "if not NEAREST_CROSSING or j < 2 or sn[j] == sn[j - 1]:",
        "if True:", "tests/records/test_artifacts_generic.py", "-k", "gap_just"),
     # --- end stop 39 (lead)
+    # --- stop 40 (stepfix): a moving step of ratio beyond OSC_WIDE_RATIO, not a stop, placed
+    # on one oscillation period each side where its neighbours leave room for one
+    # (tests/records/test_osc_whole.py); a change searched again about its best where its
+    # profile is cut at the search's end (tests/records/test_search_again.py)
+    _m("osc whole: a ratio-3 step's window not widened to hold the long period",
+       "records/placement.py", "OSC_WHOLE = True\n", "OSC_WHOLE = False\n",
+       "tests/records/test_osc_whole.py", "-k", "placed_better"),
+    _m("osc whole: the room for one period not looked at (a short step widened)",
+       "records/placement.py", "            and lo > RELAX_STOP * hi and room >= period)",
+       "            and lo > RELAX_STOP * hi)", "tests/records/test_osc_whole.py", "-k",
+       "short_step"),
+    _m("osc whole: the stops widened too", "records/placement.py",
+       "            and lo > RELAX_STOP * hi and room >= period)",
+       "            and room >= period)", "tests/records/test_osc_whole.py", "-k",
+       "stop_placement"),
+    _m("search again: a change beyond the search left at its end", "records/placement.py",
+       "SEARCH_AGAIN = True\n", "SEARCH_AGAIN = False\n", "tests/records/test_search_again.py",
+       "-k", "beyond_the_search"),
+    _m("search again: a reversal searched again", "records/placement.py",
+       "    if v1 * v2 < 0.0 and slow > HOLD_RATIO * fast:\n        return False\n",
+       "    if False:\n        return False\n", "tests/records/test_search_again.py", "-k",
+       "reversal"),
+    _m("search again: searched again where the best is far from the search's end",
+       "records/placement.py",
+       "    return min(ta - float(pl.cells[0]), float(pl.cells[-1]) - ta) <= SEARCH_END",
+       "    return min(ta - float(pl.cells[0]), float(pl.cells[-1]) - ta) > SEARCH_END",
+       "tests/records/test_search_again.py", "-k", "beyond_the_search"),
+    # --- end stop 40 (stepfix)
     # --- userfixB: what a new user found wrong in reading and cutting records (a hold split by
     # a normal-stress change, a preamble without '#', missing cells, a one-velocity record)
     _m("slice_steps: the hold cut at a normal-stress change (the user's 10 s of 50)",

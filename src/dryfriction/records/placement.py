@@ -193,6 +193,39 @@ def osc_wide(v1: float, v2: float, room: float, period: float) -> bool:
     return OSC_WIDE and hi <= OSC_WIDE_RATIO * lo and room >= 2.0 * period
 
 
+OSC_WHOLE = True
+"""A moving step of ratio beyond :data:`OSC_WIDE_RATIO` short of a stop (the slower above
+:data:`RELAX_STOP` of the faster) is placed on a window of one oscillation period (the longest
+found) each side, where the samples between its neighbours reach one period on each side
+(:func:`osc_whole`; ours; branch stepfix).
+
+Why: with the amplitude following the velocity (:data:`OSC_FOLLOW`) a period enters the
+hinge only where the window holds it whole on each side of the change, and the window of a
+step of ratio 3 or 10 (20-60 s each side by the wander's correlation time, 25 s for the
+zoo's servo error, whose fitted correlation time is about 1 s) holds the zoo's 22-s period
+but not its 45-s one. That line's displacement, ``A v P / (2 pi)`` (0.29 s times the speed at
+4 % and 45 s), over a window of less than a period is a curvature of the load point's path
+that the OU wander of 1 s cannot take up, and the hinge's kink takes it instead: the
+ratio-3 steps of zoo 277, 397, 5196, 6231, 11173 and 12183 were 1.3-1.4 tolerances off with
+``start_p`` 0.2-0.7. One period each side is the least window in which the line enters, and
+the narrowest widening: two periods each side (as :data:`OSC_WIDE`) for every moving step
+fixed four zoo records and broke two (``OSC_WIDE``'s note). Where the nearer neighbour is
+closer than one period (a short step of 8-20 s) the window stays as it was: widened on the
+long side alone the period could not enter, and the long side's wander would only pull the
+hinge. Measured on the zoo's used ranges: docs/performance.md (stepfix)."""
+
+
+def osc_whole(v1: float, v2: float, room: float, period: float) -> bool:
+    """Whether a change from ``v1`` to ``v2`` (m/s) is placed on a window of one oscillation
+    period each side (:data:`OSC_WHOLE`): both moving, more than :data:`OSC_WIDE_RATIO` apart
+    and not a stop (the slower above :data:`RELAX_STOP` of the faster), its samples reaching
+    ``room`` (s, the nearer of the two sides) at least the longest ``period`` (s; 0: none
+    found)."""
+    lo, hi = sorted((abs(v1), abs(v2)))
+    return (OSC_WHOLE and period > 0.0 and OSC_WIDE_RATIO * lo < hi
+            and lo > RELAX_STOP * hi and room >= period)
+
+
 def oscillation_periods(t: Array, res: Array, speed: Array, max_peaks: int = 3
                         ) -> tuple[float, ...]:
     """Periods (s) of a machine oscillation in the relative wander ``res / speed`` (s).
@@ -633,8 +666,12 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     still = lag is not None and (
         bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (
         np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)
+    # a larger step, not a stop, one period each side where its samples hold one (OSC_WHOLE)
+    longest = max(periods, default=0.0)
+    whole = not still and osc_whole(v1, v2, min(tg - float(t[lo]), float(t[hi - 1]) - tg),
+                                    longest)
     half = max(min(max(HOLD_HALF if still else 20.0, 10.0 * tau), 60.0),
-               2.0 * max(periods, default=0.0) if wide else 0.0) + search
+               2.0 * longest if wide else longest if whole else 0.0) + search
     a = max(lo, int(np.searchsorted(t, tg - half)))
     b = min(hi, int(np.searchsorted(t, tg + half)))
     if b - a < 12 or not a < guess < b:
@@ -870,10 +907,14 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         """Change ``j`` (an index into ``bounds``) placed on the samples ``lo:hi``."""
         v1, v2 = float(velocity[j - 1]), float(velocity[j])
         stop = _relaxes(v1, v2, rel, sigma, lag)
+        move = weak is None or bool(weak[j - 1])
+        held = None if holds is None else bool(holds[j - 1] != holds[j])
         pl = change_profile(t, x, bounds[j], lo, hi, v1, v2, sigma, rel, ab, periods=periods,
-                            move=weak is None or bool(weak[j - 1]), stop=stop, tol=tol,
-                            held=None if holds is None else bool(holds[j - 1] != holds[j]),
-                            lag=lag)
+                            move=move, stop=stop, tol=tol, held=held, lag=lag)
+        if SEARCH_AGAIN and move and _search_again(pl, t, lo, hi, v1, v2):
+            pl = change_profile(t, x, pl.index, lo, hi, v1, v2, sigma, rel, ab,
+                                periods=periods, move=True, stop=stop, tol=tol, held=held,
+                                lag=lag)
         if not lo < pl.index < hi:
             pl = Placement(bounds[j], pl.lo, pl.hi, pl.edge, pl.cells, pl.weights, pl.guess)
         return pl
@@ -891,6 +932,41 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
         reach = max(HOLD_HALF, 60.0, 2.0 * max(periods, default=0.0)) + 5.0
         _clear_of_neighbours(bounds, out, places, m, place, t, reach)
     return out, places
+
+
+SEARCH_AGAIN = True
+"""Whether a change whose profile is cut by the times searched, its best time within
+:data:`SEARCH_END` of their end, is placed once more with the search about that time
+(:func:`_search_again`; ours; branch stepfix).
+
+Why: the change is looked for within ``search`` (5 s) of the whole stretches' guess, and the
+guess of a step under a large servo error (a measured position error of 1.5-2.8 s per unit
+speed) can lie farther than that from the change: zoo 336, 11281 and 11293 (ratio 3 and 2,
+guesses 8.1, 13.9 and 5.9 s off) were placed at the end of the times searched, 2.1-6.4
+tolerances off, the profile giving the truth ``start_p`` 0.000. A profile cut by the search
+with its best at the end says the likelihood still rises beyond it, and a search about that
+best reaches the change (within the tolerance, all three). Not at a reversal between two
+moving speeds: the zoo commands none, and the one the detector read (zoo 9000, a 4-s
+stretch at -35 um/s between two of +4.5 and +5.6) was moved 10 s and split the record's count.
+Measured on the zoo's used ranges: docs/performance.md (stepfix)."""
+SEARCH_END = 1.0
+"""How near the end of the times searched (s) the best time of a cut profile must lie to be
+searched again (:data:`SEARCH_AGAIN`; ours: two tolerances, :data:`.detection.PLACE_TOL`)."""
+
+
+def _search_again(pl: Placement, t: Array, lo: int, hi: int, v1: float, v2: float) -> bool:
+    """Whether the change placed at ``pl`` (on the samples ``lo:hi`` of the times ``t``, s, from
+    ``v1`` to ``v2``, m/s) is searched again about its place (:data:`SEARCH_AGAIN`): its
+    profile is cut by the times searched (``pl.edge``), its best time within
+    :data:`SEARCH_END` of their first or last (``pl.cells``), and it is no reversal between
+    two moving speeds (the slower above :data:`HOLD_RATIO` of the faster)."""
+    slow, fast = sorted((abs(v1), abs(v2)))
+    if v1 * v2 < 0.0 and slow > HOLD_RATIO * fast:
+        return False
+    if not (pl.edge and pl.cells is not None and lo < pl.index < hi):
+        return False
+    ta = float(t[pl.index])
+    return min(ta - float(pl.cells[0]), float(pl.cells[-1]) - ta) <= SEARCH_END
 
 
 NEIGHBOURS_PLACED = True
