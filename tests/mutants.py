@@ -3760,6 +3760,11 @@ MUTANTS: tuple[Mutant, ...] = (
        " FINE_BLOCKS if small else BLOCKS)",
        _HFX, "-k", "evenly"),
     # --- end stop 40 (holdfix)
+    # --- stop 40 (lead): a window whose count-blocks differ in duration on even blocks
+    _m("placement: RATE_EVEN off (blocks of one count across a rate change)",
+       "records/placement.py", "RATE_EVEN = 3.0\n", "RATE_EVEN = 0.0\n",
+       "tests/records/test_rate_even.py"),
+    # --- end stop 40 (lead)
 )
 
 

@@ -35,7 +35,10 @@ def test_holds_at_a_rate_change_placed_on_blocks_of_one_duration(
     hold) was cut into blocks of one sample count, several seconds long on the slow side,
     and the stop went 1.98 and 0.85 s early (3.4 and 1.7 tolerances). On blocks of one
     duration (HOLD_EVEN): every change at a hold within its tolerance (measured at most 0.88
-    of it). Mistake, seen failing: blocks of one count at a hold (HOLD_EVEN = False)."""
+    of it). Mistake, seen failing: blocks of one count at a hold (HOLD_EVEN = False). Both
+    with RATE_EVEN off, which puts any window across a rate change on blocks of one duration
+    and so would hide the mistake (its own test: test_rate_even.py)."""
+    monkeypatch.setattr(placement, "RATE_EVEN", 0.0)
     assert max(_zoo_hold_errors((5122, 9076), tmp_path)) <= 1.0
     monkeypatch.setattr(placement, "HOLD_EVEN", False)
     assert max(_zoo_hold_errors((5122, 9076), tmp_path)) > 1.0

@@ -66,11 +66,14 @@ def test_small_steps_at_a_rate_change_placed_better_on_even_blocks() -> None:
     # machine oscillation (seeds 0-39): within max(1 sample, 0.5 s) 35 of 40 on blocks of one
     # duration, 29 of one count (measured). The mistake it is for: blocks of one sample count
     # for a small step (EVEN_BLOCKS off), whose slow side's blocks are ten times longer
-    # (the first count with the detector as it is: the rule must be on by default)
+    # (the first count with EVEN_BLOCKS as it is: the rule must be on by default). Both with
+    # RATE_EVEN off, which puts any window across a rate change on blocks of one duration and
+    # so would hide the mistake (its own test: test_rate_even.py)
     recs = [_rate_step(seed, 1.3) for seed in range(40)]
     hits = {}
-    default = P.EVEN_BLOCKS
+    default, rate = P.EVEN_BLOCKS, P.RATE_EVEN
     for even in ("default", False):
+        P.RATE_EVEN = 0.0
         if even is False:
             P.EVEN_BLOCKS = False
         try:
@@ -79,21 +82,22 @@ def test_small_steps_at_a_rate_change_placed_better_on_even_blocks() -> None:
                 segs = detect_program(rec).segments
                 hits[even] += len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
         finally:
-            P.EVEN_BLOCKS = default
+            P.EVEN_BLOCKS, P.RATE_EVEN = default, rate
     assert hits["default"] >= 34 and hits["default"] >= hits[False] + 4, hits
 
 
 def test_large_step_placement_unchanged_by_even_blocks() -> None:
     # a ratio-3 step (not small) at the same rate change is placed as before, on blocks of
     # one count, whatever EVEN_BLOCKS says: the rule is for the small steps only (measured
-    # there). The mistake it is for: every change placed on even blocks
+    # there; RATE_EVEN, which puts any window across a rate change on even blocks, off).
+    # The mistake it is for: every change placed on even blocks
     got = {}
-    default = P.EVEN_BLOCKS
+    default, rate = P.EVEN_BLOCKS, P.RATE_EVEN
     for even in (True, False):
-        P.EVEN_BLOCKS = even
+        P.EVEN_BLOCKS, P.RATE_EVEN = even, 0.0
         try:
             got[even] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in detect_program(
                 _rate_step(seed, 3.0)[0]).segments) for seed in range(6)]
         finally:
-            P.EVEN_BLOCKS = default
+            P.EVEN_BLOCKS, P.RATE_EVEN = default, rate
     assert got[True] == got[False]
