@@ -3,7 +3,7 @@
 means of one duration: at a 10-fold sampling-rate change at the end (or the start) of a short
 step, blocks of one count are ten times longer on the slow side, and the candidate times,
 three blocks clear of the window's ends, did not reach the true time on the short side (zoo
-332, 380: a short step's start or end 1.3-4.2 tolerances off). The test's records are
+332 and 380: a short step's change 2.12 and 0.66 s off). The test's records are
 stepfix's, written for the form that put every change on such blocks (dropped: it moved a
 change after a 1-s stretch of an evenly sampled whole experiment)."""
 

@@ -491,10 +491,10 @@ Why: a block mean keeps one number of its samples, so a block's duration is the 
 resolution, and the candidate times stay three blocks inside the window. On the slow side
 of a 10-fold rate change, blocks of one count are ten times longer: at the end of a short
 step (8 s on that side) they were 4-5 s long and the candidates never reached the true time
-(zoo 332, 380, 6038, 6254: a short step's start or end 1.3-4.2 tolerances off). Only such
+(zoo 332 and 380 on main: a short step's change 2.12 and 0.66 s off). Only such
 windows: every window on blocks of one duration (stepfix's form) moved a change after a 1-s
-stretch of an evenly sampled whole experiment by 0.22 s (``tests/fit/test_experiment.py``),
-where the blocks of one count are already even and this rule does not act. Measured:
+stretch of a whole experiment by 0.22 s (``tests/fit/test_experiment.py``); this rule leaves
+it where it was. Measured:
 docs/performance.md ("The three merged")."""
 
 
