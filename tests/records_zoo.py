@@ -67,7 +67,7 @@ Artifacts (names used in :data:`ARTIFACTS`):
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -429,6 +429,14 @@ class Score:
 
 
 FALSE_WINDOW = 5.0  # s: a detected change farther than this from every true change is false
+
+
+def one_change_right(recs: list, detect: Callable[[object], object]) -> int:
+    """How many of ``recs`` (``(record, true change time s, tolerance s)`` each) ``detect``
+    gives exactly one change within its tolerance of the truth (a record's program of two
+    segments)."""
+    return sum(len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
+               for segs, tc, tol in ((detect(r).segments, tc, tol) for r, tc, tol in recs))
 
 
 def tolerance(t: np.ndarray, at: float) -> float:

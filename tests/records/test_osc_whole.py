@@ -53,9 +53,7 @@ def _hits(recs: list[tuple[LabRecord, float, float]], whole: bool | None = None)
     default = P.OSC_WHOLE
     P.OSC_WHOLE = default if whole is None else whole
     try:
-        return sum(len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
-                   for segs, tc, tol in ((detect_program(r).segments, tc, tol)
-                                         for r, tc, tol in recs))
+        return z.one_change_right(recs, detect_program)
     finally:
         P.OSC_WHOLE = default
 

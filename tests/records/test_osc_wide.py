@@ -48,9 +48,7 @@ def _hits(recs: list[tuple[LabRecord, float, float]], wide: bool | None = None) 
     default = P.OSC_WIDE
     P.OSC_WIDE = default if wide is None else wide
     try:
-        return sum(len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
-                   for segs, tc, tol in ((detect_program(r).segments, tc, tol)
-                                         for r, tc, tol in recs))
+        return z.one_change_right(recs, detect_program)
     finally:
         P.OSC_WIDE = default
 
