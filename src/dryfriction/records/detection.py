@@ -204,18 +204,6 @@ def _window_pairs(t: Array, x: Array, speed: Array, width: float, offset: float,
                         float(offset), float(half_s2), width**2 / 48.0)
 
 
-def _median(a: Array) -> float:
-    """The median of a non-empty 1-d array, as ``np.median`` (the mean of the two middle
-    values for an even count) without its general-axis overhead: it is taken twice per time
-    scale of every fluctuation measurement. One partition at the upper middle rank, the lower
-    one the largest value below it (a partition at both ranks costs about five times more)."""
-    k = a.size // 2
-    p = np.partition(a, k)
-    if a.size % 2:
-        return float(p[k])
-    return float(0.5 * (p[:k].max() + p[k]))
-
-
 def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
                          velocity: Array) -> Fluctuations:
     """``r(T)`` of the displacement ``x(t)`` about a broken line (:class:`Fluctuations`).
@@ -289,9 +277,9 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
             fast = np.zeros(y.size, bool)
             fast[np.argsort(u, kind="stable")[y.size // 2:]] = True  # by rank: ties split
             uf = u[fast]
-            r2 = 2.198 * _median(y[fast] / uf**2) if (uf > 0).all() else 0.0
+            r2 = 2.198 * median(y[fast] / uf**2) if (uf > 0).all() else 0.0
             r2 = max(r2, 0.0)
-            a2 = max(2.198 * _median((y - r2 * u**2)[~fast]), 0.0)
+            a2 = max(2.198 * median((y - r2 * u**2)[~fast]), 0.0)
             scales.append(T)
             rel.append(np.sqrt(r2))
             ab.append(np.sqrt(a2))
