@@ -70,6 +70,7 @@ import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from unittest.mock import patch
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -437,6 +438,18 @@ def one_change_right(recs: list, detect: Callable[[object], object]) -> int:
     segments)."""
     return sum(len(segs) == 2 and abs(segs[1].t_start - tc) <= tol
                for segs, tc, tol in ((detect(r).segments, tc, tol) for r, tc, tol in recs))
+
+
+def starts_with(recs: list, detect: Callable[[object], object], module: object, name: str,
+                values: tuple = (True, False)) -> dict:
+    """Each record's segments (first sample, 95 % interval's ends s) as ``detect`` gives them
+    with the constant ``module.name`` set to each of ``values`` in turn (restored after)."""
+    got = {}
+    for value in values:
+        with patch.object(module, name, value):
+            got[value] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in detect(r).segments)
+                          for r in recs]
+    return got
 
 
 def tolerance(t: np.ndarray, at: float) -> float:

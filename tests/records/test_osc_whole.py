@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from unittest.mock import patch
 
 import numpy as np
 
@@ -50,25 +51,13 @@ def _step(seed: int, ratio: float, osc: tuple[tuple[float, float], ...]
 def _hits(recs: list[tuple[LabRecord, float, float]], whole: bool | None = None) -> int:
     """How many of ``recs`` get one change within its tolerance, with ``OSC_WHOLE = whole``
     (None: as the detector is)."""
-    default = P.OSC_WHOLE
-    P.OSC_WHOLE = default if whole is None else whole
-    try:
+    with patch.object(P, "OSC_WHOLE", P.OSC_WHOLE if whole is None else whole):
         return z.one_change_right(recs, detect_program)
-    finally:
-        P.OSC_WHOLE = default
 
 
 def _placements(recs: list[LabRecord]) -> dict[bool, list[tuple]]:
     """Each record's segments (first sample, 95 % interval) with ``OSC_WHOLE`` on and off."""
-    default, got = P.OSC_WHOLE, {}
-    for whole in (True, False):
-        P.OSC_WHOLE = whole
-        try:
-            got[whole] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in
-                                detect_program(r).segments) for r in recs]
-        finally:
-            P.OSC_WHOLE = default
-    return got
+    return z.starts_with(recs, detect_program, P, "OSC_WHOLE")
 
 
 def test_osc_whole_is_a_moving_change_beyond_osc_wide_ratio_short_of_a_stop_with_room() -> None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from unittest.mock import patch
 
 import numpy as np
 
@@ -45,12 +46,8 @@ def _step(seed: int, ratio: float, osc: tuple[tuple[float, float], ...]
 def _hits(recs: list[tuple[LabRecord, float, float]], wide: bool | None = None) -> int:
     """How many of ``recs`` get one change within its tolerance, with ``OSC_WIDE = wide``
     (None: as the detector is)."""
-    default = P.OSC_WIDE
-    P.OSC_WIDE = default if wide is None else wide
-    try:
+    with patch.object(P, "OSC_WIDE", P.OSC_WIDE if wide is None else wide):
         return z.one_change_right(recs, detect_program)
-    finally:
-        P.OSC_WIDE = default
 
 
 def test_osc_wide_is_a_moving_change_of_ratio_at_most_osc_wide_ratio_with_room() -> None:
@@ -88,15 +85,7 @@ def test_ratio_2_steps_placed_better_on_two_periods_each_side() -> None:
 
 def _placements(recs: list[LabRecord]) -> dict[bool, list[tuple]]:
     """Each record's segments (first sample, 95 % interval) with ``OSC_WIDE`` on and off."""
-    default, got = P.OSC_WIDE, {}
-    for wide in (True, False):
-        P.OSC_WIDE = wide
-        try:
-            got[wide] = [tuple((s.i_start, s.start_lo, s.start_hi) for s in
-                               detect_program(r).segments) for r in recs]
-        finally:
-            P.OSC_WIDE = default
-    return got
+    return z.starts_with(recs, detect_program, P, "OSC_WIDE")
 
 
 def _short(seed: int, ratio: float) -> LabRecord:

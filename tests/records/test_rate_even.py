@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from unittest.mock import patch
 
 import numpy as np
 
@@ -46,18 +47,14 @@ def _hits(start: bool, every: float) -> int:
     """Of seeds 0-11, the changes placed within 0.5 s with ``RATE_EVEN = every`` (0: off),
     under a wander of 8 % and 6.3 s (the zoo records' fitted ``(s, tau)``: a window of 65 s
     each side)."""
-    default = P.RATE_EVEN
-    P.RATE_EVEN = every
-    try:
-        hits = 0
+    hits = 0
+    with patch.object(P, "RATE_EVEN", every):
         for seed in range(12):
             t, x, g, lo, hi, va, vb, tc = _short_step_edge(seed, start)
             pl = P.change_profile(t, x, g, lo, hi, va, vb, z.WHITE, (0.08, 6.3), (0.0, 1.0),
                                   tol=0.5)
             hits += abs(t[pl.index] - tc) <= 0.5
-        return hits
-    finally:
-        P.RATE_EVEN = default
+    return hits
 
 
 def test_short_step_end_at_a_rate_change_placed_on_blocks_of_one_duration() -> None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from unittest.mock import patch
 
 import numpy as np
 
@@ -27,13 +28,9 @@ def _placed(seed: int, v2_over_v1: float, again: bool) -> tuple[float, float]:
     x = z.step_displacement(t, vc, rng, wobble=False)
     g = int(np.searchsorted(t, 158.0))
     scales = np.array([2.0, 5.0, 10.0, 20.0])
-    default = P.SEARCH_AGAIN
-    P.SEARCH_AGAIN = again
-    try:
+    with patch.object(P, "SEARCH_AGAIN", again):
         out, _ = P.place_changes(t, x, [0, g, t.size], np.array([v1, v2_over_v1 * v1]),
                                  z.WHITE, scales, np.zeros(4), np.zeros(4), tol=0.5)
-    finally:
-        P.SEARCH_AGAIN = default
     return float(t[out[1]]), 150.0
 
 
