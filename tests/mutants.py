@@ -69,6 +69,7 @@ _FSG = ("tests/plots/test_fronts_figures.py::"
         "test_speed_figure_open_intervals_reach_twice_the_highest_bound_and_log_rule")
 _FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar_and_limits"
 _HFX = "tests/records/test_hold_fix.py"
+_HD = "tests/records/test_hold_drift.py"
 _HFX_K = (_HFX, "-k", "shortens or lengthened")
 _RFD = "tests/plots/test_record_figure_data.py"
 _S6NQ = "tests/theory/test_nyquist_generic.py"
@@ -3765,6 +3766,22 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/placement.py", "RATE_EVEN = 3.0\n", "RATE_EVEN = 0.0\n",
        "tests/records/test_rate_even.py"),
     # --- end stop 40 (lead)
+    # --- stop 41 (lead): a hold read through the record's drift
+    _m("detection: HOLD_SIGN off (a hold reading backwards taken for lost)",
+       "records/detection.py", "HOLD_SIGN = True\n", "HOLD_SIGN = False\n", _HD),
+    _m("detection: _slide_way's sign test reversed on one side", "records/detection.py",
+       "    out[1:] |= v[1:] * v[:-1] > 0.0\n", "    out[1:] |= v[1:] * v[:-1] < 0.0\n", _HD),
+    _m("detection: HOLD_BACK off (a hold drifting backwards reported as a slide)",
+       "records/detection.py", "HOLD_BACK = True\n", "HOLD_BACK = False\n", _HD),
+    _m("detection: a hold read through the drift whichever way it moves",
+       "records/detection.py", "    return ~_slide_way(v) & (u <= HOLD_RATIO * nb)\n",
+       "    return u <= HOLD_RATIO * nb\n", _HD),
+    _m("detection: the drift bound at RELAX_STOP (1/20), not HOLD_RATIO",
+       "records/detection.py", "    return ~_slide_way(v) & (u <= HOLD_RATIO * nb)\n",
+       "    return ~_slide_way(v) & (u <= RELAX_STOP * nb)\n", _HD),
+    _m("detection: the left neighbour left out of the drift bound", "records/detection.py",
+       "    nb[1:] = np.maximum(nb[1:], u[:-1])\n", "", _HD),
+    # --- end stop 41 (lead)
 )
 
 

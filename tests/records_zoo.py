@@ -427,6 +427,9 @@ class Score:
     # (inf at a hold), time error s, tolerance s, inside its 95 % interval or None where the
     # detector gave none, placed (Segment.start_placed))
     changes: list[tuple[float, float, float, bool | None, bool]] = field(default_factory=list)
+    # the true holds (commanded velocity 0) and those the detection reports at velocity 0
+    # (the segment holding each hold's middle): a hold reported at a speed is cut as steps
+    holds: tuple[int, int] = (0, 0)
 
 
 FALSE_WINDOW = 5.0  # s: a detected change farther than this from every true change is false
@@ -489,7 +492,12 @@ def score(rec: ZooRecord, det: object, cpu: float) -> Score:
         for f, c in zip(nfound, rec.normal_changes, strict=True))
     note = "" if nright else f"normal changes {nfound} vs {rec.normal_changes}"
     count = len(found) == len(truth) and len(nfound) == len(rec.normal_changes)
-    return Score(right and nright, len(found), false, missed, worst, cpu, count, note, per)
+    ends = [0.0, *truth, float(t[-1])]
+    mids = [0.5 * (ends[k] + ends[k + 1]) for k, v in enumerate(rec.velocities) if v == 0.0]
+    zero = sum(any(s.t_start - t0 <= m < s.t_end - t0 and s.velocity == 0.0 for s in segs)
+               for m in mids)
+    return Score(right and nright, len(found), false, missed, worst, cpu, count, note, per,
+                 (len(mids), zero))
 
 
 def ou_step(seed: int, v2: float) -> tuple[np.ndarray, np.ndarray, int]:
