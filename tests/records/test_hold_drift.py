@@ -108,9 +108,9 @@ def test_held_back_tells_a_drifting_hold_from_a_slow_stretch() -> None:
 
 
 def _zoo(i: int, tmp: Path):  # noqa: ANN202
-    """Zoo record ``i`` written in its dialect and read back."""
+    """Zoo record ``i`` and the same written in its dialect and read back."""
     rec = next(z.make_record(j, p, a, d) for j, p, a, d in z.specs(i + 1) if j == i)
-    return read_record(z.write(rec, tmp))
+    return rec, read_record(z.write(rec, tmp))
 
 
 def test_a_drifting_hold_is_reported_as_a_hold(tmp_path: Path,
@@ -120,7 +120,7 @@ def test_a_drifting_hold_is_reported_as_a_hold(tmp_path: Path,
     scatter, and the table gave it as a slide at that speed. With HOLD_BACK both holds are
     reported at 0 and every slide at one speed (measured). Mistake, seen failing: HOLD_BACK
     off (-1.16 nm/s)."""
-    got = _zoo(7060, tmp_path)
+    _, got = _zoo(7060, tmp_path)
     speeds = [s.velocity for s in detect_program(got).segments]
     assert speeds.count(0.0) == 2
     assert all(v == 0.0 or v > 1e-7 for v in speeds)
@@ -134,11 +134,15 @@ def test_a_slide_hold_slide_with_drift_is_cut_as_one(tmp_path: Path,
     """Zoo record 70 (a slide-hold-slide at 40 um/s, two holds of 70 and 237 s, drift): both
     holds read -7 and -10 nm/s, and the record was cut into four velocity steps, two of them
     to a speed below zero. With HOLD_BACK: two slide-hold-slide windows of those holds
-    (measured). Mistake, seen failing: HOLD_BACK off (four steps)."""
-    got = _zoo(70, tmp_path)
-    wins = slice_steps(got, detect_program(got).segments)
+    (measured), and bench_detect's score counts both holds reported at velocity 0. Mistake,
+    seen failing: HOLD_BACK off (four steps; the score's count 0 of 2)."""
+    rec, got = _zoo(70, tmp_path)
+    det = detect_program(got)
+    wins = slice_steps(got, det.segments)
     assert [w.kind for w in wins] == ["shs", "shs"]
     assert all(w.v_before > 0.0 and w.v_after > 0.0 for w in wins)
+    assert z.score(rec, det, 0.0).holds == (2, 2)
     monkeypatch.setattr(detection, "HOLD_BACK", False)
-    wins = slice_steps(got, detect_program(got).segments)
-    assert [w.kind for w in wins] == ["step"] * 4
+    det = detect_program(got)
+    assert [w.kind for w in slice_steps(got, det.segments)] == ["step"] * 4
+    assert z.score(rec, det, 0.0).holds == (2, 0)
