@@ -52,6 +52,7 @@ __all__ = [
     "rsf_series",
     "cv_series",
     "machine_stiffness",
+    "STIFFNESS_RANGE",
     "load_point_displacement",
     "loading_slope_stiffness",
     "data_kinds",
@@ -137,11 +138,16 @@ def machine_stiffness(setting: float | str, values: Mapping[str, float]) -> floa
     return values["stiffness"] if setting == "fit" else float(setting)
 
 
+STIFFNESS_RANGE = (1.0, 1e10)
+"""Search bounds of a fitted machine stiffness per unit normal force, 1/m; a data-driven
+start (the loading slope) is put within them."""
+
+
 def _machine_specs(kinds: frozenset[str], stiffness: float | str, trend: bool
                    ) -> tuple[ParamSpec, ...]:
     extra: tuple[ParamSpec, ...] = ()
     if "series" in kinds and stiffness == "fit":
-        extra += (ParamSpec("stiffness", "1/m", True, 1.0, 1e10),)
+        extra += (ParamSpec("stiffness", "1/m", True, *STIFFNESS_RANGE),)
     if "series" in kinds and trend:
         extra += (ParamSpec("trend", "1/m", False, -1e6, 1e6),)
     return extra
@@ -152,9 +158,11 @@ def _machine_guess(series: Sequence[SeriesData], stiffness: float | str, trend: 
     extra: dict[str, float] = {}
     if series and stiffness == "fit":
         try:
-            extra["stiffness"] = loading_slope_stiffness(series[0])
+            k = loading_slope_stiffness(series[0])
         except ValueError:  # no usable loading slope: a stiff start
-            extra["stiffness"] = 1e4 / max(float(np.mean(series[0].mu)), 1e-3)
+            k = 1e4 / max(float(np.mean(series[0].mu)), 1e-3)
+        # a shallow slope (a flat record: 0.87 1/m) is a start the search would refuse
+        extra["stiffness"] = min(max(k, STIFFNESS_RANGE[0]), STIFFNESS_RANGE[1])
     if series and trend:
         extra["trend"] = 0.0
     return extra
