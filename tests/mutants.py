@@ -3781,10 +3781,12 @@ MUTANTS: tuple[Mutant, ...] = (
        "    return ~_slide_way(v) & (u <= RELAX_STOP * nb)\n", _HD),
     _m("detection: the left neighbour left out of the drift bound", "records/detection.py",
        "    nb[1:] = np.maximum(nb[1:], u[:-1])\n", "", _HD),
-    _m("models: a fitted stiffness's data-driven start not put within its bounds",
-       "fit/models.py",
-       '        extra["stiffness"] = min(max(k, STIFFNESS_RANGE[0]), STIFFNESS_RANGE[1])\n',
-       '        extra["stiffness"] = k\n', "tests/fit/test_identify.py", "-k", "flat_record"),
+    _m("steps: a data-driven start not put within the search bounds", "fit/steps.py",
+       "        g = {k: specs[k].within(v) if k in specs else v for k, v in g.items()}\n", "",
+       "tests/fit/test_identify.py", "-k", "flat_record"),
+    _m("models: ParamSpec.within puts nothing within the bounds", "fit/models.py",
+       "        return float(np.clip(p, self.lo, self.hi))\n", "        return float(p)\n",
+       "tests/fit/test_identify.py", "-k", "flat_record"),
     # --- end stop 41 (lead)
 )
 

@@ -386,10 +386,10 @@ def test_a_flat_record_starts_its_stiffness_within_the_search_bounds():
     """Seed 87 (kind ``flat``): its loading slope gives a stiffness of 0.87 1/m, below the
     fitted stiffness's lower bound (1 1/m), and the data-driven start was refused by the fit
     itself (``start['stiffness'] [1/m] = 0.86693 is out of range``: the 100-record study
-    stopped there). The start is now put within the bounds, and the step is fitted and
-    flagged as the flat record it is (measured: a, b, Dc and the stiffness not identified,
-    the stiffness at its bound). Mistake, seen failing: the start not put within them (the
-    ValueError)."""
+    stopped there). Every data-driven start is now put within the search bounds, as the fit
+    puts its own guesses (``ParamSpec.within``), and the step is fitted and flagged as the
+    flat record it is (measured: a, b, Dc and the stiffness not identified, the stiffness at
+    its bound). Mistake, seen failing: the start not put within them (the ValueError)."""
     c = make_case(87)
     row = fit_steps(SeriesData(c.t, c.v_load, c.mu, source="seed 87")).rows[0]
     assert c.kind == "flat" and not c.identifiable

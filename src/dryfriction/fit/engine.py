@@ -159,8 +159,7 @@ def _best_of_starts(prob: Problem, starts_in: list[tuple[str, dict[str, float]]]
     best: tuple[Array, float, Any] | None = None
     starts_out: list[dict[str, Any]] = []
     for i, (label, g) in enumerate(starts_in):
-        th0 = np.array([s.to_internal(float(np.clip(g[s.name], s.lo, s.hi)))
-                        for s in prob.specs])
+        th0 = np.array([s.to_internal(s.within(g[s.name])) for s in prob.specs])
         track.begin("start", f"start {i + 1} of {len(starts_in)}")
         th, cost, sol = prob.solve(th0)
         track.end()

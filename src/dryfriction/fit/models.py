@@ -52,7 +52,6 @@ __all__ = [
     "rsf_series",
     "cv_series",
     "machine_stiffness",
-    "STIFFNESS_RANGE",
     "load_point_displacement",
     "loading_slope_stiffness",
     "data_kinds",
@@ -103,6 +102,11 @@ class ParamSpec:
     def bounds(self) -> tuple[float, float]:
         return self.to_internal(self.lo), self.to_internal(self.hi)
 
+    def within(self, p: float) -> float:
+        """``p`` put within the search bounds ``[lo, hi]`` (a data-driven guess may lie
+        outside them: a flat record's loading slope gives a stiffness below 1 1/m)."""
+        return float(np.clip(p, self.lo, self.hi))
+
 
 def data_kinds(datasets: Sequence[Dataset]) -> frozenset[str]:
     """The kinds of the data sets ("static", "steady", "series"): they choose the parameters."""
@@ -138,16 +142,11 @@ def machine_stiffness(setting: float | str, values: Mapping[str, float]) -> floa
     return values["stiffness"] if setting == "fit" else float(setting)
 
 
-STIFFNESS_RANGE = (1.0, 1e10)
-"""Search bounds of a fitted machine stiffness per unit normal force, 1/m; a data-driven
-start (the loading slope) is put within them."""
-
-
 def _machine_specs(kinds: frozenset[str], stiffness: float | str, trend: bool
                    ) -> tuple[ParamSpec, ...]:
     extra: tuple[ParamSpec, ...] = ()
     if "series" in kinds and stiffness == "fit":
-        extra += (ParamSpec("stiffness", "1/m", True, *STIFFNESS_RANGE),)
+        extra += (ParamSpec("stiffness", "1/m", True, 1.0, 1e10),)
     if "series" in kinds and trend:
         extra += (ParamSpec("trend", "1/m", False, -1e6, 1e6),)
     return extra
@@ -158,11 +157,9 @@ def _machine_guess(series: Sequence[SeriesData], stiffness: float | str, trend: 
     extra: dict[str, float] = {}
     if series and stiffness == "fit":
         try:
-            k = loading_slope_stiffness(series[0])
+            extra["stiffness"] = loading_slope_stiffness(series[0])
         except ValueError:  # no usable loading slope: a stiff start
-            k = 1e4 / max(float(np.mean(series[0].mu)), 1e-3)
-        # a shallow slope (a flat record: 0.87 1/m) is a start the search would refuse
-        extra["stiffness"] = min(max(k, STIFFNESS_RANGE[0]), STIFFNESS_RANGE[1])
+            extra["stiffness"] = 1e4 / max(float(np.mean(series[0].mu)), 1e-3)
     if series and trend:
         extra["trend"] = 0.0
     return extra

@@ -51,7 +51,7 @@ from .joint import JointStepsModel, fit_joint
 from .lawcolumns import LAW_COLUMNS, add_law_columns
 from .laws import FIT_LAWS, INITIAL_STATES
 from .machine import hold_remnant
-from .models import ParamSpec, RSFModel, rsf_series
+from .models import ParamSpec, RSFModel, data_kinds, rsf_series
 from .results import FitResult
 from .statistics import Covariance, held_parameter_covariance, quantile_95, with_stderr
 
@@ -576,8 +576,12 @@ def _start(prev: FitResult | None, model: RSFModel, d: SeriesData) -> dict[str, 
     if prev is not None and prev.success:
         return {p.name: p.value for p in prev.parameters if p.name != "mu0" and not p.fixed}
     m = model.resolve([d])
+    specs = {s.name: s for s in m.parameters(data_kinds([d]))}
     best: tuple[float, dict[str, float]] | None = None
     for g in m.guesses([d]):
+        # within the search bounds, as the fit puts its own guesses: a start given to it
+        # outside them is refused
+        g = {k: specs[k].within(v) if k in specs else v for k, v in g.items()}
         try:
             r = d.mu - rsf_series(m, g, d)
         except (SolverError, ValueError):  # a guess the simulator cannot run: skip it
