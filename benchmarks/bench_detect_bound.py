@@ -172,10 +172,10 @@ def bounds(rec: z.ZooRecord, strict: bool) -> np.ndarray:
     cols = [np.ones_like(t), t] + [np.maximum(t - c, 0.0) for c in ch]
     if not strict and "wobble" in rec.artifacts:
         for _amp, per in z.WOBBLE:
-            for f in (np.sin, np.cos):
-                g = vl * f(2.0 * np.pi * t / per)
-                cols.append(np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1])
-                                                             * np.diff(t))]))
+            # the exact integral over each sample interval (as the zoo's across a gap)
+            w = 2.0 * np.pi / per
+            for f in (-np.cos(w * t) / w, np.sin(w * t) / w):
+                cols.append(np.concatenate([[0.0], np.cumsum(vl[1:] * np.diff(f))]))
     steps = [(t > c).astype(float) for c in ch]
     Y = np.column_stack(cols + steps)
     W = _kalman_whiten(np.diff(t), vl, vu, np.ascontiguousarray(Y),
@@ -206,9 +206,11 @@ def posterior(rec: z.ZooRecord, k: int, half: float = 60.0, span: float = 10.0,
     tc = float(ch[k])
     a = max(tc - half, float(ch[k - 1]) if k > 0 else -np.inf)
     b = min(tc + half, float(ch[k + 1]) if k + 1 < ch.size else np.inf)
-    eps = rec.eps if rec.eps is not None else np.zeros_like(t)
-    g = 1.0 + eps
-    E = np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(t))])
+    if rec.e_int is not None:  # as the zoo integrated it (exact across a gap)
+        E = rec.e_int
+    else:
+        g = 1.0 + (rec.eps if rec.eps is not None else np.zeros_like(t))
+        E = np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(t))])
     velocity = rec.dialect == "velocity"
     if velocity:
         v = np.asarray(rec.v, float)

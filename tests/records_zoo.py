@@ -53,7 +53,11 @@ Artifacts (names used in :data:`ARTIFACTS`):
   ``bursts``: 3 to 8 servo bursts;
 * ``rate``: the sampling rate changes 10-fold (up, or down from >= 10 Hz) at a random time or
   at a change; ``irregular``: sampling intervals jittered by +-30 %; ``gaps``: 1 to 3 missing
-  stretches of 5 s to 5 % of the record, at most 60 s (10 s away from the changes);
+  stretches of 5 s to 5 % of the record, at most 60 s (10 s away from the changes): samples not
+  written, the load point moving on; across one the displacement grows by the exact integral of
+  the velocity with its oscillation and bursts (:func:`_gap_increments`; until stop 42 the
+  trapezoid of the gap's two ends, a jump of up to a tenth of the velocity times the gap that
+  no apparatus makes);
 * ``reset``: the displacement transducer re-zeroed once (a jump with no slip);
   ``drift``: a slow displacement drift of 2 um over the record;
   ``quant``: a coarse quantum of 0.1-0.5 um;
@@ -113,6 +117,9 @@ class ZooRecord:
     # the servo bursts alone (``bursts``): (start s from the first sample, duration s, relative
     # velocity excursion 1), part of ``eps``; their displacement is :func:`burst_displacement`
     bursts: list[tuple[float, float, float]] = field(default_factory=list)
+    # ``int (1 + eps) dt`` from the first sample, s, as the displacement was integrated (the
+    # trapezoid, exact across a gap: :func:`_gap_increments`)
+    e_int: np.ndarray | None = None
 
     @property
     def rows(self) -> int:
@@ -182,8 +189,10 @@ def _program(kind: str, rng: np.random.Generator, dc: float) -> list[tuple[float
 
 
 def _sample_times(end: float, fs: float, arts: tuple[str, ...], changes: list[float],
-                  rng: np.random.Generator) -> np.ndarray:
+                  rng: np.random.Generator) -> tuple[np.ndarray, list[tuple[float, float]]]:
+    """The sample times (s) and the gaps cut from them (``(start, end)`` s each)."""
     dt = 1.0 / fs
+    cut: list[tuple[float, float]] = []
     if "rate" in arts:
         at = float(rng.choice(changes)) if changes and rng.random() < 0.5 else float(
             rng.uniform(0.2, 0.8) * end)
@@ -203,8 +212,33 @@ def _sample_times(end: float, fs: float, arts: tuple[str, ...], changes: list[fl
                 if all(abs(c - s) > 10.0 and abs(c - s - g) > 10.0 and not s < c < s + g
                        for c in changes):
                     t = t[(t < s) | (t > s + g)]
+                    cut.append((s, s + g))
                     break
-    return t
+    return t, cut
+
+
+def _gap_increments(t: np.ndarray, cut: list[tuple[float, float]], phases: list[float],
+                    bursts: list[tuple[float, float, float]]) -> tuple[np.ndarray, np.ndarray]:
+    """The sample intervals ``i`` (from ``t[i]`` to ``t[i + 1]``, s) that span a gap of ``cut``,
+    and the exact integral over each of ``1 + eps`` (s) without the ``walk``: its length, the
+    machine oscillation's (:data:`WOBBLE`, ``phases`` its random phases; empty: none) and the
+    bursts' (``(start, duration, excursion)``). A gap is samples not written, not another
+    motion: the trapezoid of the two ends over 5-60 s (what the other intervals take, a tenth
+    of a second to a second) put a jump of up to a tenth of the velocity times the gap into the
+    displacement, which the detection rightly read as a reset."""
+    # a gap that runs past the last sample only ends the record early
+    idx = np.array([k for k in (int(np.searchsorted(t, a)) - 1 for a, _ in cut)
+                    if 0 <= k < t.size - 1], dtype=np.int64)
+    if idx.size == 0:
+        return idx, np.zeros(0)
+    a, b = t[idx], t[idx + 1]
+    out = b - a
+    for (amp, per), ph in zip(WOBBLE, phases, strict=False):
+        w = 2.0 * np.pi / per
+        out = out + amp * (np.cos(w * a + ph) - np.cos(w * b + ph)) / w
+    for s, d, amp in bursts:
+        out = out + amp * np.clip(np.minimum(b, s + d) - np.maximum(a, s), 0.0, None)
+    return idx, out
 
 
 def _ou(t: np.ndarray, tau: float, rms: float, rng: np.random.Generator) -> np.ndarray:
@@ -268,18 +302,22 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
                        1.0, 100.0))
     fs = float(min((1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0), key=lambda f: abs(
         math.log(f / fs)) if f >= fs else 1e9))
-    t = _sample_times(end, fs, artifacts, changes, rng)
+    t, cut = _sample_times(end, fs, artifacts, changes, rng)
     vl = np.zeros_like(t)
     for s, v in prog:
         vl[t >= s] = v
     # the load point's motion: the commanded velocity times (1 + the relative velocity
     # fluctuations), then the servo's position error
     eps = np.zeros_like(t)
+    walk = np.zeros_like(t)
     if "walk" in artifacts:
-        eps += _ou(t, WALK_TAU, WALK_RMS, rng)
+        walk = _ou(t, WALK_TAU, WALK_RMS, rng)
+        eps += walk
+    phases: list[float] = []
     if "wobble" in artifacts:
         for amp, per in WOBBLE:
-            eps += amp * np.sin(2 * np.pi * t / per + rng.uniform(0, 2 * np.pi))
+            phases.append(float(rng.uniform(0, 2 * np.pi)))
+            eps += amp * np.sin(2 * np.pi * t / per + phases[-1])
     bursts: list[tuple[float, float, float]] = []
     if "bursts" in artifacts:
         for _ in range(int(rng.integers(3, 9))):
@@ -288,7 +326,20 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
             eps += np.where((t >= s) & (t < s + w), amp, 0.0)
             bursts.append((s, w, amp))
     vt = vl * (1.0 + eps)
-    x = np.concatenate([[0.0], np.cumsum(0.5 * (vt[1:] + vt[:-1]) * np.diff(t))])
+    # the load point's displacement, ``int vl (1 + eps)``: the trapezoid over each sample
+    # interval, the exact integral over one spanning a gap (:func:`_gap_increments`); ``e_int``
+    # is ``int (1 + eps)`` the same way (for an oracle that knows the fluctuations)
+    g = 1.0 + eps
+    e_inc = 0.5 * (g[1:] + g[:-1]) * np.diff(t)
+    inc = 0.5 * (vt[1:] + vt[:-1]) * np.diff(t)
+    gi, exact = _gap_increments(t, cut, phases, bursts)
+    if gi.size:
+        # the velocity's random walk (``walk``) has no closed form: the trapezoid, as elsewhere
+        exact = exact + 0.5 * (walk[gi] + walk[gi + 1]) * (t[gi + 1] - t[gi])
+        e_inc[gi] = exact
+        inc[gi] = vl[gi] * exact  # no change lies in a gap (10 s away from each)
+    x = np.concatenate([[0.0], np.cumsum(inc)])
+    e_int = np.concatenate([[0.0], np.cumsum(e_inc)])
     if "red" in artifacts:
         e = servo_error(t, vl, rng)
         x += e
@@ -325,7 +376,7 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     return ZooRecord(f"zoo_{index:03d}_{program}_{'+'.join(artifacts) or 'plain'}",
                      program, artifacts, dialect, t + 100.0, x, mu, sn, changes,
                      normal_changes, ramp, v_read, [v for _, v in prog], q, eps, x_known,
-                     bursts)
+                     bursts, e_int)
 
 
 def burst_velocity(rec: ZooRecord) -> np.ndarray:
