@@ -70,6 +70,7 @@ _FSG = ("tests/plots/test_fronts_figures.py::"
 _FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar_and_limits"
 _HFX = "tests/records/test_hold_fix.py"
 _HD = "tests/records/test_hold_drift.py"
+_ZG = "tests/records/test_zoo_gaps.py"
 _HFX_K = (_HFX, "-k", "shortens or lengthened")
 _RFD = "tests/plots/test_record_figure_data.py"
 _S6NQ = "tests/theory/test_nyquist_generic.py"
@@ -3788,6 +3789,20 @@ MUTANTS: tuple[Mutant, ...] = (
        "        return float(np.clip(p, self.lo, self.hi))\n", "        return float(p)\n",
        "tests/fit/test_identify.py", "-k", "flat_record"),
     # --- end stop 41 (lead)
+    # --- stop 42 (lead): a reset's offset across a gap fitted on windows as long as the gap
+    _m("artifacts: RESET_WIDE off (a reset's offset on 30 samples a side across a gap)",
+       "records/artifacts.py", "RESET_WIDE = True\n", "RESET_WIDE = False\n", _ZG),
+    _m("artifacts: _offset_rows not widened after the jump", "records/artifacts.py",
+       "    b = max(int(rows[-1]) + 1, min(hi, int(np.searchsorted(t, t[i + 1] + span, "
+       '"right"))))\n', "    b = int(rows[-1]) + 1\n", _ZG),
+    _m("artifacts: _offset_rows thinned to a tenth of RESET_SIDE", "records/artifacts.py",
+       "        left = left[np.linspace(0, left.size - 1, RESET_SIDE).round().astype(np.int64)]\n",
+       "        left = left[np.linspace(0, left.size - 1, RESET_SIDE // 10).round().astype("
+       "np.int64)]\n", _ZG),
+    _m("artifacts: _offset_rows past the neighbouring resets", "records/artifacts.py",
+       "    a = min(int(rows[0]), max(lo, int(np.searchsorted(t, t[i] - span))))\n",
+       "    a = min(int(rows[0]), int(np.searchsorted(t, t[i] - span)))\n", _ZG),
+    # --- end stop 42 (lead)
 )
 
 

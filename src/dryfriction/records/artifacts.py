@@ -96,10 +96,13 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     for j, i in enumerate(jump):
         # the offset: one line with a step at the jump, fitted to up to 30 samples a side
         a, b = max(edges[j], i + 1 - 30), min(edges[j + 2], i + 1 + 30)
-        tt = t[a:b] - t[i]
-        A = np.column_stack([np.ones(b - a), tt, (np.arange(a, b) > i).astype(float)])
-        fix[i + 1:] -= _reset_offset(tt, A, x[a:b], scale) if RESET_KINK else np.linalg.lstsq(
-            A, x[a:b], rcond=None)[0][2]
+        rows = np.arange(a, b)
+        if RESET_WIDE:
+            rows = _offset_rows(t, i, edges[j], edges[j + 2], rows)
+        tt = t[rows] - t[i]
+        A = np.column_stack([np.ones(rows.size), tt, (rows > i).astype(float)])
+        fix[i + 1:] -= _reset_offset(tt, A, x[rows], scale) if RESET_KINK else np.linalg.lstsq(
+            A, x[rows], rcond=None)[0][2]
     return x + fix, [int(i) for i in jump]
 
 
@@ -110,6 +113,35 @@ NumPy's dozen passes over the record, and the block medians of :func:`sampling_c
 :func:`normal_changes` are compiled (:func:`.hinge_kernel.row_medians`): the same operations,
 the same numbers (a speed change only; the NumPy forms are kept as the reference the tests
 compare with)."""
+
+RESET_WIDE = True
+"""A reset's offset is fitted on samples reaching at least as far each side as its increment
+lasts (ours): the step is the difference of the two sides' lines at the jump, so the slope's
+error is carried across the increment, and over a gap (a record's logging paused for 5-60 s,
+where a re-zeroing is likeliest and where the local rates cannot tell a jump from the
+wander's slip) 30 samples a side (0.6 s at 50 Hz) put a slope of 1.2 s's wander across 28 s:
+zoo 13263, a 28-s gap at 50 Hz, read a -11 um offset there and a false stretch at 1.56 um/s
+across the gap between two of 1.17 (the zoo's gaps integrated exactly: the zoo's note). At most
+:data:`RESET_SIDE` samples a side, evenly picked."""
+RESET_SIDE = 200
+
+
+def _offset_rows(t: Array, i: int, lo: int, hi: int, rows: Array) -> Array:
+    """The samples (indices into ``t``, s) a reset's offset at increment ``i`` is fitted on
+    (:data:`RESET_WIDE`): ``rows`` (30 a side), widened to reach ``t[i + 1] - t[i]`` before
+    ``t[i]`` and after ``t[i + 1]``, not past ``lo`` and ``hi`` (the neighbouring resets), at
+    most :data:`RESET_SIDE` a side."""
+    span = float(t[i + 1] - t[i])
+    a = min(int(rows[0]), max(lo, int(np.searchsorted(t, t[i] - span))))
+    b = max(int(rows[-1]) + 1, min(hi, int(np.searchsorted(t, t[i + 1] + span, "right"))))
+    left = np.arange(a, i + 1)
+    right = np.arange(i + 1, b)
+    if left.size > RESET_SIDE:
+        left = left[np.linspace(0, left.size - 1, RESET_SIDE).round().astype(np.int64)]
+    if right.size > RESET_SIDE:
+        right = right[np.linspace(0, right.size - 1, RESET_SIDE).round().astype(np.int64)]
+    return np.concatenate([left, right])
+
 
 RESET_KINK = True
 """A reset's offset is fitted with a kink of the line allowed in its window (ours, detect11):
