@@ -94,7 +94,8 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
     fix = np.zeros_like(x)
     edges = [0] + [int(i) + 1 for i in jump] + [len(x)]
     for j, i in enumerate(jump):
-        # the offset: one line with a step at the jump, fitted to up to 30 samples a side
+        # the offset: one line with a step at the jump, fitted to up to 30 samples a side,
+        # or as far each side as the increment lasts (RESET_WIDE: a gap)
         a, b = max(edges[j], i + 1 - 30), min(edges[j + 2], i + 1 + 30)
         rows = np.arange(a, b)
         if RESET_WIDE:
@@ -124,6 +125,8 @@ zoo 13263, a 28-s gap at 50 Hz, read a -11 um offset there and a false stretch a
 across the gap between two of 1.17 (the zoo's gaps integrated exactly: the zoo's note). At most
 :data:`RESET_SIDE` samples a side, evenly picked."""
 RESET_SIDE = 200
+"""The most samples a side a reset's offset is fitted on (:data:`RESET_WIDE`; ours: the
+kink's columns of :func:`_reset_offset` are a square of the rows, 1.3 MB at 400)."""
 
 
 def _offset_rows(t: Array, i: int, lo: int, hi: int, rows: Array) -> Array:
