@@ -3802,6 +3802,11 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("artifacts: _offset_rows past the neighbouring resets", "records/artifacts.py",
        "    a = min(int(rows[0]), max(lo, int(np.searchsorted(t, t[i] - span))))\n",
        "    a = min(int(rows[0]), int(np.searchsorted(t, t[i] - span)))\n", _ZG),
+    _m("artifacts: RESET_GAP off (every gap the local rates miss taken for a re-zeroing)",
+       "records/artifacts.py", "RESET_GAP = True\n", "RESET_GAP = False\n", _ZG),
+    _m("artifacts: a gap's step judged the wrong way round", "records/artifacts.py",
+       "            if abs(step) <= RESET_GAP_K * float(np.sqrt(np.mean(res * res))):\n",
+       "            if abs(step) > RESET_GAP_K * float(np.sqrt(np.mean(res * res))):\n", _ZG),
     # --- end stop 42 (lead)
 )
 

@@ -105,8 +105,52 @@ def test_a_gap_is_no_stretch_of_its_own(tmp_path: Path, index: int,
     local rates of 5 samples do not explain it) is fitted with lines reaching as far as the
     gap lasts each side (RESET_WIDE). Mistake, seen failing: the offset on 30 samples a side
     (RESET_WIDE = False: 13263 read -11 um there and a stretch at 1.56 um/s across the gap,
-    six changes found; 15016 six)."""
+    six changes found; 15016 six). Judged with RESET_GAP off: with it on, those gaps are no
+    resets at all and the mistake is hidden (RESET_GAP's own test: test_a_gap_is_no_reset)."""
+    monkeypatch.setattr(artifacts, "RESET_GAP", False)
     found, true, _ = _zoo_counts((index,), tmp_path)[0]
     assert found == true
     monkeypatch.setattr(artifacts, "RESET_WIDE", False)
     assert _zoo_counts((index,), tmp_path)[0][0] > true
+
+
+def _resets(index: int, tmp: Path) -> list[float]:
+    """The resets (s from the first sample) the detection lists for zoo record ``index``,
+    written in its dialect and read back."""
+    from dryfriction.records.lab import detect_program, read_record
+
+    rec = _record(index)
+    det = detect_program(read_record(z.write(rec, tmp)))
+    return [round(float(r - rec.t[0]), 1) for r in det.resets]
+
+
+def test_a_gap_is_no_reset(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo 396 (an up-step, every artifact, a re-zeroing at 476.3 s and gaps at 140.4-187.3
+    and 827.2-868.7 s): the resets listed are the re-zeroing alone (measured). Over each gap
+    the wander is beyond the local rates' reach, but its step is 0-8 times the rms residual
+    of the offset's lines, the re-zeroing's hundreds (RESET_GAP). Mistake, seen failing: every
+    gap that the local rates do not explain taken for a re-zeroing (RESET_GAP = False: 187.3,
+    476.3 and 868.7 s)."""
+    assert _resets(396, tmp_path) == [476.3]
+    monkeypatch.setattr(artifacts, "RESET_GAP", False)
+    assert _resets(396, tmp_path) == [187.3, 476.3, 868.7]
+
+
+def test_a_re_zeroing_in_a_gap_is_still_a_reset(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A load point at 2.3 um/s sampled at 10 Hz (white noise 0.17 um, seed 5), a 20-s gap
+    from 41.3 s, the transducer re-zeroed during it (-310 um): ``find_resets`` lists the gap's
+    increment and takes the jump out (the offset within 0.5 um, the velocity's slip over the
+    gap kept). Mistake, seen failing: a gap never a reset (RESET_GAP_K = 1e9: none
+    listed)."""
+    rng = np.random.default_rng(5)
+    t = np.arange(0.0, 120.0, 0.1)
+    t = t[(t < 41.3) | (t > 61.3)]
+    v = 2.3e-6
+    x = v * t + rng.normal(0.0, 0.17e-6, t.size)
+    i = int(np.searchsorted(t, 41.3)) - 1
+    x[i + 1:] -= 310e-6
+    fixed, jumps = artifacts.find_resets(t, x)
+    assert jumps == [i]
+    assert abs(float(fixed[i + 1] - fixed[i]) - v * float(t[i + 1] - t[i])) < 0.5e-6
+    monkeypatch.setattr(artifacts, "RESET_GAP_K", 1e9)
+    assert artifacts.find_resets(t, x)[1] == []
