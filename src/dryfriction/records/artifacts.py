@@ -93,7 +93,7 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         return x, []
     fix = np.zeros_like(x)
     edges = [0] + [int(i) + 1 for i in jump] + [len(x)]
-    med = median(dt)
+    gap = _gaps(dt, median(dt))
     kept: list[int] = []
     for j, i in enumerate(jump):
         # the offset: one line with a step at the jump, fitted to up to 30 samples a side,
@@ -106,7 +106,7 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         A = np.column_stack([np.ones(rows.size), tt, (rows > i).astype(float)])
         step = _reset_offset(tt, A, x[rows], scale) if RESET_KINK else float(np.linalg.lstsq(
             A, x[rows], rcond=None)[0][2])
-        if RESET_GAP and dt[i] > 10.0 * max(med, float(dt[i - 1]) if i > 0 else med):
+        if RESET_GAP and gap[i]:
             # across a gap: a reset only where the step stands out of the lines' own scatter
             res = x[rows] - A @ np.linalg.lstsq(A, x[rows], rcond=None)[0]
             if abs(step) <= RESET_GAP_K * float(np.sqrt(np.mean(res * res))):
@@ -328,8 +328,14 @@ def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float
         new = bm[j + 1]
         k = int(np.argmax(np.abs(np.log(seg / new)) < np.log(1.2)))  # first at the new rate
         changes.append(float(t[j * block + k]))
-    gap = np.flatnonzero(dt > 10.0 * np.maximum(med, np.concatenate([[med], dt[:-1]])))
+    gap = np.flatnonzero(_gaps(dt, med))
     return changes, [float(t[i]) for i in gap]
+
+
+def _gaps(dt: Array, med: float) -> Array:
+    """Which sampling intervals ``dt`` (s) are gaps: longer than 10 times the larger of their
+    median ``med`` and the interval before (ours; :func:`sampling_changes`, :data:`RESET_GAP`)."""
+    return dt > 10.0 * np.maximum(med, np.concatenate([[med], dt[:-1]]))
 
 
 def normal_changes(t: Array, sn: Array | None, min_samples: int = 10) -> list[int]:
