@@ -227,8 +227,103 @@ of the three stretches' residual sum of squares (ours; zoo record 123, a 3-um re
 Hz under a 0.12-um quantum: 6 %)."""
 
 
+JUMP_REFINED = True
+"""Where the detector searched block means (a long record), an excursion is compared with a
+jump as the load point makes one: a continuous broken line whose two kinks are each moved to
+the sample within two blocks of where the search put them that fits best
+(:func:`_broken_line`; the ``reach`` of :func:`jump_excursions`; ours). Why: a boundary found
+on block means is known to a block, and a hold shorter than one is found as a longer stretch
+at a lower speed (zoo 18046: 1084408 rows in blocks of 543, 27 s at its 20 Hz; a 19-s hold at
+0.107 um/s found as a 52-s stretch at 0.055 um/s). The three lines at those boundaries fitted
+worse than one line with a step, and the hold (2 um of slip not made) was taken out as a
+re-zeroing of the transducer: the record lost a slide-hold-slide (zoo 11290, 18046).
+
+Continuous, because three separate lines hold two jumps of their own: with their boundaries
+free they took a true re-zeroing at one boundary and the wander in the middle stretch, and
+re-zeroings were kept as excursions (zoo 123 and 368, searched on blocks of 13 and 6; tried
+first, with the boundaries moved as far as the jump is searched for, ``m``: also 4061, 7103,
+10151 and 14267, short records searched on the samples). Not where the search ran on the
+samples: there its boundaries are where the data put them, and the broken line with kinks
+moved that far broke zoo 7103 (a 33-um re-zeroing in a 60-s record, two false changes)."""
+
+
+def _broken_line(t: Array, y: Array, b1: int, b2: int, m: int) -> float:
+    """Least residual sum of squares of a continuous broken line of ``y(t)`` with kinks at
+    samples ``b1`` and ``b2`` (``y = c + s t + d1 (t - t_b1)+ + d2 (t - t_b2)+``), each kink
+    moved, in turn and twice, to its best sample within ``m`` of where it is, one sample at
+    least strictly between them (ours; :data:`JUMP_REFINED`).
+
+    An excursion of the velocity moves the load point continuously: no jump, which a kink
+    on each side of one sample's step (nothing between them) would stand for.
+
+    Parameters
+    ----------
+    t : Array
+        Times, s (best centred: sums of squares are differenced).
+    y : Array
+        The values, best about one line (the same reason), any unit.
+    b1, b2 : int
+        The kinks' samples, ``0 < b1 < b2 < n - 1``.
+    m : int
+        How far each may move, samples.
+
+    Returns
+    -------
+    float
+        The residual sum of squares, in ``y``'s unit squared.
+    """
+    n = len(t)
+    scale = float(np.sqrt(np.mean(y * y))) or 1.0
+    u = y / scale  # O(1) values: the sums below are differenced
+    half = 0.5 * float(t[-1] - t[0]) or 1.0
+    tt = (t - 0.5 * float(t[-1] + t[0])) / half  # in [-1, 1]: the normal equations stay sound
+
+    def rev(a: Array) -> Array:  # sums from each sample to the end
+        return np.cumsum(a[::-1])[::-1]
+
+    # every product of the columns 1, t, (t - t_p)+, (t - t_q)+ and with u is a sum from the
+    # later kink on, sum (t - t_c) w = S_tw(c) - t_c S_w(c): the reverse sums once, then each
+    # candidate's 4 x 4 normal equations (no pass over the samples per candidate)
+    s1, st, stt = rev(np.ones(n)), rev(tt), rev(tt * tt)
+    su, stu = rev(u), rev(tt * u)
+    uu = float(u @ u)
+
+    def rss(p: Array, q: Array) -> Array:  # p < q, arrays of kinks
+        tp, tq = tt[p], tt[q]
+        g = np.empty((p.size, 4, 4))
+        g[:, 0, 0], g[:, 0, 1], g[:, 1, 1] = n, st[0], stt[0]
+        for col, c, tc in ((2, p, tp), (3, q, tq)):
+            g[:, 0, col] = st[c] - tc * s1[c]
+            g[:, 1, col] = stt[c] - tc * st[c]
+            g[:, col, col] = stt[c] - 2.0 * tc * st[c] + tc * tc * s1[c]
+        g[:, 2, 3] = stt[q] - (tp + tq) * st[q] + tp * tq * s1[q]
+        g[:, 1, 0], g[:, 2, 0], g[:, 3, 0] = g[:, 0, 1], g[:, 0, 2], g[:, 0, 3]
+        g[:, 2, 1], g[:, 3, 1], g[:, 3, 2] = g[:, 1, 2], g[:, 1, 3], g[:, 2, 3]
+        rhs = np.column_stack([np.full(p.size, su[0]), np.full(p.size, stu[0]),
+                               stu[p] - tp * su[p], stu[q] - tq * su[q]])
+        try:
+            coef = np.linalg.solve(g, rhs[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:  # a kink column without its own sample: no fit
+            coef = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(
+                g, rhs, strict=True)])
+        return uu - np.einsum("ij,ij->i", coef, rhs)
+
+    b1, b2 = int(b1), int(b2)
+    out = float("inf")
+    for _ in range(2):
+        c1 = np.arange(max(1, b1 - m), min(b2 - 2, b1 + m) + 1)
+        if c1.size:
+            r1 = rss(c1, np.full(c1.size, b2))
+            b1, out = int(c1[np.argmin(r1)]), float(np.min(r1))
+        c2 = np.arange(max(b1 + 2, b2 - m), min(n - 2, b2 + m) + 1)
+        if c2.size:
+            r2 = rss(np.full(c2.size, b1), c2)
+            b2, out = int(c2[np.argmin(r2)]), float(np.min(r2))
+    return max(out, 0.0) * scale * scale
+
+
 def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: float, m: int,
-                    drift: float = 0.0) -> list[tuple[int, int, float]]:
+                    drift: float = 0.0, reach: int = 0) -> list[tuple[int, int, float]]:
     """Excursions (a stretch between two of the same velocity) that one line with a jump of
     the displacement fits as well: ``(j, k, jump)``, ``j`` the excursion's first boundary
     (index in ``bounds``), ``k`` the first sample after the jump, ``jump`` in m.
@@ -256,6 +351,10 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         Velocities apart by less than this fraction of the fastest speed around (the
         excursion, its neighbours and theirs) are the same too (two pieces of one hold, each
         read with the drift: :data:`.detection.DRIFT_SIZED`); 0 for ``rel_tol`` alone.
+    reach : int
+        Where positive, the excursion is a continuous broken line whose kinks are each moved
+        up to this many samples to fit best (:data:`JUMP_REFINED`): the boundaries of a
+        search on block means are known to a block; 0: three lines at the boundaries given.
     """
     out: list[tuple[int, int, float]] = []
     for j in range(1, len(bounds) - 2):
@@ -291,12 +390,17 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
             gain = np.where(den > 0, rs[ks] ** 2 / den, -np.inf)
         i = int(np.argmax(gain))
         rss_jump = float(r @ r) - float(gain[i])
-        rss3 = 0.0
-        for p, q in zip([a, bounds[j], bounds[j + 1]], [bounds[j], bounds[j + 1], c],
-                        strict=True):
-            sl, mu, _ = line_fit(t[p:q], x[p:q])
-            e = x[p:q] - mu - sl * (t[p:q] - t[p:q].mean())
-            rss3 += float(e @ e)
+        if JUMP_REFINED and reach > 0:
+            # boundaries known to a block: the excursion a continuous broken line, each
+            # kink at its best sample within reach
+            rss3 = _broken_line(tc, r, bounds[j] - a, bounds[j + 1] - a, reach)
+        else:
+            rss3 = 0.0
+            for p, q in zip([a, bounds[j], bounds[j + 1]], [bounds[j], bounds[j + 1], c],
+                            strict=True):
+                sl, mu, _ = line_fit(t[p:q], x[p:q])
+                e = x[p:q] - mu - sl * (t[p:q] - t[p:q].mean())
+                rss3 += float(e @ e)
         if rss_jump - rss3 < JUMP_REL * rss3:
             out.append((j, a + int(ks[i]), float(rs[ks[i]] / den[i])))
     return out

@@ -641,7 +641,8 @@ def detect_program(
         # (on the samples: a block mean smears a jump into a ramp)
         full = [b * blk for b in bounds[:-1]] + [n]
         off = jump_excursions(t_all, x_all, full, fits.table(bounds)[0], rel_tol, m * blk,
-                              HOLD_RATIO if DRIFT_SIZED else 0.0) if (
+                              HOLD_RATIO if DRIFT_SIZED else 0.0,
+                              2 * blk if blk > 1 else 0) if (
             record.load_point is not None) else []
         if not off:
             break
