@@ -62,6 +62,7 @@ from .placement import (
     place_changes,
     placed_probability,
 )
+from .reading import reading_step
 from .record import LabRecord
 from .segmentation import best_hinge, hinge_segments, kernel_input, median, noise_level
 
@@ -716,6 +717,9 @@ def detect_program(
     if HOLD_PLACED:
         bounds, places = _keep_holds(t, x, guess, bounds, places, hold_now, by_rule, v_now,
                                      fits, fl, floor, given, sig_place, m, periods)
+    if READING and record.load_point is None and record.load_velocity is not None:
+        bounds, places = _on_reading(t, np.asarray(record.load_velocity, float), bounds,
+                                     places, v_now)
     where = {pl.index: pl for pl in places}
     v_arr, d_arr, sxx_arr = fits.table(bounds)
     vel = [float(v) for v in v_arr]
@@ -753,6 +757,29 @@ def detect_program(
     rate, gaps = sampling_changes(t)
     return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),
                      tuple(gaps), tuple(float(t[i]) for i in nchg))
+
+
+READING = True
+"""In a record that gives the servo's velocity reading (no displacement transducer), each
+change is placed again on the reading, as its step (:func:`.reading.reading_step`), where the
+reading shows it as one (ours): integrated to a displacement, the reading's white noise is a
+random walk the hinge's wander model does not have, and small steps were placed seconds off
+(the zoo's velocity records: 13 of the changes off the tolerance on the used ranges and
+17000-19299, 3.6-4.9 s on 14004, 16009, 19044)."""
+
+
+def _on_reading(t: Array, v: Array, bounds: list[int], places: list, vel: Array
+                ) -> tuple[list[int], list]:
+    """``bounds`` and ``places`` with each inner boundary placed on the velocity reading ``v``
+    (m/s) where :func:`.reading.reading_step` places it (:data:`READING`); ``vel``: each
+    stretch's velocity, m/s."""
+    bounds, places = list(bounds), list(places)
+    for j in range(1, len(bounds) - 1):
+        pl = reading_step(t, v, bounds[j], bounds[j - 1], bounds[j + 1], float(vel[j - 1]),
+                          float(vel[j]))
+        if pl is not None:
+            bounds[j], places[j - 1] = pl.index, pl
+    return bounds, places
 
 
 HOLD_SIGN = True
