@@ -71,6 +71,8 @@ _FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar
 _HFX = "tests/records/test_hold_fix.py"
 _HD = "tests/records/test_hold_drift.py"
 _ZG = "tests/records/test_zoo_gaps.py"
+_HNR = "tests/records/test_hold_not_reset.py"
+_RDG = "tests/records/test_reading.py"
 _HFX_K = (_HFX, "-k", "shortens or lengthened")
 _RFD = "tests/plots/test_record_figure_data.py"
 _S6NQ = "tests/theory/test_nyquist_generic.py"
@@ -3808,6 +3810,32 @@ MUTANTS: tuple[Mutant, ...] = (
        "            if abs(step) <= RESET_GAP_K * float(np.sqrt(np.mean(res * res))):\n",
        "            if abs(step) > RESET_GAP_K * float(np.sqrt(np.mean(res * res))):\n", _ZG),
     # --- end stop 42 (lead)
+    # --- stop 43 (lead): a short hold is no reset; a change placed on a velocity reading
+    _m("artifacts: JUMP_REFINED off (a hold found on block means taken for a re-zeroing)",
+       "records/artifacts.py", "JUMP_REFINED = True\n", "JUMP_REFINED = False\n", _HNR),
+    _m("artifacts: the broken line's kinks not moved (reach ignored)", "records/artifacts.py",
+       "            rss3 = _broken_line(tc, r, bounds[j] - a, bounds[j + 1] - a, reach)\n",
+       "            rss3 = _broken_line(tc, r, bounds[j] - a, bounds[j + 1] - a, 0)\n", _HNR),
+    _m("artifacts: the broken line's fixed kink left out of the projection",
+       "records/artifacts.py",
+       "        q, _ = np.linalg.qr(np.column_stack([np.ones(n), t, np.maximum(t - t[fixed], "
+       "0.0)]))\n", "        q, _ = np.linalg.qr(np.column_stack([np.ones(n), t]))\n", _HNR),
+    _m("artifacts: the broken line's scale not restored", "records/artifacts.py",
+       "    return max(out, 0.0) * scale * scale\n", "    return max(out, 0.0)\n", _HNR),
+    _m("detection: READING off (changes in a velocity column placed on its integral only)",
+       "records/detection.py", "READING = True\n", "READING = False\n", _RDG),
+    _m("reading: the jump's sign ignored", "records/reading.py",
+       "    y = np.asarray(v, float)[a:b] * (np.sign(dv) / abs(dv))  # the step +1\n",
+       "    y = np.asarray(v, float)[a:b] / abs(dv)\n", _RDG),
+    _m("reading: the change reported one reading after the profile's mode",
+       "records/reading.py", "    at = a + p + int(ks[j])\n", "    at = a + p + int(ks[j]) + 1\n",
+       _RDG),
+    _m("reading: no size check (any largest rise taken for the change)", "records/reading.py",
+       "    if not (0.5 <= jump[best] <= 2.0 and jump[best] >= READING_Z * max(scale, 1e-12)):\n",
+       "    if not (jump[best] >= READING_Z * max(scale, 1e-12)):\n", _RDG),
+    _m("reading: READING_Z of two scales", "records/reading.py", "READING_Z = 5.0\n",
+       "READING_Z = 2.0\n", _RDG),
+    # --- end stop 43 (lead)
 )
 
 
