@@ -3839,6 +3839,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if not (jump[best] >= READING_Z * max(scale, 1e-12)):\n", _RDG),
     _m("reading: READING_Z of two scales", "records/reading.py", "READING_Z = 5.0\n",
        "READING_Z = 2.0\n", _RDG),
+    _m("plots: record.png's velocity from the displacement as read (resets left in)",
+       "plots/record.py", "            x = find_resets(t, x)[0]\n", "            pass\n", _RFD),
     # --- end stop 43 (lead)
 )
 

@@ -127,3 +127,22 @@ def test_a_hold_split_by_a_normal_change_is_shaded_whole() -> None:
         spans = [(p.get_x(), p.get_x() + p.get_width()) for p in info.artists[name]]
         np.testing.assert_allclose(spans, [(200.0, 300.0), (300.0, 450.0)], atol=1e-9)
     assert "1 velocity change(s), 1 hold(s)" in fig._suptitle.get_text()
+
+
+def test_a_reset_draws_no_velocity_spike() -> None:
+    """The record above (2.3 um/s, then a hold and 0.41 um/s) with its transducer re-zeroed
+    by -317 um at 123.45 s (within the first slide): the drawn velocity stays at the slide's
+    2.3 um/s through the reset (within 1e-6, as elsewhere). Mistake, seen failing: the
+    displacement drawn as read (a spike of -317 um over a 1.5-s window, about -210 um/s)."""
+    rec, segs = _record(2.3e-6, 0.41e-6)
+    x = np.asarray(rec.load_point, float).copy()
+    k = int(np.searchsorted(np.asarray(rec.time) - T0, 123.45))
+    x[k:] -= 317e-6
+    rec = LabRecord(source=rec.source, time=rec.time, load_point=x, load_velocity=None,
+                    friction=rec.friction, normal_stress=rec.normal_stress,
+                    normal_unit=rec.normal_unit, columns={}, first_line=0)
+    fig, info = plot_record(rec, segs, None)
+    ax_v = fig.axes[info.panels.index("velocity")]
+    (line,) = [ln for ln in ax_v.get_lines() if np.asarray(ln.get_xdata()).size > 50]
+    xv, yv = (np.asarray(a, float) for a in line.get_data())
+    np.testing.assert_allclose(yv[(xv > 2.0) & (xv < 198.0)], 2.3, rtol=1e-6)

@@ -78,7 +78,8 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     detection : Detection, optional
         What the detector found besides (marks); ``None`` for a program given by hand.
     x : array, optional
-        Load-point displacement, m (resets taken out); default from the record.
+        Load-point displacement, m (resets taken out); default from the record, its resets
+        taken out by :func:`~dryfriction.records.detection.find_resets`.
     given : bool
         The program was given with ``--segments`` (said in the title).
     note : str, optional
@@ -88,11 +89,16 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     -------
     Figure, RecordFigure
     """
-    from ..records.detection import displacement
+    from ..records.detection import displacement, find_resets
 
     t = np.asarray(record.time, float)
     t0 = float(t[0])
-    x = displacement(record) if x is None else x
+    if x is None:
+        # a displacement transducer's resets taken out as the detector takes them out: a
+        # re-zeroing is no velocity, and its jump drew a spike the user would read as one
+        x = displacement(record)
+        if record.load_point is not None:
+            x = find_resets(t, x)[0]
     has_normal = record.normal_stress is not None
     names = ["velocity", "friction"] + (["normal"] if has_normal else [])
     fig = Figure(figsize=(10.0, 2.3 * len(names) + 0.8))
