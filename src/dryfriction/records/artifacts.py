@@ -259,11 +259,11 @@ def _broken_line(t: Array, y: Array, b1: int, b2: int, m: int) -> float:
     Parameters
     ----------
     t : Array
-        Times, s (best centred: sums of squares are differenced).
+        Times, s (centred and scaled here: the normal equations are formed from sums).
     y : Array
-        The values, best about one line (the same reason), any unit.
+        The values, best about one line (scaled here), any unit.
     b1, b2 : int
-        The kinks' samples, ``0 < b1 < b2 < n - 1``.
+        The kinks' samples, ``0 < b1 < b2 - 1 < n - 3`` (held to it).
     m : int
         How far each may move, samples.
 
@@ -301,14 +301,12 @@ def _broken_line(t: Array, y: Array, b1: int, b2: int, m: int) -> float:
         g[:, 2, 1], g[:, 3, 1], g[:, 3, 2] = g[:, 1, 2], g[:, 1, 3], g[:, 2, 3]
         rhs = np.column_stack([np.full(p.size, su[0]), np.full(p.size, stu[0]),
                                stu[p] - tp * su[p], stu[q] - tq * su[q]])
-        try:
-            coef = np.linalg.solve(g, rhs[:, :, None])[:, :, 0]
-        except np.linalg.LinAlgError:  # a kink column without its own sample: no fit
-            coef = np.stack([np.linalg.lstsq(gi, ri, rcond=None)[0] for gi, ri in zip(
-                g, rhs, strict=True)])
+        # full rank: a sample before the first kink, one between them, one after the second
+        coef = np.linalg.solve(g, rhs[:, :, None])[:, :, 0]
         return uu - np.einsum("ij,ij->i", coef, rhs)
 
-    b1, b2 = int(b1), int(b2)
+    b2 = min(max(int(b2), 3), n - 2)
+    b1 = min(max(int(b1), 1), b2 - 2)
     out = float("inf")
     for _ in range(2):
         c1 = np.arange(max(1, b1 - m), min(b2 - 2, b1 + m) + 1)

@@ -71,9 +71,7 @@ def _local_lines(t: Array, y: Array, half: float, least: int) -> tuple[Array, Ar
         return out, span
     tt = t - t[0]
     p = np.minimum(np.searchsorted(tt, tt[i] - half), i - least)
-    q = np.maximum(np.searchsorted(tt, tt[i] + half), i + least)
-    ok = q <= n
-    i, p, q = i[ok], p[ok], q[ok]
+    q = np.maximum(np.searchsorted(tt, tt[i] + half), i + least)  # <= n: i <= n - least
     z = np.zeros(1)
     s1 = np.arange(n + 1, dtype=float)
     st = np.concatenate([z, np.cumsum(tt)])
