@@ -6,13 +6,21 @@ the reset finder (``detection.find_resets``) must not take for a reset."""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+from unittest.mock import patch
+
 import numpy as np
 import pytest
 
+import dryfriction.records.placement as P
 from dryfriction.records.detection import measure_fluctuations
 from dryfriction.records.placement import _cov_int, ou_parameters, place_change
 from dryfriction.records.segmentation import best_hinge
 from records_zoo import ou_step
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from test_missed_changes import _zoo_counts  # noqa: E402
 
 
 def test_integrated_ou_covariance_matches_a_double_integral() -> None:
@@ -120,3 +128,45 @@ def test_oscillation_following_the_velocity_places_large_steps() -> None:
             k = place_change(t, x, guess, 3, t.size - 3, 1e-6, ratio * 1e-6, 0.05e-6,
                              (0.0, 1.0), (0.0, 1.0), periods=(22.0,))
             assert abs(t[k] - 120.0) <= 0.2 + 1e-9, (ratio, seed, t[k])
+
+
+def test_a_change_placed_between_its_neighbours_sees_only_their_samples() -> None:
+    """``place_changes`` on ``[a, g, b]`` (a change placed again between its neighbours, as
+    detection's P_MOVE does) gives what it gives on the samples ``a:b`` alone (two routes):
+    0.52 -> 1.56 um/s at 100.3 s, back to 0.52 at 137.4 s, at 4.1 Hz (jittered), the second
+    change guessed 2.6 s late, the wander's model a slow relative one. Mistake: the first
+    window started after sample 0 whatever ``bounds[0]`` (OWN_START off): it then reaches
+    back across the up-step and the down-step is placed 2.5 s late (measured)."""
+    rng = np.random.default_rng(11)
+    t = np.concatenate([[0.0], np.cumsum(rng.uniform(0.8, 1.2, 1400) / 4.1)])
+    v = np.where((t >= 100.3) & (t < 137.4), 1.56e-6, 0.52e-6)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+    x = x + rng.normal(0.0, 0.17e-6, t.size)
+    a, g = int(np.searchsorted(t, 100.3)), int(np.searchsorted(t, 140.0))
+    scales = np.array([2.0, 4.0, 8.0, 16.0, 32.0])
+    rel, ab = np.full(5, 1.2e-3), np.zeros(5)
+    vel = np.array([1.56e-6, 0.52e-6])
+
+    def placed() -> tuple[int, float, float]:
+        out, (pl,) = P.place_changes(t, x, [a, g, t.size], vel, 0.17e-6, scales, rel, ab,
+                                     10, weak=np.array([True]), tol=0.5)
+        return out[1], pl.lo, pl.hi
+
+    out2, (pl2,) = P.place_changes(t[a:], x[a:], [0, g - a, t.size - a], vel, 0.17e-6,
+                                   scales, rel, ab, 10, weak=np.array([True]), tol=0.5)
+    assert P.OWN_START is True
+    k, lo, hi = placed()
+    assert (k, lo, hi) == (out2[1] + a, pl2.lo, pl2.hi)
+    assert abs(t[k] - 137.4) < 0.5
+    with patch.object(P, "OWN_START", False):
+        assert placed()[0] != k
+
+
+def test_zoo_down_step_after_an_up_step_at_1_hz(tmp_path: Path,
+                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo 22016 (a short step, 0.52 -> 1.56 -> 0.52 um/s, the down-step 2.4 s after the
+    sampling slowed to 1 Hz): both changes within the tolerance; with OWN_START off the
+    down-step is placed again on a window across the up-step, 4.65 s late (measured)."""
+    assert _zoo_counts((22016,), tmp_path) == [(2, 2, True)]
+    monkeypatch.setattr(P, "OWN_START", False)
+    assert _zoo_counts((22016,), tmp_path) == [(2, 2, False)]
