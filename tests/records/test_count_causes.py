@@ -204,3 +204,18 @@ def test_a_reset_offset_uses_a_kink_only_where_it_earns_its_place() -> None:
         A = np.column_stack([np.ones(tt.size), tt, step])
         plain = float(np.linalg.lstsq(A, x, rcond=None)[0][2])
         assert _reset_offset(tt, A, x, 0.17e-6 * np.sqrt(2.0)) == plain
+
+
+def test_a_burst_at_the_end_of_a_record_with_no_change(tmp_path: Path,
+                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo 21083 and 7253 (no change; a +12 % burst in the last 3 s of 21083, a slower
+    last 11 s in 7253, each read as a second stretch 14 % and 12 % off): no change with
+    EDGE_TWO; one each with it off (measured). Zoo 12156 (a ratio-1.3 up-step read as 22 %,
+    the two stretches 60 and 59 s): its change kept, and lost where the edge rule is asked
+    of two stretches of any lengths (EDGE_TWO_SHARE of 1.01: 0 changes, measured)."""
+    assert detection.EDGE_TWO is True
+    assert _zoo_counts((7253, 12156, 21083), tmp_path) == [(0, 0), (1, 1), (0, 0)]
+    monkeypatch.setattr(detection, "EDGE_TWO_SHARE", 1.01)
+    assert _zoo_counts((12156,), tmp_path) == [(0, 1)]
+    monkeypatch.setattr(detection, "EDGE_TWO", False)
+    assert _zoo_counts((7253, 21083), tmp_path) == [(1, 0), (1, 0)]
