@@ -23,6 +23,10 @@ within ``2 HALF`` of it (candidates within ``HALF``; the residual variance as th
 with that profile's interval (as the hinge's, :func:`.placement.profile_interval`, widened
 :data:`.placement.WIDEN` times).
 
+Where the readings are too slow for such lines (a reading at 1 Hz: :data:`READING_SLOW`),
+``J_i`` is the difference of the means of the :data:`SLOW_MIN` readings after and before the
+candidate, judged the same way.
+
 ``READING_Z`` (5) was chosen on the zoo's velocity records of the used ranges (1537 changes
 with candidates, the search centred up to 5 s off the truth at random): at 5, 1439 changes
 placed, none off the tolerance (the largest ``J`` off it stood at 4.2 scales); 6, set before
@@ -57,6 +61,29 @@ READING_Z = 5.0
 measure between half and twice the change between the stretches' velocities, or the change
 is left where the displacement placed it (ours; chosen on the used zoo records: the module
 docstring)."""
+
+
+READING_SLOW = True
+"""Where the readings are too few for lines (fewer than 8 candidates with :data:`HALF_MIN` of
+them within :data:`SIDE_MOST` s each side: a reading at 1 Hz and slower), each side is the
+mean of the :data:`SLOW_MIN` readings next to the candidate, judged by the same threshold
+(ours): the step is still within one sample, and the candidates' own jumps are the null, the
+wander over those readings included. Zoo 22249 (a ratio-30 stop at 1 Hz, the step from 0.16
+to 0 um/s between two readings) was left to the displacement, two samples early."""
+SLOW_MIN = 2
+
+
+def _local_means(y: Array, k: int) -> Array:
+    """For each sample ``i``: the mean of ``y[i:i + k]`` less that of ``y[i - k:i]`` (NaN where
+    either side has fewer than ``k`` samples)."""
+    n = y.size
+    out = np.full(n, np.nan)
+    if n < 2 * k:
+        return out
+    sy = np.concatenate([np.zeros(1), np.cumsum(y)])
+    i = np.arange(k, n - k + 1)
+    out[i] = (sy[i + k] - 2.0 * sy[i] + sy[i - k]) / k
+    return out
 
 
 def _local_lines(t: Array, y: Array, half: float, least: int) -> tuple[Array, Array]:
@@ -130,6 +157,10 @@ def reading_step(t: Array, v: Array, guess: int, lo: int, hi: int, v1: float, v2
     jump, span = _local_lines(tt, y, HALF, HALF_MIN)
     cand = np.flatnonzero(np.isfinite(jump) & (np.abs(tt - tg) <= SEARCH)
                           & (span <= SIDE_MOST))
+    slow = cand.size < 8 and READING_SLOW
+    if slow:  # too few readings for lines: the means of the SLOW_MIN next to it each side
+        jump = _local_means(y, SLOW_MIN)
+        cand = np.flatnonzero(np.isfinite(jump) & (np.abs(tt - tg) <= SEARCH))
     if cand.size < 8:
         return None
     # the null: J is the difference of two lines at one point, 0 but for the noise where
@@ -147,10 +178,14 @@ def reading_step(t: Array, v: Array, guess: int, lo: int, hi: int, v1: float, v2
     # the interval: the step's profile on the readings within 2 HALF of it (a line and a
     # step; candidates within HALF, HALF_MIN samples at least, each side)
     tb = float(tt[best])
-    p = max(0, min(int(np.searchsorted(tt, tb - 2 * HALF)), best - 2 * HALF_MIN))
-    q = min(tt.size, max(int(np.searchsorted(tt, tb + 2 * HALF)), best + 2 * HALF_MIN))
-    c0 = max(p + 1, min(int(np.searchsorted(tt, tb - HALF)), best - HALF_MIN))
-    c1 = min(q - 1, max(int(np.searchsorted(tt, tb + HALF, "right")), best + HALF_MIN + 1))
+    if slow:  # 2 SLOW_MIN readings each side, candidates the best and its neighbours
+        p, q = max(0, best - 2 * SLOW_MIN), min(tt.size, best + 2 * SLOW_MIN)
+        c0, c1 = max(p + 1, best - 1), min(q - 1, best + 2)
+    else:
+        p = max(0, min(int(np.searchsorted(tt, tb - 2 * HALF)), best - 2 * HALF_MIN))
+        q = min(tt.size, max(int(np.searchsorted(tt, tb + 2 * HALF)), best + 2 * HALF_MIN))
+        c0 = max(p + 1, min(int(np.searchsorted(tt, tb - HALF)), best - HALF_MIN))
+        c1 = min(q - 1, max(int(np.searchsorted(tt, tb + HALF, "right")), best + HALF_MIN + 1))
     ts, ys = tt[p:q], y[p:q]
     n = ts.size
     u = ts - ts.mean()
