@@ -75,6 +75,8 @@ _HNR = "tests/records/test_hold_not_reset.py"
 _RDG = "tests/records/test_reading.py"
 _HFX_K = (_HFX, "-k", "shortens or lengthened")
 _RFD = "tests/plots/test_record_figure_data.py"
+_RRS = "tests/records/test_reset_resolution.py"
+_PLW = ("tests/records/test_placement.py", "-k", "between_its_neighbours")
 _S6NQ = "tests/theory/test_nyquist_generic.py"
 _S6RB = "tests/theory/test_response_bounds.py"
 _S6CT = "tests/fit/test_consistency_edges.py"
@@ -109,6 +111,7 @@ _S7BSF = "tests/ensemble/test_snapshot_force_strong.py"
 _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _CNT = "tests/records/test_count_causes.py"
+_EDT = (_CNT, "-k", "end_of_a_record")
 _MIS = "tests/records/test_missed_changes.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
 _ISW = "tests/analysis/test_interface_sweep.py"
@@ -3842,6 +3845,29 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("plots: record.png's velocity from the displacement as read (resets left in)",
        "plots/record.py", "            x = find_resets(t, x)[0]\n", "            pass\n", _RFD),
     # --- end stop 43 (lead)
+    # --- stop 44 (lead): a reset's floor the resolution; a burst at a record's end; slow
+    # readings; a change placed again between its neighbours
+    _m("artifacts: RESET_QUANTUM off (the smallest increment floors a reset's scale)",
+       "records/artifacts.py", "RESET_QUANTUM = True\n", "RESET_QUANTUM = False\n", _RRS),
+    _m("artifacts: the resolution with the text's rounding taken for values apart",
+       "records/artifacts.py", "    du = du[du > 1e-3 * smallest]\n", "    du = du[du > 0.0]\n",
+       _RRS),
+    _m("artifacts: the resolution from the values, not their spacing", "records/artifacts.py",
+       "    du = np.diff(u)\n", "    du = np.abs(u[1:])\n", _RRS),
+    _m("artifacts: a reset's threshold of 15 scales (stop 43's)", "records/artifacts.py",
+       "_RESET_K = 10.0\n", "_RESET_K = 15.0\n", _RRS),
+    _m("detection: EDGE_TWO off (a burst at the end of a two-stretch record a change)",
+       "records/detection.py", "EDGE_TWO = True\n", "EDGE_TWO = False\n", *_EDT),
+    _m("detection: EDGE_TWO asked of two stretches of any lengths", "records/detection.py",
+       "EDGE_TWO_SHARE = 0.25\n", "EDGE_TWO_SHARE = 1.01\n", *_EDT),
+    _m("reading: READING_SLOW off (slow readings left to the displacement)",
+       "records/reading.py", "READING_SLOW = True\n", "READING_SLOW = False\n", _RDG),
+    _m("reading: the slow means' windows off by one", "records/reading.py",
+       "    out[i] = (sy[i + k] - 2.0 * sy[i] + sy[i - k]) / k\n",
+       "    out[i] = (sy[i + k - 1] - 2.0 * sy[i - 1] + sy[i - k - 1]) / k\n", _RDG),
+    _m("placement: OWN_START off (a change placed again searched across its neighbour)",
+       "records/placement.py", "OWN_START = True\n", "OWN_START = False\n", *_PLW),
+    # --- end stop 44 (lead)
 )
 
 
