@@ -166,7 +166,9 @@ def reading_step(t: Array, v: Array, guess: int, lo: int, hi: int, v1: float, v2
     # the null: J is the difference of two lines at one point, 0 but for the noise where
     # the reading has no step, so its robust scale about 0; at least the reading's quantum's
     # (white, q**2 / 12, through two lines of HALF_MIN readings: var J ~ 8 / HALF_MIN of a
-    # reading's), or a reading that holds one level (a median |J| of 0) has no scale
+    # reading's), or a reading that holds one level (a median |J| of 0) has no scale; the
+    # same floor for the slow means (there var J is 2 / SLOW_MIN = 1 reading's: the floor
+    # is 1.3 times that, on the safe side)
     jc = jump[cand]
     d = np.abs(np.diff(y))
     quantum = float(d[d > 0].min()) if (d > 0).any() else 0.0
