@@ -146,3 +146,54 @@ def test_a_reset_draws_no_velocity_spike() -> None:
     (line,) = [ln for ln in ax_v.get_lines() if np.asarray(ln.get_xdata()).size > 50]
     xv, yv = (np.asarray(a, float) for a in line.get_data())
     np.testing.assert_allclose(yv[(xv > 2.0) & (xv < 198.0)], 2.3, rtol=1e-6)
+
+
+def test_record_velocity_breaks_at_a_gap() -> None:
+    """A 23.6-s gap in the logging (no sample from 137.2 to 160.8 s of the synthetic record):
+    the drawn velocity has one break there (a NaN between the last window before the gap and
+    the first after it) and none elsewhere, and reads 2.3 um/s on both sides. Mistake: the
+    windows joined by a straight line across the gap (``breaks`` off: no NaN)."""
+    rec, segs = _record(2.3e-6, 0.41e-6)
+    tt = np.asarray(rec.time) - T0
+    keep = (tt < 137.2) | (tt > 160.8)
+    rec = LabRecord(source="synthetic.txt", time=np.asarray(rec.time)[keep],
+                    load_point=np.asarray(rec.load_point)[keep], load_velocity=None,
+                    friction=np.asarray(rec.friction)[keep],
+                    normal_stress=np.asarray(rec.normal_stress)[keep], normal_unit="N",
+                    columns={}, first_line=0)
+    fig, info = plot_record(rec, segs, None)
+    ax_v = fig.axes[info.panels.index("velocity")]
+    line = next(ln for ln in ax_v.get_lines() if np.asarray(ln.get_xdata()).size > 50)
+    xv, yv = (np.asarray(a, float) for a in line.get_data())
+    gap = np.flatnonzero(np.isnan(yv))
+    assert gap.size == 1 and np.isnan(xv[gap[0]])
+    assert xv[gap[0] - 1] < 137.2 < 160.8 < xv[gap[0] + 1]
+    near = np.r_[yv[gap[0] - 5:gap[0] - 1], yv[gap[0] + 2:gap[0] + 6]]
+    np.testing.assert_allclose(near, 2.3, rtol=1e-6)
+
+
+@pytest.mark.parametrize("source", ["/data/" + "WWmm_Run-07/" * 25 + "velstep.txt",
+                                    "/lab/" + "a" * 300 + ".csv"])
+def test_record_title_is_wrapped_within_the_figure(source: str) -> None:
+    """A path of 300 characters (wide ones, or one word with no space or /) and a long note:
+    the drawn title lies within the figure's width and above the legend, and holds the whole
+    path (no character lost at a cut). Mistake: the title left on one line (cut at the
+    figure's edges: the path's start and end unreadable); the panels not lowered for the
+    lines the title takes (the title over the legend)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    rec, segs = _record(2.3e-6, 0.41e-6)
+    rec = LabRecord(source=source, time=rec.time, load_point=rec.load_point,
+                    load_velocity=None, friction=rec.friction, normal_stress=rec.normal_stress,
+                    normal_unit="N", columns={}, first_line=0)
+    fig, info = plot_record(rec, segs, None, note="unit assumed: " + "um (no unit row) " * 12)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    title = fig._suptitle
+    box = title.get_window_extent(renderer)
+    legend = fig.axes[info.panels.index("velocity")].get_legend().get_window_extent(renderer)
+    assert 0.0 <= box.x0 and box.x1 <= fig.bbox.width
+    assert box.y0 >= legend.y1 and box.y1 <= fig.bbox.height
+    assert title.get_text().count("\n") >= 3
+    assert "".join(source.split()) in "".join(title.get_text().split())

@@ -19,6 +19,38 @@ if TYPE_CHECKING:
 
 __all__ = ["RecordFigure", "plot_record", "smoothed_velocity"]
 
+TITLE_WIDTH = 0.92
+"""The widest title line of ``record.png``, a fraction of the figure's width (ours: the
+text's measured width runs about 4 % under what Agg draws)."""
+
+
+def _wrap(text: str, fontsize: float, width: float) -> list[str]:
+    """``text``'s lines, each cut where it is wider than ``width`` points at ``fontsize`` (its
+    width measured on the font, :class:`matplotlib.textpath.TextToPath`): after the last
+    space or ``/`` that leaves at least half of the line, else within a word (a long path has
+    no space)."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextToPath
+
+    prop, measure = FontProperties(size=fontsize), TextToPath()
+
+    def wide(part: str) -> float:
+        return measure.get_text_width_height_descent(part, prop, ismath=False)[0]
+
+    out: list[str] = []
+    for line in text.split("\n"):
+        while line and wide(line) > width:
+            lo, hi = 1, len(line)  # the longest head that fits: lo fits, hi does not
+            while hi - lo > 1:
+                mid = (lo + hi) // 2
+                lo, hi = (mid, hi) if wide(line[:mid]) <= width else (lo, mid)
+            cut = max(line.rfind(" ", 0, lo + 1), line.rfind("/", 0, lo) + 1)
+            cut = cut if cut >= lo // 2 else lo
+            out.append(line[:cut].rstrip())
+            line = line[cut:].lstrip()
+        out.append(line)
+    return out
+
 
 @dataclass
 class RecordFigure:
@@ -46,10 +78,13 @@ class RecordFigure:
     unplaced: list[int] = field(default_factory=list)
 
 
-def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float) -> tuple[np.ndarray,
-                                                                              np.ndarray]:
+def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float, breaks: bool = False
+                      ) -> tuple[np.ndarray, np.ndarray]:
     """Load-point velocity (m/s) as the slope of ``x`` over consecutive windows of ``width``
-    s (least squares in each: the sampling may vary), at the windows' mean times."""
+    s (least squares in each: the sampling may vary), at the windows' mean times; windows of
+    fewer than 3 samples left out. With ``breaks``, a NaN (time and velocity) stands between
+    two windows kept that are not neighbours, so that a line drawn through them breaks
+    where the record has no velocity to show (a gap), instead of a straight line across."""
     w = np.floor((t - t[0]) / width).astype(np.int64)
     nw = int(w[-1]) + 1
     n = np.bincount(w, minlength=nw).astype(float)
@@ -60,7 +95,11 @@ def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float) -> tuple[np.nd
         var = stt / n - (st / n) ** 2
         v = (stx / n - st * sx / n**2) / var
     ok = (n >= 3) & (var > 0)
-    return t[0] + st[ok] / n[ok], v[ok]
+    tv, vv = t[0] + st[ok] / n[ok], v[ok]
+    if breaks:
+        at = np.flatnonzero(np.diff(np.flatnonzero(ok)) > 1) + 1
+        tv, vv = np.insert(tv, at, np.nan), np.insert(vv, at, np.nan)
+    return tv, vv
 
 
 def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment],
@@ -106,7 +145,7 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     info = RecordFigure(panels=names, shaded=[], artists={n: [] for n in names})
     span = float(t[-1] - t0)
     width = max(span / 400.0, 3.0 * float(np.median(np.diff(t))))
-    tv, v = smoothed_velocity(t, x, width)
+    tv, v = smoothed_velocity(t, x, width, breaks=True)  # no line across a gap
     ax = axes[0]
     ax.plot(tv - t0, v * 1e6, color="0.6", lw=0.8, alpha=0.7,
             label=f"load-point velocity (slope over {width:.3g} s)")
@@ -171,13 +210,15 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     axes[-1].set_xlabel(f"time from the first sample  [s]  (t0 = {t0:g} s)")
     n_steps = sum(1 for j in info.shaded if segments[j].velocity != 0.0)
     n_holds = len(info.shaded) - n_steps
-    fig.suptitle(f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
-                 f"{n_holds} hold(s); shaded and numbered as in segments.csv"
-                 + ("\n* change time not placed within max(0.5 s, one sample) (95 % interval "
-                    f"in segments.csv): segment(s) {', '.join(map(str, info.unplaced))}"
-                    if info.unplaced else "") + (f"\n{note}" if note else ""),
-                 fontsize=9)
-    top = 1.0 - (0.62 + (0.3 if info.unplaced else 0.14) + (0.16 if note else 0.0)
-                 ) / fig.get_figheight()
+    title = (f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
+             f"{n_holds} hold(s); shaded and numbered as in segments.csv"
+             + ("\n* change time not placed within max(0.5 s, one sample) (95 % interval "
+                f"in segments.csv): segment(s) {', '.join(map(str, info.unplaced))}"
+                if info.unplaced else "") + (f"\n{note}" if note else ""))
+    # each line wrapped to the figure's width (a long path was cut at its edges), the
+    # panels lowered by the lines it takes
+    lines = _wrap(title, 9.0, TITLE_WIDTH * 72.0 * fig.get_figwidth())
+    fig.suptitle("\n".join(lines), fontsize=9)
+    top = 1.0 - (0.62 + 0.14 + 0.16 * (len(lines) - 1)) / fig.get_figheight()
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=top, hspace=0.08)
     return fig, info
