@@ -421,6 +421,12 @@ def specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:
         i += 1
 
 
+def record_at(index: int) -> ZooRecord:
+    """Zoo record ``index``, with the program, artifacts and dialect :func:`specs` gives it."""
+    *_, (i, prog, arts, dialect) = specs(index + 1)
+    return make_record(i, prog, arts, dialect)
+
+
 def stress_specs(n: int = 300) -> Iterator[tuple[int, str, tuple[str, ...], str]]:
     """The stress family (module docstring): each of :func:`specs`' first ``n`` records with
     the servo error (``red``) in it, with the velocity random walk (``walk``) instead, from the

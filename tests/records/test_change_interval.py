@@ -309,13 +309,11 @@ def _zoo_hold_errors(indices: tuple[int, ...], tmp: Path, above: float = 100.0
     apart of these zoo records (written in their dialect and read back, as bench_detect
     does)."""
     from dryfriction.records.lab import read_record
-    from records_zoo import make_record, score, specs, write
+    from records_zoo import record_at, score, write
 
     out = []
-    for i, prog, arts, dialect in specs(max(indices) + 1):
-        if i not in indices:
-            continue
-        rec = make_record(i, prog, arts, dialect)
+    for i in sorted(set(indices)):
+        rec = record_at(i)
         s = score(rec, detect_program(read_record(write(rec, tmp))), 0.0)
         assert s.count_right, rec.name
         out += [abs(c[1]) / c[2] for c in s.changes if not c[0] < above]

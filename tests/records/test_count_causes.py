@@ -10,6 +10,7 @@ applied (the numbers measured are in the docstrings).
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -21,20 +22,15 @@ from dryfriction.records.artifacts import _reset_offset, find_resets
 from dryfriction.records.detection import EXCURSION_REL, _drift_sized, _edge_bursts
 from dryfriction.records.placement import HOLD_RATIO
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from test_missed_changes import _zoo_counts as zoo_counts  # noqa: E402
+
 
 def _zoo_counts(indices: tuple[int, ...], tmp: Path) -> list[tuple[int, int]]:
     """(changes found, true changes) of each of these zoo records, written in its dialect and
-    read back as bench_detect does."""
-    from dryfriction.records.lab import detect_program, read_record
-    from records_zoo import make_record, score, specs, write
-
-    out = []
-    for i, prog, arts, dialect in specs(max(indices) + 1):
-        if i in indices:
-            rec = make_record(i, prog, arts, dialect)
-            s = score(rec, detect_program(read_record(write(rec, tmp))), 0.0)
-            out.append((s.found, len(rec.changes)))
-    return out
+    read back as bench_detect does (:func:`test_missed_changes._zoo_counts` less its last
+    column)."""
+    return [(found, true) for found, true, _ in zoo_counts(indices, tmp)]
 
 
 # ------------------------------------------------------------------------ drift-sized changes

@@ -18,7 +18,7 @@ from dryfriction.records.detection import detect_program, no_change_message
 from dryfriction.records.lab import LabRecord, read_record, segments_table
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from records_zoo import make_record, score, specs, write  # noqa: E402
+from records_zoo import make_record, record_at, score, specs, write  # noqa: E402
 
 SHARED = (Path(__file__).resolve().parents[2] / "examples" / "data" / "lab"
           / "sepiolite_velstep_0.2-2um_s.txt")
@@ -122,8 +122,7 @@ def test_servo_settling_after_a_large_step_is_no_step() -> None:
     # mistake it is for: judging a change by its velocity change alone (no slip test): 3
     # changes found on each
     for i in (8, 127):
-        prog, arts, dialect = next((p, a, d) for j, p, a, d in specs(i + 1) if j == i)
-        rec = make_record(i, prog, arts, dialect)
+        rec = record_at(i)
         lab = LabRecord(rec.name, rec.t, rec.x, None, rec.mu, rec.sn, "Pa", {}, 2)
         s = score(rec, detect_program(lab), 0.0)
         assert s.count_right and s.false == 0, (rec.name, s)
@@ -133,8 +132,7 @@ def test_a_velocity_column_has_no_resets(tmp_path: Path) -> None:
     # zoo record 139, a velocity column (1 Hz, then 10 Hz): integrated, its noisy increments
     # were taken for dozens of displacement resets, which moved its one change 1.9 s; the
     # mistake it is for: looking for a transducer's resets in a record with no displacement
-    prog, arts, dialect = next((p, a, d) for j, p, a, d in specs(140) if j == 139)
-    rec = make_record(139, prog, arts, dialect)
+    rec = record_at(139)
     lab = read_record(write(rec, tmp_path))
     assert lab.load_point is None
     det = detect_program(lab)

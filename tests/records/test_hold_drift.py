@@ -110,7 +110,7 @@ def test_held_back_tells_a_drifting_hold_from_a_slow_stretch() -> None:
 
 def _zoo(i: int, tmp: Path):  # noqa: ANN202
     """Zoo record ``i`` and the same written in its dialect and read back."""
-    rec = next(z.make_record(j, p, a, d) for j, p, a, d in z.specs(i + 1) if j == i)
+    rec = z.record_at(i)
     return rec, read_record(z.write(rec, tmp))
 
 

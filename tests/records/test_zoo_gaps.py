@@ -25,10 +25,7 @@ from test_missed_changes import _zoo_counts  # noqa: E402
 
 import records_zoo as z  # noqa: E402
 
-
-def _record(index: int) -> z.ZooRecord:
-    spec = next(s for s in z.specs(index + 1) if s[0] == index)
-    return z.make_record(*spec)
+_record = z.record_at
 
 
 def _fluctuation(rec: z.ZooRecord, u: np.ndarray) -> np.ndarray:
