@@ -208,10 +208,41 @@ def test_a_burst_at_the_end_of_a_record_with_no_change(tmp_path: Path,
     last 11 s in 7253, each read as a second stretch 14 % and 12 % off): no change with
     EDGE_TWO; one each with it off (measured). Zoo 12156 (a ratio-1.3 up-step read as 22 %,
     the two stretches 60 and 59 s): its change kept, and lost where the edge rule is asked
-    of two stretches of any lengths (EDGE_TWO_SHARE of 1.01: 0 changes, measured)."""
+    of two stretches of any lengths (EDGE_TWO_SHARE of 1.01 and EDGE_TWO_MOST of inf: 0
+    changes, measured)."""
     assert detection.EDGE_TWO is True
     assert _zoo_counts((7253, 12156, 21083), tmp_path) == [(0, 0), (1, 1), (0, 0)]
     monkeypatch.setattr(detection, "EDGE_TWO_SHARE", 1.01)
+    monkeypatch.setattr(detection, "EDGE_TWO_MOST", float("inf"))
     assert _zoo_counts((12156,), tmp_path) == [(0, 1)]
     monkeypatch.setattr(detection, "EDGE_TWO", False)
     assert _zoo_counts((7253, 21083), tmp_path) == [(1, 0), (1, 0)]
+
+
+def test_a_long_last_stretch_is_no_burst(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A clean record (0.17 um of white noise, 2 Hz): 1.03 um/s for 1200 s, then 1.18 um/s
+    (15 %) for 250 s. The last stretch is under a quarter of the first but lasts minutes: its
+    change is found (1 change). Mistake: the edge rule asked of any stretch under a quarter
+    of the other, whatever its length (EDGE_TWO_MOST of inf: 0 changes, measured). The same
+    step in a 29-s record, 16 s then 13 s: found too; asked of two stretches of any
+    lengths (EDGE_TWO_SHARE of 1.01) it is lost (measured)."""
+    from dryfriction.records.detection import detect_program
+    from dryfriction.records.record import LabRecord
+
+    def found(first: float, last: float) -> int:
+        rng = np.random.default_rng(21)
+        t = 317.0 + np.arange(0.0, first + last, 0.5)
+        v = np.where(t - 317.0 < first, 1.03e-6, 1.18e-6)
+        x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+        rec = LabRecord(source="clean.txt", time=t,
+                        load_point=x + rng.normal(0.0, 0.17e-6, t.size), load_velocity=None,
+                        friction=0.6 + 0.0 * t, normal_stress=None, normal_unit="Pa",
+                        columns={}, first_line=0)
+        return len(detect_program(rec).segments) - 1
+
+    assert (found(1200.0, 250.0), found(16.0, 13.0)) == (1, 1)
+    monkeypatch.setattr(detection, "EDGE_TWO_SHARE", 1.01)
+    assert found(16.0, 13.0) == 0
+    monkeypatch.setattr(detection, "EDGE_TWO_SHARE", 0.25)
+    monkeypatch.setattr(detection, "EDGE_TWO_MOST", float("inf"))
+    assert found(1200.0, 250.0) == 0
