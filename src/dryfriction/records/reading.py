@@ -23,7 +23,7 @@ within ``2 HALF`` of it (candidates within ``HALF``; the residual variance as th
 with that profile's interval (as the hinge's, :func:`.placement.profile_interval`, widened
 :data:`.placement.WIDEN` times).
 
-Where the readings are too slow for such lines (a reading at 1 Hz: :data:`READING_SLOW`),
+Where the readings are too slow for such lines (about 1 Hz: :data:`READING_SLOW`),
 ``J_i`` is the difference of the means of the :data:`SLOW_MIN` readings after and before the
 candidate, judged the same way.
 
@@ -65,11 +65,15 @@ docstring)."""
 
 READING_SLOW = True
 """Where the readings are too few for lines (fewer than 8 candidates with :data:`HALF_MIN` of
-them within :data:`SIDE_MOST` s each side: a reading at 1 Hz and slower), each side is the
+them within :data:`SIDE_MOST` s each side: a reading at about 1 Hz), each side is the
 mean of the :data:`SLOW_MIN` readings next to the candidate, judged by the same threshold
 (ours): the step is still within one sample, and the candidates' own jumps are the null, the
 wander over those readings included. Zoo 22249 (a ratio-30 stop at 1 Hz, the step from 0.16
-to 0 um/s between two readings) was left to the displacement, two samples early."""
+to 0 um/s between two readings) was left to the displacement, two samples early. Slower
+readings are not placed this way (fewer than 20 within the search, ``4 HALF_MIN``: a review
+measured none placed at 0.8 Hz and below, 11 of 20 at 0.9 Hz, 20 of 20 at 1-1.5 Hz, 17 of 20
+at 2 Hz, where the lines are tried first); their changes stay where the displacement put
+them."""
 SLOW_MIN = 2
 
 
