@@ -197,3 +197,37 @@ def test_record_title_is_wrapped_within_the_figure(source: str) -> None:
     assert box.y0 >= legend.y1 and box.y1 <= fig.bbox.height
     assert title.get_text().count("\n") >= 3
     assert "".join(source.split()) in "".join(title.get_text().split())
+
+
+def test_record_velocity_unbroken_where_sampling_is_only_jittered() -> None:
+    """800 samples at 10 Hz jittered +-45 % (windows of 3 median intervals, some with fewer
+    than 3 samples and so left out) and no gap: the drawn velocity has no break. Mistake:
+    a break wherever a window was left out (a review measured 24-48 breaks: a dashed line)."""
+    rng = np.random.default_rng(8)
+    t = T0 + np.concatenate([[0.0], np.cumsum(rng.uniform(0.055, 0.145, 799))])
+    x = 4.1e-3 + 2.3e-6 * (t - T0)
+    rec = LabRecord(source="jitter.txt", time=t, load_point=x, load_velocity=None,
+                    friction=0.6 + 0.0 * t, normal_stress=None, normal_unit="Pa", columns={},
+                    first_line=0)
+    segs = [SimpleNamespace(t_start=t[0], t_end=t[-1], velocity=2.3e-6, start_placed=True)]
+    fig, info = plot_record(rec, segs, None)
+    ax_v = fig.axes[info.panels.index("velocity")]
+    line = next(ln for ln in ax_v.get_lines() if np.asarray(ln.get_xdata()).size > 50)
+    assert not np.isnan(np.asarray(line.get_ydata(), float)).any()
+
+
+def test_record_title_keeps_the_panels_room() -> None:
+    """800 segments, every one unplaced (a title listing them all): the figure is drawn,
+    its title at most TITLE_LINES lines, the last saying it is cut, and the panels keep
+    their height. Mistake: no cap (the panels' top below their bottom: matplotlib raised)."""
+    from dryfriction.plots.record import TITLE_LINES
+
+    rec, _ = _record(2.3e-6, 0.41e-6)
+    edges = np.linspace(T0, T0 + 600.0, 801)
+    segs = [SimpleNamespace(t_start=a, t_end=b, velocity=(2.3e-6 if k % 2 else 0.41e-6),
+                            start_placed=False, start_lo=a - 1.0, start_hi=a + 1.0)
+            for k, (a, b) in enumerate(zip(edges[:-1], edges[1:], strict=True))]
+    fig, info = plot_record(rec, segs, None)
+    text = fig._suptitle.get_text()
+    assert text.count("\n") + 1 <= TITLE_LINES and "title cut" in text
+    assert all(ax.get_position().height > 0.15 for ax in fig.axes)
