@@ -75,7 +75,7 @@ _HNR = "tests/records/test_hold_not_reset.py"
 _RDG = "tests/records/test_reading.py"
 _HFX_K = (_HFX, "-k", "shortens or lengthened")
 _RFD = "tests/plots/test_record_figure_data.py"
-_RRS = "tests/records/test_reset_resolution.py"
+_RRS = "tests/records/test_reset_threshold.py"
 _PLW = ("tests/records/test_placement.py", "-k", "between_its_neighbours")
 _S6NQ = "tests/theory/test_nyquist_generic.py"
 _S6RB = "tests/theory/test_response_bounds.py"
@@ -3845,21 +3845,16 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("plots: record.png's velocity from the displacement as read (resets left in)",
        "plots/record.py", "            x = find_resets(t, x)[0]\n", "            pass\n", _RFD),
     # --- end stop 43 (lead)
-    # --- stop 44 (lead): a reset's floor the resolution; a burst at a record's end; slow
+    # --- stop 44 (lead): a reset's threshold; a burst at a record's end; slow
     # readings; a change placed again between its neighbours
-    _m("artifacts: RESET_QUANTUM off (the smallest increment floors a reset's scale)",
-       "records/artifacts.py", "RESET_QUANTUM = True\n", "RESET_QUANTUM = False\n", _RRS),
-    _m("artifacts: the resolution with the text's rounding taken for values apart",
-       "records/artifacts.py", "    du = du[du > 1e-3 * smallest]\n", "    du = du[du > 0.0]\n",
-       _RRS),
-    _m("artifacts: the resolution from the values, not their spacing", "records/artifacts.py",
-       "    du = np.diff(u)\n", "    du = np.abs(u[1:])\n", _RRS),
     _m("artifacts: a reset's threshold of 15 scales (stop 43's)", "records/artifacts.py",
        "_RESET_K = 10.0\n", "_RESET_K = 15.0\n", _RRS),
     _m("detection: EDGE_TWO off (a burst at the end of a two-stretch record a change)",
        "records/detection.py", "EDGE_TWO = True\n", "EDGE_TWO = False\n", *_EDT),
     _m("detection: EDGE_TWO asked of two stretches of any lengths", "records/detection.py",
-       "EDGE_TWO_SHARE = 0.25\n", "EDGE_TWO_SHARE = 1.01\n", *_EDT),
+       "EDGE_TWO_SHARE = 0.25\n", "EDGE_TWO_SHARE = 1.01\n", _CNT, "-k", "long_last"),
+    _m("detection: EDGE_TWO asked of a last stretch of minutes", "records/detection.py",
+       "EDGE_TWO_MOST = 20.0\n", "EDGE_TWO_MOST = float('inf')\n", _CNT, "-k", "long_last"),
     _m("reading: READING_SLOW off (slow readings left to the displacement)",
        "records/reading.py", "READING_SLOW = True\n", "READING_SLOW = False\n", _RDG),
     _m("reading: the slow means' windows off by one", "records/reading.py",
@@ -3870,9 +3865,15 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("plots: record.png's velocity joined straight across a gap", "plots/record.py",
        "    tv, v = smoothed_velocity(t, x, width, breaks=True)  # no line across a gap\n",
        "    tv, v = smoothed_velocity(t, x, width)\n", _RFD),
-    _m("plots: the windowed velocity's break placed one window late", "plots/record.py",
-       "        at = np.flatnonzero(np.diff(np.flatnonzero(ok)) > 1) + 1\n",
-       "        at = np.flatnonzero(np.diff(np.flatnonzero(ok)) > 1) + 2\n", _RFD),
+    _m("plots: the windowed velocity broken wherever a window was left out",
+       "plots/record.py", "        gap = np.flatnonzero(np.diff(t) > width)\n",
+       "        gap = np.flatnonzero(np.diff(t) > 0.0)\n", _RFD),
+    _m("plots: the windowed velocity's break one window late", "plots/record.py",
+       "        at = np.unique(np.searchsorted(tv, 0.5 * (t[gap] + t[gap + 1])))\n",
+       "        at = np.unique(np.searchsorted(tv, 0.5 * (t[gap] + t[gap + 1]))) + 1\n", _RFD),
+    _m("plots: record.png's title lines not capped", "plots/record.py",
+       "    if len(lines) > TITLE_LINES:  # the panels keep their room (800 unplaced segments\n",
+       "    if False:  # the panels keep their room (800 unplaced segments\n", _RFD),
     _m("plots: record.png's title on its lines unwrapped", "plots/record.py",
        "    lines = _wrap(title, 9.0, TITLE_WIDTH * 72.0 * fig.get_figwidth())\n",
        "    lines = title.split(\"\\n\")\n", _RFD),
