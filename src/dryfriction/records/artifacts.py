@@ -85,8 +85,6 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         quantum = float(nz.min()) if nz.size else 0.0
         r = (rate - vb)[np.isfinite(rate - vb)]
     spread = 1.4826 * median(np.abs(e - median(e))) if e.size else 0.0
-    if RESET_QUANTUM:
-        quantum = _resolution(d, quantum)
     scale = max(spread, quantum, 1e-12 * float(np.ptp(x)), 1e-300)
     # the local rates are medians of 5 noisy increment rates: their error, times an
     # increment's duration, is large across a gap (a fast-sampled record's 5-s gap is
@@ -123,57 +121,6 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         fix[i + 1:] -= step
         kept.append(int(i))
     return x + fix, kept
-
-
-RESET_QUANTUM = True
-"""The quantum that floors a reset's scale (:func:`find_resets`) is the displacement's
-resolution, the smallest spacing of its increments' distinct values (:func:`_resolution`), not
-the smallest increment (ours). Why: in a fast slide every increment is several quanta (zoo
-20197: 27 um/s at 10 Hz under a 0.40-um quantum, no increment below 3 quanta), so the
-smallest increment floored the scale at 1.2 um, three times the increments' robust scatter,
-and with 15 such scales (:data:`_RESET_K` then) a 15.7-um re-zeroing was read as a 1-s
-excursion at a quarter of the speed: two false changes. With :data:`_RESET_K` of 10 that
-re-zeroing is found either way; one of 5-7 smallest increments (24 scales) is found only with
-this (``tests/records/test_reset_resolution.py``)."""
-
-RESOLUTION_MOST = 200_000
-""":func:`_resolution` looks at most at this many increments, evenly picked (ours: a sort of
-the record's increments would cost a tenth of the detection's time on a long record; the
-resolution is a property of the transducer, seen in any stretch)."""
-
-
-def _resolution(d: Array, smallest: float) -> float:
-    """The resolution of a quantised signal from its increments ``d`` (m): the smallest
-    spacing between their distinct values, at most ``smallest`` (the smallest nonzero
-    ``|d|``, m; ours).
-
-    Increments of a signal on a grid of step ``q`` are multiples of ``q``, so their distinct
-    values are ``q`` apart at least (and ``q`` apart where two neighbouring multiples occur);
-    values closer than ``1e-3 smallest`` are one value (the decimal text they were read from
-    rounds them). An unquantised signal's distinct increments are closer than any scale that
-    matters: the floor is then below the scatter it stands under.
-
-    Parameters
-    ----------
-    d : Array
-        Increments, m (NaN-free).
-    smallest : float
-        The smallest nonzero ``|d|``, m (0 where every increment is 0).
-
-    Returns
-    -------
-    float
-        The resolution, m (``smallest`` where no two distinct values are found).
-    """
-    d = d[np.isfinite(d)]
-    if smallest <= 0.0 or d.size < 2:
-        return smallest
-    if d.size > RESOLUTION_MOST:
-        d = d[np.linspace(0, d.size - 1, RESOLUTION_MOST).astype(np.int64)]
-    u = np.sort(d)
-    du = np.diff(u)
-    du = du[du > 1e-3 * smallest]
-    return min(smallest, float(du.min())) if du.size else smallest
 
 
 COMPILED_RESETS = True
