@@ -894,7 +894,8 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
     t, x : Array
         Times, s, and displacement, m.
     bounds : list of int
-        Boundaries, from 0 to ``len(t)``.
+        Boundaries, increasing, to ``len(t)``: the first (0 for a whole record) is where
+        the first window starts (:data:`OWN_START`), the last where the last ends.
     velocity : Array
         Velocity of each stretch, m/s.
     sigma : float
