@@ -14,7 +14,7 @@ import pytest
 from dryfriction.records.lab import APPARATUS_V_MAX, APPARATUS_X_MAX, apparatus_note
 from dryfriction.records.placement import place_changes
 from dryfriction.records.record import LabRecord
-from dryfriction.records.segmentation import line_fit, prune, refine, rss
+from dryfriction.records.segmentation import line_fit, prune, refine, rss, step_gains
 
 # --- lab.apparatus_note -----------------------------------------------------------------------
 
@@ -215,3 +215,26 @@ def test_no_change_message_states_the_smallest_change_of_the_two_halves() -> Non
     assert [s.velocity for s in segs] == pytest.approx([1.3e-6, 1.3e-5], rel=0.01)
     assert 0.3 * 119.8 < segs[1].t_start - t[0] < 0.7 * 119.8
     assert len(slice_steps(rec, segs)) == 1
+
+
+def test_step_gains_against_least_squares() -> None:
+    """``step_gains`` on irregular times from 412.6 s and a y of mixed sign (a line, a step
+    of -3.7 at sample 61 and noise): for every candidate step, ``rs**2 / den`` is what the
+    step saves of the line's residual sum of squares, by ``np.linalg.lstsq`` on the three
+    columns (two routes); the residuals are the line's; the largest gain is at the true
+    step. Mistakes: the step not projected off the slope (``den`` without its ``Sxx`` term);
+    the sums taken from the sample before ``k``."""
+    rng = np.random.default_rng(17)
+    t = 412.6 + np.cumsum(rng.uniform(0.03, 0.21, 140))
+    y = -2.9 + 0.83 * (t - 412.6) - 3.7 * (np.arange(140) >= 61) + rng.normal(0.0, 0.4, 140)
+    ks = np.arange(5, 135, 7)
+    ks = np.unique(np.r_[ks, 61])
+    r, rs, den = step_gains(t, y, ks)
+    line = np.column_stack([np.ones(140), t - t.mean()])
+    res0 = y - line @ np.linalg.lstsq(line, y, rcond=None)[0]
+    np.testing.assert_allclose(r, res0, atol=1e-10)
+    for k, g in zip(ks, rs**2 / den, strict=True):
+        a = np.column_stack([line, (np.arange(140) >= k).astype(float)])
+        res1 = y - a @ np.linalg.lstsq(a, y, rcond=None)[0]
+        assert g == pytest.approx(res0 @ res0 - res1 @ res1, rel=1e-9)
+    assert ks[np.argmax(rs**2 / den)] == 61

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..validation import Array
-from .segmentation import kernel_input, line_fit, median
+from .segmentation import kernel_input, line_fit, median, step_gains
 
 __all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
 
@@ -378,27 +378,20 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         w = 2 * (bounds[j + 1] - bounds[j]) + m
         a, c = max(bounds[j - 1], bounds[j] - w), min(bounds[j + 2], bounds[j + 1] + w)
         tt, y = t[a:c], x[a:c]
-        slope, mean, sxx = line_fit(tt, y)
-        tc = tt - tt.mean()
-        r = y - mean - slope * tc
         n = c - a
-        # gain of a step starting at sample i (a-relative): (sum_{>=i} r)**2 / |step|**2, the
-        # step projected off the line: n_i - n_i**2 / n - (sum_{>=i} tc)**2 / sxx
+        # the gain of a step starting at each sample (a-relative) over the line
         ks = np.arange(max(1, bounds[j] - m - a), min(n - 1, bounds[j + 1] + m - a))
-        if ks.size == 0 or sxx <= 0:
+        if ks.size == 0 or tt[-1] <= tt[0]:
             continue
-        rs = np.cumsum(r[::-1])[::-1]
-        ts = np.cumsum(tc[::-1])[::-1]
-        ni = (n - ks).astype(float)
-        den = ni - ni**2 / n - ts[ks] ** 2 / sxx
+        r, rs, den = step_gains(tt, y, ks)
         with np.errstate(divide="ignore", invalid="ignore"):
-            gain = np.where(den > 0, rs[ks] ** 2 / den, -np.inf)
+            gain = np.where(den > 0, rs**2 / den, -np.inf)
         i = int(np.argmax(gain))
         rss_jump = float(r @ r) - float(gain[i])
         if JUMP_REFINED and reach > 0:
             # boundaries known to a block: the excursion a continuous broken line, each
             # kink at its best sample within reach
-            rss3 = _broken_line(tc, r, bounds[j] - a, bounds[j + 1] - a, reach)
+            rss3 = _broken_line(tt - tt.mean(), r, bounds[j] - a, bounds[j + 1] - a, reach)
         else:
             rss3 = 0.0
             for p, q in zip([a, bounds[j], bounds[j + 1]], [bounds[j], bounds[j + 1], c],
@@ -407,7 +400,7 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
                 e = x[p:q] - mu - sl * (t[p:q] - t[p:q].mean())
                 rss3 += float(e @ e)
         if rss_jump - rss3 < JUMP_REL * rss3:
-            out.append((j, a + int(ks[i]), float(rs[ks[i]] / den[i])))
+            out.append((j, a + int(ks[i]), float(rs[i] / den[i])))
     return out
 
 

@@ -40,6 +40,7 @@ import numpy as np
 
 from ..validation import Array
 from .placement import WIDEN, Placement, profile_interval, profile_weights
+from .segmentation import step_gains
 
 __all__ = ["READING_Z", "reading_step"]
 
@@ -194,13 +195,8 @@ def reading_step(t: Array, v: Array, guess: int, lo: int, hi: int, v1: float, v2
         c1 = min(q - 1, max(int(np.searchsorted(tt, tb + HALF, "right")), best + HALF_MIN + 1))
     ts, ys = tt[p:q], y[p:q]
     n = ts.size
-    u = ts - ts.mean()
-    basis, _ = np.linalg.qr(np.column_stack([np.ones(n), u]))
-    r = ys - basis @ (basis.T @ ys)
     ks = np.arange(c0, c1) - p
-    rs = np.cumsum(r[::-1])[::-1][ks]
-    qs = np.cumsum(basis[::-1], axis=0)[::-1][ks]
-    norm = (n - ks) - np.einsum("ij,ij->i", qs, qs)
+    r, rs, norm = step_gains(ts, ys, ks)
     with np.errstate(divide="ignore", invalid="ignore"):
         gain = np.where((norm > 1e-9 * n) & (rs > 0), rs * rs / norm, -np.inf)
     if not np.isfinite(gain).any():

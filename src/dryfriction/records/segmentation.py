@@ -16,8 +16,8 @@ import numpy as np
 
 from ..validation import Array
 
-__all__ = ["kernel_input", "median", "quantile", "noise_level", "line_fit", "rss", "best_hinge",
-           "hinge_segments", "refine", "prune"]
+__all__ = ["kernel_input", "median", "quantile", "noise_level", "line_fit", "step_gains", "rss",
+           "best_hinge", "hinge_segments", "refine", "prune"]
 
 
 def median(a: Array) -> float:
@@ -102,6 +102,44 @@ def line_fit(t: Array, x: Array) -> tuple[float, float, float]:
     sxx = float(np.sum(tc * tc))
     slope = float(np.sum(tc * (x - xm)) / sxx) if sxx > 0 else 0.0
     return slope, float(xm), sxx
+
+
+def step_gains(t: Array, y: Array, ks: Array) -> tuple[Array, Array, Array]:
+    """What a step of ``y(t)`` at each sample of ``ks`` saves over its least-squares line.
+
+    The step ``h_k`` is 1 from sample ``k`` on, 0 before; projected off the line (columns 1
+    and ``t``) its squared norm is ``n_k - n_k**2 / n - (sum_{i>=k} (t_i - tbar))**2 / Sxx``
+    (``n_k = n - k``), and one more column saves ``(r . h_k)**2`` over that norm of the residual
+    sum of squares, ``r`` the line's residuals (least squares with one more regressor,
+    Frisch-Waugh-Lovell).
+
+    Parameters
+    ----------
+    t : Array
+        Times, s (not all equal).
+    y : Array
+        Values, any unit.
+    ks : Array of int
+        The steps' first samples, ``0 < k < len(t)``.
+
+    Returns
+    -------
+    r : Array
+        The line's residuals, ``y``'s unit.
+    rs : Array
+        ``r . h_k`` for each ``k``: the residuals summed from ``k`` on.
+    den : Array
+        ``|h_k|**2`` projected off the line; the gain is ``rs**2 / den`` where ``den > 0``.
+    """
+    slope, mean, sxx = line_fit(t, y)
+    tc = t - t.mean()
+    r = y - mean - slope * tc
+    ks = np.asarray(ks, dtype=np.int64)
+    rs = np.cumsum(r[::-1])[::-1][ks]
+    ts = np.cumsum(tc[::-1])[::-1][ks]
+    n = t.size
+    ni = (n - ks).astype(float)
+    return r, rs, ni - ni**2 / n - (ts**2 / sxx if sxx > 0 else 0.0)
 
 
 def _plain(a: Array) -> bool:
