@@ -3894,6 +3894,29 @@ MUTANTS: tuple[Mutant, ...] = (
        "    return r, rs, ni - ni**2 / n", "tests/records/test_records_helpers.py", "-k",
        "step_gains"),
     # --- end stop 44 (lead)
+    # --- stop 45 (lead): a stop's settling is no stretch
+    _m("detection: SETTLE off (a stop's settling a stretch of its own)", "records/detection.py",
+       "SETTLE = True\n", "SETTLE = False\n", _CNT, "-k", "stop_settling"),
+    _m("detection: the settling flag on the stop's first boundary", "records/detection.py",
+       "    out[1:] = held & ~hold[1:-1] & (u[:-2] > u[1:-1]) & (u[1:-1] > u[2:])\n",
+       "    out[:-1] = held & ~hold[1:-1] & (u[:-2] > u[1:-1]) & (u[1:-1] > u[2:])\n", _CNT,
+       "-k", "settling"),
+    _m("detection: the settling's speeds compared the wrong way", "records/detection.py",
+       "    out[1:] = held & ~hold[1:-1] & (u[:-2] > u[1:-1]) & (u[1:-1] > u[2:])\n",
+       "    out[1:] = held & ~hold[1:-1] & (u[:-2] < u[1:-1]) & (u[1:-1] > u[2:])\n", _CNT,
+       "-k", "settling"),
+    _m("detection: a settling's hold read by the flag alone (not a hold read with drift)",
+       "records/detection.py", "    held = hold[2:] | (u[2:] <= HOLD_RATIO * u[:-2])\n",
+       "    held = hold[2:]\n", _CNT, "-k", "settling"),
+    _m("detection: the settling's stretch model never stops (a line)", "records/detection.py",
+       "    stretch = rss(np.minimum(u, t2 - t1))\n", "    stretch = rss(u)\n", _CNT, "-k",
+       "relaxation_explains"),
+    _m("detection: the settling's comparison the wrong way", "records/detection.py",
+       "    return relax <= stretch\n", "    return relax >= stretch\n", _CNT, "-k",
+       "relaxation_explains"),
+    _m("detection: a settling looked for at any slip", "records/detection.py",
+       "SETTLE_MOST = 3.0\n", "SETTLE_MOST = float('inf')\n", _CNT, "-k", "settling_looked"),
+    # --- end stop 45 (lead)
 )
 
 
