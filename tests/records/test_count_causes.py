@@ -59,12 +59,14 @@ def test_a_hold_or_slow_stretch_with_drift_is_one(tmp_path: Path,
     servo error; a hold read as a hold and a creep of 0.004-0.01 um/s): the right count
     when the fluctuations are measured without the drift-sized boundaries (DRIFT_SIZED).
     Mistake, seen failing: measured about every boundary, the split hiding the drift it is
-    judged by (DRIFT_SIZED = False: 5 changes found against 4 in each; measured)."""
+    judged by (DRIFT_SIZED = False: 5 changes found against 4 in each; measured). Since stop
+    45 9238's split is also taken back by SETTLE (the piece after the stop, against a hold
+    read at 1/100 of the slide, fitted as well by a relaxation): 4 changes there."""
     assert detection.DRIFT_SIZED is True
     counts = _zoo_counts((5050, 8110, 9238), tmp_path)
     assert all(f == n for f, n in counts), counts
     monkeypatch.setattr(detection, "DRIFT_SIZED", False)
-    counts = _zoo_counts((5050, 8110, 9238), tmp_path)
+    counts = _zoo_counts((5050, 8110), tmp_path)
     assert all(f > n for f, n in counts), counts
 
 
@@ -264,6 +266,7 @@ def test_settling_flags_the_boundary_into_a_hold_after_a_faster_stretch() -> Non
     assert not _settling(np.array([0.7e-6, 2.3e-6, 0.0]), np.array([False, False, True])).any()
     assert not _settling(v[::-1], hold[::-1]).any()
     assert not _settling(np.array([3e-6, 0.0, 1e-9]), np.array([False, True, True])).any()
+    assert not _settling(np.array([3e-6, 1e-9, 0.0]), np.array([False, True, True])).any()
     # a hold read with its drift (not flagged): slower than HOLD_RATIO of the stretch before
     drift = np.array([4.55e-6, 9.7e-8, 0.9 * HOLD_RATIO * 4.55e-6])
     none = np.zeros(3, bool)
@@ -273,59 +276,89 @@ def test_settling_flags_the_boundary_into_a_hold_after_a_faster_stretch() -> Non
 
 def _stop_record(seed: int, slow: float, relax: float) -> tuple[np.ndarray, np.ndarray]:
     """31 um/s for 80 s, then ``slow`` s at 3.1 um/s (none: 0), then held for 120 s and
-    reloaded; the servo's relaxation at the stop adds ``relax`` um decaying over 2.7 s (0:
+    reloaded; the servo's relaxation at the stop adds ``relax`` um approached over 2.7 s (0:
     none); the zoo's servo error, machine oscillation, white noise and quantum
     (:func:`records_zoo.step_displacement`), 20 Hz, from t = 412 s."""
+    return _pieces([(80.0, 31.0), (slow, 3.1), (120.0, 0.0), (80.0, 31.0)], seed, 20.0,
+                   relax, 80.0 + slow)
+
+
+def _pieces(pieces: list[tuple[float, float]], seed: int, fs: float, relax: float = 0.0,
+            at: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """A record of commanded ``(duration s, velocity um/s)`` pieces sampled at ``fs`` Hz from
+    t = 412 s (:func:`records_zoo.step_displacement`), with ``relax`` um of settling
+    approached over 2.7 s from ``at`` s."""
     import records_zoo as z
 
     rng = np.random.default_rng(seed)
-    t = 412.0 + np.arange(0.0, 280.0 + slow, 0.05)
+    t = 412.0 + np.arange(0.0, sum(d for d, _ in pieces), 1.0 / fs)
     u = t - 412.0
-    vc = np.where(u < 80.0, 31e-6, np.where(u < 80.0 + slow, 3.1e-6,
-                                            np.where(u < 200.0 + slow, 0.0, 31e-6)))
+    vc, start = np.zeros_like(t), 0.0
+    for d, v in pieces:
+        vc[u >= start] = v * 1e-6
+        start += d
     x = z.step_displacement(t, vc, rng, wobble=True)
-    x += relax * 1e-6 * -np.expm1(-np.clip(u - 80.0 - slow, 0.0, None) / 2.7) * (u < 200 + slow)
-    return t, x
+    return t, x + relax * 1e-6 * -np.expm1(-np.clip(u - at, 0.0, None) / 2.7)
+
+
+def _changes(t: np.ndarray, x: np.ndarray) -> list[float]:
+    """The change times the detector finds (s from the first sample)."""
+    from dryfriction.records.detection import detect_program
+    from dryfriction.records.record import LabRecord
+
+    rec = LabRecord(source="stop.txt", time=t, load_point=x, load_velocity=None,
+                    friction=0.6 + 0.0 * t, normal_stress=None, normal_unit="Pa",
+                    columns={}, first_line=0)
+    return [s.t_start - float(t[0]) for s in detect_program(rec).segments[1:]]
 
 
 def test_relaxation_explains_a_settling_not_a_commanded_stretch() -> None:
-    """``_relaxation_explains`` on the stop of :func:`_stop_record` (the boundaries as found):
-    a stop with 12 um of settling (1.3 lag at 31 um/s with this servo and oscillation) and no
-    stretch is explained, its settling read as a stretch of 4 s; a commanded 3.1-um/s stretch of
-    12 s (37 um) before the hold is not, for five seeds. Mistake: the hold's velocity left free
-    in the relaxation (a decay with a free slope after it takes up a ramp that stops: the
-    commanded stretch explained for seeds 1 and 5, measured)."""
+    """``_relaxation_explains`` on the stop of :func:`_stop_record`: a stop with 12 um of
+    settling (1.3 lag at 31 um/s with this servo and oscillation) and no stretch is explained,
+    its settling read as a stretch of 4 s; a commanded 3.1-um/s stretch of 12 s (37 um) before
+    the hold is not, for five seeds; nor one of 5 s (seed 1) with the stop given 0.6 s early
+    (as the pruning had it, not yet placed); nor a 10-s stretch before a slide at 0.3 um/s
+    (1/100 of the fast one: a staircase, seed 3) given that slide's velocity. Mistakes: the
+    hold's velocity left free in the relaxation (the commanded 12-s stretch explained for seeds
+    1 and 5, measured); the stop taken where given (the 5-s stretch explained: stretch 654,
+    relaxation 460 um^2, measured by review); the slide after the stretch taken as held (the
+    staircase explained)."""
     from dryfriction.records.detection import _relaxation_explains
 
-    def explains(seed: int, slow: float, relax: float, s_end: float) -> bool:
-        t, x = _stop_record(seed, slow, relax)
-        at = np.searchsorted(t, 412.0 + np.array([80.0, 80.0 + s_end, 200.0 + slow]))
-        return _relaxation_explains(t, x, int(at[0]), int(at[1]), int(at[2]))
+    def explains(t: np.ndarray, x: np.ndarray, marks: list[float], v_after: float = 0.0
+                 ) -> bool:
+        at = np.searchsorted(t, 412.0 + np.array(marks))
+        return _relaxation_explains(t, x, 0, int(at[0]), int(at[1]), int(at[2]), v_after)
 
-    assert all(explains(s, 0.0, 12.0, 4.0) for s in range(1, 6))
-    assert not any(explains(s, 12.0, 0.0, 12.0) for s in range(1, 6))
+    assert all(explains(*_stop_record(s, 0.0, 12.0), [80.0, 84.0, 200.0]) for s in range(1, 6))
+    assert not any(explains(*_stop_record(s, 12.0, 0.0), [80.0, 92.0, 212.0])
+                   for s in range(1, 6))
+    assert not explains(*_stop_record(1, 5.0, 0.0), [79.4, 85.0, 205.0])
+    stair = _pieces([(80.0, 31.0), (10.0, 3.1), (120.0, 0.3), (80.0, 31.0)], 3, 20.0)
+    assert not explains(*stair, [80.0, 90.0, 210.0], 0.3e-6)
 
 
 def test_a_stop_settling_is_no_stretch_and_a_slow_stretch_before_a_hold_stays(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo 21022 and 23206 (slide-hold-slides; after one stop the servo settled 0.097 um/s
-    for 8.4 s and 2.5 um/s for 4.7 s, slip ratios 3.6): their four changes with SETTLE; five
-    each with it off (measured). :func:`_stop_record`'s commanded 12-s stretch at 3.1 um/s
-    before a hold (seeds 1-5): three changes each with SETTLE, as with it off."""
-    from dryfriction.records.detection import detect_program
-    from dryfriction.records.record import LabRecord
-
-    def changes(seed: int) -> int:
-        t, x = _stop_record(seed, 12.0, 0.0)
-        rec = LabRecord(source="stop.txt", time=t, load_point=x, load_velocity=None,
-                        friction=0.6 + 0.0 * t, normal_stress=None, normal_unit="Pa",
-                        columns={}, first_line=0)
-        return len(detect_program(rec).segments) - 1
-
+    for 8.4 s and 2.5 um/s for 4.7 s, slip ratios 3.6): their four changes, each within its
+    tolerance, with SETTLE; five each with it off (measured). Commanded stretches the rule must
+    keep, each found with SETTLE as with it off (measured by review, lost by the rule's first
+    form): 31 -> 3.1 um/s for 12 s (seeds 1-5) and 5 s (seed 1) before a hold at 20 Hz; 100
+    -> 10 um/s for 8 s before a hold at 50 Hz (seed 1); a staircase 31 -> 3.1 (10 s) -> 0.3
+    um/s (seed 3). Not a mistake it can see: the stop's boundary removed instead of the
+    settling's (the remaining one is placed again at the stop: the same changes on every
+    record tried, zoo and generated)."""
     assert detection.SETTLE is True
-    assert _zoo_counts((21022, 23206), tmp_path) == [(4, 4), (4, 4)]
-    assert [changes(s) for s in range(1, 6)] == [3] * 5
+    assert zoo_counts((21022, 23206), tmp_path) == [(4, 4, True), (4, 4, True)]
+    kept = [_stop_record(s, 12.0, 0.0) for s in range(1, 6)] + [
+        _stop_record(1, 5.0, 0.0),
+        _pieces([(80.0, 100.0), (8.0, 10.0), (120.0, 0.0), (80.0, 100.0)], 1, 50.0),
+        _pieces([(80.0, 31.0), (10.0, 3.1), (120.0, 0.3), (80.0, 31.0)], 3, 20.0)]
+    on = [len(_changes(*r)) for r in kept]
+    assert on == [3] * len(kept)
     monkeypatch.setattr(detection, "SETTLE", False)
+    assert [len(_changes(*r)) for r in kept] == on
     assert _zoo_counts((21022, 23206), tmp_path) == [(5, 4), (5, 4)]
 
 
@@ -337,26 +370,33 @@ def test_a_settling_looked_for_only_where_the_slip_is_small(
     with SETTLE off, measured): the shape compared, and two changes. Mistake: the settling
     looked for at any slip (SETTLE_MOST of inf: a stretch of minutes fitted against a
     relaxation on each of the pruning's passes)."""
-    from dryfriction.records.detection import detect_program
-    from dryfriction.records.record import LabRecord
-
-    calls: list[tuple[int, int]] = []
+    calls: list[int] = []
     explains = detection._relaxation_explains
 
-    def counted(t: np.ndarray, x: np.ndarray, b1: int, b2: int, b3: int) -> bool:
-        calls.append((b1, b2))
-        return explains(t, x, b1, b2, b3)
+    def counted(*args: object) -> bool:
+        calls.append(1)
+        return explains(*args)  # type: ignore[arg-type]
 
     monkeypatch.setattr(detection, "_relaxation_explains", counted)
-
-    def changes(slow: float, relax: float) -> int:
-        t, x = _stop_record(3, slow, relax)
-        rec = LabRecord(source="stop.txt", time=t, load_point=x, load_velocity=None,
-                        friction=0.6 + 0.0 * t, normal_stress=None, normal_unit="Pa",
-                        columns={}, first_line=0)
-        return len(detect_program(rec).segments) - 1
-
-    assert changes(200.0, 0.0) == 3 and calls == []
-    assert changes(0.0, 40.0) == 2 and calls
+    assert len(_changes(*_stop_record(3, 200.0, 0.0))) == 3 and calls == []
+    assert len(_changes(*_stop_record(3, 0.0, 40.0))) == 2 and calls
     monkeypatch.setattr(detection, "SETTLE", False)
-    assert changes(0.0, 40.0) == 3
+    assert len(_changes(*_stop_record(3, 0.0, 40.0))) == 3
+
+
+def test_a_stop_with_a_large_settling_is_placed_at_the_stop(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """:func:`_stop_record`'s stop with 12 and 40 um of settling approached over 2.7 s (seeds
+    1-5): the stop placed within 0.25 s of the command (the tolerance is 0.5 s) with the
+    relaxation's time constants on half octaves (``placement.RELAX_TAUS``). Mistake: the
+    octave grid of 1, 2, 4, 8 s (before stop 45): 6 of the 10 stops placed 2.2-3.8 s late,
+    the hinge taking up what a time constant off the truth leaves (measured)."""
+    import dryfriction.records.placement as placement
+
+    def errors() -> list[float]:
+        return [abs(_changes(*_stop_record(s, 0.0, r))[0] - 80.0)
+                for s in range(1, 6) for r in (12.0, 40.0)]
+
+    assert max(errors()) < 0.25
+    monkeypatch.setattr(placement, "RELAX_TAUS", (1.0, 2.0, 4.0, 8.0))
+    assert sum(e > 2.0 for e in errors()) >= 5

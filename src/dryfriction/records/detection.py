@@ -370,7 +370,7 @@ on after the stop by the error it had, a draw of rms ``lag`` times the fast spee
 that takes up part of the wander, is low) that settling passes the slip test as a slow
 stretch of its own: zoo 21022 (4.55 um/s, then 0.097 um/s for 8.4 s, then held) and 23206
 (46.8, then 2.5 um/s for 4.7 s), slip ratios 3.6 and 3.6. A higher slip threshold at a stop
-(5, tried first) fixes both but drops true slow stretches before a hold that carry 4-6
+(5, tried first) fixes both but drops true slow stretches before a hold that carry 4-5
 ``lag`` of slip (a 31 -> 3.1 um/s step held after 12 s, 37 um: lost in 4 of 5 seeds with the
 zoo's servo and wobble). The shape tells them apart where the size cannot: a settling's
 velocity decays from the stop as ``exp(-t / tau)``, a commanded stretch keeps its velocity and
@@ -406,33 +406,48 @@ SETTLE_AFTER = 30.0
 more; a hold's own drift is a line of its own over minutes)."""
 
 
-def _relaxation_explains(t: Array, x: Array, b1: int, b2: int, b3: int) -> bool:
-    """Whether the servo's relaxation after a stop at sample ``b1`` fits the displacement at
-    least as well as a stretch ``b1:b2`` of its own velocity, then held (:data:`SETTLE`; ours).
+def _relaxation_explains(t: Array, x: Array, b0: int, b1: int, b2: int, b3: int,
+                         v_after: float = 0.0) -> bool:
+    """Whether the servo's relaxation after a stop near sample ``b1`` fits the displacement at
+    least as well as a stretch to ``b2`` of its own velocity, then held (:data:`SETTLE`; ours).
 
-    On the samples from ``b1`` to :data:`SETTLE_AFTER` s after ``t[b2]`` (not past ``b3``),
-    two least-squares models of two parameters each: the stretch, ``c + v_S clip(t - t1, 0,
-    t2 - t1)``; the relaxation, ``c + A (1 - exp(-(t - t1) / tau))``, ``tau`` the best of
-    :data:`.placement.RELAX_TAUS`. ``True`` where the relaxation's residual sum of squares is
-    at most the stretch's. Only the samples after the stop: there the load point is still or
-    slow, so the fast stretch's wander (a machine oscillation of micrometres at tens of um/s)
-    does not outweigh the shapes compared.
+    The samples from half the stretch's duration before ``t[b1]`` (not before ``b0``) to
+    :data:`SETTLE_AFTER` s after ``t[b2]`` (not past ``b3``), less ``v_after (t - t2)+`` (the
+    held stretch's own measured velocity, m/s: a slow slide after it is not taken for a
+    relaxation's tail). Two least-squares models of three parameters each, with the stop
+    ``t_s`` profiled over (at most 25 samples) within that half duration of ``t[b1]``: the
+    stretch, ``c + v_F (t - t_s)- + v_S clip(t - t_s, 0, t2 - t_s)``; the relaxation, ``c + v_F
+    (t - t_s)- + A (1 - exp(-(t - t_s)+ / tau))``, ``tau`` the best of
+    :data:`.placement.RELAX_TAUS`. ``True`` where the relaxation's least residual sum of
+    squares is at most the stretch's. Why the stop is profiled: ``b1`` is where the pruning
+    has it, not yet placed (up to a second early: the relaxation's start then takes the fast
+    slide's last samples, which a stretch's ramp cannot); why only half the stretch before it:
+    the fast stretch's wander over longer (a machine oscillation of micrometres at tens of
+    um/s) would outweigh the shapes compared.
     """
     t1, t2 = float(t[b1]), float(t[b2])
+    half = 0.5 * (t2 - t1)
+    lo = max(b0, int(np.searchsorted(t, t1 - half)))
     hi = min(b3, int(np.searchsorted(t, t2 + SETTLE_AFTER)))
-    if hi - b1 < 12:
+    stops = np.arange(lo + 2, min(int(np.searchsorted(t, t1 + half)), b2 - 2))
+    if hi - lo < 12 or stops.size == 0:
         return False
-    u = np.asarray(t[b1:hi], float) - t1
-    y = np.asarray(x[b1:hi], float)
+    stops = stops[np.linspace(0, stops.size - 1, min(25, stops.size)).astype(int)]
+    tt = np.asarray(t[lo:hi], float)
+    y = np.asarray(x[lo:hi], float) - v_after * np.maximum(tt - t2, 0.0)
     y = y - y.mean()
 
-    def rss(shape: Array) -> float:
-        A = np.column_stack([np.ones_like(u), shape])
+    def rss(before: Array, shape: Array) -> float:
+        A = np.column_stack([np.ones_like(tt), before, shape])
         r = y - A @ np.linalg.lstsq(A, y, rcond=None)[0]
         return float(r @ r)
 
-    stretch = rss(np.minimum(u, t2 - t1))
-    relax = min(rss(-np.expm1(-u / tau)) for tau in RELAX_TAUS)
+    stretch = relax = np.inf
+    for ts in t[stops]:
+        u = tt - float(ts)
+        before, after = np.minimum(u, 0.0), np.maximum(u, 0.0)
+        stretch = min(stretch, rss(before, np.minimum(after, t2 - float(ts))))
+        relax = min(relax, *(rss(before, -np.expm1(-after / tau)) for tau in RELAX_TAUS))
     return relax <= stretch
 
 
@@ -552,7 +567,7 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         # only where the slip passes SLIP_MIN but not SETTLE_MOST times it: below, the boundary
         # goes anyway; above, no servo's settling carries it (and the fits cost nothing)
         for j in np.flatnonzero(_settling(v, hold) & (slip >= 1.0) & (slip < SETTLE_MOST)):
-            if _relaxation_explains(fits.t, fits.x, *bounds[j:j + 3]):
+            if _relaxation_explains(fits.t, fits.x, *bounds[j - 1:j + 3], float(v[j + 1])):
                 slip[j] = 0.0
     score = np.minimum(np.minimum(z / z_min, rel / tol), slip)
     one = hold[1:] ^ hold[:-1]

@@ -373,9 +373,13 @@ wander's rms times its correlation time times the speed, and the measured ``lag`
 speed: :func:`_relaxes`) is at least this many white-noise standard deviations (ours): a free
 regressor below the noise only pulls the hinge (zoo records 250 and 322, stops from 0.4-0.5
 um/s, placed 0.7 and 2.6 s early without this)."""
-RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)
-"""The loop's time constants (s) the relaxation is profiled over (ours; a generic octave grid,
-not the zoo's 3 s)."""
+RELAX_TAUS = tuple(float(2.0 ** (k / 2.0)) for k in range(7))
+"""The loop's time constants (s) the relaxation is profiled over: 1 to 8 s by half octaves
+(ours; a generic grid, not the zoo's 3 s). An octave grid (1, 2, 4, 8 s, before stop 45) is
+too coarse where the relaxation is large: a settling of 12-40 um approached over 2.7 s after a
+stop from 31 um/s (``tests/records/test_count_causes.py``) drew the stop 2.2-3.8 s late with
+it in 6 of 10 records, within 0.15 s with half octaves; between grid points the hinge takes up
+what the exponential's wrong time constant leaves."""
 RELAX_BY_LAG = True
 """Whether the relaxation also needs the record's measured position error (``lag`` times the
 speed, :class:`.detection.Fluctuations`) above the noise, beside the fitted OU wander's
