@@ -347,8 +347,8 @@ def test_a_stop_settling_is_no_stretch_and_a_slow_stretch_before_a_hold_stays(
     form): 31 -> 3.1 um/s for 12 s (seeds 1-5) and 5 s (seed 1) before a hold at 20 Hz; 100
     -> 10 um/s for 8 s before a hold at 50 Hz (seed 1); a staircase 31 -> 3.1 (10 s) -> 0.3
     um/s (seed 3). Not a mistake it can see: the stop's boundary removed instead of the
-    settling's (the remaining one is placed again at the stop: the same changes on every
-    record tried, zoo and generated)."""
+    settling's (the remaining one is placed again: the same changes as the rule's on 21022,
+    23206 and this file's generated settlings, measured)."""
     assert detection.SETTLE is True
     assert zoo_counts((21022, 23206), tmp_path) == [(4, 4, True), (4, 4, True)]
     kept = [_stop_record(s, 12.0, 0.0) for s in range(1, 6)] + [

@@ -383,8 +383,8 @@ taken for stretches in 4 of 5 seeds without it, in none with it."""
 
 def _settling(v: Array, hold: Array) -> Array:
     """Per inner boundary: the boundary between a moving stretch and a held one after it (a
-    hold, or slower than :data:`.placement.HOLD_RATIO` of the stretch before: a hold read
-    with its drift), the speeds falling through the three (:data:`SETTLE`)."""
+    hold, or slower than :data:`.placement.HOLD_RATIO` of the fast stretch before the moving
+    one: a hold read with its drift), the speeds falling through the three (:data:`SETTLE`)."""
     u = np.abs(np.asarray(v, float))
     out = np.zeros(len(u) - 1, bool)
     # boundary j lies between stretches j and j + 1; the stretch before is j - 1
