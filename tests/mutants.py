@@ -3909,9 +3909,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/detection.py", "    held = hold[2:] | (u[2:] <= HOLD_RATIO * u[:-2])\n",
        "    held = hold[2:]\n", _CNT, "-k", "settling"),
     _m("detection: the settling's stretch model never stops (a line)", "records/detection.py",
-       "        stretch = min(stretch, rss(before, np.minimum(after, t2 - float(ts))))\n",
-       "        stretch = min(stretch, rss(before, after))\n", _CNT, "-k",
-       "relaxation_explains"),
+       "        shapes = np.column_stack([np.minimum(after, t2 - float(ts)),\n",
+       "        shapes = np.column_stack([after,\n", _CNT, "-k", "relaxation_explains"),
     _m("detection: the settling's stop taken where the pruning has it", "records/detection.py",
        "    stops = stops[np.linspace(0, stops.size - 1, min(25, stops.size)).astype(int)]\n",
        "    stops = np.array([b1])\n", _CNT, "-k", "relaxation_explains"),
@@ -3926,6 +3925,13 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: the relaxation's time constants on octaves (before stop 45)",
        "records/placement.py", "RELAX_TAUS = tuple(float(2.0 ** (k / 2.0)) for k in range(7))\n",
        "RELAX_TAUS = (1.0, 2.0, 4.0, 8.0)\n", _CNT, "-k", "large_settling"),
+    _m("detection: _shape_rss's base slope over all samples", "records/detection.py",
+       "    base = np.column_stack([np.ones_like(u), np.minimum(u, 0.0)])\n",
+       "    base = np.column_stack([np.ones_like(u), u])\n", _CNT, "-k", "shape_rss"),
+    _m("detection: _shape_rss's gain not over the shape's norm", "records/detection.py",
+       "        gain = np.where(norm > 1e-12 * len(u), (sp.T @ yp) ** 2 / norm, 0.0)\n",
+       "        gain = np.where(norm > 1e-12 * len(u), (sp.T @ yp) ** 2, 0.0)\n", _CNT, "-k",
+       "shape_rss"),
     # --- end stop 45 (lead)
 )
 
