@@ -55,7 +55,10 @@ confusion table of its "not placed" flag against the times right.
 
 Run: ``python -m benchmarks bench_detect_bound [START:STOP | N] [--csv PATH]`` (default
 150:450; ``--csv`` writes one row per change); ``--check`` compares the bounds with
-``bench_detect_oracle``'s maximum-likelihood oracle on its records (:func:`check`).
+``bench_detect_oracle``'s maximum-likelihood oracle on its records (:func:`check`);
+``--ceiling`` prints only the records the best estimator is expected to get wrong, knowing the
+artifacts and not knowing the oscillation's amplitude and phase or the bursts
+(:func:`ceiling`; about 0.2 s per record, no detection).
 """
 
 from __future__ import annotations
@@ -189,7 +192,7 @@ def bounds(rec: z.ZooRecord, strict: bool) -> np.ndarray:
 
 
 def posterior(rec: z.ZooRecord, k: int, half: float = 60.0, span: float = 10.0,
-              step: float = 0.05) -> tuple[float, float]:
+              step: float = 0.05, knows: bool = True) -> tuple[float, float]:
     """The true-model oracle's posterior of change ``k``'s time (module docstring): the best
     probability any estimate has of lying within the tolerance, and the posterior's standard
     deviation, s.
@@ -199,14 +202,22 @@ def posterior(rec: z.ZooRecord, k: int, half: float = 60.0, span: float = 10.0,
     is ``E(t) - E(t_c)``, ``E = int (1 + eps)``), whitened by the servo's Kalman filter with
     the quantum as white noise; each candidate time on a grid of ``step`` s within ``span``
     s of the truth weighs ``exp(gain / 2) / ||h_w||`` (flat priors on the offset and the
-    velocities integrated out; ``gain`` the generalised sum of squares the hinge saves)."""
+    velocities integrated out; ``gain`` the generalised sum of squares the hinge saves).
+
+    ``knows=False``: the oracle that knows the servo's model, the drift and the reset but not
+    the realisation of the velocity's fluctuations (:func:`ceiling`): ``E(t) = t``, the
+    oscillation's two periods (``records_zoo.WOBBLE``) each two free regressors ``int V sin(2
+    pi t / P)`` and ``int V cos(2 pi t / P)`` (``V`` the commanded velocity; amplitude and
+    phase integrated out with flat priors, as the offset), the bursts left in the data."""
     t = rec.t - float(rec.t[0])
     ch = np.asarray(rec.changes, float)
     vel = np.asarray(rec.velocities, float)
     tc = float(ch[k])
     a = max(tc - half, float(ch[k - 1]) if k > 0 else -np.inf)
     b = min(tc + half, float(ch[k + 1]) if k + 1 < ch.size else np.inf)
-    if rec.e_int is not None:  # as the zoo integrated it (exact across a gap)
+    if not knows:
+        E = t.copy()
+    elif rec.e_int is not None:  # as the zoo integrated it (exact across a gap)
         E = rec.e_int
     else:
         g = 1.0 + (rec.eps if rec.eps is not None else np.zeros_like(t))
@@ -229,14 +240,22 @@ def posterior(rec: z.ZooRecord, k: int, half: float = 60.0, span: float = 10.0,
     else:
         vu = np.zeros_like(tt)
         R = z.WHITE**2 + rec.quantum**2 / 12.0
-    cols = np.column_stack([y - y.mean(), np.ones_like(tt), E - E[0],
+    nuisance = [np.ones_like(tt), E - E[0]]
+    if not knows and "wobble" in rec.artifacts:
+        for _amp, per in z.WOBBLE:
+            for f in (np.sin, np.cos):
+                g = vl * f(2.0 * np.pi * tt / per)
+                col = np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(tt))])
+                nuisance.append(col / max(float(np.abs(col).max()), 1e-300))
+    m = len(nuisance)
+    cols = np.column_stack([y - y.mean(), *nuisance,
                             np.maximum(E[:, None] - Eg[None, :], 0.0)])
     W = _kalman_whiten(np.diff(tt), vl, vu, np.ascontiguousarray(cols),
                        z.SERVO_RMS**2 if "red" in rec.artifacts else 0.0, z.SERVO_ETA_TAU,
                        z.SERVO_TAU, R)
-    Q, _ = np.linalg.qr(W[:, 1:3])
+    Q, _ = np.linalg.qr(W[:, 1:1 + m])
     yp = W[:, 0] - Q @ (Q.T @ W[:, 0])
-    Hp = W[:, 3:] - Q @ (Q.T @ W[:, 3:])
+    Hp = W[:, 1 + m:] - Q @ (Q.T @ W[:, 1 + m:])
     hh = np.einsum("ij,ij->j", Hp, Hp)
     lp = 0.5 * (Hp.T @ yp) ** 2 / hh - 0.5 * np.log(hh)
     w = np.exp(lp - lp.max())
@@ -367,6 +386,37 @@ def report(rows: list[dict], start: int, stop: int) -> None:
           "itself places within the tolerance with less than 95 % probability")
 
 
+def ceiling(start: int, stop: int) -> None:
+    """The share of zoo records ``start`` to ``stop - 1`` the best estimator is expected to
+    get right, by two posterior oracles (:func:`posterior` on every change, a record's
+    probability the product of its changes'): the one that knows the realisation of the
+    oscillation, the bursts, the drift and the reset, and the one that knows the servo's
+    model but must take the oscillation's amplitude and phase from the data and does not know
+    the bursts (``knows=False``). Neither counts the number of changes: both are given it. No
+    estimator reaches the first; the second is the nearer to what a detector can know (it
+    still knows the servo's model and parameters, the periods and the program's speeds)."""
+    out: dict[str, list[float]] = {}
+    for i, prog, arts, dialect in z.specs(stop):
+        if i < start:
+            continue
+        rec = z.make_record(i, prog, arts, dialect)
+        pk = [float(np.prod([posterior(rec, k, knows=kn)[0] for k in range(len(rec.changes))]))
+              for kn in (True, False)]
+        for key in ("all", prog):
+            q = out.setdefault(key, [0.0, 0.0, 0.0])
+            q[0] += 1
+            q[1] += 1.0 - pk[0]
+            q[2] += 1.0 - pk[1]
+    print(f"zoo records {start} to {stop - 1}: records the best estimator is expected to get "
+          "wrong (its change times, the number given)")
+    print(f"{'program':<10} {'records':>7} {'knowing the artifacts':>22} "
+          f"{'oscillation free, bursts unknown':>33}")
+    for key in ["all"] + sorted(k for k in out if k != "all"):
+        n, a, b = out[key]
+        print(f"{key:<10} {int(n):>7d} {a:>10.1f} ({100 * (1 - a / n):5.1f} %) "
+              f"{b:>21.1f} ({100 * (1 - b / n):5.1f} %)")
+
+
 def check(n: int = 40) -> None:
     """The bounds against ``bench_detect_oracle``'s maximum-likelihood oracle on its own
     records (servo error only: the records' model is then exactly the bounds'): the oracle's
@@ -407,6 +457,9 @@ def main() -> None:
             start, stop = 0, int(a)
         elif re.fullmatch(r"\d+:\d+", a):
             start, stop = (int(q) for q in a.split(":"))
+    if "--ceiling" in args:
+        ceiling(start, stop)
+        return
     rows = run(start, stop)
     report(rows, start, stop)
     if csv:
