@@ -502,6 +502,21 @@ it where it was. Measured:
 docs/performance.md ("The three merged")."""
 
 
+TIME_GRID = True
+"""A change's coarse candidates (:func:`change_profile`: every ``step``-th sample, ``step``
+the search's sample count over 100) are joined by the samples nearest 101 times evenly spread
+over the search; the fine search is as before, every sample within ``step`` of the best (ours;
+stop 46).
+
+Why: where the sampling rate changes within the search (the zoo's ``rate``, often at the
+change itself: 50 Hz before, 500 Hz after), a grid of one sample count is ten times coarser
+in time on the slow side, a second apart against a 0.5-s tolerance, and the fine search
+around the best coarse sample never reaches a change between two coarse samples there: zoo
+35288, an 8 -> 81 um/s step at 60.0 s, plain to the eye, was placed at 60.58 s with the
+interval 60.24-60.58 s (the blocks of one duration, :data:`RATE_EVEN`, sharpen the profile
+there). On evenly sampled times the two grids nearly coincide."""
+
+
 def small_step(v1: float, v2: float) -> bool:
     """Whether a change from ``v1`` to ``v2`` (m/s) is a small step: both moving, at most
     :data:`FINE_RATIO` apart."""
@@ -824,6 +839,11 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
         return Placement(guess)
     step = max(1, -(-(c_hi - c_lo) // 100))
     cand = np.arange(c_lo, c_hi, step)
+    if TIME_GRID and step > 1:
+        # and 100 spans of one duration (TIME_GRID): across a sampling-rate change, a grid of
+        # one sample count is seconds apart on the slow side
+        on_time = np.searchsorted(tt, np.linspace(float(tt[c_lo]), float(tt[c_hi - 1]), 101))
+        cand = np.union1d(cand, np.clip(on_time, c_lo, c_hi - 1))
     g = gains(cand)
     j = int(np.argmax(g))
     allc, allg = cand, g
