@@ -3933,6 +3933,17 @@ MUTANTS: tuple[Mutant, ...] = (
        "        gain = np.where(norm > 1e-12 * len(u), (sp.T @ yp) ** 2, 0.0)\n", _CNT, "-k",
        "shape_rss"),
     # --- end stop 45 (lead)
+    # --- stop 46 (lead): a change's candidates spread in time
+    _m("placement: TIME_GRID off (candidates of one sample count only)", "records/placement.py",
+       "TIME_GRID = True\n", "TIME_GRID = False\n", "tests/records/test_time_grid.py"),
+    _m("placement: the time grid's samples left out of the candidates", "records/placement.py",
+       "        cand = np.union1d(cand, np.clip(on_time, c_lo, c_hi - 1))\n",
+       "        cand = np.union1d(cand, cand)\n", "tests/records/test_time_grid.py"),
+    _m("placement: the time grid over half the search", "records/placement.py",
+       "np.linspace(float(tt[c_lo]), float(tt[c_hi - 1]), 101)",
+       "np.linspace(float(tt[c_lo]), float(tt[(c_lo + c_hi) // 2]), 101)",
+       "tests/records/test_time_grid.py"),
+    # --- end stop 46 (lead)
 )
 
 
