@@ -514,9 +514,10 @@ in time on the slow side, a second apart against a 0.5-s tolerance, and the fine
 around the best coarse sample never reaches a change between two coarse samples there: zoo
 35288, an 8 -> 81 um/s step at 60.0 s, plain to the eye, was placed at 60.58 s with the
 interval 60.24-60.58 s (the blocks of one duration, :data:`RATE_EVEN`, sharpen the profile
-there). On evenly sampled times the two grids nearly coincide. Measured (docs/performance.md,
-"Candidates spread in time"): zoo 4650 used records 105 -> 101 wrong, 4500 examined 111 ->
-107, none broken; 900 fresh (38000-40299) unchanged, 3-5 % more CPU."""
+there). On evenly sampled times the time grid falls between the other's samples (about twice
+the coarse candidates; the profile's cells, and so the intervals, move a little). Measured
+(docs/performance.md, "Candidates spread in time"): zoo 4650 used records 105 -> 101 wrong,
+4500 examined 111 -> 107, none broken; 900 fresh (38000-40299) unchanged, 3-5 % more CPU."""
 
 
 def small_step(v1: float, v2: float) -> bool:
