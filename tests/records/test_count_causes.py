@@ -457,3 +457,46 @@ def test_a_stop_with_a_large_settling_is_placed_at_the_stop(
     assert max(errors()) < 0.25
     monkeypatch.setattr(placement, "RELAX_TAUS", (1.0, 2.0, 4.0, 8.0))
     assert sum(e > 2.0 for e in errors()) >= 5
+
+
+# ------------------------------------------------- the absolute wander of a slide (ABS_BY_LAG)
+def test_a_small_step_judged_with_a_slides_absolute_wander_bounded(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Zoo 12013 and 13105 (ratio-1.3 down-steps at 21 and 15 um/s in 120-s records with every
+    artifact; the speeds 1.3 apart leave the split of the scatter into a relative and an
+    absolute part to which stretch wanders more, and the absolute part, unbounded, held them
+    at confidence 5.8-6.4): found with ABS_BY_LAG, found nowhere without it (measured). Zoo
+    14257 (a ratio-30 down-step to a creep of 0.008 um/s with the record's drift): one change,
+    the creep's drift kept (the bound is a slide's: a hold or a creep below ``lag_floor``
+    keeps its own). Mistakes: the rule off; the bound on every stretch (14257's creep split
+    in two, measured)."""
+    assert detection.ABS_BY_LAG is True
+    assert _zoo_counts((12013, 13105, 14257), tmp_path) == [(1, 1)] * 3
+    monkeypatch.setattr(detection, "ABS_BY_LAG", False)
+    assert _zoo_counts((12013, 13105), tmp_path) == [(0, 1)] * 2
+
+
+def test_a_changes_confidence_is_over_the_stretches_it_joins() -> None:
+    """A 7.3 -> 9.6 um/s step at 60 s of a 120-s record (20 Hz, the zoo's servo error and
+    oscillation, seeds 1-3) with the normal stress stepped 15 -> 22 MPa at 41 s: three
+    segments, and the step's confidence the same as in the record without the normal-stress
+    change (to 1e-9), not measured over the 19-s piece after it. Mistake: the confidence over
+    the neighbouring *segments* (before stop 47: zoo 44052's ratio-1.3 step shown at 2.8,
+    below ``Z_MIN``, where it was judged at 9)."""
+    from dryfriction.records.detection import detect_program
+    from dryfriction.records.record import LabRecord
+
+    for seed in (1, 2, 3):
+        t, x = _pieces([(60.0, 7.3), (60.0, 9.6)], seed, 20.0)
+        u = t - t[0]
+
+        def conf(sn: np.ndarray | None, x: np.ndarray = x, t: np.ndarray = t) -> list[float]:
+            rec = LabRecord(source="step.txt", time=t, load_point=x, load_velocity=None,
+                            friction=0.6 + 0.0 * t, normal_stress=sn, normal_unit="Pa",
+                            columns={}, first_line=0)
+            return [s.confidence for s in detect_program(rec).segments[1:]]
+
+        plain = conf(None)
+        cut = conf(np.where(u < 41.0, 15e6, 22e6))
+        assert len(plain) == 1 and len(cut) == 2 and np.isnan(cut[0])
+        assert cut[1] == pytest.approx(plain[0], rel=1e-9)

@@ -36,3 +36,39 @@ def test_scatter_adds_the_three_variances() -> None:
     a = np.array([4e-8 * 2.0**-0.5, 2e-8 * 2.0**-0.5])
     want = np.sqrt(0.17e-6**2 / sxx + a**2 + (r * v) ** 2)
     np.testing.assert_allclose(FL.scatter(T, v, sxx), want, rtol=1e-12)
+
+
+def test_absolute_wander_of_a_slide_bounded_by_the_position_error() -> None:
+    """``ABS_BY_LAG``: beyond the longest scale (40 s), a stretch moving at least ``lag_floor``
+    (0.35 um/s) has its absolute wander at most ``sqrt(12) lag lag_speed / T`` (lag 0.41 s
+    measured at a median 6.3 um/s: 8.947e-8 m/s at 100 s, 1.789e-8 at 500 s), the
+    velocity-independent part of the position error the servo's bound covers as the relative
+    part's; a hold or a creep below the floor keeps ``a(T)`` (its drift is no slide's error),
+    as does a call without velocities (the slip ratio's) and every duration within the
+    scales measured. Mistakes: the bound on holds too (a hold's drift bounded by a slide's
+    error: zoo 14257's creep after a ratio-30 down-step split in two); the bound within the
+    measured scales; the bound as a lower bound (max for min); ``lag_speed`` left out; the
+    scatter not passing the velocities."""
+    fl = Fluctuations(sigma=0.17e-6, scales=np.array([2.5, 10.0, 40.0]),
+                      relative=np.array([0.12, 0.06, 0.03]),
+                      absolute=np.array([9e-7, 6e-7, 4e-7]), lag=0.41, lag_speed=6.3e-6,
+                      lag_floor=0.35e-6)
+    T = np.array([20.0, 100.0, 500.0, 100.0, 500.0])
+    v = np.array([2.1e-6, 2.1e-6, -7.7e-6, 0.2e-6, 0.0])
+    free = 4e-7 * np.sqrt(40.0 / T)
+    bound = math.sqrt(12.0) * 0.41 * 6.3e-6 / T
+    want = np.where((T > 40.0) & (np.abs(v) >= 0.35e-6), np.minimum(free, bound), free)
+    want[0] = 6e-7 * (4.0 / 6.0) ** 0.5  # 20 s: within the scales, log-log over 10-40 s
+    np.testing.assert_allclose(fl.absolute_at(T, v), want, rtol=1e-12)
+    assert want[1] == pytest.approx(8.947e-8, rel=1e-3) and want[3] > 1e-7
+    np.testing.assert_allclose(fl.absolute_at(T), free * [0, 1, 1, 1, 1] + [want[0], 0, 0, 0, 0],
+                               rtol=1e-12)
+    sxx = np.full(5, 1e3)
+    r = fl.relative_at(T)
+    np.testing.assert_allclose(fl.scatter(T, v, sxx),
+                               np.sqrt(0.17e-6**2 / sxx + want**2 + (r * v) ** 2), rtol=1e-12)
+    # unmeasured position error: no bound
+    inf = Fluctuations(0.17e-6, fl.scales, fl.relative, fl.absolute, float("inf"), 6.3e-6,
+                       0.35e-6)
+    np.testing.assert_allclose(inf.absolute_at(T, v), free * [0, 1, 1, 1, 1]
+                               + [want[0], 0, 0, 0, 0], rtol=1e-12)

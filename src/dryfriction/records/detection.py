@@ -78,6 +78,8 @@ reached 6.5 on 2.0 % of them (7.5, 10.4 and 34: excursions of 20-30 % in short r
 every artifact), and the tuning records (zoo 0-149) lost no change between 6 and 6.5, one at
 7.6; on the zoo whose wander is a servo's position error, with the slip test, the largest is
 4.35 (a change found on 3 % of the records at 2, none at 6.5)."""
+ABS_BY_LAG = True
+
 Z_HOLD = 3.0
 """A stretch whose speed is below this many times its slope scatter is a hold."""
 
@@ -115,6 +117,8 @@ class Fluctuations:
     relative: Array
     absolute: Array
     lag: float = float("inf")
+    lag_speed: float = 0.0
+    lag_floor: float = float("inf")
 
     def _at(self, q: Array, durations: Array) -> Array:
         """``q(T)`` interpolated in log-log; ``T**-0.5`` beyond the longest scale (a
@@ -141,16 +145,25 @@ class Fluctuations:
                            out)
         return out
 
-    def absolute_at(self, durations: Array) -> Array:
-        """``a(T)`` (m/s) at these durations (s)."""
-        return self._at(self.absolute, durations)
+    def absolute_at(self, durations: Array, velocities: Array | None = None) -> Array:
+        """``a(T)`` (m/s) at these durations (s); with :data:`ABS_BY_LAG`, for stretches of
+        these ``velocities`` (m/s) at least ``lag_floor``, beyond the longest scale measured at
+        most ``sqrt(12) lag lag_speed / T``."""
+        d = np.maximum(np.asarray(durations, float), 1e-300)
+        out = self._at(self.absolute, d)
+        if (ABS_BY_LAG and velocities is not None and np.isfinite(self.lag)
+                and self.lag_speed > 0.0):
+            moving = np.abs(np.asarray(velocities, float)) >= self.lag_floor
+            out = np.where(moving & (d > self.scales[-1]),
+                           np.minimum(out, np.sqrt(12.0) * self.lag * self.lag_speed / d), out)
+        return out
 
     def scatter(self, durations: Array, velocities: Array, sxx: Array) -> Array:
         """``e``, m/s, of stretches of these durations (s), velocities (m/s) and ``Sxx``
         (s^2)."""
         v = np.asarray(velocities, float)
         return np.sqrt(self.sigma**2 / np.maximum(sxx, 1e-300)
-                       + self._at(self.absolute, durations) ** 2
+                       + self.absolute_at(durations, v) ** 2
                        + (self.relative_at(durations) * v) ** 2)
 
 
@@ -244,10 +257,12 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     # median of squares); unmeasured (inf) where the white noise hides it
     fast = speed >= 0.05 * float(speed.max())
     lag = float("inf")
+    lag_speed, lag_floor = 0.0, float("inf")
     if fast.sum() >= 24 and speed.max() > 0:
         q = (res[fast] ** 2 - sigma**2) / speed[fast] ** 2
         lag2 = 2.198 * median(q)
         lag = float(np.sqrt(lag2)) if lag2 > 0 else float("inf")
+        lag_speed, lag_floor = float(median(speed[fast])), 0.05 * float(speed.max())
     if n > 200_000:  # time-averaged blocks: windows of >= 5 blocks see the same slopes
         bl = n // 100_000
         m = n // bl
@@ -291,7 +306,8 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     # never less at a shorter scale than at a longer one
     r_arr = np.maximum.accumulate(np.asarray(rel)[::-1])[::-1]
     a_arr = np.maximum.accumulate(np.asarray(ab)[::-1])[::-1]
-    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr, lag)
+    return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr, lag, lag_speed,
+                        lag_floor)
 
 
 # ------------------------------------------------------------------------------ the program
@@ -834,7 +850,7 @@ def detect_program(
         reach = _reach(full, fits.table(bounds)[0]) if REPLACE_REACH else {}
         bounds = _replace(t_all, xs_all, full, {q: reach.get(q, n) for q in full[1:-1]},
                           max(3, min_samples))
-        fl = Fluctuations(sigma_all, fl.scales, fl.relative, fl.absolute, fl.lag)
+        fl = replace(fl, sigma=sigma_all)
         t, x = t_all, x_all
         fits = _Fits(t, x)
     # a change to or from a hold (or a speed below RELAX_STOP of the other side's) is placed
@@ -902,7 +918,10 @@ def detect_program(
     for j, s in enumerate(segs):
         conf = float("nan")
         if j > 0 and s.i_start in keep:
-            conf = float(_z(fits, fl, [segs[j - 1].i_start, s.i_start, s.i_end])[0])
+            # over the two stretches the change joins (a normal-stress change or a gap within
+            # either cuts a segment, not the stretch the change was judged on)
+            k = keep.index(s.i_start)
+            conf = float(_z(fits, fl, keep[k - 1:k + 2])[0])
         normal = float(np.mean(sn[s.i_start:s.i_end])) if sn is not None else float("nan")
         pl = where.get(s.i_start) if np.isfinite(conf) else None
         if pl is None or not np.isfinite(pl.lo):
