@@ -79,6 +79,23 @@ every artifact), and the tuning records (zoo 0-149) lost no change between 6 and
 7.6; on the zoo whose wander is a servo's position error, with the slip test, the largest is
 4.35 (a change found on 3 % of the records at 2, none at 6.5)."""
 ABS_BY_LAG = True
+"""Whether the absolute part ``a(T)`` of a *moving* stretch's scatter is bounded, beyond the
+longest scale measured, by the position error measured on the moving samples, as the
+relative part is: ``a(T) <= sqrt(12) lag lag_speed / T`` (:meth:`Fluctuations.absolute_at`;
+ours, the Cauchy-Schwarz bound of :meth:`Fluctuations.relative_at` applied to the
+velocity-independent part; ``False``: ``a(T)`` falls as ``T**-0.5`` alone).
+
+Why: where a record's speeds are only 1.3 times apart, the split of the measured scatter into
+a relative and an absolute part (:func:`measure_fluctuations`: ``r`` from the faster half of
+the window pairs, ``a`` from the slower half) is set by which stretch wanders more, and the
+absolute part took up to half of it; extrapolated as a random walk it held ratio-1.3 steps of
+60-s stretches at confidence 5.3-6.4 against :data:`Z_MIN` (zoo 12013, 13105, 26184, 44052).
+Whatever its split, the wander of a moving load point is in the residuals ``lag`` measures,
+rms ``lag`` times the speed there (``lag_speed``, their median). Only stretches at least
+``lag_floor`` fast (the speed above which ``lag`` was measured) are bounded: a hold's or a
+creep's drift is no slide's error (with every stretch bounded, zoo 14257's creep of 0.008
+um/s after a ratio-30 down-step was split in two). The split itself was tried otherwise and
+dropped (docs/performance.md, "the absolute part of the wander")."""
 
 Z_HOLD = 3.0
 """A stretch whose speed is below this many times its slope scatter is a hold."""
@@ -110,6 +127,11 @@ class Fluctuations:
         The load point's position error per unit speed, s (a servo's error: the robust rms of
         the displacement about the broken line over the speed, white noise taken out; inf
         where not measured): what a stretch carries into its neighbours (:func:`_slip_ratio`).
+    lag_speed : float
+        The median speed, m/s, of the samples ``lag`` was measured on (0: not measured).
+    lag_floor : float
+        The slowest speed, m/s, of those samples (5 % of the fastest; inf: not measured): a
+        stretch at least this fast has its absolute wander bounded (:data:`ABS_BY_LAG`).
     """
 
     sigma: float
