@@ -88,8 +88,9 @@ velocity-independent part; ``False``: ``a(T)`` falls as ``T**-0.5`` alone).
 Why: where a record's speeds are only 1.3 times apart, the split of the measured scatter into
 a relative and an absolute part (:func:`measure_fluctuations`: ``r`` from the faster half of
 the window pairs, ``a`` from the slower half) is set by which stretch wanders more, and the
-absolute part took up to half of it; extrapolated as a random walk it held ratio-1.3 steps of
-60-s stretches at confidence 5.3-6.4 against :data:`Z_MIN` (zoo 12013, 13105, 26184, 44052).
+absolute part took most of it (1.5-2.8 times the relative part at 60 s); extrapolated as a
+random walk it held ratio-1.3 steps of 60-s stretches at confidence 5.3-6.4 against
+:data:`Z_MIN` (zoo 12013, 13105, 26184, 44052).
 Whatever its split, the wander of a moving load point is in the residuals ``lag`` measures,
 rms ``lag`` times the speed there (``lag_speed``, their median). Only stretches at least
 ``lag_floor`` fast (the speed above which ``lag`` was measured) are bounded: a hold's or a
@@ -130,8 +131,8 @@ class Fluctuations:
     lag_speed : float
         The median speed, m/s, of the samples ``lag`` was measured on (0: not measured).
     lag_floor : float
-        The slowest speed, m/s, of those samples (5 % of the fastest; inf: not measured): a
-        stretch at least this fast has its absolute wander bounded (:data:`ABS_BY_LAG`).
+        The speed, m/s, those samples move at least (5 % of the fastest; inf: not measured):
+        a stretch at least this fast has its absolute wander bounded (:data:`ABS_BY_LAG`).
     """
 
     sigma: float
