@@ -61,8 +61,9 @@ def test_absolute_wander_of_a_slide_bounded_by_the_position_error() -> None:
     want[0] = 6e-7 * (4.0 / 6.0) ** 0.5  # 20 s: within the scales, log-log over 10-40 s
     np.testing.assert_allclose(fl.absolute_at(T, v), want, rtol=1e-12)
     assert want[1] == pytest.approx(8.947e-8, rel=1e-3) and want[3] > 1e-7
-    np.testing.assert_allclose(fl.absolute_at(T), free * [0, 1, 1, 1, 1] + [want[0], 0, 0, 0, 0],
-                               rtol=1e-12)
+    unbounded = free.copy()
+    unbounded[0] = want[0]
+    np.testing.assert_allclose(fl.absolute_at(T), unbounded, rtol=1e-12)
     sxx = np.full(5, 1e3)
     r = fl.relative_at(T)
     np.testing.assert_allclose(fl.scatter(T, v, sxx),
@@ -70,5 +71,33 @@ def test_absolute_wander_of_a_slide_bounded_by_the_position_error() -> None:
     # unmeasured position error: no bound
     inf = Fluctuations(0.17e-6, fl.scales, fl.relative, fl.absolute, float("inf"), 6.3e-6,
                        0.35e-6)
-    np.testing.assert_allclose(inf.absolute_at(T, v), free * [0, 1, 1, 1, 1]
-                               + [want[0], 0, 0, 0, 0], rtol=1e-12)
+    np.testing.assert_allclose(inf.absolute_at(T, v), unbounded, rtol=1e-12)
+
+
+def test_the_bound_is_the_least_squares_slope_of_a_ramp_and_no_wander_exceeds_it() -> None:
+    """The bound ``sqrt(12) lag lag_speed / T`` against least squares done independently
+    (``np.polyfit``): a displacement error of rms ``lag * lag_speed`` (0.41 s at 6.3 um/s,
+    2.583 um) tilts a 230-s stretch of 4601 even samples by at most the bound, and a ramp of
+    that rms (the worst case, Cauchy-Schwarz's equality) by the bound itself to 1e-3; a random
+    walk, an oscillation of 1.7 times the stretch and white noise of that rms, by less.
+    Mistakes: ``sqrt(3)`` or ``12`` for ``sqrt(12)`` (the ramp's slope above, or far below,
+    the bound)."""
+    fl = Fluctuations(sigma=0.17e-6, scales=np.array([2.5, 10.0, 40.0]),
+                      relative=np.array([0.12, 0.06, 0.03]),
+                      absolute=np.array([9e-4, 6e-4, 4e-4]), lag=0.41, lag_speed=6.3e-6,
+                      lag_floor=0.35e-6)
+    T = 230.0
+    t = np.linspace(0.0, T, 4601)
+    rms = 0.41 * 6.3e-6
+    bound = float(fl.absolute_at(np.array([T]), np.array([2.1e-6]))[0])
+    assert bound < 4e-4 * math.sqrt(40.0 / T)  # the bound, not the random walk, is read here
+
+    def slope(e: np.ndarray) -> float:
+        e = (e - e.mean()) * rms / np.sqrt(np.mean((e - e.mean()) ** 2))
+        return abs(float(np.polyfit(t, e, 1)[0]))
+
+    assert slope(t) == pytest.approx(bound, rel=1e-3)
+    rng = np.random.default_rng(47)
+    for e in (np.cumsum(rng.normal(size=t.size)), np.sin(2 * np.pi * t / (1.7 * T) + 0.4),
+              rng.normal(size=t.size)):
+        assert slope(e) < bound
