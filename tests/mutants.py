@@ -3971,6 +3971,9 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/detection.py", "conf = float(_z(fits, fl, keep[k - 1:k + 2])[0])",
        "conf = float(_z(fits, fl, [segs[j - 1].i_start, s.i_start, s.i_end])[0])", _CNT,
        "-k", "confidence_is_over"),
+    _m("plots: the velocity's window from the median sampling interval (before stop 47)",
+       "plots/record.py", "3.0 * float(np.quantile(np.diff(t), 0.99)))",
+       "3.0 * float(np.median(np.diff(t))))", _RFD, "-k", "both_sides"),
     # --- end stop 47 (lead)
 )
 

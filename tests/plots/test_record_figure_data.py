@@ -231,3 +231,29 @@ def test_record_title_keeps_the_panels_room() -> None:
     text = fig._suptitle.get_text()
     assert text.count("\n") + 1 <= TITLE_LINES and "title cut" in text
     assert all(ax.get_position().height > 0.15 for ax in fig.axes)
+
+
+def test_the_velocity_is_drawn_on_both_sides_of_a_sampling_rate_change() -> None:
+    """A slide at 6.3 um/s sampled at 4.1 Hz with intervals jittered by +-30 % for 70 s, then
+    at 41 Hz for 50 s (the zoo's tenfold rate change): the smoothed velocity is drawn on
+    every 5 s of the slow side too, at 6.3 um/s (a line, no noise), its window three of the
+    slow intervals at least. Mistake: the window from the median interval (three of the fast
+    ones, 0.073 s: every slow window had under 3 samples and was left out, nothing drawn
+    before the change; seen on zoo 44052's record.png)."""
+    rng = np.random.default_rng(41)
+    slow = np.cumsum(rng.uniform(0.7, 1.3, 287) / 4.1)
+    slow = slow[slow < 70.0]
+    t = T0 + np.concatenate([[0.0], slow, 70.0 + np.arange(1, 2051) / 41.0])
+    x = 7.3e-3 + 6.3e-6 * (t - T0)
+    rec = LabRecord(source="rate.txt", time=t, load_point=x, load_velocity=None,
+                    friction=0.6 + 0.0 * t, normal_stress=None, normal_unit="Pa", columns={},
+                    first_line=0)
+    seg = [SimpleNamespace(t_start=t[0], t_end=t[-1], velocity=6.3e-6, start_placed=True)]
+    fig, info = plot_record(rec, seg, SimpleNamespace(rate_changes=[T0 + 70.0], gaps=[],
+                                                      resets=[], normal_changes=[]))
+    ax_v = fig.axes[info.panels.index("velocity")]
+    (line,) = [ln for ln in ax_v.get_lines() if "slope over" in str(ln.get_label())]
+    xv, yv = (np.asarray(a, float) for a in line.get_data())
+    drawn = np.isfinite(yv)
+    assert all(((xv >= a) & (xv < a + 5.0) & drawn).any() for a in np.arange(0.0, 120.0, 5.0))
+    np.testing.assert_allclose(yv[drawn], 6.3, rtol=1e-6)
