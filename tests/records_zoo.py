@@ -163,7 +163,7 @@ def friction(t: np.ndarray, program: list[tuple[float, float]], *, a: float, b: 
 def _felt_kernel(t: np.ndarray, xl: np.ndarray, a: float, b: float, dc: float, k: float,
                  mu0: float, v0: float, y0: np.ndarray) -> np.ndarray:  # pragma: no cover
     """RK4 over each sample interval at that interval's load-point speed, in sub-steps of at
-    most a fifth of the fastest time (``a / (k v)``, ``a / (k V_load)``, ``theta``)."""
+    most a fifth of the fastest relaxation time (``a / (k v)``, ``theta``)."""
     out = np.empty(t.size)
     tau, lth = y0[0], y0[1]
     out[0] = tau
@@ -174,8 +174,7 @@ def _felt_kernel(t: np.ndarray, xl: np.ndarray, a: float, b: float, dc: float, k
         done = 0.0
         while done < dt:
             v = v0 * math.exp((tau - mu0 - b * (c + lth)) / a)
-            # the drive's rate too: after a hold (v tiny) a reload's k vl h / a must stay small
-            h = min(dt - done, 0.2 * min(a / (k * max(v, abs(vl)) + 1e-300), math.exp(lth)))
+            h = min(dt - done, 0.2 * min(a / (k * v + 1e-300), math.exp(lth)))
             k1t = k * (vl - v)
             k1l = math.exp(-lth) - v / dc
             t2, l2 = tau + 0.5 * h * k1t, lth + 0.5 * h * k1l
