@@ -7,15 +7,10 @@ and written in one of the reader's dialects.
 
 Forward model (written here, not the package's solver): a quasi-static spring slider with
 rate-and-state friction and the ageing law (Dieterich 1979; Ruina 1983), in the variables
-``(tau, ln theta)``, integrated by SciPy's ``solve_ivp`` (LSODA) under a commanded program
-(:func:`friction`)::
+``(tau, ln theta)``, integrated by SciPy's ``solve_ivp`` (LSODA)::
 
     V = V0 exp((tau - mu0 - b ln(V0 theta / Dc)) / a)
     dtau/dt = k (V_load - V),   d ln(theta)/dt = 1/theta - V/Dc
-
-``V_load`` is the load point's actual speed, its fluctuations below included (the spring
-feels the motion, not the transducer's noise): :func:`friction_felt`, RK4 over each sample
-interval (since stop 48; before, the friction felt the commanded program alone).
 
 Artifact levels are those measured on the shared sepiolite record
 (``examples/data/lab``, 0.2 -> 2 um/s, 7.4 Hz): white displacement noise 0.17 um, a 20 nm
@@ -81,7 +76,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from unittest.mock import patch
 
-import numba
 import numpy as np
 from scipy.integrate import solve_ivp
 
@@ -157,57 +151,6 @@ def friction(t: np.ndarray, program: list[tuple[float, float]], *, a: float, b: 
             rhs, (float(sol.t[-1]), e), sol.y[:, -1], method="LSODA", args=(vl,),
             rtol=1e-8, atol=[1e-10, 1e-8]).y[:, -1]
     return out
-
-
-@numba.njit(cache=True)
-def _felt_kernel(t: np.ndarray, xl: np.ndarray, a: float, b: float, dc: float, k: float,
-                 mu0: float, v0: float, y0: np.ndarray) -> np.ndarray:  # pragma: no cover
-    """RK4 over each sample interval at that interval's load-point speed, in sub-steps of at
-    most a fifth of the fastest relaxation time (``a / (k v)``, ``theta``)."""
-    out = np.empty(t.size)
-    tau, lth = y0[0], y0[1]
-    out[0] = tau
-    c = math.log(v0 / dc)
-    for i in range(t.size - 1):
-        dt = t[i + 1] - t[i]
-        vl = (xl[i + 1] - xl[i]) / dt
-        done = 0.0
-        while done < dt:
-            v = v0 * math.exp((tau - mu0 - b * (c + lth)) / a)
-            h = min(dt - done, 0.2 * min(a / (k * v + 1e-300), math.exp(lth)))
-            k1t = k * (vl - v)
-            k1l = math.exp(-lth) - v / dc
-            t2, l2 = tau + 0.5 * h * k1t, lth + 0.5 * h * k1l
-            v = v0 * math.exp((t2 - mu0 - b * (c + l2)) / a)
-            k2t, k2l = k * (vl - v), math.exp(-l2) - v / dc
-            t3, l3 = tau + 0.5 * h * k2t, lth + 0.5 * h * k2l
-            v = v0 * math.exp((t3 - mu0 - b * (c + l3)) / a)
-            k3t, k3l = k * (vl - v), math.exp(-l3) - v / dc
-            t4, l4 = tau + h * k3t, lth + h * k3l
-            v = v0 * math.exp((t4 - mu0 - b * (c + l4)) / a)
-            k4t, k4l = k * (vl - v), math.exp(-l4) - v / dc
-            tau += h * (k1t + 2.0 * k2t + 2.0 * k3t + k4t) / 6.0
-            lth += h * (k1l + 2.0 * k2l + 2.0 * k3l + k4l) / 6.0
-            done += h
-        out[i + 1] = tau
-    return out
-
-
-def friction_felt(t: np.ndarray, x_load: np.ndarray, *, a: float, b: float, dc: float,
-                  k: float, v0: float, mu0: float = 0.6) -> np.ndarray:
-    """Friction at times ``t`` (s) when the spring is driven by the load point's *actual*
-    displacement ``x_load`` (m; at those times, followed linearly between them), from the model
-    above, started in steady sliding at ``v0`` (m/s, > 0: the commanded first speed).
-
-    The load point's own fluctuations (the servo's position error, the machine oscillation,
-    the bursts) are motion, so the spring feels them; a displacement transducer's noise,
-    quantum, drift and resets are not, and must not be in ``x_load``. Until stop 48 the zoo's
-    friction felt only the commanded program (:func:`friction`), a channel cleaner than any
-    apparatus gives."""
-    t = np.asarray(t, float)
-    xl = np.asarray(x_load, float)
-    y0 = np.array([mu0, math.log(dc / v0)])
-    return _felt_kernel(t, xl, a, b, dc, k, mu0, v0, y0)
 
 
 # ------------------------------------------------------------------------------ programs
@@ -402,7 +345,6 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
         x += e
         # the servo's velocity reading sees the error's rate too
         vt = vt + np.gradient(e, t)
-    x_true = x.copy()  # what the spring feels (friction_felt)
     x += 1e-3 + rng.normal(0.0, WHITE, t.size)
     x_plain = x.copy()
     if "drift" in artifacts:
@@ -413,7 +355,7 @@ def make_record(index: int, program: str, artifacts: tuple[str, ...], dialect: s
     x_known = x - x_plain
     q = float(rng.uniform(0.1e-6, 0.5e-6)) if "quant" in artifacts else QUANTUM
     x = np.round(x / q) * q
-    mu = friction_felt(t, x_true, a=a, b=b, dc=dc, k=k, v0=prog[0][1])
+    mu = friction(t, [(s, v) for s, v in prog], a=a, b=b, dc=dc, k=k)
     mu += rng.normal(0.0, MU_NOISE, t.size)
     sn = np.full(t.size, 30e6)
     normal_changes: list[float] = []
