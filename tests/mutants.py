@@ -111,6 +111,7 @@ _S7BSF = "tests/ensemble/test_snapshot_force_strong.py"
 _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _CNT = "tests/records/test_count_causes.py"
+_HFR = "tests/records/test_hold_far.py"
 _EDT = (_CNT, "-k", "end_of_a_record")
 _MIS = "tests/records/test_missed_changes.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
@@ -3975,6 +3976,28 @@ MUTANTS: tuple[Mutant, ...] = (
        "plots/record.py", "3.0 * float(np.quantile(np.diff(t), 0.99)))",
        "3.0 * float(np.median(np.diff(t))))", _RFD, "-k", "both_sides"),
     # --- end stop 47 (lead)
+    # --- stop 48 (lead): a slow hold's change placed on the stretches' far samples
+    _m("placement: HOLD_FAR off (the 60-s window of before)", "records/placement.py",
+       "HOLD_FAR = 300.0\n", "HOLD_FAR = 0.0\n", _HFR, "-k", "far_samples"),
+    _m("placement: the far zone's blocks of the near width (at most BLOCKS)",
+       "records/placement.py",
+       "        idx = zoned_blocks(tt, float(t[a_n]), float(t[b_n - 1]), k * median(np.diff(tt)),",
+       "        idx = even_blocks(tt, k * median(np.diff(tt)), BLOCKS) if True else zoned_blocks("
+       "tt, float(t[a_n]), float(t[b_n - 1]), k * median(np.diff(tt)),", _HFR, "-k",
+       "short_hold"),
+    _m("placement: the block count set by the whole window, not the near one",
+       "records/placement.py", "    k = max(1, int(np.ceil((b_n - a_n) / BLOCKS)))",
+       "    k = max(1, int(np.ceil((b - a) / BLOCKS)))", _HFR, "-k", "short_hold"),
+    _m("placement: zoned_blocks without the far spans after the near zone",
+       "records/placement.py", "    if hi < t1:\n        edges.append(",
+       "    if False:\n        edges.append(", _HFR, "-k", "zoned"),
+    _m("placement: zoned_blocks' edges opening the span after", "records/placement.py",
+       "np.concatenate(edges) - tol, side=\"left\")",
+       "np.concatenate(edges) + tol, side=\"right\")", _HFR, "-k", "zoned"),
+    _m("placement: the far samples at a step too (not only at a hold)", "records/placement.py",
+       "    zoned = still and HOLD_FAR + search > near", "    zoned = HOLD_FAR + search > near",
+       "tests/records"),
+    # --- end stop 48 (lead)
 )
 
 

@@ -426,6 +426,29 @@ at 50 Hz, one of 12 stops 0.62 s off with 60 s) the window stays as it was. Meas
 the rule on every change at a hold or a stop (no guard): on zoo records 0-299 96.3 ->
 96.7 %, on 3000-3299 92.7 -> 92.7 % (holds fixed 3, broken 3: the ratio-30 stops and
 slow-sampled holds)."""
+HOLD_FAR = 300.0
+"""Beyond :data:`HOLD_HALF`, the window about a change at a hold (where the white noise hides
+the servo's position error) reaches on to this far (s) each side, in :data:`FAR_BLOCKS` long
+blocks each side; the blocks within :data:`HOLD_HALF` stay as they were (:func:`zoned_blocks`;
+ours; stop 48). 0 (or below :data:`HOLD_HALF`): no far blocks.
+
+Why: there the kink is placed by where the two stretches' lines meet, and under white noise
+``sigma`` the meeting point is known to about ``sigma sqrt(4/n1 + 4/n2) / |v1 - v2|`` (each
+line's value at its end, from ``n`` samples). Slow slide-hold-slides (0.1-0.3 um/s sampled at
+2-5 Hz, stretches of hundreds of seconds) were held to 60 s each side: their 95 % intervals
+were 2-5 s wide and many changes 0.5-1.3 s off (62 of the 280 wrong records of the 10950 zoo
+records run since stop 46 had a stop or a restart at under 0.3 um/s off the tolerance). Far
+samples inform only the lines, not where the kink lies, so they are kept as a few long block
+means; the near blocks keep the resolution the change is told at (a window 300 s long cut into
+128 blocks of one duration lost the candidates beside a neighbour 13 s away: zoo 9292's short
+hold unplaced with 1000 s). Measured (``bench_detect`` on the zoo; docs/performance.md, "Slow
+holds placed on their whole stretches"): the 4650 used records 99 -> 87 wrong, the 4500
+examined 106 -> 98; with one duration over the whole window, 60/150/300/1000 s gave 99, 90,
+87 and 102 wrong on the used records."""
+FAR_BLOCKS = 16
+"""Blocks each side beyond :data:`HOLD_HALF` (:data:`HOLD_FAR`): the Cholesky factor then
+costs ``(BLOCKS + 2 FAR_BLOCKS)**3 / 3``, twice that of :data:`BLOCKS` alone, for these
+windows only."""
 HOLD_RATIO = 0.01
 """A change between speeds more than ``1 / HOLD_RATIO`` apart is at a hold for the window
 (:data:`HOLD_HALF`), beside the detector's own hold flag, which misses a hold read before
@@ -539,6 +562,27 @@ def even_blocks(tt: Array, width: float, most: int) -> Array:
     # a sample on a span's edge (up to rounding) opens the span
     j = np.floor((tt - tt[0]) / width + 1e-9)
     return np.flatnonzero(np.diff(np.concatenate([[-1.0], j])) != 0)
+
+
+def zoned_blocks(tt: Array, near_lo: float, near_hi: float, width: float, far: int) -> Array:
+    """The first sample of each block (:data:`HOLD_FAR`): spans of ``width`` s from ``near_lo``
+    to ``near_hi`` (s; at most :data:`BLOCKS` of them, longer spans where more would be
+    needed), and ``far`` equal spans over the times before ``near_lo`` and ``far`` over those
+    after ``near_hi``; an empty span (a gap) gives no block. The first block starts at sample
+    0."""
+    t0, t1 = float(tt[0]), float(tt[-1])
+    lo, hi = max(near_lo, t0), min(near_hi, t1)
+    width = max(width, (hi - lo) / BLOCKS * (1.0 + 1e-8), 1e-300)
+    edges = [np.arange(lo, hi, width) if hi > lo else np.array([lo])]
+    if lo > t0:
+        edges.insert(0, np.linspace(t0, lo, far + 1)[:-1])
+    if hi < t1:
+        edges.append(np.linspace(hi, t1, far + 1)[:-1])
+    # a sample on an edge (up to rounding) opens its span
+    tol = 1e-9 * max(t1 - t0, 1.0)
+    idx = np.unique(np.searchsorted(tt, np.concatenate(edges) - tol, side="left"))
+    idx = idx[idx < tt.size]
+    return np.union1d([0], idx).astype(int)
 
 
 WIDEN = 2.0
@@ -709,13 +753,19 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     longest = max(periods, default=0.0)
     whole = not still and osc_whole(v1, v2, min(tg - float(t[lo]), float(t[hi - 1]) - tg),
                                     longest)
-    half = max(min(max(HOLD_HALF if still else 20.0, 10.0 * tau), 60.0),
+    near = max(min(max(HOLD_HALF if still else 20.0, 10.0 * tau), 60.0),
                2.0 * longest if wide else longest if whole else 0.0) + search
+    # at a hold, on to the stretches' far samples, as a few long blocks (HOLD_FAR)
+    zoned = still and HOLD_FAR + search > near
+    half = HOLD_FAR + search if zoned else near
     a = max(lo, int(np.searchsorted(t, tg - half)))
     b = min(hi, int(np.searchsorted(t, tg + half)))
     if b - a < 12 or not a < guess < b:
         return Placement(guess)
     tt = t[a:b]
+    # the near window, whose samples the block count is set by
+    a_n = max(a, int(np.searchsorted(t, tg - near)))
+    b_n = min(b, int(np.searchsorted(t, tg + near)))
     # block means, at most 128: the wander is smooth within a block, the white noise of a
     # block falls as 1/count (256 before: 8 times the Cholesky factor's cost; its effect on
     # the placements alone was not measured apart); for a small step, blocks of one duration,
@@ -723,15 +773,19 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     # them, for a change at a hold on the long window (HOLD_EVEN)
     small = EVEN_BLOCKS and small_step(v1, v2)
     fine = small or (HOLD_EVEN and still)
-    k = max(1, int(np.ceil((b - a) / BLOCKS)))
+    k = max(1, int(np.ceil((b_n - a_n) / BLOCKS)))
     if RATE_EVEN and not fine and k > 1:
         # blocks of one count of which one lasts RATE_EVEN times their median (a sampling-rate
         # change in the window): of one duration instead (the last, partial block left out)
         e = tt[np.append(np.arange(0, b - a, k), b - a - 1)]
         dur = np.diff(e)
         fine = bool(dur.size > 2 and dur[:-1].max() > RATE_EVEN * median(dur[:-1]))
-    idx = (even_blocks(tt, k * median(np.diff(tt)), FINE_BLOCKS if small else BLOCKS)
-           if fine and k > 1 else np.arange(0, b - a, k))
+    if zoned:
+        idx = zoned_blocks(tt, float(t[a_n]), float(t[b_n - 1]), k * median(np.diff(tt)),
+                           FAR_BLOCKS)
+    else:
+        idx = (even_blocks(tt, k * median(np.diff(tt)), FINE_BLOCKS if small else BLOCKS)
+               if fine and k > 1 else np.arange(0, b - a, k))
     cnt = np.diff(np.append(idx, b - a)).astype(float)
     tb = np.add.reduceat(tt, idx) / cnt
     xb = np.add.reduceat(x[a:b] - x[a], idx) / cnt
@@ -982,7 +1036,7 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
     if NEIGHBOURS_PLACED:
         # no window reaches farther from its guess than this (change_profile's half-width
         # at its largest, and its search)
-        reach = max(HOLD_HALF, 60.0, 2.0 * max(periods, default=0.0)) + 5.0
+        reach = max(HOLD_HALF, HOLD_FAR, 60.0, 2.0 * max(periods, default=0.0)) + 5.0
         _clear_of_neighbours(bounds, out, places, m, place, t, reach)
     return out, places
 
