@@ -112,6 +112,7 @@ _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _CNT = "tests/records/test_count_causes.py"
 _HFR = "tests/records/test_hold_far.py"
+_SI = "    return np.where(gap[k - 1], np.minimum(after, dt[k - 1]), dt[k - 1])"
 _EDT = (_CNT, "-k", "end_of_a_record")
 _MIS = "tests/records/test_missed_changes.py"
 _IOG = "tests/app/test_interface_outputs_generic.py"
@@ -3997,6 +3998,12 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: the far samples at a step too (not only at a hold)", "records/placement.py",
        "    zoned = still and HOLD_FAR + search > near", "    zoned = HOLD_FAR + search > near",
        "tests/records"),
+    _m("placement: one sample's interval across a gap (before sample_intervals)",
+       "records/placement.py", _SI, "    return dt[k - 1]", _HFR, "-k", "gap"),
+    _m("placement: a gap's sample given the interval before the gap, not after",
+       "records/placement.py", _SI,
+       "    return np.where(gap[k - 1], dt[np.maximum(k - 2, 0)], dt[k - 1])", _HFR, "-k",
+       "intervals"),
     # --- end stop 48 (lead)
 )
 

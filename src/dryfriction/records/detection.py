@@ -62,6 +62,7 @@ from .placement import (
     oscillation_periods,
     place_changes,
     placed_probability,
+    sample_intervals,
 )
 from .reading import reading_step
 from .record import LabRecord
@@ -872,7 +873,7 @@ def detect_program(
         # a confident change left where the whole stretches put it, whose own profile gives
         # that place less than P_MOVE of lying within the tolerance: placed by the profile
         p_at = np.array([placed_probability(pl, float(t[pl.index]), max(
-            float(t[pl.index] - t[pl.index - 1]), PLACE_TOL))
+            float(sample_intervals(t, pl.index)[0]), PLACE_TOL))
             if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])
         far = ~weak & (p_at < P_MOVE)
         for j in np.flatnonzero(far) + 1:  # each between its neighbours as placed
@@ -920,9 +921,9 @@ def detect_program(
             out.append(replace(s, confidence=conf, normal=normal))
             continue
         # placed: probably (PLACED_P) within the larger of one sample (the interval before
-        # the change) and PLACE_TOL of the reported time, by the widened profile; a change
-        # whose profile reaches the end of the times searched is not
-        tol = max(float(t[s.i_start] - t[s.i_start - 1]), PLACE_TOL)
+        # the change, not a gap: sample_intervals) and PLACE_TOL of the reported time, by the
+        # widened profile; a change whose profile reaches the end of the times searched is not
+        tol = max(float(sample_intervals(t, s.i_start)[0]), PLACE_TOL)
         p_in = placed_probability(pl, s.t_start, tol)
         placed = not pl.edge and p_in >= PLACED_P
         out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,

@@ -35,6 +35,7 @@ import numpy as np
 from scipy.linalg import cho_factor, solve_triangular
 
 from ..validation import Array
+from .artifacts import _gaps
 from .segmentation import median
 
 __all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
@@ -936,10 +937,30 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     return Placement(at, lo_t, hi_t, edge, cells, weights, tg)
 
 
+def sample_intervals(t: Array, k: Array) -> Array:
+    """The sampling interval (s) at each sample ``k`` (``1 <= k < len(t)``) of the times ``t``
+    (s): the interval before it, or where that interval is a gap (longer than 10 times the
+    larger of the median interval and the one before it, as :func:`.artifacts.sampling_changes`
+    reads a gap) the one after it (the one before where it is the last sample).
+
+    Why (ours; stop 48): "one sample" of the tolerance is the sampling's resolution. The first
+    sample after a 101-s gap was given the whole gap as its interval, so a stop 2 s after the
+    gap's end was reported there, at the first sample after it, placed with probability 1
+    (an independent review's records, a hold's window reaching across the gap)."""
+    dt = np.diff(np.asarray(t, float))
+    k = np.atleast_1d(np.asarray(k, int))
+    if dt.size == 0:
+        return np.zeros(k.size)
+    gap = _gaps(dt, median(dt))
+    after = dt[np.minimum(k, dt.size - 1)]
+    return np.where(gap[k - 1], np.minimum(after, dt[k - 1]), dt[k - 1])
+
+
 def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int, tol: float,
                    best: int) -> int:
     """The sample (``c_lo <= k < c_hi``, an index into ``tt``, s) whose time is the most
-    probably within the larger of its sample interval and ``tol`` (s) of the change, by the
+    probably within the larger of its sample interval (:func:`sample_intervals`) and ``tol``
+    (s) of the change, by the
     profile likelihood widened :data:`WIDEN` times (the probability :func:`placed_probability`
     reports); ``best`` (the profile's mode) unless another sample holds more.
 
@@ -954,10 +975,10 @@ def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int
     """
     cum = np.concatenate([[0.0], np.cumsum(weights)])
     k = np.arange(max(c_lo, 1), c_hi)
-    h = np.maximum(tt[k] - tt[k - 1], tol) / WIDEN
+    h = np.maximum(sample_intervals(tt, k), tol) / WIDEN
     mass = np.interp(tt[k] + h, cells, cum) - np.interp(tt[k] - h, cells, cum)
     j = int(np.argmax(mass))
-    hb = max(float(tt[best] - tt[best - 1]), tol) / WIDEN
+    hb = max(float(sample_intervals(tt, best)[0]), tol) / WIDEN
     mb = float(np.interp(tt[best] + hb, cells, cum) - np.interp(tt[best] - hb, cells, cum))
     return int(k[j]) if mass[j] > mb + 1e-9 else best
 
