@@ -100,7 +100,7 @@ def find_resets(t: Array, x: Array) -> tuple[Array, list[int]]:
         return x, []
     fix = np.zeros_like(x)
     edges = [0] + [int(i) + 1 for i in jump] + [len(x)]
-    gap = _gaps(dt, median(dt))
+    gap = gap_intervals(dt, median(dt))
     kept: list[int] = []
     for j, i in enumerate(jump):
         # the offset: one line with a step at the jump, fitted to up to 30 samples a side,
@@ -430,11 +430,11 @@ def sampling_changes(t: Array, block: int = 16) -> tuple[list[float], list[float
         new = bm[j + 1]
         k = int(np.argmax(np.abs(np.log(seg / new)) < np.log(1.2)))  # first at the new rate
         changes.append(float(t[j * block + k]))
-    gap = np.flatnonzero(_gaps(dt, med))
+    gap = np.flatnonzero(gap_intervals(dt, med))
     return changes, [float(t[i]) for i in gap]
 
 
-def _gaps(dt: Array, med: float) -> Array:
+def gap_intervals(dt: Array, med: float) -> Array:
     """Which sampling intervals ``dt`` (s) are gaps: longer than 10 times the larger of their
     median ``med`` and the interval before (ours; :func:`sampling_changes`, :data:`RESET_GAP`)."""
     return dt > 10.0 * np.maximum(med, np.concatenate([[med], dt[:-1]]))

@@ -35,7 +35,7 @@ import numpy as np
 from scipy.linalg import cho_factor, solve_triangular
 
 from ..validation import Array
-from .artifacts import _gaps
+from .artifacts import gap_intervals
 from .segmentation import median
 
 __all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
@@ -951,7 +951,7 @@ def sample_intervals(t: Array, k: Array) -> Array:
     k = np.atleast_1d(np.asarray(k, int))
     if dt.size == 0:
         return np.zeros(k.size)
-    gap = _gaps(dt, median(dt))
+    gap = gap_intervals(dt, median(dt))
     after = dt[np.minimum(k, dt.size - 1)]
     return np.where(gap[k - 1], np.minimum(after, dt[k - 1]), dt[k - 1])
 
