@@ -869,11 +869,13 @@ def detect_program(
                                    fl.absolute, m, weak=weak, periods=periods,
                                    tol=PLACE_TOL if TOL_PLACED else 0.0, holds=hold_now,
                                    lag=fl.lag)
+    # each sample's interval, a gap's sample given the one after it (once per record)
+    one = sample_intervals(t, np.arange(1, t.size)) if t.size > 1 else np.zeros(0)
     if P_MOVE > 0.0 and _wanders(fl):
         # a confident change left where the whole stretches put it, whose own profile gives
         # that place less than P_MOVE of lying within the tolerance: placed by the profile
         p_at = np.array([placed_probability(pl, float(t[pl.index]), max(
-            float(sample_intervals(t, pl.index)[0]), PLACE_TOL))
+            float(one[pl.index - 1]), PLACE_TOL))
             if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])
         far = ~weak & (p_at < P_MOVE)
         for j in np.flatnonzero(far) + 1:  # each between its neighbours as placed
@@ -923,7 +925,7 @@ def detect_program(
         # placed: probably (PLACED_P) within the larger of one sample (the interval before
         # the change, not a gap: sample_intervals) and PLACE_TOL of the reported time, by the
         # widened profile; a change whose profile reaches the end of the times searched is not
-        tol = max(float(sample_intervals(t, s.i_start)[0]), PLACE_TOL)
+        tol = max(float(one[s.i_start - 1]), PLACE_TOL)
         p_in = placed_probability(pl, s.t_start, tol)
         placed = not pl.edge and p_in >= PLACED_P
         out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,

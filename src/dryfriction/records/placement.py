@@ -437,8 +437,8 @@ Why: there the kink is placed by where the two stretches' lines meet, and under 
 ``sigma`` the meeting point is known to about ``sigma sqrt(4/n1 + 4/n2) / |v1 - v2|`` (each
 line's value at its end, from ``n`` samples). Slow slide-hold-slides (0.1-0.3 um/s sampled at
 2-5 Hz, stretches of hundreds of seconds) were held to 60 s each side: their 95 % intervals
-were 2-5 s wide and many changes 0.5-1.3 s off (62 of the 280 wrong records of the 10950 zoo
-records run since stop 46 had a stop or a restart at under 0.3 um/s off the tolerance). Far
+were 2-5 s wide and many changes 0.5-1.3 s off (of the 270 changes off the tolerance in the
+280 zoo records wrong since stop 46, 62 were stops or restarts at under 0.3 um/s). Far
 samples inform only the lines, not where the kink lies, so they are kept as a few long block
 means; the near blocks keep the resolution the change is told at (a window 300 s long cut into
 128 blocks of one duration lost the candidates beside a neighbour 13 s away: zoo 9292's short
