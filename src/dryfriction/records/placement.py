@@ -975,10 +975,11 @@ def _most_probable(tt: Array, cells: Array, weights: Array, c_lo: int, c_hi: int
     """
     cum = np.concatenate([[0.0], np.cumsum(weights)])
     k = np.arange(max(c_lo, 1), c_hi)
-    h = np.maximum(sample_intervals(tt, k), tol) / WIDEN
+    one = sample_intervals(tt, np.arange(1, tt.size))  # once: a median of the window's
+    h = np.maximum(one[k - 1], tol) / WIDEN
     mass = np.interp(tt[k] + h, cells, cum) - np.interp(tt[k] - h, cells, cum)
     j = int(np.argmax(mass))
-    hb = max(float(sample_intervals(tt, best)[0]), tol) / WIDEN
+    hb = max(float(one[best - 1]), tol) / WIDEN
     mb = float(np.interp(tt[best] + hb, cells, cum) - np.interp(tt[best] - hb, cells, cum))
     return int(k[j]) if mass[j] > mb + 1e-9 else best
 
