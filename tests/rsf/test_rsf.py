@@ -7,6 +7,7 @@ Parameters follow the classic laboratory case (rsfmodel's README example; Marone
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from pathlib import Path
 
@@ -603,3 +604,29 @@ def test_rate_and_state_parameters_bounded_above(name: str) -> None:
     kw[name] = 1e308
     with pytest.raises(ValueError, match=rf"^{name} = .*<= {MU_MAX:g}"):
         RateState(**kw)
+
+
+@pytest.mark.parametrize("segments", [[Segment(1e-6, 1e308)],
+                                      [Segment(3.2e-5, 40.0), Segment(0.0, 7e11),
+                                       Segment(3.2e-5, slip=1e7)]])
+def test_a_program_longer_than_t_max_is_refused_before_any_work(
+        segments: list[Segment]) -> None:
+    # found by the run-size fuzz: a spring run of 1e308 s (b = 0, stable) took steps so long
+    # that the slip's quadrature overflowed, "impossible result" instead of a refusal. The
+    # second program lasts 1.0125e12 s only through its last slip (1e7 m at 32 um/s)
+    from dryfriction.rsf.spring import T_MAX
+
+    refusal = "^segments last .* allowed up to " + re.escape(f"{T_MAX:g} s") + "$"
+    for k in (1e3, math.inf):
+        with pytest.raises(ValueError, match=refusal):
+            SpringSlider(segments, stiffness=k)
+
+
+def test_a_spring_run_just_under_t_max_completes_with_its_slip() -> None:
+    # the bound is not set below what runs: 0.9 T_MAX at 1.3 um/s, stiff and stable (b < a)
+    from dryfriction.rsf.law import RateState
+    from dryfriction.rsf.spring import T_MAX
+
+    p = RateState(0.0071, 0.0043, 2.3e-5, 0.61, 1e-6)
+    res = simulate(p, SpringSlider([Segment(1.3e-6, 0.9 * T_MAX)], stiffness=2.7e3))
+    assert res.x[-1] - res.x[0] == pytest.approx(1.3e-6 * 0.9 * T_MAX, rel=1e-6)

@@ -59,7 +59,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
     from ..program import Segment
     from ..rsf.driving import RSFInitial, RSFOutput, SolverError, SpringSlider, simulate
     from ..rsf.law import V_MAX, V_MIN, RateState
-    from ..rsf.spring import RTOL_RANGE
+    from ..rsf.spring import RTOL_RANGE, T_MAX
     from ..validation import check_choice, check_figure_format, check_scalar
 
     check_choice("case", case, ("step", "shs", "stick-slip"))
@@ -69,7 +69,7 @@ def rsf(*, case: str = _O["case"], a: float = _O["a"], b: float = _O["b"],
     # durations and velocities a run can reach in floating point (a 1e308 s first segment
     # would leave the later ones at t = inf, silently dropped)
     for name, value in (("--t1", t1), ("--t2", t2), ("--hold-time", hold)):
-        check_scalar(name, value, 0.0, LOAD_MAX, lo_open=True)
+        check_scalar(name, value, 0.0, T_MAX, lo_open=True)
     for name, value in (("--v1", v1), ("--v2", v2)):
         check_scalar(name, value, -V_MAX, V_MAX)
         if value != 0.0 and abs(value) < V_MIN:  # named as typed, not as segments[0]
@@ -140,12 +140,14 @@ def reload_time(a: float, b: float, dc: float, v: float, hold: float,
     ``b ln(1 + hold v/dc)`` plus the direct effect ``a``, over ``stiffness``), then the slider
     slides ``10 dc`` (the evolution back to steady state). At least 30 s. (Ours: an
     estimate, checked after the run by :func:`_peak_at_end`.)"""
+    from ..rsf.spring import T_MAX
+
     if not (a > 0 and dc > 0 and v != 0 and math.isfinite(a + b + dc + v + hold)):
         return 30.0  # the law's own checks reject these, with their own message
     speed = abs(v)
     heal = max(b, 0.0) * math.log1p(hold * speed / dc) + 2.0 * a
     load = heal / (stiffness * speed) if math.isfinite(stiffness) and stiffness > 0 else 0.0
-    return max(30.0, min(load + 10.0 * dc / speed, LOAD_MAX))
+    return max(30.0, min(load + 10.0 * dc / speed, T_MAX))
 
 
 def _peak_at_end(res: Any, reload_start: float) -> bool:

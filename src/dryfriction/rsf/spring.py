@@ -36,10 +36,17 @@ K_MAX: float = 1e15
 elastic slip ``mu/k`` is below a femtometre is the kinematic machine (``inf``), which is
 integrated without the stiff spring's tiny time scale."""
 
-__all__ = ["RSFInitial", "RSFOutput", "SpringSlider", "check_spring"]
+__all__ = ["RSFInitial", "RSFOutput", "SpringSlider", "T_MAX", "check_spring"]
 
 RTOL_RANGE = (1e-13, 1e-2)
 """Accepted local error tolerances of the solver."""
+
+T_MAX = 1e12
+"""Longest load-point program a rate-and-state run takes, s (about 32 000 years; ours). The
+``rsf`` command's ``--t1``, ``--t2`` and ``--hold-time`` take the same bound. Far beyond it
+the spring solver's steps grow so long that the slip's quadrature
+(:func:`dryfriction.rsf.result.slip_by_quadrature`) overflows: a 1e308-s run at 1 um/s
+ended in an "impossible result" instead of a refusal."""
 
 
 def check_spring(stiffness: Any, damping: Any = 0.0, mass: Any = 0.0) -> tuple[float, float, float]:
@@ -110,6 +117,10 @@ class SpringSlider(simulation.Drive):
         object.__setattr__(self, "mass", m)
         vel = self.program.velocities
         self.program.check_speeds(V_MIN, V_MAX, "m/s")
+        total = self.program.total_time
+        if total > T_MAX:
+            raise ValueError(f"segments last {total:g} s in all (durations, and slips over "
+                             f"|velocity|): allowed up to {T_MAX:g} s")
         if not self.kinematic:
             for i, vl in enumerate(vel):
                 if vl < 0.0:
