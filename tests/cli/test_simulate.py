@@ -262,8 +262,11 @@ HUGE = [
     ("rsf", ("every = 0.01", "every = 1e-300"), "output.every"),
     ("rsf", ("every = 0.01", "every = 1e-9"), "output.every"),
     ("rsf", ("duration = 10.0", "duration = 1e300"), "segment 2"),
-    ("rsf", ("slip = 3e-4", "duration = 1e300"), "output.every"),
-    ("rsf", ("slip = 3e-4", "slip = 1e300"), "output.every"),
+    ("rsf", ("slip = 3e-4", "duration = 1e11"), "output.every"),
+    ("rsf", ("slip = 3e-4", "slip = 1e6"), "output.every"),
+    # beyond rsf.spring.T_MAX (1e12 s in all) the program itself is refused
+    ("rsf", ("slip = 3e-4", "duration = 1e300"), "in drive: segments last 1e+300 s"),
+    ("rsf", ("slip = 3e-4", "slip = 1e300"), "in drive: segments last 1e+305 s"),
 ]
 
 
