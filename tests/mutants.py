@@ -2716,8 +2716,8 @@ MUTANTS: tuple[Mutant, ...] = (
        "np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)",
        "lag * fast >= RELAX_ABOVE * sigma)", _CCH, "-k", "slow_hold"),
     _m("placement: the hold window by the detector's flag alone", "records/placement.py",
-       "bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (",
-       "bool(held) or min(abs(v1), abs(v2)) <= 0.0 * fast) and not (", _CCH, "-k", "creep"),
+       "still = quiet and (bool(held) or slow <= HOLD_RATIO * fast)",
+       "still = quiet and (bool(held) or slow <= 0.0 * fast)", _CCH, "-k", "creep"),
     # --- end detect5
     # --- detect6: a confident step in an oscillating record placed with the oscillation
     # (tests/records/test_change_choice.py)
@@ -3995,9 +3995,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: zoned_blocks' edges opening the span after", "records/placement.py",
        "np.concatenate(edges) - tol, side=\"left\")",
        "np.concatenate(edges) + tol, side=\"right\")", _HFR, "-k", "zoned"),
-    _m("placement: the far samples at a step too (not only at a hold)", "records/placement.py",
-       "    zoned = still and HOLD_FAR + search > near", "    zoned = HOLD_FAR + search > near",
-       "tests/records"),
+    _m("placement: the far samples at every change, whatever the servo's error",
+       "records/placement.py",
+       "    zoned = (quiet if FAR_STEPS else still) and HOLD_FAR + search > near",
+       "    zoned = HOLD_FAR + search > near", _HFR, "-k", "servo_error"),
     _m("placement: one sample's interval across a gap (before sample_intervals)",
        "records/placement.py", _SI, "    return dt[k - 1]", _HFR, "-k", "gap"),
     _m("placement: a gap's sample given the interval before the gap, not after",
@@ -4005,6 +4006,16 @@ MUTANTS: tuple[Mutant, ...] = (
        "    return np.where(gap[k - 1], dt[np.maximum(k - 2, 0)], dt[k - 1])", _HFR, "-k",
        "intervals"),
     # --- end stop 48 (lead)
+    # --- stop 49 (lead): a step's change placed on the stretches' far samples too
+    _m("placement: FAR_STEPS off (the far samples at holds only, stop 48)",
+       "records/placement.py", "FAR_STEPS = True\n", "FAR_STEPS = False\n", _HFR, "-k",
+       "slow_steps"),
+    _m("placement: the far samples at a step where the servo's error shows too",
+       "records/placement.py",
+       "    zoned = (quiet if FAR_STEPS else still) and HOLD_FAR + search > near",
+       "    zoned = (lag is not None if FAR_STEPS else still) and HOLD_FAR + search > near",
+       _HFR, "-k", "servo_error"),
+    # --- end stop 49 (lead)
 )
 
 

@@ -428,10 +428,10 @@ the rule on every change at a hold or a stop (no guard): on zoo records 0-299 96
 96.7 %, on 3000-3299 92.7 -> 92.7 % (holds fixed 3, broken 3: the ratio-30 stops and
 slow-sampled holds)."""
 HOLD_FAR = 300.0
-"""Beyond :data:`HOLD_HALF`, the window about a change at a hold (where the white noise hides
-the servo's position error) reaches on to this far (s) each side, in :data:`FAR_BLOCKS` long
-blocks each side; the blocks within :data:`HOLD_HALF` stay as they were (:func:`zoned_blocks`;
-ours; stop 48). 0 (or below :data:`HOLD_HALF`): no far blocks.
+"""Beyond :data:`HOLD_HALF`, the window about a change at a hold (and at a step:
+:data:`FAR_STEPS`), where the white noise hides the servo's position error, reaches on to this
+far (s) each side, in :data:`FAR_BLOCKS` long blocks each side; the blocks within
+:data:`HOLD_HALF` stay as they were (:func:`zoned_blocks`; ours; stop 48). 0 (or below :data:`HOLD_HALF`): no far blocks.
 
 Why: there the kink is placed by where the two stretches' lines meet, and under white noise
 ``sigma`` the meeting point is known to about ``sigma sqrt(4/n1 + 4/n2) / |v1 - v2|`` (each
@@ -446,6 +446,22 @@ hold unplaced with 1000 s). Measured (``bench_detect`` on the zoo; docs/performa
 holds placed on their whole stretches"): the 4650 used records 99 -> 87 wrong, the 4500
 examined 106 -> 98; with one duration over the whole window, 60/150/300/1000 s gave 99, 90,
 87 and 102 wrong on the used records."""
+FAR_STEPS = True
+"""A step between moving speeds, where the white noise hides the servo's position error, is
+placed on the stretches' far samples too, as a change at a hold is (:data:`HOLD_FAR`); False:
+at holds only (ours; stop 49).
+
+Why: the same as at a hold, and more so for a small step: the kink is where the two
+stretches' lines meet, known to about ``sigma sqrt(4/n1 + 4/n2) / |v1 - v2|``, and a
+ratio-1.3 step at 0.2 um/s changes the slope by 0.06 um/s, a third of a stop's. Of the 284
+changes off the tolerance or missed in the 280 zoo records re-run at stop 48, 146 were
+ratio-1.3 steps between moving speeds (87 of them with the slower under 1 um/s), all but 7
+marked not placed. Where the servo's position error stands above the white noise (``lag``
+times the faster speed, :data:`RELAX_ABOVE`) the window stays as it was: there the far samples
+carry the error's wander, not the lines. Measured (``bench_detect`` on the zoo;
+docs/performance.md, "Steps placed on their whole stretches"): the 4650 used records 87 -> 70
+wrong, the 4500 examined 98 -> 81, 1800 fresh ones (60000-65299) 52 -> 45, side by side at no
+more CPU; at steps of ratio up to 2 only, 78 and 93, and without the guard 79 and 96."""
 FAR_BLOCKS = 16
 """Blocks each side beyond :data:`HOLD_HALF` (:data:`HOLD_FAR`): the Cholesky factor then
 costs ``(BLOCKS + 2 FAR_BLOCKS)**3 / 3``, twice that of :data:`BLOCKS` alone, for these
@@ -746,18 +762,18 @@ def change_profile(t: Array, x: Array, guess: int, lo: int, hi: int, v1: float, 
     wide = osc_wide(v1, v2, min(tg - float(t[lo]), float(t[hi - 1]) - tg),
                     max(periods, default=0.0))
     # at a hold, where the white noise hides the servo's position error: a longer window
-    fast = max(abs(v1), abs(v2))
-    still = lag is not None and (
-        bool(held) or min(abs(v1), abs(v2)) <= HOLD_RATIO * fast) and not (
-        np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)
+    fast, slow = max(abs(v1), abs(v2)), min(abs(v1), abs(v2))
+    quiet = lag is not None and not (np.isfinite(lag) and lag * fast >= RELAX_ABOVE * sigma)
+    still = quiet and (bool(held) or slow <= HOLD_RATIO * fast)
     # a larger step, not a stop, one period each side where its samples hold one (OSC_WHOLE)
     longest = max(periods, default=0.0)
     whole = not still and osc_whole(v1, v2, min(tg - float(t[lo]), float(t[hi - 1]) - tg),
                                     longest)
     near = max(min(max(HOLD_HALF if still else 20.0, 10.0 * tau), 60.0),
                2.0 * longest if wide else longest if whole else 0.0) + search
-    # at a hold, on to the stretches' far samples, as a few long blocks (HOLD_FAR)
-    zoned = still and HOLD_FAR + search > near
+    # at a hold, and at a step with FAR_STEPS, where the white noise hides the servo's position
+    # error: on to the stretches' far samples, as a few long blocks (HOLD_FAR)
+    zoned = (quiet if FAR_STEPS else still) and HOLD_FAR + search > near
     half = HOLD_FAR + search if zoned else near
     a = max(lo, int(np.searchsorted(t, tg - half)))
     b = min(hi, int(np.searchsorted(t, tg + half)))
