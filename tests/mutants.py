@@ -3995,10 +3995,6 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: zoned_blocks' edges opening the span after", "records/placement.py",
        "np.concatenate(edges) - tol, side=\"left\")",
        "np.concatenate(edges) + tol, side=\"right\")", _HFR, "-k", "zoned"),
-    _m("placement: the far samples at every change, whatever the servo's error",
-       "records/placement.py",
-       "    zoned = (quiet if FAR_STEPS else still) and HOLD_FAR + search > near",
-       "    zoned = HOLD_FAR + search > near", _HFR, "-k", "servo_error"),
     _m("placement: one sample's interval across a gap (before sample_intervals)",
        "records/placement.py", _SI, "    return dt[k - 1]", _HFR, "-k", "gap"),
     _m("placement: a gap's sample given the interval before the gap, not after",
@@ -4006,15 +4002,23 @@ MUTANTS: tuple[Mutant, ...] = (
        "    return np.where(gap[k - 1], dt[np.maximum(k - 2, 0)], dt[k - 1])", _HFR, "-k",
        "intervals"),
     # --- end stop 48 (lead)
-    # --- stop 49 (lead): a step's change placed on the stretches' far samples too
+    # --- stop 49 (lead): a step's change placed again on the stretches' far samples
     _m("placement: FAR_STEPS off (the far samples at holds only, stop 48)",
        "records/placement.py", "FAR_STEPS = True\n", "FAR_STEPS = False\n", _HFR, "-k",
        "slow_steps"),
-    _m("placement: the far samples at a step where the servo's error shows too",
-       "records/placement.py",
-       "    zoned = (quiet if FAR_STEPS else still) and HOLD_FAR + search > near",
-       "    zoned = (lag is not None if FAR_STEPS else still) and HOLD_FAR + search > near",
-       _HFR, "-k", "servo_error"),
+    _m("placement: the far samples at a step whatever the servo's error",
+       "records/placement.py", "    farther = quiet and HOLD_FAR + search > near",
+       "    farther = HOLD_FAR + search > near", _HFR, "-k", "servo_error"),
+    _m("placement: no straightness test before the far look", "records/placement.py",
+       "                and straight_sides(t, x, pl.index, lo, hi)):",
+       "                and True):", _HFR, "-k", "small_speed_change"),
+    _m("placement: the far look's own profile and interval reported", "records/placement.py",
+       "    return Placement(far.index, min(near.lo, far.lo), max(near.hi, far.hi),",
+       "    return far\n    return Placement(far.index, min(near.lo, far.lo), "
+       "max(near.hi, far.hi),", _HFR, "-k", "small_speed_change"),
+    _m("placement: straight_sides looks at the side before the change only",
+       "records/placement.py", "    for a, b, sign in ((lo, at, -1.0), (at, hi, 1.0)):",
+       "    for a, b, sign in ((lo, at, -1.0),):", _HFR, "-k", "small_speed_change"),
     # --- end stop 49 (lead)
 )
 

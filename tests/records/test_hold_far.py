@@ -195,46 +195,70 @@ def test_sample_intervals_skip_gaps() -> None:
 
 
 SLOW_STEPS = ((dict(v1=0.1e-6, v2=0.13e-6, fs=5.0, slide=500.0), 23),
-              (dict(v1=0.2e-6, v2=0.1e-6, fs=2.0, slide=500.0), 39),
-              (dict(v1=0.25e-6, v2=0.025e-6, fs=2.0, slide=500.0), 39),
-              (dict(v1=0.15e-6, v2=0.45e-6, fs=2.0, slide=500.0), 39))
+              (dict(v1=0.2e-6, v2=0.1e-6, fs=2.0, slide=500.0), 39))
 
 
 def test_slow_steps_placed_on_their_far_samples(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Steps between slow speeds (ratio 1.3 up at 0.1 um/s, 5 Hz; ratio 2 down at 0.2 um/s,
-    ratio 10 down at 0.25 um/s and ratio 3 up at 0.15 um/s, 2 Hz), 500-s slides, 40 records
-    each. With the far samples (FAR_STEPS): 24, 40, 40 and 40 within the tolerance, median 95 %
-    intervals 5.8, 3.0, 1.0 and 1.0 s; without (holds only): 20, 39, 40 and 40, and 10.6, 6.0,
-    3.0 and 2.0 s (measured). The intervals hold the truth as often (39, 40, 40, 40 of 40):
-    narrower from information, not from a covariance made too small."""
+    """A ratio-1.3 step up at 0.1 um/s (5 Hz) and a ratio-2 step down at 0.2 um/s (2 Hz),
+    500-s slides, 40 records each: with the far look (FAR_STEPS) 24 and 40 within the
+    tolerance, without it 20 and 39 (measured); the intervals, the near window's (or wider),
+    hold the truth as often (39 and 40). Mistake, seen failing: FAR_STEPS off."""
     assert placement.FAR_STEPS
     for kw, least in SLOW_STEPS:
         monkeypatch.setattr(placement, "FAR_STEPS", True)
-        errs, widths, held = _errors(range(40), _step, **kw)
+        errs, _, held = _errors(range(40), _step, **kw)
         monkeypatch.setattr(placement, "FAR_STEPS", False)
-        errs0, widths0, _ = _errors(range(40), _step, **kw)
+        errs0, _, held0 = _errors(range(40), _step, **kw)
         within, within0 = sum(e <= 0.5 for e in errs), sum(e <= 0.5 for e in errs0)
-        assert within >= least and within >= within0, (kw, within, within0)
-        assert np.median(widths) <= 0.6 * np.median(widths0), kw
-        assert sum(held) >= 38, kw
-        if least < 39:  # the hardest: more within the tolerance, not only narrower
-            assert within >= within0 + 3
+        assert within >= least and within >= within0 + 1, (kw, within, within0)
+        assert sum(held) >= sum(held0) >= 38, kw
 
 
-def test_a_step_whose_servo_error_shows_keeps_its_window(monkeypatch: pytest.MonkeyPatch
-                                                         ) -> None:
-    """10 -> 13 um/s at 20 Hz with a position error of 0.1 s times the speed (1 um rms, six
-    times the white noise): the far samples carry the error's wander, not the lines, so the
-    window stays as it was, the same placements as with no far samples at all. Mistake,
-    seen failing: the far samples at every step, whatever the servo's error."""
-    def placements() -> list[tuple[float, float, float]]:
-        out = []
-        for seed in range(6):
-            rec, _ = _step(seed, 10e-6, 13e-6, 20.0, 200.0, lag=0.1)
-            out += [(s.t_start, s.start_lo, s.start_hi) for s in detect_program(rec).segments[1:]]
-        return out
+def test_a_small_speed_change_near_a_step(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A ratio-1.3 step up at 0.2 um/s (5 Hz) whose new speed falls 3 % 30 s later, a change
+    too small to split on, 30 records: the far samples would bend the stretch's line, so the
+    far look is not taken (straight_sides): 12 within the tolerance, as without FAR_STEPS,
+    none wrong and placed, every interval holding the truth (measured). Mistakes, seen
+    failing: no straightness test (1 within, still none placed, 30 intervals holding the
+    truth); and with that, the far look's own profile and interval reported (26 hold the
+    truth; an independent review found such steps placed with probability 1, 2 s off)."""
+    def run() -> tuple[int, int, int]:
+        ok = wrong_placed = held = 0
+        for seed in range(30):
+            rec, truth = _program(seed, (0.2e-6, 0.26e-6, 0.26e-6 * 0.97),
+                                  (400.0, 30.0, 370.0), 5.0)
+            s = min(detect_program(rec).segments[1:], key=lambda s: abs(s.t_start - truth[0]))
+            off = abs(s.t_start - truth[0]) > 0.5
+            ok += not off
+            wrong_placed += off and s.start_placed
+            held += s.start_lo <= truth[0] <= s.start_hi
+        return ok, wrong_placed, held
 
-    assert placement.FAR_STEPS
-    on = placements()
-    monkeypatch.setattr(placement, "HOLD_FAR", 0.0)  # no far samples anywhere
-    assert on and placements() == on
+    ok, wrong_placed, held = run()
+    assert ok >= 10 and wrong_placed == 0 and held >= 29, (ok, wrong_placed, held)
+    # without the straightness test the far look moves them off, but does not make them
+    # placed, and the intervals (the near window's, or wider) still hold the truth
+    monkeypatch.setattr(placement, "straight_sides", lambda *a: True)
+    ok, wrong_placed, held = run()
+    assert ok <= 4 and wrong_placed == 0 and held >= 29, (ok, wrong_placed, held)
+
+
+def test_a_step_whose_servo_error_shows_gets_no_far_look() -> None:
+    """A 1 -> 1.3 um/s step at 350 s, 5 Hz, 0.17-um white noise, placed by change_profile
+    with the servo's position error per unit speed ``lag`` given: hidden (inf) or 0.05 s
+    (0.065 um at the faster speed, under 3 white-noise deviations), the step may take the far
+    look (``far_step``), which narrows its interval from 1.2 to 0.8 s (measured); 1 s (1.3 um)
+    or unknown (None), it may not, and a far look asked for anyway is the near window's.
+    Mistake, seen failing: the far samples at a step whatever the servo's error."""
+    rng = np.random.default_rng(3)
+    t = np.arange(0.0, 700.0, 0.2)
+    x = np.where(t < 350.0, 1e-6 * t, 350e-6 + 1.3e-6 * (t - 350.0))
+    x = x + WHITE * rng.standard_normal(t.size)
+    g = int(np.searchsorted(t, 350.0))
+    args = (t, x, g, 0, t.size, 1e-6, 1.3e-6, WHITE, (1e-3, 5.0), (1e-9, 5.0))
+    for lag, eligible in ((np.inf, True), (0.05, True), (1.0, False), (None, False)):
+        near = placement.change_profile(*args, lag=lag)
+        far = placement.change_profile(*args, lag=lag, far_step=True)
+        assert near.far_step is eligible and not far.far_step, lag
+        width, width_far = near.hi - near.lo, far.hi - far.lo
+        assert (width_far <= 0.75 * width) if eligible else (width_far == width), lag

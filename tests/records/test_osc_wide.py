@@ -77,8 +77,9 @@ def test_ratio_2_steps_placed_better_on_two_periods_each_side() -> None:
     # rule on the small steps only (a bound at OSC_RATIO), or the ratio one way only (the
     # down-steps, even seeds, not widened); the first count is the detector's as it is, so
     # the rule must be on by default. The rule's gain is measured with the far samples at
-    # holds only (FAR_STEPS off): since stop 49 a step's window reaches its stretches' far
-    # samples whatever OSC_WIDE says, and the first records give 100 both ways
+    # holds only (FAR_STEPS off): since stop 49 a step left not placed is placed again on its
+    # stretches' far samples whatever OSC_WIDE says, and the first records give 100 with the
+    # rule and 99 without (measured)
     one = [_step(seed, 2.0, ((0.05, 37.0),)) for seed in range(100)]
     on, off = _hits(one, far=False), _hits(one, False, far=False)
     assert on >= 99 and on >= off + 2, (on, off)
