@@ -4019,6 +4019,10 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: straight_sides looks at the side before the change only",
        "records/placement.py", "    for a, b, sign in ((lo, at, -1.0), (at, hi, 1.0)):",
        "    for a, b, sign in ((lo, at, -1.0),):", _HFR, "-k", "small_speed_change"),
+    _m("placement: a hold's far samples without the straightness test (stop 48)",
+       "records/placement.py",
+       "    zoned = farther and (far_step or (still and straight_sides(t, x, guess, lo, hi)))",
+       "    zoned = farther and (far_step or still)", _HFR, "-k", "before_a_stop"),
     # --- end stop 49 (lead)
 )
 

@@ -243,6 +243,30 @@ def test_a_small_speed_change_near_a_step(monkeypatch: pytest.MonkeyPatch) -> No
     assert ok <= 4 and wrong_placed == 0 and held >= 29, (ok, wrong_placed, held)
 
 
+def test_a_small_speed_change_before_a_stop(monkeypatch: pytest.MonkeyPatch) -> None:
+    """1 um/s at 5 Hz, 4 % slower from 30 s before a stop (a change too small to split on),
+    a 300-s hold, 30 records: the far samples would bend the slide's line, so the hold takes
+    none (straight_sides): 30 stops within the tolerance, none wrong and placed, as with no
+    far samples at all (measured; 15 intervals hold the truth either way, an older weakness).
+    Mistake, seen failing: the hold's far samples without the straightness test (stop 48's
+    rule): 18 within, 11 wrong and placed (found by an independent review, helper-86)."""
+    def run() -> tuple[int, int]:
+        ok = wrong_placed = 0
+        for seed in range(30):
+            rec, truth = _program(seed, (1e-6, 0.96e-6, 0.0, 1e-6), (370.0, 30.0, 300.0, 400.0),
+                                  5.0)
+            s = min(detect_program(rec).segments[1:], key=lambda s: abs(s.t_start - truth[1]))
+            off = abs(s.t_start - truth[1]) > 0.5
+            ok += not off
+            wrong_placed += off and s.start_placed
+        return ok, wrong_placed
+
+    ok, wrong_placed = run()
+    assert ok >= 27 and wrong_placed == 0, (ok, wrong_placed)
+    monkeypatch.setattr(placement, "straight_sides", lambda *a: True)
+    assert run()[1] >= 5
+
+
 def test_a_step_whose_servo_error_shows_gets_no_far_look() -> None:
     """A 1 -> 1.3 um/s step at 350 s, 5 Hz, 0.17-um white noise, placed by change_profile
     with the servo's position error per unit speed ``lag`` given: hidden (inf) or 0.05 s
