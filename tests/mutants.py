@@ -4024,6 +4024,27 @@ MUTANTS: tuple[Mutant, ...] = (
        "    zoned = farther and (far_step or (still and straight_sides(t, x, guess, lo, hi)))",
        "    zoned = farther and (far_step or still)", _HFR, "-k", "before_a_stop"),
     # --- end stop 49 (lead)
+    # --- stop 50 (lead): one rule for "placed"; straight_sides against np.polyfit
+    _m("placement: placed_at judges the tolerance alone where a sample is longer",
+       "records/placement.py",
+       "    p = placed_probability(pl, float(t[pl.index]), max(one, tol))",
+       "    p = placed_probability(pl, float(t[pl.index]), tol)",
+       "tests/records/test_change_interval.py", "-k", "placed_at"),
+    _m("placement: placed_at ignores the edge of the times searched", "records/placement.py",
+       "    return (not pl.edge and p >= PLACED_P), p", "    return (p >= PLACED_P), p",
+       "tests/records/test_change_interval.py", "-k", "placed_at"),
+    _m("placement: placed_at places a change without an interval", "records/placement.py",
+       '        return False, float("nan")', '        return True, float("nan")',
+       "tests/records/test_change_interval.py", "-k", "placed_at"),
+    _m("placement: straight_sides adds standard errors, not variances",
+       "records/placement.py",
+       "            if abs(s1 - s2) > STRAIGHT_Z * np.sqrt(v1 + v2):",
+       "            if abs(s1 - s2) > STRAIGHT_Z * (np.sqrt(v1) + np.sqrt(v2)):",
+       _HFR, "-k", "polyfit"),
+    _m("placement: straight_sides measures its parts from the record's start",
+       "records/placement.py", "        d = sign * (tt - tc)\n",
+       "        d = np.abs(tt - float(t[0]))\n", _HFR, "-k", "polyfit"),
+    # --- end stop 50 (lead)
 )
 
 

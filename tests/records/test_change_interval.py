@@ -303,6 +303,45 @@ def test_placed_probability_of_a_gaussian_profile() -> None:
     assert placement.placed_probability(placement.Placement(100), 1.0, 0.5) == 1.0
 
 
+
+def test_placed_at_judges_the_larger_of_one_sample_and_the_tolerance() -> None:
+    """``placed_at``, the one rule for ``start_placed`` and the placement's second looks: the
+    probability is the widened profile's within the larger of the sample interval before the
+    change and ``tol`` of the reported time (closed form, a Gaussian profile); placed at
+    ``PLACED_P`` or more, never at the edge of the times searched, never without an interval.
+    Mistakes, each seen failing: ``tol`` alone where the sampling is coarser (p 0.26 against
+    0.82 at the 2-s sample; 0.60, not placed, against 0.999); the edge ignored; a placement
+    without an interval judged placed."""
+    from scipy.stats import norm
+
+    from dryfriction.records.labsteps import PLACED_P
+
+    mu, s0 = 4.6, 0.62
+    t = np.concatenate([np.arange(0.0, 3.0, 0.01), np.arange(3.0, 12.0, 2.0)])
+    # the profile on its own fine grid (as the placement's candidates), the record coarse
+    fine = np.arange(0.0, 12.0, 0.001)
+    edges, w = placement.profile_weights(fine, -((fine - mu) ** 2) / s0**2, 1.0, 0.0, 12.0)
+    for at in (3.0, 5.0, 2.5):
+        k = int(np.argmin(abs(t - at)))
+        one = t[k] - t[k - 1]
+        h = max(one, 0.5) / placement.WIDEN
+        exact = norm.cdf((at + h - mu) / s0) - norm.cdf((at - h - mu) / s0)
+        pl = placement.Placement(k, 0.0, 12.0, cells=edges, weights=w)
+        placed, p = placement.placed_at(pl, t, 0.5)
+        assert p == pytest.approx(exact, abs=5e-3)
+        assert placed == (exact >= PLACED_P + 5e-3) or abs(exact - PLACED_P) < 5e-3
+        assert placement.placed_at(pl, t, 0.5, one=float(one)) == (placed, p)
+        edge = placement.Placement(k, 0.0, 12.0, True, cells=edges, weights=w)
+        assert placement.placed_at(edge, t, 0.5) == (False, p)
+    # a profile wide enough that the 2-s sample holds it: placed there, not with tol alone
+    edges, w = placement.profile_weights(fine, -((fine - 5.0) ** 2) / 0.3**2, 1.0, 0.0, 12.0)
+    k = int(np.flatnonzero(t == 5.0)[0])
+    assert placement.placed_at(placement.Placement(k, 4.0, 6.0, cells=edges, weights=w), t,
+                               0.5)[0]
+    at_edge = placement.Placement(k, 4.0, 6.0, True, cells=edges, weights=w)
+    assert placement.placed_at(at_edge, t, 0.5)[0] is False
+    assert placement.placed_at(placement.Placement(k), t, 0.5)[0] is False
+
 def _zoo_hold_errors(indices: tuple[int, ...], tmp: Path, above: float = 100.0
                      ) -> list[float]:
     """|time error| / tolerance of each change at a hold or between speeds at least ``above``

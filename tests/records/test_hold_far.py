@@ -286,3 +286,40 @@ def test_a_step_whose_servo_error_shows_gets_no_far_look() -> None:
         assert near.far_step is eligible and not far.far_step, lag
         width, width_far = near.hi - near.lo, far.hi - far.lo
         assert (width_far <= 0.75 * width) if eligible else (width_far == width), lag
+
+
+def test_straight_sides_against_polyfit() -> None:
+    """``straight_sides`` against least squares done independently (``np.polyfit`` with its
+    scaled covariance): on each side of a step at sample ``g`` (1 -> 1.7 um/s, 4 Hz,
+    0.17-um white noise, uneven times), the slopes of the samples 5-60 s and 60-300 s from
+    the change, z their difference over the root sum of their variances; straight when both
+    sides' z are under STRAIGHT_Z. The far part of one side bends by a slope change drawn so
+    that z spans the threshold (records within 2 % of it skipped). Mistakes, each seen
+    failing: standard errors added, not their variances; the parts' bounds from the record's
+    start, not the change; the left side not tested (its parts mirrored)."""
+    rng = np.random.default_rng(11)
+    tc, seen = 400.0, set()
+    for k in range(60):
+        t = np.sort(rng.uniform(0.0, 800.0, 3200))
+        g = int(np.searchsorted(t, tc))
+        side = 1.0 if k % 2 else -1.0
+        d = side * (t - tc)
+        bend = rng.uniform(0.0, 0.004e-6) * np.clip(d - 60.0, 0.0, None) * (d > 0)
+        x = np.where(t < tc, 1e-6 * t, 1e-6 * tc + 1.7e-6 * (t - tc)) + side * bend
+        x = x + WHITE * rng.standard_normal(t.size)
+        zs, tg = [], t[g]  # the parts measured from the change's sample
+        for s in (-1.0, 1.0):
+            ds = s * (t - tg)
+            parts = []
+            for a, b in ((5.0, 60.0), (60.0, 300.0)):
+                m = (ds >= a) & (ds < b) & ((t < tg) if s < 0 else (t >= tg))
+                p, cov = np.polyfit(t[m], x[m], 1, cov=True)
+                parts.append((p[0], cov[0, 0]))
+            (s1, v1), (s2, v2) = parts
+            zs.append(abs(s1 - s2) / np.sqrt(v1 + v2))
+        z = max(zs)
+        if abs(z / placement.STRAIGHT_Z - 1.0) < 0.02:
+            continue
+        seen.add(bool(z < placement.STRAIGHT_Z))
+        assert placement.straight_sides(t, x, g, 0, t.size) == (z < placement.STRAIGHT_Z), (k, z)
+    assert seen == {True, False}

@@ -52,7 +52,7 @@ import numpy as np
 
 from ..validation import Array
 from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
-from .labsteps import PLACED_P, Segment, example_segments, make_segments
+from .labsteps import Segment, example_segments, make_segments
 from .placement import (
     FINE_RATIO,
     HOLD_RATIO,
@@ -61,7 +61,7 @@ from .placement import (
     RELAX_TAUS,
     oscillation_periods,
     place_changes,
-    placed_probability,
+    placed_at,
     sample_intervals,
 )
 from .reading import reading_step
@@ -874,9 +874,8 @@ def detect_program(
     if P_MOVE > 0.0 and _wanders(fl):
         # a confident change left where the whole stretches put it, whose own profile gives
         # that place less than P_MOVE of lying within the tolerance: placed by the profile
-        p_at = np.array([placed_probability(pl, float(t[pl.index]), max(
-            float(one[pl.index - 1]), PLACE_TOL))
-            if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])
+        p_at = np.array([placed_at(pl, t, PLACE_TOL, float(one[pl.index - 1]))[1]
+                         if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])
         far = ~weak & (p_at < P_MOVE)
         for j in np.flatnonzero(far) + 1:  # each between its neighbours as placed
             sub = [bounds[j - 1], bounds[j], bounds[j + 1]]
@@ -925,9 +924,7 @@ def detect_program(
         # placed: probably (PLACED_P) within the larger of one sample (the interval before
         # the change, not a gap: sample_intervals) and PLACE_TOL of the reported time, by the
         # widened profile; a change whose profile reaches the end of the times searched is not
-        tol = max(float(one[s.i_start - 1]), PLACE_TOL)
-        p_in = placed_probability(pl, s.t_start, tol)
-        placed = not pl.edge and p_in >= PLACED_P
+        placed, p_in = placed_at(pl, t, PLACE_TOL, float(one[s.i_start - 1]))
         out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,
                            start_edge=pl.edge, start_placed=placed, start_p=p_in))
     rate, gaps = sampling_changes(t)

@@ -40,7 +40,7 @@ from .labsteps import PLACED_P
 from .segmentation import median
 
 __all__ = ["LEVEL", "Placement", "change_profile", "oscillation_periods",
-           "ou_parameters", "place_change", "place_changes", "placed_probability",
+           "ou_parameters", "place_change", "place_changes", "placed_at", "placed_probability",
            "profile_interval", "profile_weights"]
 
 
@@ -468,9 +468,10 @@ marked not placed. Only a second look: given to every such step with its own pro
 first form of this rule), the far samples turned a speed change of a few per cent near a
 step, too small to split on, into a step placed 2 s off with probability 1 (an independent
 review's records). Measured (``bench_detect`` on the zoo; docs/performance.md, "Steps placed
-on their whole stretches"): the 4650 used records 87 -> 73 wrong, the 4500 examined 98 -> 81,
-2700 fresh ones (60000-68299) 70 -> 60, side by side at the same CPU (the first form: 70, 81,
-and 1800 fresh 52 -> 45)."""
+on their whole stretches"): this rule alone, the 4650 used records 87 -> 73 wrong, the 4500
+examined 98 -> 81; with the straightness guard on a hold's far samples too (stop 49's final
+form) 74 and 82, and 2700 fresh ones (60000-68299) 70 -> 60, side by side at the same CPU
+(the first form: 70, 81, and 1800 fresh 52 -> 45)."""
 FAR_BLOCKS = 16
 """Blocks each side beyond :data:`HOLD_HALF` (:data:`HOLD_FAR`): the Cholesky factor then
 costs ``(BLOCKS + 2 FAR_BLOCKS)**3 / 3``, twice that of :data:`BLOCKS` alone, for these
@@ -1074,7 +1075,8 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
             pl = change_profile(t, x, pl.index, lo, hi, v1, v2, sigma, rel, ab,
                                 periods=periods, move=True, stop=stop, tol=tol, held=held,
                                 lag=lag)
-        if (FAR_STEPS and move and pl.far_step and _unplaced(pl, t, tol)
+        if (FAR_STEPS and move and pl.far_step and np.isfinite(pl.lo)
+                and not placed_at(pl, t, tol)[0]
                 and straight_sides(t, x, pl.index, lo, hi)):
             far = change_profile(t, x, pl.index, lo, hi, v1, v2, sigma, rel, ab,
                                  periods=periods, move=True, stop=stop, tol=tol, held=held,
@@ -1101,15 +1103,22 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
     return out, places
 
 
-def _unplaced(pl: Placement, t: Array, tol: float) -> bool:
-    """Whether ``pl`` leaves its change not placed: its profile gives the reported time less
-    than :data:`.labsteps.PLACED_P` of lying within the larger of its sample interval
-    (:func:`sample_intervals`) and ``tol`` (s), as detection judges it, or reaches the end of
-    the times searched."""
+def placed_at(pl: Placement, t: Array, tol: float, one: float | None = None
+              ) -> tuple[bool, float]:
+    """Whether the change ``pl`` is *placed* where it is reported, ``t[pl.index]`` (s), and
+    the probability of that: its profile's probability (:func:`placed_probability`) of lying
+    within the larger of its sample interval and ``tol`` (s) of that time; placed when that
+    is at least :data:`.labsteps.PLACED_P` and the profile does not reach the end of the
+    times searched (ours; the one rule for :class:`.labsteps.Segment`'s ``start_placed`` and
+    for the placement's second looks). ``one``: the sample interval (s) at ``pl.index`` if
+    already computed (:func:`sample_intervals`). A placement without an interval (NaN ``lo``:
+    its window too small to judge) is not placed, with probability NaN."""
     if not np.isfinite(pl.lo):
-        return False
-    one = float(sample_intervals(t, max(pl.index, 1))[0])
-    return pl.edge or placed_probability(pl, float(t[pl.index]), max(one, tol)) < PLACED_P
+        return False, float("nan")
+    if one is None:
+        one = float(sample_intervals(t, max(pl.index, 1))[0])
+    p = placed_probability(pl, float(t[pl.index]), max(one, tol))
+    return (not pl.edge and p >= PLACED_P), p
 
 
 STRAIGHT_Z = 3.0
