@@ -112,6 +112,7 @@ _IMR = "tests/ensemble/test_interface_multirate.py"
 _FLG = "tests/records/test_fluctuations_generic.py"
 _CNT = "tests/records/test_count_causes.py"
 _HFR = "tests/records/test_hold_far.py"
+_PDIR = "tests/records/test_program_direction.py"
 _SI = "    return np.where(gap[k - 1], np.minimum(after, dt[k - 1]), dt[k - 1])"
 _EDT = (_CNT, "-k", "end_of_a_record")
 _MIS = "tests/records/test_missed_changes.py"
@@ -4044,6 +4045,28 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("placement: straight_sides measures its parts from the record's start",
        "records/placement.py", "        d = sign * (tt - tc)\n",
        "        d = np.abs(tt - float(t[0]))\n", _HFR, "-k", "polyfit"),
+    _m("lab: a decreasing displacement read as it is (no sign change)", "records/lab.py",
+       '    if role in vals and moves_backwards(t, vals[role], role == "velocity"):',
+       '    if False:', _PDIR, "-k", "decreasing"),
+    _m("artifacts: moves_backwards by the net displacement", "records/artifacts.py",
+       "    return bool(np.sum(np.clip(dx, -size, size)) < 0.0)",
+       "    return bool(v[-1] < v[0])", _PDIR, "-k", "increments_not_ends"),
+    _m("artifacts: moves_backwards' clip scaled by the median of every increment",
+       "records/artifacts.py", "    moved = np.abs(dx[dx != 0.0])",
+       "    moved = np.abs(dx)", _PDIR, "-k", "increments_not_ends"),
+    _m("detection: a stretch read backwards reported at its speed (BACK_HELD off)",
+       "records/detection.py", "BACK_HELD = True\n", "BACK_HELD = False\n", _PDIR, "-k",
+       "read_backwards"),
+    _m("detection: an unassessed change said placed", "records/detection.py",
+       "start_placed=not moved))", "start_placed=True))",
+       _PDIR, "-k", "no_unassessed or unassessed"),
+    _m("labsteps: the table shows an unassessed change as '-'", "records/labsteps.py",
+       '        iv = ("-" if s.start_placed else "?") if not np.isfinite(s.start_lo) else (',
+       '        iv = "-" if not np.isfinite(s.start_lo) else (', _PDIR, "-k", "unassessed"),
+    _m("labsteps: --segments skips an empty item", "records/labsteps.py",
+       "        if not item:  # two commas in a row: an item lost in editing, not nothing\n",
+       "        if not item:  # two commas in a row: an item lost in editing, not nothing\n"
+       "            continue\n", _PDIR, "-k", "empty_item"),
     # --- end stop 50 (lead)
 )
 

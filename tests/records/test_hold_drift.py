@@ -125,7 +125,9 @@ def test_a_drifting_hold_is_reported_as_a_hold(tmp_path: Path,
     speeds = [s.velocity for s in detect_program(got).segments]
     assert speeds.count(0.0) == 2
     assert all(v == 0.0 or v > 1e-7 for v in speeds)
+    assert detect_program(got).held_back == ()  # a drift: not said (BACK_HELD's note)
     monkeypatch.setattr(detection, "HOLD_BACK", False)
+    monkeypatch.setattr(detection, "BACK_HELD", False)  # which would take it too (stop 50)
     speeds = [s.velocity for s in detect_program(got).segments]
     assert any(-2e-9 < v < 0.0 for v in speeds)
 
@@ -143,7 +145,9 @@ def test_a_slide_hold_slide_with_drift_is_cut_as_one(tmp_path: Path,
     assert [w.kind for w in wins] == ["shs", "shs"]
     assert all(w.v_before > 0.0 and w.v_after > 0.0 for w in wins)
     assert z.score(rec, det, 0.0).holds == (2, 2)
+    assert det.held_back == ()  # a drift: not said (BACK_HELD's note)
     monkeypatch.setattr(detection, "HOLD_BACK", False)
+    monkeypatch.setattr(detection, "BACK_HELD", False)  # which would take them too (stop 50)
     det = detect_program(got)
     assert [w.kind for w in slice_steps(got, det.segments)] == ["step"] * 4
     assert z.score(rec, det, 0.0).holds == (2, 0)

@@ -97,6 +97,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         apparatus_note,
         assumed_units,
         detect_program,
+        held_back_message,
         no_change_message,
         normal_change_values,
         note_text,
@@ -152,6 +153,10 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         rep["gaps_s"] = list(det.gaps)
         rep["normal_changes_s"] = list(det.normal_changes)
         rep["normal_changes"] = _changes(normal_change_values(segs, det.normal_changes))
+        back = held_back_message(det, float(t[0]))
+        if back:  # said where the user reads: the table's notes, the JSON, segments.csv
+            rep["held_back"] = [{"t_start": a, "velocity_read": v} for a, v in det.held_back]
+            rep["held_back_note"] = back
     rep["segments_option"] = segments_spec(segs, float(t[0]), t)
     rep = with_units(rep, RECORD_UNITS, {"normal": rec.normal_unit or "Pa"})
     files: list[str] = []

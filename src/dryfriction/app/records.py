@@ -74,7 +74,12 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
     step finder saw it (``dryfriction record --out``, and beside a record's fit)."""
     from ..plots.record import plot_record
     from ..plots.style import save_figure
-    from ..records.lab import apparatus_note, assumed_units, write_segments_csv
+    from ..records.lab import (
+        apparatus_note,
+        assumed_units,
+        held_back_message,
+        write_segments_csv,
+    )
 
     # a unit assumed for want of one in the header is said in these files too: they are
     # what a user keeps of the detection (a new user's mm column read as m)
@@ -85,8 +90,9 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
         + ": no unit in the header: " + ", ".join(f"{rec.columns[r]!r} read in {u}"
                                                   for r, u in assumed.items())
         + " (give the units with --columns ROLE=NAME:UNIT if not)")
+    back = held_back_message(det, float(rec.time[0])) if det is not None else None
     write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit,
-                       rec.time, notes=(note,) if note else ())
+                       rec.time, notes=tuple(q for q in (note, back) if q))
     fig, _ = plot_record(rec, segs, det, given=given, note=short)
     save_figure(fig, folder / f"record.{fmt}", fmt, dpi)
 
@@ -196,6 +202,9 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
         _say(report, note)
     if det is not None and len(segs) == 1 and segs[0].velocity != 0.0:
         raise ValueError(lab.no_change_message(rec, det))
+    back = lab.held_back_message(det, float(rec.time[0])) if det is not None else None
+    if back:
+        _say(report, f"note: {back}")
     wins = lab.slice_steps(rec, segs, given=segments is not None)
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "
@@ -257,6 +266,8 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
         doc["units_implausible"] = note.startswith("warning: ")
     if rec.notes:
         doc["reading_notes"] = list(rec.notes)
+    if back:
+        doc["held_back_note"] = back
     normal = next((r["normal_unit"] for r in res.rows if r.get("normal_unit")), "Pa")
     doc = with_units(doc, RECORD_FIT_UNITS, {"normal": normal})
     cv_results: dict[int, Any] = {}  # step -> the trap model's fit (--run-cv), for the figures

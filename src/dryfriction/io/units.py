@@ -206,7 +206,7 @@ RECORD_UNITS: dict[str, str | None] = {
     **RECORD_FIT_UNITS, "rows": DIMENSIONLESS, "first_line": LABEL, "time_span_s": "s",
     "resets_s": "s", "rate_changes_s": "s", "gaps_s": "s", "normal_changes_s": "s",
     "t_normal_change": "s", "normal_before": "Pa (N where the record gives a force)",
-    "normal_after": "Pa (N where the record gives a force)",
+    "normal_after": "Pa (N where the record gives a force)", "velocity_read": "m/s",
 }
 """``record --json``: the record as read, its load program and its steps (SI)."""
 

@@ -13,7 +13,8 @@ import numpy as np
 from ..validation import Array
 from .segmentation import kernel_input, line_fit, median, step_gains
 
-__all__ = ["find_resets", "jump_excursions", "normal_changes", "sampling_changes"]
+__all__ = ["find_resets", "jump_excursions", "moves_backwards", "normal_changes",
+           "sampling_changes"]
 
 _RESET_K = 10.0
 """A reset's jump, in robust scales of the increments' scatter beyond the range the local
@@ -517,3 +518,24 @@ def _nearest_crossing(t: Array, sn: Array, j: int, mid: float) -> int:
         return j
     tc = t[j - 1] + (mid - sn[j - 1]) / (sn[j] - sn[j - 1]) * (t[j] - t[j - 1])
     return j - 1 if tc - t[j - 1] < t[j] - tc else j
+
+
+BACK_CLIP = 20.0
+"""Increments of the displacement beyond this many times their median size count as that
+many in :func:`moves_backwards` (a transducer re-zeroed: a jump with no slip, not motion)."""
+
+
+def moves_backwards(t: Array, values: Array, velocity: bool = False) -> bool:
+    """Whether a record's load point moves backwards over the record as a whole (ours): the
+    sum of its displacement's increments, each clipped to :data:`BACK_CLIP` times their
+    median size (so that a reset does not count), is negative; for a ``velocity`` column
+    (m/s) its integral over the times ``t`` (s). A lab whose displacement decreases as the
+    load point advances (a transducer's sign convention) then reads forward, as the load
+    programs of this package move (forward or held: :func:`.lab.parse_segments`)."""
+    v = np.asarray(values, float)
+    if velocity:
+        return bool(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(t)) < 0.0)
+    dx = np.diff(v)
+    moved = np.abs(dx[dx != 0.0])  # a quantised record's increments are mostly 0
+    size = BACK_CLIP * float(np.median(moved)) if moved.size else 0.0
+    return bool(np.sum(np.clip(dx, -size, size)) < 0.0)

@@ -51,7 +51,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..validation import Array
-from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
+from .artifacts import (
+    find_resets,
+    jump_excursions,
+    moves_backwards,
+    normal_changes,
+    sampling_changes,
+)
 from .labsteps import Segment, example_segments, make_segments
 from .placement import (
     FINE_RATIO,
@@ -69,7 +75,7 @@ from .record import LabRecord
 from .segmentation import best_hinge, hinge_segments, kernel_input, median, noise_level
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
-           "displacement", "no_change_message", "PLACE_TOL", "Z_MIN"]
+           "displacement", "held_back_message", "no_change_message", "PLACE_TOL", "Z_MIN"]
 
 Z_MIN = 6.5
 """Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
@@ -209,6 +215,9 @@ class Detection:
         Start times, s, of gaps in the sampling (an interval 10 times its neighbours').
     normal_changes : tuple of float
         Times, s, of normal-stress changes (segment boundaries).
+    held_back : tuple of (float, float)
+        Stretches read moving backwards faster than a hold's drift and reported as holds
+        (:data:`BACK_HELD`): the time each starts, s, and the velocity read, m/s.
     """
 
     segments: tuple[Segment, ...]
@@ -217,6 +226,7 @@ class Detection:
     rate_changes: tuple[float, ...] = ()
     gaps: tuple[float, ...] = ()
     normal_changes: tuple[float, ...] = ()
+    held_back: tuple[tuple[float, float], ...] = ()
 
 
 def displacement(record: LabRecord) -> Array:
@@ -898,6 +908,10 @@ def detect_program(
     hold_end = _is_hold(v_arr, d_arr, sxx_arr, fl, floor, given)
     if HOLD_BACK and not given:
         hold_end |= _held_back(v_arr)
+    back = np.zeros(len(vel), bool)
+    if BACK_HELD and not given and not moves_backwards(t, x):
+        back = ~hold_end & (v_arr < 0.0)
+        hold_end |= back
     hold = [bool(h) for h in hold_end]
     plateau = _plateaus(t, bounds, vel, hold, rel_tol)
     keep = [0] + [bounds[j] for j in range(1, len(plateau)) if plateau[j] != plateau[j - 1]]
@@ -919,7 +933,11 @@ def detect_program(
         normal = float(np.mean(sn[s.i_start:s.i_end])) if sn is not None else float("nan")
         pl = where.get(s.i_start) if np.isfinite(conf) else None
         if pl is None or not np.isfinite(pl.lo):
-            out.append(replace(s, confidence=conf, normal=normal))
+            # a velocity change whose time could not be assessed (too few samples beside it
+            # to compute an interval) is not said to be placed (an outside user's holds cut
+            # by a gap: such changes read as placed, 5 s off)
+            moved = j > 0 and s.velocity != segs[j - 1].velocity
+            out.append(replace(s, confidence=conf, normal=normal, start_placed=not moved))
             continue
         # placed: probably (PLACED_P) within the larger of one sample (the interval before
         # the change, not a gap: sample_intervals) and PLACE_TOL of the reported time, by the
@@ -928,8 +946,9 @@ def detect_program(
         out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,
                            start_edge=pl.edge, start_placed=placed, start_p=p_in))
     rate, gaps = sampling_changes(t)
+    held_back = tuple((float(t[bounds[j]]), float(v_arr[j])) for j in np.flatnonzero(back))
     return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),
-                     tuple(gaps), tuple(float(t[i]) for i in nchg))
+                     tuple(gaps), tuple(float(t[i]) for i in nchg), held_back)
 
 
 READING = True
@@ -1161,6 +1180,18 @@ HOLD_BACK = True
 :func:`_held_back`)."""
 
 
+BACK_HELD = True
+"""In a record whose load point moves forward (:func:`.artifacts.moves_backwards`), a
+stretch read moving backwards faster than :func:`_held_back` allows a hold's drift is
+reported as a hold too, and listed (:class:`Detection`'s ``held_back``) so that the user
+is told (ours; stop 50). Why: a load program moves forward or holds (the range
+:func:`.lab.parse_segments` and the fits take), so no commanded stretch runs backwards; one
+that reads so is a hold (a drift, a reset not taken out) or a misread. Reported at its speed,
+it made a program that ``--segments`` refused and that ``fit`` refused with an array index
+(an outside user's records: a 190-s hold between slides at 0.03 um/s, read at -0.51 nm/s
+under a wander of 80 nm; a re-zeroing in a gap within a hold read as -10.8 um/s)."""
+
+
 def _held_back(v: Array) -> Array:
     """Whether each stretch is a hold read through the record's drift (ours): it moves the way
     no stretch beside it moves, at most :data:`.placement.HOLD_RATIO` of the faster
@@ -1232,6 +1263,18 @@ def _plateaus(t: Array, bounds: list[int], vel: list[float], hold: list[bool],
 def detect_segments(record: LabRecord, **kwargs: float) -> tuple[Segment, ...]:
     """The load program of a record (:func:`detect_program`'s segments)."""
     return detect_program(record, **kwargs).segments  # type: ignore[arg-type]
+
+
+def held_back_message(det: Detection, t0: float = 0.0) -> str | None:
+    """One line on the stretches :data:`BACK_HELD` reported as holds (``None`` if none), each
+    by its start (s from ``t0``) and the velocity read (um/s)."""
+    if not det.held_back:
+        return None
+    what = ", ".join(f"{t - t0:.6g} s ({v * 1e6:.3g} um/s)" for t, v in det.held_back)
+    return (f"read moving backwards and reported as holds: the stretch(es) from {what}; a "
+            "load program moves forward or holds, so such a stretch is a drift, a "
+            "displacement reset not taken out or a misread: check it in record.png, and give "
+            "the program with --segments if it is not a hold")
 
 
 def no_change_message(record: LabRecord, det: Detection) -> str:

@@ -45,8 +45,15 @@ import numpy as np
 
 from ..io.textfile import HEAD_BYTES, check_text
 from ..validation import FRICTION_MAX, Array, check_memory
+from .artifacts import moves_backwards
 from .data import LENGTH_UNITS, TIME_UNITS
-from .detection import Detection, detect_program, detect_segments, no_change_message
+from .detection import (
+    Detection,
+    detect_program,
+    detect_segments,
+    held_back_message,
+    no_change_message,
+)
 from .labforms import FORMS, MATRIX_NOTE, PREAMBLE_MAX, read_table
 from .labsteps import (
     SEGMENTS_SYNTAX,
@@ -82,6 +89,8 @@ __all__ = [
     "Detection",
     "detect_program",
     "detect_segments",
+    "held_back_message",
+    "moves_backwards",
     "no_change_message",
     "parse_segments",
     "segments_table",
@@ -687,6 +696,13 @@ def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline
                          f"{FRICTION_MAX:g} (a friction coefficient)")
     normal = vals.get("normal")
     normal_unit = "" if normal is None else ("N" if kinds["normal"] == "force" else "Pa")
+    role = "disp" if "disp" in vals else "velocity"
+    if role in vals and moves_backwards(t, vals[role], role == "velocity"):
+        vals[role] = -vals[role]
+        notes.append(f"the load point's {'displacement' if role == 'disp' else 'velocity'} "
+                     f"column ({names[idx[role]].strip()}) decreases as the load point "
+                     "advances (its net motion is backwards): read with its sign changed, "
+                     "so that the load program moves forward")
     for a in (t, friction, normal, vals.get("disp"), vals.get("velocity")):
         if a is not None:
             a.setflags(write=False)

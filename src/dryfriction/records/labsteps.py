@@ -73,8 +73,10 @@ class Segment:
     start_placed : bool
         The record places the change: the probability ``start_p`` is at least
         :data:`PLACED_P` (and the interval is not at the edge). ``False``: the time
-        is uncertain beyond the tolerance (the table and segments.csv say so). True where no
-        interval was computed.
+        is uncertain beyond the tolerance (the table and segments.csv say so); ``False``
+        too for a detected velocity change whose interval could not be computed (not
+        assessed: ``start_lo`` NaN). True at the first segment, at a boundary set by a
+        normal-stress change alone, and for a program given with ``--segments``.
     start_p : float
         The probability that the change lies within the larger of one sample and
         :data:`.detection.PLACE_TOL` of ``t_start`` (:func:`.placement.placed_probability`);
@@ -127,9 +129,12 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
     src, dur = record.source, float(t[-1] - t[0])
     starts: list[float] = []
     vel: list[float] = []
-    for item in (s.strip() for s in text.split(",")):
-        if not item:
-            continue
+    items = [s.strip() for s in text.strip().rstrip(",").split(",")]
+    for item in items:
+        if not item:  # two commas in a row: an item lost in editing, not nothing
+            raise ValueError(f"--segments {text!r}: an empty item (two commas in a row): give "
+                             "start:velocity items separated by single commas, e.g. "
+                             "0:2e-7,1200:2e-6")
         a, sep, b = item.partition(":")
         try:
             s, v = float(a), float(b)
@@ -213,16 +218,16 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
     lines = [f"{'#':>3} {'t_start (s)':>13} {'95 % (s)':>15} {'t_end (s)':>13} "
              f"{'duration (s)':>12} {'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} "
              f"{'confidence':>10} {'normal (' + nu + ')':>12}"]
-    unplaced = []
+    unplaced, unassessed = [], []
     for j, s in enumerate(segments):
         kind = "  hold" if s.velocity == 0.0 else ""
         conf = "-" if not np.isfinite(s.confidence) else f"{s.confidence:.3g}"
         normal = "-" if not np.isfinite(s.normal) else f"{s.normal * scale:.4g}"
-        iv = "-" if not np.isfinite(s.start_lo) else (
+        iv = ("-" if s.start_placed else "?") if not np.isfinite(s.start_lo) else (
             f"-{s.t_start - s.start_lo:.2g}/+{s.start_hi - s.t_start:.2g}"
             + ("" if s.start_placed else "*"))
         if not s.start_placed:
-            unplaced.append(str(j))
+            (unplaced if np.isfinite(s.start_lo) else unassessed).append(str(j))
         lines.append(f"{j:>3} {s.t_start:>13.6g} {iv:>15} {s.t_end:>13.6g} "
                      f"{s.duration:>12.6g} {s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
                      f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>12}{kind}")
@@ -234,14 +239,20 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
                      "change within the larger of one sample and 0.5 s (probability below "
                      f"{100 * PLACED_P:.0f} %, t_start_p in segments.csv); its time is "
                      "uncertain by the interval shown: give it with --segments if known")
+    if unassessed:
+        lines.append(f"? segment(s) {', '.join(unassessed)}: the time of the change was not "
+                     "assessed (too few samples beside it, e.g. at a gap, to compute an "
+                     "interval): check it in record.png and give it with --segments if known")
     return "\n".join(lines)
 
 
 SEGMENTS_SYNTAX = (
     "The load program as comma-separated START:VELOCITY items: START in s from the record's "
     "first sample (the first item starts at 0; starts increase and lie inside the record), "
-    "VELOCITY the load-point velocity in m/s from there to the next START (0: a hold; "
-    "negative: sliding back). E.g. 0:2e-7,1200:2e-6 (0.2 um/s, then 2 um/s from 1200 s); "
+    "VELOCITY the load-point velocity in m/s from there to the next START (0: a "
+    f"hold, or {V_MIN:g} to {V_MAX:g}: the load point moves forward; a record whose "
+    "displacement decreases is read with its sign changed). E.g. 0:2e-7,1200:2e-6 (0.2 "
+    "um/s, then 2 um/s from 1200 s); "
     "0:1e-5,100:0,130:1e-5 (a 30-s hold). The table of the 'record' command and its "
     "segments.csv give the detected program in this form to edit.")
 """The full syntax of ``--segments`` (its CLI help)."""
@@ -279,7 +290,8 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
     interval of the change at the segment's start (record time; empty where none was
     computed), ``t_start_p`` the probability that the change lies within the larger of one
     sample and 0.5 s of ``t_start`` and ``t_start_placed`` whether that is at least
-    :data:`PLACED_P` (:class:`Segment`). With the record's ``time``, the ``--segments`` line
+    :data:`PLACED_P` (:class:`Segment`; "not assessed" for a detected change with no
+    interval). With the record's ``time``, the ``--segments`` line
     gives each start as its shortest decimal (:func:`segments_spec`). Each of ``notes`` (e.g.
     a unit assumed for want of one in the header) is a comment line under it."""
     from ..io.units import SEGMENT_UNITS, header
@@ -299,7 +311,7 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
         has = np.isfinite(s.start_lo)
         p = f"{s.start_p:.3f}" if np.isfinite(s.start_p) else ""
         iv = (f"{s.start_lo:.9g},{s.start_hi:.9g},{'yes' if s.start_placed else 'no'},{p}"
-              if has else ",,,")
+              if has else ",,," if s.start_placed else ",,not assessed,")
         rows.append(f"{j},{kind},{s.t_start:.9g},{s.t_end:.9g},{s.t_start - t0:.9g},"
                     f"{s.duration:.9g},{s.velocity:.6e},{s.velocity * 1e6:.6g},{s.i_start},"
                     f"{s.i_end},{s.i_end - s.i_start},{conf},{iv},{normal}")

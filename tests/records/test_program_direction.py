@@ -1,0 +1,192 @@
+"""A load program moves forward or holds (stop 50, after an outside user's records): a record
+whose displacement decreases is read with its sign changed (records/artifacts.py's
+moves_backwards, read in lab.read_record); a stretch read moving backwards in a forward record
+is a hold and is said (detection.BACK_HELD, Detection.held_back, held_back_message); a detected
+change whose time could not be assessed is not said placed (the table's "?", segments.csv's
+"not assessed"); and ``--segments`` refuses what the fits refuse, as its help says.
+
+The records are drawn here: a load point at the commanded speeds plus white transducer noise
+(0.15 um) and an Ornstein-Uhlenbeck position wander (40 nm, 5 s) that does not scale with the
+speed, sampled evenly at 4 Hz (its times start at 3127.4 s), written as a tab-separated text
+in mm.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dryfriction.records.detection as detection
+from dryfriction.records.artifacts import moves_backwards
+from dryfriction.records.lab import (
+    Segment,
+    detect_program,
+    held_back_message,
+    parse_segments,
+    read_record,
+    segments_spec,
+    segments_table,
+    write_segments_csv,
+)
+
+T0 = 3127.4  # s
+
+
+def _program(speeds: tuple[float, ...], durations: tuple[float, ...], seed: int,
+             fs: float = 4.0, wander: float = 40e-9, tau: float = 5.0
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """Times (s) and displacement (m) of the program ``speeds`` (m/s) for ``durations`` (s),
+    with a position wander of rms ``wander`` (m) and correlation time ``tau`` (s)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, sum(durations), 1.0 / fs)
+    ends = np.cumsum(durations)
+    v = np.asarray(speeds)[np.minimum(np.searchsorted(ends, t, side="right"), len(speeds) - 1)]
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * np.diff(t))])
+    ou = np.empty(t.size)
+    ou[0] = 0.0
+    rho = np.exp(-1.0 / fs / tau)
+    kicks = rng.standard_normal(t.size) * wander * np.sqrt(1.0 - rho**2)
+    for i in range(1, t.size):
+        ou[i] = rho * ou[i - 1] + kicks[i]
+    return T0 + t, x + ou + 0.15e-6 * rng.standard_normal(t.size)
+
+
+def _write(path: Path, t: np.ndarray, x_m: np.ndarray) -> Path:
+    """A tab-separated record: time in s, displacement in mm, friction, normal stress in MPa."""
+    mu = 0.6 + 0.001 * np.sin(t / 50.0)
+    rows = "\n".join(f"{a:.3f}\t{b * 1e3:.9f}\t{c:.6f}\t20.0" for a, b, c in zip(t, x_m, mu,
+                                                                             strict=True))
+    path.write_text("Time (s)\tLP_disp (mm)\tmu\tSigma_n (MPa)\n" + rows + "\n")
+    return path
+
+
+def test_moves_backwards_on_increments_not_ends() -> None:
+    """``moves_backwards``: a decreasing displacement moves backwards, an increasing one not,
+    even with a transducer re-zeroed down by 10 times its whole travel (the net from first
+    to last sample negative), or with a coarse quantum (most increments 0); a velocity column
+    by its integral. Mistakes, each seen failing: the sign of the net displacement (the
+    re-zeroed forward record flipped); the clip scaled by the median increment (0 under the
+    quantum: nothing counts)."""
+    t, x = _program((0.7e-6, 2.1e-6), (300.0, 300.0), seed=4)
+    assert not moves_backwards(t, x) and moves_backwards(t, -x)
+    travel = float(x[-1] - x[0])
+    zeroed = x.copy()
+    zeroed[1000:] -= 10.0 * travel
+    assert not moves_backwards(t, zeroed)
+    q = 2e-6  # most increments 0
+    assert np.mean(np.diff(np.round(x / q)) == 0) > 0.5
+    assert not moves_backwards(t, np.round(x / q) * q)
+    assert moves_backwards(t, np.round(-x / q) * q)
+    v = np.full(t.size, -1.3e-6)
+    assert moves_backwards(t, v, velocity=True) and not moves_backwards(t, -v, velocity=True)
+
+
+def test_a_decreasing_displacement_reads_forward(tmp_path: Path) -> None:
+    """A 0.7 -> 2.1 um/s step written with the displacement decreasing (mm): read with its sign
+    changed and said so in the record's notes; the detected program moves forward (0.7 and
+    2.1 um/s within 3 %) and its --segments line parses back. Mistake, seen failing: read as
+    it is (-0.7 and -2.1 um/s: a program that --segments and the fits refuse)."""
+    t, x = _program((0.7e-6, 2.1e-6), (400.0, 300.0), seed=5)
+    rec = read_record(_write(tmp_path / "back.txt", t, -x))
+    assert any("sign changed" in n and "LP_disp" in n for n in rec.notes)
+    det = detect_program(rec)
+    v = [s.velocity for s in det.segments]
+    assert len(v) == 2 and v[0] == pytest.approx(0.7e-6, rel=0.03)
+    assert v[1] == pytest.approx(2.1e-6, rel=0.03)
+    again = parse_segments(segments_spec(det.segments, float(t[0]), rec.time), rec)
+    assert [s.velocity for s in again] == pytest.approx(v, rel=1e-5)  # 6 digits
+    forward = read_record(_write(tmp_path / "fwd.txt", t, x))
+    assert not any("sign changed" in n for n in forward.notes)
+
+
+def test_a_hold_read_backwards_is_a_hold_and_said(tmp_path: Path,
+                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    """Slides at 0.9 um/s about a 240-s hold whose displacement drifts back at 40 nm/s (4.4 %
+    of the slides' speed: beyond the 1 % a hold's drift is allowed, HOLD_RATIO): reported as
+    a hold (velocity 0), listed in ``held_back`` with the velocity read (-40 nm/s within
+    10 %), said by ``held_back_message`` (its start in s from the first sample), and the
+    program's --segments line parses. Mistake, seen failing: BACK_HELD off (the stretch
+    reported at -40 nm/s, a program that --segments and the fits refuse)."""
+    t, x = _program((0.9e-6, 0.0, 0.9e-6), (300.0, 240.0, 300.0), seed=6)
+    hold = (t - T0 >= 300.0) & (t - T0 < 540.0)
+    x = x - 40e-9 * np.clip(t - T0 - 300.0, 0.0, 240.0) * 1.0
+    rec = read_record(_write(tmp_path / "hold.txt", t, x))
+    det = detect_program(rec)
+    v = [s.velocity for s in det.segments]
+    assert len(v) == 3 and v[1] == 0.0 and min(v[0], v[2]) > 0.8e-6, v
+    assert len(det.held_back) == 1
+    start, read = det.held_back[0]
+    assert abs(start - (T0 + 300.0)) < 5.0 and read == pytest.approx(-40e-9, rel=0.1)
+    msg = held_back_message(det, float(t[0]))
+    assert msg is not None and "reported as holds" in msg and f"{start - T0:.6g} s" in msg
+    parse_segments(segments_spec(det.segments, float(t[0]), rec.time), rec)
+    assert hold.sum() > 900
+    monkeypatch.setattr(detection, "BACK_HELD", False)
+    det = detect_program(rec)
+    assert det.held_back == () and det.segments[1].velocity < -30e-9
+    assert held_back_message(det) is None
+    with pytest.raises(ValueError, match="out of range"):
+        parse_segments(segments_spec(det.segments, float(t[0]), rec.time), rec)
+
+
+def test_an_unassessed_change_is_not_said_placed(tmp_path: Path) -> None:
+    """A detected velocity change without an interval (``start_lo`` NaN: too few samples
+    beside it to compute one) is not placed: the table shows "?" for its interval and a line
+    saying its time was not assessed, segments.csv "not assessed"; the first segment and a
+    boundary set by a normal-stress change alone stay as they were ("-", placed). Mistake,
+    seen failing: such a change shown as placed (no mark), as before stop 50."""
+    segs = (Segment(10.0, 20.0, 1e-6, 0, 40, start_placed=True),
+            Segment(20.0, 30.0, 0.0, 40, 80, confidence=12.0, start_placed=False),
+            Segment(30.0, 40.0, 0.0, 80, 120, start_placed=True),
+            Segment(40.0, 50.0, 2e-6, 120, 160, confidence=40.0, start_lo=39.5,
+                    start_hi=40.6, start_placed=False, start_p=0.4))
+    table = segments_table(segs).splitlines()
+    assert table[2].split()[2] == "?" and table[3].split()[2] == "-"
+    assert table[4].split()[2].endswith("*")
+    assert any(ln.startswith("? segment(s) 1:") and "not assessed" in ln for ln in table)
+    assert any(ln.startswith("* segment(s) 3:") for ln in table)
+    write_segments_csv(tmp_path / "s.csv", segs, 10.0)
+    rows = [ln.split(",") for ln in (tmp_path / "s.csv").read_text().splitlines()
+            if not ln.startswith("#")]
+    col = rows[0].index("t_start_placed")
+    assert [r[col] for r in rows[1:]] == ["", "not assessed", "", "no"]
+
+
+def test_detection_leaves_no_unassessed_change_placed(tmp_path: Path,
+                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    """A slide-hold-slide (0.9 um/s, 60-s hold) whose placement computes no interval for the
+    hold's end (its Placement's ``lo`` NaN, as where too few samples lie beside a change):
+    that change is reported not placed, with no interval; the other, with its interval, as
+    its probability says. Mistake, seen failing: the unassessed change said placed."""
+    from dryfriction.records.placement import Placement
+
+    t, x = _program((0.9e-6, 0.0, 0.9e-6), (300.0, 60.0, 300.0), seed=8)
+    rec = read_record(_write(tmp_path / "r.txt", t, x))
+    place = detection.place_changes
+
+    def blind_end(*args, **kwargs):  # noqa: ANN002, ANN003, ANN202
+        bounds, places = place(*args, **kwargs)
+        last = places[-1]
+        return bounds, [*places[:-1], Placement(last.index, guess=last.guess)]
+
+    monkeypatch.setattr(detection, "place_changes", blind_end)
+    segs = detect_program(rec).segments
+    assert [s.velocity == 0.0 for s in segs] == [False, True, False]
+    assert np.isfinite(segs[1].start_lo) and segs[1].start_placed == (segs[1].start_p >= 0.9)
+    assert not np.isfinite(segs[2].start_lo) and segs[2].start_placed is False
+
+
+def test_segments_refuses_an_empty_item_and_says_forward(tmp_path: Path) -> None:
+    """``--segments`` refuses two commas in a row (an item lost in editing) but takes a
+    trailing comma; its help states the range it takes (a hold or forward, no "sliding
+    back"). Mistake, seen failing: the empty item skipped silently."""
+    from dryfriction.records.labsteps import SEGMENTS_SYNTAX
+
+    t, x = _program((0.7e-6, 2.1e-6), (400.0, 300.0), seed=9)
+    rec = read_record(_write(tmp_path / "r.txt", t, x))
+    assert len(parse_segments("0:7e-7,400:2.1e-6,", rec)) == 2
+    with pytest.raises(ValueError, match="empty item"):
+        parse_segments("0:7e-7,,400:2.1e-6", rec)
+    assert "sliding back" not in SEGMENTS_SYNTAX and "moves forward" in SEGMENTS_SYNTAX
