@@ -4067,6 +4067,17 @@ MUTANTS: tuple[Mutant, ...] = (
        "        if not item:  # two commas in a row: an item lost in editing, not nothing\n",
        "        if not item:  # two commas in a row: an item lost in editing, not nothing\n"
        "            continue\n", _PDIR, "-k", "empty_item"),
+    _m("plots.record: the normal stress joined across a gap", "plots/record.py",
+       "        cut = np.flatnonzero(np.diff(t) > width) + 1\n",
+       "        cut = np.zeros(0, int)\n", "tests/plots/test_reported_artists.py", "-k",
+       "unassessed"),
+    _m("plots.record: every segment label on one line", "plots/record.py",
+       "        level = (level + 1) % 3 if s.t_start - last < 0.03 * span else 0\n",
+       "        level = 0\n", "tests/plots/test_reported_artists.py", "-k", "unassessed"),
+    _m("plots.record: unassessed changes listed as not placed", "plots/record.py",
+       "    placed_not = [j for j in info.unplaced if j not in unassessed]\n",
+       "    placed_not = list(info.unplaced)\n", "tests/plots/test_reported_artists.py", "-k",
+       "unassessed"),
     # --- end stop 50 (lead)
 )
 

@@ -112,6 +112,11 @@ def smoothed_velocity(t: np.ndarray, x: np.ndarray, width: float, breaks: bool =
     return tv, vv
 
 
+def _unassessed(s: object) -> bool:
+    """Whether a segment not placed has no interval (its change's time not assessed)."""
+    return not np.isfinite(getattr(s, "start_lo", 0.0))
+
+
 def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment],
                 detection: Detection | None = None, x: np.ndarray | None = None,
                 given: bool = False, note: str | None = None) -> tuple[Figure, RecordFigure]:
@@ -179,10 +184,17 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     axes[1].set_ylabel(FRICTION_SI)
     if has_normal:
         unit, scale = ("MPa", 1e-6) if record.normal_unit == "Pa" else ("kN", 1e-3)
-        axes[2].plot(t - t0, np.asarray(record.normal_stress) * scale, color="C0", lw=0.8)
+        # no line across a gap, as the velocity above (an outside user's records)
+        cut = np.flatnonzero(np.diff(t) > width) + 1
+        axes[2].plot(np.insert(t - t0, cut, np.nan),
+                     np.insert(np.asarray(record.normal_stress, float) * scale, cut, np.nan),
+                     color="C0", lw=0.8)
         axes[2].set_ylabel(f"normal {'stress' if unit == 'MPa' else 'force'}  [{unit}]")
         axes[2].ticklabel_format(axis="y", useOffset=False)  # 30.002, not +3e1 and 0.002
-    # each step and hold shaded and numbered as in the table (segment 0 is where it starts)
+    # each step and hold shaded and numbered as in the table (segment 0 is where it starts);
+    # a label within 3 % of the span of the one before steps down a line (up to three), so
+    # that short segments' labels do not print over each other
+    last, level = -np.inf, 0
     for j, s in enumerate(segments):
         if j == 0 and s.velocity != 0.0:
             continue
@@ -200,9 +212,11 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
                                                 alpha=0.12 if hold else 0.08, lw=0))
         if not s.start_placed:
             info.unplaced.append(j)
-        ax.annotate(f"{j}" + ("*" if not s.start_placed else "") + (" hold" if hold else ""),
-                    (s.t_start - t0, 1.0),
-                    xycoords=("data", "axes fraction"), xytext=(2, -10),
+        mark = "" if s.start_placed else "?" if _unassessed(s) else "*"
+        level = (level + 1) % 3 if s.t_start - last < 0.03 * span else 0
+        last = s.t_start
+        ax.annotate(f"{j}{mark}" + (" hold" if hold else ""), (s.t_start - t0, 1.0),
+                    xycoords=("data", "axes fraction"), xytext=(2, -10 - 9 * level),
                     textcoords="offset points", fontsize=8)
     marks = {"rate change": list(detection.rate_changes) if detection else [],
              "gap": list(detection.gaps) if detection else [],
@@ -224,11 +238,16 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     axes[-1].set_xlabel(f"time from the first sample  [s]  (t0 = {t0:g} s)")
     n_steps = sum(1 for j in info.shaded if segments[j].velocity != 0.0)
     n_holds = len(info.shaded) - n_steps
+    unassessed = [j for j in info.unplaced if _unassessed(segments[j])]
+    placed_not = [j for j in info.unplaced if j not in unassessed]
     title = (f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
              f"{n_holds} hold(s); shaded and numbered as in segments.csv"
              + ("\n* change time not placed within max(0.5 s, one sample) (95 % interval "
-                f"in segments.csv): segment(s) {', '.join(map(str, info.unplaced))}"
-                if info.unplaced else "") + (f"\n{note}" if note else ""))
+                f"in segments.csv): segment(s) {', '.join(map(str, placed_not))}"
+                if placed_not else "")
+             + ("\n? change time not assessed (no interval: too few samples beside it): "
+                f"segment(s) {', '.join(map(str, unassessed))}" if unassessed else "")
+             + (f"\n{note}" if note else ""))
     # each line wrapped to the figure's width (a long path was cut at its edges), the
     # panels lowered by the lines it takes
     lines = _wrap(title, 9.0, TITLE_WIDTH * 72.0 * fig.get_figwidth())
