@@ -297,8 +297,10 @@ def _steady_direct_data() -> SteadyData:
 
 def test_a_steady_fit_with_the_direct_effect_is_the_one_before_the_model_object() -> None:
     """A generic fit (alpha 0.11, Eyring-Nabarro, A and v_ref fitted and fixed) gives the
-    values the fit gave before CVModel held a TrapModel (measured then, to the last digit;
-    compared here at 1e-12): the old and the new form alike."""
+    values the fit gave before CVModel held a TrapModel (measured then, to the last digit):
+    the old and the new form alike, the two to 1e-12 of each other, and both to 1e-6 of those
+    values (the optimiser's own tolerance: on another machine, or NumPy 2.4 / SciPy 1.17, the
+    same fit ends 1e-7 to 1e-8 away; a wrong mapping of the old form moves them by per cent)."""
     from dryfriction.theory.model import OldTheoryFormWarning
 
     before = {"eps": 0.02688950047407185, "vstar": 3.4998134936394638e-06,
@@ -309,9 +311,9 @@ def test_a_steady_fit_with_the_direct_effect_is_the_one_before_the_model_object(
     with pytest.warns(OldTheoryFormWarning):
         old_model = CVModel(0.11, "eyring-nabarro", direct=0.015, v_ref=2.3e-6)
     old = fit(d, old_model, profile=False)
-    for r in (new, old):
-        got = {p.name: p.value for p in r.parameters}
-        assert got == pytest.approx(before, rel=1e-12, abs=0.0)
+    got_new, got_old = ({p.name: p.value for p in r.parameters} for r in (new, old))
+    assert got_old == pytest.approx(got_new, rel=1e-12, abs=0.0)
+    assert got_new == pytest.approx(before, rel=1e-6, abs=0.0)
 
 
 def test_old_forms_of_the_series_the_start_and_the_record_model_compute_the_same(

@@ -182,6 +182,14 @@ def test_record_figure_gaps_close_labels_and_unassessed_changes() -> None:
     assert {"1*", "2? hold", "3"} <= set(texts), list(texts)
     offsets = [texts[w].xyann[1] for w in ("1*", "2? hold", "3")]
     assert len(set(offsets)) == 3, offsets
+    # a 20-s gap in a 1e4-s record at 1 Hz, shorter than the velocity's window (25 s), is a
+    # gap as the detection reports one (10 intervals), not drawn across either
+    t2 = np.concatenate([np.arange(0.0, 5000.0), np.arange(5020.0, 10000.0)])
+    rec2 = dataclasses.replace(rec, time=t2, load_point=1e-6 * t2, friction=0.6 + 0.0 * t2,
+                               normal_stress=2e7 + 0.0 * t2)
+    fig2, info2 = plot_record(rec2, (Segment(0.0, 9999.0, 1e-6, 0, t2.size),), None)
+    xs2 = np.asarray(fig2.axes[info2.panels.index("normal")].get_lines()[0].get_xdata(), float)
+    assert np.isnan(xs2).sum() == 1
     title = fig._suptitle.get_text()
     assert "not placed" in title and "segment(s) 1\n" in title + "\n"
     assert "not assessed" in title and "segment(s) 2" in title.split("not assessed")[1]

@@ -62,23 +62,41 @@ def _write(path: Path, t: np.ndarray, x_m: np.ndarray) -> Path:
     return path
 
 
-def test_moves_backwards_on_increments_not_ends() -> None:
+def test_moves_backwards_only_where_it_plainly_does() -> None:
     """``moves_backwards``: a decreasing displacement moves backwards, an increasing one not,
-    even with a transducer re-zeroed down by 10 times its whole travel (the net from first
-    to last sample negative), or with a coarse quantum (most increments 0); a velocity column
-    by its integral. Mistakes, each seen failing: the sign of the net displacement (the
-    re-zeroed forward record flipped); the clip scaled by the median increment (0 under the
-    quantum: nothing counts)."""
+    nor one re-zeroed down by 10 times its whole travel (the net from first to last sample
+    negative), one under a coarse quantum, or a forward record mostly at rest whose holds
+    drift back (an independent review's family: 2000-8000-s holds drifting at -0.05 to -0.5
+    nm/s about one 5-20-s slide at 5-20 um/s; and slides of 100 s at 0.03 um/s about holds
+    of 1e4 s at -0.51 nm/s, more travel back than forward) or that ends with a fast
+    retraction; a velocity column by its integral. Mistakes, each seen failing: the sign of
+    the net displacement; every block's change counted (the drifting holds flipped); the
+    resets left in."""
     t, x = _program((0.7e-6, 2.1e-6), (300.0, 300.0), seed=4)
     assert not moves_backwards(t, x) and moves_backwards(t, -x)
     travel = float(x[-1] - x[0])
     zeroed = x.copy()
     zeroed[1000:] -= 10.0 * travel
-    assert not moves_backwards(t, zeroed)
+    assert not moves_backwards(t, zeroed) and moves_backwards(t, -zeroed)
     q = 2e-6  # most increments 0
     assert np.mean(np.diff(np.round(x / q)) == 0) > 0.5
     assert not moves_backwards(t, np.round(x / q) * q)
     assert moves_backwards(t, np.round(-x / q) * q)
+    rng = np.random.default_rng(12)
+    for _ in range(10):
+        hold, dur = rng.uniform(2000.0, 8000.0), rng.uniform(5.0, 20.0)
+        tt = np.arange(0.0, 2.0 * hold + dur, 1.0)
+        v = np.where((tt >= hold) & (tt < hold + dur), rng.uniform(5e-6, 20e-6), 0.0)
+        v = v - rng.uniform(0.05e-9, 0.5e-9) * (v == 0.0)
+        xx = np.concatenate([[0.0], np.cumsum(v[:-1])]) + 10e-9 * rng.standard_normal(tt.size)
+        assert not moves_backwards(tt, xx)
+    tt = np.arange(0.0, 20300.0, 1.0)
+    slide = ((tt >= 0) & (tt < 100)) | ((tt >= 10100) & (tt < 10200)) | (tt >= 20200)
+    v = np.where(slide, 0.03e-6, -0.51e-9)
+    xx = np.concatenate([[0.0], np.cumsum(v[:-1])]) + 10e-9 * rng.standard_normal(tt.size)
+    assert xx[-1] < xx[0] and not moves_backwards(tt, xx)
+    t3, x3 = _program((1e-6, 10e-6, -20e-6), (300.0, 100.0, 100.0), seed=13)
+    assert not moves_backwards(t3, x3)
     v = np.full(t.size, -1.3e-6)
     assert moves_backwards(t, v, velocity=True) and not moves_backwards(t, -v, velocity=True)
 
@@ -178,15 +196,48 @@ def test_detection_leaves_no_unassessed_change_placed(tmp_path: Path,
     assert not np.isfinite(segs[2].start_lo) and segs[2].start_placed is False
 
 
+def test_a_reversal_is_no_hold_and_fit_refuses_it(tmp_path: Path) -> None:
+    """1 -> 10 um/s, then -5 um/s for 100 s, then 1 um/s (a reversal at half the fastest
+    slide's speed), and a 200-um reset spread over 3 s inside a 1-um/s slide (too slow for
+    the reset finder): each backward stretch is reported as read (-5 and about -67 um/s),
+    not as a hold, and said (``backwards_message``); ``fit`` refuses the record in one line
+    before any work, naming the stretch (exit 2). Mistakes, each seen failing: every
+    backward stretch taken for a hold (a step hidden in a slide-hold-slide window); the fit
+    not refused up front."""
+    from typer.testing import CliRunner
+
+    from dryfriction.cli import app
+    from dryfriction.records.lab import backwards_message
+
+    t, x = _program((1e-6, 10e-6, -5e-6, 1e-6), (300.0, 100.0, 100.0, 300.0), seed=14)
+    t2, x2 = _program((1e-6,), (600.0,), seed=15)
+    x2 = x2 - 200e-6 * np.clip((t2 - T0 - 300.0) / 3.0, 0.0, 1.0)
+    for name, tt, xx, speed in (("rev.txt", t, x, -5e-6), ("ramp.txt", t2, x2, -200e-6 / 3)):
+        path = _write(tmp_path / name, tt, xx)
+        det = detect_program(read_record(path))
+        back = [s for s in det.segments if s.velocity < 0.0]
+        assert len(back) == 1 and back[0].velocity == pytest.approx(speed, rel=0.05), name
+        assert not any(s.velocity == 0.0 for s in det.segments), name
+        msg = backwards_message(det.segments, float(tt[0]))
+        assert msg is not None and "moving backwards" in msg and "--segments" in msg
+        res = CliRunner().invoke(app, ["fit", str(path), "--model", "rsf", "--out",
+                                       str(tmp_path / f"fit_{name}")])
+        assert res.exit_code == 2, res.output
+        assert "moving backwards" in res.output and len(res.output.strip().splitlines()) <= 3
+        assert not (tmp_path / f"fit_{name}").exists()
+
+
 def test_segments_refuses_an_empty_item_and_says_forward(tmp_path: Path) -> None:
-    """``--segments`` refuses two commas in a row (an item lost in editing) but takes a
-    trailing comma; its help states the range it takes (a hold or forward, no "sliding
-    back"). Mistake, seen failing: the empty item skipped silently."""
+    """``--segments`` refuses two commas in a row, two at the end or one at the start (an
+    item lost in editing) but takes one trailing comma; its help states the range it takes
+    (a hold or forward, no "sliding back"). Mistake, seen failing: the empty item skipped
+    silently."""
     from dryfriction.records.labsteps import SEGMENTS_SYNTAX
 
     t, x = _program((0.7e-6, 2.1e-6), (400.0, 300.0), seed=9)
     rec = read_record(_write(tmp_path / "r.txt", t, x))
     assert len(parse_segments("0:7e-7,400:2.1e-6,", rec)) == 2
-    with pytest.raises(ValueError, match="empty item"):
-        parse_segments("0:7e-7,,400:2.1e-6", rec)
+    for bad in ("0:7e-7,,400:2.1e-6", "0:7e-7,400:2.1e-6,,", ",0:7e-7,400:2.1e-6"):
+        with pytest.raises(ValueError, match="empty item"):
+            parse_segments(bad, rec)
     assert "sliding back" not in SEGMENTS_SYNTAX and "moves forward" in SEGMENTS_SYNTAX

@@ -96,6 +96,7 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
     from ..records.lab import (
         apparatus_note,
         assumed_units,
+        backwards_message,
         detect_program,
         held_back_message,
         no_change_message,
@@ -157,6 +158,9 @@ def record(path: str | Path, *, columns: str | None = _O["columns"],
         if back:  # said where the user reads: the table's notes, the JSON, segments.csv
             rep["held_back"] = [{"t_start": a, "velocity_read": v} for a, v in det.held_back]
             rep["held_back_note"] = back
+        backwards = backwards_message(segs, float(t[0]))
+        if backwards:
+            rep["backwards_note"] = backwards
     rep["segments_option"] = segments_spec(segs, float(t[0]), t)
     rep = with_units(rep, RECORD_UNITS, {"normal": rec.normal_unit or "Pa"})
     files: list[str] = []

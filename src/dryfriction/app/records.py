@@ -77,6 +77,7 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
     from ..records.lab import (
         apparatus_note,
         assumed_units,
+        backwards_message,
         held_back_message,
         write_segments_csv,
     )
@@ -90,9 +91,12 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
         + ": no unit in the header: " + ", ".join(f"{rec.columns[r]!r} read in {u}"
                                                   for r, u in assumed.items())
         + " (give the units with --columns ROLE=NAME:UNIT if not)")
-    back = held_back_message(det, float(rec.time[0])) if det is not None else None
-    write_segments_csv(folder / "segments.csv", segs, float(rec.time[0]), rec.normal_unit,
-                       rec.time, notes=tuple(q for q in (note, back) if q))
+    t0 = float(rec.time[0])
+    back = held_back_message(det, t0) if det is not None else None
+    backwards = backwards_message(segs, t0) if det is not None else None
+    # the reading's notes too (a sign changed, a preamble skipped): what a user keeps
+    write_segments_csv(folder / "segments.csv", segs, t0, rec.normal_unit, rec.time,
+                       notes=tuple(q for q in (note, *rec.notes, back, backwards) if q))
     fig, _ = plot_record(rec, segs, det, given=given, note=short)
     save_figure(fig, folder / f"record.{fmt}", fmt, dpi)
 
@@ -205,6 +209,9 @@ def fit_record(path: str | Path, out: str | Path, *, model: str = "rsf",
     back = lab.held_back_message(det, float(rec.time[0])) if det is not None else None
     if back:
         _say(report, f"note: {back}")
+    backwards = lab.backwards_message(segs, float(rec.time[0])) if det is not None else None
+    if backwards:  # before any work: the fits take a program forward or held
+        raise ValueError(f"{path}: {backwards}")
     wins = lab.slice_steps(rec, segs, given=segments is not None)
     if not wins:
         raise ValueError(f"{path}: no velocity step to fit: the detected load program is one "

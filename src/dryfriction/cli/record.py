@@ -73,8 +73,9 @@ def record_command(
                       ("rate_changes_s", "sampling-rate changes"), ("gaps_s", "gaps")):
         if report.get(key):
             print(f"{what} at t = " + ", ".join(f"{v:g}" for v in report[key]) + " s")
-    if report.get("held_back_note"):
-        print(f"note: {report['held_back_note']}")
+    for key in ("held_back_note", "backwards_note"):
+        if report.get(key):
+            print(f"note: {report[key]}")
     if report.get("normal_changes_s"):  # with the stresses either side, as the table gives
         print("normal-stress changes (segment boundaries): " + normal_change_text(
             normal_change_values(segs, report["normal_changes_s"]), rec.normal_unit))

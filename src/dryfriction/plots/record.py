@@ -143,6 +143,7 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     -------
     Figure, RecordFigure
     """
+    from ..records.artifacts import gap_intervals
     from ..records.detection import displacement, find_resets
 
     t = np.asarray(record.time, float)
@@ -185,7 +186,8 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     if has_normal:
         unit, scale = ("MPa", 1e-6) if record.normal_unit == "Pa" else ("kN", 1e-3)
         # no line across a gap, as the velocity above (an outside user's records)
-        cut = np.flatnonzero(np.diff(t) > width) + 1
+        dt = np.diff(t)
+        cut = np.flatnonzero((dt > width) | gap_intervals(dt, float(np.median(dt)))) + 1
         axes[2].plot(np.insert(t - t0, cut, np.nan),
                      np.insert(np.asarray(record.normal_stress, float) * scale, cut, np.nan),
                      color="C0", lw=0.8)

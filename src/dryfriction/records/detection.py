@@ -51,13 +51,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..validation import Array
-from .artifacts import (
-    find_resets,
-    jump_excursions,
-    moves_backwards,
-    normal_changes,
-    sampling_changes,
-)
+from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
 from .labsteps import Segment, example_segments, make_segments
 from .placement import (
     FINE_RATIO,
@@ -75,7 +69,8 @@ from .record import LabRecord
 from .segmentation import best_hinge, hinge_segments, kernel_input, median, noise_level
 
 __all__ = ["Detection", "Fluctuations", "detect_program", "detect_segments", "find_resets",
-           "displacement", "held_back_message", "no_change_message", "PLACE_TOL", "Z_MIN"]
+           "displacement", "backwards_message", "held_back_message", "no_change_message",
+           "PLACE_TOL", "Z_MIN"]
 
 Z_MIN = 6.5
 """Confidence (velocity change over its fluctuation scatter) a detected change must reach. From
@@ -909,8 +904,10 @@ def detect_program(
     if HOLD_BACK and not given:
         hold_end |= _held_back(v_arr)
     back = np.zeros(len(vel), bool)
-    if BACK_HELD and not given and not moves_backwards(t, x):
-        back = ~hold_end & (v_arr < 0.0)
+    top = float(np.max(v_arr)) if len(vel) else 0.0
+    if BACK_HELD and not given and top > 0.0 and top >= float(np.max(np.abs(v_arr))):
+        # a program whose fastest stretch moves forward: a slow backward stretch is a hold
+        back = ~hold_end & (v_arr < 0.0) & (np.abs(v_arr) <= BACK_RATIO * top)
         hold_end |= back
     hold = [bool(h) for h in hold_end]
     plateau = _plateaus(t, bounds, vel, hold, rel_tol)
@@ -1181,15 +1178,21 @@ HOLD_BACK = True
 
 
 BACK_HELD = True
-"""In a record whose load point moves forward (:func:`.artifacts.moves_backwards`), a
-stretch read moving backwards faster than :func:`_held_back` allows a hold's drift is
-reported as a hold too, and listed (:class:`Detection`'s ``held_back``) so that the user
-is told (ours; stop 50). Why: a load program moves forward or holds (the range
-:func:`.lab.parse_segments` and the fits take), so no commanded stretch runs backwards; one
-that reads so is a hold (a drift, a reset not taken out) or a misread. Reported at its speed,
-it made a program that ``--segments`` refused and that ``fit`` refused with an array index
-(an outside user's records: a 190-s hold between slides at 0.03 um/s, read at -0.51 nm/s
-under a wander of 80 nm; a re-zeroing in a gap within a hold read as -10.8 um/s)."""
+"""In a program whose fastest stretch moves forward, a stretch read moving backwards faster
+than :func:`_held_back` allows a hold's drift but at most :data:`BACK_RATIO` of that fastest
+speed is reported as a hold too, and listed (:class:`Detection`'s ``held_back``) so that the
+user is told (ours; stop 50). Why: a load program moves forward or holds (the range
+:func:`.lab.parse_segments` and the fits take), and a slow backward reading is a hold seen
+through a drift or a position wander. Reported at its speed, it made a program that
+``--segments`` refused and that ``fit`` refused with an array index (an outside user's
+records: a 190-s hold between slides at 0.03 um/s, read at -0.51 nm/s under a wander of 80
+nm). A fast one (a reversal, a reset the detector did not take out) stays as read and is
+said (:func:`backwards_message`): called a hold, it hid a step in a slide-hold-slide window
+(an independent review's 200-um reset spread over 3 s at a step)."""
+BACK_RATIO = 0.2
+"""The largest backward speed, as a fraction of the program's fastest forward one, that
+:data:`BACK_HELD` takes for a hold (ours: a drift or a wander is far slower than the slides;
+a reversal or a reset left in is as fast or faster)."""
 
 
 def _held_back(v: Array) -> Array:
@@ -1275,6 +1278,20 @@ def held_back_message(det: Detection, t0: float = 0.0) -> str | None:
             "load program moves forward or holds, so such a stretch is a drift, a "
             "displacement reset not taken out or a misread: check it in record.png, and give "
             "the program with --segments if it is not a hold")
+
+
+def backwards_message(segments: tuple[Segment, ...] | list[Segment], t0: float = 0.0
+                      ) -> str | None:
+    """One line on the segments that move backwards (``None`` if none), each by its start (s
+    from ``t0``) and velocity (um/s): the fits refuse them (ours)."""
+    back = [s for s in segments if s.velocity < 0.0]
+    if not back:
+        return None
+    what = ", ".join(f"{s.t_start - t0:.6g} s ({s.velocity * 1e6:.3g} um/s)" for s in back)
+    return (f"moving backwards: the segment(s) from {what}; a load program moves forward or "
+            "holds and the fits refuse it: a reversal, or a displacement reset the detector "
+            "did not take out (check record.png); to fit the rest, give the program with "
+            "--segments, such a stretch as a hold (0), or cut the record before it")
 
 
 def no_change_message(record: LabRecord, det: Detection) -> str:

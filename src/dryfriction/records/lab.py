@@ -49,6 +49,7 @@ from .artifacts import moves_backwards
 from .data import LENGTH_UNITS, TIME_UNITS
 from .detection import (
     Detection,
+    backwards_message,
     detect_program,
     detect_segments,
     held_back_message,
@@ -89,6 +90,7 @@ __all__ = [
     "Detection",
     "detect_program",
     "detect_segments",
+    "backwards_message",
     "held_back_message",
     "moves_backwards",
     "no_change_message",

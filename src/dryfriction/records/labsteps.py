@@ -129,12 +129,14 @@ def parse_segments(text: str, record: LabRecord) -> tuple[Segment, ...]:
     src, dur = record.source, float(t[-1] - t[0])
     starts: list[float] = []
     vel: list[float] = []
-    items = [s.strip() for s in text.strip().rstrip(",").split(",")]
+    items = [s.strip() for s in text.split(",")]
+    if len(items) > 1 and not items[-1]:
+        items.pop()  # one trailing comma: nothing lost
     for item in items:
-        if not item:  # two commas in a row: an item lost in editing, not nothing
-            raise ValueError(f"--segments {text!r}: an empty item (two commas in a row): give "
-                             "start:velocity items separated by single commas, e.g. "
-                             "0:2e-7,1200:2e-6")
+        if not item:  # a comma with no item before it: an item lost in editing, not nothing
+            raise ValueError(f"--segments {text!r}: an empty item (a comma with nothing "
+                             "before it, or two in a row): give start:velocity items "
+                             "separated by single commas, e.g. 0:2e-7,1200:2e-6")
         a, sep, b = item.partition(":")
         try:
             s, v = float(a), float(b)
