@@ -14,7 +14,7 @@ from ..validation import Array
 from .segmentation import kernel_input, line_fit, median, noise_level, step_gains
 
 __all__ = ["find_resets", "jump_excursions", "moves_backwards", "normal_changes",
-           "sampling_changes"]
+           "sampling_changes", "trapezoid_displacement"]
 
 _RESET_K = 10.0
 """A reset's jump, in robust scales of the increments' scatter beyond the range the local
@@ -541,15 +541,30 @@ def moves_backwards(t: Array, values: Array, velocity: bool = False) -> bool:
     sum of all increments flipped 70 of 178 forward records whose holds drift back)."""
     tt = np.asarray(t, float)
     v = np.asarray(values, float)
-    if velocity:
-        x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(tt))])
-    else:
-        x = find_resets(tt, v)[0]
-    if x.size < 3 or not tt[-1] > tt[0]:
+    if v.size < 3 or not tt[-1] > tt[0]:
         return False
     edges = np.searchsorted(tt, np.linspace(tt[0], tt[-1], BACK_BLOCKS + 1)[1:-1])
-    ends = np.unique(np.concatenate([[0], edges, [x.size - 1]]))
-    d = np.diff(x[ends])
-    big = np.abs(d) > 5.0 * np.sqrt(2.0) * noise_level(x)  # beyond the ends' white noise
-    forward, backward = float(d[big & (d > 0)].sum()), float(-d[big & (d < 0)].sum())
+    ends = np.unique(np.concatenate([[0], edges, [v.size - 1]]))
+
+    def travel(x: Array) -> tuple[float, float]:
+        """Forward and backward travel of the blocks' changes beyond the ends' white noise."""
+        d = np.diff(x[ends])
+        big = np.abs(d) > 5.0 * np.sqrt(2.0) * noise_level(x)
+        return float(d[big & (d > 0)].sum()), float(-d[big & (d < 0)].sum())
+
+    if velocity:
+        forward, backward = travel(trapezoid_displacement(tt, v))
+    else:
+        # the reset finder only where some block moves back (a re-zeroing is a jump back):
+        # most records move forward throughout, and reading them need not pay for it
+        forward, backward = travel(v)
+        if backward > 0.0:
+            forward, backward = travel(find_resets(tt, v)[0])
     return backward > 0.0 and backward >= BACK_FACTOR * forward
+
+
+def trapezoid_displacement(t: Array, v: Array) -> Array:
+    """The displacement (m, from 0) of a velocity ``v`` (m/s) sampled at the times ``t`` (s),
+    integrated by trapezoids."""
+    v = np.asarray(v, float)
+    return np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])

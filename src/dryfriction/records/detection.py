@@ -51,7 +51,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..validation import Array
-from .artifacts import find_resets, jump_excursions, normal_changes, sampling_changes
+from .artifacts import (
+    find_resets,
+    jump_excursions,
+    normal_changes,
+    sampling_changes,
+    trapezoid_displacement,
+)
 from .labsteps import Segment, example_segments, make_segments
 from .placement import (
     FINE_RATIO,
@@ -228,8 +234,7 @@ def displacement(record: LabRecord) -> Array:
     """The load-point displacement, m (a velocity column integrated by trapezoids)."""
     if record.load_point is not None:
         return np.asarray(record.load_point, float)
-    v, t = np.asarray(record.load_velocity, float), np.asarray(record.time)
-    return np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
+    return trapezoid_displacement(np.asarray(record.time), record.load_velocity)
 
 
 # ------------------------------------------------------------------------------ fluctuations
@@ -1275,9 +1280,10 @@ def held_back_message(det: Detection, t0: float = 0.0) -> str | None:
         return None
     what = ", ".join(f"{t - t0:.6g} s ({v * 1e6:.3g} um/s)" for t, v in det.held_back)
     return (f"read moving backwards and reported as holds: the stretch(es) from {what}; a "
-            "load program moves forward or holds, so such a stretch is a drift, a "
-            "displacement reset not taken out or a misread: check it in record.png, and give "
-            "the program with --segments if it is not a hold")
+            "load program moves forward or holds, and a backward reading this slow (at most "
+            f"{BACK_RATIO:g} of the fastest slide) is a hold seen through a drift or a "
+            "position wander: check it in record.png, and give the program with --segments "
+            "if it is not a hold")
 
 
 def backwards_message(segments: tuple[Segment, ...] | list[Segment], t0: float = 0.0
