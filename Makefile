@@ -28,14 +28,15 @@ demo: $(STAMP)
 	@echo "  $(BIN)/dryfriction simulate examples/velocity_step.toml --out run/"
 	@echo "  $(BIN)/dryfriction --help"
 
-# the suite, then the selected slow tests (each over ~20 s; all of them: pytest --runslow)
-SLOW_SUBSET := ageing_under_load or huge_run_sizes or site_builds or chromium or (readme_line and not phase and not interface_precursors)
+# the suite, then the selected slow tests (each over ~5 s on 2 cores; all of them: pytest --runslow)
+# on the same workers, a test per worker (they are whole-process runs, not fixtures to share)
+SLOW_SUBSET := ageing_under_load or huge_run_sizes or site_builds or chromium or (readme_line_exits and not phase and not interface_precursors)
 # the default suite on TEST_WORKERS processes (pytest-xdist; CI has 2 cores), a file per worker
 # (--dist loadfile: a module's fixtures are computed once); TEST_WORKERS=0 runs it in one process
 TEST_WORKERS ?= 2
 test: $(STAMP)
 	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile
-	$(BIN)/python -m pytest -q --runslow -m slow -k "$(SLOW_SUBSET)"
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist load --runslow -m slow -k "$(SLOW_SUBSET)"
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
@@ -49,7 +50,7 @@ $(DOCS_STAMP): $(STAMP)
 
 docs: $(DOCS_STAMP)
 	rm -rf docs/_build docs/generated docs/auto_examples
-	MPLBACKEND=Agg $(BIN)/python -m sphinx -q -W --keep-going -b html -d docs/_build/doctrees \
+	MPLBACKEND=Agg $(BIN)/python -m sphinx -q -W --keep-going -j auto -b html -d docs/_build/doctrees \
 		docs docs/_build/html
 	@echo "Open docs/_build/html/index.html in a browser."
 

@@ -4109,7 +4109,8 @@ def _apply(text: str, m: Mutant) -> str | None:
 def _pytest(src: Path, tests: tuple[str, ...], timeout: float) -> tuple[str, float, str]:
     """Run a selection against the tree ``src``: ``("pass" | "fail" | "timeout", s, tail)``."""
     env = {**os.environ, "PYTHONPATH": str(src)}
-    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *tests]
+    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "--slow-marked",
+           *tests]
     t0 = time.monotonic()
     try:
         p = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True,

@@ -90,6 +90,7 @@ def test_examples_are_found_and_copied_whole(tmp_path: Path) -> None:
     assert os.listdir(tmp_path / "mine") == ["velocity_step.toml"]
 
 
+@pytest.mark.slow
 def test_wheel_ships_the_package_and_the_examples(tmp_path: Path) -> None:
     # pip builds in an isolated environment: needs setuptools from the package index (or a
     # cache), as any install from source does

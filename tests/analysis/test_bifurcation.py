@@ -19,6 +19,7 @@ EPS, A = 0.04, 0.02
 MODEL = TrapModel(eps=EPS, direct=A)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("u", [0.01, 1.0])
 def test_state_kick_grows_at_the_linear_rate(u: float) -> None:
     """At 0.7 K_c a small state kick (population of 1.03 u) grows like the rightmost root:

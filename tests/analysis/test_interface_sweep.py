@@ -83,6 +83,7 @@ def _direct(tmp_path: Path, coupling: float) -> tuple[dict, dict, dict]:
     return cols, json.loads((out / "summary.json").read_text()), fields
 
 
+@pytest.mark.slow
 def test_sweep_values_equal_the_same_point_run_directly(tmp_path: Path) -> None:
     """``dryfriction sweep`` on an interface protocol: every stored statistic equals what the
     same point gives simulated alone (events.csv, summary.json and the fields of ``dryfriction

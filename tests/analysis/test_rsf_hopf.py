@@ -110,6 +110,7 @@ def test_prz_quasistatic_is_subcritical_and_inertia_makes_ageing_supercritical()
     assert rsf_hopf(m, V, 150.0).nature == "supercritical"  # radiation damping alone too
 
 
+@pytest.mark.slow
 def test_supercritical_amplitude_against_settled_simulations() -> None:
     """Ageing law with inertia (M = 0.1): settled cycles below k_c (two starts, 0.8 and 1.2
     times the normal form's cycle, each changing < 1e-3 over 50 periods and ending within

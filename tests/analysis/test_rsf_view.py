@@ -27,6 +27,7 @@ def view():  # type: ignore[no-untyped-def]
     return trap_model_as_rsf(TrapModel(alpha=ALPHA, eps=EPS), u0=U0)
 
 
+@pytest.mark.slow
 def test_the_ensemble_is_accurate_enough(view) -> None:  # type: ignore[no-untyped-def]
     """Steady levels of the runs against eq. 34 (closed-form quadrature) to 1e-3."""
     model = TrapModel(alpha=ALPHA, eps=EPS)

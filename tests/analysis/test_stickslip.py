@@ -138,6 +138,7 @@ def _check_cycle_mass_balance(row, u):
     assert row["slip_per_event"] == pytest.approx(u * row["period"], rel=0.1)
 
 
+@pytest.mark.slow
 def test_continuation_in_K_shows_hysteresis_quasi_static(runslow):
     """M = 0, u = 0.1: steady sliding survives down to about K_c and stick-slip appears there
     with a finite amplitude; on the way back up it persists above K_c (subcritical)."""
@@ -187,6 +188,7 @@ def _write(tmp_path, sweep, name="p.toml"):
     return p
 
 
+@pytest.mark.slow
 def test_sweep_cli_runs_on_two_workers(tmp_path):
     p = _write(tmp_path, '"drive.stiffness" = [0.04, 0.2]\n')
     r = runner.invoke(app, ["sweep", str(p), "--out", str(tmp_path / "o"), "--workers", "2"])
@@ -208,6 +210,7 @@ def test_sweep_cli_runs_on_two_workers(tmp_path):
     np.testing.assert_array_equal(lin["linearly_stable"].values, [0.0, 1.0])
 
 
+@pytest.mark.slow
 def test_phase_diagram_cli_writes_png_and_netcdf(tmp_path):
     p = _write(tmp_path, '"drive.stiffness" = [0.04, 0.2]\n'
                          '"drive.segments.0.velocity" = [0.1, 1.0]\n')

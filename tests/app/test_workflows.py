@@ -92,6 +92,7 @@ def test_compare_a_trap_protocol(tmp_path: Path) -> None:
     same_folders(tmp_path / "cli_c", tmp_path / "py_c", c.files)
 
 
+@pytest.mark.slow
 def test_fit_csv_files(tmp_path: Path) -> None:
     data = [EXAMPLES / "data" / "synthetic_static_paper.csv",
             EXAMPLES / "data" / "synthetic_steady_paper.csv"]

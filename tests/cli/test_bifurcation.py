@@ -96,6 +96,7 @@ def test_too_many_checks_and_trap_model_without_direct_refused(tmp_path: Path) -
     assert "no finite K_c" not in r.stderr and "omega_c = inf" in r.stderr
 
 
+@pytest.mark.slow
 def test_supercritical_check_columns(tmp_path: Path) -> None:
     out = tmp_path / "out"
     r = run(protocol(tmp_path, "ageing", mass=0.3 * 6.1e-6 / 2e-6**2), "--velocities", "2e-6",
@@ -108,6 +109,7 @@ def test_supercritical_check_columns(tmp_path: Path) -> None:
     assert "check_exponent[1]" in (out / "bifurcation.csv").read_text().splitlines()[0]
 
 
+@pytest.mark.slow
 def test_subcritical_check_columns(tmp_path: Path) -> None:
     """PRZ law, quasi-static: the check bisects the unstable cycle at three distances and
     reports its branch's exponent (1/2) and its size against the normal form's. The mistake

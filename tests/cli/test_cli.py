@@ -182,6 +182,7 @@ def _main(*args: str):
     (["steady", "--eps", "0.05", "--creep", "eyring-nabarro", "--u", "1e-9"],
      "beyond the Eyring-Nabarro law's range"),
 ])
+@pytest.mark.slow
 def test_usage_errors_are_one_line_through_main(args, word):
     # catches Click's 5-line usage box and tracebacks (ZeroDivisionError for --v-init 0)
     r = _main(*args)
@@ -211,6 +212,7 @@ _NUMERIC = [("trap", "--alpha")] + [("static", o) for o in ("--eps", "--T", "--a
                             "--rtol")]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("command", "option"), _NUMERIC)
 def test_every_numeric_option_gives_finite_numbers_or_one_line(command, option):
     # 0, -1, nan, inf, 1e308, 1e-308 in every numeric option: exit 0 with finite numbers or

@@ -220,6 +220,7 @@ def _simulate(tmp_path: Path, capsys: pytest.CaptureFixture[str], doc: dict[str,
     return code, capsys.readouterr().err, out_dir
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["trap", "rsf"])
 def test_simulate_either_produces_everything_or_one_error_line(
         law: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -239,6 +240,7 @@ def test_simulate_either_produces_everything_or_one_error_line(
     assert 0 in outcomes and 2 in outcomes
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["trap", "rsf"])
 def test_undamaged_protocols_always_run(law: str, tmp_path: Path,
                                         capsys: pytest.CaptureFixture[str]) -> None:

@@ -139,6 +139,7 @@ def test_not_started_in_a_process_with_threads(tmp_path: Path) -> None:
     assert got == {"started": False}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("protocol", ["rsf_velocity_step.toml", "velocity_step.toml"])
 def test_the_console_command_draws_in_its_painter_the_same_figure(tmp_path: Path,
                                                                   protocol: str) -> None:

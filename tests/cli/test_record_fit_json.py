@@ -11,6 +11,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 SHARED = (Path(__file__).resolve().parents[2] / "examples" / "data" / "lab"
           / "sepiolite_velstep_0.2-2um_s.txt")
 
@@ -22,6 +24,7 @@ def _fit(tmp_path: Path, *extra: str) -> subprocess.CompletedProcess[str]:
                           capture_output=True, text=True, env=env, timeout=120)
 
 
+@pytest.mark.slow
 def test_json_on_stdout_is_one_document_and_the_program_table_is_whole(tmp_path: Path) -> None:
     # mistakes: the program table on stdout with --json; the table wrapped at the pipe's width
     r = _fit(tmp_path, "--json")

@@ -60,6 +60,7 @@ def test_a_normal_change_mid_hold_keeps_the_hold_whole(
     assert rep["units"]["normal_before"].startswith("Pa")
 
 
+@pytest.mark.slow
 def test_fit_of_a_hold_with_a_normal_change_says_so_beside_the_step(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # the hold's length is what a user ages contacts by: 50 s in steps.csv and fit.json; the
@@ -114,6 +115,7 @@ def error_line(err: str) -> str:
     return line
 
 
+@pytest.mark.slow
 def test_fit_says_the_same_reading_notes(tmp_path: Path,
                                          capsys: pytest.CaptureFixture[str]) -> None:
     # before the fit, as record says them, and in fit.json (mistake: read, then not a word)

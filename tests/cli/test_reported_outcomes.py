@@ -20,6 +20,7 @@ def _iv(iv: list[float]) -> str:
     return "[" + ", ".join(f"{x:.4g}" for x in iv) + "]"
 
 
+@pytest.mark.slow
 def test_fit_table_prints_the_profile_interval(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
     """With profiles (the default) the table's 95 % interval is the profile one that fit.json
     gives, not the Wald one (mutant cli_fit_wald_interval_printed). On this data t0's two

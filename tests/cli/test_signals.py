@@ -254,6 +254,7 @@ def test_a_signal_during_a_compiled_call_is_raised_after_it(delay: float) -> Non
     assert proc.returncode == 130 and proc.stdout.strip() == "interrupted", proc.stdout
 
 
+@pytest.mark.slow
 def test_signals_into_the_compiled_rsf_stepper(tmp_path: Path) -> None:
     """Before the fix: 6 of 15 Ctrl-C trials exit -11 (segfault), the others 130 silently.
     The signals fall within the stepper: once its kernels are loaded the run has ~1.1 s of CPU
@@ -269,6 +270,7 @@ def test_signals_into_the_compiled_rsf_stepper_many(tmp_path: Path) -> None:
     _timed_trials(RSF_LONG, times, sigs, tmp_path, STEPPER)
 
 
+@pytest.mark.slow
 def test_signals_into_the_trap_ensemble(tmp_path: Path) -> None:
     proto = _long_trap_protocol(tmp_path / "long.toml")
     # ready at the first window's return (the kernel loaded): ~1.8 s of CPU left of 2.5 s
@@ -277,6 +279,7 @@ def test_signals_into_the_trap_ensemble(tmp_path: Path) -> None:
                   tmp_path, ENSEMBLE)
 
 
+@pytest.mark.slow
 def test_signals_into_a_record_fit(tmp_path: Path) -> None:
     """The fit engine's inner integrations (compiled after the process's interpreted budget):
     before the fix SIGTERM here gave ~370 lines ending in SystemError, exit 1."""
@@ -328,6 +331,7 @@ COMMANDS = {
 times: simulate, fit (above), compare (below), reproduce and sweep (slow)."""
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(COMMANDS))
 def test_every_command_interrupted_mid_run_says_one_line(name: str, tmp_path: Path) -> None:
     """A signal at a seeded random call into the package, for each command: before the fix

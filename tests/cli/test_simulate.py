@@ -175,6 +175,7 @@ def _start_long_run(tmp_path: Path) -> tuple[subprocess.Popen[str], Path]:
     return proc, out
 
 
+@pytest.mark.slow
 def test_ctrl_c_writes_a_complete_partial_result(tmp_path: Path) -> None:
     proc, out = _start_long_run(tmp_path)
     proc.send_signal(signal.SIGINT)

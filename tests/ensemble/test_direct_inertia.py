@@ -224,6 +224,7 @@ def test_kicked_slider_rings_down_at_the_linear_rate_with_mass_and_direct_effect
         assert abs(_chi(complex(0.0, res.omega), uu, 0.02, kc, m, 0.0)) < 1e-3 * kc
 
 
+@pytest.mark.slow
 def test_growth_below_and_decay_above_K_c_with_mass() -> None:
     """u = 1, A = 0.02, M = 0.2, eta = 0 (K_c = 0.163 with mass): a slider kicked to 1.05 u
     grows at 0.7 K_c and decays at 1.3 K_c with the rightmost root's sign, rate (within 30 %:

@@ -84,6 +84,7 @@ def density_study(runslow: bool) -> dict[float, float]:
     return out
 
 
+@pytest.mark.slow
 def test_steady_sawtooth_converges_at_first_order(density_study: dict[float, float]) -> None:
     """The deviation from mu_d is a sawtooth of height J/lambda, J = r_d^2 f_+(y_c)/H0 (ours):
     the force drops by the dying trap's force once per lattice period and recovers in between.
@@ -105,6 +106,7 @@ def test_steady_sawtooth_converges_at_first_order(density_study: dict[float, flo
 # ---------------------------------------------------------------- static threshold (eq. 27)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("T", [0.1, 10.0, 1000.0])
 def test_static_peak_after_hold_matches_eq27(T: float) -> None:
     """Rest, hold T, fast pull (u = 1e6): the force peak is mu_s(T) of eq. 27.
@@ -552,6 +554,7 @@ def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
         assert closed_force - closed_pos > 0.01
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("f_w", [-0.5, 0.5])
 def test_force_hold_sampled_in_slip_follows_the_creep(f_w: float) -> None:
     """Issue 14: ``ForceDrive`` with ``every_slip`` did the whole hold in one step (the slip of
@@ -652,6 +655,7 @@ def test_root_in_bracket_returns_an_end_that_is_a_root() -> None:
     assert len(calls) == 2
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("direct, alpha, stiffness", [(0.0, 0.13, 0.05), (0.02, 0.13, 0.05),
                                                        (0.02, 0.13, 200.0), (0.0, 0.6, 0.05)])
 def test_quasi_static_slider_agrees_with_brents_roots(monkeypatch: pytest.MonkeyPatch,

@@ -131,6 +131,7 @@ def test_energy_balance_per_step_and_per_event(loading: str) -> None:
     assert abs(res[b] - res[a - 1]) < 1e-3 * event_diss
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("multirate", [False, True])
 def test_chain_modes_grow_at_the_single_slider_rate_of_their_stiffness(multirate: bool) -> None:
     """Uniform steady sliding of N = 8 identical blocks at u, two modes ``cos(q (i + 1/2))``

@@ -59,6 +59,7 @@ def test_threshold_zero_is_the_dynamic_run_bit_for_bit() -> None:
     assert dyn.info["steps"] == tiny.info["steps"]
 
 
+@pytest.mark.slow
 def test_event_catalogue_statistics_agree_with_the_dynamic_run() -> None:
     """At the default threshold the run spends time in quasi-static phases and hands over to
     the dynamics at thresholds, and its event catalogue agrees with the dynamic run's (the

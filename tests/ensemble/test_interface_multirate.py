@@ -111,6 +111,7 @@ def test_trajectories_follow_the_every_step_run_through_the_first_events() -> No
     assert dl < 2e-3, dl
 
 
+@pytest.mark.slow
 def test_event_catalogue_statistics_agree_with_the_every_step_run() -> None:
     """The catalogue of a chaotic stick-slip run (48 ``a0`` of plate travel, about 120
     events) agrees with the every-step run's to the event-driven check's tolerances
@@ -137,6 +138,7 @@ def test_event_catalogue_statistics_agree_with_the_every_step_run() -> None:
     assert abs(mean_m - mean_d) <= 0.01 * mean_d, (mean_m, mean_d)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rate", [0.0, QUASI_STATIC_RATE])
 def test_energy_balance_closes_with_multirate_stepping(rate: float) -> None:
     """``work_load = delta(elastic + kinetic) + work_friction + work_damping +

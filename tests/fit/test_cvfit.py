@@ -150,6 +150,7 @@ def _fit_back(free: tuple[str, ...], max_nfev: int, traps: float
             math.sqrt(2 * r.goodness["cost"] / r.goodness["n"]), r)
 
 
+@pytest.mark.slow
 def test_direct_effect_recovered_on_a_spring_with_a_trend() -> None:
     # the machine and A free, the trap parameters held at the truth (the CI version, about
     # 60 runs, 15-20 s CPU on a loaded machine; a shorter step (2.5 + 3 a0) was cheaper but

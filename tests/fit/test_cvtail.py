@@ -51,6 +51,7 @@ def _on(t: np.ndarray, run: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
     return np.interp(t, *run)
 
 
+@pytest.mark.slow
 def test_steady_tail_is_the_steady_level(runs: dict[str, tuple[np.ndarray, np.ndarray]]
                                          ) -> None:
     """Against the same chunks simulated to the end: the tail replaces the steady sawtooth by

@@ -11,6 +11,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import pytest
+
 from dryfriction.fit.elastic import loading_segments
 from dryfriction.fit.onemachine import fit_steps_one_machine
 from dryfriction.fit.steps import fit_steps, step_covariance
@@ -22,6 +24,7 @@ from lab_synth import Truth, synth_program, synth_record  # noqa: E402
 SHS = [(1e-6, 300.0), (0.0, 100.0), (1e-6, 300.0), (0.0, 300.0), (1e-6, 300.0)]
 
 
+@pytest.mark.slow
 def test_reload_slopes_hold_the_machine_stiffness():
     """Two reloads a record, four records with red noise (AR(1), rho = 0.9): the slope's
     95 % interval holds k in at least 7 of 8 (measured 8 of 8; the slope is low by about
@@ -68,6 +71,7 @@ def test_one_machine_counts_the_reload():
     assert any("elastic loading" in n for n in res.notes)
 
 
+@pytest.mark.slow
 def test_coverage_with_k_from_the_record():
     """Issue 30's "done when": the coverage of a, b, Dc on red-noise records (AR(1),
     rho = 0.98; the records of fit/test_steps.py::test_coverage_with_correlated_noise) holds

@@ -149,6 +149,7 @@ def _panel_data(axes: tuple) -> dict[str, dict[str, tuple[np.ndarray, np.ndarray
     return out
 
 
+@pytest.mark.slow
 def test_a_whole_experiment_in_one_command(experiment: tuple[Path, object],
                                            tmp_path: Path) -> None:
     """20 steps at 10, 20 and 30 MPa, the program detected: one row per window (the

@@ -48,6 +48,7 @@ def inside(p, value: float) -> bool:
 
 
 # ----------------------------------------------------------------------------- coverage
+@pytest.mark.slow
 def test_coverage_of_95_percent_intervals_trap_model(runslow: bool) -> None:
     """Known noise: the Wald 95 % intervals of eps, t0, mu_el cover the truth at 0.90-0.99 over
     200 seeds (1000 with --runslow, 0.93-0.97)."""
@@ -64,6 +65,7 @@ def test_coverage_of_95_percent_intervals_trap_model(runslow: bool) -> None:
         assert lo <= h / n <= hi, (k, h / n)
 
 
+@pytest.mark.slow
 def test_coverage_with_estimated_noise_rsf_healing(runslow: bool) -> None:
     """No uncertainties given (noise estimated, Student t): 95 % coverage of mu0, b, Dc for the
     rate-and-state healing law, data made with the simulator's closed form's own parameters."""
@@ -100,6 +102,7 @@ def test_degenerate_t0_is_only_bounded_above() -> None:
     assert slope == pytest.approx((f[1] - f[0]) / (2 * math.log(1.01)), rel=0.15)
 
 
+@pytest.mark.slow
 def test_steady_far_below_vstar_bounds_vstar_from_below_only() -> None:
     """u = V/V* << 1: only eps and mu_el combinations are fixed; V* is bounded below."""
     r = fit_steady(steady_data(4, V=np.geomspace(1e-10, 1e-8, 12), sigma=False), "cv")
@@ -109,6 +112,7 @@ def test_steady_far_below_vstar_bounds_vstar_from_below_only() -> None:
     assert vs.profile_95[0] is None or vs.profile_95[0] <= 1e-6
 
 
+@pytest.mark.slow
 def test_joint_fit_recovers_one_parameter_set() -> None:
     r = fit_joint(static_data(5), steady_data(6), "cv")
     assert r.success
@@ -177,6 +181,7 @@ def _cv_series_data(seed: int, sigma: float = 2e-3, traps: float = 300
     return synthetic_steps(true, CVModel(traps_per_a0=traps), seed, sigma), true
 
 
+@pytest.mark.slow
 def test_cli_fits_the_trap_model_to_a_time_series(tmp_path: Path) -> None:
     # the command's route (--fix, --traps-per-a0, fit.json's intervals): 100 traps per a0,
     # not the 300 of the library test below, for speed (CPU 18.8 -> 11.7 s)
@@ -197,6 +202,7 @@ def test_cli_fits_the_trap_model_to_a_time_series(tmp_path: Path) -> None:
     assert (out / "fit.png").exists()
 
 
+@pytest.mark.slow
 def test_cv_time_series_recovers_the_parameters(runslow: bool) -> None:
     """Trap-model fit of an ensemble-made transient: every true value inside its 95 %
     interval, for each seed (the library's data-based starts, not the truth; one start alone
@@ -357,6 +363,7 @@ def test_jacobian_is_evaluated_once_at_the_optimum(monkeypatch: pytest.MonkeyPat
     assert len(calls) == 1
 
 
+@pytest.mark.slow
 def test_fit_package_draws_nothing() -> None:
     """Importing and running the fit must not pull in matplotlib (plot_fit is in plotting)."""
     import subprocess

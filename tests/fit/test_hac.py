@@ -96,6 +96,7 @@ def _local_design(t: np.ndarray) -> np.ndarray:
                             ((t > 20.0) & (t < 22.0)).astype(float)])
 
 
+@pytest.mark.slow
 def test_time_lag_kernel_holds_a_local_parameter_under_red_noise():
     """White (0.5) plus Ornstein-Uhlenbeck (0.6, 0.5 s) noise on the irregular sampling:
     the exact covariance ``B X^T Sigma X B`` with ``Sigma = 0.25 I + 0.36 exp(-|dt|/0.5)``

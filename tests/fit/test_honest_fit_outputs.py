@@ -113,6 +113,7 @@ def _log_linear(seed: int) -> StaticData:
     return StaticData(TW, y, None, f"loglin-{seed}")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_a_value_on_its_bound_and_the_limits_it_sets(seed: int) -> None:
     """t0 ends on its 1e-12 s lower bound: labelled ``at lower bound (1e-12 s)``, no error

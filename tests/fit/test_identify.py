@@ -44,6 +44,7 @@ def _classified(seed: int) -> tuple[bool, str, str]:
     return (not words) if c.identifiable else said, c.kind, row["flags"]
 
 
+@pytest.mark.slow
 def test_flags_on_synthetic_records_subset():
     """17 records, four or five of each kind (CI's subset of the 100 below): at most one
     wrong (measured: none). Catches a rule that never flags (the unidentifiable ones) and one
@@ -152,6 +153,7 @@ def _num(cell: str) -> float:
     return math.nan if cell in ("—", "not identified") else float(cell)
 
 
+@pytest.mark.slow
 def test_csv_json_table_and_figures_agree(tmp_path: Path):
     """steps.csv, fit.json, the terminal table and the figures carry the same values (to the
     table's 4 digits), 95 % intervals and flags; the last line counts the flagged steps."""
@@ -382,6 +384,7 @@ def test_a_step_whose_cheapest_start_leads_astray_is_refitted():
     assert row["dc_lo"] <= c.truth.dc <= row["dc_hi"]
 
 
+@pytest.mark.slow
 def test_a_flat_record_starts_its_stiffness_within_the_search_bounds():
     """Seed 87 (kind ``flat``): its loading slope gives a stiffness of 0.87 1/m, below the
     fitted stiffness's lower bound (1 1/m), and the data-driven start was refused by the fit

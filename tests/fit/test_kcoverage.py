@@ -19,6 +19,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 from benchmarks.bench_k_coverage import _old_ratio, coverage, fit_one  # noqa: E402
 
 
+@pytest.mark.slow
 def test_step_intervals_are_not_the_score_hac_ones():
     """Two basalt-like records with red friction noise (seeds 1, 2): the standard errors of
     k, a, b, Dc are >= 1.8x, 1.8x, 1.8x, 1.4x the score HAC's (measured k 2.5, 3.1; a 2.6,
@@ -56,6 +57,7 @@ def test_step_coverage(runslow: bool):
         assert white["hits"][p] >= 36, white
 
 
+@pytest.mark.slow
 def test_change_time_part_against_refits():
     """The measured drive's change-time part of k's error (fit.loadpoint.change_time_effect,
     linearised) against refits of the step with the drive moved by +-sigma of its change time

@@ -55,6 +55,7 @@ def test_change_placed_between_samples():
     assert est.v_after == pytest.approx(1e-5, rel=0.02)
 
 
+@pytest.mark.slow
 def test_drive_follows_the_servo(basalt):  # type: ignore[no-untyped-def]
     """The drive's displacement is the load point's to within a fraction of the transducer
     noise (0.15 um) through the servo's transient, and its change sits at the servo's
@@ -112,6 +113,7 @@ def _independent_fit(t: np.ndarray, mu: np.ndarray, t_change: float) -> dict[str
             "t_change": tc}
 
 
+@pytest.mark.slow
 def test_basalt_k_does_not_hang_on_the_change_time(basalt):  # type: ignore[no-untyped-def]
     """Issue 30's "done when" on the basalt-like record: with the measured drive k moves by
     less than its 95 % interval's half-width when the given change moves by one sample
@@ -170,6 +172,7 @@ def test_drive_option_refused_in_one_line(tmp_path: Path):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not RECORD.exists(), reason="needs the shared record")
 def test_shared_record_with_the_measured_drive():
     """The shipped sepiolite step with the measured drive (the record's default): a, b, Dc
@@ -189,6 +192,7 @@ def test_shared_record_with_the_measured_drive():
     assert row["rms"] <= 1.01 * fit_steps(rec, wins, segs).rows[0]["rms"]
 
 
+@pytest.mark.slow
 def test_fit_json_and_terminal_report_the_drive(basalt, tmp_path: Path):  # type: ignore[no-untyped-def]
     """``dryfriction fit`` on the basalt-like record (defaults: --drive measured,
     --stiffness record): fit.json carries the option, the placed change with its standard

@@ -96,6 +96,7 @@ def test_fit_progress_estimate_is_close_once_a_profile_has_run() -> None:
     assert real / 2 <= second <= 2 * real, (second, real)
 
 
+@pytest.mark.slow
 def test_cli_fit_prints_progress_with_time_left_on_stderr_and_clean_json(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """The joint trap-model fit of docs/tutorials/lab-record.md (no terminal: plain lines) says what

@@ -113,6 +113,7 @@ def test_forward_model_matches_independent_solver_through_holds(v: float):
 
 
 # ----------------------------------------------------------------------------- detection, windows
+@pytest.mark.slow
 @pytest.mark.parametrize(("v", "hold_dt"), [(1e-6, HOLD_DT), (1e-5, HOLD_DT), (1e-6, None)])
 def test_detection_finds_the_holds(v: float, hold_dt: float | None, tmp_path: Path):
     """Holds of 10, 100, 1000 s at 1 and 10 um/s (displacement noise 0.05 um; sampled every
@@ -157,6 +158,7 @@ def test_slice_steps_gives_shs_windows_over_hold_and_peak(tmp_path: Path):
 
 
 # ----------------------------------------------------------------------------- the fit
+@pytest.mark.slow
 @pytest.mark.parametrize("rho", [0.0, 0.9])
 def test_fit_recovers_a_b_dc_k_within_intervals(rho: float):
     """Each window's fit (elastic machine, trend, HAC intervals; white or AR(1) rho = 0.9
@@ -184,6 +186,7 @@ def test_fit_recovers_a_b_dc_k_within_intervals(rho: float):
     assert inside >= 10 and near == 12, (inside, near, res.rows)
 
 
+@pytest.mark.slow
 def test_slip_law_and_stiff_machine_fit_worse():
     """The slip law does not age in stationary contact: it misfits the long holds (rms > 1.1x
     the ageing law's on the 100 and 1000 s holds; measured 1.23x, 2.75x) and misses the
@@ -249,6 +252,7 @@ def test_short_reslides_are_flagged():
 
 
 # ----------------------------------------------------------------------------- the CLI
+@pytest.mark.slow
 def test_cli_record_and_fit_on_an_shs_file(tmp_path: Path):
     """``dryfriction record FILE`` shows the three holds; ``dryfriction fit FILE --model rsf
     --out DIR`` exits 0 and writes one steps.csv row of kind shs per hold, each at its hold's

@@ -145,7 +145,8 @@ def _record(law: str, seed: int, **kw: float) -> SeriesData:
     return SeriesData(t, v, mu + 3e-4 * np.random.default_rng(seed).standard_normal(len(t)))
 
 
-@pytest.mark.parametrize("law", ["prz", pytest.param("slip", marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("law", ["prz", "slip"])
 def test_auto_chooses_the_true_law_and_recovers_it(law: str):
     """Records from the independent solver (steps 1 -> 10 -> 1 um/s, k = 3000 /m, white
     noise 3e-4): --state-law auto picks the true law in both steps, every other law at least
@@ -166,6 +167,7 @@ def test_auto_chooses_the_true_law_and_recovers_it(law: str):
 
 
 # ------------------------------------------------------------------------ free initial state
+@pytest.mark.slow
 def test_free_initial_state_removes_the_reslide_bias():
     """The slide-hold-slide record of tests/fit/test_shs.py with 100 um (5 Dc) reslides: the
     window of the 1000 s hold starts inside the 100 s hold's transient, and its fit from steady

@@ -60,6 +60,7 @@ def test_rising_steady_data_are_flagged_against_the_athermal_model(seed: int) ->
     assert any("AGAINST THE MODEL" in ax.get_title() for ax in fig.axes)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_what_the_model_can_make_is_not_flagged(seed: int) -> None:
     """Its own falling curve with noise, flat noise, rising data with the direct effect

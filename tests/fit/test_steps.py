@@ -124,6 +124,7 @@ def test_kinematic_machine_does_worse_on_a_soft_machine():
         assert s["stiffness"] == pytest.approx(tr.stiffness, rel=0.1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sign", [1.0, -1.0])
 def test_trend_recovered_with_its_sign(sign: float):
     tr = Truth(trend=sign * 15.0)
@@ -152,6 +153,7 @@ def _coverage(n: int, tmp_path: Path) -> dict[str, float]:
     return {p: h / total for p, h in hits.items()}
 
 
+@pytest.mark.slow
 def test_coverage_small(tmp_path: Path):
     """10 records x 2 steps: the 95 % intervals hold the truth in >= 75 % of the steps (for a
     true 95 % coverage that fails with probability < 1e-2; a biased model, e.g. the kinematic
@@ -160,6 +162,7 @@ def test_coverage_small(tmp_path: Path):
     assert min(cov.values()) >= 0.75, cov
 
 
+@pytest.mark.slow
 def test_coverage_with_correlated_noise():
     """Red (AR(1), rho = 0.98) noise, as a measured record's apparatus fluctuations: the robust
     (HAC) intervals hold the truth in >= 75 % of 12 steps, the white-noise ones from the same
@@ -275,6 +278,7 @@ def test_command_record_bad_input(tmp_path: Path):
         _one_line_exit_2(r, out, name, *words)
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.records.lab)")
 def test_command_record_writes_steps(tmp_path: Path):
     d = small(Truth(), 7)
@@ -313,6 +317,7 @@ def test_command_record_writes_steps(tmp_path: Path):
     assert "--run-cv" in rep["comparison"]["not_run"]
 
 
+@pytest.mark.slow
 def test_quick_profile_matches_the_engine_profile():
     """The few-fit profile limits of a, b, dc agree with the engine's full profile walk
     (catches a wrong threshold, noise variance or secant)."""
@@ -335,6 +340,7 @@ def test_quick_profile_matches_the_engine_profile():
             assert abs(quick[p.name][1] - hi) < 0.05 * width, p.name
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not HAVE_LAB, reason="needs part A's reader (dryfriction.records.lab)")
 def test_command_run_cv_fits_the_trap_model_and_draws_it_beside_rsf(tmp_path: Path):
     """``--run-cv`` (on a small synthetic record, a coarse track to keep it short): the trap

@@ -263,6 +263,7 @@ def _writer(out: str, go, i: int) -> None:
             (d / rel).write_text(f"result {i}")
 
 
+@pytest.mark.slow
 def test_concurrent_force_runs_never_lose_a_users_file(tmp_path):
     # the mistake: choosing the free backup name first and renaming onto it later, so that two
     # runs pick the same NAME.~1~ and the second rename clobbers the user's file (3 in 150

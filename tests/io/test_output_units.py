@@ -74,6 +74,7 @@ def test_snapshots_have_units(tmp_path: Path) -> None:
     assert check_folder(out) == []
 
 
+@pytest.mark.slow
 def test_record_fit_chooses_rsf_and_has_units(tmp_path: Path, record: Path) -> None:
     out = tmp_path / "out"
     # no --model: a record is fitted with rate-and-state (the default cv was refused: exit 2)

@@ -213,6 +213,7 @@ def test_simulate_refuses_what_the_machine_cannot_hold(monkeypatch: pytest.Monke
     assert "output." not in str(exc.value)  # API names, not protocol keys
 
 
+@pytest.mark.slow
 def test_the_estimate_bounds_what_a_run_holds() -> None:
     # the per-sample and per-pair costs against tracemalloc's peak: a bound, not far above it
     model, drive = TrapModel(eps=0.04), VelocityDrive(VelocityProgram([Segment(1.0, slip=3.0)]))

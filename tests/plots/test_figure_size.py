@@ -81,6 +81,7 @@ def page(tmp_path_factory: pytest.TempPathFactory) -> str:
                               panels={n: p for n, _, p in drawn if p})
 
 
+@pytest.mark.slow
 def test_report_text_is_readable_in_a_window_800_px_wide(page):
     images = _embedded(page)
     assert len(images) >= len(report.FIGURE_FILES) + len(report.EXTRA_FILES)

@@ -254,6 +254,7 @@ def test_interrupted_run_says_so():
 # --------------------------------------------------------------------- no pyplot
 
 
+@pytest.mark.slow
 def test_figures_are_drawn_and_saved_without_pyplot():
     # in a fresh interpreter: importing pyplot would select a backend and keep every figure
     # alive in its global registry

@@ -216,6 +216,7 @@ def test_record_velocity_unbroken_where_sampling_is_only_jittered() -> None:
     assert not np.isnan(np.asarray(line.get_ydata(), float)).any()
 
 
+@pytest.mark.slow
 def test_record_title_keeps_the_panels_room() -> None:
     """800 segments, every one unplaced (a title listing them all): the figure is drawn,
     its title at most TITLE_LINES lines, the last saying it is cut, and the panels keep

@@ -119,6 +119,7 @@ def test_the_record_command_says_it_in_its_table_json_and_on_stderr(
     assert done.report["apparatus_note"].startswith(f"{tmp_path / 'm.txt'}: no unit")
 
 
+@pytest.mark.slow
 def test_a_fit_says_it_before_last_and_in_fit_json(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """The warning before the fit (on stderr) and again as the last line, and fit.json's

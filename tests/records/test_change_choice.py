@@ -89,6 +89,7 @@ def test_a_profile_cut_by_the_search_moves_nothing(tmp_path: Path) -> None:
     assert max(_zoo_hold_errors((4088,), tmp_path, above=0.0)) <= 1.0
 
 
+@pytest.mark.slow
 def test_a_slow_hold_is_placed_over_a_longer_window(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo records 112 and 3022 (slide-hold-slides at 0.11 and 0.39 um/s, 0.17-0.28 um of

@@ -28,6 +28,7 @@ from test_change_interval import _zoo_hold_errors  # noqa: E402
 import records_zoo as z  # noqa: E402
 
 
+@pytest.mark.slow
 def test_a_hold_reading_backwards_is_not_lost_to_the_slide(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo record 14026 (a slide-hold-slide at 0.16 um/s, about 70 Hz with a 10-fold

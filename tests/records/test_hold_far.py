@@ -95,6 +95,7 @@ SLOW = (dict(v=0.1e-6, fs=5.0, slides=(400.0, 400.0), hold=250.0),
         dict(v=0.07e-6, fs=2.0, slides=(500.0, 500.0), hold=300.0))
 
 
+@pytest.mark.slow
 def test_slow_holds_placed_on_their_far_samples(monkeypatch: pytest.MonkeyPatch) -> None:
     """0.1 um/s at 5 Hz (400-s slides, a 250-s hold) and 0.07 um/s at 2 Hz (500 s, 300 s), 60
     records each: with the far samples (HOLD_FAR = 300 s) 117 and 116 of the 120 changes

@@ -113,6 +113,7 @@ def test_a_jump_inside_such_an_excursion_is_still_one() -> None:
     assert found[2] == pytest.approx(-0.9e-6, abs=0.15e-6)
 
 
+@pytest.mark.slow
 def test_zoo_slide_hold_slides_keep_their_short_holds(tmp_path: Path) -> None:
     """Zoo 11290 (a 13-s hold at 0.228 um/s, 200 Hz, 434204 rows, read as a -2.7 um reset
     before) and 18046 (the hold above in the zoo, 1084408 rows, with the servo error, the

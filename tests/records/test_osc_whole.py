@@ -12,6 +12,7 @@ from pathlib import Path
 from unittest.mock import patch
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
@@ -77,6 +78,7 @@ def test_osc_whole_is_a_moving_change_beyond_osc_wide_ratio_short_of_a_stop_with
     assert P.osc_whole(1e-6, 3e-6, 45.0, 45.0)
 
 
+@pytest.mark.slow
 def test_ratio_3_steps_placed_better_on_one_period_each_side() -> None:
     # ratio-3 steps with the servo error and one oscillation line of 8 % at 45 s (seeds 0-59):
     # within max(1 sample, 0.5 s) 59 of 60 with the rule, 56 without (measured; with the

@@ -11,6 +11,7 @@ from pathlib import Path
 from unittest.mock import patch
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import records_zoo as z  # noqa: E402
@@ -67,6 +68,7 @@ def test_osc_wide_is_a_moving_change_of_ratio_at_most_osc_wide_ratio_with_room()
     assert P.osc_wide(1e-6, 1.3e-6, 80.0, 45.0) and P.osc_wide(1e-6, 2e-6, 90.0, 45.0)
 
 
+@pytest.mark.slow
 def test_ratio_2_steps_placed_better_on_two_periods_each_side() -> None:
     # ratio-2 steps with the servo error and an oscillation that is NOT the zoo's (one line,
     # 5 % at 37 s; seeds 0-99): within max(1 sample, 0.5 s) 100 of 100 with the rule, 97

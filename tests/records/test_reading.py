@@ -92,6 +92,7 @@ def test_a_reading_step_too_small_for_the_stretches_is_left() -> None:
         assert (reading_step(t, v, g, 0, t.size, 1.47e-6, 1.13e-6) is not None) is placed
 
 
+@pytest.mark.slow
 def test_zoo_velocity_records_placed_on_their_reading(tmp_path: Path,
                                                       monkeypatch: pytest.MonkeyPatch
                                                       ) -> None:

@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import records_zoo as z  # noqa: E402
@@ -61,6 +62,7 @@ def test_small_step_is_a_change_of_at_most_twice_the_speed() -> None:
     assert not P.small_step(1e-6, 0.0)
 
 
+@pytest.mark.slow
 def test_small_steps_at_a_rate_change_placed_better_on_even_blocks() -> None:
     # 40 ratio-1.3 steps at a 10-fold sampling-rate change with the servo error and the
     # machine oscillation (seeds 0-39): within max(1 sample, 0.5 s) 35 of 40 on blocks of one

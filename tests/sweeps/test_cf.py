@@ -57,6 +57,7 @@ def test_stick_slip_sweep_names_its_classes_and_units(tmp_path):
     assert "stick_slip_summary" in ds.attrs["analysis"] and "p.toml" in ds.attrs["source"]
 
 
+@pytest.mark.slow
 def test_readme_linear_sweep_has_every_point_and_units(tmp_path, recwarn):
     # was: 2 of 9 points OverflowError (a Newton run of rightmost_root off to |lambda| ~ 1e200)
     # and NaN K_c there, with RuntimeWarnings on the terminal
@@ -135,6 +136,7 @@ def _chain_root(resp, K: float, k: int) -> complex:
     return z
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("u", [0.01, 0.1, 1.0])
 def test_readme_linear_sweep_growth_rates_are_the_spectrum_supremum(u):
     """The 9 points of the ``sweep --linear`` of docs/howto/sweeps.md: each growth rate finite, of

@@ -41,6 +41,7 @@ def _marked(mark: str) -> list[psutil.Process]:
     return found
 
 
+@pytest.mark.slow
 def test_sweep_with_two_workers_leaves_no_process_behind(tmp_path: Path) -> None:
     proto = tmp_path / "p.toml"
     proto.write_text(PROTO)
@@ -85,6 +86,7 @@ def _scheduler_address(path: Path, proc: subprocess.Popen[bytes],
     raise AssertionError(f"no scheduler address in {path} after {timeout} s")
 
 
+@pytest.mark.slow
 def test_sweep_through_an_external_scheduler_and_worker(tmp_path: Path) -> None:
     """How a user with a cluster runs it: ``dask scheduler`` and ``dask worker`` started by
     hand, the sweep sent with ``--scheduler``; the command leaves them running."""
@@ -135,6 +137,7 @@ def _worker_state(module: str) -> tuple[int, bool, str | None]:
     return os.getppid(), module in sys.modules, os.environ.get("OPENBLAS_NUM_THREADS")
 
 
+@pytest.mark.slow
 def test_local_workers_are_forked_warm_and_the_fork_server_is_stopped() -> None:
     """Workers start from the fork server with the runner's module already imported (a
     spawned worker, or a server without the preload list, would not have it before its first

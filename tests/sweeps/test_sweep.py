@@ -61,6 +61,7 @@ def test_failed_point_is_recorded_and_sweep_goes_on(tmp_path):
     assert np.isfinite(ds["product"].sel({"test.x": 4}).values).all()
 
 
+@pytest.mark.slow
 def test_killed_sweep_resumes_without_recomputing(tmp_path):
     # an uninterrupted reference
     ref_markers = tmp_path / "ref_m"
@@ -382,6 +383,7 @@ def test_cli_not_a_scheduler_fails_fast_with_one_line(tmp_path):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_some_or_all_points_failed_exit_1_with_one_line(tmp_path):
     from typer.testing import CliRunner
 
@@ -404,6 +406,7 @@ def test_some_or_all_points_failed_exit_1_with_one_line(tmp_path):
     assert f"{tmp_path / 'q'}/points/*.json" in r.output.replace("\n", "")
 
 
+@pytest.mark.slow
 def test_concurrent_sweeps_into_one_folder_second_is_refused(tmp_path):
     import psutil
 
@@ -436,6 +439,7 @@ def test_concurrent_sweeps_into_one_folder_second_is_refused(tmp_path):
         assert json.loads(rec.read_text())["protocol"]["model"]["eps"] == 0.04
 
 
+@pytest.mark.slow
 def test_ctrl_c_prints_the_resume_command_which_finishes_the_sweep(tmp_path):
     import os
     import shlex

@@ -216,6 +216,7 @@ def test_static_peak_after_hold_scales_with_the_pull_velocity() -> None:
         assert np.all(r.mu[(r.t > 0) & (r.t <= T)] == 0.0)  # a kinematic hold: g(0) = 0
 
 
+@pytest.mark.slow
 def test_force_drive_holding_the_steady_force_slides_at_that_velocity() -> None:
     """Force control agrees with kinematic driving: holding the steady friction of velocity u
     (velocity strengthening, A mu > 3 eps/2) the slider creeps at u on average, and force
@@ -254,6 +255,7 @@ def test_junction_strength_follows_the_slider_not_the_load_point() -> None:
 # ---------------------------------------------------------------- stability
 
 
+@pytest.mark.slow
 def test_critical_stiffness_is_finite_without_mass_and_matches_simulation() -> None:
     """M = eta = 0, A = 0.02, u = 0.1: K_c is finite (the direct term damps high frequencies).
     Direct simulation (quasi-static spring, implicit creep steps, 100 traps/a0) grows at 0.8

@@ -195,6 +195,7 @@ def test_aged_at_no_time_the_threshold_is_the_sliding_force() -> None:
             1.0, abs=error_constant(0.0, 0.04, alpha) * h)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("T,eps,alpha", [(100.0, 0.04, 0.13), (10.0, 0.04, 0.3)])
 def test_halving_the_step_halves_the_error(T: float, eps: float, alpha: float) -> None:
     # the error moves with where the edges fall between traps, so it is not monotone in h; it

@@ -65,6 +65,7 @@ def _extra_mb(which: str, n: int, chunk: int | None = None, creep: str = "log") 
     # velocity: 620 MB for one chunk of 8192 velocities before the age went in blocks
     ("steady", 20_000, 80.0, "eyring-nabarro"),
 ])
+@pytest.mark.slow
 def test_large_arrays_are_evaluated_in_bounded_memory(which: str, n: int, bound_mb: float,
                                                       creep: str) -> None:
     assert _extra_mb(which, n, creep=creep) < bound_mb

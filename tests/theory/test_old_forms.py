@@ -79,6 +79,7 @@ CASES = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("fn", "old", "new", "old_kw", "new_kw"), CASES,
                          ids=[f"{c[0].__name__}-{i}" for i, c in enumerate(CASES)])
 def test_the_old_form_warns_and_gives_the_new_forms_numbers(fn, old, new, old_kw, new_kw):
@@ -269,6 +270,7 @@ def test_the_guard_sees_an_old_form():
     assert old_form_calls(new) == []
 
 
+@pytest.mark.slow
 def test_no_module_of_the_package_calls_an_old_form():
     # the suite turns the warning into an error on the paths it runs; this scan covers the
     # paths it does not run (a branch, a figure, a rarely used option), and the examples and

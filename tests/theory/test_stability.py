@@ -308,6 +308,7 @@ def _kicked_spring_echoes(u: float, K: float, lam: float, n_delays: int, kick: f
     return float(np.max(xi[windows[0]])), np.array([np.ptp(xi[w]) for w in windows])
 
 
+@pytest.mark.slow
 def test_critical_stiffness_at_infinity_against_direct_simulation(runslow):
     """Issue 14: at u = 0.01 (M = eta = 0) K_c = -Z(inf) + |D| = 0.07515 is reached only as
     omega -> inf, so no finite-frequency mode can be fitted. What a simulation resolves instead

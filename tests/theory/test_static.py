@@ -53,6 +53,7 @@ def test_pull_force_against_trap_by_trap_sum():
             assert got == pytest.approx(ref, rel=1e-9, abs=1e-12)
 
 
+@pytest.mark.slow
 @given(st.floats(0.005, 0.995), st.floats(1.0, 2.5), st.floats(0.0, 0.99))
 @settings(max_examples=150, deadline=None)
 def test_threshold_is_max_of_pull(alpha, r, load):

@@ -38,6 +38,7 @@ def test_si_functions_match_reduced_core():
     np.testing.assert_allclose(static_friction_si(m, 2 * tw, s2), static_friction_si(m, tw, s))
 
 
+@pytest.mark.slow
 def test_si_forms_take_every_field_of_the_model():
     # mistakes caught: the SI form dropping the model's alpha, creep, direct, load or hold
     s = PhysicalScales(a0=2e-6, t0=0.5)
