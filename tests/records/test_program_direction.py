@@ -117,6 +117,35 @@ def test_a_decreasing_displacement_reads_forward(tmp_path: Path) -> None:
     assert [s.velocity for s in again] == pytest.approx(v, rel=1e-5)  # 6 digits
     forward = read_record(_write(tmp_path / "fwd.txt", t, x))
     assert not any("sign changed" in n for n in forward.notes)
+    assert rec.sign_changed and not forward.sign_changed
+
+
+def test_record_png_says_the_sign_was_changed(tmp_path: Path,
+                                             monkeypatch: pytest.MonkeyPatch) -> None:
+    """record.png's title carries the sign note (the figure draws the program forward; a user
+    comparing it with the file must see why), and a forward record's title does not. Mistake,
+    seen failing: the note only in segments.csv and on the terminal (stop 50)."""
+    import dryfriction.plots.record as plots_record
+    from dryfriction.app.records import sign_note, write_record_files
+
+    t, x = _program((0.7e-6, 2.1e-6), (400.0, 300.0), seed=5)
+    seen: list[str | None] = []
+    real = plots_record.plot_record
+
+    def spy(*args, **kw):
+        seen.append(kw.get("note"))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(plots_record, "plot_record", spy)
+    for name, sign in (("back", -1.0), ("fwd", 1.0)):
+        rec = read_record(_write(tmp_path / f"{name}.txt", t, sign * x))
+        det = detect_program(rec)
+        (tmp_path / name).mkdir()
+        write_record_files(tmp_path / name, rec, det.segments, det, given=False)
+        assert (tmp_path / name / "record.png").stat().st_size > 0
+    assert "LP_disp" in seen[0] and "read with its sign changed" in seen[0]
+    assert seen[0] == sign_note(read_record(tmp_path / "back.txt"))
+    assert seen[1] is None
 
 
 def test_a_hold_read_backwards_is_a_hold_and_said(tmp_path: Path,

@@ -68,6 +68,19 @@ def cv_cost(pieces: list[Any], alpha: float, creep: str, direct: float = 0.0,
     return (time.process_time() - t0) * span * CV_CALLS_PER_STEP
 
 
+def sign_note(rec: Any) -> str | None:
+    """The line ``record.png``'s title carries when the load point's column was read with its
+    sign changed (:attr:`LabRecord.sign_changed`), else ``None``: the figure draws the program
+    forward, and a user comparing it with the file must see why (stop 50's note: only
+    segments.csv and the terminal said it)."""
+    if not rec.sign_changed:
+        return None
+    role = "disp" if rec.load_point is not None else "velocity"
+    word = "displacement" if role == "disp" else "velocity"
+    return (f"note: the load point's {word} column ({rec.columns[role]}) read with its sign "
+            "changed (its net motion in the file is backwards)")
+
+
 def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bool,
                        fmt: str = "png", dpi: int | None = None) -> None:
     """record.{fmt} and segments.csv into ``folder`` (a staging folder): the record as the
@@ -97,7 +110,8 @@ def write_record_files(folder: Path, rec: Any, segs: Any, det: Any, *, given: bo
     # the reading's notes too (a sign changed, a preamble skipped): what a user keeps
     write_segments_csv(folder / "segments.csv", segs, t0, rec.normal_unit, rec.time,
                        notes=tuple(q for q in (note, *rec.notes, back, backwards) if q))
-    fig, _ = plot_record(rec, segs, det, given=given, note=short)
+    fig, _ = plot_record(rec, segs, det, given=given,
+                         note="\n".join(q for q in (sign_note(rec), short) if q) or None)
     save_figure(fig, folder / f"record.{fmt}", fmt, dpi)
 
 

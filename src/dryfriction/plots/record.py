@@ -23,6 +23,9 @@ TITLE_WIDTH = 0.92
 """The widest title line of ``record.png``, a fraction of the figure's width (ours: the
 text's measured width runs about 4 % under what Agg draws)."""
 
+LABEL_LINES = 4
+"""The lines the segments' numbers stand on below the top of the velocity panel (ours: 9 pt
+apart, four take 37 pt of the panel's 165)."""
 
 TITLE_LINES = 6
 """The most lines ``record.png``'s title takes (ours: six lines, 1.3 in of a figure of at
@@ -194,9 +197,11 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
         axes[2].set_ylabel(f"normal {'stress' if unit == 'MPa' else 'force'}  [{unit}]")
         axes[2].ticklabel_format(axis="y", useOffset=False)  # 30.002, not +3e1 and 0.002
     # each step and hold shaded and numbered as in the table (segment 0 is where it starts);
-    # a label within 3 % of the span of the one before steps down a line (up to three), so
-    # that short segments' labels do not print over each other
-    last, level = -np.inf, 0
+    # a label goes on the highest of LABEL_LINES lines whose last label is over 3 % of the
+    # span before it, so that short segments' labels do not print over each other; with
+    # every line taken, on the line whose last label is the oldest (ours: the first form
+    # cycled through three lines and put a fourth close label on the first one's)
+    last = np.full(LABEL_LINES, -np.inf)
     for j, s in enumerate(segments):
         if j == 0 and s.velocity != 0.0:
             continue
@@ -215,8 +220,9 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
         if not s.start_placed:
             info.unplaced.append(j)
         mark = "" if s.start_placed else "?" if _unassessed(s) else "*"
-        level = (level + 1) % 3 if s.t_start - last < 0.03 * span else 0
-        last = s.t_start
+        free = np.flatnonzero(s.t_start - last >= 0.03 * span)
+        level = int(free[0]) if free.size else int(np.argmin(last))
+        last[level] = s.t_start
         ax.annotate(f"{j}{mark}" + (" hold" if hold else ""), (s.t_start - t0, 1.0),
                     xycoords=("data", "axes fraction"), xytext=(2, -10 - 9 * level),
                     textcoords="offset points", fontsize=8)

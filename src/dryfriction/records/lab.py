@@ -699,7 +699,8 @@ def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline
     normal = vals.get("normal")
     normal_unit = "" if normal is None else ("N" if kinds["normal"] == "force" else "Pa")
     role = "disp" if "disp" in vals else "velocity"
-    if role in vals and moves_backwards(t, vals[role], role == "velocity"):
+    flipped = role in vals and moves_backwards(t, vals[role], role == "velocity")
+    if flipped:
         vals[role] = -vals[role]
         notes.append(f"the load point's {'displacement' if role == 'disp' else 'velocity'} "
                      f"column ({names[idx[role]].strip()}) decreases as the load point "
@@ -712,7 +713,8 @@ def _finish(src: str, names: list[str], columns: Mapping[str, str] | None, hline
         source=src, time=t, load_point=vals.get("disp"), load_velocity=vals.get("velocity"),
         friction=friction, normal_stress=normal, normal_unit=normal_unit,
         columns=MappingProxyType({r: names[idx[r]].strip() for r in roles}),
-        first_line=sline, units=MappingProxyType(units), notes=tuple(notes))
+        first_line=sline, units=MappingProxyType(units), notes=tuple(notes),
+        sign_changed=flipped)
 
 
 def _drop_missing(src: str, data: Array, line_of: Callable[[int], int], names: list[str],

@@ -45,6 +45,9 @@ class LabRecord:
     notes : tuple of str
         One line for each thing the reader did that the user should know: a preamble above
         the header skipped, rows with a missing value dropped (how many, where).
+    sign_changed : bool
+        True when the load point's column was read with its sign changed (its net motion in
+        the file is backwards; one of ``notes`` says so): ``record.png`` says it too.
     """
 
     source: str
@@ -58,6 +61,7 @@ class LabRecord:
     first_line: int
     units: Mapping[str, str] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    sign_changed: bool = False
 
     def __len__(self) -> int:
         return len(self.time)
