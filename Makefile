@@ -28,15 +28,14 @@ demo: $(STAMP)
 	@echo "  $(BIN)/dryfriction simulate examples/velocity_step.toml --out run/"
 	@echo "  $(BIN)/dryfriction --help"
 
-# the suite, then the selected slow tests (each over ~5 s on 2 cores; all of them: pytest --runslow)
-# on the same workers, a test per worker (they are whole-process runs, not fixtures to share)
-SLOW_SUBSET := ageing_under_load or huge_run_sizes or site_builds or chromium or (readme_line_exits and not phase and not interface_precursors)
+# the suite with the slow tests marked ci (the README's commands, the site in a browser, huge runs
+# refused, ageing under load), in one session; the other slow tests (each over ~3.5 s on 2 cores)
+# run with: pytest --runslow
 # the default suite on TEST_WORKERS processes (pytest-xdist; CI has 2 cores), a file per worker
 # (--dist loadfile: a module's fixtures are computed once); TEST_WORKERS=0 runs it in one process
 TEST_WORKERS ?= 2
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile
-	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist load --runslow -m slow -k "$(SLOW_SUBSET)"
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile --with-ci
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks

@@ -1,12 +1,13 @@
 """Shared test options: ``--runslow`` runs the larger variant of the convergence and coverage
-studies, and the tests marked ``slow`` (each over ~5 s on CI's two cores: the studies, the
+studies, and the tests marked ``slow`` (each over ~3.5 s on CI's two cores: the studies, the
 whole-process runs of a command, the fits of whole records).
 
 Without it the parametrised studies run a smaller but meaningful version and the ``slow`` tests
-are skipped; ``make test`` then runs a selected ``slow`` subset with ``--runslow -m slow``
-(see the Makefile), so CI exercises some of them too. ``--slow-marked`` runs the ``slow`` tests
-at the default sizes: the mutant runner (``tests/mutants.py``) names tests of both kinds and must
-run each test it names, at the size the mutant list was checked with.
+are skipped, but for those also marked ``ci`` when ``--with-ci`` is given: ``make test`` (what
+CI runs) passes it, so that CI runs the README's commands, the site in a browser, the refusal
+of huge runs and the ageing under load in the same session as the rest. ``--slow-marked`` runs
+every ``slow`` test at the default sizes: the mutant runner (``tests/mutants.py``) names tests
+of both kinds and must run each test it names, at the size the mutant list was checked with.
 """
 
 from __future__ import annotations
@@ -19,6 +20,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                      help="run the larger variant of the convergence and coverage studies")
     parser.addoption("--slow-marked", action="store_true", default=False,
                      help="run the tests marked slow too, at the default sizes")
+    parser.addoption("--with-ci", action="store_true", default=False,
+                     help="run the slow tests marked ci too (make test, CI)")
 
 
 @pytest.fixture(scope="session")
@@ -28,10 +31,14 @@ def runslow(request: pytest.FixtureRequest) -> bool:
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Skip the ``slow`` tests unless ``--runslow`` is given."""
+    """Skip the ``slow`` tests unless ``--runslow`` or ``--slow-marked`` is given, or the test
+    is marked ``ci`` and ``--with-ci`` is."""
     if config.getoption("--runslow") or config.getoption("--slow-marked"):
         return
-    skip = pytest.mark.skip(reason="slow (over ~5 s): run with --runslow or --slow-marked")
+    with_ci = config.getoption("--with-ci")
+    skip = pytest.mark.skip(reason="slow (over ~3.5 s): run with --runslow or --slow-marked")
     for item in items:
-        if "slow" in item.keywords:
+        if item.get_closest_marker("slow") is None:
+            continue
+        if not (with_ci and item.get_closest_marker("ci") is not None):
             item.add_marker(skip)

@@ -116,6 +116,7 @@ def _pngs_of(page: Path) -> list[Path]:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_site_builds_offline_with_every_gallery_figure(site: Path) -> None:
     pages = list(site.rglob("*.html"))
     names = {p.relative_to(site).as_posix() for p in pages}
@@ -165,6 +166,7 @@ def _screenshot(browser: str, page: Path, out: Path, profile: Path) -> np.ndarra
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_index_and_gallery_render_in_chromium(site: Path, tmp_path: Path) -> None:
     browser = _chromium()
     for name, page in (("index", site / "index.html"),
@@ -209,6 +211,7 @@ OVERFLOW_PROBE = (
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_pages_fit_an_800px_window_in_chromium(site: Path, tmp_path: Path) -> None:
     """At 800 px no page is wider than the window and no code block is cut: long lines wrap
     (docs/_static/custom.css), wide tables scroll inside their own box."""

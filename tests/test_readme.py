@@ -5,8 +5,9 @@ Markdown page under docs/ is run (once, however many pages show it) in a fresh t
 holding a copy of ``examples/``, with the environment's ``bin`` first on the PATH (what the
 set-up lines, ``pip install .``, ``make demo`` and ``source .venv/bin/activate``, give), and
 must exit 0. Blocks fenced as ```text are synopses (``[--json]``, ``DIR``) and are not run.
-Lines that take long (:data:`SLOW`) are marked ``slow``: CI runs them in its ``--runslow``
-subset (Makefile ``SLOW_SUBSET``), all but the phase diagram; none is skipped. Every ```python
+Lines that take long (:data:`SLOW`) are marked ``slow``; all but the phase diagram and the
+precursor study (:data:`NOT_IN_CI`) are marked ``ci`` too, and ``make test`` (CI) runs them;
+none is skipped. Every ```python
 block of the same files runs too.
 """
 
@@ -31,12 +32,14 @@ SHELL_BLOCK = re.compile(r"^```(?:bash|sh|console|shell)[ \t]*\n(.*?)^```", re.M
 # the set-up lines: what the test environment already is
 SETUP = ("make", "source", ".", "cd", "pip")
 
-# marked slow: CI runs all but the phase diagram (a 3 x 3 stick-slip grid on Dask, ~70 s) and the
-# interface's precursor study in
-# its --runslow subset (Makefile SLOW_SUBSET); `pytest --runslow` runs every one
+# marked slow: CI runs all but NOT_IN_CI (marked ci: make test's --with-ci); `pytest --runslow`
+# runs every one
 SLOW = ("dryfriction fit", "dryfriction compare", "dryfriction simulate", "dryfriction reproduce",
         "dryfriction phase-diagram", "dryfriction sweep",
-        "python examples/interface_precursors.py")  # three chain runs, ~7 min: not in CI
+        "python examples/interface_precursors.py")
+# the phase diagram (a 3 x 3 stick-slip grid on Dask, ~70 s) and the interface's precursor study
+# (three chain runs, ~7 min)
+NOT_IN_CI = ("dryfriction phase-diagram", "python examples/interface_precursors.py")
 
 
 def shell_lines(text: str) -> list[str]:
@@ -108,7 +111,9 @@ def test_readme_fits_a_screen_and_pages_carry_no_tracker_numbers() -> None:
 
 
 def _marks(line: str) -> list[pytest.MarkDecorator]:
-    return [pytest.mark.slow] if line.startswith(SLOW) else []
+    if not line.startswith(SLOW):
+        return []
+    return [pytest.mark.slow] + ([] if line.startswith(NOT_IN_CI) else [pytest.mark.ci])
 
 
 @pytest.mark.parametrize("line", [pytest.param(c, marks=_marks(c), id=c[:60]) for c in COMMANDS])

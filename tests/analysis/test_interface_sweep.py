@@ -140,6 +140,7 @@ def test_sweep_values_equal_the_same_point_run_directly(tmp_path: Path) -> None:
     assert {p.name: p.stat().st_mtime_ns for p in (out / "points").iterdir()} == stored
 
 
+@pytest.mark.slow
 def test_catalogue_after_leaves_the_early_events_out(tmp_path: Path) -> None:
     """``catalogue.after``: the events that start before it are left out of every count, the
     mean friction averaged from it on (the cut inside an event, which is then left out).

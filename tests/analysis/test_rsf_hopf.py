@@ -187,6 +187,7 @@ def test_ageing_above_kc_decays_from_every_kick() -> None:
     assert math.isnan(r["delta_hi"])
 
 
+@pytest.mark.slow
 def test_slip_law_threshold_stays_finite_at_kc() -> None:
     """Gu et al. (1984): with the slip law, large enough kicks run away above k_c. The
     threshold does not shrink as k -> k_c (a subcritical Hopf point's would, as sqrt(d)):

@@ -37,6 +37,7 @@ def test_the_ensemble_is_accurate_enough(view) -> None:  # type: ignore[no-untyp
                                                 abs=1e-3)
 
 
+@pytest.mark.slow
 def test_velocity_weakening_and_the_steady_slope(view) -> None:  # type: ignore[no-untyped-def]
     """b > a > 0 and a - b equals the steady slope of eq. 34 over the steps (chord of the
     exact steady friction), to 10 % (the fit also weighs the transients)."""

@@ -113,6 +113,7 @@ def test_bad_input_is_rejected():
 # ---------------------------------------------------------------- direct simulation vs linear
 
 
+@pytest.mark.slow
 def test_growth_rates_match_the_rightmost_root(runslow):
     """Inertial, damped slider (u = 0.1, eps = 0.04, M = 10, eta = 0.1): K_c = 0.247 is finite
     and the rightmost root crosses cleanly. Below K_c the simulated perturbation grows, above it

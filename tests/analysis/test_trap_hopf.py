@@ -41,6 +41,7 @@ def test_hopf_point_matches_the_characteristic_integrals(u: float, mass: float,
     assert h.point is not None and h.point.residual < 1e-9
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("u,mass", [(0.013, 0.0), (0.31, 0.0), (0.31, 0.43)])
 def test_l1_settles_with_resolution_and_agrees_between_derivative_routes(
         u: float, mass: float) -> None:

@@ -181,6 +181,7 @@ every = 1.0
     return str(p)
 
 
+@pytest.mark.slow
 def test_trap_model_rows_are_trap_hopf_in_reduced_units(tmp_path: Path) -> None:
     """Each row is trap_hopf at the reduced velocity with the drive's mass and damping (the
     table's own route: app -> hopf_table; the direct call here), the headers reduced."""

@@ -12,6 +12,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from dryfriction.cli import app
@@ -48,6 +49,7 @@ def _compare(tmp_path: Path, *extra: str) -> subprocess.CompletedProcess[str]:
                           capture_output=True, text=True, env=env, timeout=300)
 
 
+@pytest.mark.slow
 def test_compare_prints_every_note_whole_and_v0_in_reduced_units(tmp_path: Path) -> None:
     # mistakes: no notes printed (the table alone); a note wrapped at the pipe's 80 columns;
     # the twin's v0 note left in the SI of the fit's scales (0.37 a0/t0 -> "3.7e-07 m/s")
@@ -66,6 +68,7 @@ def test_compare_prints_every_note_whole_and_v0_in_reduced_units(tmp_path: Path)
     assert any(len(f"- {n}") > 80 for n in notes)  # the run has a note wider than the pipe
 
 
+@pytest.mark.slow
 def test_compare_json_keeps_stdout_one_document_and_says_the_notes_on_stderr(
         tmp_path: Path) -> None:
     # mistake: the notes printed on standard output with --json (json.loads fails)

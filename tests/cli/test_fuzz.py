@@ -360,6 +360,7 @@ def oversized(draw: st.DrawFn, base: st.SearchStrategy[dict[str, Any]]) -> dict[
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 @pytest.mark.parametrize("law", ["trap", "rsf"])
 def test_huge_run_sizes_are_refused_in_one_line_or_completed(
         law: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -242,6 +242,7 @@ print("finished")
 """
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("delay", [0.2, 0.45])
 def test_a_signal_during_a_compiled_call_is_raised_after_it(delay: float) -> None:
     """A raising handler (Python's own kind) and a signal that surely lands inside one long

@@ -518,6 +518,7 @@ def test_strong_pinning_velocity_step_memory_length() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 @pytest.mark.parametrize("f_w", [0.5, -0.5])
 def test_ageing_under_load_both_holds_against_the_ensemble(f_w: float) -> None:
     """Issue 14: ``static_friction(..., load, hold=...)`` against each hold's ensemble protocol.

@@ -241,6 +241,7 @@ def test_too_many_samples_or_too_much_memory_is_refused_before_any_work(monkeypa
                            Output(every=1.0), velocity=[1.0, 2.0, 3.0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kc, mass", [(100.0, 1.0), (30.0, 2.5)])
 def test_rupture_front_runs_at_the_chain_sound_speed(kc: float, mass: float) -> None:
     """Inertial regime: a chain prestressed at the steady friction of a slow creep (u = 1e-3,

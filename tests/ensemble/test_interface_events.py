@@ -78,6 +78,7 @@ def test_event_catalogue_statistics_agree_with_the_dynamic_run() -> None:
     assert abs(peak_e - peak_d) <= 0.02 * peak_d, (peak_e, peak_d)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rate", [QUASI_STATIC_RATE, 0.1])
 def test_energy_balance_holds_per_event_with_quasi_static_phases(rate: float) -> None:
     """``work_load = delta(elastic + kinetic) + work_friction + work_damping +
@@ -137,6 +138,7 @@ def test_the_protocol_table_takes_the_threshold() -> None:
     assert "\n" not in str(err.value)
 
 
+@pytest.mark.slow
 def test_event_driven_numbers_are_the_same_with_two_threads() -> None:
     """16 blocks (the parallel loop's threshold), event-driven with quasi-static phases and
     handovers: one thread and two give the same numbers bit for bit (each block's probe

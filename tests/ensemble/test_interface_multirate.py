@@ -166,6 +166,7 @@ def test_energy_balance_closes_with_multirate_stepping(rate: float) -> None:
         assert abs(res[b] - res[a]) < 2e-3 * max(diss, 0.1), (ev.index, res[b] - res[a], diss)
 
 
+@pytest.mark.slow
 def test_event_driven_multirate_catalogue_agrees_with_the_dynamic_run() -> None:
     """Both savings together (quasi-static loading between events, windows on their own
     clocks within them): the catalogue still agrees with the plain dynamic run's to the same
@@ -180,6 +181,7 @@ def test_event_driven_multirate_catalogue_agrees_with_the_dynamic_run() -> None:
     assert abs(peak_b - peak_d) <= 0.02 * peak_d, (peak_b, peak_d)
 
 
+@pytest.mark.slow
 def test_rupture_front_runs_at_the_sound_speed_with_windows_on_their_own_clocks() -> None:
     """The inertial front of tests/ensemble/test_interface.py (a prestressed creeping chain
     kicked at block 0, ``k_c = 30``, ``m = 2.5``): the blocks ahead of the tip are stuck, their

@@ -128,6 +128,7 @@ def test_the_time_limit_variable_is_checked(monkeypatch) -> None:
         time_limit()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("example", ["velocity_step.toml", "spring_stick_slip.toml",
                                      "spring_inertial.toml", "slide_hold_slide.toml",
                                      "slow inertial"])

@@ -49,6 +49,7 @@ def _series(values: dict[str, float], d: SeriesData, traps_per_a0: float,
                              stiffness=stiffness), values, d)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("direct, k_soft, tol, soft_min", [(0.0, 0.1, 2.5e-4, 7e-4),
                                                            (0.02, 0.3, 2e-5, 4e-4)])
 def test_stiff_spring_reproduces_the_kinematic_series(direct: float, k_soft: float, tol: float,
@@ -165,6 +166,7 @@ def test_direct_effect_recovered_on_a_spring_with_a_trend() -> None:
     assert rms < 7e-4  # the noise, 5e-4, plus the fit's granularity
 
 
+@pytest.mark.slow
 def test_robust_errors_of_a_cv_fit() -> None:
     """The record's cv fits get the autocorrelation-robust errors too (fit.steps
     .step_covariance on a CVModel fit): the parameters held fixed stay out, and with white

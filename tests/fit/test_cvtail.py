@@ -68,6 +68,7 @@ def test_steady_tail_is_the_steady_level(runs: dict[str, tuple[np.ndarray, np.nd
     assert np.max(np.abs(d)) < 4e-4
 
 
+@pytest.mark.slow
 def test_chunks_are_the_whole_run_within_its_granularity(
         runs: dict[str, tuple[np.ndarray, np.ndarray]]) -> None:
     """Chunks change only the sampling grid of the regular track: the whole run's own change

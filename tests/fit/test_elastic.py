@@ -107,6 +107,7 @@ def test_free_fits_unchanged_by_the_loadings():
     assert res.rows[0]["stiffness"] > 0 and "k_inconsistent" not in res.rows[0]["flags"]
 
 
+@pytest.mark.slow
 def test_held_k_moves_a_b_dc_as_refits_do():
     """The two-step correction's ``G = d(ln a, ln b, ln Dc)/d ln k`` of a step with the
     record's k held (the linearisation :func:`dryfriction.fit.statistics.

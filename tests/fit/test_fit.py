@@ -86,6 +86,7 @@ def test_coverage_with_estimated_noise_rsf_healing(runslow: bool) -> None:
 
 
 # ----------------------------------------------------------------------------- identifiability
+@pytest.mark.slow
 def test_degenerate_t0_is_only_bounded_above() -> None:
     """t0 = 0.01 s far below the shortest wait (1 s): log-linear data do not fix t0."""
     r = fit_static(static_data(3, t0=0.01, tw=np.geomspace(1.0, 1e4, 16), sigma=False), "cv")

@@ -258,6 +258,7 @@ def test_every_step_flagged_exits_0_and_says_so(tmp_path: Path):
     assert last.startswith("every step is flagged"), last
 
 
+@pytest.mark.slow
 def test_not_steady_before_and_misfit():
     """1 -> 10 um/s for only 30 um (1.5 Dc), then -> 1 um/s: the second change comes inside
     the first's transient and is flagged, the first is not. A kinematic machine fitted to
@@ -275,6 +276,7 @@ def test_not_steady_before_and_misfit():
     assert "misfit" in fit_steps(d, stiffness=math.inf).rows[0]["flags"]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not RECORD.exists(), reason="needs the shared record")
 def test_shared_record_keeps_its_values_and_raises_no_flag():
     """The shipped sepiolite step: a, b, Dc inside the intervals they had before issue 30
@@ -292,6 +294,7 @@ def test_shared_record_keeps_its_values_and_raises_no_flag():
     assert row["flags"] == "", row["notes"]
 
 
+@pytest.mark.slow
 def test_record_stiffness_and_k_inconsistent():
     """One machine: the steps' identified k combine into the record's (inverse-variance in
     ln k); the step that disagrees with the others gets k_inconsistent, the others do not
@@ -373,6 +376,7 @@ def test_red_noise_is_not_an_unsteady_start():
         [r["notes"] for r in res.rows]
 
 
+@pytest.mark.slow
 def test_a_step_whose_cheapest_start_leads_astray_is_refitted():
     """Seed 28 (identifiable, 1 -> 0.1 um/s): the data-driven start with the lowest cost
     (a = 0.02, Dc = 630 um) converges to a local minimum (k = 24 /m, rms 14x the noise);

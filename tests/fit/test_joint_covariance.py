@@ -28,6 +28,7 @@ def _ar1(rng: np.random.Generator, n: int, rho: float, sd: float) -> np.ndarray:
     return e
 
 
+@pytest.mark.slow
 def test_blocked_sandwich_matches_the_spread_of_a_shared_slope() -> None:
     """Two windows apart in time, sampled at 10 and 40 Hz, each with its own AR(1) noise
     (lag-1 0.85, sd 1.0; 0.9, sd 0.35) and intercept, one shared slope whose information
@@ -69,6 +70,7 @@ def red_joint() -> tuple:
     return fit_steps(SeriesData(t, v, mu, source="red"), joint=True), tr
 
 
+@pytest.mark.slow
 def test_joint_intervals_are_the_robust_ones(red_joint: tuple) -> None:
     """On a record with AR(1) friction noise (lag-1 0.98) the joint fit's ``+-``, its 95 %
     intervals and ``a - b``'s error are the blocked sandwich's, several times the white

@@ -132,6 +132,7 @@ def test_basalt_k_does_not_hang_on_the_change_time(basalt):  # type: ignore[no-u
     assert abs(prog[1]["stiffness"] - prog[0]["stiffness"]) > p_half
 
 
+@pytest.mark.slow
 def test_basalt_agrees_with_an_independent_fit(basalt):  # type: ignore[no-untyped-def]
     """a, b, Dc of the measured drive's fit hold the independent fit's values (measured:
     a 0.00811, b 0.00885, Dc 6.87 um, change at 68.732 s; ours a 0.00846 [0.00727,

@@ -81,6 +81,7 @@ def peak_gain(mu: np.ndarray, v: np.ndarray) -> float:
 
 
 # ----------------------------------------------------------------------------- the solvers
+@pytest.mark.slow
 def test_independent_solver_heals_as_closed_form_on_a_stiff_machine():
     """k = 1e9 /m, no trend or noise: the peak on reloading exceeds the steady friction by
     b ln(1 + t_h V/Dc) (ageing law: the state grows as t during the hold) to 0.5 %
@@ -98,6 +99,7 @@ def test_independent_solver_heals_as_closed_form_on_a_stiff_machine():
         assert mu[i:].max() - soft.mu0 < 0.97 * closed, h
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("v", [1e-6, 1e-5])
 def test_forward_model_matches_independent_solver_through_holds(v: float):
     """rsf_series (regularised law, RODAS4) along the whole three-hold record against SciPy
@@ -137,6 +139,7 @@ def test_detection_finds_the_holds(v: float, hold_dt: float | None, tmp_path: Pa
         assert s.velocity == pytest.approx(v, rel=0.01)
 
 
+@pytest.mark.slow
 def test_slice_steps_gives_shs_windows_over_hold_and_peak(tmp_path: Path):
     """One "shs" window per hold: it starts in the sliding before the hold, holds the whole
     hold, and runs to the end of the reslide, past the reslide's peak (of the noise-free
@@ -205,6 +208,7 @@ def test_slip_law_and_stiff_machine_fit_worse():
     assert abs(slip.rows[2]["peak_residual"]) > 3 * noise / math.sqrt(PEAK_SAMPLES)
 
 
+@pytest.mark.slow
 def test_peak_gain_vs_log_hold_time_matches_the_record():
     """Delta mu_peak (peak on reslide less the friction before the hold) of the fitted curves
     against the record's own: each within 2e-4 (about 2x the noise of an 11-sample mean;
@@ -235,6 +239,7 @@ def test_hold_remnant_by_hand():
     assert hold_remnant(d, 5, 1.0, 2.0)[0] == 0.0 and hold_remnant(d, 12, 1.0, 2.0)[0] == 0.0
 
 
+@pytest.mark.slow
 def test_short_reslides_are_flagged():
     """Reslides of 100 um (5 Dc) instead of 200: the window of the 1000 s hold starts 50 um
     into the reslide from the 100 s hold, where the noise-free friction is still 4.1e-3 above

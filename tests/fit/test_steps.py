@@ -210,6 +210,7 @@ def test_joint_fit_recovers_shared_parameters():
 
 
 # ----------------------------------------------------------------------------- the shared record
+@pytest.mark.slow
 @pytest.mark.skipif(not HAVE_LAB or not RECORD.exists(), reason="needs records.lab and the record")
 def test_shared_record_follows_the_peak():
     """Read, sliced and fitted as it is: the fitted curve follows the peak (mean residual over

@@ -45,6 +45,7 @@ def protocol(tmp_path: Path) -> Path:
     return p
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", ["png", "pdf", "svg"])
 def test_simulate_writes_its_figure_in_the_asked_format(tmp_path, protocol, fmt):
     out = tmp_path / "run"

@@ -96,6 +96,7 @@ def test_report_text_is_readable_in_a_window_800_px_wide(page):
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_report_text_is_readable_in_chromium_at_800_px(page, tmp_path: Path):
     browser = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")
                     if shutil.which(n)), None)

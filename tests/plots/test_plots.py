@@ -333,6 +333,7 @@ def _assert_laid_out(fig: Figure, name: str) -> None:
         assert box.y1 <= page.y1 and not any(box.overlaps(b) for b in boxes), name
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(PAPER))
 def test_paper_figures_fit_their_fixed_layout(name):
     _assert_laid_out(PAPER[name](), name)

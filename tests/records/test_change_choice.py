@@ -64,6 +64,7 @@ def test_changes_put_where_most_probably_within_the_tolerance(
     assert max(_zoo_hold_errors((5191, 13026), tmp_path, above=0.0)) > 1.0
 
 
+@pytest.mark.slow
 def test_a_confident_change_its_profile_rules_out_is_moved(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo records 123 and 3267 (many-step runs, ratio 3 and 10, every artifact): the first
@@ -106,6 +107,7 @@ def test_a_slow_hold_is_placed_over_a_longer_window(
     assert max(_zoo_hold_errors((112, 3022), tmp_path)) > 1.0
 
 
+@pytest.mark.slow
 def test_a_hold_read_as_a_creep_gets_the_hold_window(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo records 4108 and 5116 (slide-hold-slides at 0.16 and 0.21 um/s, every artifact):

@@ -359,6 +359,7 @@ def _zoo_hold_errors(indices: tuple[int, ...], tmp: Path, above: float = 100.0
     return out
 
 
+@pytest.mark.slow
 def test_changes_at_holds_placed_at_any_confidence(tmp_path: Path,
                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo records 232 and 364 (slide-hold-slides with the servo error and the oscillation; in
@@ -390,6 +391,7 @@ def test_hold_rule_leaves_a_white_record_to_the_whole_stretches(tmp_path: Path) 
     assert max(_zoo_hold_errors((40,), tmp_path)) <= 1.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("wander", [False, True])
 def test_hold_rule_never_moves_a_hold_start_into_the_slide(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, wander: bool) -> None:

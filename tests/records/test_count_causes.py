@@ -359,6 +359,7 @@ def test_shape_rss_is_one_least_squares_fit_per_shape() -> None:
         assert np.isclose(got[k], r @ r, rtol=1e-9, atol=1e-9 * (y @ y))
 
 
+@pytest.mark.slow
 def test_a_stop_settling_is_no_stretch_and_a_slow_stretch_before_a_hold_stays(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo 21022 and 23206 (slide-hold-slides; after one stop the servo settled 0.097 um/s

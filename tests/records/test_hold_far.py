@@ -199,6 +199,7 @@ SLOW_STEPS = ((dict(v1=0.1e-6, v2=0.13e-6, fs=5.0, slide=500.0), 23),
               (dict(v1=0.2e-6, v2=0.1e-6, fs=2.0, slide=500.0), 39))
 
 
+@pytest.mark.slow
 def test_slow_steps_placed_on_their_far_samples(monkeypatch: pytest.MonkeyPatch) -> None:
     """A ratio-1.3 step up at 0.1 um/s (5 Hz) and a ratio-2 step down at 0.2 um/s (2 Hz),
     500-s slides, 40 records each: with the far look (FAR_STEPS) 24 and 40 within the
@@ -244,6 +245,7 @@ def test_a_small_speed_change_near_a_step(monkeypatch: pytest.MonkeyPatch) -> No
     assert ok <= 4 and wrong_placed == 0 and held >= 29, (ok, wrong_placed, held)
 
 
+@pytest.mark.slow
 def test_a_small_speed_change_before_a_stop(monkeypatch: pytest.MonkeyPatch) -> None:
     """1 um/s at 5 Hz, 4 % slower from 30 s before a stop (a change too small to split on),
     a 300-s hold, 30 records: the far samples would bend the slide's line, so the hold takes

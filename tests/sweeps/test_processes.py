@@ -171,6 +171,7 @@ def test_local_workers_are_forked_warm_and_the_fork_server_is_stopped() -> None:
     assert not left, left
 
 
+@pytest.mark.slow
 def test_forked_workers_give_the_serial_results(tmp_path: Path) -> None:
     """The stick-slip summaries of a 2-worker sweep are those of the runner called here,
     point by point, bit for bit: a worker forked from the warm server computes the same."""

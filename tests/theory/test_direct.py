@@ -230,6 +230,7 @@ def test_force_drive_holding_the_steady_force_slides_at_that_velocity() -> None:
     np.testing.assert_allclose(r.mu[1:], r.f_applied[1:], atol=1e-9)
 
 
+@pytest.mark.slow
 def test_stiff_spring_is_the_kinematic_limit() -> None:
     u, A, lam, K = 1.0, 0.1, 400.0, 200.0
     model = TrapModel(eps=EPS, direct=A, v_ref=0.3)

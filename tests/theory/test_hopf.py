@@ -120,6 +120,7 @@ def test_brusselator_against_an_independent_route() -> None:
     assert hp.l1 < 0  # the Brusselator's Hopf is supercritical
 
 
+@pytest.mark.slow
 def test_cycle_amplitude_against_simulation() -> None:
     """The canonical system at ``beta`` on the unstable side of a supercritical point: the
     settled cycle's amplitude over the prediction tends to 1 as ``beta -> 0`` (error O(beta))."""

@@ -210,6 +210,7 @@ def test_halving_the_step_halves_the_error(T: float, eps: float, alpha: float) -
     assert errors[-1] <= errors[0] / 4, errors
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("T,eps,alpha", CASES)
 def test_package_static_friction_matches_the_explicit_pull(T: float, eps: float,
                                                           alpha: float) -> None:

@@ -119,6 +119,7 @@ def test_the_new_forms_use_the_whole_model():
                                    rtol=1e-9), (fn.__name__, field)
 
 
+@pytest.mark.slow
 def test_the_new_scalar_forms_use_their_fields():
     # mistake caught: min_velocity, force_hold_shift, low_velocity_constant, fresh_force,
     # loaded_edge, pull_force, threshold_shift, static_slope_per_eps or forward_moment reading

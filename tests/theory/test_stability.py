@@ -255,6 +255,7 @@ def test_response_against_independent_linearisation_at_every_frequency(u, x):
     assert abs(complex(resp.Z(1j * omega)) - ref) < 1e-7 * max(1.0, abs(ref))
 
 
+@pytest.mark.slow
 def test_critical_stiffness_is_the_supremum_of_the_delay_circles():
     # issue 14, independent values (eps = 0.04, alpha = 0.13, M = eta = 0): at u = 0.01 the
     # supremum is only approached as omega -> inf, at u = 0.1 it is a finite crossing

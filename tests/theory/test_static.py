@@ -198,6 +198,7 @@ def test_static_out_of_range_is_a_named_value_error(T, eps, word):
             static_friction(TrapModel(eps=eps), T)
 
 
+@pytest.mark.slow
 def test_reversed_load_and_the_two_holds():
     # a reversed load is the mirror population: d_w(-f) = -d_w(f); at zero load the holds agree
     edge_back = loaded_edge(TrapModel(), -0.4)
