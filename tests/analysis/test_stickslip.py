@@ -212,6 +212,7 @@ def test_sweep_cli_runs_on_two_workers(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_phase_diagram_cli_writes_png_and_netcdf(tmp_path):
     p = _write(tmp_path, '"drive.stiffness" = [0.04, 0.2]\n'
                          '"drive.segments.0.velocity" = [0.1, 1.0]\n')

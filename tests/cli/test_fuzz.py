@@ -221,6 +221,7 @@ def _simulate(tmp_path: Path, capsys: pytest.CaptureFixture[str], doc: dict[str,
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 @pytest.mark.parametrize("law", ["trap", "rsf"])
 def test_simulate_either_produces_everything_or_one_error_line(
         law: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -25,6 +25,7 @@ def _fit(tmp_path: Path, *extra: str) -> subprocess.CompletedProcess[str]:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_json_on_stdout_is_one_document_and_the_program_table_is_whole(tmp_path: Path) -> None:
     # mistakes: the program table on stdout with --json; the table wrapped at the pipe's width
     r = _fit(tmp_path, "--json")

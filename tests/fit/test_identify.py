@@ -277,6 +277,7 @@ def test_not_steady_before_and_misfit():
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 @pytest.mark.skipif(not RECORD.exists(), reason="needs the shared record")
 def test_shared_record_keeps_its_values_and_raises_no_flag():
     """The shipped sepiolite step: a, b, Dc inside the intervals they had before issue 30

@@ -71,6 +71,7 @@ def red_joint() -> tuple:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_joint_intervals_are_the_robust_ones(red_joint: tuple) -> None:
     """On a record with AR(1) friction noise (lag-1 0.98) the joint fit's ``+-``, its 95 %
     intervals and ``a - b``'s error are the blocked sandwich's, several times the white

@@ -58,6 +58,7 @@ def test_step_coverage(runslow: bool):
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_change_time_part_against_refits():
     """The measured drive's change-time part of k's error (fit.loadpoint.change_time_effect,
     linearised) against refits of the step with the drive moved by +-sigma of its change time

@@ -162,6 +162,7 @@ def test_slice_steps_gives_shs_windows_over_hold_and_peak(tmp_path: Path):
 
 # ----------------------------------------------------------------------------- the fit
 @pytest.mark.slow
+@pytest.mark.ci
 @pytest.mark.parametrize("rho", [0.0, 0.9])
 def test_fit_recovers_a_b_dc_k_within_intervals(rho: float):
     """Each window's fit (elastic machine, trend, HAC intervals; white or AR(1) rho = 0.9

@@ -154,6 +154,7 @@ def _coverage(n: int, tmp_path: Path) -> dict[str, float]:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_coverage_small(tmp_path: Path):
     """10 records x 2 steps: the 95 % intervals hold the truth in >= 75 % of the steps (for a
     true 95 % coverage that fails with probability < 1e-2; a biased model, e.g. the kinematic

@@ -217,3 +217,65 @@ def test_record_figure_close_labels_each_on_a_line_of_their_own() -> None:
     lines = {tx.get_text(): tx.xyann[1] for tx in fig.axes[0].texts}
     assert len({lines[k] for k in ("1", "2", "3", "4")}) == 4, lines
     assert lines["5"] == lines["1"] and lines["6"] == lines["1"], lines
+
+
+@pytest.mark.parametrize("holds", [((100.0, 128.0),),
+                                   tuple((50.0 + 100.0 * k, 85.0 + 100.0 * k) for k in range(6))])
+def test_record_figure_labels_on_a_line_do_not_overlap(holds: tuple) -> None:
+    """Holds lasting 3-6 % of a 700-s record (one of 28 s; six of 35 s): no two segment
+    numbers drawn over each other, measured on the drawn figure (the text's boxes). Mistake,
+    seen failing (review helper-89): a line judged free 3 % of the span after its last
+    label, about 17 pt, where "1 hold" takes 25-30 pt."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from dryfriction.records.lab import LabRecord, Segment
+
+    t = np.arange(0.0, 700.0, 0.5)
+    rec = LabRecord(source="holds.txt", time=t, load_point=1e-6 * t, load_velocity=None,
+                    friction=0.6 + 0.0 * t, normal_stress=None, normal_unit=None,
+                    columns={}, first_line=2, units={})
+    edges = [0.0]
+    vel = []
+    for a, b in holds:
+        edges += [a, b]
+        vel += [1e-6, 0.0]
+    edges.append(699.5)
+    vel.append(1e-6)
+    idx = [int(np.searchsorted(t, e)) for e in edges]
+    segs = tuple(Segment(a, b, v, i, j, confidence=50.0, start_lo=a - 0.1, start_hi=a + 0.1,
+                         start_p=0.99)
+                 for a, b, v, i, j in zip(edges[:-1], edges[1:], vel, idx[:-1], idx[1:],
+                                          strict=True))
+    fig, _ = plot_record(rec, segs, None)
+    r = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(r)
+    boxes = [(tx.get_text(), tx.get_window_extent(r)) for tx in fig.axes[0].texts]
+    assert len(boxes) == 2 * len(holds)
+    for k, (a, ba) in enumerate(boxes):
+        for b, bb in boxes[k + 1:]:
+            assert not ba.overlaps(bb), (a, b)
+
+
+def test_record_figure_title_keeps_its_note_when_cut() -> None:
+    """A busy record (a 109-character path, 200 changes not placed) with a note: the title is
+    cut to its line limit and the note is still in it (the notes come before the lists of
+    segments, which the table has whole). Mistake, seen failing (review helper-89): the note
+    last, the first line dropped by the cut."""
+    from dryfriction.plots.record import TITLE_LINES
+    from dryfriction.records.lab import LabRecord, Segment
+
+    t = np.arange(0.0, 20100.0, 0.5)
+    rec = LabRecord(source="/data/" + "x" * 95 + "/rec.txt", time=t, load_point=1e-6 * t,
+                    load_velocity=None, friction=0.6 + 0.0 * t, normal_stress=None,
+                    normal_unit=None, columns={}, first_line=2, units={})
+    edges = [100.0 * k for k in range(201)] + [20099.5]
+    idx = [int(np.searchsorted(t, e)) for e in edges]
+    segs = tuple(Segment(a, b, (1.0 + k % 2) * 1e-6, i, j, confidence=50.0, start_lo=a - 2.0,
+                         start_hi=a + 2.0, start_placed=k == 0, start_p=0.5)
+                 for k, (a, b, i, j) in enumerate(zip(edges[:-1], edges[1:], idx[:-1], idx[1:],
+                                                      strict=True)))
+    note = "note: the load point's displacement column (LP) read with its sign changed"
+    fig, _ = plot_record(rec, segs, None, note=note)
+    title = fig._suptitle.get_text()
+    assert "title cut" in title and len(title.splitlines()) == TITLE_LINES
+    assert "read with its sign changed" in " ".join(title.split())

@@ -42,6 +42,7 @@ def _marked(mark: str) -> list[psutil.Process]:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_sweep_with_two_workers_leaves_no_process_behind(tmp_path: Path) -> None:
     proto = tmp_path / "p.toml"
     proto.write_text(PROTO)

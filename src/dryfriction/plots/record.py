@@ -27,6 +27,10 @@ LABEL_LINES = 4
 """The lines the segments' numbers stand on below the top of the velocity panel (ours: 9 pt
 apart, four take 37 pt of the panel's 165)."""
 
+LABEL_EM = 0.64
+"""A label's width per character, in ems (ours: DejaVu Sans' digits are 0.636 em, its
+letters and space narrower): what the line a label takes is judged by, before drawing."""
+
 TITLE_LINES = 6
 """The most lines ``record.png``'s title takes (ours: six lines, 1.3 in of a figure of at
 least 5.4 in, leave each panel its room)."""
@@ -197,11 +201,14 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
         axes[2].set_ylabel(f"normal {'stress' if unit == 'MPa' else 'force'}  [{unit}]")
         axes[2].ticklabel_format(axis="y", useOffset=False)  # 30.002, not +3e1 and 0.002
     # each step and hold shaded and numbered as in the table (segment 0 is where it starts);
-    # a label goes on the highest of LABEL_LINES lines whose last label is over 3 % of the
-    # span before it, so that short segments' labels do not print over each other; with
-    # every line taken, on the line whose last label is the oldest (ours: the first form
-    # cycled through three lines and put a fourth close label on the first one's)
-    last = np.full(LABEL_LINES, -np.inf)
+    # a label goes on the highest of LABEL_LINES lines where the last label ends before it
+    # starts, so that short segments' labels do not print over each other; with every line
+    # taken, on the line whose last label ends first (ours: the first forms cycled through
+    # three lines, or took a label's width for 3 % of the span: "1 hold" is twice that)
+    fig.subplots_adjust(left=0.09, right=0.98)  # the final widths (below), for per_pt
+    lo_x, hi_x = ax.get_xlim()
+    per_pt = (hi_x - lo_x) / (ax.get_position().width * fig.get_figwidth() * 72.0)
+    ends = np.full(LABEL_LINES, -np.inf)
     for j, s in enumerate(segments):
         if j == 0 and s.velocity != 0.0:
             continue
@@ -220,10 +227,12 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
         if not s.start_placed:
             info.unplaced.append(j)
         mark = "" if s.start_placed else "?" if _unassessed(s) else "*"
-        free = np.flatnonzero(s.t_start - last >= 0.03 * span)
-        level = int(free[0]) if free.size else int(np.argmin(last))
-        last[level] = s.t_start
-        ax.annotate(f"{j}{mark}" + (" hold" if hold else ""), (s.t_start - t0, 1.0),
+        text = f"{j}{mark}" + (" hold" if hold else "")
+        x0 = s.t_start - t0 + 2.0 * per_pt  # the label's left edge (2 pt right of its change)
+        free = np.flatnonzero(ends <= x0)
+        level = int(free[0]) if free.size else int(np.argmin(ends))
+        ends[level] = x0 + (LABEL_EM * 8.0 * len(text) + 2.0) * per_pt
+        ax.annotate(text, (s.t_start - t0, 1.0),
                     xycoords=("data", "axes fraction"), xytext=(2, -10 - 9 * level),
                     textcoords="offset points", fontsize=8)
     marks = {"rate change": list(detection.rate_changes) if detection else [],
@@ -248,14 +257,16 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     n_holds = len(info.shaded) - n_steps
     unassessed = [j for j in info.unplaced if _unassessed(segments[j])]
     placed_not = [j for j in info.unplaced if j not in unassessed]
+    # the notes (a sign changed, a unit assumed) before the lists of segments: a cut title
+    # keeps its first lines, and the lists are whole in the table (review helper-89)
     title = (f"{record.source}: {len(segments)} segments, {n_steps} velocity change(s), "
              f"{n_holds} hold(s); shaded and numbered as in segments.csv"
+             + (f"\n{note}" if note else "")
              + ("\n* change time not placed within max(0.5 s, one sample) (95 % interval "
                 f"in segments.csv): segment(s) {', '.join(map(str, placed_not))}"
                 if placed_not else "")
              + ("\n? change time not assessed (no interval: too few samples beside it): "
-                f"segment(s) {', '.join(map(str, unassessed))}" if unassessed else "")
-             + (f"\n{note}" if note else ""))
+                f"segment(s) {', '.join(map(str, unassessed))}" if unassessed else ""))
     # each line wrapped to the figure's width (a long path was cut at its edges), the
     # panels lowered by the lines it takes
     lines = _wrap(title, 9.0, TITLE_WIDTH * 72.0 * fig.get_figwidth())
