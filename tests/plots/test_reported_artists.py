@@ -195,24 +195,30 @@ def test_record_figure_gaps_close_labels_and_unassessed_changes() -> None:
     assert "not assessed" in title and "segment(s) 2" in title.split("not assessed")[1]
 
 
-def test_record_figure_close_labels_each_on_a_line_of_their_own() -> None:
-    """Four changes within 3 % of the span of each other (1-s segments in a 700-s record):
-    the four numbers stand on four different lines; a fifth goes on the line whose last label
-    is the oldest, and a label 100 s later back on the first line. Mistake, seen failing: the
-    lines cycled (level + 1) % 3, the fourth label printed over the first."""
+def _labelled(source: str, edges: list[float], vel: list[float]) -> tuple:
+    """A record at 2 Hz to ``edges[-1]`` s (1 um/s, no normal column) and its program: the
+    stretches between ``edges`` at ``vel`` (m/s), each change placed within +-0.1 s."""
     from dryfriction.records.lab import LabRecord, Segment
 
-    t = np.arange(0.0, 700.0, 0.5)
-    rec = LabRecord(source="close.txt", time=t, load_point=1e-6 * t, load_velocity=None,
+    t = np.arange(0.0, edges[-1] + 0.5, 0.5)
+    rec = LabRecord(source=source, time=t, load_point=1e-6 * t, load_velocity=None,
                     friction=0.6 + 0.0 * t, normal_stress=None, normal_unit=None,
                     columns={}, first_line=2, units={})
-    edges = [0.0, 300.0, 301.0, 302.0, 303.0, 304.0, 404.0, 699.5]
-    vel = [1e-6, 2e-6, 1e-6, 3e-6, 1.5e-6, 2.5e-6, 1e-6]
     idx = [int(np.searchsorted(t, e)) for e in edges]
     segs = tuple(Segment(a, b, v, i, j, confidence=50.0, start_lo=a - 0.1, start_hi=a + 0.1,
                          start_p=0.99)
                  for a, b, v, i, j in zip(edges[:-1], edges[1:], vel, idx[:-1], idx[1:],
                                           strict=True))
+    return rec, segs
+
+
+def test_record_figure_close_labels_each_on_a_line_of_their_own() -> None:
+    """Four changes within 3 % of the span of each other (1-s segments in a 700-s record):
+    the four numbers stand on four different lines; a fifth goes on the line whose last label
+    is the oldest, and a label 100 s later back on the first line. Mistake, seen failing: the
+    lines cycled (level + 1) % 3, the fourth label printed over the first."""
+    rec, segs = _labelled("close.txt", [0.0, 300.0, 301.0, 302.0, 303.0, 304.0, 404.0, 699.5],
+                          [1e-6, 2e-6, 1e-6, 3e-6, 1.5e-6, 2.5e-6, 1e-6])
     fig, _ = plot_record(rec, segs, None)
     lines = {tx.get_text(): tx.xyann[1] for tx in fig.axes[0].texts}
     assert len({lines[k] for k in ("1", "2", "3", "4")}) == 4, lines
@@ -228,12 +234,6 @@ def test_record_figure_labels_on_a_line_do_not_overlap(holds: tuple) -> None:
     label, about 17 pt, where "1 hold" takes 25-30 pt."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    from dryfriction.records.lab import LabRecord, Segment
-
-    t = np.arange(0.0, 700.0, 0.5)
-    rec = LabRecord(source="holds.txt", time=t, load_point=1e-6 * t, load_velocity=None,
-                    friction=0.6 + 0.0 * t, normal_stress=None, normal_unit=None,
-                    columns={}, first_line=2, units={})
     edges = [0.0]
     vel = []
     for a, b in holds:
@@ -241,11 +241,7 @@ def test_record_figure_labels_on_a_line_do_not_overlap(holds: tuple) -> None:
         vel += [1e-6, 0.0]
     edges.append(699.5)
     vel.append(1e-6)
-    idx = [int(np.searchsorted(t, e)) for e in edges]
-    segs = tuple(Segment(a, b, v, i, j, confidence=50.0, start_lo=a - 0.1, start_hi=a + 0.1,
-                         start_p=0.99)
-                 for a, b, v, i, j in zip(edges[:-1], edges[1:], vel, idx[:-1], idx[1:],
-                                          strict=True))
+    rec, segs = _labelled("holds.txt", edges, vel)
     fig, _ = plot_record(rec, segs, None)
     r = FigureCanvasAgg(fig).get_renderer()
     fig.draw(r)
