@@ -273,24 +273,28 @@ def test_segments_refuses_an_empty_item_and_says_forward(tmp_path: Path) -> None
 
 
 @pytest.mark.slow
-@pytest.mark.ci
+@pytest.mark.xfail(strict=True, reason="known (stop 51): a hold under a slow position wander "
+                   "is cut into pieces; the wander is measured about the cut line, which hides it")
 @pytest.mark.parametrize(("v", "wander", "tau"), [(3e-7, 150e-9, 20.0), (1e-6, 300e-9, 30.0)])
 def test_a_hold_under_a_slow_wander_is_one_hold(tmp_path: Path, v: float, wander: float,
                                                 tau: float) -> None:
     """A slide-hold-slide (600 s each) under an Ornstein-Uhlenbeck position wander of 150-300
-    nm rms and 20-30 s correlation, seed 2, is three segments. Until stop 52 the hold was cut
+    nm rms and 20-30 s correlation, seed 2, is three segments. It fails today: the hold is cut
     into five pieces, three of them creeping forward at 1/500-1/30 of the slide's speed (0.6-20
-    nm/s, each carrying 0.2-1.0 um, within a few wander amplitudes): the wander was measured
-    about the cut line, which hid it. Mended by ``detection.HOLD_BY_EXCURSION`` (each piece's
-    slip is within three of the wander's largest excursion: a hold), with
-    ``detection.HELD_MEASURED``."""
+    nm/s, each carrying 0.2-1.0 um, within a few wander amplitudes). Seeds 0-7 of these two
+    families and of (0.1 um/s, 40 nm, 5 s): 2 of 24 records cut (stop 51). Strict: a fix that
+    mends it shows here. Stop 52 mended it with two rules (the holds' own pairs of windows
+    measured; a stretch within three of the wander's largest excursion a hold) and reverted
+    them: an independent review found genuine slow slides (ratio 30-300, 10-60 s) read as
+    holds on 86 of 3600 generated records (docs/performance.md)."""
     t, x = _program((v, 0.0, v), (600.0, 600.0, 600.0), seed=2, wander=wander, tau=tau)
     det = detect_program(read_record(_write(tmp_path / "shs.txt", t, x)))
     assert [s.velocity == 0.0 for s in det.segments] == [False, True, False]
 
 
 @pytest.mark.slow
-@pytest.mark.ci
+@pytest.mark.xfail(strict=True, reason="known (stop 52): a hold of minutes under a position "
+                   "wander reads as a creep of a nm/s; a(T) reads 0 at the longest scales")
 @pytest.mark.parametrize(("v", "wander", "tau", "fs", "slide", "hold", "seed"), [
     (4.92e-6, 98.3e-9, 11.34, 20.0, 202.88, 108.19, 340780570),
     (0.302e-6, 108.0e-9, 12.65, 20.0, 503.42, 216.83, 788866949),
@@ -299,13 +303,12 @@ def test_a_hold_under_a_slow_wander_is_one_hold(tmp_path: Path, v: float, wander
 def test_a_short_hold_under_a_position_wander_reads_as_a_hold(
         tmp_path: Path, v: float, wander: float, tau: float, fs: float, slide: float,
         hold: float, seed: int) -> None:
-    """A slide-hold-slide with a hold of 108-217 s under a position wander of about 100 nm
-    (11-13 s correlation), at 20 Hz, reads as slide, hold (velocity 0), slide. Until stop 52
-    the hold read as a creep of 0.2-1.2 nm/s (1/4000-1/1500 of the slides), its scatter the
-    white noise's alone: ``a(T)`` read 0 at the longest scale, where the hold has no pairs of
-    windows (mended by ``detection.HOLD_BY_EXCURSION``; found with a generated family of 120
-    such records, stop 52). The third, a 96-s hold at 4 Hz, needs the holds' own pairs too
-    (``detection.HELD_MEASURED``): the slides' pairs outvoted them in the slower half."""
+    """A slide-hold-slide with a hold of 96-217 s under a position wander of 100-240 nm
+    (11-14 s correlation), at 4-20 Hz, reads as slide, hold (velocity 0), slide. It fails
+    today: the hold reads as a creep of 0.2-1.2 nm/s (1/4000-1/1500 of the slides), its
+    scatter the white noise's alone, because ``a(T)`` reads 0 at the longest scale (the slower
+    half of the pairs is then mostly slides' pairs). Found with a generated family of 220 such
+    records (stop 52: 194 right). Strict: a fix that mends it shows here."""
     t, x = _program((v, 0.0, v), (slide, hold, slide), seed=seed, fs=fs, wander=wander,
                     tau=tau)
     det = detect_program(read_record(_write(tmp_path / "shs.txt", t, x)))

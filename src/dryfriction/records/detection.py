@@ -303,7 +303,6 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         t, res, speed = (q[: m * bl].reshape(m, bl).mean(axis=1) for q in (t, res, speed))
         sigma = sigma / np.sqrt(bl)
     span = float(t[-1] - t[0])
-    top = float(speed.max())
     dt = median(np.diff(t))
     scales: list[float] = []
     rel: list[float] = []
@@ -332,12 +331,6 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
             r2 = 2.198 * median(y[fast] / uf**2) if (uf > 0).all() else 0.0
             r2 = max(r2, 0.0)
             a2 = max(2.198 * median((y - r2 * u**2)[~fast]), 0.0)
-            if HELD_MEASURED:
-                # the holds' own pairs (below HOLD_RATIO of the top speed): no relative part
-                # there, nor slides' pairs to outvote them (HELD_MEASURED)
-                still = u <= HOLD_RATIO * top
-                if still.sum() >= HELD_PAIRS:
-                    a2 = max(a2, 2.198 * median(y[still]))
             scales.append(T)
             rel.append(np.sqrt(r2))
             ab.append(np.sqrt(a2))
@@ -349,21 +342,6 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     a_arr = np.maximum.accumulate(np.asarray(ab)[::-1])[::-1]
     return Fluctuations(float(sigma), np.asarray(scales), r_arr, a_arr, lag, lag_speed,
                         lag_floor)
-
-
-HELD_MEASURED = True
-"""Whether the absolute wander ``a(T)`` is at least what the pairs of windows within holds
-give alone (speed below :data:`.placement.HOLD_RATIO` of the fastest, at least
-:data:`HELD_PAIRS` of them: a median of three is the fewest that outvotes one pair across a
-change; ours).
-
-Why: ``a(T)`` is taken from the slower half of the pairs, less the relative part; where the
-holds are less than half of a record's time, that half holds slides' pairs too, whose
-residual after the relative part scatters about zero, and their median read ``a(T)`` low or
-0 while the holds' pairs alone gave several nm/s (a 96-s hold at 4 Hz under a 240-nm
-position wander, ``tests/records/test_program_direction.py``: the hold read as a creep;
-with :data:`HOLD_BY_EXCURSION` alone too, the excursion being measured low as well)."""
-HELD_PAIRS = 3
 
 
 # ------------------------------------------------------------------------------ the program
@@ -413,33 +391,8 @@ def _is_hold(v: Array, d: Array, sxx: Array, fl: Fluctuations, floor: float,
     """A hold: slower than ``floor`` (given), or than ``Z_HOLD`` slope errors of a still load point
     (white noise and absolute wander; and 1e-4 of the fastest velocity, ``floor``)."""
     v = np.asarray(v, float)
-    if given:
-        return np.abs(v) <= floor
-    e = fl.scatter(d, 0.0 * v, sxx)
-    if HOLD_BY_EXCURSION:
-        # a bounded wander moves a still load point over a stretch at least as far as it was
-        # measured to over any shorter scale: that excursion over the stretch's duration
-        d = np.asarray(d, float)
-        reach = np.maximum.accumulate(fl.absolute * fl.scales)  # largest up to each scale
-        k = np.searchsorted(fl.scales, d, side="right") - 1
-        e = np.maximum(e, np.where(k >= 0, reach[np.maximum(k, 0)], 0.0)
-                       / np.maximum(d, 1e-300))
-    return np.abs(v) <= np.maximum(Z_HOLD * e, floor)
-
-
-HOLD_BY_EXCURSION = True
-"""Whether a stretch is also a hold when the slip it carries is within :data:`Z_HOLD` of the
-largest excursion ``a(T) T`` that the absolute wander was measured to make over a scale ``T``
-no longer than the stretch (:func:`_is_hold`; ours).
-
-Why: beyond the longest scale measured, ``a(T)`` is extrapolated from that scale's value,
-and there a hold of minutes has few pairs of windows: ``a`` read 0 at 48-104 s under a
-position wander of 100-250 nm (its pairs at 24-52 s gave 5-17 nm/s), and a hold of 108-328
-s read as a creep of 0.2-1.2 nm/s (1/4000-1/1500 of the slides' speed) at confidence
-500-9000, its scatter the white noise's alone. A bounded wander moves a still load point
-over a stretch at least as far as it was seen to over a shorter one. Only shorter scales
-count: the excursion over a longer one (a random walk's grows) says nothing of a short
-stretch, whose slope scatter ``a(d)`` is measured."""
+    return np.abs(v) <= (floor if given else np.maximum(
+        Z_HOLD * fl.scatter(d, 0.0 * v, sxx), floor))
 
 
 def _z(fits: _Fits, fl: Fluctuations, bounds: list[int]) -> Array:
