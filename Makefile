@@ -28,9 +28,9 @@ demo: $(STAMP)
 	@echo "  $(BIN)/dryfriction simulate examples/velocity_step.toml --out run/"
 	@echo "  $(BIN)/dryfriction --help"
 
-# the suite with the slow tests marked ci (the README's commands, the site in a browser, huge runs
-# refused, ageing under load), in one session; the other slow tests (each over ~3.5 s on 2 cores)
-# run with: pytest --runslow
+# the suite with the slow tests marked ci (one or more of each area: the README's commands, the
+# site in a browser, huge runs refused, ...; pytest --co -q --slow-marked -m ci lists them), in
+# one session; the other slow tests (each over ~3.5 s on 2 cores) run with: pytest --runslow
 # the default suite on TEST_WORKERS processes (pytest-xdist; CI has 2 cores), a file per worker
 # (--dist loadfile: a module's fixtures are computed once); TEST_WORKERS=0 runs it in one process
 TEST_WORKERS ?= 2

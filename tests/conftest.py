@@ -4,8 +4,9 @@ whole-process runs of a command, the fits of whole records).
 
 Without it the parametrised studies run a smaller but meaningful version and the ``slow`` tests
 are skipped, but for those also marked ``ci`` when ``--with-ci`` is given: ``make test`` (what
-CI runs) passes it, so that CI runs the README's commands, the site in a browser, the refusal
-of huge runs and the ageing under load in the same session as the rest. ``--slow-marked`` runs
+CI runs) passes it, so that CI runs one or more slow tests of each area (the README's commands,
+the site in a browser, the refusal of huge runs, ...: ``pytest --co -q --slow-marked -m ci``
+lists them) in the same session as the rest. ``--slow-marked`` runs
 every ``slow`` test at the default sizes: the mutant runner (``tests/mutants.py``) names tests
 of both kinds and must run each test it names, at the size the mutant list was checked with.
 """

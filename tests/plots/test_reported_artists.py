@@ -257,19 +257,14 @@ def test_record_figure_title_keeps_its_note_when_cut() -> None:
     cut to its line limit and the note is still in it (the notes come before the lists of
     segments, which the table has whole). Mistake, seen failing (review helper-89): the note
     last, the first line dropped by the cut."""
-    from dryfriction.plots.record import TITLE_LINES
-    from dryfriction.records.lab import LabRecord, Segment
+    from dataclasses import replace
 
-    t = np.arange(0.0, 20100.0, 0.5)
-    rec = LabRecord(source="/data/" + "x" * 95 + "/rec.txt", time=t, load_point=1e-6 * t,
-                    load_velocity=None, friction=0.6 + 0.0 * t, normal_stress=None,
-                    normal_unit=None, columns={}, first_line=2, units={})
+    from dryfriction.plots.record import TITLE_LINES
+
     edges = [100.0 * k for k in range(201)] + [20099.5]
-    idx = [int(np.searchsorted(t, e)) for e in edges]
-    segs = tuple(Segment(a, b, (1.0 + k % 2) * 1e-6, i, j, confidence=50.0, start_lo=a - 2.0,
-                         start_hi=a + 2.0, start_placed=k == 0, start_p=0.5)
-                 for k, (a, b, i, j) in enumerate(zip(edges[:-1], edges[1:], idx[:-1], idx[1:],
-                                                      strict=True)))
+    rec, segs = _labelled("/data/" + "x" * 95 + "/rec.txt", edges,
+                          [(1.0 + k % 2) * 1e-6 for k in range(201)])
+    segs = tuple(replace(s, start_placed=k == 0, start_p=0.5) for k, s in enumerate(segs))
     note = "note: the load point's displacement column (LP) read with its sign changed"
     fig, _ = plot_record(rec, segs, None, note=note)
     title = fig._suptitle.get_text()

@@ -31,6 +31,10 @@ LABEL_EM = 0.64
 """A label's width per character, in ems (ours: DejaVu Sans' digits are 0.636 em, its
 letters and space narrower): what the line a label takes is judged by, before drawing."""
 
+MARGINS = {"left": 0.09, "right": 0.98}
+"""The panels' left and right edges, figure fractions: set before the labels are placed (their
+widths in data units depend on the panel's width) and again with the title's room."""
+
 TITLE_LINES = 6
 """The most lines ``record.png``'s title takes (ours: six lines, 1.3 in of a figure of at
 least 5.4 in, leave each panel its room)."""
@@ -205,7 +209,7 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     # starts, so that short segments' labels do not print over each other; with every line
     # taken, on the line whose last label ends first (ours: the first forms cycled through
     # three lines, or took a label's width for 3 % of the span: "1 hold" is twice that)
-    fig.subplots_adjust(left=0.09, right=0.98)  # the final widths (below), for per_pt
+    fig.subplots_adjust(**MARGINS)  # the final widths (below), for per_pt
     lo_x, hi_x = ax.get_xlim()
     per_pt = (hi_x - lo_x) / (ax.get_position().width * fig.get_figwidth() * 72.0)
     ends = np.full(LABEL_LINES, -np.inf)
@@ -276,5 +280,5 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
                                            "list every segment)"]
     fig.suptitle("\n".join(lines), fontsize=9)
     top = 1.0 - (0.62 + 0.14 + 0.16 * (len(lines) - 1)) / fig.get_figheight()
-    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.08, top=top, hspace=0.08)
+    fig.subplots_adjust(**MARGINS, bottom=0.08, top=top, hspace=0.08)
     return fig, info
