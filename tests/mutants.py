@@ -4124,6 +4124,11 @@ MUTANTS: tuple[Mutant, ...] = (
        "        sign_changed=flipped)\n", "        sign_changed=False)\n",
        "tests/records/test_program_direction.py", "-k", "reads_forward"),
     # --- end stop 51 (lead)
+    # --- stop 53 (lead): the relative wander measured on pairs that move
+    _m("detection: r(T) from the faster half whatever its speed (MOVING_Z 0)",
+       "records/detection.py", "MOVING_Z = 3.0\n", "MOVING_Z = 0.0\n",
+       "tests/records/test_moving_wander.py"),
+    # --- end stop 53 (lead)
 )
 
 

@@ -253,6 +253,25 @@ def _window_pairs(t: Array, x: Array, speed: Array, width: float, offset: float,
                         float(offset), float(half_s2), width**2 / 48.0)
 
 
+MOVING_Z = 3.0
+"""The relative wander ``r(T)`` is measured on the faster half of the window pairs whose speed
+``u`` is at least this many times the slower half's slope scatter, ``sqrt(2.198 median y)``
+over the slower half (ours; 0: the whole faster half, as before stop 53): a pair moves when
+its speed is told from the wander.
+
+Why: ``y = a**2 + r**2 u**2`` is split by rank, ``r`` from the faster half of the pairs. In a
+record that is mostly hold (a slide-hold-slide with a hold of 1000 s against 200 s of slides)
+the faster half holds hold pairs, whose ``y`` is the absolute wander (a drift of nm/s) and
+whose ``u`` is the hold's fitted creep (nm/s): ``y / u**2`` of order 1, so ``r`` read 1.7
+(170 % of any speed) and every change was pruned, the whole record one segment at 0.036
+um/s (``bench_detect_holds`` B8: 1 um/s, 0.056 um/s for 40 s, a 1000-s hold, 1 um/s). A share
+of the top speed instead (5 %, as ``lag``'s) mended that but dropped the slow slides of
+ratio-10 records too (zoo 3165: 0.127 um/s beside 12.7), whose pairs the rank had used, and
+moved a change 0.65 s off."""
+MOVING_MIN = 6
+"""Fewer moving pairs than this at a duration: ``r`` there is the shorter duration's."""
+
+
 def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
                          velocity: Array) -> Fluctuations:
     """``r(T)`` of the displacement ``x(t)`` about a broken line (:class:`Fluctuations`).
@@ -261,10 +280,11 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     the record's changes do not count as fluctuations) are cut into adjacent windows of
     duration ``T``; for a pair with residual slopes ``s1, s2``, white parts ``w**2 = sigma**2
     (1/Sxx1 + 1/Sxx2) / 2`` and stretch speed ``u``: ``r**2 = ((s2 - s1)**2 / 2 - w**2) /
-    u**2`` (0 where negative). ``r(T)`` is 1.4826 times the median over the pairs that move
-    (``u`` above 3 white parts): a Gaussian's MAD, blind to the odd pair across a missed
-    change. A line absorbs the wander at its own duration only, so a boundary too many
-    hides little of it; :func:`detect_program` measures again as boundaries go.
+    u**2`` (0 where negative). ``r(T)`` is 1.4826 times the median over the faster half of the
+    pairs that move (``u`` at least :data:`MOVING_Z` times the slower half's slope scatter):
+    a Gaussian's MAD, blind to the odd pair across a missed change. A line absorbs the
+    wander at its own duration only, so a boundary too many hides little of it;
+    :func:`detect_program` measures again as boundaries go.
 
     Parameters
     ----------
@@ -327,8 +347,14 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
             # Gaussian into its variance
             fast = np.zeros(y.size, bool)
             fast[np.argsort(u, kind="stable")[y.size // 2:]] = True  # by rank: ties split
-            uf = u[fast]
-            r2 = 2.198 * median(y[fast] / uf**2) if (uf > 0).all() else 0.0
+            # r from the pairs that move (MOVING_Z), not from a hold's creep
+            a0 = np.sqrt(max(2.198 * median(y[~fast]), 0.0))
+            moving = fast & (u >= MOVING_Z * a0) if MOVING_Z > 0.0 else fast
+            uf = u[moving]
+            if moving.sum() < MOVING_MIN and moving is not fast:
+                r2 = rel[-1] ** 2 if rel else 0.0  # too few: the shorter scale's
+            else:
+                r2 = 2.198 * median(y[moving] / uf**2) if (uf > 0).all() else 0.0
             r2 = max(r2, 0.0)
             a2 = max(2.198 * median((y - r2 * u**2)[~fast]), 0.0)
             scales.append(T)
