@@ -4128,6 +4128,9 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("detection: r(T) from the faster half whatever its speed (MOVING_Z 0)",
        "records/detection.py", "MOVING_Z = 3.0\n", "MOVING_Z = 0.0\n",
        "tests/records/test_moving_wander.py"),
+    _m("detection: a pair moves by the slower half's scatter alone (MOVING_SHARE 0)",
+       "records/detection.py", "MOVING_SHARE = 1e-3\n", "MOVING_SHARE = 0.0\n",
+       "tests/records/test_moving_wander.py"),
     # --- end stop 53 (lead)
 )
 
