@@ -273,10 +273,13 @@ MOVING_SHARE = 1e-3
 the slower half's scatter is a fraction of a nm/s, below a hold's fitted creep of a nm/s, and
 :data:`MOVING_Z` alone let a 2600-s hold's pairs in (an independent review's record: 14.5
 um/s slides of 39 and 140 s about the hold, ``r`` 16 % at 242 s and so at every shorter
-duration, the record one segment). A thousandth keeps every commanded speed of the issue's
-ratios (1.3-30; zoo 3165's 0.127 um/s beside 12.7 is a hundredth)."""
+duration, the record one segment). A thousandth keeps the slower speed of any step of the
+issue's ratios (1.3-30; zoo 3165's 0.127 um/s beside 12.7 is a hundredth); in a program that
+spans more than a thousandfold, the slowest slides' pairs are left out and ``r`` is the faster
+ones'. With ``MOVING_Z = 0`` neither criterion applies (the whole faster half, as before)."""
 MOVING_MIN = 6
-"""Fewer moving pairs than this at a duration: ``r`` there is the shorter duration's."""
+"""Fewer moving pairs than this at a duration: ``r`` there is the shorter duration's (0 at the
+shortest; the non-increasing envelope is taken after)."""
 
 
 def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
@@ -288,8 +291,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     duration ``T``; for a pair with residual slopes ``s1, s2``, white parts ``w**2 = sigma**2
     (1/Sxx1 + 1/Sxx2) / 2`` and stretch speed ``u``: ``r**2 = ((s2 - s1)**2 / 2 - w**2) /
     u**2`` (0 where negative). ``r(T)`` is 1.4826 times the median over the faster half of the
-    pairs that move (``u`` at least :data:`MOVING_Z` times the slower half's slope scatter):
-    a Gaussian's MAD, blind to the odd pair across a missed change. A line absorbs the
+    pairs that move (``u`` at least :data:`MOVING_Z` times the slower half's slope scatter
+    and :data:`MOVING_SHARE` of the top stretch speed; fewer than :data:`MOVING_MIN` such
+    pairs: the shorter duration's ``r``): a Gaussian's MAD, blind to the odd pair across a
+    missed change. A line absorbs the
     wander at its own duration only, so a boundary too many hides little of it;
     :func:`detect_program` measures again as boundaries go.
 
@@ -360,7 +365,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
             moving = (fast & (u >= MOVING_Z * a0) & (u >= MOVING_SHARE * top)
                       if MOVING_Z > 0.0 else fast)
             uf = u[moving]
-            if moving.sum() < MOVING_MIN and moving is not fast:
+            if MOVING_Z > 0.0 and moving.sum() < MOVING_MIN:
                 r2 = rel[-1] ** 2 if rel else 0.0  # too few: the shorter scale's
             else:
                 r2 = 2.198 * median(y[moving] / uf**2) if (uf > 0).all() else 0.0
