@@ -15,7 +15,11 @@ quantum of 20-500 nm; 1-20 Hz. Five program families:
 - ``C``: a very slow slide (0.01-0.1 um/s for 120-600 s) between slides of 0.3-3 um/s, a hold
   after it in half of them;
 - ``D``: slide-hold-slides with one to four holds of 10-1000 s;
-- ``E``: steps of ratio 1.3-3 beside holds of 10-300 s.
+- ``E``: steps of ratio 1.3-3 beside holds of 10-300 s;
+- ``F``: records mostly at rest: one to three holds of 300-3000 s between slides of 30-200 s,
+  at 0.1-30 um/s (log-uniform; from a second review, stop 53, helper-91);
+- ``G``: a step of ratio 1.3-30 whose slower side fills the record (800-2500 s beside 40-200
+  s at the faster speed; slow then fast, fast then slow, or fast-slow-fast).
 
 Each record is written, read back and detected; scored per commanded stretch (1 s trimmed at
 each end): a hold is *missed* where less than 90 % of it is reported at velocity 0, a slide is
@@ -41,7 +45,7 @@ import numpy as np  # noqa: E402
 from dryfriction.records.lab import detect_program, read_record  # noqa: E402
 
 UM = 1e-6
-FAMILIES = ("A", "B", "C", "D", "E")
+FAMILIES = ("A", "B", "C", "D", "E", "F", "G")
 MAX_ROWS = 25_000  # a long program is sampled slower, not cut
 
 
@@ -86,6 +90,19 @@ def program(family: str, r: np.random.Generator) -> list[tuple[float, float]]:
         if r.random() < 0.5:
             p.insert(1, (float(r.choice([10, 30, 100])), 0.0))
         return p
+    if family == "F":
+        v1 = float(np.exp(r.uniform(np.log(0.1), np.log(30.0)))) * UM
+        p = [(float(r.uniform(30, 200)), v1)]
+        for _ in range(int(r.integers(1, 4))):
+            p += [(float(np.exp(r.uniform(np.log(300.0), np.log(3000.0)))), 0.0),
+                  (float(r.uniform(30, 200)), v1)]
+        return p
+    if family == "G":
+        ratio = float(np.exp(r.uniform(np.log(1.3), np.log(30.0))))
+        vs = float(np.exp(r.uniform(np.log(0.1), np.log(3.0)))) * UM
+        slow, fast = (float(r.uniform(800, 2500)), vs), (float(r.uniform(40, 200)), vs * ratio)
+        kind = int(r.integers(0, 3))
+        return [slow, fast] if kind == 0 else [fast, slow] if kind == 1 else [fast, slow, fast]
     raise ValueError(f"family = {family!r} is not one of {FAMILIES}")
 
 
