@@ -60,6 +60,11 @@ def _ou(rng: np.random.Generator, n: int, dt: float, tau: float, sd: float) -> n
     return out
 
 
+def _log_uniform(r: np.random.Generator, lo: float, hi: float) -> float:
+    """One draw, uniform in ``log`` between ``lo`` and ``hi``."""
+    return float(np.exp(r.uniform(np.log(lo), np.log(hi))))
+
+
 def program(family: str, r: np.random.Generator) -> list[tuple[float, float]]:
     """The commanded program of a family: (duration s, velocity m/s) of each stretch."""
     if family == "A":
@@ -91,15 +96,15 @@ def program(family: str, r: np.random.Generator) -> list[tuple[float, float]]:
             p.insert(1, (float(r.choice([10, 30, 100])), 0.0))
         return p
     if family == "F":
-        v1 = float(np.exp(r.uniform(np.log(0.1), np.log(30.0)))) * UM
+        v1 = _log_uniform(r, 0.1, 30.0) * UM
         p = [(float(r.uniform(30, 200)), v1)]
         for _ in range(int(r.integers(1, 4))):
-            p += [(float(np.exp(r.uniform(np.log(300.0), np.log(3000.0)))), 0.0),
+            p += [(_log_uniform(r, 300.0, 3000.0), 0.0),
                   (float(r.uniform(30, 200)), v1)]
         return p
     if family == "G":
-        ratio = float(np.exp(r.uniform(np.log(1.3), np.log(30.0))))
-        vs = float(np.exp(r.uniform(np.log(0.1), np.log(3.0)))) * UM
+        ratio = _log_uniform(r, 1.3, 30.0)
+        vs = _log_uniform(r, 0.1, 3.0) * UM
         slow, fast = (float(r.uniform(800, 2500)), vs), (float(r.uniform(40, 200)), vs * ratio)
         kind = int(r.integers(0, 3))
         return [slow, fast] if kind == 0 else [fast, slow] if kind == 1 else [fast, slow, fast]

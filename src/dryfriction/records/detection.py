@@ -294,9 +294,8 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     pairs that move (``u`` at least :data:`MOVING_Z` times the slower half's slope scatter
     and :data:`MOVING_SHARE` of the top stretch speed; fewer than :data:`MOVING_MIN` such
     pairs: the shorter duration's ``r``): a Gaussian's MAD, blind to the odd pair across a
-    missed change. A line absorbs the
-    wander at its own duration only, so a boundary too many hides little of it;
-    :func:`detect_program` measures again as boundaries go.
+    missed change. A line absorbs the wander at its own duration only, so a boundary too
+    many hides little of it; :func:`detect_program` measures again as boundaries go.
 
     Parameters
     ----------
@@ -334,7 +333,7 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
         m = n // bl
         t, res, speed = (q[: m * bl].reshape(m, bl).mean(axis=1) for q in (t, res, speed))
         sigma = sigma / np.sqrt(bl)
-    top = float(speed.max()) if speed.size else 0.0  # the fastest stretch's speed, m/s
+    top = float(speed.max())  # the fastest stretch's speed, m/s (MOVING_SHARE)
     span = float(t[-1] - t[0])
     dt = median(np.diff(t))
     scales: list[float] = []
