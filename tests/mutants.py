@@ -4132,6 +4132,18 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/detection.py", "MOVING_SHARE = 1e-3\n", "MOVING_SHARE = 0.0\n",
        "tests/records/test_moving_wander.py"),
     # --- end stop 53 (lead)
+    # --- stop 54 (lead): a step figure redrawn into the previous step's
+    _m("plot_step into: the views not autoscaled again", "plots/steps.py",
+       "    for ax in axes.flat:\n        ax.autoscale_view()\n", "", _SFD, "-k", "redrawn"),
+    _m("plot_step into: the residuals left from the step before", "plots/steps.py",
+       "bot.collections[0].set_offsets(np.column_stack([xv, mu - model]))", "pass",
+       _SFD, "-k", "redrawn"),
+    _m("plot_step into: the title left from the step before", "plots/steps.py",
+       "    fig.suptitle(title, fontsize=9)\n    return fig, axes\n", "    return fig, axes\n",
+       _SFD, "-k", "redrawn"),
+    _m("plot_step into: the lines' data limits not recomputed", "plots/steps.py",
+       "        ax.relim()  #", "        pass  #", _SFD, "-k", "redrawn"),
+    # --- end stop 54 (lead)
 )
 
 

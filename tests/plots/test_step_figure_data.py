@@ -48,3 +48,47 @@ def test_plot_step_draws_displacement_time_fit_and_residuals() -> None:
     _, ax2 = plot_step(res, 2)
     assert [ln.get_label() for ln in ax2[0, 0].get_lines()] == ["fit"]
     assert fig._suptitle.get_text().startswith("step 2 (step): 3.1 -> 0.7 µm/s")
+
+
+def _window(t0: float, dt: float, n: int, v: tuple[float, float], mu0: float, amp: float,
+            index: int) -> tuple[SeriesData, np.ndarray, dict]:
+    t = t0 + dt * np.arange(n)
+    vel = np.where(t - t0 < 0.4 * dt * n, v[0], v[1])
+    mu = mu0 + amp * np.tanh((t - t0 - 0.4 * dt * n) / (0.1 * dt * n)) + 1e-4 * np.sin(7.1 * t)
+    model = mu0 + amp * np.tanh((t - t0 - 0.4 * dt * n) / (0.1 * dt * n))
+    row = {"index": index, "kind": "step", "v_before": v[0], "v_after": v[1], "a": 0.0073,
+           "b": 0.0091, "a_minus_b": -0.0018, "dc": 2.3e-5, "stiffness": 1.7e3, "rms": 1e-4,
+           "flags": "b_at_bound" if index else ""}
+    return SeriesData(t=t, v_load=vel, mu=mu), model, row
+
+
+def test_a_figure_redrawn_for_another_step_is_the_new_figure_byte_for_byte() -> None:
+    """``plot_step(..., into=fig)`` (the fit command draws a record's steps on one figure): the
+    PNG of window 1 drawn into window 0's figure is the PNG of window 1 drawn afresh, though
+    the two windows differ in time origin, duration, sample count, velocities and friction
+    level (so stale limits, data or title would show); with other labels, a new figure."""
+    import io
+
+    from dryfriction.plots.style import save_figure
+
+    w0 = _window(88.0, 0.05, 240, (0.31e-6, 2.9e-6), 0.613, 0.004, 0)
+    w1 = _window(1735.5, 0.2, 311, (9.7e-6, 1.1e-6), 0.587, -0.0023, 1)
+    res = SimpleNamespace(data=[w0[0], w1[0]], rows=[w0[2], w1[2]],
+                          model_curve=lambda i: (w0, w1)[i][1])
+
+    def png(fig: object) -> bytes:
+        b = io.BytesIO()
+        save_figure(fig, b, "png", 60)
+        return b.getvalue()
+
+    first, _ = plot_step(res, 0)
+    png(first)  # drawn once, as the fit command saves it before the next step
+    again, axes = plot_step(res, 1, into=first)
+    assert again is first
+    assert png(again) == png(plot_step(res, 1)[0])
+    lo, hi = axes[0, 1].get_xlim()
+    assert lo < 0.0 and 0.2 * 310 < hi < 0.2 * 310 * 1.1  # the new window's time, not 12 s
+    # another label set: not redrawn into
+    other, ax2 = plot_step(res, 1, others={"trap model": w1[1]}, into=first)
+    assert other is not first
+    assert [ln.get_label() for ln in ax2[0, 0].get_lines()] == ["fit (rsf)", "trap model"]

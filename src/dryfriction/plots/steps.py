@@ -4,10 +4,12 @@
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from .style import FRICTION_SI, TIME_S, save_png
@@ -47,11 +49,18 @@ def step_title(row: Mapping[str, Any]) -> str:
 
 
 def plot_step(result: StepsResult, i: int, path: Any = None, *,
-              others: Mapping[str, np.ndarray] | None = None) -> tuple[Figure, Any]:
+              others: Mapping[str, np.ndarray] | None = None,
+              into: Figure | None = None) -> tuple[Figure, Any]:
     """Window ``i``: data (small light points) and the fitted model (line, drawn on top)
     against load-point displacement (left) and time (right), residuals below; ``others``
     (label: friction at the window's samples, e.g. the trap model fitted to the same window)
-    are drawn as dashed lines beside the fit; the residuals are the fit's."""
+    are drawn as dashed lines beside the fit; the residuals are the fit's.
+
+    ``into``: a figure this function returned before, with the same ``others`` labels: its
+    artists take window ``i``'s data and its axes are autoscaled again, and it is returned
+    (the same picture as a new figure's; a record's steps drawn one after another then create
+    their axes and ticks once, not once a step). A figure it did not draw, or drew with other
+    labels, is left alone and a new one made."""
     from ..fit.models import load_point_displacement
 
     d = result.data[i]
@@ -59,7 +68,15 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
     model = result.model_curve(i)
     x_um = load_point_displacement(d) * 1e6
     t = d.t - d.t[0]
+    names = tuple(others or {})
+    old = _DRAWN.get(into) if into is not None else None
+    if old is not None and old[0] == names:
+        return _redraw(into, old[1], (x_um, t), d.mu, model, others or {}, step_title(row))
     fig = Figure(figsize=(10.0, 5.6))
+    # an Agg canvas of its own: savefig then draws on it, not on a canvas made for the one
+    # call, so a figure saved again (``into``) keeps its renderer and the renderer's parsed
+    # mathtext labels (three parses a step otherwise)
+    FigureCanvasAgg(fig)
     axes = fig.subplots(2, 2, sharex="col", gridspec_kw={"height_ratios": [3, 1]})
     for col, (xv, label) in enumerate(((x_um, r"load-point displacement $x_{lp}$  [µm]"),
                                        (t, TIME_S.replace("$t$", "$t - t_{start}$")))):
@@ -77,8 +94,39 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
     axes[0, 0].legend(loc="best", fontsize=8, markerscale=4)
     fig.suptitle(step_title(row), fontsize=9)
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.1, top=0.9, hspace=0.08, wspace=0.25)
+    _DRAWN[fig] = (names, axes)
     if path is not None:
         save_png(fig, path)
+    return fig, axes
+
+
+# what plot_step drew on each figure it returned: the others' labels and the axes (weak keys:
+# a figure let go of is forgotten)
+_DRAWN: weakref.WeakKeyDictionary[Figure, tuple[tuple[str, ...], Any]] = (
+    weakref.WeakKeyDictionary())
+
+
+def _redraw(fig: Figure, axes: Any, xs: tuple[np.ndarray, np.ndarray], mu: np.ndarray,
+            model: np.ndarray, others: Mapping[str, np.ndarray], title: str
+            ) -> tuple[Figure, Any]:
+    """plot_step's artists on ``fig`` given another window's data (in the order plot_step
+    added them), its data limits recomputed as the axes' own methods compute them (``relim``
+    for the lines; a collection's limits as ``add_collection`` adds them, which ``relim``
+    leaves out) and the views autoscaled."""
+    for col, xv in enumerate(xs):
+        top, bot = axes[0, col], axes[1, col]
+        top.collections[0].set_offsets(np.column_stack([xv, mu]))
+        bot.collections[0].set_offsets(np.column_stack([xv, mu - model]))
+        for line, y in zip(top.get_lines(), (model, *others.values()), strict=True):
+            line.set_data(xv, y)
+    for ax in axes.flat:
+        ax.relim()  # takes in collections too from matplotlib 3.11; added here for earlier ones
+        lim = ax.collections[0].get_datalim(ax.transData)
+        pts = lim.get_points()
+        ax.update_datalim(pts if np.isinf(lim.minpos).all() else np.vstack([pts, [lim.minpos]]))
+    for ax in axes.flat:
+        ax.autoscale_view()
+    fig.suptitle(title, fontsize=9)
     return fig, axes
 
 
