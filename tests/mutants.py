@@ -1019,8 +1019,8 @@ MUTANTS: tuple[Mutant, ...] = (
        'return self.slip / self.velocity',
        'tests/test_program.py'),
     _m('program: positions without x0', 'program.py',
-       'return self.x0 + np.concatenate([[0.0], np.cumsum([s.displacement',
-       'return np.concatenate([[0.0], np.cumsum([s.displacement',
+       'positions = self.x0 + np.concatenate([[0.0], np.cumsum([s.displacement',
+       'positions = np.concatenate([[0.0], np.cumsum([s.displacement',
        'tests/test_program.py'),
     _m('program: check_speeds lower bound open', 'program.py',
        'if speed != 0.0 and not lo <= speed <= hi:',
@@ -1303,8 +1303,8 @@ MUTANTS: tuple[Mutant, ...] = (
        'out = dict(tree)',
        'tests/sweeps/test_sweep_spec.py'),
     _m('rsf result: Hermite slope terms without the step', 'rsf/result.py',
-       'out[ok] = h00 * Y[i[ok]] + h10 * hh * F[i[ok]] + h01 * Y[j[ok]] + h11 * hh * F[j[ok]]',
-       'out[ok] = h00 * Y[i[ok]] + h10 * F[i[ok]] + h01 * Y[j[ok]] + h11 * F[j[ok]]',
+       'out = h00 * Yi + h10 * hh * F[i] + h01 * Y[j] + h11 * hh * F[j]',
+       'out = h00 * Yi + h10 * F[i] + h01 * Y[j] + h11 * F[j]',
        'tests/rsf/test_result_pieces.py'),
     _m('rsf result: Hermite left-continuous', 'rsf/result.py',
        'i = np.clip(np.searchsorted(T, te, side="right") - 1, 0, n - 1)',
@@ -4143,6 +4143,11 @@ MUTANTS: tuple[Mutant, ...] = (
        _SFD, "-k", "redrawn"),
     _m("plot_step into: the lines' data limits not recomputed", "plots/steps.py",
        "        ax.relim()  #", "        pass  #", _SFD, "-k", "redrawn"),
+    _m("rsf result: Hermite carried on past the last step", "rsf/result.py",
+       "    return np.where(ok[:, None], out, Yi) if not ok.all() else out\n",
+       "    return out\n", "tests/rsf/test_result_pieces.py"),
+    _m("program: its arrays writable (a caller's edit changes the program)", "program.py",
+       "            a.flags.writeable = False\n", "", "tests/test_program.py"),
     # --- end stop 54 (lead)
 )
 

@@ -37,6 +37,11 @@ def test_times_positions_and_totals() -> None:
     back = PROG.segments[2]
     assert back.time == pytest.approx(0.75, rel=1e-15)  # slip / |velocity|: positive
     assert back.displacement == pytest.approx(-0.3, rel=1e-15)  # signed
+    # computed once and shared: read-only, so that a caller's edit cannot change the program
+    for name in ("times", "positions", "velocities"):
+        with pytest.raises(ValueError, match="read-only"):
+            getattr(PROG, name)[1] = 9.9
+    np.testing.assert_allclose(PROG.times, [0.0, 2.5, 3.75, 4.5, 5.0], rtol=1e-15)
 
 
 def test_position_and_velocity_at_generic_times() -> None:

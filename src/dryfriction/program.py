@@ -111,20 +111,30 @@ class VelocityProgram:
             start = end
         object.__setattr__(self, "segments", segs)
         object.__setattr__(self, "x0", check_scalar("x0", x0))
+        # the boundaries' times and positions and the velocities, computed once (read-only):
+        # a fit's solver runs ask for them a few times a run, on programs of 100-odd segments
+        times = np.concatenate([[0.0], np.cumsum([s.time for s in segs])])
+        positions = self.x0 + np.concatenate([[0.0], np.cumsum([s.displacement for s in segs])])
+        velocities = np.array([s.velocity for s in segs])
+        for name, a in (("_times", times), ("_positions", positions),
+                        ("_velocities", velocities)):
+            a.flags.writeable = False
+            object.__setattr__(self, name, a)
 
     @property
     def times(self) -> NDArray[np.float64]:
-        """Segment boundaries in time, length ``n + 1``, starting at 0."""
-        return np.concatenate([[0.0], np.cumsum([s.time for s in self.segments])])
+        """Segment boundaries in time, length ``n + 1``, starting at 0 (read-only)."""
+        return self._times
 
     @property
     def positions(self) -> NDArray[np.float64]:
-        """Load-point positions at the segment boundaries."""
-        return self.x0 + np.concatenate([[0.0], np.cumsum([s.displacement for s in self.segments])])
+        """Load-point positions at the segment boundaries (read-only)."""
+        return self._positions
 
     @property
     def velocities(self) -> NDArray[np.float64]:
-        return np.array([s.velocity for s in self.segments])
+        """The segments' velocities (read-only)."""
+        return self._velocities
 
     @property
     def total_time(self) -> float:

@@ -37,6 +37,11 @@ def test_hermite_reproduces_a_cubic_and_is_right_continuous() -> None:
     Y2 = Y.copy()
     Y2[3] += 0.25
     assert hermite(T, Y2, F, np.array([1.3]))[0, 0] == pytest.approx(p(1.3) + 0.25, rel=1e-14)
+    # past the last step: its value held, not the cubic carried on (a row with no step after
+    # it among rows with one)
+    got = hermite(T, Y, F, np.array([0.93, 4.27, 3.6]))[:, 0]
+    assert got[1] == Y[-1, 0] and got[2] == Y[-1, 0]
+    assert got[0] == pytest.approx(p(0.93), rel=1e-13)
 
 
 def test_slip_quadrature_of_an_exponential_velocity() -> None:

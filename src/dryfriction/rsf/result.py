@@ -141,18 +141,24 @@ def hermite(T: Array, Y: Array, F: Array, te: Array) -> Array:
     n = len(T)
     i = np.clip(np.searchsorted(T, te, side="right") - 1, 0, n - 1)
     j = np.minimum(i + 1, n - 1)
-    h = T[j] - T[i]
-    out = Y[i].copy()
+    Ti = T[i]
+    h = T[j] - Ti
     ok = h > 0
-    if np.any(ok):
-        hh = h[ok][:, None]
-        s = ((te[ok] - T[i[ok]]) / h[ok])[:, None]
-        h00 = (1 + 2 * s) * (1 - s) ** 2
-        h10 = s * (1 - s) ** 2
-        h01 = s * s * (3 - 2 * s)
-        h11 = s * s * (s - 1)
-        out[ok] = h00 * Y[i[ok]] + h10 * hh * F[i[ok]] + h01 * Y[j[ok]] + h11 * hh * F[j[ok]]
-    return out
+    Yi = Y[i]
+    if not np.any(ok):
+        return Yi
+    # every row at once, the rows without a step after them (h = 0: at or past the last
+    # step) then given Y[i]: the same operations, in the same order, as on the rows with one
+    # (a fit's solver runs interpolate at 1000-odd times: gathering the rows once is what
+    # this costs)
+    hh = np.where(ok, h, 1.0)[:, None]
+    s = ((te - Ti) / hh[:, 0])[:, None]
+    h00 = (1 + 2 * s) * (1 - s) ** 2
+    h10 = s * (1 - s) ** 2
+    h01 = s * s * (3 - 2 * s)
+    h11 = s * s * (s - 1)
+    out = h00 * Yi + h10 * hh * F[i] + h01 * Y[j] + h11 * hh * F[j]
+    return np.where(ok[:, None], out, Yi) if not ok.all() else out
 
 
 # Gauss-Legendre nodes and weights on [0, 1], 5 points (exact for polynomials of degree 9)
