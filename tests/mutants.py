@@ -4148,6 +4148,17 @@ MUTANTS: tuple[Mutant, ...] = (
        "    return out\n", "tests/rsf/test_result_pieces.py"),
     _m("program: its arrays writable (a caller's edit changes the program)", "program.py",
        "            a.flags.writeable = False\n", "", "tests/test_program.py"),
+    _m("step_covariance: the fit's Jacobian used at another point", "fit/steps.py",
+       " and np.array_equal(theta, r.theta))", ")", "tests/fit/test_covariance_reuse.py"),
+    _m("step_covariance: the fit's Jacobian used for other parameters", "fit/steps.py",
+       "            and tuple(s.name for s in specs) == r.free and np.array_equal",
+       "            and np.array_equal", "tests/fit/test_covariance_reuse.py"),
+    _m("engine: the Jacobian at the optimum not kept", "fit/engine.py",
+       "theta=None if jac is None else opt.theta.copy(), jacobian=jac,",
+       "theta=None, jacobian=None,", "tests/fit/test_covariance_reuse.py"),
+    _m("fit_steps: each window's Jacobian computed twice", "fit/steps.py",
+       "None if held is None else held[i], fitted_on_d=True)",
+       "None if held is None else held[i])", "tests/fit/test_covariance_reuse.py"),
     # --- end stop 54 (lead)
 )
 

@@ -550,9 +550,11 @@ def fit(
     else:
         track.left["profile"] = 0  # a fit that did not converge is not profiled
     s2 = _noise_variance(prob, opt.cost)
+    jac = None
     if cov is None:  # not computed at this theta by the profiles (bounds need p > 0)
         track.begin("jacobian", "Jacobian")
-        cov = covariance(prob.jacobian(opt.theta) if prob.p else np.zeros((prob.n, 0)), s2)
+        jac = prob.jacobian(opt.theta) if prob.p else None
+        cov = covariance(np.zeros((prob.n, 0)) if jac is None else jac, s2)
         track.end()
     if cov.singular:
         notes.append("the Jacobian is singular: some parameter combinations are not "
@@ -585,6 +587,7 @@ def fit(
         information=information_criteria(opt.cost, prob.n, prob.p, prob.sigma_given),
         consistency=cons, notes=tuple(dict.fromkeys(notes)),
         sources=tuple(d.source for d in ds), fitted_model=m, flags=tuple(flags),
+        theta=None if jac is None else opt.theta.copy(), jacobian=jac,
     )
 
 

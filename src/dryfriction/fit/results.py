@@ -79,7 +79,8 @@ class ParameterEstimate:
 
 @dataclass(frozen=True)
 class FitResult:
-    """The outcome of :func:`fit` (every field is also in :meth:`to_dict` / ``fit.json``).
+    """The outcome of :func:`fit` (every field but ``theta`` and ``jacobian`` is also in
+    :meth:`to_dict` / ``fit.json``).
 
     ``success`` is False when the optimiser did not converge (``message`` says why) or a
     parameter sits on its search bound; the values are then not to be trusted.
@@ -89,6 +90,12 @@ class FitResult:
     static friction falling with hold time: the per-data-set ``trend`` in
     ``per_dataset``), ``at_bound:<name>`` (the value is its search bound),
     ``not_identified:<name>`` (bounded on one side only, or not at all); the notes say why.
+
+    ``theta`` and ``jacobian``: the free parameters (``free``, in the fit's internal
+    variables) at the optimum and the central-difference Jacobian of the residuals there, as
+    the fit computed them for its covariance (``None`` where the profiles computed it, or
+    nothing is free); for a caller that needs the same Jacobian again
+    (:func:`.steps.step_covariance`).
     """
 
     model: str
@@ -111,6 +118,8 @@ class FitResult:
     sources: tuple[str, ...]
     fitted_model: Model = field(repr=False)
     flags: tuple[str, ...] = ()
+    theta: Array | None = field(default=None, repr=False, compare=False)
+    jacobian: Array | None = field(default=None, repr=False, compare=False)
 
     @property
     def values(self) -> dict[str, float]:

@@ -244,7 +244,8 @@ class StepCovariance:
 
 
 def step_covariance(r: FitResult, d: SeriesData | Sequence[SeriesData], errors: str = "hac",
-                    held: tuple[float, float] | None = None) -> StepCovariance:
+                    held: tuple[float, float] | None = None, *,
+                    fitted_on_d: bool = False) -> StepCovariance:
     """The covariance of a window's fit ``r`` on data ``d`` (ours): rate-and-state, or the
     trap model (:mod:`.cvsteps`), parameters held fixed in the fit held fixed here; or of the
     joint fit (:class:`.joint.JointStepsModel`) on its windows ``d``, each window its own
@@ -258,7 +259,11 @@ def step_covariance(r: FitResult, d: SeriesData | Sequence[SeriesData], errors: 
     drive's change times (:func:`.loadpoint.change_time_effect`, each window's, summed in
     quadrature); the trap model: the score HAC. ``held``: ``(var ln k, this window's share in
     it)``, the stiffness held at the record's: its error carried
-    (:func:`.statistics.held_parameter_covariance`).
+    (:func:`.statistics.held_parameter_covariance`). ``fitted_on_d``: ``r`` is a fit on ``d``
+    itself, so the fit's own Jacobian at its optimum (``r.jacobian``, where the engine kept
+    it) is this covariance's Jacobian where its parameters and point are the same, bit for
+    bit; it is computed again otherwise (one forward run per parameter and side saved each
+    window).
     """
     from .loadpoint import change_time_effect
     from .problem import Problem
@@ -276,7 +281,9 @@ def step_covariance(r: FitResult, d: SeriesData | Sequence[SeriesData], errors: 
     res = prob.residuals(theta)
     cost = 0.5 * float(res @ res)
     dof = prob.n - prob.p
-    J = prob.jacobian(theta)
+    same = (fitted_on_d and r.jacobian is not None and r.theta is not None
+            and tuple(s.name for s in specs) == r.free and np.array_equal(theta, r.theta))
+    J = r.jacobian if same else prob.jacobian(theta)
     white = covariance(J, 2.0 * cost / dof)
     rho1 = float(lag1_autocorrelation(res)[0])
     ends = np.cumsum([0, *(len(w) for w in windows)])
@@ -699,7 +706,7 @@ def fit_steps(
             r2 = fit(d, model, profile=False, progress=tick)
             r = r2 if r2.goodness["cost"] < r.goodness["cost"] or r2.success else r
         fits.append(r)
-        sc = step_covariance(r, d, errors, None if held is None else held[i])
+        sc = step_covariance(r, d, errors, None if held is None else held[i], fitted_on_d=True)
         prof = quick_profile(r, d, cov=sc) if profile and r.success else None
         rows.append(_row(w, d, r, model, sc, prof))
         if not r.success:
