@@ -4159,6 +4159,16 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("fit_steps: each window's Jacobian computed twice", "fit/steps.py",
        "None if held is None else held[i], fitted_on_d=True)",
        "None if held is None else held[i])", "tests/fit/test_covariance_reuse.py"),
+    _m("check_scalar: a Python float past an open lower bound taken", "validation.py",
+       "lo is None or (value > lo if lo_open else value >= lo)) and (",
+       "lo is None or value >= lo) and (", "tests/test_validation.py", "-k", "python_floats"),
+    _m("check_scalar: a Python float taken without the finite check", "validation.py",
+       "    if type(value) is float and math.isfinite(value) and (",
+       "    if type(value) is float and (", "tests/test_validation.py", "-k", "python_floats"),
+    _m("check_scalar: a Python float past a closed upper bound taken", "validation.py",
+       "hi is None or (value < hi if hi_open else value <= hi)):",
+       "hi is None or (value < hi if hi_open else value <= hi * (1 + 1e-15))):",
+       "tests/test_validation.py", "-k", "python_floats"),
     # --- end stop 54 (lead)
 )
 

@@ -112,6 +112,35 @@ def test_check_range_both_edges_open_and_closed(lo_open: bool, hi_open: bool, te
         f([1.0, 5.0, -7.0])
 
 
+@pytest.mark.parametrize("lo_open", [False, True])
+@pytest.mark.parametrize("hi_open", [False, True])
+def test_check_scalar_on_python_floats_is_check_range_on_arrays(lo_open: bool, hi_open: bool
+                                                                ) -> None:
+    """check_scalar takes a Python float in range without NumPy: the same value, or the same
+    one-line refusal, as the array route, at both edges (open and closed), just inside and
+    just outside them, at 0 and -0 below a bound of 0, and at inf and NaN; an unbounded side
+    too."""
+    lo, hi = -0.0371, 2.93e4
+    cases = [lo, hi, math.nextafter(lo, 0.0), math.nextafter(hi, 0.0),
+             math.nextafter(lo, -1.0), math.nextafter(hi, 1e9), 17.3, -5.5e-3, 4e4,
+             math.inf, -math.inf, math.nan]
+    for bounds in ((lo, hi), (None, hi), (lo, None), (0.0, None)):
+        for v in cases + [0.0, -0.0]:
+            want: object
+            try:
+                want = float(val.check_range("k", np.asarray(v), *bounds, lo_open=lo_open,
+                                             hi_open=hi_open))
+            except ValueError as e:
+                want = str(e)
+            try:
+                got: object = val.check_scalar("k", v, *bounds, lo_open=lo_open,
+                                               hi_open=hi_open)
+                assert type(got) is float
+            except ValueError as e:
+                got = str(e)
+            assert got == want, (bounds, v)
+
+
 def test_check_range_unbounded_and_not_numbers() -> None:
     assert float(val.check_range("x", -1e300)) == -1e300
     for bad in (math.inf, -math.inf, math.nan):
