@@ -4169,6 +4169,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "hi is None or (value < hi if hi_open else value <= hi)):",
        "hi is None or (value < hi if hi_open else value <= hi * (1 + 1e-15))):",
        "tests/test_validation.py", "-k", "python_floats"),
+    _m("save_figure: PNGs at Pillow's default compression", "plots/style.py",
+       "{\"pil_kwargs\": {\"compress_level\": PNG_COMPRESSION}} if fmt == \"png\" else {}\n",
+       "{}\n", "tests/plots/test_figure_formats.py", "-k", "compression"),
+    _m("save_png: PNGs at Pillow's default compression", "plots/style.py",
+       "format=\"png\", dpi=dpi, pil_kwargs={\"compress_level\": PNG_COMPRESSION})",
+       "format=\"png\", dpi=dpi)", "tests/plots/test_figure_formats.py",
+       "-k", "compression"),
     # --- end stop 54 (lead)
 )
 

@@ -122,3 +122,27 @@ def test_report_embeds_svg_as_svg_and_pdf_as_png(tmp_path):
                               images=svg)
     assert page.count('src="data:image/svg+xml;base64,') == len(names)
     assert 'alt="fig6.svg"' in page
+
+
+def test_png_files_at_the_packages_compression_by_either_writer():
+    """save_figure and save_png write the same PNG bytes, at PNG_COMPRESSION (a figure written
+    by Pillow at that zlib level, not at its default of 6), and decode to the same pixels as
+    at level 6 (lossless)."""
+    import numpy as np
+    from matplotlib.image import imread
+
+    from dryfriction.plots.style import DPI, PNG_COMPRESSION, save_png
+
+    fig, ax = new_figure()
+    ax.plot([0.3, 1.7, 2.2], [1.1, -0.4, 0.9], marker="o")
+    a, b, ref = io.BytesIO(), io.BytesIO(), io.BytesIO()
+    save_figure(fig, a, "png")
+    save_png(fig, b)
+    fig.savefig(ref, format="png", dpi=DPI, pil_kwargs={"compress_level": PNG_COMPRESSION})
+    assert a.getvalue() == b.getvalue() == ref.getvalue()
+    six = io.BytesIO()
+    fig.savefig(six, format="png", dpi=DPI)
+    assert six.getvalue() != a.getvalue()  # another level, other bytes
+    a.seek(0)
+    six.seek(0)
+    assert np.array_equal(imread(a), imread(six))

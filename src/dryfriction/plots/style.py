@@ -16,7 +16,8 @@ from matplotlib.figure import Figure
 from ..validation import check_figure_format
 
 __all__ = [
-    "DPI", "LINE", "THIN", "TITLE_SIZE", "LEGEND_SIZE", "PANEL", "RUN_WIDTH", "ROW_HEIGHT",
+    "DPI", "PNG_COMPRESSION", "LINE", "THIN", "TITLE_SIZE", "LEGEND_SIZE", "PANEL", "RUN_WIDTH",
+    "ROW_HEIGHT",
     "new_figure", "save_png", "save_figure",
     "TIME_T0", "SLIP_A0", "FRICTION_EL", "CONTACTS", "VELOCITY_U", "STIFFNESS_K",
     "TIME_S", "SLIP_M", "VELOCITY_SI", "FRICTION_SI",
@@ -25,6 +26,10 @@ __all__ = [
 DPI = 150
 """Resolution of every PNG (dots per inch): a one-panel figure (:data:`PANEL`) is 840 x 630
 pixels, enough for a slide or a report read at full width (110 gave 616 x 462)."""
+PNG_COMPRESSION = 3
+"""zlib level of every PNG (Pillow's default is 6; lossless either way): the 20-step fit's 23
+step figures, drawn and written, take 4.0-5.0 s of CPU instead of 5.6-5.7 s, their files 12 %
+larger (3613 kB against 3235 kB)."""
 LINE = 1.2
 """Width of a data line (points)."""
 THIN = 0.8
@@ -91,7 +96,7 @@ def new_figure(size: tuple[float, float] = PANEL, nrows: int = 1, ncols: int = 1
 
 def save_png(fig: Figure, path: Any, dpi: int = DPI) -> None:
     """Render ``fig`` to a PNG file (or binary file object) with the Agg canvas."""
-    fig.savefig(path, format="png", dpi=dpi)
+    fig.savefig(path, format="png", dpi=dpi, pil_kwargs={"compress_level": PNG_COMPRESSION})
 
 
 
@@ -105,5 +110,6 @@ def save_figure(fig: Figure, path: Any, fmt: str = "png", dpi: int | None = None
 
     # no date in vector files and fixed SVG ids: the same figure gives the same bytes
     metadata: dict[str, Any] = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}.get(fmt, {})
+    png = {"pil_kwargs": {"compress_level": PNG_COMPRESSION}} if fmt == "png" else {}
     with rc_context({"svg.hashsalt": "dryfriction"}):
-        fig.savefig(path, format=fmt, dpi=DPI if dpi is None else dpi, metadata=metadata)
+        fig.savefig(path, format=fmt, dpi=DPI if dpi is None else dpi, metadata=metadata, **png)
