@@ -44,6 +44,23 @@ def test_times_positions_and_totals() -> None:
     np.testing.assert_allclose(PROG.times, [0.0, 2.5, 3.75, 4.5, 5.0], rtol=1e-15)
 
 
+def test_a_program_unpickled_or_copied_keeps_its_arrays_read_only() -> None:
+    """Pickled, deep-copied, or unpickled from a state without the kept arrays (a pickle
+    from before they were kept): the same program, its arrays derived again, read-only."""
+    import copy
+    import pickle
+
+    for q in (pickle.loads(pickle.dumps(PROG)), copy.deepcopy(PROG)):
+        assert q == PROG
+        np.testing.assert_array_equal(q.positions, PROG.positions)
+        assert not (q.times.flags.writeable or q.positions.flags.writeable
+                    or q.velocities.flags.writeable)
+    old = VelocityProgram.__new__(VelocityProgram)
+    old.__setstate__({"segments": PROG.segments, "x0": PROG.x0})
+    np.testing.assert_array_equal(old.times, PROG.times)
+    assert old.position(4.2) == PROG.position(4.2)
+
+
 def test_position_and_velocity_at_generic_times() -> None:
     t = np.array([0.0, 1.1, 2.5, 3.1, 3.75, 4.2, 4.5, 4.93, 5.0])
     want = np.array([_by_hand(s) for s in t])

@@ -111,8 +111,12 @@ class VelocityProgram:
             start = end
         object.__setattr__(self, "segments", segs)
         object.__setattr__(self, "x0", check_scalar("x0", x0))
-        # the boundaries' times and positions and the velocities, computed once (read-only):
-        # a fit's solver runs ask for them a few times a run, on programs of 100-odd segments
+        self._derive()
+
+    def _derive(self) -> None:
+        """The boundaries' times and positions and the velocities, computed once (read-only):
+        a fit's solver runs ask for them a few times a run, on programs of 100-odd segments."""
+        segs = self.segments
         times = np.concatenate([[0.0], np.cumsum([s.time for s in segs])])
         positions = self.x0 + np.concatenate([[0.0], np.cumsum([s.displacement for s in segs])])
         velocities = np.array([s.velocity for s in segs])
@@ -120,6 +124,13 @@ class VelocityProgram:
                         ("_velocities", velocities)):
             a.flags.writeable = False
             object.__setattr__(self, name, a)
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        """Unpickled or deep-copied: the segments and ``x0``, the arrays derived again (so
+        read-only again; a pickle from before they were kept has none)."""
+        for key in ("segments", "x0"):
+            object.__setattr__(self, key, state[key])
+        self._derive()
 
     @property
     def times(self) -> NDArray[np.float64]:

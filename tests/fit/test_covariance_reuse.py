@@ -52,6 +52,8 @@ def test_the_fits_jacobian_is_used_and_gives_the_same_covariance(
     r, d = window
     assert r.jacobian is not None and r.jacobian.shape == (len(d), len(r.free))
     assert r.theta is not None and r.theta.shape == (len(r.free),)
+    # kept on the result and shared by its copies (dataclasses.replace): read-only
+    assert not r.jacobian.flags.writeable and not r.theta.flags.writeable
     n = _calls(monkeypatch)
     again = step_covariance(r, d, "hac")
     assert n[0] == 1  # computed: nothing says r was fitted on d

@@ -92,3 +92,68 @@ def test_a_figure_redrawn_for_another_step_is_the_new_figure_byte_for_byte() -> 
     other, ax2 = plot_step(res, 1, others={"trap model": w1[1]}, into=first)
     assert other is not first
     assert [ln.get_label() for ln in ax2[0, 0].get_lines()] == ["fit (rsf)", "trap model"]
+
+
+def _two_windows() -> SimpleNamespace:
+    w0 = _window(88.0, 0.05, 240, (0.31e-6, 2.9e-6), 0.613, 0.004, 0)
+    w1 = _window(1735.5, 0.2, 311, (9.7e-6, 1.1e-6), 0.587, -0.0023, 1)
+    return SimpleNamespace(data=[w0[0], w1[0]], rows=[w0[2], w1[2]],
+                           model_curve=lambda i: (w0, w1)[i][1])
+
+
+def test_a_figure_let_go_of_is_collected() -> None:
+    """plot_step's bookkeeping of the figures it made keeps none of them alive (a fit of many
+    records, or a notebook's loop, must not keep every figure and its pixels)."""
+    import gc
+    import weakref
+
+    res = _two_windows()
+    fig = plot_step(res, 0)[0]
+    again = plot_step(res, 1, into=fig)[0]
+    ref = weakref.ref(fig)
+    del fig, again
+    gc.collect()
+    assert ref() is None
+
+
+def test_a_redrawn_figure_is_written_to_path(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    res = _two_windows()
+    fig, _ = plot_step(res, 0, tmp_path / "a.png")
+    again, _ = plot_step(res, 1, tmp_path / "b.png", into=fig)
+    assert again is fig
+    assert (tmp_path / "a.png").stat().st_size > 0 and (tmp_path / "b.png").stat().st_size > 0
+
+
+def test_a_figure_changed_since_is_not_redrawn_into() -> None:
+    """Drawn on, zoomed or cleared after plot_step made it: a new figure is made and the one
+    given is left as it was."""
+    res = _two_windows()
+    for change in ("line", "zoom", "clear", "text"):
+        fig, axes = plot_step(res, 0)
+        if change == "line":
+            axes[0, 1].axvline(3.0)
+        elif change == "zoom":
+            axes[0, 1].set_xlim(0.0, 3.0)
+        elif change == "text":
+            axes[1, 0].text(1.0, 0.0, "note")
+        else:
+            fig.clear()
+        before = [ax.get_xlim() for ax in fig.axes]
+        new, new_axes = plot_step(res, 1, into=fig)
+        assert new is not fig, change
+        assert [ax.get_xlim() for ax in fig.axes] == before, change
+        assert new_axes[0, 1].get_xlim()[1] > 60.0  # the new window's 62 s
+
+
+def test_residuals_all_zero_get_a_new_figure() -> None:
+    """A window whose fit is its data (no finite residual but 0): a new figure, whose
+    residual panel is scaled about 0 as a new figure's is (a redrawn one read a width of
+    1e-21 from the axis line's stale limits)."""
+    res = _two_windows()
+    exact = SimpleNamespace(data=res.data, rows=res.rows,
+                            model_curve=lambda i: res.data[i].mu.copy())
+    fig, _ = plot_step(res, 0)
+    new, axes = plot_step(exact, 1, into=fig)
+    assert new is not fig
+    lo, hi = axes[1, 0].get_ylim()
+    assert lo < -1e-3 and hi > 1e-3

@@ -42,6 +42,12 @@ def test_hermite_reproduces_a_cubic_and_is_right_continuous() -> None:
     got = hermite(T, Y, F, np.array([0.93, 4.27, 3.6]))[:, 0]
     assert got[1] == Y[-1, 0] and got[2] == Y[-1, 0]
     assert got[0] == pytest.approx(p(0.93), rel=1e-13)
+    # far past it, or at inf: held too, without a floating-point error on the way
+    with np.errstate(all="raise"):
+        far = hermite(T, Y, F, np.array([1e120, np.inf, 2.9]))[:, 0]
+    assert far[0] == far[1] == Y[-1, 0] and far[2] == pytest.approx(p(2.9), rel=1e-13)
+    # in the step values' own type
+    assert hermite(T, Y.astype(np.float32), F.astype(np.float32), te).dtype == np.float32
 
 
 def test_slip_quadrature_of_an_exponential_velocity() -> None:

@@ -554,6 +554,10 @@ def fit(
     if cov is None:  # not computed at this theta by the profiles (bounds need p > 0)
         track.begin("jacobian", "Jacobian")
         jac = prob.jacobian(opt.theta) if prob.p else None
+        if jac is not None:
+            jac.flags.writeable = False  # kept on the result, shared by its copies
+            theta_kept = opt.theta.copy()
+            theta_kept.flags.writeable = False
         cov = covariance(np.zeros((prob.n, 0)) if jac is None else jac, s2)
         track.end()
     if cov.singular:
@@ -587,7 +591,7 @@ def fit(
         information=information_criteria(opt.cost, prob.n, prob.p, prob.sigma_given),
         consistency=cons, notes=tuple(dict.fromkeys(notes)),
         sources=tuple(d.source for d in ds), fitted_model=m, flags=tuple(flags),
-        theta=None if jac is None else opt.theta.copy(), jacobian=jac,
+        theta=None if jac is None else theta_kept, jacobian=jac,
     )
 
 

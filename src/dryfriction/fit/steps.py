@@ -282,6 +282,7 @@ def step_covariance(r: FitResult, d: SeriesData | Sequence[SeriesData], errors: 
     cost = 0.5 * float(res @ res)
     dof = prob.n - prob.p
     same = (fitted_on_d and r.jacobian is not None and r.theta is not None
+            and r.jacobian.shape == (prob.n, prob.p)
             and tuple(s.name for s in specs) == r.free and np.array_equal(theta, r.theta))
     J = r.jacobian if same else prob.jacobian(theta)
     white = covariance(J, 2.0 * cost / dof)

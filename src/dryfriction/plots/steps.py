@@ -54,13 +54,16 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
     """Window ``i``: data (small light points) and the fitted model (line, drawn on top)
     against load-point displacement (left) and time (right), residuals below; ``others``
     (label: friction at the window's samples, e.g. the trap model fitted to the same window)
-    are drawn as dashed lines beside the fit; the residuals are the fit's.
+    are drawn as dashed lines beside the fit; the residuals are the fit's. ``path``: also
+    written there as a PNG.
 
-    ``into``: a figure this function returned before, with the same ``others`` labels: its
-    artists take window ``i``'s data and its axes are autoscaled again, and it is returned
-    (the same picture as a new figure's; a record's steps drawn one after another then create
-    their axes and ticks once, not once a step). A figure it did not draw, or drew with other
-    labels, is left alone and a new one made."""
+    ``into``: a figure this function returned before, with the same ``others`` labels and as
+    it left it (its axes, their artists, autoscaling on): its artists take window ``i``'s
+    data, its axes are autoscaled again, and it is returned (the same picture as a new
+    figure's; a record's steps drawn one after another then create their axes and ticks once,
+    not once a step). Any other figure (drawn with other labels, drawn on, zoomed or cleared
+    since), or residuals with no finite value other than 0, and a new figure is made; the
+    figure given is left alone."""
     from ..fit.models import load_point_displacement
 
     d = result.data[i]
@@ -69,9 +72,23 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
     x_um = load_point_displacement(d) * 1e6
     t = d.t - d.t[0]
     names = tuple(others or {})
-    old = _DRAWN.get(into) if into is not None else None
-    if old is not None and old[0] == names:
-        return _redraw(into, old[1], (x_um, t), d.mu, model, others or {}, step_title(row))
+    resid = d.mu - model
+    axes = _reusable(into, names) if into is not None else None
+    if axes is not None and np.any(np.isfinite(resid) & (resid != 0.0)):
+        fig = into
+        _redraw(fig, axes, (x_um, t), d.mu, resid, model, others or {}, step_title(row))
+    else:
+        fig, axes = _new_step_figure(x_um, t, d.mu, resid, model, others or {},
+                                     step_title(row))
+    if path is not None:
+        save_png(fig, path)
+    return fig, axes
+
+
+def _new_step_figure(x_um: np.ndarray, t: np.ndarray, mu: np.ndarray, resid: np.ndarray,
+                     model: np.ndarray, others: Mapping[str, np.ndarray], title: str
+                     ) -> tuple[Figure, Any]:
+    """plot_step's figure, made new."""
     fig = Figure(figsize=(10.0, 5.6))
     # an Agg canvas of its own: savefig then draws on it, not on a canvas made for the one
     # call, so a figure saved again (``into``) keeps its renderer and the renderer's parsed
@@ -81,42 +98,57 @@ def plot_step(result: StepsResult, i: int, path: Any = None, *,
     for col, (xv, label) in enumerate(((x_um, r"load-point displacement $x_{lp}$  [µm]"),
                                        (t, TIME_S.replace("$t$", "$t - t_{start}$")))):
         top, bot = axes[0, col], axes[1, col]
-        top.scatter(xv, d.mu, label="data", **_DATA)
+        top.scatter(xv, mu, label="data", **_DATA)
         top.plot(xv, model, label="fit" if not others else "fit (rsf)", **_MODEL)
-        bot.scatter(xv, d.mu - model, **_DATA)
+        bot.scatter(xv, resid, **_DATA)
         bot.axhline(0.0, **_MODEL)
-        for k, (name, curve) in enumerate((others or {}).items()):
+        for k, (name, curve) in enumerate(others.items()):
             style = {"color": f"C{k}", "lw": 1.2, "ls": "--", "zorder": 4}
             top.plot(xv, curve, label=name, **style)
         bot.set_xlabel(label)
         top.set_ylabel(FRICTION_SI)
         bot.set_ylabel("residual")
     axes[0, 0].legend(loc="best", fontsize=8, markerscale=4)
-    fig.suptitle(step_title(row), fontsize=9)
+    fig.suptitle(title, fontsize=9)
     fig.subplots_adjust(left=0.09, right=0.98, bottom=0.1, top=0.9, hspace=0.08, wspace=0.25)
-    _DRAWN[fig] = (names, axes)
-    if path is not None:
-        save_png(fig, path)
+    _DRAWN[fig] = tuple(others)
     return fig, axes
 
 
-# what plot_step drew on each figure it returned: the others' labels and the axes (weak keys:
-# a figure let go of is forgotten)
-_DRAWN: weakref.WeakKeyDictionary[Figure, tuple[tuple[str, ...], Any]] = (
-    weakref.WeakKeyDictionary())
+# the others' labels of each figure plot_step made (weak keys, and values that do not refer
+# to the figure: a figure let go of is collected and forgotten)
+_DRAWN: weakref.WeakKeyDictionary[Figure, tuple[str, ...]] = weakref.WeakKeyDictionary()
+
+
+def _reusable(fig: Figure, names: tuple[str, ...]) -> Any:
+    """``fig``'s 2 x 2 axes where plot_step made it with these labels and it holds what
+    plot_step put there, autoscaling on; else ``None``."""
+    if _DRAWN.get(fig) != names or len(fig.axes) != 4:
+        return None
+    axes = np.array(fig.axes, dtype=object).reshape(2, 2)
+    for col in range(2):
+        top, bot = axes[0, col], axes[1, col]
+        if not (len(top.collections) == len(bot.collections) == 1
+                and len(top.get_lines()) == 1 + len(names) and len(bot.get_lines()) == 1
+                and len(top.patches) == len(bot.patches) == 0
+                and len(top.texts) == len(bot.texts) == 0):
+            return None
+        if not all(ax.get_autoscalex_on() and ax.get_autoscaley_on() for ax in (top, bot)):
+            return None
+    return axes
 
 
 def _redraw(fig: Figure, axes: Any, xs: tuple[np.ndarray, np.ndarray], mu: np.ndarray,
-            model: np.ndarray, others: Mapping[str, np.ndarray], title: str
-            ) -> tuple[Figure, Any]:
+            resid: np.ndarray, model: np.ndarray, others: Mapping[str, np.ndarray],
+            title: str) -> None:
     """plot_step's artists on ``fig`` given another window's data (in the order plot_step
     added them), its data limits recomputed as the axes' own methods compute them (``relim``
     for the lines; a collection's limits as ``add_collection`` adds them, which ``relim``
-    leaves out) and the views autoscaled."""
+    leaves out before matplotlib 3.11) and the views autoscaled."""
     for col, xv in enumerate(xs):
         top, bot = axes[0, col], axes[1, col]
         top.collections[0].set_offsets(np.column_stack([xv, mu]))
-        bot.collections[0].set_offsets(np.column_stack([xv, mu - model]))
+        bot.collections[0].set_offsets(np.column_stack([xv, resid]))
         for line, y in zip(top.get_lines(), (model, *others.values()), strict=True):
             line.set_data(xv, y)
     for ax in axes.flat:
@@ -127,7 +159,6 @@ def _redraw(fig: Figure, axes: Any, xs: tuple[np.ndarray, np.ndarray], mu: np.nd
     for ax in axes.flat:
         ax.autoscale_view()
     fig.suptitle(title, fontsize=9)
-    return fig, axes
 
 
 def plot_steps_summary(result: StepsResult, path: Any = None) -> tuple[Figure, Any]:

@@ -152,13 +152,16 @@ def hermite(T: Array, Y: Array, F: Array, te: Array) -> Array:
     # (a fit's solver runs interpolate at 1000-odd times: gathering the rows once is what
     # this costs)
     hh = np.where(ok, h, 1.0)[:, None]
-    s = ((te - Ti) / hh[:, 0])[:, None]
-    h00 = (1 + 2 * s) * (1 - s) ** 2
-    h10 = s * (1 - s) ** 2
-    h01 = s * s * (3 - 2 * s)
-    h11 = s * s * (s - 1)
-    out = h00 * Yi + h10 * hh * F[i] + h01 * Y[j] + h11 * hh * F[j]
-    return np.where(ok[:, None], out, Yi) if not ok.all() else out
+    # the rows past the last step may overflow (a time far past it): their values are not used
+    with np.errstate(over="ignore", invalid="ignore"):
+        s = ((te - Ti) / hh[:, 0])[:, None]
+        h00 = (1 + 2 * s) * (1 - s) ** 2
+        h10 = s * (1 - s) ** 2
+        h01 = s * s * (3 - 2 * s)
+        h11 = s * s * (s - 1)
+        out = h00 * Yi + h10 * hh * F[i] + h01 * Y[j] + h11 * hh * F[j]
+    out = np.where(ok[:, None], out, Yi) if not ok.all() else out
+    return out.astype(Y.dtype, copy=False)  # Y's type, as Y[i] filled row by row was
 
 
 # Gauss-Legendre nodes and weights on [0, 1], 5 points (exact for polynomials of degree 9)
