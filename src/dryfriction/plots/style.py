@@ -95,8 +95,8 @@ def new_figure(size: tuple[float, float] = PANEL, nrows: int = 1, ncols: int = 1
 
 
 def save_png(fig: Figure, path: Any, dpi: int = DPI) -> None:
-    """Render ``fig`` to a PNG file (or binary file object) with the Agg canvas."""
-    fig.savefig(path, format="png", dpi=dpi, pil_kwargs={"compress_level": PNG_COMPRESSION})
+    """Render ``fig`` to a PNG file (or binary file object): :func:`save_figure` as PNG."""
+    save_figure(fig, path, "png", dpi)
 
 
 
