@@ -20,14 +20,20 @@ quantum of 20-500 nm; 1-20 Hz. Five program families:
   at 0.1-30 um/s (log-uniform; from a second review, stop 53, helper-91);
 - ``G``: a step of ratio 1.3-30 whose slower side fills the record (800-2500 s beside 40-200
   s at the faster speed; slow then fast, fast then slow, or fast-slow-fast).
+- ``H``: a laboratory's slide-hold-slide series, long and sampled fast: holds of 1, 3, 10,
+  30, 100, 300, 1000 and 3000 s in order (the first three always, each longer one in
+  three of four records), between slides of 50-150 s at 1-30 um/s (log-uniform), sampled
+  at 10-200 Hz up to ``MAX_ROWS_H`` rows: blocks of the detector's search last 0.5-2.7 s,
+  so its 1-s and 3-s holds are shorter than three of them (``SHORT_SEARCH``).
 
 Each record is written, read back and detected; scored per commanded stretch (1 s trimmed at
 each end): a hold is *missed* where less than 90 % of it is reported at velocity 0, a slide is
 *read as a hold* where any of it is. Prints, per family: records, holds missed, slides read as
 holds, records with the right number of segments.
 
-Run: ``python -m benchmarks bench_detect_holds [N]`` (N records per family, default 60; seeds
-0 to N - 1, each family's draws from ``default_rng(1000003 * ord(family) + seed)``).
+Run: ``python -m benchmarks bench_detect_holds [FAMILY ...] [N]`` (the families named, default
+all; N records per family, default 60; seeds 0 to N - 1, each family's draws from
+``default_rng(1000003 * ord(family) + seed)``).
 """
 
 from __future__ import annotations
@@ -45,8 +51,9 @@ import numpy as np  # noqa: E402
 from dryfriction.records.lab import detect_program, read_record  # noqa: E402
 
 UM = 1e-6
-FAMILIES = ("A", "B", "C", "D", "E", "F", "G")
+FAMILIES = ("A", "B", "C", "D", "E", "F", "G", "H")
 MAX_ROWS = 25_000  # a long program is sampled slower, not cut
+MAX_ROWS_H = 400_000  # family H: a long record sampled fast, as laboratories record one
 
 
 def _ou(rng: np.random.Generator, n: int, dt: float, tau: float, sd: float) -> np.ndarray:
@@ -108,6 +115,13 @@ def program(family: str, r: np.random.Generator) -> list[tuple[float, float]]:
         slow, fast = (float(r.uniform(800, 2500)), vs), (float(r.uniform(40, 200)), vs * ratio)
         kind = int(r.integers(0, 3))
         return [slow, fast] if kind == 0 else [fast, slow] if kind == 1 else [fast, slow, fast]
+    if family == "H":
+        v1 = _log_uniform(r, 1.0, 30.0) * UM
+        p = [(float(r.uniform(50, 150)), v1)]
+        for h in (1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0):
+            if h <= 10.0 or r.random() < 0.75:
+                p += [(h, 0.0), (float(r.uniform(50, 150)), v1)]
+        return p
     raise ValueError(f"family = {family!r} is not one of {FAMILIES}")
 
 
@@ -115,14 +129,14 @@ def record(family: str, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, 
     """Times (s), displacement (m), stretch edges (s) and velocities (m/s) of one record."""
     r = np.random.default_rng(1000003 * ord(family) + seed)
     prog = program(family, r)
-    fs = float(r.choice([1, 2, 4, 5, 10, 20]))
+    fs = float(r.choice([10, 20, 50, 100, 200] if family == "H" else [1, 2, 4, 5, 10, 20]))
     noise, wander = float(r.uniform(0.1, 0.2)) * UM, float(r.uniform(20, 300)) * 1e-9
     wtau, servo = float(r.uniform(3, 30)), float(r.uniform(0.01, 0.05))
     stau = float(r.uniform(3, 30))
     drift, quant = float(r.uniform(1, 2)) * UM, float(r.choice([20, 50, 100, 200, 500])) * 1e-9
     walk = r.choice(["walk", "sine"]) == "walk"
     total = sum(d for d, _ in prog)
-    fs = min(fs, max(1.0, float(int(MAX_ROWS / total))))
+    fs = min(fs, max(1.0, float(int((MAX_ROWS_H if family == "H" else MAX_ROWS) / total))))
     rng = np.random.default_rng(seed)
     dt = 1.0 / fs
     t = np.arange(0.0, total, dt)
@@ -164,11 +178,12 @@ def score(segments: tuple, t: np.ndarray, edges: np.ndarray, vels: list[float]
 
 def main() -> None:
     n = int(sys.argv[-1]) if len(sys.argv) > 1 and sys.argv[-1].isdigit() else 60
+    chosen = [a for a in sys.argv[1:] if a in FAMILIES] or list(FAMILIES)
     print(f"{'family':8s}{'records':>8s}{'holds missed':>16s}{'slides as holds':>18s}"
           f"{'count right':>13s}")
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "rec.txt"
-        for fam in FAMILIES:
+        for fam in chosen:
             holds = missed = wrong = right = 0
             for seed in range(n):
                 t, x, edges, vels = record(fam, seed)

@@ -65,6 +65,7 @@ _USB_CLI = "tests/cli/test_record_new_user.py"
 _THG = "tests/analysis/test_trap_hopf_generic.py"
 _BFC = "tests/analysis/test_bifurcation_classify.py"
 _SFD = "tests/plots/test_step_figure_data.py"
+_SHORT = "tests/records/test_short_stretches.py"
 _FSG = ("tests/plots/test_fronts_figures.py::"
         "test_speed_figure_open_intervals_reach_twice_the_highest_bound_and_log_rule")
 _FFG = "tests/plots/test_fronts_figures.py::test_space_time_map_floor_colour_bar_and_limits"
@@ -4201,6 +4202,34 @@ MUTANTS: tuple[Mutant, ...] = (
        "            jac.flags.writeable = False  # kept", "            pass  # kept",
        "tests/fit/test_covariance_reuse.py"),
     # --- end stop 54 (lead)
+    # --- stop 55 (lead): short holds of a long record (records/detection.py SHORT_SEARCH)
+    _m("short search: off (the blocks' shortest stretch the shortest found)",
+       "records/detection.py", "SHORT_SEARCH = True\n", "SHORT_SEARCH = False\n", _SHORT,
+       "-k", "found"),
+    _m("short search: any short excursion taken, not only one nearer a stop",
+       "records/detection.py", "            weakest = [min(score[p], score[q]) if h else 0.0",
+       "            weakest = [min(score[p], score[q]) if h or True else 0.0", _SHORT, "-k",
+       "zoo"),
+    _m("short search: a piece beside a change found before taken (its settling)",
+       "records/detection.py",
+       "                    and t[p] - t[a] >= max(SETTLE_AFTER, short_time)\n"
+       "                    and t[b - 1] - t[q] >= max(SETTLE_AFTER, short_time)\n",
+       "                    and p - a >= short and b - q >= short\n", _SHORT, "-k", "zoo"),
+    _m("short search: short in samples only (a piece across a gap taken)",
+       "records/detection.py", "            if (q - p < short and t[q] - t[p] < short_time\n",
+       "            if (q - p < short\n", _SHORT, "-k", "zoo"),
+    _m("short search: the pair's ends not moved to the samples' hinges",
+       "records/detection.py", "            p = w0 + kp if kp > 0 else p\n", "", _SHORT, "-k",
+       "found"),
+    _m("short search: the stretch's line not taken out before the steps are measured",
+       "records/detection.py",
+       "        r = xb - xb.mean() - tc * (tc @ (xb - xb.mean())) / (tc @ tc)\n",
+       "        r = xb - xb.mean()\n", _SHORT, "-k", "found"),
+    _m("short search: the two hinges not refined between their neighbours",
+       "records/detection.py",
+       "    kp, _ = best_hinge(t[:q], xs[:q], 3, 0.0)\n    p = kp if kp > 0 else p\n", "",
+       _SHORT, "-k", "found"),
+    # --- end stop 55 (lead)
 )
 
 

@@ -46,6 +46,7 @@ a machine oscillation found in the record as free regressors.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -895,6 +896,17 @@ def detect_program(
         fl = replace(fl, sigma=sigma_all)
         t, x = t_all, x_all
         fits = _Fits(t, x)
+        if SHORT_SEARCH:
+            # the stretches shorter than the blocks let the search hold, looked for on finer
+            # blocks stretch by stretch and judged as the others were
+            m_s = max(3, min_samples)
+            held = _is_hold(*fits.table(bounds), fl, floor, given)
+
+            def judge(q: list[int]) -> tuple[Array, Array]:
+                return (_scores(fits, fl, q, rel_tol, z_min, floor, given, m_s),
+                        fits.table(q)[0])
+
+            bounds = _short_stretches(t, x, bounds, held, blk, m, judge)
     # a change to or from a hold (or a speed below RELAX_STOP of the other side's) is placed
     # by the hinge under the wander whatever its confidence (the servo's relaxation after a
     # stop bends the whole stretches' kink: HOLD_PLACED)
@@ -1282,6 +1294,167 @@ def _blocks(t: Array, x: Array, blk: int) -> tuple[Array, Array]:
     idx = np.arange(0, len(t), blk)
     cnt = np.diff(np.append(idx, len(t)))
     return np.add.reduceat(t, idx) / cnt, np.add.reduceat(x, idx) / cnt
+
+
+SHORT_SEARCH = True
+"""A record searched on block means (longer than :data:`MAX_POINTS` samples) is searched
+again, stretch by stretch, on blocks :data:`SHORT_SPLIT` times shorter, for the stretches
+too short for the block search to hold (:func:`_short_stretches`; ours). ``False``: off.
+
+Why: the block search's shortest stretch is three blocks, and a block lasts the record's
+duration over :data:`MAX_POINTS`: 2.7 s in a slide-hold-slide of 5344 s at 100 Hz, so its
+1-s hold at 10 um/s (10 um of slip withheld, confidence 500 where a shorter record of the
+same program finds it) was not found at 100 or 1000 Hz, nor a 3-s or 10-s hold in two of
+four such records at 100 Hz (``tests/records/test_short_stretches.py``)."""
+SHORT_SPLIT = 8
+"""How many times shorter the blocks of :data:`SHORT_SEARCH` are than the record's."""
+SHORT_STOPPED = 0.5
+"""A short stretch :data:`SHORT_SEARCH` adds is one slower than this fraction of the speeds
+beside it: nearer a stop than the slide (ours)."""
+SHORT_SPLITS = 3
+"""The places searched in each stretch by :data:`SHORT_SEARCH`: where the displacement about
+the stretch's line steps most (a missed hold withholds its slip there; the servo's wander
+gives the others, which the scores then remove)."""
+
+
+def _two_hinges(t: Array, xs: Array, threshold: float) -> tuple[int, int] | None:
+    """The first two splits of the white-noise binary segmentation of ``xs(t)`` (``xs`` in
+    units of its white noise; each hinge at least 3 samples from the ends and the other),
+    each kept where it lowers the residual sum of squares by more than ``threshold``
+    (:func:`.segmentation.hinge_segments` with ``max_segments=3``, in compiled scans only),
+    each then moved to the best hinge between its neighbours; ``None`` where there are not
+    two."""
+    k, gain = best_hinge(t, xs, 3, 0.0)
+    if k <= 0 or not gain > threshold:
+        return None
+    kl, gl = best_hinge(t[:k], xs[:k], 3, 0.0)
+    kr, gr = best_hinge(t[k:], xs[k:], 3, 0.0)
+    gl = gl if kl > 0 else -np.inf
+    gr = gr if kr > 0 else -np.inf
+    if max(gl, gr) <= threshold:
+        return None
+    p, q = (kl, k) if gl >= gr else (k, k + kr)
+    # each moved to the best hinge between its neighbours (the first split lies at an
+    # excursion's middle): as the segmentation's own refinement, one pass
+    kp, _ = best_hinge(t[:q], xs[:q], 3, 0.0)
+    p = kp if kp > 0 else p
+    kq, _ = best_hinge(t[p:], xs[p:], 3, 0.0)
+    return p, (p + kq if kq > 0 else q)
+
+
+def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: int,
+                     m_blk: int, judge: Callable[[list[int]], tuple[Array, Array]]
+                     ) -> list[int]:
+    """``bounds`` (sample indices, the ends included) with the boundaries of the stretches
+    the block search could not hold, where they stand (:data:`SHORT_SEARCH`; ours).
+
+    Each moving stretch is searched on its own block means, ``blk // SHORT_SPLIT`` samples
+    each, about the :data:`SHORT_SPLITS` places where the displacement about its line steps
+    most over half a short stretch (a missed hold withholds its slip there), by the
+    white-noise hinge search (:func:`_two_hinges`, two boundaries at most), each end then
+    moved to the best hinge on the samples. The two are a candidate where the stretch
+    between them is shorter than ``2 m_blk`` of the record's blocks (``blk`` samples, and
+    their duration at the stretch's median sampling interval; a longer one the block search
+    holds) and lies :data:`SETTLE_AFTER` (or that duration, if longer) from both ends. A
+    stretch's candidates are judged within the stretch by ``judge`` (the detector's scores
+    under the fluctuations already measured, the stretch's ends changes: ``< 1`` falls), the
+    weakest pair falling first until every one stands; a pair whose stretch is not slower
+    than :data:`SHORT_STOPPED` of the speeds beside it falls (a short hold is what a
+    slide-hold-slide program has and the blocks lose; a short excursion at a speed is a
+    servo's burst as often: zoo 80389, a velocity reading, read eight 29 % dips of 3-5 s as
+    changes when any excursion was asked). The boundaries found before are kept as they
+    were.
+
+    Parameters
+    ----------
+    t, x : Array
+        Times, s, and displacement, m, of every sample.
+    bounds : list of int
+        The boundaries found, the ends included.
+    held : Array of bool
+        Which stretches are holds: not searched (a short stop within a hold is no change:
+        its pieces, holds both, would fall by their scores; the search is saved).
+    blk : int
+        Samples per block of the record's search (``> 1``).
+    m_blk : int
+        Shortest stretch of that search, blocks.
+    judge : callable
+        Of a list of boundaries: the scores of its inner boundaries (one each) and the
+        velocity of each stretch, m/s.
+
+    Returns
+    -------
+    list of int
+        The boundaries, increasing, the ends included.
+    """
+    fb = max(1, blk // SHORT_SPLIT)
+    short = 2 * m_blk * blk
+    w = max(1, short // (2 * fb))  # half a short stretch, fine blocks
+    out = list(bounds)
+    for j in range(len(bounds) - 1):
+        a, b = bounds[j], bounds[j + 1]
+        if held[j] or b - a < 3 * short:
+            continue
+        tb, xb = _blocks(t[a:b], x[a:b], fb)
+        # a short stretch in time, at the stretch's median sampling interval
+        short_time = short * float(median(np.diff(tb))) / fb
+        # where the displacement about the stretch's line steps most over half a short
+        # stretch (a missed hold withholds its slip there), the largest steps first, each
+        # searched on its own window by the white-noise hinge (two boundaries at most)
+        tc = tb - tb.mean()
+        r = xb - xb.mean() - tc * (tc @ (xb - xb.mean())) / (tc @ tc)
+        sig = max(noise_level(xb), 1e-9 * float(np.ptp(xb)), 1e-300)  # the stretch's, once
+        c = np.concatenate([[0.0], np.cumsum(r)])
+        k = np.arange(w, r.size - w + 1)
+        step = np.abs((c[k + w] - c[k]) - (c[k] - c[k - w]))
+        pairs: list[tuple[int, int]] = []
+        for _ in range(SHORT_SPLITS):
+            if not step.size or not np.isfinite(step.max()):
+                break
+            i = int(np.argmax(step))
+            centre = int(k[i])
+            step[max(0, i - 2 * w):i + 2 * w] = -np.inf
+            lo, hi = max(0, centre - 2 * w), min(r.size, centre + 2 * w)
+            if hi - lo < 9:
+                continue
+            found = _two_hinges(tb[lo:hi], xb[lo:hi] / sig, 10.0 * np.log(hi - lo))
+            if found is None:
+                continue
+            p, q = a + (lo + found[0]) * fb, a + (lo + found[1]) * fb
+            # each end moved to the best hinge on the samples between the window's end and
+            # the other (binary segmentation splits an excursion at its middle first)
+            w0, w1 = a + lo * fb, min(b, a + hi * fb)
+            kp, _ = best_hinge(t[w0:q], x[w0:q], 3, 0.0)
+            p = w0 + kp if kp > 0 else p
+            kq, _ = best_hinge(t[p:w1], x[p:w1], 3, 0.0)
+            q = p + kq if kq > 0 else q
+            # a short stretch in samples and in time (one across a gap is no hold the blocks
+            # lost: zoo 80689, a velocity reading integrated over a gap), clear of the
+            # stretch's ends by SETTLE_AFTER (beside a change found before, a short slow
+            # piece is the servo's settling after it: zoo 80654, 0.2 s at 1.1 s after a
+            # 13.6 -> 1.4 um/s step, its boundary not yet placed)
+            if (q - p < short and t[q] - t[p] < short_time
+                    and t[p] - t[a] >= max(SETTLE_AFTER, short_time)
+                    and t[b - 1] - t[q] >= max(SETTLE_AFTER, short_time)
+                    and all(q < p0 or p > q0 for p0, q0 in pairs)):
+                pairs.append((p, q))
+        pairs.sort()
+        while pairs:
+            local = [a, *(q for pq in pairs for q in pq), b]
+            scores, v = judge(local)
+            score = dict(zip(local[1:-1], scores, strict=True))
+            # nearer a stop than the speed around it (its ends not yet placed, a short hold
+            # reads faster than a hold: a 1-s hold at 10 um/s bracketed 0.15 s early, 0.54)
+            u = np.abs(v)
+            stopped = u[1:-1:2] < SHORT_STOPPED * np.minimum(u[:-2:2], u[2::2])
+            weakest = [min(score[p], score[q]) if h else 0.0
+                       for (p, q), h in zip(pairs, stopped, strict=True)]
+            k = int(np.argmin(weakest))
+            if weakest[k] >= 1.0:
+                break
+            del pairs[k]
+        out.extend(q for pq in pairs for q in pq)
+    return sorted(out)
 
 
 def _plateaus(t: Array, bounds: list[int], vel: list[float], hold: list[bool],
