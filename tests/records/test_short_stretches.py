@@ -27,7 +27,14 @@ import numpy as np
 import pytest
 
 import dryfriction.records.detection as detection
-from dryfriction.records.detection import detect_program
+from dryfriction.records.detection import (
+    Fluctuations,
+    _Fits,
+    _scores,
+    _short_stretches,
+    _stop_scores,
+    detect_program,
+)
 from dryfriction.records.record import LabRecord
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -128,12 +135,12 @@ def test_long_slides_and_holds_gain_no_change(seed: int) -> None:
 
 def test_zoo_records_the_search_read_wrong_in_its_first_forms(tmp_path: Path) -> None:
     """Zoo records (velocity readings, integrated) read with false changes by the search's
-    first forms, each right with the rule as it stands. The mistakes: any short excursion
-    taken, not only one nearer a stop (``SHORT_STOPPED``; 80389: eight 29 % dips of 3-5 s,
-    80764: two); a short piece beside a change found before (the ``SETTLE_AFTER``
-    clearance; 80654: 0.2 s after a 13.6 -> 1.4 um/s step, the servo's settling); a piece
-    short in samples and long in time, across a gap (80689: 39 s at a gap in a 0.016 um/s
-    slide)."""
+    first forms, right as it stands: 80389 (eight 29 % dips of 3-5 s, when any short
+    excursion was taken) and 80764 (two), 80654 (0.2 s after a 13.6 -> 1.4 um/s step, the
+    servo's settling, when a piece beside a change was taken), 80689 (39 s at a gap in a
+    0.016 um/s slide, when short in samples was enough). With the steps sought at several
+    scales and the slower of two pairs kept, each is right without its own rule too (the
+    rules overlap there): each rule is tested alone on the constructed records below."""
     got = _zoo_counts((80389, 80654, 80689, 80764), tmp_path)
     assert [(found, true) for found, true, _ in got] == [(1, 1), (2, 2), (1, 1), (4, 4)]
 
@@ -150,3 +157,76 @@ def test_no_stop_read_in_a_slow_slide(seed: int) -> None:
     rec = LabRecord("drawn", t, x, None, np.full(t.size, 0.61), np.full(t.size, 7.0e6), "Pa",
                     {}, 1)
     assert len(detect_program(rec).segments) == len(vels)
+
+
+# ----------------------------------------------------------- the rules, on constructed records
+def _slide(t: np.ndarray, v: float, dips: list[tuple[float, float, float]]) -> np.ndarray:
+    """The displacement (m) of a slide at ``v`` (m/s) through ``dips``, each (start s,
+    duration s, speed as a fraction of ``v``), with white noise of 20 nm (seeded)."""
+    speed = np.full(t.size, v)
+    for a, d, f in dips:
+        speed[(t >= a) & (t < a + d)] = f * v
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * np.diff(t))])
+    return x + np.random.default_rng(3).normal(0.0, 20e-9, t.size)
+
+
+def _added(t: np.ndarray, x: np.ndarray) -> list[float]:
+    """Times (s) of the boundaries :func:`_short_stretches` adds to one moving stretch, its
+    judge letting everything stand (the rules themselves under test): blocks of 24 samples,
+    three blocks the shortest stretch."""
+    fits = _Fits(t, x)
+
+    def judge(q: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        return np.full(len(q) - 2, 2.0), fits.table(q)[0]
+
+    bounds = [0, t.size]
+    out = _short_stretches(t, x, bounds, np.array([False]), 24, 3, judge)
+    return [float(t[k]) for k in out[1:-1]]
+
+
+T20 = 13.7 + np.arange(0.0, 600.0, 0.05)  # 20 Hz for 600 s
+
+
+def test_a_short_stop_in_a_slide_is_added_at_its_ends() -> None:
+    """A 2-s stop at 300 s in a 1.3 um/s slide (72 samples the shortest stretch: 3.6 s):
+    both ends added within a sample."""
+    got = _added(T20, _slide(T20, 1.3e-6, [(313.7, 2.0, 0.0)]))
+    assert len(got) == 2
+    assert abs(got[0] - 313.7) <= 0.05 + 1e-9 and abs(got[1] - 315.7) <= 0.05 + 1e-9
+
+
+def test_a_short_dip_at_a_speed_is_not_added() -> None:
+    """A dip to 0.7 of the speed for 2 s is no stop (a servo's burst is as likely): not
+    added, though the judge lets it stand. The mistake: any short excursion taken
+    (``SHORT_STOPPED`` dropped)."""
+    assert _added(T20, _slide(T20, 1.3e-6, [(313.7, 2.0, 0.7)])) == []
+
+
+def test_a_stop_beside_the_stretch_end_is_not_added() -> None:
+    """A 2-s stop 10 s after the stretch's start is within ``SETTLE_AFTER`` of the change
+    found there (the servo's settling after it, as likely): not added. The mistake: the
+    clearance in samples (the shortest stretch's) instead."""
+    assert _added(T20, _slide(T20, 1.3e-6, [(23.7, 2.0, 0.0)])) == []
+
+
+def test_a_stop_across_a_gap_is_not_added() -> None:
+    """A stop whose few samples span a 40-s gap (short in samples, long in time) is not a
+    stretch the blocks lost: not added. The mistake: short in samples only."""
+    keep = (T20 < 313.8) | (T20 > 353.6)
+    t = T20[keep]
+    assert _added(t, _slide(t, 1.3e-6, [(313.7, 40.0, 0.0)])) == []
+
+
+def test_a_stop_is_judged_in_the_slide_s_wander() -> None:
+    """A 4.5-s stop in a 0.25 um/s slide under a relative wander of 20 % (at every scale) and
+    20 nm of white noise: the stop's own scatter (the relative part at its own speed, 0)
+    makes it stand; in the slide's wander (its scatter at 0.25 um/s) it falls, and that is
+    the score. The mistake: the stop judged in its own wander only."""
+    x = _slide(T20, 0.25e-6, [(313.7, 4.5, 0.0)])
+    fits = _Fits(T20, x)
+    k0, k1 = (int(np.searchsorted(T20, q)) for q in (313.7, 318.2))
+    fl = Fluctuations(20e-9, np.array([1.0, 10.0, 100.0]), np.full(3, 0.2), np.zeros(3))
+    scores, v = _stop_scores(fits, fl, [0, k0, k1, T20.size], 0.1, 6.5, 0.0, False, 10)
+    assert abs(v[1]) < 0.05e-6
+    assert np.all(scores < 1.0)
+    assert np.all(_scores(fits, fl, [0, k0, k1, T20.size], 0.1, 6.5, 0.0, False, 10) >= 1.0)

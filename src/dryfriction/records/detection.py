@@ -903,17 +903,7 @@ def detect_program(
             held = _is_hold(*fits.table(bounds), fl, floor, given)
 
             def judge(q: list[int]) -> tuple[Array, Array]:
-                # the detector's scores, and each stop judged in the wander of the slide
-                # around it: its scatter at the faster speed beside it (a load point that
-                # wanders by a position, not a fraction of its speed, was read as stopping
-                # for 4.5 s in a slow slide: bench_detect_holds G 8, 33, 280, confidence 8.7-10)
-                v, d, sxx = fits.table(q)
-                u = np.abs(v)
-                beside = np.maximum(np.append(u[1:], 0.0), np.insert(u[:-1], 0, 0.0))
-                e = fl.scatter(d, np.maximum(u, beside), sxx)
-                z_slide = np.abs(np.diff(v)) / np.hypot(e[1:], e[:-1])
-                return (np.minimum(_scores(fits, fl, q, rel_tol, z_min, floor, given, m_s),
-                                   z_slide / z_min), v)
+                return _stop_scores(fits, fl, q, rel_tol, z_min, floor, given, m_s)
 
             bounds = _short_stretches(t, x, bounds, held, blk, m, judge)
     # a change to or from a hold (or a speed below RELAX_STOP of the other side's) is placed
@@ -1328,6 +1318,24 @@ SHORT_SPLITS = 3
 the stretch's line steps most (a missed hold withholds its slip there; the servo's wander
 gives the others, which the scores then remove). 3, not 6: on ``bench_detect_holds`` H
 (seeds 0-59, the search's first form) 54 records right against 53, in 0.78 of the CPU."""
+
+
+def _stop_scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float,
+                 z_min: float, floor: float, given: bool, m: int) -> tuple[Array, Array]:
+    """The scores :data:`SHORT_SEARCH` judges its stops by, and each stretch's velocity (m/s):
+    the detector's (:func:`_scores`), and each stretch's confidence with its scatter taken at
+    the faster speed beside it, over ``z_min`` (ours): a stop is judged in the wander of the
+    slide around it. Its own scatter, the relative part at its own speed (near 0), took a
+    load point wandering by a position, not a fraction of its speed, for 4.5-s stops in a
+    slow slide (``bench_detect_holds`` G 8, 33 and 280 in the search's first form,
+    confidence 8.7-10)."""
+    v, d, sxx = fits.table(bounds)
+    u = np.abs(v)
+    beside = np.maximum(np.append(u[1:], 0.0), np.insert(u[:-1], 0, 0.0))
+    e = fl.scatter(d, np.maximum(u, beside), sxx)
+    z_slide = np.abs(np.diff(v)) / np.hypot(e[1:], e[:-1])
+    return (np.minimum(_scores(fits, fl, bounds, rel_tol, z_min, floor, given, m),
+                       z_slide / z_min), v)
 
 
 def _two_hinges(t: Array, xs: Array, threshold: float) -> tuple[int, int] | None:
