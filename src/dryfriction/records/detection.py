@@ -1427,7 +1427,7 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
         # searched on its own window by the white-noise hinge (two boundaries at most)
         tc = tb - tb.mean()
         r = xb - xb.mean() - tc * (tc @ (xb - xb.mean())) / (tc @ tc)
-        sig = max(noise_level(xb), 1e-9 * float(np.ptp(xb)), 1e-300)  # the stretch's, once
+        sig = None  # the stretch's white noise, once, where a window needs it
         c = np.concatenate([[0.0], np.cumsum(r)])
         # the stretch's speed, and each fine block's over three blocks (to the next's end)
         speed = abs(float(tc @ (xb - xb.mean()) / (tc @ tc)))
@@ -1439,7 +1439,7 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
         ws = w
         while ws >= 2:
             d = np.abs((c[k + ws] - c[k]) - (c[k] - c[k - ws]))
-            spread = median(d) if d.size else 0.0
+            spread = median(d[::4]) if d.size else 0.0  # every fourth: as robust, cheaper
             if spread > 0.0:
                 step = np.maximum(step, d / spread)
             ws //= 2
@@ -1461,10 +1461,14 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
             found = []
             slow = np.flatnonzero(vb[lo:hi - 1] < SHORT_STOPPED * speed) + lo
             if slow.size:
-                near = int(slow[np.argmin(np.abs(slow - centre))])
-                runs = np.split(slow, np.flatnonzero(np.diff(slow) > 1) + 1)
-                run = next(q for q in runs if q[0] <= near <= q[-1])
-                found.append((int(run[0]), int(run[-1]) + 2))
+                i = int(np.argmin(np.abs(slow - centre)))  # the run holding the nearest
+                cut = np.flatnonzero(np.diff(slow) > 1)  # a run ends at each
+                j0 = int(np.searchsorted(cut, i))
+                first = int(slow[cut[j0 - 1] + 1]) if j0 > 0 else int(slow[0])
+                last = int(slow[cut[j0]]) if j0 < cut.size else int(slow[-1])
+                found.append((first, last + 2))
+            if sig is None:
+                sig = max(noise_level(xb), 1e-9 * float(np.ptp(xb)), 1e-300)
             two = _two_hinges(tb[lo:hi], xb[lo:hi] / sig, 10.0 * np.log(hi - lo))
             if two is not None:
                 found.append((lo + two[0], lo + two[1]))
@@ -1481,7 +1485,9 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
                 u = abs(float(x[q] - x[p])) / max(float(t[q] - t[p]), 1e-300)
                 if best is None or u < best[0]:
                     best = (u, p, q)
-            if best is None:
+            # nearer a stop than the slide (judged again below on the pair's own line: this
+            # spares the judging of the wander's pairs)
+            if best is None or not best[0] < SHORT_STOPPED * speed:
                 continue
             _, p, q = best
             # a short stretch in samples and in time (one across a gap is no hold the blocks
