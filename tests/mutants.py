@@ -4207,9 +4207,13 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/detection.py", "SHORT_SEARCH = True\n", "SHORT_SEARCH = False\n", _SHORT,
        "-k", "found"),
     _m("short search: any short excursion taken, not only one nearer a stop",
+       "records/detection.py",
+       "            if best is None or not best[0] < SHORT_STOPPED * speed:",
+       "            if best is None:", _SHORT, "-k", "dip_the_judge"),
+    _m("short search: the judge's velocities not asked (the pair's ends alone)",
        "records/detection.py", "            weakest = [min(score[p], score[q]) if h else 0.0",
        "            weakest = [min(score[p], score[q]) if h or True else 0.0", _SHORT, "-k",
-       "dip"),
+       "moving"),
     _m("short search: a piece beside a change found before taken (its settling)",
        "records/detection.py",
        "                    and t[p] - t[a] >= max(SETTLE_AFTER, short_time)\n"
@@ -4239,8 +4243,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/detection.py", "            ws //= 2\n", "            ws = 1\n", _SHORT, "-k",
        "found"),
     _m("short search: the hold's ends by the hinge's splits only", "records/detection.py",
-       "                found.append((int(run[0]), int(run[-1]) + 2))\n", "", _SHORT, "-k",
-       "found"),
+       "                found.append((first, last + 2))\n", "", _SHORT, "-k", "found"),
     # --- end stop 55 (lead)
 )
 

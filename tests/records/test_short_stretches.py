@@ -195,6 +195,36 @@ def test_a_short_stop_in_a_slide_is_added_at_its_ends() -> None:
     assert abs(got[0] - 313.7) <= 0.05 + 1e-9 and abs(got[1] - 315.7) <= 0.05 + 1e-9
 
 
+def test_a_stop_the_judge_reads_as_moving_is_not_added() -> None:
+    """The pair's own line decides too: a 2-s stop whose stretch the judge reads at the
+    slide's speed (its velocities) is not added, though its ends say it stopped. The
+    mistake: only the ends' speed asked (the judge's velocities ignored)."""
+    t = T20
+    x = _slide(t, 1.3e-6, [(313.7, 2.0, 0.0)])
+
+    def judge(q: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        return np.full(len(q) - 2, 2.0), np.full(len(q) - 1, 1.3e-6)
+
+    out = _short_stretches(t, x, [0, t.size], np.array([False]), 24, 3, judge)
+    assert out == [0, t.size]
+
+
+def test_a_dip_the_judge_reads_as_stopped_is_not_added() -> None:
+    """The pair's ends decide too: a dip to 0.7 of the speed for 2 s, its stretch read as
+    stopped by the judge (its velocities), is not added. The mistake: only the judge's
+    velocities asked (a slide's wander judged as a stop)."""
+    t = T20
+    x = _slide(t, 1.3e-6, [(313.7, 2.0, 0.7)])
+
+    def judge(q: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        v = np.full(len(q) - 1, 1.3e-6)
+        v[1::2] = 0.0
+        return np.full(len(q) - 2, 2.0), v
+
+    out = _short_stretches(t, x, [0, t.size], np.array([False]), 24, 3, judge)
+    assert out == [0, t.size]
+
+
 def test_a_short_dip_at_a_speed_is_not_added() -> None:
     """A dip to 0.7 of the speed for 2 s is no stop (a servo's burst is as likely): not
     added, though the judge lets it stand. The mistake: any short excursion taken
