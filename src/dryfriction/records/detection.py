@@ -1422,9 +1422,9 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
         tb, xb = _blocks(t[a:b], x[a:b], fb)
         # a short stretch in time, at the stretch's median sampling interval
         short_time = short * float(median(np.diff(tb))) / fb
-        # where the displacement about the stretch's line steps most over half a short
-        # stretch (a missed hold withholds its slip there), the largest steps first, each
-        # searched on its own window by the white-noise hinge (two boundaries at most)
+        # where the displacement about the stretch's line steps most (a missed hold
+        # withholds its slip there): over half a short stretch and its halves down to two
+        # blocks, each scale's steps over their median, the largest first
         tc = tb - tb.mean()
         r = xb - xb.mean() - tc * (tc @ (xb - xb.mean())) / (tc @ tc)
         sig = None  # the stretch's white noise, once, where a window needs it
@@ -1474,7 +1474,8 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
                 found.append((lo + two[0], lo + two[1]))
             best = None
             for p0, q0 in found:
-                p, q = a + p0 * fb, a + min(q0, r.size) * fb
+                # (the last block may be short: an end past it is the stretch's last sample)
+                p, q = a + p0 * fb, min(a + q0 * fb, b - 1)
                 w0, w1 = max(a, p - 2 * fb), min(b, q + 2 * fb)
                 kp, _ = best_hinge(t[w0:q], x[w0:q], 3, 0.0)
                 p = w0 + kp if kp > 0 else p
