@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from benchmarks.bench_detect_holds import _ou, record
 
 import dryfriction.records.detection as detection
 from dryfriction.records.detection import (
@@ -41,17 +42,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_missed_changes import _zoo_counts  # noqa: E402
 
 UM = 1e-6
-
-
-def _ou(rng: np.random.Generator, n: int, dt: float, tau: float, sd: float) -> np.ndarray:
-    """A stationary Ornstein-Uhlenbeck series of ``n`` samples ``dt`` apart (rms ``sd``)."""
-    a = np.exp(-dt / tau)
-    kicks = rng.normal(0.0, sd * np.sqrt(1.0 - a * a), n)
-    out = np.empty(n)
-    out[0] = rng.normal(0.0, sd)
-    for i in range(1, n):
-        out[i] = a * out[i - 1] + kicks[i]
-    return out
 
 
 def _record(prog: list[tuple[float, float]], fs: float, seed: int
@@ -151,8 +141,6 @@ def test_no_stop_read_in_a_slow_slide(seed: int) -> None:
     record): no short stop added in the slow slide. The mistake: a stop judged in its own
     wander (its relative part at its own speed, near 0) and not in the slide's: a position
     wander of 20-300 nm read as 4.5-s stops at confidence 8.7-10 in these three records."""
-    from benchmarks.bench_detect_holds import record
-
     t, x, edges, vels = record("G", seed)
     rec = LabRecord("drawn", t, x, None, np.full(t.size, 0.61), np.full(t.size, 7.0e6), "Pa",
                     {}, 1)

@@ -1425,12 +1425,13 @@ def _short_stretches(t: Array, x: Array, bounds: list[int], held: Array, blk: in
         # where the displacement about the stretch's line steps most (a missed hold
         # withholds its slip there): over half a short stretch and its halves down to two
         # blocks, each scale's steps over their median, the largest first
-        tc = tb - tb.mean()
-        r = xb - xb.mean() - tc * (tc @ (xb - xb.mean())) / (tc @ tc)
+        tc, xm = tb - tb.mean(), xb.mean()
+        num, den = tc @ (xb - xm), tc @ tc  # the stretch's line: slope num / den
+        r = xb - xm - tc * num / den
         sig = None  # the stretch's white noise, once, where a window needs it
         c = np.concatenate([[0.0], np.cumsum(r)])
         # the stretch's speed, and each fine block's over three blocks (to the next's end)
-        speed = abs(float(tc @ (xb - xb.mean()) / (tc @ tc)))
+        speed = abs(float(num / den))
         vb = np.full(r.size, np.inf)
         if r.size > 3:
             vb[:-3] = np.abs(xb[3:] - xb[:-3]) / np.maximum(tb[3:] - tb[:-3], 1e-300)
