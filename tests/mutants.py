@@ -4244,6 +4244,22 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("short search: the hold's ends by the hinge's splits only", "records/detection.py",
        "                found.append((first, last + 2))\n", "", _SHORT, "-k", "found"),
     # --- end stop 55 (lead)
+    # --- stop 56 (lead): a two-part excursion (records/detection.py EXCURSION_TWO)
+    _m("detection: a two-part excursion judged by rel_tol", "records/detection.py",
+       "EXCURSION_TWO = True\n", "EXCURSION_TWO = False\n", _CNT, "-k",
+       "two_bursts or one_excursion"),
+    _m("detection: a two-part excursion's inner boundary only", "records/detection.py",
+       "            run[:-2] |= two\n            run[1:-1] |= two\n            run[2:] |= two\n",
+       "            run[1:-1] |= two\n", _CNT, "-k", "one_excursion"),
+    _m("detection: a two-part excursion's outer boundaries only", "records/detection.py",
+       "            run[1:-1] |= two\n            run[2:] |= two\n", "            run[2:] |= two\n",
+       _CNT, "-k", "one_excursion"),
+    _m("detection: a two-part excursion's outer stretches one apart, not three",
+       "records/detection.py", "            two = (np.abs(v[3:] - v[:-3])\n",
+       "            two = (np.abs(v[2:-1] - v[:-3])\n", _CNT, "-k", "one_excursion"),
+    _m("detection: a hold let into a two-part excursion", "records/detection.py",
+       "            two &= ~hold[1:-2] & ~hold[2:-1]\n", "", _CNT, "-k", "one_excursion"),
+    # --- end stop 56 (lead)
 )
 
 

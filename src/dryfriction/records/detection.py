@@ -584,6 +584,18 @@ EXCURSION_REL = 0.2
 when it differs from them by this fraction too (a ratio of 1.25; the steps are >= 1.3)."""
 
 
+EXCURSION_TWO = True
+"""Two stretches between two of the same velocity (an excursion in two parts that returns)
+are judged as one stretch there is (:data:`EXCURSION_REL`; ours): the three boundaries about
+them are changes only where they differ by that fraction too, neither of the two a hold.
+
+Why: two servo bursts side by side, one up and one down, are an excursion of two velocities;
+each of its boundaries differs from the next stretch by 10-11 %, over ``rel_tol`` (10 %),
+while no stretch lies between two of one velocity, so the rule for one stretch did not
+apply: zoo 83599 (3.97 um/s, then +12 % for 2.5 s and -12 % for 2.5 s, then 3.97 again,
+bursts drawn at 181.4 and 184.8 s) read three false changes of confidence 7-13."""
+
+
 EDGE_BURSTS = True
 """A servo burst at the edge of a commanded stretch, beside a change, must differ from the
 stretch by ``EXCURSION_REL`` too (:func:`_edge_bursts`; ours, detect11). The excursion rule
@@ -662,6 +674,17 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
         exc = np.zeros(len(v), bool)
         exc[1:-1] = back & ~hold[1:-1]
         tol = np.where(exc[1:] | exc[:-1], max(rel_tol, EXCURSION_REL), tol)
+        if EXCURSION_TWO and len(v) >= 4:
+            # stretches i and i + 1 between i - 1 and i + 2 of one velocity: the boundaries
+            # i - 1, i and i + 1 (boundary k lies between stretches k and k + 1)
+            two = (np.abs(v[3:] - v[:-3])
+                   <= rel_tol * np.maximum(np.abs(v[3:]), np.abs(v[:-3])))
+            two &= ~hold[1:-2] & ~hold[2:-1]
+            run = np.zeros(len(dv), bool)
+            run[:-2] |= two
+            run[1:-1] |= two
+            run[2:] |= two
+            tol = np.where(run, max(rel_tol, EXCURSION_REL), tol)
     if EDGE_BURSTS and (len(v) >= 3 or EDGE_TWO and d.min() < min(EDGE_TWO_SHARE * d.max(),
                                                                     EDGE_TWO_MOST)):
         tol = np.where(_edge_bursts(v, d, rel, hold), max(rel_tol, EXCURSION_REL), tol)
