@@ -182,9 +182,10 @@ def test_two_stretches_between_two_of_one_velocity_are_one_excursion(
     """EXCURSION_TWO at generic speeds (2.3 um/s): +11.5 % for 2.4 s then -10.5 % for 2.7 s
     between stretches 0.2 % apart: each of the three boundaries judged by EXCURSION_REL
     (standing 0.516, 0.987, 0.516, all below 1), also inside a longer program; outer
-    stretches a ratio 1.3 apart, and a hold in the pair, judged as before. Mistakes: only the pair's outer (or inner) boundary judged so; the outer stretches
-    compared with the wrong ones; a hold let into the pair (its 10.5 % slide after the hold
-    then falls); the rule off (1.031, 1.973, 1.032: three changes)."""
+    stretches a ratio 1.3 apart, and a hold in the pair (the edge-burst rule off), judged as
+    before. Mistakes: only the pair's outer (or inner) boundary judged so; the outer
+    stretches compared with the wrong ones; a hold let into the pair (its 10.5 % slide after
+    the hold then falls); the rule off (1.031, 1.973, 1.032: three changes)."""
     u = 2.3e-6
     pair = [u, 1.115 * u, 0.895 * u, 0.998 * u]
     assert detection.EXCURSION_TWO is True
