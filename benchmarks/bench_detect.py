@@ -6,7 +6,8 @@ dialect to a temporary folder, reads it back with :func:`dryfriction.records.lab
 detects its program. Prints the fraction of records with the right number of velocity changes
 (and normal-stress changes), each within the larger of one sample and 0.5 s; the false-change
 rate (detected changes more than 5 s from every true one, over all detected changes); and the
-detection's CPU time per 1e6 rows. Records that fail are listed. Then, over the changes of the
+detection's CPU time per 1e6 rows (and split by record length: a short record's time is mostly
+per record, a long one's per row). Records that fail are listed. Then, over the changes of the
 records with the right number, by velocity ratio: the times right, the coverage of the 95 %
 intervals the detector reports (``Segment.start_lo``/``start_hi``), the changes it marks not
 placed (``start_placed``), and each wrong time's error over its tolerance; and overall the
@@ -50,6 +51,7 @@ def run(n: int, verbose: bool = True, start: int = 0, stress: bool = False
     scores = []
     groups: dict[str, list] = {}
     rows = 0
+    sizes: list[int] = []
     with tempfile.TemporaryDirectory() as tmp:
         # a process's first detection imports Numba and loads the compiled hinge kernel
         # (0.5-1.5 s of CPU, once per process): done here, outside the timed detections
@@ -65,6 +67,7 @@ def run(n: int, verbose: bool = True, start: int = 0, stress: bool = False
             cpu = time.process_time() - c0
             s = score(rec, det, cpu)
             rows += rec.rows
+            sizes.append(rec.rows)
             scores.append(s)
             kind = "plain" if not arts else arts[0] if len(arts) == 1 else "mixed"
             groups.setdefault(f"program {prog}", []).append(s)
@@ -107,7 +110,8 @@ def run(n: int, verbose: bool = True, start: int = 0, stress: bool = False
     wrong = [c for c in per if abs(c[1]) > c[2]]
     return {"records": len(scores), "rows": rows, "right": right, "count": count,
             "false": false,
-            "cpu_per_1e6_rows": cpu, "missed": sum(s.missed for s in scores),
+            "cpu_per_1e6_rows": cpu, "cpu_by_size": _cpu_by_size(scores, sizes),
+            "missed": sum(s.missed for s in scores),
             "changes": len(per), "intervals": len(with_iv),
             "coverage": float(np.mean([c[3] for c in with_iv])) if with_iv else float("nan"),
             "placed": len(placed),
@@ -115,6 +119,25 @@ def run(n: int, verbose: bool = True, start: int = 0, stress: bool = False
             "wrong": len(wrong), "wrong_flagged": sum(not c[4] for c in wrong),
             "holds": sum(s.holds[0] for s in scores),
             "holds_zero": sum(s.holds[1] for s in scores)}
+
+
+SIZE_EDGES = (0, 10_000, 100_000, 10**12)
+"""Record lengths (rows) the detection CPU is split by: the time of a short record is mostly
+its per-record part (its stretches' fits and placements), a long one's its per-row part."""
+
+
+def _cpu_by_size(scores: list, sizes: list[int]) -> list[tuple[int, int, int, float, float]]:
+    """Per class of record length (:data:`SIZE_EDGES`): (lowest rows, highest, records, CPU
+    ms per record, CPU s per 1e6 rows)."""
+    out = []
+    n = np.asarray(sizes)
+    cpu = np.asarray([s.cpu for s in scores])
+    for lo, hi in zip(SIZE_EDGES[:-1], SIZE_EDGES[1:], strict=True):
+        m = (n >= lo) & (n < hi)
+        if m.any():
+            out.append((lo, hi, int(m.sum()), 1e3 * float(cpu[m].mean()),
+                        float(cpu[m].sum() / n[m].sum() * 1e6)))
+    return out
 
 
 def main() -> None:
@@ -142,6 +165,9 @@ def report(r: dict[str, float], start: int, n: int) -> None:
     print(f"false changes: {100 * r['false']:.2f} % of the detected (target <= 1 %); "
           f"missed changes: {r['missed']}")
     print(f"detection CPU: {r['cpu_per_1e6_rows']:.2f} s per 1e6 rows (target <= 1 s)")
+    for lo, hi, k, ms, per in r["cpu_by_size"]:
+        span = f">= {lo:,} rows" if hi >= SIZE_EDGES[-1] else f"{lo:,}-{hi - 1:,} rows"
+        print(f"  records of {span}: {k}, {ms:.1f} ms each, {per:.2f} s per 1e6 rows")
     if r["holds"]:
         print(f"holds reported as holds (velocity 0): {r['holds_zero']} of {r['holds']}")
     if r["changes"]:
