@@ -4259,6 +4259,22 @@ MUTANTS: tuple[Mutant, ...] = (
        "            two = (np.abs(v[2:-1] - v[:-3])\n", _CNT, "-k", "one_excursion"),
     _m("detection: a hold let into a two-part excursion", "records/detection.py",
        "            two &= ~hold[1:-2] & ~hold[2:-1]\n", "", _CNT, "-k", "one_excursion"),
+    _m("kernel: the wander's faster half by an unstable sort", "records/hinge_kernel.py",
+       'order = np.argsort(u, kind="mergesort")', 'order = np.argsort(u, kind="quicksort")',
+       "tests/records/test_compiled_same.py", "-k", "fluctuation_scales"),
+    _m("kernel: the third and fourth offsets always taken", "records/hinge_kernel.py",
+       "            if io >= 2 and count >= 100:\n", "            if io >= 4:\n",
+       "tests/records/test_compiled_same.py", "-k", "fluctuation_scales"),
+    _m("kernel: the third and fourth offsets never taken", "records/hinge_kernel.py",
+       "            if io >= 2 and count >= 100:\n", "            if io >= 2:\n",
+       "tests/records/test_compiled_same.py", "-k", "fluctuation_scales"),
+    _m("kernel: too few moving pairs read as no relative wander", "records/hinge_kernel.py",
+       "r2 = math.pow(rel[kept - 1], two) if kept > 0 else 0.0", "r2 = 0.0",
+       "tests/records/test_compiled_same.py", "-k", "fluctuation_scales"),
+    _m("kernel: the absolute wander from the faster half", "records/hinge_kernel.py",
+       "            if not fast[i]:\n                e[j] = y[i] - r2 * (u[i] * u[i])\n",
+       "            if fast[i]:\n                e[j] = y[i] - r2 * (u[i] * u[i])\n",
+       "tests/records/test_compiled_same.py", "-k", "fluctuation_scales"),
     # --- end stop 56 (lead)
 )
 

@@ -103,6 +103,8 @@ def warm() -> float:
     d, dt, lo, hi, _, _, _ = hk.reset_increments(t, x)
     hk.reset_jumps(d, dt, lo, hi, 0.0, 0.0)
     hk.row_medians(np.zeros((2, 4)))
+    hk.fluctuation_scales(t, x, x, np.array([0.5]), np.array([0.005]), 0.0, 0.0, 3.0, 1e-3,
+                          6, 2.0)
     return time.perf_counter() - start
 
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dryfriction.records import artifacts
+from dryfriction.records import artifacts, detection
 from dryfriction.records.hinge_kernel import (
     pairwise_sum,
     reset_increments,
@@ -70,6 +70,49 @@ def test_window_pairs_are_the_bincount_forms_to_the_last_bit(seed: int) -> None:
             y, uu = window_pairs(t, x, speed, width, float(t[0]) - off, 0.5 * sigma**2,
                                  width**2 / 48.0)
             assert np.array_equal(y, y_ref) and np.array_equal(uu, u_ref)
+
+
+def _fluctuations_both(t: np.ndarray, x: np.ndarray, bounds: list[int], v: np.ndarray,
+                       monkeypatch: pytest.MonkeyPatch) -> tuple:
+    """``measure_fluctuations`` with its loop over the durations compiled and as NumPy."""
+    got = []
+    for compiled in (True, False):
+        monkeypatch.setattr(detection, "COMPILED_SCALES", compiled)
+        fl = detection.measure_fluctuations(t, x, 1.3e-8, bounds, v)
+        got.append(fl)
+    return tuple(got)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_fluctuation_scales_compiled_are_the_numpy_loop(seed: int,
+                                                        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The compiled loop over the durations (COMPILED_SCALES) gives the NumPy loop's r(T), a(T)
+    and durations to the last bit: on a record with a rate change, a gap and a quantum; on a
+    slide-hold-slide that is mostly hold (at the long durations too few pairs move: r(T) is
+    the shorter duration's); and with MOVING_Z 0. Mistakes: the faster half by an unstable
+    sort (ties split otherwise), the third and fourth offsets always or never taken, too few
+    moving pairs read as no relative wander, the absolute wander from the faster half."""
+    t, x = _record(seed)
+    rng = np.random.default_rng(seed)
+    inner = sorted(rng.choice(np.arange(50, t.size - 50), 3, replace=False).tolist())
+    bounds = [0, *inner, t.size]
+    v = np.array([2e-7, 0.0, 6e-7, 1.1e-7])
+    a, b = _fluctuations_both(t, x, bounds, v, monkeypatch)
+    # a slide-hold-slide, mostly hold: 30 s at 1.7 um/s, 1900 s held, 30 s at 1.7 um/s
+    th = np.arange(0.0, 1960.0, 0.2)
+    vh = np.where((th < 30.0) | (th > 1930.0), 1.7e-6, 0.0)
+    xh = np.concatenate([[0.0], np.cumsum(vh[:-1] * 0.2)])
+    xh = xh + 3e-8 * np.sin(th / 7.0 + seed) + 1e-8 * rng.standard_normal(th.size)
+    bh = [0, 150, 9650, th.size]
+    c, d = _fluctuations_both(th, xh, bh, np.array([1.7e-6, 0.0, 1.7e-6]), monkeypatch)
+    monkeypatch.setattr(detection, "MOVING_Z", 0.0)
+    e, f = _fluctuations_both(t, x, bounds, v, monkeypatch)
+    for p, q in ((a, b), (c, d), (e, f)):
+        assert p.scales.size >= 5
+        assert np.array_equal(p.scales, q.scales)
+        assert np.array_equal(p.relative, q.relative)
+        assert np.array_equal(p.absolute, q.absolute)
+    assert c.relative.max() > 0.0 and np.unique(c.relative).size > 1
 
 
 @pytest.mark.parametrize("seed", [0, 1])

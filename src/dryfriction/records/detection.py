@@ -283,6 +283,13 @@ MOVING_MIN = 6
 shortest; the non-increasing envelope is taken after)."""
 
 
+COMPILED_SCALES = True
+"""Whether :func:`measure_fluctuations` takes its loop over the durations in one compiled call
+(:func:`.hinge_kernel.fluctuation_scales`) rather than a dozen NumPy calls per duration and
+offset: the same operations, the same numbers (a speed change only; the NumPy loop is kept as
+the reference the tests compare with)."""
+
+
 def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
                          velocity: Array) -> Fluctuations:
     """``r(T)`` of the displacement ``x(t)`` about a broken line (:class:`Fluctuations`).
@@ -344,37 +351,52 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     # a gap of years between two samples (span >> n dt) cannot ask for span/T ~ 1e9 windows
     # and exhaust the memory in bincount (issue 24, outside24: a silent hang)
     T = max(5.0 * dt, span / (10.0 * len(t)))
-    while T <= span / 3.0:
-        ys, us = [], []
-        for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):
-            if off in (0.25 * T, 0.75 * T) and sum(len(q) for q in ys) >= 100:
-                break  # pairs enough from two offsets (the other two only for long T)
-            # each pair's (s2 - s1)**2 / 2 less its white part w**2, and its mean speed
-            y_off, u_off = _window_pairs(t, res, speed, T, float(t[0]) - off, 0.5 * sigma**2)
-            ys.append(y_off)
-            us.append(u_off)
-        y, u = np.concatenate(ys), np.concatenate(us)
-        if y.size >= 24:
-            # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the
-            # slower half less r's part; 2.198 = 1.4826**2 turns a median of squares of a
-            # Gaussian into its variance
-            fast = np.zeros(y.size, bool)
-            fast[np.argsort(u, kind="stable")[y.size // 2:]] = True  # by rank: ties split
-            # r from the pairs that move (MOVING_Z), not from a hold's creep
-            a0 = np.sqrt(max(2.198 * median(y[~fast]), 0.0))
-            moving = (fast & (u >= MOVING_Z * a0) & (u >= MOVING_SHARE * top)
-                      if MOVING_Z > 0.0 else fast)
-            uf = u[moving]
-            if MOVING_Z > 0.0 and moving.sum() < MOVING_MIN:
-                r2 = rel[-1] ** 2 if rel else 0.0  # too few: the shorter scale's
-            else:
-                r2 = 2.198 * median(y[moving] / uf**2) if (uf > 0).all() else 0.0
-            r2 = max(r2, 0.0)
-            a2 = max(2.198 * median((y - r2 * u**2)[~fast]), 0.0)
-            scales.append(T)
-            rel.append(np.sqrt(r2))
-            ab.append(np.sqrt(a2))
-        T *= 2.0
+    if COMPILED_SCALES:
+        from .hinge_kernel import fluctuation_scales  # Numba: imported on first use only
+
+        # the loop below in one compiled call (the same numbers): its durations, and the
+        # numbers it computes with Python's powers, computed here as it computes them
+        widths = []
+        while T <= span / 3.0:
+            widths.append(T)
+            T *= 2.0
+        sc, rl, ab_ = fluctuation_scales(
+            kernel_input(t), kernel_input(res), kernel_input(speed), np.asarray(widths, float),
+            np.asarray([q**2 / 48.0 for q in widths], float), 0.5 * sigma**2, top,
+            float(MOVING_Z), float(MOVING_SHARE), int(MOVING_MIN), 2.0)
+        scales, rel, ab = sc.tolist(), rl.tolist(), ab_.tolist()
+    else:
+        while T <= span / 3.0:
+            ys, us = [], []
+            for off in (0.0, 0.5 * T, 0.25 * T, 0.75 * T):
+                if off in (0.25 * T, 0.75 * T) and sum(len(q) for q in ys) >= 100:
+                    break  # pairs enough from two offsets (the other two only for long T)
+                # each pair's (s2 - s1)**2 / 2 less its white part w**2, and its mean speed
+                y_off, u_off = _window_pairs(t, res, speed, T, float(t[0]) - off, 0.5 * sigma**2)
+                ys.append(y_off)
+                us.append(u_off)
+            y, u = np.concatenate(ys), np.concatenate(us)
+            if y.size >= 24:
+                # y = a**2 + r**2 u**2: r from the faster half of the pairs, then a from the
+                # slower half less r's part; 2.198 = 1.4826**2 turns a median of squares of a
+                # Gaussian into its variance
+                fast = np.zeros(y.size, bool)
+                fast[np.argsort(u, kind="stable")[y.size // 2:]] = True  # by rank: ties split
+                # r from the pairs that move (MOVING_Z), not from a hold's creep
+                a0 = np.sqrt(max(2.198 * median(y[~fast]), 0.0))
+                moving = (fast & (u >= MOVING_Z * a0) & (u >= MOVING_SHARE * top)
+                          if MOVING_Z > 0.0 else fast)
+                uf = u[moving]
+                if MOVING_Z > 0.0 and moving.sum() < MOVING_MIN:
+                    r2 = rel[-1] ** 2 if rel else 0.0  # too few: the shorter scale's
+                else:
+                    r2 = 2.198 * median(y[moving] / uf**2) if (uf > 0).all() else 0.0
+                r2 = max(r2, 0.0)
+                a2 = max(2.198 * median((y - r2 * u**2)[~fast]), 0.0)
+                scales.append(T)
+                rel.append(np.sqrt(r2))
+                ab.append(np.sqrt(a2))
+            T *= 2.0
     if not scales:  # too short a record to measure a wander: none assumed
         scales, rel, ab = [max(span, 1e-300)], [0.0], [0.0]
     # never less at a shorter scale than at a longer one

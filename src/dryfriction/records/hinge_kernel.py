@@ -1,7 +1,8 @@
 """The detector's compiled kernels (Numba): the best hinge of a stretch in one pass (the kernel
 of :func:`.segmentation.best_hinge`, which documents the model), and the slopes of adjacent
-windows of one duration and the residuals about each stretch's line (the kernels of
-:func:`.detection.measure_fluctuations`), the increments' tests of
+windows of one duration, the loop over the durations that takes their medians, and the
+residuals about each stretch's line (the kernels of :func:`.detection.measure_fluctuations`),
+the increments' tests of
 :func:`.artifacts.find_resets`, and the medians of short blocks (:func:`row_medians`).
 
 The candidate search calls the best hinge of a stretch thousands of times per record, each on
@@ -14,10 +15,13 @@ measurements per record: one pass over the samples each, not a dozen NumPy calls
 
 from __future__ import annotations
 
+import math
+
 import numba
 import numpy as np
 
-__all__ = ["hinge_scan", "pairwise_sum", "reset_increments", "reset_jumps", "row_medians",
+__all__ = ["fluctuation_scales", "hinge_scan", "pairwise_sum", "reset_increments", "reset_jumps",
+           "row_medians",
            "stretch_residuals", "window_pairs"]
 
 
@@ -356,3 +360,114 @@ def row_medians(a: np.ndarray) -> np.ndarray:
         else:
             out[i] = (s[h - 1] + s[h]) / 2.0
     return out
+
+
+@numba.njit(cache=True)
+def _median(a: np.ndarray) -> float:
+    """:func:`.segmentation.median` of a 1-d float64 array (sorted: the middle value or ``(p +
+    q) / 2`` of the two middle ones; NaN where one is NaN or there is none): the same number."""
+    n = a.size
+    if n == 0:
+        return np.nan
+    s = np.sort(a)  # a NaN sorts last, as in the partition
+    k = n // 2
+    for i in range(k, n):
+        if s[i] != s[i]:
+            return np.nan
+    if n % 2:
+        return s[k]
+    return (s[k - 1] + s[k]) / 2.0
+
+
+@numba.njit(cache=True)
+def _floor0(a: float) -> float:
+    """Python's ``max(a, 0.0)``: 0 only where ``0.0 > a`` (a NaN is kept)."""
+    return 0.0 if 0.0 > a else a
+
+
+@numba.njit(cache=True, error_model="numpy")
+def fluctuation_scales(t: np.ndarray, res: np.ndarray, speed: np.ndarray, widths: np.ndarray,
+                       min_vars: np.ndarray, half_s2: float, top: float, moving_z: float,
+                       moving_share: float, moving_min: int, two: float
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The wander's ``r(T)`` and ``a(T)`` at each duration of ``widths`` where 24 window pairs or
+    more are usable, and those durations (:func:`.detection.measure_fluctuations`, which
+    documents the model; before its non-increasing envelope).
+
+    Its loop over the durations, compiled: the pairs of :func:`window_pairs` at the offsets 0,
+    1/2, 1/4 and 3/4 of a duration (the last two only while fewer than 100 pairs), the faster
+    half by a stable sort of the speeds, the medians of :func:`_median`; the same operations in
+    the same order, so the same numbers to the last bit. ``min_vars`` (``T**2 / 48``) and
+    ``half_s2`` (``sigma**2 / 2``) come computed as the NumPy form computes them, and ``two``
+    (2.0) is an argument so that ``r**2`` of the shorter duration is C's ``pow``, as NumPy's
+    scalar power is, not a product the compiler would fold it to."""
+    nT = widths.size
+    scales = np.empty(nT)
+    rel = np.empty(nT)
+    ab = np.empty(nT)
+    kept = 0
+    for iT in range(nT):
+        T = widths[iT]
+        ys = []
+        us = []
+        count = 0
+        for io in range(4):
+            off = (0.0, 0.5 * T, 0.25 * T, 0.75 * T)[io]
+            if io >= 2 and count >= 100:
+                break  # pairs enough from two offsets (the other two only for long T)
+            y_off, u_off = window_pairs(t, res, speed, T, t[0] - off, half_s2, min_vars[iT])
+            ys.append(y_off)
+            us.append(u_off)
+            count += y_off.size
+        y = np.empty(count)
+        u = np.empty(count)
+        j = 0
+        for q in range(len(ys)):
+            for i in range(ys[q].size):
+                y[j] = ys[q][i]
+                u[j] = us[q][i]
+                j += 1
+        if count < 24:
+            continue
+        fast = np.zeros(count, np.bool_)
+        order = np.argsort(u, kind="mergesort")  # stable: ties split by rank
+        for i in range(count // 2, count):
+            fast[order[i]] = True
+        slow_y = y[~fast]
+        a0 = np.sqrt(_floor0(2.198 * _median(slow_y)))
+        moving = fast.copy()
+        if moving_z > 0.0:
+            for i in range(count):
+                moving[i] = fast[i] and u[i] >= moving_z * a0 and u[i] >= moving_share * top
+        n_mov = 0
+        all_pos = True
+        for i in range(count):
+            if moving[i]:
+                n_mov += 1
+                if not u[i] > 0.0:
+                    all_pos = False
+        if moving_z > 0.0 and n_mov < moving_min:
+            r2 = math.pow(rel[kept - 1], two) if kept > 0 else 0.0  # the shorter scale's
+        elif all_pos:
+            q = np.empty(n_mov)
+            j = 0
+            for i in range(count):
+                if moving[i]:
+                    q[j] = y[i] / (u[i] * u[i])
+                    j += 1
+            r2 = 2.198 * _median(q)
+        else:
+            r2 = 0.0
+        r2 = _floor0(r2)
+        e = np.empty(count // 2)  # the slower half
+        j = 0
+        for i in range(count):
+            if not fast[i]:
+                e[j] = y[i] - r2 * (u[i] * u[i])
+                j += 1
+        a2 = _floor0(2.198 * _median(e))
+        scales[kept] = T
+        rel[kept] = np.sqrt(r2)
+        ab[kept] = np.sqrt(a2)
+        kept += 1
+    return scales[:kept], rel[:kept], ab[:kept]
