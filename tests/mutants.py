@@ -764,7 +764,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)",
        "return np.where(d >= T[-1], q[-1], out)", _FLG, "-k", "log_log"),
     _m("fluctuations: interpolated linearly in T", "records/detection.py",
-       "out = np.exp(np.interp(np.log(d), np.log(T), np.log(np.maximum(q, 1e-300))))",
+       "out = np.exp(np.interp(np.log(d), self._logs[0], log_q))",
        "out = np.interp(d, T, q)", _FLG, "-k", "log_log"),
     _m("fluctuations: the servo bound as a lower bound", "records/detection.py",
        "out = np.where(d > self.scales[-1], np.minimum(out, np.sqrt(12.0) * self.lag / d),",

@@ -48,6 +48,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -152,12 +153,20 @@ class Fluctuations:
     lag_speed: float = 0.0
     lag_floor: float = float("inf")
 
-    def _at(self, q: Array, durations: Array) -> Array:
-        """``q(T)`` interpolated in log-log; ``T**-0.5`` beyond the longest scale (a
-        random-walk wander: conservative for a bounded one), constant below the shortest."""
+    @cached_property
+    def _logs(self) -> tuple[Array, Array, Array]:
+        """``log T``, ``log r`` and ``log a`` (each at least 1e-300), once per object: the
+        pruning reads the model a dozen times a pass, each on a few stretches."""
+        return (np.log(self.scales), np.log(np.maximum(self.relative, 1e-300)),
+                np.log(np.maximum(self.absolute, 1e-300)))
+
+    def _at(self, q: Array, log_q: Array, durations: Array) -> Array:
+        """``q(T)`` interpolated in log-log (``log_q`` its logarithm, :attr:`_logs`);
+        ``T**-0.5`` beyond the longest scale (a random-walk wander: conservative for a bounded
+        one), constant below the shortest."""
         T = self.scales
         d = np.maximum(np.asarray(durations, float), 1e-300)
-        out = np.exp(np.interp(np.log(d), np.log(T), np.log(np.maximum(q, 1e-300))))
+        out = np.exp(np.interp(np.log(d), self._logs[0], log_q))
         out = np.where(q.max() > 0, out, 0.0)
         return np.where(d >= T[-1], q[-1] * np.sqrt(T[-1] / d), out)
 
@@ -171,7 +180,7 @@ class Fluctuations:
         speed can tilt a stretch by no more, whatever its spectrum (a machine oscillation of
         22-45 s, which the ``T**-0.5`` extrapolation takes for a random walk, included)."""
         d = np.maximum(np.asarray(durations, float), 1e-300)
-        out = self._at(self.relative, d)
+        out = self._at(self.relative, self._logs[1], d)
         if np.isfinite(self.lag):
             out = np.where(d > self.scales[-1], np.minimum(out, np.sqrt(12.0) * self.lag / d),
                            out)
@@ -182,7 +191,7 @@ class Fluctuations:
         these ``velocities`` (m/s) at least ``lag_floor``, beyond the longest scale measured at
         most ``sqrt(12) lag lag_speed / T``."""
         d = np.maximum(np.asarray(durations, float), 1e-300)
-        out = self._at(self.absolute, d)
+        out = self._at(self.absolute, self._logs[2], d)
         if (ABS_BY_LAG and velocities is not None and np.isfinite(self.lag)
                 and self.lag_speed > 0.0):
             moving = np.abs(np.asarray(velocities, float)) >= self.lag_floor
