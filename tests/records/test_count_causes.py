@@ -271,6 +271,108 @@ def test_a_reset_before_a_step_is_taken_out_with_its_own_size(
     assert min(abs(left(s)) for s in range(5)) > 0.6e-6
 
 
+def test_split_rss_is_two_line_fits_per_split() -> None:
+    """``split_rss`` against two ``np.polyfit`` lines per split, at generic times (s, from
+    1.3e4, uneven) and values (m): the residual sums of squares and the jump at ``t[k]``.
+    Mistakes: the split's sample on the wrong side; the jump at the left line's last
+    sample."""
+    rng = np.random.default_rng(3)
+    t = 1.3e4 + np.cumsum(rng.uniform(0.01, 0.03, 60))
+    y = 2.7e-6 * (t - t[0]) + 1e-7 * rng.standard_normal(60)
+    y[37:] += 3.1e-6
+    ks = np.arange(2, 59)
+    rss, jump = artifacts.split_rss(t, y, ks)
+    for k, r, jmp in zip(ks, rss, jump, strict=True):
+        pl, pr = np.polyfit(t[:k], y[:k], 1), np.polyfit(t[k:], y[k:], 1)
+        ref = (np.sum((y[:k] - np.polyval(pl, t[:k])) ** 2)
+               + np.sum((y[k:] - np.polyval(pr, t[k:])) ** 2))
+        assert r == pytest.approx(ref, rel=1e-6, abs=1e-24)
+        assert jmp == pytest.approx(np.polyval(pr, t[k]) - np.polyval(pl, t[k]), abs=1e-12)
+    assert int(ks[np.argmin(rss)]) == 37
+    assert jump[np.argmin(rss)] == pytest.approx(3.1e-6, abs=0.1e-6)
+
+
+def _jump_after_a_step(seed: int, jump: float = -2.5e-6, after: float = 1.5,
+                       short: float = 0.0) -> LabRecord:
+    """4.0 -> 7.8 um/s at 87 s, 150 s at 48 Hz (jittered), a 3 % velocity wander of 3 s, 0.1 um
+    white noise, a 0.48-um quantum, and the transducer re-zeroed by ``jump`` (m) ``after`` s
+    after the step; with ``short`` > 0, a commanded stretch at 11 um/s for that many seconds
+    at the step instead of the jump (ours, not the zoo's generator)."""
+    rng = np.random.default_rng(seed)
+    hz = 48.0
+    t = np.arange(0.0, 150.0, 1.0 / hz) + rng.uniform(0, 0.2 / hz, int(150 * hz))
+    v = np.where(t < 87.0, 4.0e-6, np.where(t < 87.0 + short, 11e-6, 7.8e-6))
+    r = np.zeros(t.size)
+    a = np.exp(-1.0 / (3.0 * hz))
+    w = rng.normal(size=t.size)
+    for i in range(1, t.size):
+        r[i] = a * r[i - 1] + np.sqrt(1 - a * a) * w[i]
+    vv = v * (1 + 0.03 * r)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (vv[1:] + vv[:-1]) * np.diff(t))])
+    x += rng.normal(0, 0.1e-6, t.size)
+    if not short:
+        x[t >= 87.0 + after] += jump
+    x = np.round(x / 0.48e-6) * 0.48e-6
+    return LabRecord("jump after a step", t, x, None, np.full(t.size, 0.6),
+                     np.full(t.size, 1e7), "Pa", {}, 1)
+
+
+def test_a_small_reset_just_after_a_step_is_a_jump(tmp_path: Path,
+                                                   monkeypatch: pytest.MonkeyPatch) -> None:
+    """A -2.5-um re-zeroing (five quanta, under find_resets' ten scales) 1.5 s after a 4.0 ->
+    7.8 um/s step, our generator's seeds 0-9: one change, within 0.1 s of the step, and one
+    reset reported, in each, with JUMP_BETWEEN; zoo 84086 and 84852 (a 4.8-um and a -3.5-um
+    jump 6 s after a step) read right. Mistake, seen failing: the rule off (5 of the 10 read
+    two changes and no reset; 84086 four changes, 84852 two)."""
+    assert artifacts.JUMP_BETWEEN is True
+
+    def read(seed: int) -> tuple[int, int, bool]:
+        d = detection.detect_program(_jump_after_a_step(seed))
+        near = len(d.segments) > 1 and abs(d.segments[1].t_start - 87.0) < 0.1
+        return len(d.segments) - 1, len(d.resets), near
+
+    assert [read(s) for s in range(10)] == [(1, 1, True)] * 10
+    assert _zoo_counts((84086, 84852), tmp_path) == [(2, 2), (1, 1)]
+    monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
+    assert sum(read(s)[:2] == (2, 0) for s in range(10)) == 5
+    assert _zoo_counts((84086, 84852), tmp_path) == [(4, 2), (2, 1)]
+
+
+def test_a_spike_between_two_velocities_is_a_jump_only_where_a_step_fits(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """``jump_excursions`` on a spike between two velocities, at generic speeds (4.0 and 7.8
+    um/s) and times (from 2.1e3 s): a -2.5-um jump 1.5 s after the step, its stretch read as
+    0.2 s at -5 um/s, is one, its size within 0.2 um (and as before between two stretches of
+    one velocity); a commanded 1-s stretch at 11 um/s between them is not (a ramp no step
+    fits); the jump is not one with JUMP_BETWEEN off. Mistakes: a spike taken for a jump
+    whatever its shape (the ramp read as a reset); a spike slower than both sides not looked
+    at (the spike test one-sided)."""
+    t = 2.1e3 + np.arange(0.0, 30.0, 0.02)
+    v = np.where(t < 2.1e3 + 10.0, 4.0e-6, 7.8e-6)
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * 0.02)])
+    x = x + 1e-8 * np.sin(np.arange(t.size) * 2.3)  # a tenth of the quantum's noise, generic
+    jx = x.copy()
+    k = int(np.searchsorted(t, 2.1e3 + 11.5))
+    jx[k:] -= 2.5e-6
+    bounds = [0, 500, k - 5, k + 5, t.size]
+    speeds = np.array([4.0e-6, 7.8e-6, -5e-6, 7.8e-6])
+    (found,) = artifacts.jump_excursions(t, jx, [0, k - 5, k + 5, t.size],
+                                         np.array([5.9e-6, -5e-6, 7.8e-6]), 0.1, 10)
+    assert found[0] == 1 and abs(found[1] - k) <= 1
+    assert found[2] == pytest.approx(-2.5e-6, abs=0.2e-6)
+    assert artifacts.jump_excursions(t, jx, bounds, speeds, 0.1, 10)[0][0] == 2
+    # the same velocity rule as before where the neighbours agree: untouched
+    ramp = x.copy()
+    s0, s1 = int(np.searchsorted(t, 2.1e3 + 10.0)), int(np.searchsorted(t, 2.1e3 + 11.0))
+    ramp[s0:s1] += np.cumsum(np.full(s1 - s0, 3.2e-6 * 0.02))
+    ramp[s1:] += 3.2e-6 * 0.02 * (s1 - s0)
+    assert artifacts.jump_excursions(t, ramp, [0, s0, s1, t.size],
+                                     np.array([4.0e-6, 11e-6, 7.8e-6]), 0.1, 10) == []
+    monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
+    assert artifacts.jump_excursions(t, jx, [0, k - 5, k + 5, t.size],
+                                     np.array([5.9e-6, -5e-6, 7.8e-6]), 0.1, 10) == []
+
+
 def test_a_reset_offset_uses_a_kink_only_where_it_earns_its_place() -> None:
     """Where the window holds no velocity change, the offset is the plain line-with-a-step fit
     (the kink's gain stays under its penalty), in each of 20 seeds. Mistake: the kink always

@@ -13,8 +13,8 @@ import numpy as np
 from ..validation import Array
 from .segmentation import kernel_input, line_fit, median, noise_level, step_gains
 
-__all__ = ["find_resets", "jump_excursions", "moves_backwards", "normal_changes",
-           "sampling_changes", "trapezoid_displacement"]
+__all__ = ["find_resets", "jump_excursions", "moves_backwards", "normal_changes", "same_velocity",
+           "sampling_changes", "split_rss", "trapezoid_displacement"]
 
 _RESET_K = 10.0
 """A reset's jump, in robust scales of the increments' scatter beyond the range the local
@@ -328,6 +328,60 @@ def _broken_line(t: Array, y: Array, b1: int, b2: int, m: int) -> float:
     return max(out, 0.0) * scale * scale
 
 
+JUMP_BETWEEN = True
+"""A short stretch between two of different velocities is looked at as a jump too where it is
+a spike, faster or slower than both by more than ``rel_tol``, of at most twice ``m`` samples
+(the shortest stretch the search holds, about a jump it smears; ours): the line with a step is
+then two lines with a step between them (:func:`split_rss`: the velocity may change at the
+jump), compared with the three stretches as before; the caller puts one change between the
+two stretches left (:func:`same_velocity` tells it which).
+
+Why: a re-zeroing below :data:`_RESET_K` scales (a few quanta, or tens of um at high speeds
+where the increments scatter more) that lies near a velocity change, or in a servo's
+settling after one, is a spike between two different velocities, and was taken for two
+changes: zoo 84086 (a 4.8-um jump 6.6 s after a 22.5 -> 7.3 um/s step, read as two changes
+of confidence 1.2-1.6 after placement) and 84852 (a -3.5-um jump 6 s after a 4.0 -> 7.8 um/s
+step, the step itself lost, the jump read as two changes). Not a longer spike: between two
+velocities a slow stretch read with the wander fits a step about as well as its own line
+(a settling of 330 samples after a step, 84086; pieces of a hold in ``bench_detect_holds`` C
+and E, read as re-zeroings of 0.4-0.7 um that were never made)."""
+
+
+def same_velocity(va: float, vb: float, around: float, rel_tol: float, drift: float) -> bool:
+    """Whether two stretches' velocities (m/s) are one velocity for :func:`jump_excursions`:
+    within ``rel_tol`` of the faster, or apart by less than ``drift`` times ``around`` (the
+    fastest speed near them, m/s)."""
+    return abs(vb - va) <= rel_tol * max(abs(va), abs(vb)) or abs(vb - va) < drift * around
+
+
+def split_rss(t: Array, y: Array, ks: Array) -> tuple[Array, Array]:
+    """For each split ``k`` of ``ks`` (``2 <= k <= len(t) - 2``): the residual sum of squares of
+    two least-squares lines of ``y(t)``, one on the samples before ``k`` and one from ``k`` on,
+    and the jump between them at ``t[k]`` (the right line less the left, ``y``'s unit); ours,
+    from cumulative sums (times and values centred first: no cancellation)."""
+    tc = t - t.mean()
+    yc = y - y.mean()
+    z = np.zeros(1)
+    c0 = np.arange(t.size + 1, dtype=float)
+    c1, c2 = np.concatenate([z, np.cumsum(tc)]), np.concatenate([z, np.cumsum(tc * tc)])
+    cy, cty = np.concatenate([z, np.cumsum(yc)]), np.concatenate([z, np.cumsum(tc * yc)])
+    cyy = np.concatenate([z, np.cumsum(yc * yc)])
+    ks = np.asarray(ks, np.int64)
+    out_rss = np.zeros(ks.size)
+    ends = []
+    for lo, hi in ((np.zeros_like(ks), ks), (ks, np.full_like(ks, t.size))):
+        n = c0[hi] - c0[lo]
+        st, stt = c1[hi] - c1[lo], c2[hi] - c2[lo]
+        sy, sty, syy = cy[hi] - cy[lo], cty[hi] - cty[lo], cyy[hi] - cyy[lo]
+        sxx = stt - st * st / n
+        sxy = sty - st * sy / n
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope = np.where(sxx > 0, sxy / sxx, 0.0)
+        out_rss += np.maximum(syy - sy * sy / n - slope * sxy, 0.0)
+        ends.append(sy / n + slope * (tc[ks] - st / n))  # each line at t[k]
+    return out_rss, ends[1] - ends[0]
+
+
 def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: float, m: int,
                     drift: float = 0.0, reach: int = 0) -> list[tuple[int, int, float]]:
     """Excursions (a stretch between two of the same velocity) that one line with a jump of
@@ -371,8 +425,12 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         # that fraction of the fastest speed around (two pieces of one hold, each read with
         # the drift's creep)
         around = float(np.max(np.abs(v[max(j - 2, 0):j + 3])))
-        same = abs(vb - va) <= rel_tol * max(abs(va), abs(vb)) or abs(vb - va) < drift * around
-        if not same or abs(v[j] - va) <= rel_tol * abs(va):
+        same = same_velocity(va, vb, around, rel_tol, drift)
+        # or a spike between two velocities (JUMP_BETWEEN): faster or slower than both
+        spike = (JUMP_BETWEEN and (v[j] - va) * (v[j] - vb) > 0.0
+                 and abs(v[j] - vb) > rel_tol * abs(vb)
+                 and bounds[j + 1] - bounds[j] <= 2 * m)
+        if not (same or spike) or abs(v[j] - va) <= rel_tol * abs(va):
             continue
         # near the excursion only (twice its length and m samples each side): the
         # neighbours' own wander far from it is no evidence either way
@@ -385,10 +443,21 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         if ks.size == 0 or tt[-1] <= tt[0]:
             continue
         r, rs, den = step_gains(tt, y, ks)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            gain = np.where(den > 0, rs**2 / den, -np.inf)
-        i = int(np.argmax(gain))
-        rss_jump = float(r @ r) - float(gain[i])
+        if same:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                gain = np.where(den > 0, rs**2 / den, -np.inf)
+            i = int(np.argmax(gain))
+            rss_jump = float(r @ r) - float(gain[i])
+            jump = float(rs[i] / den[i])
+        else:
+            # two lines with a step between them (the velocity may change at the jump), each
+            # of at least two samples
+            ks = ks[(ks >= 2) & (ks <= n - 2)]
+            if ks.size == 0:
+                continue
+            rss_k, jumps = split_rss(tt, y, ks)
+            i = int(np.argmin(rss_k))
+            rss_jump, jump = float(rss_k[i]), float(jumps[i])
         if JUMP_REFINED and reach > 0:
             # boundaries known to a block: the excursion a continuous broken line, each
             # kink at its best sample within reach
@@ -401,7 +470,7 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
                 e = x[p:q] - mu - sl * (t[p:q] - t[p:q].mean())
                 rss3 += float(e @ e)
         if rss_jump - rss3 < JUMP_REL * rss3:
-            out.append((j, a + int(ks[i]), float(rs[i] / den[i])))
+            out.append((j, a + int(ks[i]), jump))
     return out
 
 

@@ -57,6 +57,7 @@ from .artifacts import (
     find_resets,
     jump_excursions,
     normal_changes,
+    same_velocity,
     sampling_changes,
     trapezoid_displacement,
 )
@@ -928,9 +929,20 @@ def detect_program(
             jumps.append(k - 1)
         _, x = _blocks(t_all, x_all, blk)
         drop = {j for j, _, _ in off} | {j + 1 for j, _, _ in off}
+        # a jump between two different velocities (JUMP_BETWEEN) leaves one change between
+        # its neighbours: at the best hinge there once the jump is out
+        v_off = fits.table(bounds)[0]
+        between = [(bounds[j - 1], bounds[j + 2]) for j, _, _ in off if not same_velocity(
+            float(v_off[j - 1]), float(v_off[j + 1]),
+            float(np.max(np.abs(v_off[max(j - 2, 0):j + 3]))), rel_tol,
+            HOLD_RATIO if DRIFT_SIZED else 0.0)]
         bounds = [q for i, q in enumerate(bounds) if i not in drop]
         xs = (x - x[0]) / sigma
         fits = _Fits(t, x)
+        for lo, hi in between:
+            k, _ = best_hinge(t[lo:hi], xs[lo:hi], m, 0.0)
+            if k > 0:
+                bounds = sorted({*bounds, lo + k})
     resets = sorted(resets + jumps)
     # the oscillation's periods on the searched signal (block means of a long record): only
     # where some change is placed by the hinge under the wander
