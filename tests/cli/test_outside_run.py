@@ -65,8 +65,25 @@ def test_a_gap_of_years_in_a_record_asks_for_a_bounded_number_of_windows(monkeyp
         return pairs(tt, xx, uu, width, offset, half_s2)
 
     monkeypatch.setattr(detection, "_window_pairs", counted)
+    monkeypatch.setattr(detection, "COMPILED_SCALES", False)  # the NumPy loop, window by window
     detection.measure_fluctuations(t, x, 1e-8, [0, n], np.array([2e-7]))
     assert asked and max(asked) <= 10 * n + 1
+    # the compiled loop is given its durations: the same bound on the windows of each
+    from dryfriction.records import hinge_kernel
+
+    kernel = hinge_kernel.fluctuation_scales
+    widths: list[float] = []
+
+    def given(tt, rr, uu, ws, *rest):
+        widths.extend(ws.tolist())
+        if ws.size and (tt[-1] - tt[0]) / ws.min() > 100 * len(tt):
+            raise AssertionError(f"{(tt[-1] - tt[0]) / ws.min():.3g} windows")
+        return kernel(tt, rr, uu, ws, *rest)
+
+    monkeypatch.setattr(hinge_kernel, "fluctuation_scales", given)
+    monkeypatch.setattr(detection, "COMPILED_SCALES", True)
+    detection.measure_fluctuations(t, x, 1e-8, [0, n], np.array([2e-7]))
+    assert widths and (t[-1] - t[0]) / min(widths) <= 10 * n + 1
 
 
 def test_a_false_mat_file_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path) -> None:

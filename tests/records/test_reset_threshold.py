@@ -33,8 +33,15 @@ def test_zoo_reset_of_eleven_scales_after_a_step(tmp_path: Path,
     """Zoo 22020 (a ratio-3 up-step, every artifact, a 3.7-um re-zeroing 2.4 s after it,
     about 11 robust scales of the increments) and 9000 (a 4.9-um one 4.4 s from a ratio-1.3
     up-step): right with ``_RESET_K`` of 10; with 15 each reads the re-zeroing as a stretch
-    of its own (2 changes of 1, measured). Mistake: the threshold of 15 scales."""
+    of its own (2 changes of 1, measured) where a spike between two velocities is not looked
+    at as a jump (JUMP_BETWEEN off), and is right again with it (a second route: the jump
+    that find_resets leaves is a spike between the step's two velocities). Mistakes: the
+    threshold of 15 scales; the second route missing."""
     assert artifacts._RESET_K <= 10.0
     assert _zoo_counts((9000, 22020), tmp_path) == [(1, 1, True), (1, 1, True)]
     monkeypatch.setattr(artifacts, "_RESET_K", 15.0)
+    assert _zoo_counts((9000, 22020), tmp_path) == [(1, 1, True), (1, 1, True)]
+    monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
     assert _zoo_counts((9000, 22020), tmp_path) == [(2, 1, False), (2, 1, False)]
+    monkeypatch.setattr(artifacts, "_RESET_K", 10.0)
+    assert _zoo_counts((9000, 22020), tmp_path) == [(1, 1, True), (1, 1, True)]
