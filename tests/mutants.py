@@ -4296,6 +4296,11 @@ MUTANTS: tuple[Mutant, ...] = (
     _m("detection: no change put between a jump's two velocities", "records/detection.py",
        "            if k > 0:\n                bounds = sorted({*bounds, lo + k})\n", "", _CNT,
        "-k", "small_reset_just"),
+    _m("artifacts: a spike between two velocities of any length", "records/artifacts.py",
+       "                 and abs(v[j] - vb) > rel_tol * abs(vb)\n"
+       "                 and bounds[j + 1] - bounds[j] <= 2 * m)\n",
+       "                 and abs(v[j] - vb) > rel_tol * abs(vb))\n", _CNT, "-k",
+       "long_slow_spike"),
     # --- end stop 56 (lead)
 )
 

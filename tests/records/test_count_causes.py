@@ -375,11 +375,26 @@ def test_a_spike_between_two_velocities_is_a_jump_only_where_a_step_fits(
     s0, s1 = int(np.searchsorted(t, 2.1e3 + 10.0)), int(np.searchsorted(t, 2.1e3 + 11.0))
     ramp[s0:s1] += np.cumsum(np.full(s1 - s0, 3.2e-6 * 0.02))
     ramp[s1:] += 3.2e-6 * 0.02 * (s1 - s0)
+    # (m = 30 samples: the 50-sample ramp is short enough to be looked at)
     assert artifacts.jump_excursions(t, ramp, [0, s0, s1, t.size],
-                                     np.array([4.0e-6, 11e-6, 7.8e-6]), 0.1, 10) == []
+                                     np.array([4.0e-6, 11e-6, 7.8e-6]), 0.1, 30) == []
     monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
     assert artifacts.jump_excursions(t, jx, [0, k - 5, k + 5, t.size],
                                      np.array([5.9e-6, -5e-6, 7.8e-6]), 0.1, 10) == []
+
+
+@pytest.mark.parametrize(("family", "seed"), [("C", 26), ("E", 54), ("E", 91)])
+def test_a_long_slow_spike_between_two_velocities_is_no_jump(family: str, seed: int) -> None:
+    """``bench_detect_holds`` C 26, E 54 and E 91 (slow slide-hold-slides, 0.08-0.3 um/s,
+    under a position wander and a coarse quantum; no re-zeroing in them): no reset reported.
+    Mistake, seen failing: a spike between two velocities looked at whatever its length (a
+    piece of a hold of 43-216 samples read as a re-zeroing of 0.4-0.7 um at 142.8, 151.2 and
+    312.0 s)."""
+    from benchmarks.bench_detect_holds import record
+
+    t, x, _, _ = record(family, seed)
+    lab = LabRecord("f", t, x, None, np.full(t.size, 0.6), np.full(t.size, 1e7), "Pa", {}, 1)
+    assert detection.detect_program(lab).resets == ()
 
 
 def test_a_reset_offset_uses_a_kink_only_where_it_earns_its_place() -> None:
