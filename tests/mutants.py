@@ -4301,6 +4301,9 @@ MUTANTS: tuple[Mutant, ...] = (
        "                 and bounds[j + 1] - bounds[j] <= 2 * m)\n",
        "                 and abs(v[j] - vb) > rel_tol * abs(vb))\n", _CNT, "-k",
        "long_slow_spike"),
+    _m("artifacts: split_rss on the values not detrended", "records/artifacts.py",
+       "    if stt > 0.0:\n        yc = yc - tc * (float(tc @ yc) / stt)\n", "", _CNT, "-k",
+       "split_rss"),
     # --- end stop 56 (lead)
 )
 

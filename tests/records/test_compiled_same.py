@@ -115,6 +115,21 @@ def test_fluctuation_scales_compiled_are_the_numpy_loop(seed: int,
     assert c.relative.max() > 0.0 and np.unique(c.relative).size > 1
 
 
+def test_fluctuations_of_equal_times_are_none_measured(monkeypatch: pytest.MonkeyPatch
+                                                      ) -> None:
+    """Times all equal (a caller's arrays; a LabRecord's increase): no wander measured, at
+    once, by both loops. Mistake, seen failing in an independent review: the durations
+    doubled from 0 without end (the compiled loop's list grew until the memory ran out, the
+    NumPy loop hung)."""
+    rng = np.random.default_rng(2)
+    x = np.cumsum(rng.normal(0.0, 1e-8, 2000))
+    for compiled in (True, False):
+        monkeypatch.setattr(detection, "COMPILED_SCALES", compiled)
+        fl = detection.measure_fluctuations(np.full(2000, 5.0), x, 1e-8, [0, 700, 2000],
+                                            np.array([1e-6, 3e-6]))
+        assert fl.scales.size == 1 and not fl.relative.any() and not fl.absolute.any()
+
+
 @pytest.mark.parametrize("seed", [0, 1])
 def test_stretch_residuals_are_line_fits_to_the_last_bit(seed: int) -> None:
     t, x = _record(seed)

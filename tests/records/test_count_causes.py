@@ -283,8 +283,9 @@ def test_a_reset_before_a_step_is_taken_out_with_its_own_size(
 def test_split_rss_is_two_line_fits_per_split() -> None:
     """``split_rss`` against two ``np.polyfit`` lines per split, at generic times (s, from
     1.3e4, uneven) and values (m): the residual sums of squares and the jump at ``t[k]``.
-    Mistakes: the split's sample on the wrong side; the jump at the left line's last
-    sample."""
+    And on a steep ramp with 0.1 nm of noise (an independent review's case). Mistakes: the
+    split's sample on the wrong side; the jump at the left line's last sample; the values
+    not detrended first (each piece's sums cancel: a relative error of 1)."""
     rng = np.random.default_rng(3)
     t = 1.3e4 + np.cumsum(rng.uniform(0.01, 0.03, 60))
     y = 2.7e-6 * (t - t[0]) + 1e-7 * rng.standard_normal(60)
@@ -299,6 +300,17 @@ def test_split_rss_is_two_line_fits_per_split() -> None:
         assert jmp == pytest.approx(np.polyval(pr, t[k]) - np.polyval(pl, t[k]), abs=1e-12)
     assert int(ks[np.argmin(rss)]) == 37
     assert jump[np.argmin(rss)] == pytest.approx(3.1e-6, abs=0.1e-6)
+    # a steep ramp with little noise (1 mm/s, 0.1 nm, 5000 samples): each piece's sums would
+    # cancel (a relative error of 1 without the window's own line taken out first)
+    t2 = np.arange(5000) * 1e-3
+    y2 = 1e-3 * t2 + 1e-10 * rng.standard_normal(5000)
+    k2 = np.arange(2, 4998, 97)
+    rss2, _ = artifacts.split_rss(t2, y2, k2)
+    for k, r in zip(k2, rss2, strict=True):
+        pl, pr = np.polyfit(t2[:k], y2[:k], 1), np.polyfit(t2[k:], y2[k:], 1)
+        ref = (np.sum((y2[:k] - np.polyval(pl, t2[:k])) ** 2)
+               + np.sum((y2[k:] - np.polyval(pr, t2[k:])) ** 2))
+        assert r == pytest.approx(ref, rel=1e-6, abs=0.0)
 
 
 def _jump_after_a_step(seed: int, jump: float = -2.5e-6, after: float = 1.5,

@@ -358,9 +358,15 @@ def split_rss(t: Array, y: Array, ks: Array) -> tuple[Array, Array]:
     """For each split ``k`` of ``ks`` (``2 <= k <= len(t) - 2``): the residual sum of squares of
     two least-squares lines of ``y(t)``, one on the samples before ``k`` and one from ``k`` on,
     and the jump between them at ``t[k]`` (the right line less the left, ``y``'s unit); ours,
-    from cumulative sums (times and values centred first: no cancellation)."""
+    from cumulative sums, on the times centred and the values less their own least-squares
+    line (which changes neither: each piece's line takes a line up whole): a steep ramp with
+    little noise would otherwise cancel in each piece's sums (an independent review: a
+    relative error of 1 on 5000 samples at 1 mm/s with 0.1 nm of noise)."""
     tc = t - t.mean()
     yc = y - y.mean()
+    stt = float(tc @ tc)
+    if stt > 0.0:
+        yc = yc - tc * (float(tc @ yc) / stt)
     z = np.zeros(1)
     c0 = np.arange(t.size + 1, dtype=float)
     c1, c2 = np.concatenate([z, np.cumsum(tc)]), np.concatenate([z, np.cumsum(tc * tc)])

@@ -361,6 +361,10 @@ def measure_fluctuations(t: Array, x: Array, sigma: float, bounds: list[int],
     # a gap of years between two samples (span >> n dt) cannot ask for span/T ~ 1e9 windows
     # and exhaust the memory in bincount (issue 24, outside24: a silent hang)
     T = max(5.0 * dt, span / (10.0 * len(t)))
+    if not (T > 0.0 and span < float("inf")):
+        # times all equal (or infinite): no duration to double (a caller's record; a
+        # LabRecord's times increase), so none measured, not a loop without end
+        T = float("inf")
     if COMPILED_SCALES:
         from .hinge_kernel import fluctuation_scales  # Numba: imported on first use only
 
