@@ -347,10 +347,13 @@ velocities a slow stretch read with the wander fits a step about as well as its 
 and E, read as re-zeroings of 0.4-0.7 um that were never made)."""
 
 
-def same_velocity(va: float, vb: float, around: float, rel_tol: float, drift: float) -> bool:
-    """Whether two stretches' velocities (m/s) are one velocity for :func:`jump_excursions`:
-    within ``rel_tol`` of the faster, or apart by less than ``drift`` times ``around`` (the
-    fastest speed near them, m/s)."""
+def same_velocity(v: Array, j: int, rel_tol: float, drift: float) -> bool:
+    """Whether the stretches either side of stretch ``j`` (velocities ``v``, m/s) are one
+    velocity for :func:`jump_excursions`: within ``rel_tol`` of the faster, or apart by less
+    than ``drift`` times the fastest speed around (stretches ``j - 2`` to ``j + 2``; two pieces
+    of one hold, each read with the drift's creep)."""
+    va, vb = float(v[j - 1]), float(v[j + 1])
+    around = float(np.max(np.abs(v[max(j - 2, 0):j + 3])))
     return abs(vb - va) <= rel_tol * max(abs(va), abs(vb)) or abs(vb - va) < drift * around
 
 
@@ -427,11 +430,8 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         if out and out[-1][0] >= j - 1:
             continue
         va, vb = v[j - 1], v[j + 1]
-        # the same velocity on both sides: within rel_tol, or (with drift) apart by less than
-        # that fraction of the fastest speed around (two pieces of one hold, each read with
-        # the drift's creep)
-        around = float(np.max(np.abs(v[max(j - 2, 0):j + 3])))
-        same = same_velocity(va, vb, around, rel_tol, drift)
+        # the same velocity on both sides (within rel_tol, or drift-sized)
+        same = same_velocity(v, j, rel_tol, drift)
         # or a spike between two velocities (JUMP_BETWEEN): faster or slower than both
         spike = (JUMP_BETWEEN and (v[j] - va) * (v[j] - vb) > 0.0
                  and abs(v[j] - vb) > rel_tol * abs(vb)
@@ -448,6 +448,7 @@ def jump_excursions(t: Array, x: Array, bounds: list[int], v: Array, rel_tol: fl
         ks = np.arange(max(1, bounds[j] - m - a), min(n - 1, bounds[j + 1] + m - a))
         if ks.size == 0 or tt[-1] <= tt[0]:
             continue
+        # (the line's residuals r are the broken line's data below, in either case)
         r, rs, den = step_gains(tt, y, ks)
         if same:
             with np.errstate(divide="ignore", invalid="ignore"):

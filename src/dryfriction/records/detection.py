@@ -937,9 +937,7 @@ def detect_program(
         # its neighbours: at the best hinge there once the jump is out
         v_off = fits.table(bounds)[0]
         between = [(bounds[j - 1], bounds[j + 2]) for j, _, _ in off if not same_velocity(
-            float(v_off[j - 1]), float(v_off[j + 1]),
-            float(np.max(np.abs(v_off[max(j - 2, 0):j + 3]))), rel_tol,
-            HOLD_RATIO if DRIFT_SIZED else 0.0)]
+            v_off, j, rel_tol, HOLD_RATIO if DRIFT_SIZED else 0.0)]
         bounds = [q for i, q in enumerate(bounds) if i not in drop]
         xs = (x - x[0]) / sigma
         fits = _Fits(t, x)

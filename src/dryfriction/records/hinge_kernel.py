@@ -21,8 +21,7 @@ import numba
 import numpy as np
 
 __all__ = ["fluctuation_scales", "hinge_scan", "pairwise_sum", "reset_increments", "reset_jumps",
-           "row_medians",
-           "stretch_residuals", "window_pairs"]
+           "row_medians", "stretch_residuals", "window_pairs"]
 
 
 @numba.njit(cache=True)
