@@ -101,3 +101,35 @@ def test_the_bound_is_the_least_squares_slope_of_a_ramp_and_no_wander_exceeds_it
     for e in (np.cumsum(rng.normal(size=t.size)), np.sin(2 * np.pi * t / (1.7 * T) + 0.4),
               rng.normal(size=t.size)):
         assert slope(e) < bound
+
+
+def test_levels_computed_once_give_what_each_reading_computes() -> None:
+    """The pruning reads the levels of a table of stretches once (:meth:`Fluctuations.levels`)
+    for its holds, confidences and slips; each must equal its own reading bit for bit, at
+    generic durations either side of the longest scale (40 s), the lag bounds binding on some:
+    the scatter with and without velocities, and the slip ratio, whose shorter stretch's
+    levels are read off the table's. Mistakes: the longer stretch's levels read for the slip
+    (``<`` for ``>``); the scatter's absolute part without its lag bound (levels unbounded)."""
+    from dryfriction.records.detection import _slip_ratio
+
+    fl = Fluctuations(sigma=0.17e-6, scales=np.array([2.5, 10.0, 40.0]),
+                      relative=np.array([0.12, 0.06, 0.03]),
+                      absolute=np.array([9e-7, 6e-7, 4e-7]), lag=0.41, lag_speed=6.3e-6,
+                      lag_floor=0.35e-6)
+    d = np.array([3.7, 230.0, 17.3, 520.0, 61.0, 1.3])
+    v = np.array([2.1e-6, 7.7e-6, 0.2e-6, 2.9e-6, 0.0, 11.3e-6])
+    sxx = np.array([4.1, 9.9e4, 420.0, 2.2e6, 1.9e4, 0.6])
+    lv = fl.levels(d)
+    assert np.array_equal(fl.scatter(d, v, sxx, lv), fl.scatter(d, v, sxx))
+    e_bound = np.sqrt(fl.sigma**2 / sxx + fl.absolute_at(d, v) ** 2 + (fl.relative_at(d) * v) ** 2)
+    np.testing.assert_allclose(fl.scatter(d, v, sxx, lv), e_bound, rtol=1e-14)
+    assert np.array_equal(fl.scatter(d, 0.0 * v, sxx, lv), fl.scatter(d, 0.0 * v, sxx))
+    own = _slip_ratio(v, d, fl)
+    assert np.array_equal(_slip_ratio(v, d, fl, lv), own)
+    # the shorter stretch's levels, computed independently for each boundary
+    dmin = np.minimum(d[1:], d[:-1])
+    u = np.abs(v)
+    big = np.array([max(u[max(j - 1, 0):j + 3]) for j in range(len(d) - 1)])
+    lag = np.minimum(fl.relative_at(dmin) * dmin, fl.lag)
+    want = np.abs(np.diff(v)) * dmin / np.hypot(lag * big, fl.absolute_at(dmin) * dmin)
+    np.testing.assert_allclose(own, want, rtol=1e-14)

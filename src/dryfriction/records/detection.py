@@ -192,7 +192,11 @@ class Fluctuations:
         these ``velocities`` (m/s) at least ``lag_floor``, beyond the longest scale measured at
         most ``sqrt(12) lag lag_speed / T``."""
         d = np.maximum(np.asarray(durations, float), 1e-300)
-        out = self._at(self.absolute, self._logs[2], d)
+        return self._bounded(self._at(self.absolute, self._logs[2], d), d, velocities)
+
+    def _bounded(self, out: Array, d: Array, velocities: Array | None) -> Array:
+        """``a(T)`` as :meth:`absolute_at` returns it, from its interpolation ``out`` at the
+        durations ``d`` (s, at least 1e-300)."""
         if (ABS_BY_LAG and velocities is not None and np.isfinite(self.lag)
                 and self.lag_speed > 0.0):
             moving = np.abs(np.asarray(velocities, float)) >= self.lag_floor
@@ -200,13 +204,25 @@ class Fluctuations:
                            np.minimum(out, np.sqrt(12.0) * self.lag * self.lag_speed / d), out)
         return out
 
-    def scatter(self, durations: Array, velocities: Array, sxx: Array) -> Array:
+    def levels(self, durations: Array) -> tuple[Array, Array]:
+        """``r(T)`` as :meth:`relative_at` gives it and ``a(T)`` as :meth:`absolute_at` gives
+        it without velocities (m/s), at these durations (s): the two interpolations that
+        :meth:`scatter` and :func:`_slip_ratio` read, done once for a table of stretches
+        (the pruning scores each table three ways)."""
+        d = np.maximum(np.asarray(durations, float), 1e-300)
+        return self.relative_at(d), self._at(self.absolute, self._logs[2], d)
+
+    def scatter(self, durations: Array, velocities: Array, sxx: Array,
+                levels: tuple[Array, Array] | None = None) -> Array:
         """``e``, m/s, of stretches of these durations (s), velocities (m/s) and ``Sxx``
-        (s^2)."""
+        (s^2); ``levels``: :meth:`levels` at these durations, where already computed."""
         v = np.asarray(velocities, float)
+        if levels is None:
+            levels = self.levels(durations)
+        d = np.maximum(np.asarray(durations, float), 1e-300)
         return np.sqrt(self.sigma**2 / np.maximum(sxx, 1e-300)
-                       + self.absolute_at(durations, v) ** 2
-                       + (self.relative_at(durations) * v) ** 2)
+                       + self._bounded(levels[1], d, v) ** 2
+                       + (levels[0] * v) ** 2)
 
 
 @dataclass(frozen=True)
@@ -463,18 +479,21 @@ class _Fits:
 
 
 def _is_hold(v: Array, d: Array, sxx: Array, fl: Fluctuations, floor: float,
-             given: bool) -> Array:
+             given: bool, levels: tuple[Array, Array] | None = None) -> Array:
     """A hold: slower than ``floor`` (given), or than ``Z_HOLD`` slope errors of a still load point
-    (white noise and absolute wander; and 1e-4 of the fastest velocity, ``floor``)."""
+    (white noise and absolute wander; and 1e-4 of the fastest velocity, ``floor``);
+    ``levels``: :meth:`Fluctuations.levels` at ``d``, where already computed."""
     v = np.asarray(v, float)
     return np.abs(v) <= (floor if given else np.maximum(
-        Z_HOLD * fl.scatter(d, 0.0 * v, sxx), floor))
+        Z_HOLD * fl.scatter(d, 0.0 * v, sxx, levels), floor))
 
 
-def _z(fits: _Fits, fl: Fluctuations, bounds: list[int]) -> Array:
-    """Confidence of each inner boundary: ``|v2 - v1| / sqrt(e1**2 + e2**2)``."""
+def _z(fits: _Fits, fl: Fluctuations, bounds: list[int],
+       levels: tuple[Array, Array] | None = None) -> Array:
+    """Confidence of each inner boundary: ``|v2 - v1| / sqrt(e1**2 + e2**2)``; ``levels``:
+    :meth:`Fluctuations.levels` at the stretches' durations, where already computed."""
     v, d, sxx = fits.table(bounds)
-    e = fl.scatter(d, v, sxx)
+    e = fl.scatter(d, v, sxx, levels)
     return np.abs(np.diff(v)) / np.hypot(e[1:], e[:-1])
 
 
@@ -590,7 +609,8 @@ def _shape_rss(u: Array, y: Array, shapes: Array) -> Array:
     return float(yp @ yp) - gain
 
 
-def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
+def _slip_ratio(v: Array, d: Array, fl: Fluctuations,
+                levels: tuple[Array, Array] | None = None) -> Array:
     """The slip ``|v2 - v1| d`` of each inner boundary over the shorter stretch ``d`` beside
     it, over the position error a servo may carry there, ``D U`` (ours).
 
@@ -608,8 +628,15 @@ def _slip_ratio(v: Array, d: Array, fl: Fluctuations) -> Array:
     big[1:] = np.maximum(big[1:], u[:-2])  # the stretch before the left one
     big[:-1] = np.maximum(big[:-1], u[2:])  # the one after the right one
     dmin = np.minimum(d[1:], d[:-1])
-    lag = np.minimum(fl.relative_at(dmin) * dmin, fl.lag)
-    scale = np.hypot(lag * big, fl.absolute_at(dmin) * dmin)
+    if levels is None:
+        r, a = fl.relative_at(dmin), fl.absolute_at(dmin)
+    else:
+        # the shorter stretch's levels, read off those of each stretch (``levels``, at ``d``)
+        right = d[1:] < d[:-1]
+        r = np.where(right, levels[0][1:], levels[0][:-1])
+        a = np.where(right, levels[1][1:], levels[1][:-1])
+    lag = np.minimum(r * dmin, fl.lag)
+    scale = np.hypot(lag * big, a * dmin)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = np.abs(np.diff(v)) * dmin / scale
     return np.where(scale > 0, out, np.inf)
@@ -699,9 +726,10 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
     """Each inner boundary's standing: ``min(z / z_min, rel / rel_tol)`` (< 1: remove), 0
     between two holds, ``z / z_min`` between a hold and a slide."""
     v, d, sxx = fits.table(bounds)
-    hold = _is_hold(v, d, sxx, fl, floor, given)
+    lv = fl.levels(d)  # read three ways below: the holds, the confidences, the slips
+    hold = _is_hold(v, d, sxx, fl, floor, given, lv)
     dv = np.abs(np.diff(v))
-    z = _z(fits, fl, bounds)
+    z = _z(fits, fl, bounds, lv)
     rel = dv / np.maximum(np.maximum(np.abs(v[1:]), np.abs(v[:-1])), 1e-300)
     # an excursion: the stretches on either side of this one's two boundaries agree
     tol = np.full(len(dv), rel_tol)
@@ -724,7 +752,7 @@ def _scores(fits: _Fits, fl: Fluctuations, bounds: list[int], rel_tol: float, z_
     if EDGE_BURSTS and (len(v) >= 3 or EDGE_TWO and d.min() < min(EDGE_TWO_SHARE * d.max(),
                                                                     EDGE_TWO_MOST)):
         tol = np.where(_edge_bursts(v, d, rel, hold), max(rel_tol, EXCURSION_REL), tol)
-    slip = _slip_ratio(v, d, fl) / SLIP_MIN
+    slip = _slip_ratio(v, d, fl, lv) / SLIP_MIN
     if SETTLE and len(v) >= 3:
         # only where the slip passes SLIP_MIN but not SETTLE_MOST times it: below, the boundary
         # goes anyway; above, no servo's settling carries it (and the fits cost nothing)
