@@ -4311,6 +4311,15 @@ MUTANTS: tuple[Mutant, ...] = (
        "    if stt > 0.0:\n        yc = yc - tc * (float(tc @ yc) / stt)\n", "", _CNT, "-k",
        "split_rss"),
     # --- end stop 56 (lead)
+    # --- stop 57 (lead): each change as reported stands (records/detection.py FINAL_JUDGE)
+    _m("detection: no final judgement of the changes as placed", "records/detection.py",
+       "FINAL_JUDGE = True\n", "FINAL_JUDGE = False\n", _CNT, "-k", "stands_where"),
+    _m("detection: the changes as placed judged against half of z_min", "records/detection.py",
+       "        if not z_keep[k] < z_min:\n", "        if not z_keep[k] < 0.5 * z_min:\n", _CNT,
+       "-k", "stands_where"),
+    _m("detection: the change before the weakest removed", "records/detection.py",
+       "        gone = keep[k + 1]\n", "        gone = keep[k]\n", _CNT, "-k", "stands_where"),
+    # --- end stop 57 (lead)
 )
 
 
