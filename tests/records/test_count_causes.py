@@ -703,3 +703,28 @@ def test_each_change_stands_where_it_is_placed(tmp_path: Path,
     assert len(conf) == 3 and min(conf) >= detection.Z_MIN
     monkeypatch.setattr(detection, "FINAL_JUDGE", False)
     assert [c[:2] for c in zoo_counts(idx, tmp_path)] == [(5, 4), (3, 2), (4, 3)]
+
+
+def test_a_short_stretch_between_two_velocities_keeps_its_ends(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``REACH_EVERY``: a commanded stretch of 1.5 or 3 s at 11 um/s between 4.0 and 7.8 um/s
+    (our generator, seeds 0-7, a 3 % wander of 3 s) reads as its two changes, each within
+    0.5 s of its time; zoo 4278 and 5145 (servo bursts that stood as changes when every
+    change had its reach before ``FINAL_JUDGE``) read right. Mistakes, seen failing: the
+    rule off (3 s: 4 of the 8 read one change; 1.5 s: 7 of 8); the reach for every change
+    in the pruning only (the moves from block means to the samples lose the far end again:
+    the same counts); ``FINAL_JUDGE`` off (4278 three changes, 5145 six)."""
+    assert detection.REACH_EVERY is True and detection.FINAL_JUDGE is True
+
+    def right(short: float) -> int:
+        n = 0
+        for seed in range(8):
+            got = [s.t_start for s in
+                   detection.detect_program(_jump_after_a_step(seed, short=short)).segments[1:]]
+            n += len(got) == 2 and abs(got[0] - 87.0) < 0.5 and abs(got[1] - 87.0 - short) < 0.5
+        return n
+
+    assert (right(1.5), right(3.0)) == (8, 8)
+    assert _zoo_counts((4278, 5145), tmp_path) == [(1, 1), (4, 4)]
+    monkeypatch.setattr(detection, "REACH_EVERY", False)
+    assert (right(1.5), right(3.0)) == (1, 4)
