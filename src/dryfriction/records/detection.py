@@ -814,7 +814,8 @@ Zoo 3112: a 19-s hold's end (confidence 21.5) moved 300 s into the slide when a 
 boundary beyond it went, and the hold was lost; 278 (a short step) and 9000 the same
 (docs/performance.md). A re-placement corrects a kink's place for the change of its
 stretch; a move beyond its shorter stretch is no longer that kink, and a change there stays
-a candidate of the search. Small changes (a servo burst read at 26-34 %) moved as before (until :data:`REACH_EVERY`):
+a candidate of the search. Small changes (a servo burst read at 26-34 %) moved as before
+(until :data:`REACH_EVERY`):
 with the reach for every change (in an earlier form, every change placed within its reach),
 zoo 4278, 5145, 5170, 5177, 7018 and 7262 read one or more changes too many. Placing every
 large change within its reach, not only those moved beyond it, fixed 11290 and 7058 too but
