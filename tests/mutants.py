@@ -4332,6 +4332,15 @@ MUTANTS: tuple[Mutant, ...] = (
        "keeps_its_ends"),
     _m("detection: every change's reach without the final judgement", "records/detection.py",
        "FINAL_JUDGE = True\n", "FINAL_JUDGE = False\n", _CNT, "-k", "keeps_its_ends"),
+    _m("detection: no pair of bursts at an edge", "records/detection.py",
+       "EDGE_PAIRS = True\n", "EDGE_PAIRS = False\n", _CNT, "-k", "side_by_side_at"),
+    _m("detection: the change beside a pair of bursts flagged, not the boundary between",
+       "records/detection.py", "            out[k] = out[k + 1] = True\n",
+       "            out[k] = True\n            if k + 2 < len(rel):\n"
+       "                out[k + 2] = True\n", _CNT, "-k", "side_by_side_at"),
+    _m("detection: a pair of bursts whatever its lengths", "records/detection.py",
+       "                and max(d[k], d[k + 1]) < d[k + 2] and not (hold[k + 1] or hold[k + 2])):",
+       "                and not (hold[k + 1] or hold[k + 2])):", _CNT, "-k", "side_by_side_at"),
     # --- end stop 57 (lead)
 )
 

@@ -728,3 +728,35 @@ def test_a_short_stretch_between_two_velocities_keeps_its_ends(
     assert _zoo_counts((4278, 5145), tmp_path) == [(1, 1), (4, 4)]
     monkeypatch.setattr(detection, "REACH_EVERY", False)
     assert (right(1.5), right(3.0)) == (1, 4)
+
+
+def test_two_bursts_side_by_side_at_an_edge_are_one_burst(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``EDGE_PAIRS``: ``_edge_bursts`` at generic speeds (2.3 um/s, a 6.7-s step of ratio
+    3.1): a +12 % and a -10 % burst (0.6 and 0.7 s, 10.7 % and 19.6 % apart) at the step's
+    end flag the two boundaries between them and the step, and at its start the same; not
+    where one of the two lasts as long as the step, nor where one is a hold; zoo 89828 (such a
+    pair at the end of an 8-s step at 362 um/s) reads its two changes. Mistakes, seen failing: the
+    rule off (no flag; 89828 four changes); the change beside the pair flagged in place of
+    the boundary between the two (an index off by one); the pair's lengths not compared
+    with the step's (the third case flagged)."""
+    def flags(v: list[float], d: list[float], hold: list[bool] | None = None) -> list[bool]:
+        va = np.array(v)
+        rel = np.abs(np.diff(va)) / np.maximum(np.abs(va[1:]), np.abs(va[:-1]))
+        h = np.zeros(len(v), bool) if hold is None else np.array(hold)
+        return _edge_bursts(va, np.array(d), rel, h).tolist()
+
+    assert detection.EDGE_PAIRS is True
+    u, s = 2.3e-6, 3.1 * 2.3e-6
+    assert flags([u, s, 1.12 * s, 0.9 * s, u], [60, 6.7, 0.6, 0.7, 60]) == [
+        False, True, True, False]
+    assert flags([u, 0.9 * s, 1.12 * s, s, u], [60, 0.7, 0.6, 6.7, 60]) == [
+        False, True, True, False]
+    # the second of the two lasts as long as the step: neither pair is two bursts
+    assert not any(flags([u, s, 1.12 * s, 0.9 * s, u], [60, 6.7, 0.6, 6.7, 60]))
+    assert not any(flags([u, s, 1.12 * s, 0.9 * s, u], [60, 6.7, 0.6, 0.7, 60],
+                         [False, False, False, True, False]))
+    assert _zoo_counts((89828,), tmp_path) == [(2, 2)]
+    monkeypatch.setattr(detection, "EDGE_PAIRS", False)
+    assert not any(flags([u, s, 1.12 * s, 0.9 * s, u], [60, 6.7, 0.6, 0.7, 60]))
+    assert _zoo_counts((89828,), tmp_path) == [(4, 2)]

@@ -684,12 +684,22 @@ without this)."""
 EDGE_TWO_SHARE = 0.25
 EDGE_TWO_MOST = 20.0
 
+EDGE_PAIRS = True
+"""Two servo bursts side by side at the edge of a commanded stretch, beside a change, are one
+burst in two parts (ours; :data:`EXCURSION_TWO` is the same for an excursion that returns):
+the two boundaries between them and the stretch are judged by ``EXCURSION_REL`` where both
+are shorter than the stretch and neither is a hold, as one burst's (:data:`EDGE_BURSTS`).
+
+Why: zoo 89828, a short step of 8 s at 362 um/s whose last 1.3 s held a +12 % and a -10 %
+burst side by side, read as three changes (the boundaries 10.6 % and 19.5 %, confidence 14
+and 26): neither burst lies between the stretch and the change alone."""
+
 
 def _edge_bursts(v: Array, d: Array, rel: Array, hold: Array) -> Array:
     """Whether each inner boundary is a burst's at the edge of a commanded stretch (ours):
     between a stretch ``k`` with a change beyond ``EXCURSION_REL`` (or the record's start or
     end) on its other side and a longer stretch within ``EXCURSION_REL`` of it, neither a
-    hold.
+    hold; with :data:`EDGE_PAIRS`, the two boundaries of two such stretches side by side.
 
     Parameters
     ----------
@@ -718,6 +728,16 @@ def _edge_bursts(v: Array, d: Array, rel: Array, hold: Array) -> Array:
             out[k] = True
         if k > 0 and big[k + 1] and not big[k] and d[k] < d[k - 1] and not hold[k - 1]:
             out[k - 1] = True
+        if not EDGE_PAIRS:
+            continue
+        # two bursts side by side at the edge (EDGE_PAIRS): stretches k and k + 1 after the
+        # change at k's start, or k - 1 and k before the change at k's end
+        if (k + 2 < len(v) and big[k] and not big[k + 1] and not big[k + 2]
+                and max(d[k], d[k + 1]) < d[k + 2] and not (hold[k + 1] or hold[k + 2])):
+            out[k] = out[k + 1] = True
+        if (k > 1 and big[k + 1] and not big[k] and not big[k - 1]
+                and max(d[k], d[k - 1]) < d[k - 2] and not (hold[k - 1] or hold[k - 2])):
+            out[k - 2] = out[k - 1] = True
     return out
 
 
