@@ -4338,9 +4338,22 @@ MUTANTS: tuple[Mutant, ...] = (
        "records/detection.py", "            out[k] = out[k + 1] = True\n",
        "            out[k] = True\n            if k + 2 < len(rel):\n"
        "                out[k + 2] = True\n", _CNT, "-k", "side_by_side_at"),
-    _m("detection: a pair of bursts whatever its lengths", "records/detection.py",
-       "                and max(d[k], d[k + 1]) < d[k + 2] and not (hold[k + 1] or hold[k + 2])):",
-       "                and not (hold[k + 1] or hold[k + 2])):", _CNT, "-k", "side_by_side_at"),
+    _m("detection: a pair of bursts at a step's start need not go up and down",
+       "records/detection.py",
+       "                and (v[k] - v[k + 2]) * (v[k + 1] - v[k + 2]) < 0.0\n", "", _CNT, "-k",
+       "monotone"),
+    _m("detection: a pair of bursts at a step's end need not go up and down",
+       "records/detection.py",
+       "                and (v[k] - v[k - 2]) * (v[k - 1] - v[k - 2]) < 0.0\n", "", _CNT, "-k",
+       "monotone"),
+    _m("detection: a pair of bursts of any duration", "records/detection.py",
+       "                and max(d[k], d[k - 1]) < min(d[k - 2], EDGE_TWO_MOST)\n",
+       "                and max(d[k], d[k - 1]) < d[k - 2]\n", _CNT, "-k", "monotone"),
+    _m("detection: a long stretch at the record's ends taken for a burst", "records/detection.py",
+       "EDGE_ENDS = True\n", "EDGE_ENDS = False\n", _CNT, "-k", "monotone"),
+    _m("detection: the end's limit at the record's start only", "records/detection.py",
+       "                and (k + 1 < len(v) or brief)):\n", "                ):\n", _CNT, "-k",
+       "monotone"),
     # --- end stop 57 (lead)
 )
 

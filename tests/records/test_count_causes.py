@@ -760,3 +760,62 @@ def test_two_bursts_side_by_side_at_an_edge_are_one_burst(
     monkeypatch.setattr(detection, "EDGE_PAIRS", False)
     assert not any(flags([u, s, 1.12 * s, 0.9 * s, u], [60, 6.7, 0.6, 0.7, 60]))
     assert _zoo_counts((89828,), tmp_path) == [(4, 2)]
+
+
+def _staircase(seed: int, program: list[tuple[float, float]], hz: float = 2.0,
+               wander: float = 0.01) -> LabRecord:
+    """A program of ``(duration s, velocity m/s)`` stretches sampled at ``hz``, the velocity
+    times ``1 + wander * r`` (``r`` a unit Ornstein-Uhlenbeck process of 2 s), 2 nm white
+    noise (ours, not the zoo's generator)."""
+    rng = np.random.default_rng(seed)
+    ends = np.cumsum([d for d, _ in program])
+    t = np.arange(0.0, float(ends[-1]), 1.0 / hz)
+    v = np.array([vel for _, vel in program])[np.searchsorted(ends, t, side="right")]
+    a = np.exp(-1.0 / (2.0 * hz))
+    r = np.zeros(t.size)
+    w = rng.normal(size=t.size) * np.sqrt(1.0 - a * a)
+    for i in range(1, t.size):
+        r[i] = a * r[i - 1] + w[i]
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * (1.0 + wander * r[:-1]) / hz)])
+    x += rng.normal(0.0, 2e-9, t.size)
+    return LabRecord("staircase", t, x, None, np.full(t.size, 0.6), np.full(t.size, 1e7),
+                     "Pa", {}, 1)
+
+
+def test_long_or_monotone_stretches_at_an_edge_are_no_pair_of_bursts(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """``EDGE_PAIRS`` asks a pair of bursts to go one up and one down about the stretch and to
+    last less than ``EDGE_TWO_MOST`` each (an independent review's records). ``_edge_bursts``
+    at generic speeds (2.3 um/s, a step of ratio 3.1): two short stretches both faster than
+    the step at its end or at its start, or two of 25 s, are no pair. ``EDGE_ENDS``: a whole
+    record (our staircase generator, a 1 % wander, seeds 0-5), 1.0 -> 1.15 -> 1.32 um/s of
+    600, 600 and 1200 s, and its reverse, read their two changes, each within 1 s. Mistakes,
+    seen failing: the pair's two sides not asked, at the start or at the end (the staircase
+    read as one change, 164 s early, in the review's form); the pair's durations not
+    bounded; a stretch at the record's start or end of any length taken for a burst
+    (``EDGE_ENDS`` off: 4 and 2 of 6 read one change, 160 s early)."""
+    def flags(v: list[float], d: list[float]) -> list[bool]:
+        va = np.array(v)
+        rel = np.abs(np.diff(va)) / np.maximum(np.abs(va[1:]), np.abs(va[:-1]))
+        return _edge_bursts(va, np.array(d), rel, np.zeros(len(v), bool)).tolist()
+
+    assert detection.EDGE_PAIRS is True
+    u, s = 2.3e-6, 3.1 * 2.3e-6
+    assert not any(flags([u, s, 1.08 * s, 1.17 * s, u], [60, 6.7, 0.6, 0.7, 60]))
+    assert not any(flags([u, 1.17 * s, 1.08 * s, s, u], [60, 0.7, 0.6, 6.7, 60]))
+    assert not any(flags([u, s, 1.12 * s, 0.9 * s, u], [60, 80, 25, 25, 60]))
+    um = 1e-6
+    up = [(600.0, 1.0 * um), (600.0, 1.15 * um), (1200.0, 1.32 * um)]
+
+    def right(program: list[tuple[float, float]]) -> int:
+        want = np.cumsum([d for d, _ in program])[:-1]
+        n = 0
+        for seed in range(6):
+            got = np.array([sg.t_start for sg in detection.detect_program(
+                _staircase(seed, program)).segments[1:]])
+            n += got.size == want.size and bool(np.all(np.abs(got - want) < 1.0))
+        return n
+
+    assert (right(up), right(up[::-1])) == (6, 6)
+    monkeypatch.setattr(detection, "EDGE_ENDS", False)
+    assert (right(up), right(up[::-1])) == (2, 4)

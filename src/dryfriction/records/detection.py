@@ -41,7 +41,8 @@ means and each change then moved to the best hinge on the samples between its ne
 (the hinge search is compiled: :mod:`.hinge_kernel`); a change of confidence below
 ``LOCAL_Z`` is finally placed by the maximum-likelihood hinge under the record's own wander
 (:mod:`.placement`: a slow wander bends the kink of the whole stretches), with the periods of
-a machine oscillation found in the record as free regressors.
+a machine oscillation found in the record as free regressors. Each change as placed must
+still reach ``z_min`` over the two segments it joins (:data:`FINAL_JUDGE`).
 """
 
 from __future__ import annotations
@@ -684,15 +685,31 @@ without this)."""
 EDGE_TWO_SHARE = 0.25
 EDGE_TWO_MOST = 20.0
 
+EDGE_ENDS = True
+"""A stretch at the record's start or end is a burst at the edge of the next (the record's
+end counting as its change, :data:`EDGE_BURSTS`) only where it lasts less than
+:data:`EDGE_TWO_MOST` s, in a record of any number of stretches (ours; :data:`EDGE_TWO` asks
+it of two). Why: a staircase 1.0 -> 1.15 -> 1.32 um/s of 600, 600 and 1200 s under a 1 %
+wander read as one change 160 s before the second step in 4 of 6 seeds: its first 600-s
+stretch, shorter than the next as measured, was taken for a burst at the record's start.
+Only at the ends: between two changes, a long stretch within ``EXCURSION_REL`` of a longer
+one is mostly the wander of a slow slide (``bench_detect_holds`` A 39 and C 14 read changes
+too many with the limit there too)."""
+
 EDGE_PAIRS = True
 """Two servo bursts side by side at the edge of a commanded stretch, beside a change, are one
 burst in two parts (ours; :data:`EXCURSION_TWO` is the same for an excursion that returns):
 the two boundaries between them and the stretch are judged by ``EXCURSION_REL`` where both
-are shorter than the stretch and neither is a hold, as one burst's (:data:`EDGE_BURSTS`).
+are shorter than the stretch and than :data:`EDGE_TWO_MOST` (a burst lasts seconds), one
+faster and one slower than the stretch (an excursion about it, as bursts up and down), and
+neither is a hold, as one burst's (:data:`EDGE_BURSTS`).
 
 Why: zoo 89828, a short step of 8 s at 362 um/s whose last 1.3 s held a +12 % and a -10 %
 burst side by side, read as three changes (the boundaries 10.6 % and 19.5 %, confidence 14
-and 26): neither burst lies between the stretch and the change alone."""
+and 26): neither burst lies between the stretch and the change alone. Without the duration
+and the two sides, a clean staircase 1.0 -> 1.15 -> 1.32 um/s of 600, 600 and 1200 s (an
+independent review's) read one change 164 s before either: its first two stretches, beside
+the record's start, were taken for a pair of bursts at the third's edge."""
 
 
 def _edge_bursts(v: Array, d: Array, rel: Array, hold: Array) -> Array:
@@ -724,19 +741,27 @@ def _edge_bursts(v: Array, d: Array, rel: Array, hold: Array) -> Array:
     for k in range(len(v)):
         if hold[k]:
             continue
-        if k + 1 < len(v) and big[k] and not big[k + 1] and d[k] < d[k + 1] and not hold[k + 1]:
+        # at the record's start or end (its own "change"), a burst lasts seconds (EDGE_ENDS)
+        brief = not EDGE_ENDS or d[k] < EDGE_TWO_MOST
+        if (k + 1 < len(v) and big[k] and not big[k + 1] and d[k] < d[k + 1] and not hold[k + 1]
+                and (k > 0 or brief)):
             out[k] = True
-        if k > 0 and big[k + 1] and not big[k] and d[k] < d[k - 1] and not hold[k - 1]:
+        if (k > 0 and big[k + 1] and not big[k] and d[k] < d[k - 1] and not hold[k - 1]
+                and (k + 1 < len(v) or brief)):
             out[k - 1] = True
         if not EDGE_PAIRS:
             continue
         # two bursts side by side at the edge (EDGE_PAIRS): stretches k and k + 1 after the
         # change at k's start, or k - 1 and k before the change at k's end
         if (k + 2 < len(v) and big[k] and not big[k + 1] and not big[k + 2]
-                and max(d[k], d[k + 1]) < d[k + 2] and not (hold[k + 1] or hold[k + 2])):
+                and max(d[k], d[k + 1]) < min(d[k + 2], EDGE_TWO_MOST)
+                and (v[k] - v[k + 2]) * (v[k + 1] - v[k + 2]) < 0.0
+                and not (hold[k + 1] or hold[k + 2])):
             out[k] = out[k + 1] = True
         if (k > 1 and big[k + 1] and not big[k] and not big[k - 1]
-                and max(d[k], d[k - 1]) < d[k - 2] and not (hold[k - 1] or hold[k - 2])):
+                and max(d[k], d[k - 1]) < min(d[k - 2], EDGE_TWO_MOST)
+                and (v[k] - v[k - 2]) * (v[k - 1] - v[k - 2]) < 0.0
+                and not (hold[k - 1] or hold[k - 2])):
             out[k - 2] = out[k - 1] = True
     return out
 
@@ -1108,6 +1133,7 @@ def detect_program(
         # each change as it is reported (over the two segments it joins, placed) must stand
         # as the pruning judged it: the weakest below z_min goes, and the program is read again
         z_keep = _z(fits, fl, keep)
+        z_keep = np.where(np.isnan(z_keep), np.inf, z_keep)  # 0/0: nothing to judge it by
         k = int(np.argmin(z_keep))
         if not z_keep[k] < z_min:
             break
