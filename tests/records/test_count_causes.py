@@ -191,18 +191,26 @@ def test_two_stretches_between_two_of_one_velocity_are_one_excursion(
     """EXCURSION_TWO at generic speeds (2.3 um/s): +11.5 % for 2.4 s then -10.5 % for 2.7 s
     between stretches 0.2 % apart: each of the three boundaries judged by EXCURSION_REL
     (standing 0.516, 0.987, 0.516, all below 1), also inside a longer program; outer
-    stretches a ratio 1.3 apart, and a hold in the pair (the edge-burst rule off), judged as
-    before. Mistakes: only the pair's outer (or inner) boundary judged so; the outer
-    stretches compared with the wrong ones; a hold let into the pair (its 10.5 % slide after
-    the hold then falls); the rule off (1.031, 1.973, 1.032: three changes)."""
+    stretches a ratio 1.3 apart judged as before with ``EDGE_PAIRS`` off (with it, the pair
+    is two bursts at the first stretch's edge: the same standings), and a hold in the pair
+    (the edge-burst rule off) judged as before. Mistakes: only the pair's outer (or inner)
+    boundary judged so; the outer stretches compared with the wrong ones; a hold let into
+    the pair (its 10.5 % slide after the hold then falls); the rule off (1.031, 1.973,
+    1.032: three changes)."""
     u = 2.3e-6
     pair = [u, 1.115 * u, 0.895 * u, 0.998 * u]
     assert detection.EXCURSION_TWO is True
     assert _two_part_scores(pair, [50, 2.4, 2.7, 60]) == [0.516, 0.987, 0.516]
     assert _two_part_scores([0.6 * u, *pair, 3 * u], [40, 50, 2.4, 2.7, 60, 33]) == [
         4.0, 0.516, 0.987, 0.516, 6.673]
+    # outer stretches a ratio 1.3 apart: a pair of bursts at the edge of the first, beside
+    # a change (EDGE_PAIRS); as before without that rule
+    assert _two_part_scores([u, 1.115 * u, 0.895 * u, 1.3 * u], [50, 2.4, 2.7, 60]) == [
+        0.516, 0.987, 3.115]
+    monkeypatch.setattr(detection, "EDGE_PAIRS", False)
     assert _two_part_scores([u, 1.115 * u, 0.895 * u, 1.3 * u], [50, 2.4, 2.7, 60]) == [
         1.031, 1.973, 3.115]
+    monkeypatch.setattr(detection, "EDGE_PAIRS", True)
     # (the edge-burst rule, which would judge that slide so as the shorter of two, off)
     monkeypatch.setattr(detection, "EDGE_BURSTS", False)
     assert _two_part_scores([u, 0.0, 1.115 * u, 0.998 * u], [50, 20, 70, 90])[2] == 1.049
@@ -344,7 +352,9 @@ def test_a_small_reset_just_after_a_step_is_a_jump(tmp_path: Path,
     7.8 um/s step, our generator's seeds 0-9: one change, within 0.1 s of the step, and one
     reset reported, in each, with JUMP_BETWEEN; zoo 84086 and 84852 (a 4.8-um and a -3.5-um
     jump 6 s after a step) read right. Mistake, seen failing: the rule off (5 of the 10 read
-    two changes and no reset; 84086 four changes, 84852 two)."""
+    two changes and no reset; 84086 four changes, 84852 two), with ``REACH_EVERY`` and
+    ``FINAL_JUDGE`` off too: with them, all ten read one change and one reset even with the
+    rule off (a second route, measured)."""
     assert artifacts.JUMP_BETWEEN is True
 
     def read(seed: int) -> tuple[int, int, bool]:
@@ -355,6 +365,9 @@ def test_a_small_reset_just_after_a_step_is_a_jump(tmp_path: Path,
     assert [read(s) for s in range(10)] == [(1, 1, True)] * 10
     assert _zoo_counts((84086, 84852), tmp_path) == [(2, 2), (1, 1)]
     monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
+    assert [read(s)[:2] for s in range(10)] == [(1, 1)] * 10
+    monkeypatch.setattr(detection, "REACH_EVERY", False)
+    monkeypatch.setattr(detection, "FINAL_JUDGE", False)
     assert sum(read(s)[:2] == (2, 0) for s in range(10)) == 5
     assert _zoo_counts((84086, 84852), tmp_path) == [(4, 2), (2, 1)]
 
@@ -427,7 +440,8 @@ def test_a_burst_at_the_end_of_a_record_with_no_change(tmp_path: Path,
                                                        monkeypatch: pytest.MonkeyPatch) -> None:
     """Zoo 21083 and 7253 (no change; a +12 % burst in the last 3 s of 21083, a slower
     last 11 s in 7253, each read as a second stretch 14 % and 12 % off): no change with
-    EDGE_TWO; one each with it off (measured). Zoo 12156 (a ratio-1.3 up-step read as 22 %,
+    EDGE_TWO; one each with it off (measured), with ``REACH_EVERY`` off too (with it, 7253
+    reads right by that second route). Zoo 12156 (a ratio-1.3 up-step read as 22 %,
     the two stretches 60 and 59 s): its change kept, and lost where the edge rule is asked
     of two stretches of any lengths (EDGE_TWO_SHARE of 1.01 and EDGE_TWO_MOST of inf: 0
     changes, measured)."""
@@ -437,6 +451,7 @@ def test_a_burst_at_the_end_of_a_record_with_no_change(tmp_path: Path,
     monkeypatch.setattr(detection, "EDGE_TWO_MOST", float("inf"))
     assert _zoo_counts((12156,), tmp_path) == [(0, 1)]
     monkeypatch.setattr(detection, "EDGE_TWO", False)
+    monkeypatch.setattr(detection, "REACH_EVERY", False)
     assert _zoo_counts((7253, 21083), tmp_path) == [(1, 0), (1, 0)]
 
 
@@ -689,7 +704,8 @@ def test_each_change_stands_where_it_is_placed(tmp_path: Path,
     change, confidence 2.9), 7058 (one, 3.9) and 87801 (the settling after a ratio-10
     down-step read as a 5-s step: kept at 1.01 times ``Z_MIN``, moved 2.6 s, reported at 4.7)
     read their true counts, each change in its tolerance, and no reported confidence is below
-    ``Z_MIN``. Mistakes, seen failing: the rule off (each reads one change too many); the
+    ``Z_MIN``. Mistakes, seen failing: the rule off (507 reads one change too many; 7058 and
+    87801 too, with ``REACH_EVERY`` off, which reads them right by a second route); the
     weakest judged against half of ``z_min`` (87801 kept); the change before the weakest
     removed (``keep[k]`` for ``keep[k + 1]``)."""
     from dryfriction.records.lab import read_record
@@ -702,6 +718,8 @@ def test_each_change_stands_where_it_is_placed(tmp_path: Path,
     conf = [s.confidence for s in det.segments[1:] if np.isfinite(s.confidence)]
     assert len(conf) == 3 and min(conf) >= detection.Z_MIN
     monkeypatch.setattr(detection, "FINAL_JUDGE", False)
+    assert [c[:2] for c in zoo_counts(idx, tmp_path)] == [(5, 4), (2, 2), (3, 3)]
+    monkeypatch.setattr(detection, "REACH_EVERY", False)
     assert [c[:2] for c in zoo_counts(idx, tmp_path)] == [(5, 4), (3, 2), (4, 3)]
 
 

@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 import dryfriction.records.artifacts as artifacts
+import dryfriction.records.detection as detection
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_missed_changes import _zoo_counts  # noqa: E402
@@ -35,13 +36,16 @@ def test_zoo_reset_of_eleven_scales_after_a_step(tmp_path: Path,
     up-step): right with ``_RESET_K`` of 10; with 15 each reads the re-zeroing as a stretch
     of its own (2 changes of 1, measured) where a spike between two velocities is not looked
     at as a jump (JUMP_BETWEEN off), and is right again with it (a second route: the jump
-    that find_resets leaves is a spike between the step's two velocities). Mistakes: the
-    threshold of 15 scales; the second route missing."""
+    that find_resets leaves is a spike between the step's two velocities), ``FINAL_JUDGE``
+    off too (with it the stretch's changes are judged where placed: 9000 then reads none,
+    22020 one off its time, still wrong). Mistakes: the threshold of 15 scales; the second
+    route missing."""
     assert artifacts._RESET_K <= 10.0
     assert _zoo_counts((9000, 22020), tmp_path) == [(1, 1, True), (1, 1, True)]
     monkeypatch.setattr(artifacts, "_RESET_K", 15.0)
     assert _zoo_counts((9000, 22020), tmp_path) == [(1, 1, True), (1, 1, True)]
     monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
+    monkeypatch.setattr(detection, "FINAL_JUDGE", False)
     assert _zoo_counts((9000, 22020), tmp_path) == [(2, 1, False), (2, 1, False)]
     monkeypatch.setattr(artifacts, "_RESET_K", 10.0)
     assert _zoo_counts((9000, 22020), tmp_path) == [(1, 1, True), (1, 1, True)]
