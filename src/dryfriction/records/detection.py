@@ -837,8 +837,7 @@ def _prune(t: Array, x: Array, xs: Array, bounds: list[int], fl: Fluctuations, f
         near = {bounds[j + d] for j in go for d in (-1, 1)} - {0, len(t)}
         bounds = [q for j, q in enumerate(bounds) if j not in go]
         # a large change re-placed within its shorter stretch as it now stands (REPLACE_REACH)
-        reach = (_reach(bounds, fits.table(bounds)[0], every=REACH_EVERY) if REPLACE_REACH
-                 else {})
+        reach = _reach(bounds, fits.table(bounds)[0]) if REPLACE_REACH else {}
         bounds = _replace(t, xs, bounds, {q: reach.get(q, len(t)) for q in near}, m)
     return bounds
 
@@ -859,8 +858,7 @@ Zoo 3112: a 19-s hold's end (confidence 21.5) moved 300 s into the slide when a 
 boundary beyond it went, and the hold was lost; 278 (a short step) and 9000 the same
 (docs/performance.md). A re-placement corrects a kink's place for the change of its
 stretch; a move beyond its shorter stretch is no longer that kink, and a change there stays
-a candidate of the search. Small changes (a servo burst read at 26-34 %) moved as before
-(until :data:`REACH_EVERY`):
+a candidate of the search. Small changes (a servo burst read at 26-34 %) move as before:
 with the reach for every change (in an earlier form, every change placed within its reach),
 zoo 4278, 5145, 5170, 5177, 7018 and 7262 read one or more changes too many. Placing every
 large change within its reach, not only those moved beyond it, fixed 11290 and 7058 too but
@@ -868,32 +866,15 @@ moved nine records' times off (short steps' starts 2.7-3.4 s) and widened a chan
 interval (``tests/records/test_change_interval.py``)"""
 
 
-REACH_EVERY = True
-"""Every change is re-placed within its reach (:data:`REPLACE_REACH`), not only a large one,
-in the pruning and when moved from block means to the samples (ours; with
-:data:`FINAL_JUDGE`).
-
-Why: a commanded stretch of 1-3 s between two different velocities (4.0 -> 11 -> 7.8 um/s
-under a 3 % wander) lost its far end when a weak boundary 35 s away was removed: re-placed
-between its new neighbours, the end of a ratio-1.4 change moved onto the wander's kink where
-the removed boundary had stood, and the stretch was gone (at 3 s, 4 of 8 seeds; at 1.5 s, 7
-of 8). The reach for every change was tried before (detect12) and dropped: servo bursts
-read at 26-34 % then stood as changes (zoo 4278, 5145); reported at confidences 4.8-6.2,
-below ``z_min`` where they are placed, :data:`FINAL_JUDGE` now removes them. Both moves need
-it: kept by the pruning on block means, the stretch's end was lost again when the change was
-moved to the samples between its neighbours (the same best hinge over the longer side)."""
-
-
-def _reach(bounds: list[int], v: Array, every: bool = False) -> dict[int, int]:
-    """How far each inner boundary of a large change (of every change, with ``every``) may be
-    re-placed (:data:`REPLACE_REACH`): the length of its shorter stretch, samples; a change is
-    large when its two velocities (``v``, m/s, one per stretch) are more than
-    :data:`.placement.FINE_RATIO` apart or of opposite signs or one is zero (a hold).
-    Boundaries of small changes are not listed unless ``every``."""
+def _reach(bounds: list[int], v: Array) -> dict[int, int]:
+    """How far each inner boundary of a large change may be re-placed (:data:`REPLACE_REACH`):
+    the length of its shorter stretch, samples; a change is large when its two velocities
+    (``v``, m/s, one per stretch) are more than :data:`.placement.FINE_RATIO` apart or of
+    opposite signs or one is zero (a hold). Boundaries of small changes are not listed."""
     u = np.asarray(v, float)
     lo = np.minimum(np.abs(u[1:]), np.abs(u[:-1]))
     hi = np.maximum(np.abs(u[1:]), np.abs(u[:-1]))
-    large = (hi > FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0) | every
+    large = (hi > FINE_RATIO * lo) | (u[1:] * u[:-1] <= 0.0)
     return {bounds[j]: min(bounds[j] - bounds[j - 1], bounds[j + 1] - bounds[j])
             for j in np.flatnonzero(large) + 1}
 
@@ -1050,7 +1031,7 @@ def detect_program(
         xs_all = (x_all - x_all[0]) / sigma_all
         # a large change within its shorter stretch (REPLACE_REACH), the others between
         # their neighbours
-        reach = _reach(full, fits.table(bounds)[0], every=REACH_EVERY) if REPLACE_REACH else {}
+        reach = _reach(full, fits.table(bounds)[0]) if REPLACE_REACH else {}
         bounds = _replace(t_all, xs_all, full, {q: reach.get(q, n) for q in full[1:-1]},
                           max(3, min_samples))
         fl = replace(fl, sigma=sigma_all)
