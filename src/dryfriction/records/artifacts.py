@@ -380,9 +380,9 @@ def split_rss(t: Array, y: Array, ks: Array) -> tuple[Array, Array]:
     ends = []
     for lo, hi in ((np.zeros_like(ks), ks), (ks, np.full_like(ks, t.size))):
         n = c0[hi] - c0[lo]
-        st, stt = c1[hi] - c1[lo], c2[hi] - c2[lo]
+        st, s2 = c1[hi] - c1[lo], c2[hi] - c2[lo]  # the piece's sums of t and t**2
         sy, sty, syy = cy[hi] - cy[lo], cty[hi] - cty[lo], cyy[hi] - cyy[lo]
-        sxx = stt - st * st / n
+        sxx = s2 - st * st / n
         sxy = sty - st * sy / n
         with np.errstate(divide="ignore", invalid="ignore"):
             slope = np.where(sxx > 0, sxy / sxx, 0.0)

@@ -709,10 +709,10 @@ burst side by side, read as three changes (the boundaries 10.6 % and 19.5 %, con
 and 26): neither burst lies between the stretch and the change alone. (That reading came
 with a rule since dropped, every change re-placed within its reach; without it 89828 reads
 right with this rule off too, and no zoo record measured needs it: it is the edge's
-counterpart of :data:`EXCURSION_TWO`.) Without the duration
-and the two sides, a clean staircase 1.0 -> 1.15 -> 1.32 um/s of 600, 600 and 1200 s (an
-independent review's) read one change 164 s before either: its first two stretches, beside
-the record's start, were taken for a pair of bursts at the third's edge."""
+counterpart of :data:`EXCURSION_TWO`.) Without the duration and the two sides, a clean
+staircase 1.0 -> 1.15 -> 1.32 um/s of 600, 600 and 1200 s (an independent review's) read
+one change 164 s before either: its first two stretches, beside the record's start, were
+taken for a pair of bursts at the third's edge."""
 
 
 def _edge_bursts(v: Array, d: Array, rel: Array, hold: Array) -> Array:
