@@ -4342,6 +4342,16 @@ MUTANTS: tuple[Mutant, ...] = (
        "                and (k + 1 < len(v) or brief)):\n", "                ):\n", _CNT, "-k",
        "monotone"),
     # --- end stop 57 (lead)
+    # --- stop 58 (lead): each change as placed stands by its whole standing (FINAL_SCORES)
+    _m("detection: the changes as placed judged by their confidence alone",
+       "records/detection.py", "FINAL_SCORES = True\n", "FINAL_SCORES = False\n", _CNT, "-k",
+       "whole_standing"),
+    _m("detection: the standing of the changes as placed compared with z_min unscaled",
+       "records/detection.py",
+       "                             max(3, min_samples) if blk > 1 else m) * z_min\n",
+       "                             max(3, min_samples) if blk > 1 else m)\n", _CNT, "-k",
+       "whole_standing or stands_where"),
+    # --- end stop 58 (lead)
 )
 
 

@@ -1116,7 +1116,12 @@ def detect_program(
             break
         # each change as it is reported (over the two segments it joins, placed) must stand
         # as the pruning judged it: the weakest below z_min goes, and the program is read again
-        z_keep = _z(fits, fl, keep)
+        if FINAL_SCORES:
+            # by the pruning's whole standing (its confidence, size, excursions, bursts, slip)
+            z_keep = _scores(fits, fl, keep, rel_tol, z_min, floor, given,
+                             max(3, min_samples) if blk > 1 else m) * z_min
+        else:
+            z_keep = _z(fits, fl, keep)
         z_keep = np.where(np.isnan(z_keep), np.inf, z_keep)  # 0/0: nothing to judge it by
         k = int(np.argmin(z_keep))
         if not z_keep[k] < z_min:
@@ -1170,6 +1175,13 @@ there. A change kept at 1.01 times ``z_min`` and moved 2.6 s by its placement wa
 at 4.7: the settling after a ratio-10 down-step read as a 5-s step (zoo 87801), a servo burst
 as a change (507: confidence 2.9; 7058: 3.9). On zoo 0-899 no true change is reported below
 7.9."""
+
+
+FINAL_SCORES = True
+"""With :data:`FINAL_JUDGE`, each change as reported must stand by the pruning's whole
+standing (:func:`_scores`: its confidence, its size against ``rel_tol`` or, for an excursion
+or a burst at an edge, ``EXCURSION_REL``, and its slip), not by its confidence alone (ours).
+``False``: by the confidence alone."""
 
 
 READING = True
