@@ -4351,6 +4351,16 @@ MUTANTS: tuple[Mutant, ...] = (
        "                             max(3, min_samples) if blk > 1 else m) * z_min\n",
        "                             max(3, min_samples) if blk > 1 else m)\n", _CNT, "-k",
        "whole_standing or stands_where"),
+    _m("detection: the probability kept where the likelihood reaches the search's end",
+       "records/detection.py",
+       '                           start_p=float("nan") if pl.edge else p_in))\n',
+       "                           start_p=p_in))\n", "tests/records/test_change_interval.py",
+       "-k", "search_end"),
+    _m("labsteps: a change at the search's end listed under the probability's note",
+       "records/labsteps.py",
+       "            (unassessed if not np.isfinite(s.start_lo) else edge if s.start_edge\n",
+       "            (unassessed if not np.isfinite(s.start_lo) else edge if False\n",
+       "tests/records/test_change_interval.py", "-k", "search_end"),
     # --- end stop 58 (lead)
 )
 

@@ -163,6 +163,34 @@ def test_table_and_segments_csv_show_the_interval(tmp_path: Path) -> None:
     assert float(table[2]["normal_stress[MPa]"]) == 30.0
 
 
+def test_a_change_whose_likelihood_reaches_the_search_end_has_no_probability(
+        tmp_path: Path) -> None:
+    """A change whose profile reaches the end of the times searched is not placed, and the
+    probability over those times alone is not reported (an independent review's records read
+    ``t_start_placed`` no beside ``t_start_p`` 1.000, under a note saying the probability was
+    below 90 %). Zoo record 0 (a 4594-row record whose first change is such one): its
+    ``start_p`` is NaN, its row of segments.csv has no probability, and the table names it
+    under its own note, not under the probability's. Mistakes, seen failing: the probability
+    kept at the edge; the edge's change listed under the probability's note."""
+    from dryfriction.records.lab import read_record
+    from records_zoo import record_at, write
+
+    det = detect_program(read_record(write(record_at(0), tmp_path)))
+    edge = [j for j, s in enumerate(det.segments) if s.start_edge]
+    assert edge == [1]
+    s = det.segments[1]
+    assert not s.start_placed and np.isnan(s.start_p) and np.isfinite(s.start_lo)
+    text = segments_table(det.segments, "Pa")
+    notes = {line.split(":")[0]: line for line in text.splitlines() if line.startswith("*")}
+    assert list(notes) == ["* segment(s) 1"]
+    assert "end of the times searched" in notes["* segment(s) 1"]
+    assert "below" not in notes["* segment(s) 1"]
+    write_segments_csv(tmp_path / "s.csv", det.segments, float(det.segments[0].t_start), "Pa")
+    with open(tmp_path / "s.csv", encoding="utf-8") as fh:
+        table = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    assert table[1]["t_start_placed"] == "no" and table[1]["t_start_p[1]"] == ""
+
+
 def test_step_windows_carry_the_interval_of_their_change() -> None:
     """A step's window, and a slide-hold-slide's (at the hold's start), carry the interval of
     their own change into steps.csv. Mistake: the segment before's interval."""

@@ -179,7 +179,8 @@ SEGMENT_UNITS: dict[str, str | None] = {
     "t_start_lo": "s (95 % interval of the change at the start, record time)",
     "t_start_hi": "s (95 % interval of the change at the start, record time)",
     "t_start_placed": LABEL,
-    "t_start_p": "1 (probability that the change lies within max(1 sample, 0.5 s) of t_start)",
+    "t_start_p": "1 (probability that the change lies within max(1 sample, 0.5 s) of t_start;"
+                 " empty where its interval reaches the end of the times searched)",
     "normal_stress": "MPa", "normal_force": "kN",
 }
 """segments.csv (the load program of a record: ``record --out``, a record's ``fit``)."""

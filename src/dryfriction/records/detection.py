@@ -1158,7 +1158,10 @@ def detect_program(
         # widened profile; a change whose profile reaches the end of the times searched is not
         placed, p_in = placed_at(pl, t, PLACE_TOL, float(one[s.i_start - 1]))
         out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,
-                           start_edge=pl.edge, start_placed=placed, start_p=p_in))
+                           start_edge=pl.edge, start_placed=placed,
+                           # at the edge, the probability over the times searched alone would
+                           # overstate it (a review's records: p = 1.000 beside "not placed")
+                           start_p=float("nan") if pl.edge else p_in))
     rate, gaps = sampling_changes(t)
     held_back = tuple((float(t[bounds[j]]), float(v_arr[j])) for j in np.flatnonzero(back))
     return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),

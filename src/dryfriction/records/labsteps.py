@@ -80,7 +80,8 @@ class Segment:
     start_p : float
         The probability that the change lies within the larger of one sample and
         :data:`.detection.PLACE_TOL` of ``t_start`` (:func:`.placement.placed_probability`);
-        NaN where no interval was computed.
+        NaN where no interval was computed, and where it reaches the end of the times
+        searched (``start_edge``: the probability over those times alone overstates it).
     """
 
     t_start: float
@@ -220,7 +221,7 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
     lines = [f"{'#':>3} {'t_start (s)':>13} {'95 % (s)':>15} {'t_end (s)':>13} "
              f"{'duration (s)':>12} {'velocity (m/s)':>14} {'(um/s)':>10} {'samples':>8} "
              f"{'confidence':>10} {'normal (' + nu + ')':>12}"]
-    unplaced, unassessed = [], []
+    unplaced, unassessed, edge = [], [], []
     for j, s in enumerate(segments):
         kind = "  hold" if s.velocity == 0.0 else ""
         conf = "-" if not np.isfinite(s.confidence) else f"{s.confidence:.3g}"
@@ -229,7 +230,8 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
             f"-{s.t_start - s.start_lo:.2g}/+{s.start_hi - s.t_start:.2g}"
             + ("" if s.start_placed else "*"))
         if not s.start_placed:
-            (unplaced if np.isfinite(s.start_lo) else unassessed).append(str(j))
+            (unassessed if not np.isfinite(s.start_lo) else edge if s.start_edge
+             else unplaced).append(str(j))
         lines.append(f"{j:>3} {s.t_start:>13.6g} {iv:>15} {s.t_end:>13.6g} "
                      f"{s.duration:>12.6g} {s.velocity:>14.4e} {s.velocity * 1e6:>10.4g} "
                      f"{s.i_end - s.i_start:>8d} {conf:>10} {normal:>12}{kind}")
@@ -241,6 +243,11 @@ def segments_table(segments: tuple[Segment, ...] | list[Segment],
                      "change within the larger of one sample and 0.5 s (probability below "
                      f"{100 * PLACED_P:.0f} %, t_start_p in segments.csv); its time is "
                      "uncertain by the interval shown: give it with --segments if known")
+    if edge:
+        lines.append(f"* segment(s) {', '.join(edge)}: the likelihood of the change's time "
+                     "reaches the end of the times searched for it, so the record does not "
+                     "place it (its interval is at least the times searched; no t_start_p in "
+                     "segments.csv): give it with --segments if known")
     if unassessed:
         lines.append(f"? segment(s) {', '.join(unassessed)}: the time of the change was not "
                      "assessed (too few samples beside it, e.g. at a gap, to compute an "
@@ -291,7 +298,8 @@ def write_segments_csv(path: object, segments: tuple[Segment, ...] | list[Segmen
     program in a comment line on top. ``t_start_lo[s]`` and ``t_start_hi[s]`` are the 95 %
     interval of the change at the segment's start (record time; empty where none was
     computed), ``t_start_p`` the probability that the change lies within the larger of one
-    sample and 0.5 s of ``t_start`` and ``t_start_placed`` whether that is at least
+    sample and 0.5 s of ``t_start`` (empty too where the interval reaches the end of the times
+    searched: :attr:`Segment.start_edge`) and ``t_start_placed`` whether that is at least
     :data:`PLACED_P` (:class:`Segment`; "not assessed" for a detected change with no
     interval). With the record's ``time``, the ``--segments`` line
     gives each start as its shortest decimal (:func:`segments_spec`). Each of ``notes`` (e.g.
