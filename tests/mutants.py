@@ -4361,6 +4361,12 @@ MUTANTS: tuple[Mutant, ...] = (
        "            (unassessed if not np.isfinite(s.start_lo) else edge if s.start_edge\n",
        "            (unassessed if not np.isfinite(s.start_lo) else edge if False\n",
        "tests/records/test_change_interval.py", "-k", "search_end"),
+    _m("plots: the symmetric-log velocity axis linear to the slowest speed itself",
+       "plots/record.py",
+       "        ax.set_yscale(\"symlog\", linthresh=10.0 ** np.floor(np.log10(min(speeds) * 1e6)))"
+       "\n",
+       "        ax.set_yscale(\"symlog\", linthresh=min(speeds) * 1e6)\n",
+       "tests/plots/test_record_figure_data.py", "-k", "overlap"),
     # --- end stop 58 (lead)
 )
 

@@ -85,7 +85,8 @@ def test_record_velocity_axis_symlog_beyond_a_ratio_of_30(slow: float, log: bool
     ax = fig.axes[info.panels.index("velocity")]
     assert ax.get_yscale() == ("symlog" if log else "linear")
     if log:
-        assert ax.yaxis.get_transform().linthresh == pytest.approx(slow * 1e6, rel=1e-12)
+        # the decade at or below the slowest speed (0.0575 um/s)
+        assert ax.yaxis.get_transform().linthresh == pytest.approx(0.01, rel=1e-12)
     assert info.marks == {}
 
 
@@ -258,3 +259,39 @@ def test_the_velocity_is_drawn_on_both_sides_of_a_sampling_rate_change() -> None
     drawn = np.isfinite(yv)
     assert all(((xv >= a) & (xv < a + 5.0) & drawn).any() for a in np.arange(0.0, 120.0, 5.0))
     np.testing.assert_allclose(yv[drawn], 6.3, rtol=1e-6)
+
+
+def test_record_velocity_symlog_tick_labels_do_not_overlap() -> None:
+    """The symmetric-log velocity axis puts its linear range at the decade at or below the
+    slowest speed, so that its ticks are 0 and whole decades either side, one decade's height
+    apart. Seen in an independent review's record.png (a slide-hold-slide at 30 um/s whose
+    hold read 0.008 um/s, the smoothed velocity dipping to -0.1 um/s): with the linear range
+    at 0.008 um/s itself, the labels 10^-3, 0 and -10^-3 were drawn over each other. Mistake,
+    seen failing: the linear range at the slowest speed (the labels' boxes overlap)."""
+    rng = np.random.default_rng(7)
+    t = T0 + np.arange(20001) * 0.01  # 200 s at 100 Hz
+    tt = t - T0
+    v = np.where((tt > 60.0) & (tt < 65.0), 0.0083e-6, 29.8e-6)
+    x = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(tt))])
+    x += rng.normal(0.0, 0.03e-6, t.size)
+    rec = LabRecord(source="synthetic.txt", time=t, load_point=x, load_velocity=None,
+                    friction=0.6 + 0.01 * np.sin(tt), normal_stress=None, normal_unit="Pa",
+                    columns={}, first_line=0)
+    segs = [SimpleNamespace(t_start=T0 + a, t_end=T0 + b, velocity=w, start_placed=True)
+            for a, b, w in ((0.0, 60.0, 29.8e-6), (60.0, 65.0, 0.0083e-6),
+                            (65.0, 200.0, 29.8e-6))]
+    fig, info = plot_record(rec, segs, None)
+    ax = fig.axes[info.panels.index("velocity")]
+    assert ax.get_yscale() == "symlog"
+    assert ax.yaxis.get_transform().linthresh == pytest.approx(1e-3, rel=1e-12)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    lo, hi = ax.get_ylim()
+    boxes = sorted((lab.get_window_extent(renderer) for lab in ax.yaxis.get_ticklabels()
+                    if lab.get_visible() and lab.get_text()
+                    and lo <= lab.get_position()[1] <= hi), key=lambda b: b.y0)
+    assert len(boxes) >= 4
+    for a, b in zip(boxes[:-1], boxes[1:], strict=True):
+        assert a.y1 <= b.y0, (a, b)

@@ -187,7 +187,10 @@ def plot_record(record: LabRecord, segments: tuple[Segment, ...] | list[Segment]
     ax.set_ylabel("velocity  [µm/s]")
     speeds = [abs(s.velocity) for s in segments if s.velocity != 0.0]
     if speeds and max(speeds) / min(speeds) > 30.0:
-        ax.set_yscale("symlog", linthresh=min(speeds) * 1e6)
+        # the linear range to the decade at or below the slowest speed: the ticks are 0 and
+        # whole decades, one decade's height apart (at the slowest speed itself, 0.008 um/s,
+        # the labels 1e-3, 0 and -1e-3 fell inside it and were drawn over each other)
+        ax.set_yscale("symlog", linthresh=10.0 ** np.floor(np.log10(min(speeds) * 1e6)))
     vmax = max(speeds or [1e-6]) * 1e6
     if ax.get_yscale() == "linear":  # the smoothed velocity's spikes do not set the scale
         ax.set_ylim(-0.15 * vmax, 1.5 * vmax)
