@@ -4367,6 +4367,19 @@ MUTANTS: tuple[Mutant, ...] = (
        "\n",
        "        ax.set_yscale(\"symlog\", linthresh=min(speeds) * 1e6)\n",
        "tests/plots/test_record_figure_data.py", "-k", "overlap"),
+    _m("placement: a stop moved into its hold bounds the restart's window",
+       "records/placement.py", "MOVED_INTO = 0.5\n", "MOVED_INTO = 0.0\n",
+       "tests/records/test_stop_and_neighbour.py", "-k", "moved_into"),
+    _m("placement: the window's start after a stop moved into its hold in the first pass only",
+       "records/placement.py",
+       "        lo, hi = _left_end(guess, out, j) + m, out[j + 1] - m\n",
+       "        lo, hi = out[j - 1] + m, out[j + 1] - m\n",
+       "tests/records/test_stop_and_neighbour.py", "-k", "moved_into"),
+    _m("placement: the window after a moved stop starts at the stop's guess whatever its move",
+       "records/placement.py",
+       "            and out[j - 1] - guess[j - 1] > MOVED_INTO * (guess[j] - guess[j - 1])):\n",
+       "            and out[j - 1] - guess[j - 1] > -1e300):\n",
+       "tests/records/test_stop_and_neighbour.py"),
     # --- end stop 58 (lead)
 )
 
