@@ -246,10 +246,12 @@ def test_two_bursts_side_by_side_are_no_change(tmp_path: Path,
     """Zoo 83599 (a velocity reading: 3.97 um/s, two bursts drawn at 181.4 and 184.8 s, +12 %
     and -12 %) and our generator's seed 4 (:func:`_two_bursts`): one change, the step's, with
     EXCURSION_TWO. Mistake, seen failing: the rule off (3 changes too many in each; measured;
-    the generator's seeds 0-29 read right in 29 with the rule off, in 30 with it)."""
+    the generator's seeds 0-29 read right in 29 with the rule off, in 30 with it), with
+    ``FINAL_SCORES`` off too (with it, the seed reads its one change by the final judgement)."""
     assert [len(detection.detect_program(_two_bursts(4)).segments)] == [2]
     assert _zoo_counts((83599,), tmp_path) == [(1, 1)]
     monkeypatch.setattr(detection, "EXCURSION_TWO", False)
+    monkeypatch.setattr(detection, "FINAL_SCORES", False)  # a second route to the count
     assert [len(detection.detect_program(_two_bursts(4)).segments)] == [4]
     assert _zoo_counts((83599,), tmp_path) == [(4, 1)]
 
@@ -353,7 +355,8 @@ def test_a_small_reset_just_after_a_step_is_a_jump(tmp_path: Path,
     reset reported, in each, with JUMP_BETWEEN; zoo 84086 and 84852 (a 4.8-um and a -3.5-um
     jump 6 s after a step) read right. Mistake, seen failing: the rule off (5 of the 10 read
     two changes and no reset; 84086 four changes, 84852 two), with ``FINAL_JUDGE`` off too
-    (with it, 2 of those 5 read one change: a second route to the count, not to the reset)."""
+    (with it, 2 of those 5 read one change: a second route to the count, not to the reset;
+    with ``FINAL_SCORES`` too, 3 of them)."""
     assert artifacts.JUMP_BETWEEN is True
 
     def read(seed: int) -> tuple[int, int, bool]:
@@ -364,6 +367,8 @@ def test_a_small_reset_just_after_a_step_is_a_jump(tmp_path: Path,
     assert [read(s) for s in range(10)] == [(1, 1, True)] * 10
     assert _zoo_counts((84086, 84852), tmp_path) == [(2, 2), (1, 1)]
     monkeypatch.setattr(artifacts, "JUMP_BETWEEN", False)
+    assert sum(read(s)[:2] == (2, 0) for s in range(10)) == 2
+    monkeypatch.setattr(detection, "FINAL_SCORES", False)
     assert sum(read(s)[:2] == (2, 0) for s in range(10)) == 3
     monkeypatch.setattr(detection, "FINAL_JUDGE", False)
     assert sum(read(s)[:2] == (2, 0) for s in range(10)) == 5

@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 import dryfriction.records.artifacts as artifacts
+import dryfriction.records.detection as detection
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -103,11 +104,14 @@ def test_a_gap_is_no_stretch_of_its_own(tmp_path: Path, index: int,
     gap lasts each side (RESET_WIDE). Mistake, seen failing: the offset on 30 samples a side
     (RESET_WIDE = False: 13263 read -11 um there and a stretch at 1.56 um/s across the gap,
     six changes found; 15016 six). Judged with RESET_GAP off: with it on, those gaps are no
-    resets at all and the mistake is hidden (RESET_GAP's own test: test_a_gap_is_no_reset)."""
+    resets at all and the mistake is hidden (RESET_GAP's own test: test_a_gap_is_no_reset);
+    and with ``FINAL_SCORES`` off (with it, 15016's extra stretch goes at the final
+    judgement)."""
     monkeypatch.setattr(artifacts, "RESET_GAP", False)
     found, true, _ = _zoo_counts((index,), tmp_path)[0]
     assert found == true
     monkeypatch.setattr(artifacts, "RESET_WIDE", False)
+    monkeypatch.setattr(detection, "FINAL_SCORES", False)  # a second route to 15016's count
     assert _zoo_counts((index,), tmp_path)[0][0] > true
 
 
