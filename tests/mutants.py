@@ -4381,6 +4381,20 @@ MUTANTS: tuple[Mutant, ...] = (
        "            and out[j - 1] - guess[j - 1] > MOVED_INTO * (guess[j] - guess[j - 1])):\n",
        "            and out[j - 1] - guess[j - 1] > -1e300):\n",
        "tests/records/test_stop_and_neighbour.py"),
+    _m("placement: a change placed before its previous one from a window from its guess",
+       "records/placement.py",
+       "        if start != out[-1] and not pl.index > out[-1] + m:\n",
+       "        if False:\n", "tests/records/test_stop_and_neighbour.py", "-k", "in_order"),
+    _m("placement: the previous change placed again past the one that moved before it",
+       "records/placement.py",
+       "            if np.isfinite(prev.lo) and out[-2] < prev.index < pl.index - m:\n",
+       "            if np.isfinite(prev.lo):\n", "tests/records/test_stop_and_neighbour.py",
+       "-k", "in_order or moved_into"),
+    _m("placement: a second look's place checked against its window alone",
+       "records/placement.py",
+       "            if np.isfinite(pl.lo) and max(lo, out[j - 1] + m) < pl.index < hi:\n",
+       "            if np.isfinite(pl.lo) and lo < pl.index < hi:\n",
+       "tests/records/test_stop_and_neighbour.py", "-k", "in_order"),
     # --- end stop 58 (lead)
 )
 

@@ -168,3 +168,100 @@ def test_a_stop_moved_into_its_hold_does_not_bound_the_restart(
     assert all(_holds_right(s) for s in seeds)
     monkeypatch.setattr(placement, "MOVED_INTO", 0.0)
     assert not any(_holds_right(s) for s in seeds)
+
+
+def test_a_window_from_a_guess_keeps_the_changes_in_order(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """``MOVED_INTO`` lets a change's window start before its previous neighbour as placed; a
+    change placed there must not come before it (an independent review's stub: change 1
+    moved from sample 20 to 50, change 2, guessed at 56, put at the window's first sample,
+    25; change 1's second look on the 12 samples left too few to judge, so the order stayed
+    inverted, ``[0, 12, 50, 25, 199]``). With a stub placement: the boundaries increase and
+    change 2 lies after change 1 by more than ``m``. Mistakes, seen failing: no check of the
+    order in the first pass (25 kept); none where ``_clear_of_neighbours`` places again."""
+    calls: list[tuple[int, int, int]] = []
+
+    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
+             **k: object) -> placement.Placement:
+        calls.append((guess, lo, hi))
+        if hi - lo < 12:
+            return placement.Placement(guess)  # as change_profile on a small window
+        at = {20: 50, 56: lo + 2}.get(guess, guess)
+        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
+
+    monkeypatch.setattr(placement, "change_profile", fake)
+    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
+    monkeypatch.setattr(placement, "FAR_STEPS", False)
+    t, x = 0.1 * np.arange(200), np.zeros(200)
+    out, _ = placement.place_changes(t, x, [0, 12, 20, 56, 199],
+                                     np.array([1e-5, 2e-5, 0.0, 1e-5]), 1e-8,
+                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
+                                     np.array([0.0, 0.0]), 3)
+    assert placement.MOVED_INTO == 0.5
+    assert any(lo == 23 for g, lo, _ in calls if g == 56)  # the window from change 1's guess
+    assert np.all(np.diff(out) > 0) and out[3] > out[2] + 3
+
+
+def test_placing_again_from_a_guess_keeps_the_changes_in_order(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The same where ``_clear_of_neighbours`` places a change again: change 1 moved from
+    sample 20 to 50, change 2 placed at 60, change 3 (guessed at 100) at 80, before its guess,
+    so change 2 is placed again on a window from change 1's guess; the stub puts it at that
+    window's first samples, 25, before change 1: not taken. Mistake, seen failing: the second
+    look's place checked against its window alone (``[0, 12, 50, 25, 80, 199]``)."""
+    seen: dict[int, int] = {}
+
+    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
+             **k: object) -> placement.Placement:
+        seen[guess] = seen.get(guess, 0) + 1
+        if hi - lo < 12:
+            return placement.Placement(guess)
+        at = {20: 50, 100: 80}.get(guess, guess)
+        if guess == 56:
+            at = 60 if seen[guess] == 1 else lo + 2
+        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
+
+    monkeypatch.setattr(placement, "change_profile", fake)
+    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
+    monkeypatch.setattr(placement, "FAR_STEPS", False)
+    t, x = 0.1 * np.arange(200), np.zeros(200)
+    out, _ = placement.place_changes(t, x, [0, 12, 20, 56, 100, 199],
+                                     np.array([1e-5, 2e-5, 0.0, 1e-5, 3e-5]), 1e-8,
+                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
+                                     np.array([0.0, 0.0]), 3)
+    assert seen[56] == 2  # placed again, from change 1's guess
+    assert out == [0, 12, 50, 60, 80, 199]
+
+
+def test_a_previous_change_placed_again_keeps_the_changes_in_order(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Where a change placed on a window from its previous neighbour's guess lands before that
+    neighbour, the neighbour is placed again clear of it, but only where it then still lies
+    after its own previous neighbour: changes 1 and 2 moved into the stretches after them
+    (100 -> 180, 200 -> 310), change 3 (guess 400) put at 250, change 2's second look, on a
+    window from change 1's guess, put at 105, before change 1: not taken, and change 3 placed
+    after change 2 as without the rule. Mistake, seen failing: the second look taken
+    whatever its place (``[0, 12, 180, 105, 250, 799]``)."""
+    seen: dict[int, int] = {}
+
+    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
+             **k: object) -> placement.Placement:
+        seen[guess] = seen.get(guess, 0) + 1
+        if hi - lo < 12:
+            return placement.Placement(guess)
+        first = seen[guess] == 1
+        at = {100: 180, 200: 310 if first else lo + 2, 400: 250 if lo < 300 else lo + 2
+              }.get(guess, guess)
+        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
+
+    monkeypatch.setattr(placement, "change_profile", fake)
+    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
+    monkeypatch.setattr(placement, "FAR_STEPS", False)
+    monkeypatch.setattr(placement, "NEIGHBOURS_PLACED", False)
+    t, x = 0.1 * np.arange(800), np.zeros(800)
+    out, _ = placement.place_changes(t, x, [0, 12, 100, 200, 400, 799],
+                                     np.array([1e-5, 2e-5, 0.0, 1e-5, 3e-5]), 1e-8,
+                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
+                                     np.array([0.0, 0.0]), 3)
+    assert seen[200] == 2  # change 2 looked at again
+    assert out == [0, 12, 180, 310, 315, 799]

@@ -1091,7 +1091,17 @@ def place_changes(t: Array, x: Array, bounds: list[int], velocity: Array, sigma:
     out = [bounds[0] if OWN_START else 0]
     places: list[Placement] = []
     for j in range(1, len(bounds) - 1):
-        pl = place(j, _left_end(bounds, out, j) + m, bounds[j + 1] - m)
+        start = _left_end(bounds, out, j)
+        pl = place(j, start + m, bounds[j + 1] - m)
+        if start != out[-1] and not pl.index > out[-1] + m:
+            # placed before the previous change as placed (a window from its guess,
+            # MOVED_INTO): that one placed again clear of this one, where its samples left
+            # judge it; else this one placed after it, as without the rule (the order kept)
+            prev = place(j - 1, _left_end(bounds, out, j - 1) + m, pl.index - m)
+            if np.isfinite(prev.lo) and out[-2] < prev.index < pl.index - m:
+                out[-1], places[-1] = prev.index, prev
+            else:
+                pl = place(j, out[-1] + m, bounds[j + 1] - m)
         out.append(pl.index)
         places.append(pl)
     out.append(bounds[-1])
@@ -1244,7 +1254,13 @@ the stop again: the hold was read as a 0.5-s slow stretch, or lost (an independe
 records, 30 um/s, 5-s holds, 100 Hz: 22 of 30 right; 29 of 30 with this rule). Where the
 re-slide's window starts after the stop's guess it finds the restart, and the stop is placed
 again clear of it. Half the stretch: a change's own placement moves it within its
-uncertainty, seconds at most, not across most of the stretch the search found after it."""
+uncertainty, seconds at most, not across most of the stretch the search found after it.
+
+The order is kept (a second review's stub placements): where the change is placed before
+the first one as placed, the first one is placed again clear of it, and kept there only if
+it still lies after its own previous neighbour; else the change is placed after it, as
+without the rule; a second look of :func:`_clear_of_neighbours` is taken only after the
+previous change as placed."""
 
 
 def _left_end(guess: list[int], out: list[int], j: int) -> int:
@@ -1292,5 +1308,7 @@ def _clear_of_neighbours(guess: list[int], out: list[int], places: list[Placemen
         if (guess[j + 1] - m > out[j + 1] and lo < guess[j] < hi
                 and t[out[j + 1]] - t[guess[j]] < reach):
             pl = place(j, lo, hi)
-            if np.isfinite(pl.lo) and lo < pl.index < hi:
+            # (and after the previous change as placed: a window from its guess, MOVED_INTO,
+            # may reach before it)
+            if np.isfinite(pl.lo) and max(lo, out[j - 1] + m) < pl.index < hi:
                 out[j], places[j - 1] = pl.index, pl
