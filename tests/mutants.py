@@ -2782,7 +2782,7 @@ MUTANTS: tuple[Mutant, ...] = (
        "        lo, hi = _left_end(guess, out, j) + m, guess[j + 1] - m\n",
        "tests/records/test_stop_and_neighbour.py", "-k", "keeps_the_order"),
     _m("placement: a placement again outside the samples left accepted", "records/placement.py",
-       "            if np.isfinite(pl.lo) and lo < pl.index < hi:\n",
+       "            if np.isfinite(pl.lo) and max(lo, out[j - 1] + m) < pl.index < hi:\n",
        "            if np.isfinite(pl.lo):\n",
        "tests/records/test_stop_and_neighbour.py", "-k", "keeps_the_order"),
     _m("normal stress: one ramp's split points merged by time alone", "records/artifacts.py",
