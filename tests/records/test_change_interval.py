@@ -170,8 +170,9 @@ def test_a_change_whose_likelihood_reaches_the_search_end_has_no_probability(
     ``t_start_placed`` no beside ``t_start_p`` 1.000, under a note saying the probability was
     below 90 %). Zoo record 0 (a 4594-row record whose first change is such one): its
     ``start_p`` is NaN, its row of segments.csv has no probability, and the table names it
-    under its own note, not under the probability's. Mistakes, seen failing: the probability
-    kept at the edge; the edge's change listed under the probability's note."""
+    under its own note, not under the probability's. Mistakes, seen failing: the edge
+    ignored by ``placed_at`` (a probability, and "placed"); the edge's change listed under
+    the probability's note."""
     from dryfriction.records.lab import read_record
     from records_zoo import record_at, write
 
@@ -336,7 +337,8 @@ def test_placed_at_judges_the_larger_of_one_sample_and_the_tolerance() -> None:
     """``placed_at``, the one rule for ``start_placed`` and the placement's second looks: the
     probability is the widened profile's within the larger of the sample interval before the
     change and ``tol`` of the reported time (closed form, a Gaussian profile); placed at
-    ``PLACED_P`` or more, never at the edge of the times searched, never without an interval.
+    ``PLACED_P`` or more, never at the edge of the times searched (and no probability there),
+    never without an interval.
     Mistakes, each seen failing: ``tol`` alone where the sampling is coarser (p 0.26 against
     0.82 at the 2-s sample; 0.60, not placed, against 0.999); the edge ignored; a placement
     without an interval judged placed."""
@@ -360,7 +362,8 @@ def test_placed_at_judges_the_larger_of_one_sample_and_the_tolerance() -> None:
         assert placed == (exact >= PLACED_P + 5e-3) or abs(exact - PLACED_P) < 5e-3
         assert placement.placed_at(pl, t, 0.5, one=float(one)) == (placed, p)
         edge = placement.Placement(k, 0.0, 12.0, True, cells=edges, weights=w)
-        assert placement.placed_at(edge, t, 0.5) == (False, p)
+        placed_edge, p_edge = placement.placed_at(edge, t, 0.5)
+        assert placed_edge is False and np.isnan(p_edge)
     # a profile wide enough that the 2-s sample holds it: placed there, not with tol alone
     edges, w = placement.profile_weights(fine, -((fine - 5.0) ** 2) / 0.3**2, 1.0, 0.0, 12.0)
     k = int(np.flatnonzero(t == 5.0)[0])

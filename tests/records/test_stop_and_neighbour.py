@@ -9,6 +9,7 @@ for, and each was seen failing with it applied (the numbers measured are in the 
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -170,6 +171,34 @@ def test_a_stop_moved_into_its_hold_does_not_bound_the_restart(
     assert not any(_holds_right(s) for s in seeds)
 
 
+def _stubbed_order(monkeypatch: pytest.MonkeyPatch, bounds: list[int],
+                   place_at: Callable[[int, int, int], int]) -> tuple[list[int],
+                                                                   dict[int, list[int]]]:
+    """``place_changes`` on samples 0.1 s apart, ``change_profile`` stubbed: the ``n``-th look
+    at the change guessed at ``guess`` on a window from ``lo`` is put at ``place_at(guess,
+    lo, n)`` (a window under 12 samples: at its guess, with no interval, as the real one).
+    The boundaries placed, and each change's windows' first samples by its guess."""
+    looks: dict[int, list[int]] = {}
+
+    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
+             **k: object) -> placement.Placement:
+        looks.setdefault(guess, []).append(lo)
+        if hi - lo < 12:
+            return placement.Placement(guess)
+        at = place_at(guess, lo, len(looks[guess]))
+        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
+
+    monkeypatch.setattr(placement, "change_profile", fake)
+    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
+    monkeypatch.setattr(placement, "FAR_STEPS", False)
+    n = bounds[-1] + 1
+    v = np.resize([1e-5, 2e-5, 0.0, 1e-5, 3e-5], len(bounds) - 1)
+    out, _ = placement.place_changes(0.1 * np.arange(n), np.zeros(n), bounds, v, 1e-8,
+                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
+                                     np.array([0.0, 0.0]), 3)
+    return out, looks
+
+
 def test_a_window_from_a_guess_keeps_the_changes_in_order(
         monkeypatch: pytest.MonkeyPatch) -> None:
     """``MOVED_INTO`` lets a change's window start before its previous neighbour as placed; a
@@ -179,26 +208,10 @@ def test_a_window_from_a_guess_keeps_the_changes_in_order(
     inverted, ``[0, 12, 50, 25, 199]``). With a stub placement: the boundaries increase and
     change 2 lies after change 1 by more than ``m``. Mistakes, seen failing: no check of the
     order in the first pass (25 kept); none where ``_clear_of_neighbours`` places again."""
-    calls: list[tuple[int, int, int]] = []
-
-    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
-             **k: object) -> placement.Placement:
-        calls.append((guess, lo, hi))
-        if hi - lo < 12:
-            return placement.Placement(guess)  # as change_profile on a small window
-        at = {20: 50, 56: lo + 2}.get(guess, guess)
-        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
-
-    monkeypatch.setattr(placement, "change_profile", fake)
-    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
-    monkeypatch.setattr(placement, "FAR_STEPS", False)
-    t, x = 0.1 * np.arange(200), np.zeros(200)
-    out, _ = placement.place_changes(t, x, [0, 12, 20, 56, 199],
-                                     np.array([1e-5, 2e-5, 0.0, 1e-5]), 1e-8,
-                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
-                                     np.array([0.0, 0.0]), 3)
+    out, looks = _stubbed_order(monkeypatch, [0, 12, 20, 56, 199],
+                                lambda g, lo, n: {20: 50, 56: lo + 2}.get(g, g))
     assert placement.MOVED_INTO == 0.5
-    assert any(lo == 23 for g, lo, _ in calls if g == 56)  # the window from change 1's guess
+    assert 23 in looks[56]  # the window from change 1's guess
     assert np.all(np.diff(out) > 0) and out[3] > out[2] + 3
 
 
@@ -209,27 +222,10 @@ def test_placing_again_from_a_guess_keeps_the_changes_in_order(
     so change 2 is placed again on a window from change 1's guess; the stub puts it at that
     window's first samples, 25, before change 1: not taken. Mistake, seen failing: the second
     look's place checked against its window alone (``[0, 12, 50, 25, 80, 199]``)."""
-    seen: dict[int, int] = {}
-
-    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
-             **k: object) -> placement.Placement:
-        seen[guess] = seen.get(guess, 0) + 1
-        if hi - lo < 12:
-            return placement.Placement(guess)
-        at = {20: 50, 100: 80}.get(guess, guess)
-        if guess == 56:
-            at = 60 if seen[guess] == 1 else lo + 2
-        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
-
-    monkeypatch.setattr(placement, "change_profile", fake)
-    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
-    monkeypatch.setattr(placement, "FAR_STEPS", False)
-    t, x = 0.1 * np.arange(200), np.zeros(200)
-    out, _ = placement.place_changes(t, x, [0, 12, 20, 56, 100, 199],
-                                     np.array([1e-5, 2e-5, 0.0, 1e-5, 3e-5]), 1e-8,
-                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
-                                     np.array([0.0, 0.0]), 3)
-    assert seen[56] == 2  # placed again, from change 1's guess
+    out, looks = _stubbed_order(
+        monkeypatch, [0, 12, 20, 56, 100, 199],
+        lambda g, lo, n: (60 if n == 1 else lo + 2) if g == 56 else {20: 50, 100: 80}.get(g, g))
+    assert len(looks[56]) == 2  # placed again, from change 1's guess
     assert out == [0, 12, 50, 60, 80, 199]
 
 
@@ -242,26 +238,10 @@ def test_a_previous_change_placed_again_keeps_the_changes_in_order(
     window from change 1's guess, put at 105, before change 1: not taken, and change 3 placed
     after change 2 as without the rule. Mistake, seen failing: the second look taken
     whatever its place (``[0, 12, 180, 105, 250, 799]``)."""
-    seen: dict[int, int] = {}
-
-    def fake(t: np.ndarray, x: np.ndarray, guess: int, lo: int, hi: int, *a: object,
-             **k: object) -> placement.Placement:
-        seen[guess] = seen.get(guess, 0) + 1
-        if hi - lo < 12:
-            return placement.Placement(guess)
-        first = seen[guess] == 1
-        at = {100: 180, 200: 310 if first else lo + 2, 400: 250 if lo < 300 else lo + 2
-              }.get(guess, guess)
-        return placement.Placement(at, float(t[at]) - 0.1, float(t[at]) + 0.1)
-
-    monkeypatch.setattr(placement, "change_profile", fake)
-    monkeypatch.setattr(placement, "SEARCH_AGAIN", False)
-    monkeypatch.setattr(placement, "FAR_STEPS", False)
     monkeypatch.setattr(placement, "NEIGHBOURS_PLACED", False)
-    t, x = 0.1 * np.arange(800), np.zeros(800)
-    out, _ = placement.place_changes(t, x, [0, 12, 100, 200, 400, 799],
-                                     np.array([1e-5, 2e-5, 0.0, 1e-5, 3e-5]), 1e-8,
-                                     np.array([1.0, 10.0]), np.array([0.01, 0.01]),
-                                     np.array([0.0, 0.0]), 3)
-    assert seen[200] == 2  # change 2 looked at again
+    out, looks = _stubbed_order(
+        monkeypatch, [0, 12, 100, 200, 400, 799],
+        lambda g, lo, n: {100: 180, 200: 310 if n == 1 else lo + 2,
+                          400: 250 if lo < 300 else lo + 2}.get(g, g))
+    assert len(looks[200]) == 2  # change 2 looked at again
     assert out == [0, 12, 180, 310, 315, 799]

@@ -1078,8 +1078,10 @@ def detect_program(
     if P_MOVE > 0.0 and _wanders(fl):
         # a confident change left where the whole stretches put it, whose own profile gives
         # that place less than P_MOVE of lying within the tolerance: placed by the profile
+        # (NaN, never below it, where there is no interval or the profile is cut by the
+        # times searched: :func:`.placement.placed_at`)
         p_at = np.array([placed_at(pl, t, PLACE_TOL, float(one[pl.index - 1]))[1]
-                         if np.isfinite(pl.lo) and not pl.edge else 1.0 for pl in places])
+                         for pl in places])
         far = ~weak & (p_at < P_MOVE)
         for j in np.flatnonzero(far) + 1:  # each between its neighbours as placed
             sub = [bounds[j - 1], bounds[j], bounds[j + 1]]
@@ -1116,15 +1118,13 @@ def detect_program(
             break
         # each change as it is reported (over the two segments it joins, placed) must stand
         # as the pruning judged it: the weakest below z_min goes, and the program is read again
-        if FINAL_SCORES:
-            # by the pruning's whole standing (its confidence, size, excursions, bursts, slip)
-            z_keep = _scores(fits, fl, keep, rel_tol, z_min, floor, given,
-                             max(3, min_samples) if blk > 1 else m) * z_min
-        else:
-            z_keep = _z(fits, fl, keep)
-        z_keep = np.where(np.isnan(z_keep), np.inf, z_keep)  # 0/0: nothing to judge it by
-        k = int(np.argmin(z_keep))
-        if not z_keep[k] < z_min:
+        # (by the pruning's whole standing, FINAL_SCORES: confidence, size, slip; on the
+        # samples, whose shortest stretch is max(3, min_samples), whatever the blocks were)
+        stand = (_scores(fits, fl, keep, rel_tol, z_min, floor, given, max(3, min_samples))
+                 if FINAL_SCORES else _z(fits, fl, keep) / z_min)
+        stand = np.where(np.isnan(stand), np.inf, stand)  # 0/0: nothing to judge it by
+        k = int(np.argmin(stand))
+        if not stand[k] < 1.0:
             break
         gone = keep[k + 1]
         places = [pl for q, pl in zip(bounds[1:-1], places, strict=True) if q != gone]
@@ -1158,10 +1158,7 @@ def detect_program(
         # widened profile; a change whose profile reaches the end of the times searched is not
         placed, p_in = placed_at(pl, t, PLACE_TOL, float(one[s.i_start - 1]))
         out.append(replace(s, confidence=conf, normal=normal, start_lo=pl.lo, start_hi=pl.hi,
-                           start_edge=pl.edge, start_placed=placed,
-                           # at the edge, the probability over the times searched alone would
-                           # overstate it (a review's records: p = 1.000 beside "not placed")
-                           start_p=float("nan") if pl.edge else p_in))
+                           start_edge=pl.edge, start_placed=placed, start_p=p_in))
     rate, gaps = sampling_changes(t)
     held_back = tuple((float(t[bounds[j]]), float(v_arr[j])) for j in np.flatnonzero(back))
     return Detection(tuple(out), fl, tuple(float(t[i + 1]) for i in resets), tuple(rate),

@@ -1122,13 +1122,16 @@ def placed_at(pl: Placement, t: Array, tol: float, one: float | None = None
     times searched (ours; the one rule for :class:`.labsteps.Segment`'s ``start_placed`` and
     for the placement's second looks). ``one``: the sample interval (s) at ``pl.index`` if
     already computed (:func:`sample_intervals`). A placement without an interval (NaN ``lo``:
-    its window too small to judge) is not placed, with probability NaN."""
-    if not np.isfinite(pl.lo):
+    its window too small to judge) is not placed, with probability NaN; nor is one whose
+    profile reaches the end of the times searched, its probability NaN too (over those times
+    alone it would overstate it: an independent review's records read "not placed" beside a
+    probability of 1.000)."""
+    if not np.isfinite(pl.lo) or pl.edge:
         return False, float("nan")
     if one is None:
         one = float(sample_intervals(t, max(pl.index, 1))[0])
     p = placed_probability(pl, float(t[pl.index]), max(one, tol))
-    return (not pl.edge and p >= PLACED_P), p
+    return p >= PLACED_P, p
 
 
 STRAIGHT_Z = 3.0
